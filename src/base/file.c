@@ -1,0 +1,66 @@
+/* file.c: see file.h. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "base/file.h"
+#include "base/mem.h"
+
+bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return cv_fail(err, "%s: %s", path, strerror(errno));
+    size_t cap = 1 << 16, n = 0;
+    char *buf = cv_xmalloc(cap);
+    for (;;) {
+        if (n + 1 >= cap)
+            buf = cv_xrealloc(buf, cap *= 2);
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    bool failed = ferror(f);
+    int saved = errno;
+    fclose(f);
+    if (failed) {
+        free(buf);
+        return cv_fail(err, "%s: read error: %s", path, strerror(saved));
+    }
+    buf[n] = '\0';
+    *data = buf;
+    if (len)
+        *len = n;
+    return true;
+}
+
+char *cv_path_dirname(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return cv_xstrdup(".");
+    if (slash == path)
+        return cv_xstrdup("/");
+    size_t n = (size_t)(slash - path);
+    char *d = cv_xmalloc(n + 1);
+    memcpy(d, path, n);
+    d[n] = '\0';
+    return d;
+}
+
+char *cv_path_join(const char *dir, const char *rel)
+{
+    if (rel[0] == '/' || !dir || !dir[0])
+        return cv_xstrdup(rel);
+    size_t n = strlen(dir);
+    return cv_xasprintf("%s%s%s", dir, dir[n - 1] == '/' ? "" : "/", rel);
+}
+
+bool cv_path_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}

@@ -1,0 +1,20 @@
+/* file.h: whole-file reads and path helpers. */
+#ifndef CV_BASE_FILE_H
+#define CV_BASE_FILE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "base/error.h"
+
+/* Reads a whole file; *data is NUL-terminated (one extra byte) and owned by
+ * the caller (free()). */
+bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *err);
+
+/* Newly allocated directory part of path ("." when there is none). */
+char *cv_path_dirname(const char *path);
+/* Newly allocated dir/rel, or rel itself when rel is absolute or dir empty. */
+char *cv_path_join(const char *dir, const char *rel);
+bool cv_path_exists(const char *path);
+
+#endif

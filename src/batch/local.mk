@@ -1,0 +1,1 @@
+# src/batch: see Makefile.am

@@ -1,0 +1,1 @@
+# src/bvh: see Makefile.am

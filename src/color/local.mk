@@ -1,0 +1,1 @@
+# src/color: see Makefile.am

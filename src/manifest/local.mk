@@ -1,0 +1,1 @@
+# src/manifest: see Makefile.am

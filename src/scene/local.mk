@@ -1,0 +1,1 @@
+# src/scene: see Makefile.am

@@ -1,0 +1,1 @@
+# src/trace: see Makefile.am

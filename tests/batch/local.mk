@@ -1,0 +1,1 @@
+# tests/batch: see tests/local.mk

@@ -1,0 +1,1 @@
+# tests/bvh: see tests/local.mk

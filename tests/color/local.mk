@@ -1,0 +1,1 @@
+# tests/color: see tests/local.mk

@@ -1,0 +1,1 @@
+# tests/gpu: see tests/local.mk

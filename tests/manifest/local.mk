@@ -1,0 +1,1 @@
+# tests/manifest: see tests/local.mk

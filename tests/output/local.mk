@@ -1,0 +1,1 @@
+# tests/output: see tests/local.mk
