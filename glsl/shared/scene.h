@@ -1,0 +1,175 @@
+/* glsl/shared/scene.h: the flat, GPU-ready scene as both C (src/scene builds
+ * it) and GLSL (src/bvh and src/trace read it) see it. One source of truth:
+ * change a field here and both sides follow.
+ *
+ * Conventions
+ * - World space is pbrt's. Colours are linear Rec.709 RGB (the render's
+ *   working space); spectra were converted on import.
+ * - Triangles index vertices; a triangle's material word holds the material
+ *   index in its low 24 bits and CV_TRI_* flags above.
+ * - "_tex" fields are indices into the texture table, -1 for none; when a
+ *   texture is present it replaces the constant next to it (scale, if any, is
+ *   folded into a CV_TEX_SCALE texture by the importer).
+ * - Roughness values are stored as microfacet alpha already (remaproughness
+ *   applied on import) unless CV_MATF_REMAP_ROUGHNESS is set, which happens
+ *   only when the roughness comes from a texture and must be remapped per
+ *   lookup. */
+#ifndef CV_SHARED_SCENE_H
+#define CV_SHARED_SCENE_H
+
+#include "shared/common.h"
+
+/* ---- geometry ---------------------------------------------------------- */
+
+/* pos_u.xyz: position; pos_u.w: u.  nrm_v.xyz: shading normal (all zero when
+ * the mesh has none); nrm_v.w: v. */
+CV_STRUCT(CvVertex) {
+    CV_VEC4 pos_u;
+    CV_VEC4 nrm_v;
+} CV_END(CvVertex)
+CV_CHECK_SIZE(CvVertex, 32);
+
+#define CV_TRI_MATERIAL_MASK 0x00ffffffu
+#define CV_TRI_HAS_UV (1u << 24)      /* else pbrt's default (0,0) (1,0) (1,1) */
+#define CV_TRI_HAS_NORMAL (1u << 25)  /* vertex normals are valid */
+#define CV_TRI_REVERSE (1u << 26)     /* ReverseOrientation xor handedness flip */
+
+/* idx.xyz: vertex indices; idx.w: material word (see above). */
+CV_STRUCT(CvTriangle) {
+    CV_UVEC4 idx;
+} CV_END(CvTriangle)
+CV_CHECK_SIZE(CvTriangle, 16);
+
+/* ---- textures ---------------------------------------------------------- */
+
+#define CV_TEX_CONSTANT 0u     /* value_a */
+#define CV_TEX_IMAGE 1u        /* texels[offset..], width x height, mip chain */
+#define CV_TEX_CHECKERBOARD 2u /* 2D checker of tex_a/value_a and tex_b/value_b */
+#define CV_TEX_SCALE 3u        /* tex_a/value_a * tex_b/value_b */
+#define CV_TEX_MIX 4u          /* lerp(tex_a/value_a, tex_b/value_b, amount_tex/amount) */
+
+#define CV_TEXF_SRGB (1u << 0)        /* source was sRGB-encoded; texels are stored linear */
+#define CV_TEXF_WRAP_CLAMP (1u << 1)  /* else repeat */
+#define CV_TEXF_WRAP_BLACK (1u << 2)
+#define CV_TEXF_INVERT (1u << 3)      /* 1 - value (v4 "invert") */
+#define CV_TEXF_FLOAT (1u << 4)       /* a float texture: use .r (or average for rgb images) */
+#define CV_TEXF_BILERP (1u << 5)      /* filter bilinear only (no mip) */
+
+/* Texels of all image textures live in one buffer of half-float RGBA, two
+ * uints per texel (packHalf2x16(r,g), packHalf2x16(b,a)); level L of a
+ * texture starts at `offset` + sum of the sizes of levels 0..L-1, each level
+ * half the size of the last (rounded down, at least 1). */
+CV_STRUCT(CvTexture) {
+    CV_UINT type;
+    CV_UINT flags;
+    CV_UINT offset;     /* in texels */
+    CV_UINT levels;
+    CV_UINT width;
+    CV_UINT height;
+    CV_INT tex_a;
+    CV_INT tex_b;
+    CV_VEC4 value_a;
+    CV_VEC4 value_b;
+    CV_VEC4 uv_map;     /* u' = su*u + du, v' = sv*v + dv: (su, sv, du, dv) */
+    CV_INT amount_tex;
+    CV_FLOAT amount;
+    CV_FLOAT scale;     /* multiplies the result (pbrt "scale") */
+    CV_UINT pad;
+} CV_END(CvTexture)
+CV_CHECK_SIZE(CvTexture, 96);
+
+/* ---- materials --------------------------------------------------------- */
+
+#define CV_MAT_DIFFUSE 0u              /* matte / diffuse: reflectance */
+#define CV_MAT_CONDUCTOR 1u            /* metal / conductor: eta, k (or reflectance), roughness */
+#define CV_MAT_DIELECTRIC 2u           /* glass / dielectric: eta, roughness, (v3 Kr/Kt in reflectance/specular) */
+#define CV_MAT_THIN_DIELECTRIC 3u      /* thindielectric: eta */
+#define CV_MAT_MIRROR 4u               /* mirror: reflectance = Kr */
+#define CV_MAT_COATED_DIFFUSE 5u       /* plastic / substrate / coateddiffuse */
+#define CV_MAT_COATED_CONDUCTOR 6u     /* coatedconductor: interface roughness/eta, conductor roughness2/eta/k */
+#define CV_MAT_DIFFUSE_TRANSMISSION 7u /* reflectance = R, specular = T */
+#define CV_MAT_MIX 8u                  /* mix_a, mix_b by amount */
+#define CV_MAT_INTERFACE 9u            /* no surface: rays pass through */
+#define CV_MAT_PLASTIC 10u             /* v3 plastic: Kd in reflectance, Ks in specular, roughness */
+
+#define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
+#define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */
+#define CV_MATF_TWO_SIDED (1u << 2)
+
+CV_STRUCT(CvMaterial) {
+    CV_UINT type;
+    CV_UINT flags;
+    CV_INT displacement_tex;  /* float texture for bump mapping */
+    CV_INT normal_tex;        /* tangent-space normal map image */
+
+    CV_VEC4 reflectance;      /* rgb: Kd, conductor reflectance, Kr, diffuse-transmission R */
+    CV_VEC4 specular;         /* rgb: plastic Ks, dielectric Kt, diffuse-transmission T, coat albedo */
+    CV_VEC4 eta;              /* rgb: conductor eta; .x: dielectric/interface eta */
+    CV_VEC4 k;                /* rgb: conductor k */
+    CV_VEC4 roughness;        /* x,y: alpha u,v; z: coat thickness; w: coat g */
+    CV_VEC4 roughness2;       /* x,y: coated conductor's base alpha u,v; z: maxdepth; w: nsamples */
+
+    CV_INT reflectance_tex;
+    CV_INT specular_tex;
+    CV_INT roughness_u_tex;
+    CV_INT roughness_v_tex;
+
+    CV_INT alpha_tex;         /* cut-out: alpha < 0.5 (or random test) passes through */
+    CV_FLOAT alpha;           /* 1: opaque */
+    CV_INT mix_a;             /* material indices */
+    CV_INT mix_b;
+
+    CV_INT amount_tex;        /* mix amount (probability of mix_b) */
+    CV_FLOAT amount;
+    CV_INT eta_tex;           /* spectrally constant eta as float texture, rarely used */
+    CV_UINT pad;
+} CV_END(CvMaterial)
+CV_CHECK_SIZE(CvMaterial, 160);
+
+/* ---- lights ------------------------------------------------------------ */
+
+#define CV_LIGHT_POINT 0u
+#define CV_LIGHT_SPOT 1u
+#define CV_LIGHT_DISTANT 2u
+#define CV_LIGHT_AREA 3u           /* one emitting triangle: prim */
+#define CV_LIGHT_INFINITE 4u       /* constant environment: L */
+#define CV_LIGHT_INFINITE_MAP 5u   /* image environment: tex (scaled by L) */
+
+#define CV_LIGHTF_TWO_SIDED (1u << 0)
+#define CV_LIGHTF_EQUAL_AREA (1u << 1) /* v4 octahedral map, else v3 lat-long */
+
+CV_STRUCT(CvLight) {
+    CV_UINT type;
+    CV_UINT flags;
+    CV_INT tex;           /* emission texture (area) or environment image */
+    CV_UINT prim;         /* CV_LIGHT_AREA: triangle index */
+    CV_VEC4 L;            /* rgb: radiance (area, infinite) or intensity (point, spot)
+                           * or radiance scale (distant: irradiance); w: area of prim */
+    CV_VEC4 position;     /* xyz: point/spot position; w: cos of spot falloff start */
+    CV_VEC4 direction;    /* xyz: spot/distant direction the light travels; w: cos of spot total width */
+    CV_VEC4 to_light[3];  /* rows of the world-to-light rotation (environment maps, spot) */
+} CV_END(CvLight)
+CV_CHECK_SIZE(CvLight, 112);
+
+/* ---- camera ------------------------------------------------------------ */
+
+#define CV_CAMERA_PERSPECTIVE 0u
+#define CV_CAMERA_ORTHOGRAPHIC 1u
+
+/* A raster point (px, py) in [0,w)x[0,h) of the full film maps to screen
+ * space sx = screen.x + (px / w) * (screen.y - screen.x),
+ *              sy = screen.w - (py / h) * (screen.w - screen.z);
+ * perspective: camera-space direction (sx * tan_half_fov, sy * tan_half_fov, 1),
+ * orthographic: origin (sx, sy, 0), direction (0, 0, 1); both as in pbrt.
+ * Thin lens as pbrt: lens.x radius, lens.y focal distance. to_world rows map
+ * camera space to world space (3x4 affine). */
+CV_STRUCT(CvCamera) {
+    CV_VEC4 to_world[3];
+    CV_VEC4 screen;       /* xmin, xmax, ymin, ymax */
+    CV_VEC4 lens;         /* x: lens radius, y: focal distance, z: tan(fov/2), w: unused */
+    CV_UVEC4 film;        /* full resolution x, y; crop origin x, y (pixels) */
+    CV_UVEC4 crop;        /* crop size x, y (pixels rendered); type; unused */
+} CV_END(CvCamera)
+CV_CHECK_SIZE(CvCamera, 112);
+
+#endif

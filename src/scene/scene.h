@@ -1,0 +1,73 @@
+/* scene.h: the flat scene that every later stage reads. The parser and
+ * builder (src/scene) fill it from pbrt-v3/v4 files; the GPU struct types
+ * come from glsl/shared/scene.h so the arrays upload as they are. */
+#ifndef CV_SCENE_SCENE_H
+#define CV_SCENE_SCENE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "glsl/shared/scene.h"
+
+enum cv_filter_type {
+    CV_FILTER_BOX,
+    CV_FILTER_TRIANGLE,
+    CV_FILTER_GAUSSIAN,
+};
+
+/* What the scene file asks of the render; the manifest may override it. */
+struct cv_render_settings {
+    uint32_t width, height;          /* full film resolution [pixels] */
+    float crop[4];                   /* crop window x0, x1, y0, y1 in [0,1] */
+    uint32_t spp;                    /* sampler pixelsamples */
+    uint32_t max_depth;              /* integrator maxdepth */
+    char *integrator;                /* "path", "volpath", ... as written */
+    char *sampler;                   /* "halton", "sobol", "independent", ... */
+    char *film_filename;             /* as written, may be NULL */
+    enum cv_filter_type filter;
+    float filter_radius[2];          /* [pixels] */
+    float filter_sigma;              /* gaussian */
+    float exposure;                  /* film iso/exposure scale folded in, 1 by default */
+};
+
+struct cv_scene {
+    CvVertex *vertices;
+    uint32_t n_vertices;
+    CvTriangle *triangles;
+    uint32_t n_triangles;
+    int32_t *tri_light;              /* per triangle: light index or -1 */
+
+    CvMaterial *materials;
+    uint32_t n_materials;
+    char **material_names;           /* per material: name for reports, may be NULL entries */
+
+    CvTexture *textures;
+    uint32_t n_textures;
+    uint32_t *texels;                /* half RGBA, 2 words per texel */
+    uint64_t n_texels;
+
+    CvLight *lights;
+    uint32_t n_lights;
+    float *light_power;              /* per light: power used for the sampling CDF */
+
+    CvCamera camera;
+    struct cv_render_settings settings;
+
+    float bounds_min[3], bounds_max[3];
+    char *path;                      /* the scene file as given */
+    unsigned warnings;               /* warnings emitted while loading */
+};
+
+struct cv_scene_load_params {
+    bool strict;                     /* warnings become errors */
+};
+
+/* Loads a pbrt-v3 or pbrt-v4 file (syntax detected per directive). On failure
+ * returns false with err naming file:line:col; *out is untouched. */
+bool cv_scene_load(const char *path, const struct cv_scene_load_params *params,
+                   struct cv_scene **out, struct cv_error *err);
+/* Accepts NULL; clears the pointer. */
+void cv_scene_destroy(struct cv_scene **scene);
+
+#endif
