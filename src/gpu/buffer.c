@@ -1,0 +1,56 @@
+/* buffer.c: see buffer.h. */
+#include "base/log.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+
+GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struct cv_error *err)
+{
+    GLuint buf = 0;
+    glCreateBuffers(1, &buf);
+    /* A zero-size buffer cannot be bound; keep one word so that empty scene
+     * arrays still bind. */
+    glNamedBufferStorage(buf, (GLsizeiptr)(bytes ? bytes : 4), bytes ? data : NULL,
+                         GL_DYNAMIC_STORAGE_BIT);
+    if (!data || !bytes)
+        cv_buffer_zero(buf);
+    if (label)
+        glObjectLabel(GL_BUFFER, buf, -1, label);
+    if (!cv_gl_check(err, "creating buffer %s (%zu bytes)", label ? label : "", bytes)) {
+        glDeleteBuffers(1, &buf);
+        return 0;
+    }
+    return buf;
+}
+
+void cv_buffer_destroy(GLuint *buf)
+{
+    if (buf && *buf) {
+        glDeleteBuffers(1, buf);
+        *buf = 0;
+    }
+}
+
+bool cv_buffer_upload(GLuint buf, size_t offset, size_t bytes, const void *data,
+                      struct cv_error *err)
+{
+    glNamedBufferSubData(buf, (GLintptr)offset, (GLsizeiptr)bytes, data);
+    return cv_gl_check(err, "uploading %zu bytes", bytes);
+}
+
+bool cv_buffer_read(GLuint buf, size_t offset, size_t bytes, void *dst, struct cv_error *err)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buf, (GLintptr)offset, (GLsizeiptr)bytes, dst);
+    return cv_gl_check(err, "reading back %zu bytes", bytes);
+}
+
+void cv_buffer_zero(GLuint buf)
+{
+    GLuint zero = 0;
+    glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+void cv_buffer_bind(GLuint buf, unsigned binding)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);
+}

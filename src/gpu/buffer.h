@@ -1,0 +1,24 @@
+/* buffer.h: shader storage buffers and their transfers. Sizes in bytes. */
+#ifndef CV_GPU_BUFFER_H
+#define CV_GPU_BUFFER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include <epoxy/gl.h>
+
+#include "base/error.h"
+
+/* Immutable storage, updatable from the CPU; data may be NULL (zeroed).
+ * Returns 0 on failure with err set (GL_OUT_OF_MEMORY is the usual cause). */
+GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struct cv_error *err);
+/* Accepts a pointer to 0; clears it. */
+void cv_buffer_destroy(GLuint *buf);
+bool cv_buffer_upload(GLuint buf, size_t offset, size_t bytes, const void *data,
+                      struct cv_error *err);
+/* Waits for the GPU; use outside hot loops only. */
+bool cv_buffer_read(GLuint buf, size_t offset, size_t bytes, void *dst, struct cv_error *err);
+void cv_buffer_zero(GLuint buf);
+void cv_buffer_bind(GLuint buf, unsigned binding);
+
+#endif

@@ -1,0 +1,66 @@
+/* context.h: a headless OpenGL 4.5+ core context for compute. EGL with no
+ * display and no surface (EGL_EXT_platform_device, then Mesa's surfaceless
+ * platform); OSMesa as the last resort. One context serves a whole batch. */
+#ifndef CV_GPU_CONTEXT_H
+#define CV_GPU_CONTEXT_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "base/error.h"
+
+enum cv_gpu_backend {
+    CV_BACKEND_AUTO = 0,   /* EGL device, then EGL surfaceless, then OSMesa */
+    CV_BACKEND_EGL,        /* EGL only (device, then surfaceless) */
+    CV_BACKEND_OSMESA,     /* OSMesa only */
+};
+
+struct cv_gpu_params {
+    int gpu_index;         /* EGL device index from --list-gpus; -1: choose */
+    enum cv_gpu_backend backend;
+    bool debug;            /* ask for a debug context (KHR_debug messages) */
+};
+
+/* What was found; filled once at creation. */
+struct cv_gpu_info {
+    char backend[32];      /* "egl-device", "egl-surfaceless", "osmesa" */
+    int device_index;      /* EGL device index, -1 when not a device */
+    char device[160];      /* DRM node or "software", "" when unknown */
+    char vendor[128];
+    char renderer[256];
+    char version[128];
+    int gl_major, gl_minor;
+    bool software;         /* llvmpipe, softpipe, OSMesa */
+    bool robust;           /* reset notification was granted */
+    int max_compute_ssbo_blocks;
+    int max_ssbo_bindings;
+    int max_workgroup_invocations;
+    long long max_ssbo_bytes;
+    bool has_int64;        /* GL_ARB_gpu_shader_int64 */
+    bool has_shader_ballot;/* GL_KHR_shader_subgroup or ARB_shader_ballot */
+    bool has_nvx_memory_info;
+};
+
+struct cv_program_cache;
+
+struct cv_gpu {
+    struct cv_gpu_info info;
+    struct cv_program_cache *programs;  /* owned: see program.h */
+    void *platform;                     /* owned by the backend file */
+    void (*platform_destroy)(void *platform);
+};
+
+bool cv_gpu_create(const struct cv_gpu_params *params, struct cv_gpu **out,
+                   struct cv_error *err);
+/* Accepts NULL; clears the pointer. */
+void cv_gpu_destroy(struct cv_gpu **gpu);
+
+/* Prints every device the backends find (index, vendor, renderer, GL version)
+ * and marks the one `params` would choose. Returns false only when none. */
+bool cv_gpu_list(const struct cv_gpu_params *params, FILE *out, struct cv_error *err);
+
+/* Checks an extension of the current context without libepoxy's helpers,
+ * which cannot run under OSMesa. */
+bool cv_gl_has_extension(const char *name);
+
+#endif

@@ -1,0 +1,50 @@
+/* program.h: compute programs built from glsl/ files. The loader resolves
+ * #include "..." (relative to the including file, then to glsl/), injects
+ * #defines after #version, and maps driver logs ("0(42)", "0:42(7)") back to
+ * glsl/<file>:<line>. Programs are cached per context by path and defines,
+ * so a batch compiles each once. */
+#ifndef CV_GPU_PROGRAM_H
+#define CV_GPU_PROGRAM_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <epoxy/gl.h>
+
+#include "base/error.h"
+#include "gpu/context.h"
+
+struct cv_program {
+    GLuint id;
+    uint32_t local_size[3];  /* the shader's local_size_x/y/z */
+    char *path;
+};
+
+struct cv_program_cache *cv_program_cache_create(void);
+void cv_program_cache_destroy(struct cv_program_cache **cache);
+
+/* Returns the program for glsl/<path> with `defines` ("NAME=VALUE" or
+ * "NAME", NULL-terminated array, may be NULL), compiling it on first use.
+ * The program stays owned by the cache. */
+struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
+                                  const char *const *defines, struct cv_error *err);
+
+/* The assembled source (includes expanded, defines injected, #line
+ * directives naming file numbers); *names receives the file table (index
+ * = GLSL source-string number), NULL-terminated. Exposed for tests. */
+bool cv_glsl_assemble(const char *path, const char *const *defines, char **source,
+                      char ***names, struct cv_error *err);
+
+/* Rewrites a driver's info log so each location reads glsl/<file>:<line>. */
+char *cv_glsl_map_log(const char *log, char *const *names);
+
+/* Dispatches enough workgroups to cover n_x * n_y * n_z invocations of the
+ * program's local size, then issues a shader-storage memory barrier: SSBO
+ * writes are not visible to the next dispatch without it. */
+void cv_program_dispatch(const struct cv_program *prog, uint32_t n_x, uint32_t n_y, uint32_t n_z);
+
+/* One dispatch per call of ceil(n / local_size_x) groups, splitting across
+ * the y dimension when n exceeds the driver's group-count limit. */
+void cv_program_dispatch_1d(const struct cv_program *prog, uint64_t n);
+
+#endif

@@ -1,0 +1,2 @@
+// fine.glsl: compiles.
+void fine() {}
