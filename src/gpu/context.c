@@ -36,6 +36,10 @@ static void GLAPIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLe
      * of cv_program_get; the raw copy is only for debugging. */
     if (source == GL_DEBUG_SOURCE_SHADER_COMPILER)
         level = CV_LOG_DEBUG;
+    /* NVIDIA reports each read-back as a "performance warning"; they are
+     * deliberate (once per pass at most). */
+    else if (type == GL_DEBUG_TYPE_PERFORMANCE && severity != GL_DEBUG_SEVERITY_HIGH)
+        level = CV_LOG_DEBUG;
     else if (severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_ERROR)
         level = CV_LOG_ERROR;
     else if (severity == GL_DEBUG_SEVERITY_MEDIUM)
