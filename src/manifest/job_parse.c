@@ -350,6 +350,7 @@ static void parse_rlpath(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d
 static void parse_name(yaml_node_t *v, struct cv_diag *d, struct cv_job_draft *out)
 {
     const char *s;
+    out->name_at = pos(v);  /* given, even if invalid: not "missing" */
     if (!cv_yread_string(v, d, "name", &s))
         return;
     for (const char *p = s; *p; p++) {
@@ -361,7 +362,6 @@ static void parse_name(yaml_node_t *v, struct cv_diag *d, struct cv_job_draft *o
         }
     }
     set_string(&out->job.name, s);
-    out->name_at = pos(v);
 }
 
 /* Only {name} may appear in braces: a typo such as {nmae} would otherwise

@@ -18,7 +18,7 @@
 #include "manifest/manifest.h"
 #include "manifest/yaml_view.h"
 
-static const char *const top_keys[] = {"version", "defaults", "jobs"};
+static const char *const top_keys[] = {"version", "defaults", "jobs", "x-*"};
 
 /* The output template when neither job nor defaults give one: the job's name
  * next to the manifest. */
@@ -88,7 +88,7 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
         snprintf(label, sizeof(label), "job \"%s\" (line %zu)", j->name, dr->at.line);
     else
         snprintf(label, sizeof(label), "job %zu (line %zu)", i + 1, dr->at.line);
-    if (!j->name)
+    if (!j->name && !dr->name_at.line)
         cv_diag_add(d, dr->at.line, dr->at.col, "job %zu: missing required key \"name\"", i + 1);
 
     if (!j->has_formats)
@@ -199,7 +199,7 @@ static size_t read_document(yaml_document_t *doc, yaml_node_t *root, struct cv_d
             def = pairs[i].value;
         else if (!strcmp(k, "jobs"))
             list = pairs[i].value;
-        else
+        else if (strncmp(k, "x-", 2) != 0) /* x-*: room for anchors, ignored */
             cv_yunknown_key(&pairs[i], d, "the manifest", top_keys, CV_ARRAY_SIZE(top_keys));
     }
     free(pairs);
@@ -278,7 +278,11 @@ bool cv_manifest_load(const char *path, struct cv_manifest **out, struct cv_erro
     size_t n = root ? read_document(&doc, root, &d, &defaults, &drafts) : 0;
     if (!root)
         memset(&defaults, 0, sizeof(defaults));
+    /* "./scenes/a.pbrt" helps no one: keep paths of a manifest in the
+     * working folder as written. */
     char *dir = cv_path_dirname(path);
+    if (!strcmp(dir, "."))
+        dir[0] = '\0';
     for (size_t i = 0; i < n; i++) {
         cv_job_merge(&drafts[i], &defaults);
         resolve_job(&drafts[i], i, dir, &d);
