@@ -4,7 +4,10 @@
 . "${CAVALRY_DATA_DIR:?}/tests/setup.sh"
 page="$CAVALRY_DATA_DIR/man/cavalry-manifest.5"
 command -v mandoc >/dev/null 2>&1 || skip_all "mandoc not installed"
-if out=$(mandoc -Tlint -W warning "$page" 2>&1) && [ -z "$out" ]; then
+# "referenced manual not found" only says that cavalry-batch(1) is not
+# installed on this machine yet; every other message counts.
+out=$(mandoc -Tlint "$page" 2>&1 | grep -v 'STYLE: referenced manual not found: Xr cavalry-' || true)
+if [ -z "$out" ]; then
     ok "mandoc -Tlint is clean"
 else
     not_ok "mandoc -Tlint is clean"

@@ -47,7 +47,7 @@ static void check_good(void)
     /* hero: defaults with own overrides; color merged key by key. */
     tap_ok(str_is(h->scene, scene), "hero scene from defaults, joined: %s", h->scene);
     tap_ok(str_is(h->scene_as_written, "scenes/tiny.pbrt"), "hero scene as written");
-    TAP_EQ_INT(h->line, 27, "hero line");
+    TAP_EQ_INT(h->line, 26, "hero line");
     TAP_EQ_INT(h->col, 5, "hero col");
     tap_ok(h->has_spp && h->spp == 256, "hero spp overrides defaults");
     tap_ok(h->has_resolution && h->width == 640 && h->height == 360, "hero resolution list");
