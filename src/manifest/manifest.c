@@ -337,3 +337,57 @@ const struct cv_job *cv_manifest_find_job(const struct cv_manifest *m, const cha
             return &m->jobs[i];
     return NULL;
 }
+
+const char *cv_integrator_name(enum cv_integrator integrator)
+{
+    switch (integrator) {
+    case CV_INTEGRATOR_PATH:
+        return "path";
+    case CV_INTEGRATOR_RLPATH:
+        return "rlpath";
+    default:
+        return NULL;
+    }
+}
+
+const char *cv_exr_compression_name(enum cv_exr_compression compression)
+{
+    switch (compression) {
+    case CV_EXR_NONE:
+        return "none";
+    case CV_EXR_ZIP:
+        return "zip";
+    case CV_EXR_PIZ:
+        return "piz";
+    case CV_EXR_DWAA:
+        return "dwaa";
+    default:
+        return NULL;
+    }
+}
+
+const char *cv_format_ext(unsigned format_bit)
+{
+    switch (format_bit) {
+    case CV_FORMAT_EXR:
+        return "exr";
+    case CV_FORMAT_PNG:
+        return "png";
+    default:
+        return NULL;
+    }
+}
+
+const char *cv_aov_name(unsigned aov_bit)
+{
+    switch (aov_bit) {
+    case CV_AOV_ALBEDO:
+        return "albedo";
+    case CV_AOV_NORMAL:
+        return "normal";
+    case CV_AOV_DEPTH:
+        return "depth";
+    default:
+        return NULL;
+    }
+}

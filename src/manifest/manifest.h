@@ -133,6 +133,14 @@ void cv_manifest_destroy(struct cv_manifest **m);
  * NULL ext gives the output path alone. */
 char *cv_job_output_path(const struct cv_job *job, const char *ext);
 
+/* Names as written in a manifest, for plans, logs and metadata. Each takes
+ * one value (one bit for the bit sets) and returns a static string, or NULL
+ * for CV_INTEGRATOR_UNSET and anything out of range. */
+const char *cv_integrator_name(enum cv_integrator integrator);
+const char *cv_exr_compression_name(enum cv_exr_compression compression);
+const char *cv_format_ext(unsigned format_bit);     /* "exr", "png" */
+const char *cv_aov_name(unsigned aov_bit);          /* "albedo", "normal", "depth" */
+
 /* The job with this name, or NULL. */
 const struct cv_job *cv_manifest_find_job(const struct cv_manifest *m, const char *name);
 

@@ -294,7 +294,7 @@ bool cv_yread_duration(yaml_node_t *n, struct cv_diag *d, const char *what, doub
         unit = 3600.0;
     else
         unit = 0.0;
-    if (unit == 0.0 || !(v > 0.0)) {
+    if (unit == 0.0 || !(v > 0.0) || !isfinite(v * unit)) {
         expected(n, d, what, exp);
         return false;
     }

@@ -125,6 +125,15 @@ int main(void)
           "camera.lookat: eye and target are the same point");
     fails("fov 180", HEAD "  - {name: a, scene: s.pbrt, camera: {fov: 180}}\n",
           "camera.fov: expected degrees between 0 and 180");
+    fails("a duration past the end of time",
+          HEAD "  - {name: a, scene: s.pbrt, time_limit: 1e306h}\n",
+          "time_limit: expected a duration > 0");
+    tap_ok(!strcmp(cv_integrator_name(CV_INTEGRATOR_RLPATH), "rlpath") &&
+               !cv_integrator_name(CV_INTEGRATOR_UNSET) &&
+               !strcmp(cv_exr_compression_name(CV_EXR_DWAA), "dwaa") &&
+               !strcmp(cv_format_ext(CV_FORMAT_PNG), "png") && !cv_format_ext(3) &&
+               !strcmp(cv_aov_name(CV_AOV_DEPTH), "depth"),
+           "names of settings");
     fails("nan is no number", HEAD "  - {name: a, scene: s.pbrt, color: {exposure: .nan}}\n",
           "color.exposure: expected a number from -64 to 64, got \".nan\"");
 
