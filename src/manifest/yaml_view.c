@@ -74,42 +74,69 @@ static bool is_merge_key(const yaml_node_t *k)
            !strcmp(scalar(k), "<<");
 }
 
-static void collect(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
-                    struct cv_ypair **out, size_t *n, size_t *cap, int depth);
+/* Merging walks shared nodes, so a few lines of anchors can ask for an
+ * exponential amount of work ("<<: [*a, *a]" chained); a mapping can even
+ * merge itself. The walk keeps the chain of mappings being merged to catch
+ * cycles and a budget of pairs visited to stop the explosion. */
+#define MERGE_BUDGET 100000
+
+struct merge_walk {
+    yaml_document_t *doc;
+    struct cv_diag *d;
+    yaml_node_t *chain[MAX_MERGE_DEPTH];
+    int depth;
+    long budget;
+    bool reported;
+};
+
+static void collect(struct merge_walk *w, yaml_node_t *map, struct cv_ypair **out, size_t *n,
+                    size_t *cap);
 
 /* Appends the pairs of one merge source whose keys are not there yet. */
-static void merge_from(yaml_document_t *doc, yaml_node_t *src, struct cv_diag *d,
-                       struct cv_ypair **out, size_t *n, size_t *cap, int depth)
+static void merge_from(struct merge_walk *w, yaml_node_t *src, struct cv_ypair **out,
+                       size_t *n, size_t *cap)
 {
     if (src->type != YAML_MAPPING_NODE) {
-        cv_diag_add(d, cv_yline(src), cv_ycol(src),
+        cv_diag_add(w->d, cv_yline(src), cv_ycol(src),
                     "merge key \"<<\": expected a mapping or a sequence of mappings, got %s",
                     cv_ykind(src));
         return;
     }
+    for (int i = 0; i < w->depth; i++) {
+        if (w->chain[i] == src) {
+            cv_diag_add(w->d, cv_yline(src), cv_ycol(src),
+                        "merge key \"<<\": this mapping merges itself");
+            return;
+        }
+    }
     struct cv_ypair *sub = NULL;
     size_t sn = 0, scap = 0;
-    collect(doc, src, d, &sub, &sn, &scap, depth + 1);
+    collect(w, src, &sub, &sn, &scap);
     for (size_t i = 0; i < sn; i++)
         if (!has_key(*out, *n, cv_ykey(&sub[i])))
             CV_PUSH(*out, *n, *cap, sub[i]);
     free(sub);
 }
 
-static void collect(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
-                    struct cv_ypair **out, size_t *n, size_t *cap, int depth)
+static void collect(struct merge_walk *w, yaml_node_t *map, struct cv_ypair **out, size_t *n,
+                    size_t *cap)
 {
-    if (depth > MAX_MERGE_DEPTH) {
-        cv_diag_add(d, cv_yline(map), cv_ycol(map), "merge keys nested too deeply");
+    if (w->depth >= MAX_MERGE_DEPTH || w->budget <= 0) {
+        if (!w->reported)
+            cv_diag_add(w->d, cv_yline(map), cv_ycol(map),
+                        "merge keys nested too deeply or expanding too much");
+        w->reported = true;
         return;
     }
+    w->chain[w->depth++] = map;
     yaml_node_t *merges[64];
     size_t n_merges = 0;
     size_t own_start = *n;
     for (yaml_node_pair_t *p = map->data.mapping.pairs.start; p < map->data.mapping.pairs.top;
          p++) {
-        yaml_node_t *k = yaml_document_get_node(doc, p->key);
-        yaml_node_t *v = yaml_document_get_node(doc, p->value);
+        yaml_node_t *k = yaml_document_get_node(w->doc, p->key);
+        yaml_node_t *v = yaml_document_get_node(w->doc, p->value);
+        w->budget--;
         if (!k || !v)
             continue;
         if (is_merge_key(k)) {
@@ -117,21 +144,21 @@ static void collect(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
                 for (yaml_node_item_t *it = v->data.sequence.items.start;
                      it < v->data.sequence.items.top; it++)
                     if (n_merges < CV_ARRAY_SIZE(merges))
-                        merges[n_merges++] = yaml_document_get_node(doc, *it);
+                        merges[n_merges++] = yaml_document_get_node(w->doc, *it);
             } else if (n_merges < CV_ARRAY_SIZE(merges)) {
                 merges[n_merges++] = v;
             }
             continue;
         }
         if (k->type != YAML_SCALAR_NODE || is_null(k)) {
-            cv_diag_add(d, cv_yline(k), cv_ycol(k), "expected a string key, got %s",
+            cv_diag_add(w->d, cv_yline(k), cv_ycol(k), "expected a string key, got %s",
                         cv_ykind(k));
             continue;
         }
         bool dup = false;
         for (size_t i = own_start; i < *n; i++) {
             if (!strcmp(cv_ykey(&(*out)[i]), scalar(k))) {
-                cv_diag_add(d, cv_yline(k), cv_ycol(k),
+                cv_diag_add(w->d, cv_yline(k), cv_ycol(k),
                             "duplicate key \"%s\" (first given at line %zu)", scalar(k),
                             cv_yline((*out)[i].key));
                 dup = true;
@@ -145,15 +172,17 @@ static void collect(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
     }
     for (size_t i = 0; i < n_merges; i++)
         if (merges[i])
-            merge_from(doc, merges[i], d, out, n, cap, depth);
+            merge_from(w, merges[i], out, n, cap);
+    w->depth--;
 }
 
 size_t cv_ymap_pairs(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
                      struct cv_ypair **pairs)
 {
     size_t n = 0, cap = 0;
+    struct merge_walk w = {.doc = doc, .d = d, .budget = MERGE_BUDGET};
     *pairs = NULL;
-    collect(doc, map, d, pairs, &n, &cap, 0);
+    collect(&w, map, pairs, &n, &cap);
     return n;
 }
 

@@ -92,6 +92,22 @@ int main(void)
     fails("merge of a scalar", HEAD "  - name: a\n    scene: s.pbrt\n    <<: 3\n",
           "m.yaml:5:9: merge key \"<<\": expected a mapping or a sequence of mappings, got "
           "a plain scalar");
+    fails("a mapping that merges itself",
+          "version: 1\nx-a: &a {spp: 2, <<: *a}\njobs:\n  - {name: a, scene: s.pbrt, <<: *a}\n",
+          "m.yaml:2:6: merge key \"<<\": this mapping merges itself");
+    /* Thirty anchors each merging the previous one twice: 2^30 pairs if
+     * expanded naively. It must be refused, and quickly. */
+    char *bomb = cv_xstrdup("version: 1\nx-0: &a0 {spp: 2}\n");
+    for (int i = 1; i < 30; i++) {
+        char *next = cv_xasprintf("%sx-%d: &a%d {<<: [*a%d, *a%d]}\n", bomb, i, i, i - 1, i - 1);
+        free(bomb);
+        bomb = next;
+    }
+    char *bomb_jobs = cv_xasprintf("%sjobs:\n  - {name: a, scene: s.pbrt, <<: *a29}\n", bomb);
+    fails("merge keys that expand exponentially", bomb_jobs,
+          "merge keys nested too deeply or expanding too much");
+    free(bomb);
+    free(bomb_jobs);
     fails("name in defaults", "version: 1\ndefaults: {name: x}\njobs:\n  - {name: a, scene: s.pbrt}\n",
           "m.yaml:2:12: \"name\" cannot be given in defaults");
     fails("colliding outputs",
