@@ -409,7 +409,6 @@ void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
         const char *k = cv_ykey(&pairs[i]);
         yaml_node_t *v = pairs[i].value;
         const char *s;
-        double f;
         int idx;
         if (!strcmp(k, "name") && !is_defaults) {
             parse_name(v, d, out);
@@ -460,7 +459,6 @@ void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
             cv_yunknown_key(&pairs[i], d, where, job_keys + is_defaults,
                             CV_ARRAY_SIZE(job_keys) - is_defaults);
         }
-        (void)f;
     }
     free(pairs);
 }
