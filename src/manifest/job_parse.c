@@ -257,7 +257,7 @@ static void parse_exr(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
         } else if (!strcmp(k, "compression")) {
             if (cv_yread_enum(pairs[i].value, d, "exr.compression", compression_names,
                               CV_ARRAY_SIZE(compression_names), &idx)) {
-                e->compression = (enum cv_exr_compression)idx;
+                e->compression = (enum cv_job_compression)idx;
                 e->has_compression = true;
             }
         } else {

@@ -94,7 +94,9 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
     if (!j->has_formats)
         j->formats = CV_FORMAT_EXR;
     if (!j->exr.has_compression)
-        j->exr.compression = CV_EXR_ZIP;
+        j->exr.compression = CV_JOB_EXR_ZIP;
+    if (!j->exr.has_half)
+        j->exr.half = true;
     if (!j->png.has_bits)
         j->png.bits = 8;
 
@@ -350,16 +352,16 @@ const char *cv_integrator_name(enum cv_integrator integrator)
     }
 }
 
-const char *cv_exr_compression_name(enum cv_exr_compression compression)
+const char *cv_job_compression_name(enum cv_job_compression compression)
 {
     switch (compression) {
-    case CV_EXR_NONE:
+    case CV_JOB_EXR_NONE:
         return "none";
-    case CV_EXR_ZIP:
+    case CV_JOB_EXR_ZIP:
         return "zip";
-    case CV_EXR_PIZ:
+    case CV_JOB_EXR_PIZ:
         return "piz";
-    case CV_EXR_DWAA:
+    case CV_JOB_EXR_DWAA:
         return "dwaa";
     default:
         return NULL;

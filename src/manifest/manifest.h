@@ -36,11 +36,11 @@ enum cv_integrator {
     CV_INTEGRATOR_RLPATH,
 };
 
-enum cv_exr_compression {
-    CV_EXR_NONE,
-    CV_EXR_ZIP,                /* the default */
-    CV_EXR_PIZ,
-    CV_EXR_DWAA,
+enum cv_job_compression {
+    CV_JOB_EXR_NONE,
+    CV_JOB_EXR_ZIP,                /* the default */
+    CV_JOB_EXR_PIZ,
+    CV_JOB_EXR_DWAA,
 };
 
 struct cv_job_color {
@@ -55,8 +55,8 @@ struct cv_job_color {
 
 struct cv_job_exr {
     bool has_half, has_compression;
-    bool half;                 /* default false: 32-bit float channels */
-    enum cv_exr_compression compression;   /* default CV_EXR_ZIP */
+    bool half;                 /* default true: 16-bit half channels (float on request) */
+    enum cv_job_compression compression;   /* default CV_JOB_EXR_ZIP */
 };
 
 struct cv_job_png {
@@ -137,7 +137,7 @@ char *cv_job_output_path(const struct cv_job *job, const char *ext);
  * one value (one bit for the bit sets) and returns a static string, or NULL
  * for CV_INTEGRATOR_UNSET and anything out of range. */
 const char *cv_integrator_name(enum cv_integrator integrator);
-const char *cv_exr_compression_name(enum cv_exr_compression compression);
+const char *cv_job_compression_name(enum cv_job_compression compression);
 const char *cv_format_ext(unsigned format_bit);     /* "exr", "png" */
 const char *cv_aov_name(unsigned aov_bit);          /* "albedo", "normal", "depth" */
 

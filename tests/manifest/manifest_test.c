@@ -57,7 +57,8 @@ static void check_good(void)
            "hero display and view merged from defaults' color");
     tap_ok(h->color.look == NULL && h->color.config == NULL, "hero look and config unset");
     tap_ok(h->aovs == (CV_AOV_ALBEDO | CV_AOV_NORMAL), "hero aovs");
-    tap_ok(h->exr.compression == CV_EXR_PIZ && !h->exr.half, "hero exr from defaults");
+    tap_ok(h->exr.compression == CV_JOB_EXR_PIZ && h->exr.half && !h->exr.has_half,
+           "hero exr from defaults (half by default)");
     tap_ok(h->png.bits == 8 && !h->png.has_bits, "hero png bits default 8");
     tap_ok(h->integrator == CV_INTEGRATOR_UNSET && !h->has_max_depth && !h->has_time_limit &&
                !h->has_seed && !h->camera.has_fov && !h->camera.has_lookat,
@@ -100,7 +101,7 @@ static void check_good(void)
     tap_ok(g->camera.has_lookat && g->camera.eye[1] == 1.0f && g->camera.eye[2] == 5.0f &&
                g->camera.up[1] == 1.0f,
            "guided lookat");
-    tap_ok(g->exr.half && g->exr.compression == CV_EXR_PIZ, "guided exr merged key by key");
+    tap_ok(g->exr.half && g->exr.compression == CV_JOB_EXR_PIZ, "guided exr merged key by key");
     tap_ok(g->has_time_limit && g->time_limit == 90.0, "guided time_limit seconds");
     tap_ok(h->settings_hash && strlen(h->settings_hash) == 16, "settings hash is 16 hex digits");
     tap_ok(strcmp(h->settings_hash, p->settings_hash) != 0, "different jobs, different hashes");
