@@ -16,7 +16,9 @@
 #include "gpu/buffer.h"
 #include "tests/gpu/gpu_test_util.h"
 
-#define N_COLOURS 4099   /* not a multiple of the work group */
+#define WIDTH 61          /* 61 x 67 = 4087: not a multiple of the work group */
+#define HEIGHT 67
+#define N_COLOURS (WIDTH * HEIGHT)
 #define TOLERANCE 1e-4
 
 static uint32_t rng_state = 20261122u;
@@ -68,8 +70,7 @@ static struct cmp compare(struct cv_gpu *gpu, const struct cv_color_params *p, c
     memcpy(cpu_out, in, bytes);
     GLuint b_in = cv_buffer_create(bytes, in, "colour in", err);
     GLuint b_out = cv_buffer_create(bytes, NULL, "colour out", err);
-    /* 4099 = 3 rows of 1366 plus one: run as a 4099 x 1 image */
-    if (b_in && b_out && cv_color_pass_run(pass, b_in, b_out, N_COLOURS, 1, err) &&
+    if (b_in && b_out && cv_color_pass_run(pass, b_in, b_out, WIDTH, HEIGHT, err) &&
         cv_buffer_read(b_out, 0, bytes, gpu_out, err) &&
         cv_color_apply_cpu(pass, cpu_out, N_COLOURS, err)) {
         r.ran = true;
@@ -135,6 +136,40 @@ int main(void)
           &(struct cv_color_params){.display = "sRGB", .view = "ACES 1.0 - SDR Video",
                                     .look = "ACES 1.3 Reference Gamut Compression"},
           in, "shipped sRGB / ACES with the gamut compression look");
+
+    /* in place, and a buffer too small for the image */
+    struct cv_color_pass *pass = NULL;
+    size_t bytes = N_COLOURS * 4 * sizeof(float);
+    float *a = cv_xmalloc(bytes), *b = cv_xmalloc(bytes);
+    memcpy(b, in, bytes);
+    GLuint buf = 0, small = 0;
+    bool ok = cv_color_pass_create(gpu, &(struct cv_color_params){.view = "Un-tone-mapped"}, &pass,
+                                   &err) &&
+              (buf = cv_buffer_create(bytes, in, "colour in place", &err)) &&
+              cv_color_pass_run(pass, buf, buf, WIDTH, HEIGHT, &err) &&
+              cv_buffer_read(buf, 0, bytes, a, &err) && cv_color_apply_cpu(pass, b, N_COLOURS, &err);
+    double max_err = 0;
+    for (int i = 0; ok && i < N_COLOURS * 4; i++)
+        max_err = fmax(max_err, fabs((double)a[i] - b[i]));
+    tap_ok(ok && max_err <= TOLERANCE, "in place (in == out): GPU equals CPU (%.3g) %s", max_err,
+           err.msg);
+    tap_ok(ok && strcmp(cv_color_pass_description(pass), "sRGB / Un-tone-mapped") == 0,
+           "description \"%s\"", ok ? cv_color_pass_description(pass) : "");
+    small = cv_buffer_create(bytes / 2, NULL, "colour small", &err);
+    cv_error_clear(&err);
+    ok = pass && !cv_color_pass_run(pass, buf, small, WIDTH, HEIGHT, &err);
+    tap_ok(ok && strstr(err.msg, "output buffer holds"), "a too-small output buffer is an error: %s",
+           err.msg);
+    cv_buffer_destroy(&buf);
+    cv_buffer_destroy(&small);
+    cv_color_pass_destroy(&pass);
+    tap_ok(pass == NULL, "destroy clears the pointer");
+    cv_error_clear(&err);
+    ok = !cv_color_pass_create(gpu, &(struct cv_color_params){.display = "nope"}, &pass, &err);
+    tap_ok(ok && pass == NULL && strstr(err.msg, "\"sRGB\""),
+           "a bad display fails creation, listing displays: %s", err.msg);
+    free(a);
+    free(b);
 
     /* a config whose looks are LUT files */
     const char *data = getenv("CV_TEST_DATA");
