@@ -3,6 +3,7 @@
 // so nothing C++ escapes into the C program.
 #include <sys/stat.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -169,6 +170,8 @@ extern "C" bool cv_ocio_create(const struct cv_color_params *p, struct cv_ocio *
     if (!o)
         return cv_fail(err, "out of memory");
     CV_OCIO_TRY
+        if (!std::isfinite(p->exposure))
+            throw Failure("colour exposure must be a finite number of stops");
         o->config = open_config(p->config_path, o->source);
         const OCIO::ConstConfigRcPtr &config = o->config;
         if (!config->getColorSpace(OCIO::ROLE_SCENE_LINEAR))
@@ -280,6 +283,8 @@ extern "C" bool cv_ocio_gpu_extract(struct cv_ocio *ocio, const char *function_n
         ocio->shader->setLanguage(OCIO::GPU_LANGUAGE_GLSL_4_0);
         ocio->shader->setFunctionName(function_name);
         ocio->shader->setResourcePrefix(function_name);
+        // Lossless folding only: the default level may replace op chains
+        // with baked LUTs, which would move the GPU away from the oracle.
         ocio->gpu = ocio->processor->getOptimizedGPUProcessor(OCIO::OPTIMIZATION_LOSSLESS);
         ocio->gpu->extractGpuShaderInfo(ocio->shader);
         return true;

@@ -125,6 +125,9 @@ int main(void)
     tap_ok(has(m, "unknown look \"sepia\"") && has(m, "\"warm\"") && has(m, "\"curve\""),
            "an unknown look inside a list is named: %s", m);
 
+    m = fail_msg(&(struct cv_color_params){.exposure = NAN});
+    tap_ok(has(m, "exposure"), "a NaN exposure is an error: %s", m);
+
     /* what the shipped views do */
     float white[3] = {1, 1, 1}, red[3] = {1, 0, 0};
     const struct cv_color_params srgb_std = {.display = "sRGB", .view = "Un-tone-mapped"};
