@@ -13,7 +13,9 @@ struct cv_color_params {
     /* Comma-separated look names applied in place of the view's own looks;
      * NULL: the view's looks as the config defines them; "": none. */
     const char *look;
-    float exposure;        /* stops, applied in scene-linear before the view */
+    /* Stops, applied in scene-linear before the view (a Raw view too: an
+     * asked-for exposure scales the values it passes through). */
+    float exposure;
 };
 
 #endif

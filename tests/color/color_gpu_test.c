@@ -2,7 +2,8 @@
  * (max abs error 1e-4 on every channel) on thousands of random colours:
  * negatives, zero, HDR values far above 1. For every view of every display
  * of the shipped config, with a look and with exposure, and for a test
- * config whose looks are LUT files (3D .cube, long 1D .spi1d). */
+ * config whose looks are LUT files (3D .cube trilinear and tetrahedral, a
+ * long 1D .spi1d folded into a 2D texture, a short one as a 1D texture). */
 #include "config.h"
 
 #include <math.h>
@@ -175,7 +176,7 @@ int main(void)
     const char *data = getenv("CV_TEST_DATA");
     char *lut_config = cv_xasprintf("%s/color/lut_look.ocio", data ? data : "tests/data");
     listed = cv_ocio_list_views(lut_config, &names, &n_pairs, &err);
-    tap_ok(listed && n_pairs == 4,
+    tap_ok(listed && n_pairs == 5,
            "LUT config lists %zu views %s", n_pairs, err.msg);
     for (size_t i = 0; i < n_pairs; i++) {
         struct cv_color_params p = {.config_path = lut_config, .display = names[2 * i],

@@ -4,4 +4,4 @@ TESTS += tests/color/color_gpu_test tests/color/ocio_test
 tests_color_color_gpu_test_LDADD = $(CV_LIBS)
 tests_color_ocio_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/color/lut_look.ocio tests/data/color/warm.cube \
-	tests/data/color/curve.spi1d tests/data/color/broken.ocio
+	tests/data/color/curve.spi1d tests/data/color/small.spi1d tests/data/color/broken.ocio

@@ -175,8 +175,8 @@ int main(void)
     cv_ocio_destroy(&o);
 
     unsigned dims_seen[4] = {0};
-    const char *views[] = {"Warm", "Curve"};
-    for (int v = 0; v < 2; v++) {
+    const char *views[] = {"Warm", "Curve", "Small curve"};
+    for (int v = 0; v < 3; v++) {
         ok = cv_ocio_create(&(struct cv_color_params){.config_path = lut_config, .view = views[v]},
                             &o, &err) && cv_ocio_gpu_extract(o, "f", &err);
         for (unsigned i = 0; ok && i < cv_ocio_gpu_texture_count(o); i++) {
@@ -192,6 +192,7 @@ int main(void)
     }
     tap_ok(dims_seen[3] == 1, "the 3D LUT look gives one 3D texture");
     tap_ok(dims_seen[2] == 1, "the 5000-entry 1D LUT comes as a 2D texture");
+    tap_ok(dims_seen[1] == 1, "the 65-entry 1D LUT comes as a 1D texture");
 
     char **names = NULL;
     size_t n = 0;
