@@ -131,12 +131,21 @@ static bool read_interleaved(const char *path, const char *const *names, int n, 
     if (!open_image(path, &ctxt, &dw, err))
         return false;
     uint32_t w = (uint32_t)(dw.max.x - dw.min.x + 1), h = (uint32_t)(dw.max.y - dw.min.y + 1);
-    float *out = cv_xmalloc((size_t)w * h * (size_t)n * sizeof(float));
-    for (size_t i = 0; i < (size_t)w * h; i++)
+    /* One spare float per pixel: OpenEXRCore 3.1 picks "fast" half-to-float
+     * routines for tightly interleaved or planar output that write wrong
+     * values or crash when some channels are skipped; a padded stride
+     * keeps it on its generic, correct path. */
+    size_t pad = (size_t)n + 1, npix = (size_t)w * h;
+    float *tmp = cv_xmalloc(npix * pad * sizeof(float));
+    for (size_t i = 0; i < npix; i++)
         for (int k = 0; k < n; k++)
-            out[i * (size_t)n + (size_t)k] = fill[k];
+            tmp[i * pad + (size_t)k] = fill[k];
     unsigned missing = 0;
-    bool ok = decode(ctxt, path, names, n, out, (uint32_t)n, &dw, &missing, err);
+    bool ok = decode(ctxt, path, names, n, tmp, (uint32_t)pad, &dw, &missing, err);
+    float *out = cv_xmalloc(npix * (size_t)n * sizeof(float));
+    for (size_t i = 0; i < npix; i++)
+        memcpy(out + i * (size_t)n, tmp + i * pad, (size_t)n * sizeof(float));
+    free(tmp);
     exr_finish(&ctxt);
     for (int k = 0; ok && k < required; k++)
         if (missing & (1u << k))

@@ -26,14 +26,33 @@ static const struct {
     { "dwab", CV_EXR_DWAB, EXR_COMPRESSION_DWAB },
 };
 
+/* OpenEXRCore 3.1 (Debian 12) reads and writes every method but DWAA/DWAB
+ * ("not yet implemented in C"); its C encoder for them came with 3.2. */
+bool cv_exr_compression_supported(enum cv_exr_compression c)
+{
+    if (c != CV_EXR_DWAA && c != CV_EXR_DWAB)
+        return true;
+    int maj = 0, min = 0, patch = 0;
+    const char *extra = NULL;
+    exr_get_library_version(&maj, &min, &patch, &extra);
+    return maj > 3 || (maj == 3 && min >= 2);
+}
+
 bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
                               struct cv_error *err)
 {
     for (size_t i = 0; i < CV_ARRAY_SIZE(compressions); i++) {
-        if (strcmp(name, compressions[i].name) == 0) {
-            *out = compressions[i].c;
-            return true;
+        if (strcmp(name, compressions[i].name) != 0)
+            continue;
+        if (!cv_exr_compression_supported(compressions[i].c)) {
+            int maj = 0, min = 0, patch = 0;
+            const char *extra = NULL;
+            exr_get_library_version(&maj, &min, &patch, &extra);
+            return cv_fail(err, "EXR compression \"%s\" needs OpenEXR 3.2 or later "
+                           "(this is %d.%d.%d); use zip or piz", name, maj, min, patch);
         }
+        *out = compressions[i].c;
+        return true;
     }
     return cv_fail(err, "unknown EXR compression \"%s\" (none, zip, zips, piz, rle, dwaa, dwab)",
                    name);
@@ -63,13 +82,17 @@ struct writer {
     size_t n_sources, cap_sources;
 };
 
+/* The writer being run on this thread. OpenEXR holds the context's lock
+ * while it reports an error, so the handler cannot ask the context for its
+ * user data (exr_get_user_data would deadlock). */
+static _Thread_local struct writer *current_writer;
+
 static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
 {
-    void *ud = NULL;
-    if (exr_get_user_data(ctxt, &ud) == EXR_ERR_SUCCESS && ud) {
-        struct writer *w = ud;
-        snprintf(w->lib_msg, sizeof(w->lib_msg), "%s", msg ? msg : exr_get_default_error_message(code));
-    }
+    struct writer *w = current_writer;
+    if (w)
+        snprintf(w->lib_msg, sizeof(w->lib_msg), "%s",
+                 msg ? msg : exr_get_default_error_message(code));
 }
 
 static int64_t on_exr_write(exr_const_context_t ctxt, void *ud, const void *buf, uint64_t sz,
@@ -248,6 +271,9 @@ static bool check_params(const char *path, const struct cv_exr_params *p, struct
         return cv_fail(err, "%s: image too large (%ux%u)", path, p->width, p->height);
     if ((unsigned)p->compression >= CV_ARRAY_SIZE(compressions))
         return cv_fail(err, "%s: invalid EXR compression %d", path, (int)p->compression);
+    if (!cv_exr_compression_supported(p->compression))
+        return cv_fail(err, "%s: EXR compression %s needs OpenEXR 3.2 or later", path,
+                       cv_exr_compression_name(p->compression));
     return true;
 }
 
@@ -266,6 +292,7 @@ bool cv_exr_write(const char *path, const struct cv_exr_params *p, struct cv_err
     struct writer w = { 0 };
     if (!cv_atomic_open(path, &w.file, err))
         return false;
+    current_writer = &w;
 
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = on_exr_error;
@@ -290,6 +317,7 @@ bool cv_exr_write(const char *path, const struct cv_exr_params *p, struct cv_err
     /* finish writes the chunk offset table, so its result matters. */
     if (ctxt && (rv = exr_finish(&ctxt)) != EXR_ERR_SUCCESS && ok)
         ok = fail_exr(&w, path, "finishing the file", rv, err);
+    current_writer = NULL;
     if (ok && w.io_failed)
         ok = cv_fail(err, "%s", w.io_err.msg);
     if (ok)

@@ -19,8 +19,8 @@ enum cv_exr_compression {
     CV_EXR_ZIPS,
     CV_EXR_PIZ,
     CV_EXR_RLE,
-    CV_EXR_DWAA, /* lossy */
-    CV_EXR_DWAB, /* lossy */
+    CV_EXR_DWAA, /* lossy; needs OpenEXR >= 3.2 (cv_exr_compression_supported) */
+    CV_EXR_DWAB, /* lossy; likewise */
 };
 
 /* Channel storage of one layer. */
@@ -52,7 +52,10 @@ struct cv_exr_params {
     const struct cv_metadata *meta; /* may be NULL */
 };
 
-/* Parses "none", "zip", "zips", "piz", "rle", "dwaa", "dwab". */
+/* Whether the OpenEXR library linked at run time can write c. */
+bool cv_exr_compression_supported(enum cv_exr_compression c);
+/* Parses "none", "zip", "zips", "piz", "rle", "dwaa", "dwab"; fails for a
+ * method this OpenEXR cannot write, saying so. */
 bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
                               struct cv_error *err);
 const char *cv_exr_compression_name(enum cv_exr_compression c);
