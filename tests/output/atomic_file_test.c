@@ -50,7 +50,8 @@ static void test_commit(const char *dir)
     struct stat st;
     mode_t mask = umask(0);
     umask(mask);
-    tap_ok(stat(path, &st) == 0 && (st.st_mode & 0777) == (0666 & ~mask),
+    int st_rc = stat(path, &st);
+    tap_ok(st_rc == 0 && (st.st_mode & 0777) == (0666 & ~mask),
            "file mode follows the umask (%o)", (unsigned)(st.st_mode & 0777));
 
     /* Abort leaves the old file and no temporary. */
