@@ -3,7 +3,9 @@
  * (".NAME.XXXXXX.tmp", same filesystem, so the rename is atomic), is synced
  * to disk, and is renamed over the final name on commit. On any failure the
  * temporary file is removed and an existing file under the final name is
- * left untouched. */
+ * left untouched. A process killed mid-write leaves only its hidden
+ * temporary file. A symbolic link under the final name is replaced, not
+ * followed. */
 #ifndef CV_OUTPUT_ATOMIC_FILE_H
 #define CV_OUTPUT_ATOMIC_FILE_H
 

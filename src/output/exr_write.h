@@ -45,7 +45,8 @@ struct cv_image_layer {
 struct cv_exr_params {
     const float *rgba;   /* width*height*4 floats, top row first, borrowed */
     uint32_t width, height;
-    bool use_float;      /* false: half (the default), true: float32 */
+    bool use_float;      /* false: half (the default; magnitudes above 65504
+                          * become infinity, NaN stays NaN), true: float32 */
     enum cv_exr_compression compression;
     const struct cv_image_layer *layers; /* n_layers of them, may be NULL */
     size_t n_layers;
