@@ -269,6 +269,9 @@ static void test_failures(const char *dir)
     stat(path, &st);
     long long size = (long long)st.st_size;
     put_file(path, "old image");
+    char *v = NULL;
+    tap_ok(!cv_exr_read_attribute_string(path, "jobHash", &v, &err) && strstr(err.msg, path),
+           "a file that is not EXR: %s", err.msg);
 
     long long cuts[] = { 0, 10, 300, size / 2, size - 4 };
     for (size_t i = 0; i < CV_ARRAY_SIZE(cuts); i++) {
