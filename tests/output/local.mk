@@ -8,3 +8,6 @@ tests_output_atomic_file_test_LDADD = $(CV_LIBS)
 tests_output_metadata_test_LDADD = $(CV_LIBS)
 tests_output_exr_write_test_LDADD = $(CV_LIBS)
 tests_output_png_write_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/output/png_read_test
+TESTS += tests/output/png_read_test
+tests_output_png_read_test_LDADD = $(CV_LIBS)
