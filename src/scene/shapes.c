@@ -50,8 +50,17 @@ static void push_vertex(struct geo *g, const double p[3], const double n[3], dou
     g->nv++;
 }
 
+static bool same_pos(const struct geo *g, uint32_t a, uint32_t b)
+{
+    return g->P[a * 3] == g->P[b * 3] && g->P[a * 3 + 1] == g->P[b * 3 + 1] &&
+           g->P[a * 3 + 2] == g->P[b * 3 + 2];
+}
+
 static void push_tri(struct geo *g, uint32_t a, uint32_t b, uint32_t c)
 {
+    /* tessellation collapses at poles and disk centres: drop those */
+    if (same_pos(g, a, b) || same_pos(g, b, c) || same_pos(g, a, c))
+        return;
     g->idx = cv_xgrow(g->idx, &g->cap_i, (g->nt + 1) * 3, sizeof(uint32_t));
     g->idx[g->nt * 3] = a;
     g->idx[g->nt * 3 + 1] = b;
@@ -94,7 +103,8 @@ static bool sphere(struct cv_params *ps, struct geo *g)
         double v = (double)j / nv, th = tmin + v * (tmax - tmin);
         for (int i = 0; i <= nu; i++) {
             double u = (double)i / nu, ph = u * phimax;
-            double n[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
+            double st = fabs(sin(th)) < 1e-12 ? 0 : sin(th); /* exact poles */
+            double n[3] = {st * cos(ph), st * sin(ph), cos(th)};
             double p[3] = {r * n[0], r * n[1], r * n[2]};
             if (r < 0)
                 n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
