@@ -312,9 +312,12 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         m.flags |= CV_MATF_REMAP_ROUGHNESS;
     /* common to all: bump, normal map, cut-out */
     double d = 0;
+    int bump = -1;
     if (!cv_b_float_tex(b, ps, "displacement", &d, &m.displacement_tex, err) ||
-        !cv_b_float_tex(b, ps, "bumpmap", &d, &m.displacement_tex, err))
+        !cv_b_float_tex(b, ps, "bumpmap", &d, &bump, err))
         return false;
+    if (bump >= 0)
+        m.displacement_tex = bump;
     const char *nm = cv_params_string(ps, "normalmap", NULL);
     if (nm) {
         m.normal_tex = cv_b_image_texture(b, nm, dir, false, loc, err);

@@ -212,8 +212,9 @@ static bool read_params(struct parser *p, struct cv_params *ps, struct cv_error 
     }
 }
 
-static bool push_file(struct parser *p, const char *path, const struct cv_token *from,
-                      struct cv_error *err)
+/* name: as written in the Include, for messages. */
+static bool push_file(struct parser *p, const char *path, const char *name,
+                      const struct cv_token *from, struct cv_error *err)
 {
     if (p->n_lx >= MAX_INCLUDE_DEPTH)
         return cv_fail(err, "%s:%d:%d: includes nested deeper than %d", from->file, from->line,
@@ -223,14 +224,14 @@ static bool push_file(struct parser *p, const char *path, const struct cv_token 
         if (p->real[i] && strcmp(p->real[i], real) == 0) {
             free(real);
             return cv_fail(err, "%s:%d:%d: recursive include of \"%s\"", from->file, from->line,
-                           from->col, path);
+                           from->col, name);
         }
     struct cv_lexer lx;
     if (!cv_lexer_open(&lx, path, err)) {
         free(real);
         if (from)
             cv_error_prefix(err, "%s:%d:%d: cannot include \"%s\"", from->file, from->line,
-                            from->col, path);
+                            from->col, name);
         return false;
     }
     size_t cap = p->cap_lx;
@@ -620,7 +621,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             return false;
         dir = dir_of(p, d);
         char *path = cv_path_join(dir, name);
-        ok = push_file(p, path, d, err);
+        ok = push_file(p, path, name, d, err);
         free(path);
     } else {
         return cv_fail(err, "%s:%d:%d: unknown directive \"%.*s\"", d->file, d->line, d->col,
@@ -659,7 +660,7 @@ static bool parse_with(struct parser *p, struct cv_error *err)
 bool cv_parse_file(struct cv_builder *b, const char *path, struct cv_error *err)
 {
     struct parser p = {.b = b};
-    if (!push_file(&p, path, NULL, err)) {
+    if (!push_file(&p, path, path, NULL, err)) {
         free(p.lx);
         free(p.real);
         return false;

@@ -111,8 +111,8 @@ static bool sphere(struct cv_params *ps, struct geo *g)
             push_vertex(g, p, n, u, v);
         }
     }
-    /* theta runs from zmin (south) up: dp/du x dp/dv points outward */
-    grid_tris(g, 0, nu, nv, true);
+    /* v runs from zmin (south) up: dp/du x dp/dv points outward */
+    grid_tris(g, 0, nu, nv, false);
     return r != 0 && phimax > 0;
 }
 
