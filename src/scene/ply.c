@@ -371,8 +371,13 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                 uint32_t poly[4] = {0};
                 uint32_t first = 0, prev = 0;
                 for (size_t j = 0; j < n; j++) {
-                    if (!get(&r, p->type, &v) || v < 0 || v > 4294967295.0 || v != floor(v)) {
-                        ok = cv_fail(err, "%s: bad vertex index in face %llu", name,
+                    if (!get(&r, p->type, &v)) {
+                        ok = cv_fail(err, "%s: data ends or is malformed in face %llu", name,
+                                     (unsigned long long)it);
+                        break;
+                    }
+                    if (v < 0 || v > 4294967295.0 || v != floor(v)) {
+                        ok = cv_fail(err, "%s: bad vertex index %g in face %llu", name, v,
                                      (unsigned long long)it);
                         break;
                     }

@@ -5,3 +5,6 @@ check_PROGRAMS += tests/scene/parse_test
 TESTS += tests/scene/parse_test
 tests_scene_parse_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/scene/scene_helpers.h
+check_PROGRAMS += tests/scene/ply_test
+TESTS += tests/scene/ply_test
+tests_scene_ply_test_LDADD = $(CV_LIBS)
