@@ -27,6 +27,8 @@ static cv_vec4 v4(const double c[3], double w)
 
 static double remap_v3(double r)
 {
+    if (!(r > 0))
+        return 0; /* pbrt-v3: zero roughness stays perfectly specular */
     r = r > 1e-3 ? r : 1e-3;
     double x = log(r);
     return 1.62142 + 0.819955 * x + 0.1734 * x * x + 0.0171201 * x * x * x +
