@@ -89,6 +89,9 @@ static bool add_value(struct cv_param *pa, const struct cv_token *t, size_t *cap
         if (pa->type == CV_PARAM_BOOL)
             return cv_fail(err, "%s:%d:%d: bool parameter \"%s\" expects true or false",
                            t->file, t->line, t->col, pa->name);
+        if (pa->type == CV_PARAM_STRING || pa->type == CV_PARAM_TEXTURE)
+            return cv_fail(err, "%s:%d:%d: %s parameter \"%s\" expects a quoted string",
+                           t->file, t->line, t->col, cv_param_type_name(pa->type), pa->name);
         CV_PUSH(pa->nums, pa->n_nums, *cap_n, v);
         return true;
     }

@@ -274,8 +274,8 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
             for (size_t i = 0; i < e->n_props; i++) {
                 enum role ro = e->props[i].role;
                 hx |= ro == R_X;
-                hn |= ro == R_NX;
-                hu |= ro == R_U;
+                hn |= ro == R_NX || ro == R_NY || ro == R_NZ;
+                hu |= ro == R_U || ro == R_V;
             }
             if (!hx) {
                 ok = cv_fail(err, "%s: vertex element has no x/y/z", name);
