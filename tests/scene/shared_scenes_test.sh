@@ -7,12 +7,18 @@
 . "$CAVALRY_DATA_DIR/tests/setup.sh"
 dump="$(cd "$(dirname "$0")" && pwd)/dump_scene"
 
+# load DESC OUT ARGS...: dump into OUT; ok when it loads.
+load() {
+    d=$1; o=$2; shift 2
+    if "$dump" "$@" > "$o" 2> "$tmp/stderr"; then ok "$d"; else not_ok "$d"; sed 's/^/# /' "$tmp/stderr"; fi
+}
+
 same() { # same A B: the dumps match apart from film.filename
     grep -v '^film.filename' "$1" > "$tmp/a" && grep -v '^film.filename' "$2" > "$tmp/b" && diff "$tmp/a" "$tmp/b"
 }
 
-check "tiny-v3.pbrt loads" "$dump" "$CV_TEST_DATA/scene/tiny-v3.pbrt" > "$tmp/tiny3"
-check "tiny-v4.pbrt loads" "$dump" --strict "$CV_TEST_DATA/scene/tiny-v4.pbrt" > "$tmp/tiny4"
+load "tiny-v3.pbrt loads" "$tmp/tiny3" "$CV_TEST_DATA/scene/tiny-v3.pbrt"
+load "tiny-v4.pbrt loads, even with --strict" "$tmp/tiny4" --strict "$CV_TEST_DATA/scene/tiny-v4.pbrt"
 check "tiny v3 and v4 give the same flat scene" same "$tmp/tiny3" "$tmp/tiny4"
 
 if [ ! -d "$CV_SHARED_SCENES" ]; then
@@ -27,7 +33,7 @@ for f in cornell-box/scene-v3.pbrt cornell-box/scene-v4.pbrt veach-mis/scene-v3.
         ok "$f # SKIP not present"
         continue
     fi
-    check "$f loads with no error" "$dump" "$CV_SHARED_SCENES/$f" > "$out"
+    load "$f loads with no error" "$out" "$CV_SHARED_SCENES/$f"
     check "$f has triangles and lights" sh -c "grep -q '^triangles [1-9]' '$out' && grep -q '^lights [1-9]' '$out'"
 done
 for s in cornell-box veach-mis; do
