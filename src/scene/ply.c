@@ -6,6 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "base/file.h"
@@ -325,6 +329,50 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                 continue;
             }
         }
+        /* fast path: binary little-endian faces that are a single list of
+         * uchar counts and 32-bit indices (what exporters write) */
+        if (is_f && fmt == F_LE && !r.swap && e->n_props == 1 && e->props[0].role == R_INDICES &&
+            e->props[0].count_type == T_U8 && (e->props[0].type == T_I32 || e->props[0].type == T_U32)) {
+            idx = cv_xgrow(idx, &cap_idx, n_idx + (size_t)e->count * 3, sizeof(uint32_t));
+            const unsigned char *p = r.p, *end = r.end;
+            uint64_t it;
+            for (it = 0; it < e->count; it++) {
+                if (p >= end)
+                    break;
+                unsigned n = *p;
+                if ((size_t)(end - p - 1) < (size_t)n * 4)
+                    break;
+                if (n == 3 && (size_t)(cap_idx - n_idx) >= 3) {
+                    memcpy(idx + n_idx, p + 1, 12);
+                    n_idx += 3;
+                } else {
+                    uint32_t first, prev = 0;
+                    memcpy(&first, p + 1, 4);
+                    for (unsigned j = 2; j < n; j++) {
+                        uint32_t x;
+                        memcpy(&prev, p + 1 + 4 * (j - 1), 4);
+                        memcpy(&x, p + 1 + 4 * j, 4);
+                        idx = cv_xgrow(idx, &cap_idx, n_idx + 3, sizeof(uint32_t));
+                        idx[n_idx++] = first;
+                        idx[n_idx++] = prev;
+                        idx[n_idx++] = x;
+                    }
+                    if (n == 4)
+                        m->n_quads++;
+                    else if (n > 4)
+                        m->n_polys++;
+                }
+                p += 1 + (size_t)n * 4;
+            }
+            r.p = p;
+            if (it < e->count) {
+                ok = cv_fail(err, "%s: data ends or is malformed in face %llu", name,
+                             (unsigned long long)it);
+                break;
+            }
+            /* negative int32 indices show up as huge: caught by the range check */
+            continue;
+        }
         for (uint64_t it = 0; it < e->count && ok; it++) {
             for (size_t pi = 0; pi < e->n_props; pi++) {
                 struct prop *p = &e->props[pi];
@@ -460,6 +508,25 @@ bool cv_ply_read(const char *path, struct cv_ply_mesh *m, struct cv_error *err)
         gzclose(gz);
         data[len] = 0;
     } else {
+        /* Map binary files instead of copying them (the page cache is the
+         * buffer). ASCII needs a NUL after the data for strtod: read those,
+         * and files whose size is a page multiple, the usual way. */
+        int fd = open(path, O_RDONLY);
+        struct stat st;
+        if (fd >= 0 && fstat(fd, &st) == 0 && st.st_size > 0 &&
+            st.st_size % sysconf(_SC_PAGESIZE) != 0) {
+            len = (size_t)st.st_size;
+            void *map = mmap(NULL, len, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+            close(fd);
+            fd = -1;
+            if (map != MAP_FAILED) {
+                bool ok = cv_ply_parse(path, map, len, m, err);
+                munmap(map, len);
+                return ok;
+            }
+        }
+        if (fd >= 0)
+            close(fd);
         char *d;
         if (!cv_read_file(path, &d, &len, err))
             return false;
