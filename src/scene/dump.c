@@ -3,6 +3,7 @@
  * written in different syntaxes compare equal. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "scene/dump.h"
@@ -100,11 +101,15 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
     fprintf(o, "geometry area %.6g hash %016llx with-uv %u with-normals %u reversed %u\n", area,
             (unsigned long long)h, n_uv, n_n, n_rev);
     fprintf(o, "materials %u\n", s->n_materials);
+    unsigned *uses = calloc(s->n_materials + 1, sizeof(unsigned));
+    for (uint32_t t = 0; uses && t < s->n_triangles; t++) {
+        uint32_t mi = s->triangles[t].idx.w & CV_TRI_MATERIAL_MASK;
+        if (mi < s->n_materials)
+            uses[mi]++;
+    }
     for (uint32_t i = 0; i < s->n_materials; i++) {
         const CvMaterial *m = &s->materials[i];
-        unsigned used = 0;
-        for (uint32_t t = 0; t < s->n_triangles; t++)
-            used += (s->triangles[t].idx.w & CV_TRI_MATERIAL_MASK) == i;
+        unsigned used = uses ? uses[i] : 0;
         fprintf(o, "  material %u \"%s\" %s flags %u tris %u", i,
                 s->material_names[i] ? s->material_names[i] : "", mat_type(m->type), m->flags, used);
         v4(o, "refl", m->reflectance);
@@ -118,6 +123,7 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
                 m->displacement_tex, m->normal_tex, m->alpha_tex, m->eta_tex, m->alpha, m->mix_a,
                 m->mix_b, m->amount, m->amount_tex);
     }
+    free(uses);
     fprintf(o, "textures %u texels %llu\n", s->n_textures, (unsigned long long)s->n_texels);
     for (uint32_t i = 0; i < s->n_textures; i++) {
         const CvTexture *t = &s->textures[i];
