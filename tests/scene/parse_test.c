@@ -6,6 +6,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <OpenEXR/ImfCRgbaFile.h>
+
 #include "scene/image.h"
 #include "scene/scene.h"
 #include "tests/scene/scene_helpers.h"
@@ -287,12 +289,46 @@ static void write_pfm(const char *rel, int w, int h, float v)
     free(buf);
 }
 
+static void write_exr(const char *rel, int w, int h, float v)
+{
+    ImfHeader *hdr = ImfNewHeader();
+    ImfHeaderSetDataWindow(hdr, 0, 0, w - 1, h - 1);
+    ImfHeaderSetDisplayWindow(hdr, 0, 0, w - 1, h - 1);
+    ImfOutputFile *out = ImfOpenOutputFile(th_path(rel), hdr, IMF_WRITE_RGBA);
+    ImfRgba *px = calloc((size_t)w * h, sizeof(ImfRgba));
+    for (int i = 0; i < w * h; i++) {
+        ImfFloatToHalf(v, &px[i].r);
+        ImfFloatToHalf(v * 2, &px[i].g);
+        ImfFloatToHalf(v * 4, &px[i].b);
+        ImfFloatToHalf(1, &px[i].a);
+    }
+    if (out) {
+        ImfOutputSetFrameBuffer(out, px, 1, (size_t)w);
+        ImfOutputWritePixels(out, h);
+        ImfCloseOutputFile(out);
+    }
+    free(px);
+    ImfDeleteHeader(hdr);
+}
+
 static void test_textures(void)
 {
     unsigned char px[2 * 2 * 3] = {255, 255, 255, 0, 0, 0, 128, 128, 128, 255, 0, 0};
     write_tga("t.tga", 2, 2, px);
     write_pfm("f.pfm", 4, 2, 0.5f);
+    write_exr("e.exr", 8, 4, 0.25f);
     struct cv_scene *s = ok_load(
+        "WorldBegin\nTexture \"e\" \"spectrum\" \"imagemap\" \"string filename\" \"e.exr\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"e\"\n" TRI, "EXR texture");
+    if (s) {
+        const CvTexture *t = &s->textures[s->n_textures - 1];
+        uint32_t w0 = s->texels[2 * t->offset], w1 = s->texels[2 * t->offset + 1];
+        tap_ok(t->width == 8 && t->height == 4 && t->levels == 4 && !(t->flags & CV_TEXF_SRGB) &&
+               near(cv_half_to_float((uint16_t)(w0 >> 16)), 0.5, 1e-6) &&
+               near(cv_half_to_float((uint16_t)(w1 & 0xffff)), 1.0, 1e-6), "EXR read as linear half RGBA");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load(
         "WorldBegin\n"
         "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"float uscale\" 4"
         " \"string wrap\" \"clamp\"\n"
