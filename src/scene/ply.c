@@ -345,7 +345,7 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                 if (n == 3 && (size_t)(cap_idx - n_idx) >= 3) {
                     memcpy(idx + n_idx, p + 1, 12);
                     n_idx += 3;
-                } else {
+                } else if (n >= 3) {
                     uint32_t first, prev = 0;
                     memcpy(&first, p + 1, 4);
                     for (unsigned j = 2; j < n; j++) {
