@@ -241,18 +241,30 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
         V = s->vertices;
         T = s->triangles;
     }
+    /* The hot loop of big meshes: affine transforms (all pbrt gives but a
+     * perspective Transform) go inline, in double like pbrt. */
+    const double(*mm)[4] = M->m;
+    bool affine = mm[3][0] == 0 && mm[3][1] == 0 && mm[3][2] == 0 && mm[3][3] == 1;
+    const double(*ni)[4] = inv.m;
+    double sgn = flip_n ? -1 : 1;
     for (size_t i = 0; i < m->n_verts; i++) {
         double p[3] = {m->P[3 * i], m->P[3 * i + 1], m->P[3 * i + 2]}, w[3];
-        cv_mat4_point(M, p, w);
+        if (affine) {
+            for (int r = 0; r < 3; r++)
+                w[r] = mm[r][0] * p[0] + mm[r][1] * p[1] + mm[r][2] * p[2] + mm[r][3];
+        } else {
+            cv_mat4_point(M, p, w);
+        }
         CvVertex *v = &V[nv0 + i];
         v->pos_u = (cv_vec4){(float)w[0], (float)w[1], (float)w[2], m->uv ? m->uv[2 * i] : 0};
         v->nrm_v = (cv_vec4){0, 0, 0, m->uv ? m->uv[2 * i + 1] : 0};
         if (m->N) {
             double n[3] = {m->N[3 * i], m->N[3 * i + 1], m->N[3 * i + 2]}, o[3];
-            cv_mat4_normal(&inv, n, o);
+            for (int r = 0; r < 3; r++)
+                o[r] = ni[0][r] * n[0] + ni[1][r] * n[1] + ni[2][r] * n[2];
             double l = sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
             if (l > 0)
-                l = (flip_n ? -1 : 1) / l;
+                l = sgn / l;
             v->nrm_v.x = (float)(o[0] * l);
             v->nrm_v.y = (float)(o[1] * l);
             v->nrm_v.z = (float)(o[2] * l);
