@@ -34,6 +34,8 @@ struct cv_gstate {
     int material;        /* index into scene materials, -1: default */
     struct cv_area_state area;
     bool transform_only; /* pushed by TransformBegin */
+    bool end_only;       /* ActiveTransform EndTime: transforms do not touch
+                          * the shutter-open transform we render with */
 };
 
 /* A mesh in object space handed to cv_b_emit_mesh; arrays are borrowed. */

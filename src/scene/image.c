@@ -14,6 +14,7 @@
 #include "scene/image.h"
 
 #define MAX_DIM 65536
+#define MAX_PIXELS (1L << 28) /* 4 GiB of float RGBA: refuse more */
 
 uint16_t cv_float_to_half(float f)
 {
@@ -91,7 +92,7 @@ static bool load_pfm(const char *path, struct cv_image *img, struct cv_error *er
     double scale = 0;
     if (sscanf(data, "%2s %d %d %lf%n", type, &w, &h, &scale, &n) != 4 ||
         (strcmp(type, "PF") != 0 && strcmp(type, "Pf") != 0) || w <= 0 || h <= 0 ||
-        w > MAX_DIM || h > MAX_DIM || scale == 0) {
+        w > MAX_DIM || h > MAX_DIM || (long)w * h > MAX_PIXELS || scale == 0) {
         free(data);
         return cv_fail(err, "%s: not a valid PFM header", path);
     }
@@ -139,7 +140,7 @@ static bool load_exr(const char *path, struct cv_image *img, struct cv_error *er
     int x0, y0, x1, y1;
     ImfHeaderDataWindow(ImfInputHeader(in), &x0, &y0, &x1, &y1);
     long w = (long)x1 - x0 + 1, h = (long)y1 - y0 + 1;
-    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM) {
+    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM || w * h > MAX_PIXELS) {
         ImfCloseInputFile(in);
         return cv_fail(err, "%s: bad EXR data window", path);
     }
@@ -180,7 +181,7 @@ static bool load_stb(const char *path, bool srgb, struct cv_image *img, struct c
     void *d = is16 ? (void *)stbi_load_16(path, &w, &h, &n, 4) : (void *)stbi_load(path, &w, &h, &n, 4);
     if (!d)
         return cv_fail(err, "%s: %s", path, stbi_failure_reason());
-    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM) {
+    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM || (long)w * h > MAX_PIXELS) {
         stbi_image_free(d);
         return cv_fail(err, "%s: image too large", path);
     }

@@ -258,7 +258,14 @@ static void pop_file(struct parser *p)
 
 static void apply(struct cv_builder *b, struct cv_mat4 m)
 {
-    b->gs.ctm = cv_mat4_mul(&b->gs.ctm, &m);
+    if (!b->gs.end_only)
+        b->gs.ctm = cv_mat4_mul(&b->gs.ctm, &m);
+}
+
+static void set_ctm(struct cv_builder *b, struct cv_mat4 m)
+{
+    if (!b->gs.end_only)
+        b->gs.ctm = m;
 }
 
 static bool attr_push(struct cv_builder *b, bool transform_only, const struct cv_loc *loc)
@@ -375,11 +382,11 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             for (int j = 0; j < 4; j++)
                 m.m[j][i] = v[i * 4 + j];
         if (IS("Transform"))
-            b->gs.ctm = m;
+            set_ctm(b, m);
         else
             apply(b, m);
     } else if (IS("Identity")) {
-        b->gs.ctm = cv_mat4_identity();
+        set_ctm(b, cv_mat4_identity());
     } else if (IS("CoordinateSystem") || IS("CoordSysTransform")) {
         if (!expect_string(p, d, &name, err))
             return false;
@@ -397,7 +404,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         } else if (i == b->n_coordsys) {
             ok = cv_b_warn(b, err, &loc, "unknown coordinate system \"%s\"", name);
         } else {
-            b->gs.ctm = b->coordsys[i].m;
+            set_ctm(b, b->coordsys[i].m);
         }
     } else if (IS("ActiveTransform")) {
         struct cv_token t;
@@ -407,11 +414,12 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             !(cv_token_is(&t, "StartTime") || cv_token_is(&t, "EndTime") || cv_token_is(&t, "All")))
             return cv_fail(err, "%s:%d:%d: ActiveTransform expects StartTime, EndTime or All",
                            t.file, t.line, t.col);
-        /* Motion blur is not rendered: every transform applies at once, as at
-         * shutter open when StartTime and EndTime agree. */
+        /* Motion blur is not rendered: the scene is taken at shutter open,
+         * so EndTime-only transforms are dropped. */
+        b->gs.end_only = cv_token_is(&t, "EndTime");
         if (!cv_token_is(&t, "All"))
             ok = cv_b_warn(b, err, &loc, "ActiveTransform %.*s: motion blur is not supported; "
-                           "transforms apply to both times", (int)t.len, t.text);
+                           "the scene is taken at shutter open", (int)t.len, t.text);
     } else if (IS("TransformTimes")) {
         if (!read_numbers(p, d, v, 2, err))
             return false;
@@ -449,6 +457,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         /* pbrt: the camera's named coordinate system, then the world starts
          * with the identity transform. */
         b->gs.ctm = cv_mat4_identity();
+        b->gs.end_only = false;
         struct cv_coordsys c = {cv_xstrdup("world"), cv_mat4_identity()};
         CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
     } else if (IS("WorldEnd")) {

@@ -191,8 +191,9 @@ static bool loop_subdivide(struct cv_builder *b, struct cv_params *ps, const str
     if (levels < 0)
         levels = 0;
     size_t nv = P->n_nums / 3, nt = I->n_nums / 3;
-    if (nt > 0 && ((double)nt * pow(4, levels) > 1e8))
-        return cv_fail(err, "%s:%d:%d: loopsubdiv with %d levels would exceed 1e8 triangles",
+    /* bound the work a (broken or hostile) file can ask for */
+    if (nt > 0 && ((double)nt * pow(4, levels) > (double)(1 << 24)))
+        return cv_fail(err, "%s:%d:%d: loopsubdiv with %d levels would exceed 2^24 triangles",
                        loc->file, loc->line, loc->col, levels);
     double *pos = cv_xmalloc((nv ? nv : 1) * 3 * sizeof(double));
     uint32_t *tri = cv_xmalloc((nt ? nt : 1) * 3 * sizeof(uint32_t));

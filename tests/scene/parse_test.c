@@ -451,6 +451,31 @@ static void test_params(void)
           "main.pbrt:1:37: Camera: parameter \"float foo\" unused", "--strict");
 }
 
+static void test_more(void)
+{
+    unsigned char px[2 * 2 * 3] = {128, 128, 255, 128, 128, 255, 128, 128, 255, 128, 128, 255};
+    write_tga("n.tga", 2, 2, px);
+    struct cv_scene *s = ok_load(
+        "WorldBegin\nTransformTimes 0 1\nActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n"
+        "Texture \"r\" \"float\" \"imagemap\" \"string filename\" \"n.tga\"\n"
+        "Material \"conductor\" \"texture roughness\" \"r\" \"string normalmap\" \"n.tga\"\n"
+        "MakeNamedMaterial \"x\" \"string type\" \"diffuse\"\nMakeNamedMaterial \"x\" \"string type\" \"diffuse\"\n"
+        "LightSource \"point\" \"blackbody I\" [ 6500 2 ]\n" TRI,
+        "ActiveTransform, TransformTimes, roughness texture, normal map, v3 blackbody");
+    if (s) {
+        const CvMaterial *m = tri_mat(s, 0);
+        tap_ok(m->roughness_u_tex >= 0 && m->roughness_v_tex == m->roughness_u_tex &&
+               (m->flags & CV_MATF_REMAP_ROUGHNESS), "textured roughness is remapped per lookup");
+        tap_ok(m->normal_tex >= 0 && !(s->textures[m->normal_tex].flags & CV_TEXF_SRGB), "normal map is linear");
+        tap_ok(s->warnings == 2, "motion blur and the redefined material warn (%u)", s->warnings);
+        tap_ok(near(lum(s->lights[0].L), 2, 2e-3), "v3 blackbody [T scale]");
+        tap_ok(vpos(s, 0, 0, 0, 0), "EndTime transforms do not move the shutter-open scene");
+    }
+    cv_scene_destroy(&s);
+    fails("WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 30 \"point3 P\" [0 0 0 1 0 0 0 1 0]"
+          " \"integer indices\" [0 1 2]\n", false, "main.pbrt:2:1: loopsubdiv with 30 levels", "loopsubdiv bounded");
+}
+
 static void test_include(void)
 {
     mkdir(th_path("sub"), 0755);
@@ -509,6 +534,7 @@ int main(void)
     test_textures();
     test_lights();
     test_params();
+    test_more();
     test_include();
     test_errors();
     th_cleanup();
