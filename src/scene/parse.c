@@ -2,6 +2,7 @@
  * transform and attribute directives act on the builder's graphics state
  * here, the rest go to the builder files. */
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,8 +14,18 @@
 
 #define MAX_INCLUDE_DEPTH 64
 
+/* A v4 `Attribute "target" params...` default, live until the
+ * AttributeEnd that closes the scope it was set in. */
+struct attr_default {
+    char target[16];
+    struct cv_param p;
+    size_t depth;
+};
+
 struct parser {
     struct cv_builder *b;
+    struct attr_default *attrs;
+    size_t n_attrs, cap_attrs;
     struct cv_lexer *lx;       /* stack of open files */
     size_t n_lx, cap_lx;
     char **real;               /* canonical paths of open files, for recursion */
@@ -304,6 +315,53 @@ static bool attr_pop(struct cv_builder *b, bool transform_only, const struct cv_
     return true;
 }
 
+static struct cv_param param_copy(const struct cv_param *a)
+{
+    struct cv_param c = *a;
+    c.name = cv_xstrdup(a->name);
+    c.nums = a->n_nums ? cv_xmalloc(a->n_nums * sizeof(double)) : NULL;
+    if (a->n_nums)
+        memcpy(c.nums, a->nums, a->n_nums * sizeof(double));
+    c.strs = a->n_strs ? cv_xmalloc(a->n_strs * sizeof(char *)) : NULL;
+    for (size_t i = 0; i < a->n_strs; i++)
+        c.strs[i] = cv_xstrdup(a->strs[i]);
+    return c;
+}
+
+static void param_free(struct cv_param *pa)
+{
+    free(pa->name);
+    free(pa->nums);
+    for (size_t i = 0; i < pa->n_strs; i++)
+        free(pa->strs[i]);
+    free(pa->strs);
+}
+
+static void attrs_drop_to(struct parser *p, size_t depth)
+{
+    while (p->n_attrs > 0 && p->attrs[p->n_attrs - 1].depth > depth)
+        param_free(&p->attrs[--p->n_attrs].p);
+}
+
+/* Appends the Attribute defaults of target that ps does not set itself;
+ * they count as used (an attribute may not apply to every type). */
+static void attrs_apply(struct parser *p, const char *target, struct cv_params *ps)
+{
+    for (size_t i = p->n_attrs; i-- > 0;) {
+        struct attr_default *a = &p->attrs[i];
+        if (strcmp(a->target, target) != 0)
+            continue;
+        bool have = false;
+        for (size_t j = 0; j < ps->n && !have; j++)
+            have = strcmp(ps->v[j].name, a->p.name) == 0;
+        if (have)
+            continue;
+        struct cv_param c = param_copy(&a->p);
+        c.used = true;
+        CV_PUSH(ps->v, ps->n, ps->cap, c);
+    }
+}
+
 static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_error *err);
 
 static bool run(struct parser *p, size_t base, struct cv_error *err)
@@ -430,12 +488,22 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     } else if (IS("AttributeEnd") || IS("TransformEnd")) {
         if (!attr_pop(b, IS("TransformEnd"), d, err))
             return false;
+        attrs_drop_to(p, b->n_stack);
     } else if (IS("Attribute")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
-        /* v4 per-target defaults ("shape", "light", "material", ...): not
-         * used by the importer; reported as unused below. */
-        ok = cv_b_check_unused(b, &ps, "Attribute", err);
+        if (strcmp(type, "shape") != 0 && strcmp(type, "light") != 0 && strcmp(type, "material") != 0 &&
+            strcmp(type, "medium") != 0 && strcmp(type, "texture") != 0) {
+            ok = cv_fail(err, "%s:%d:%d: Attribute target must be shape, light, material, medium or texture, not \"%s\"",
+                         loc.file, loc.line, loc.col, type);
+        } else {
+            for (size_t i = 0; i < ps.n; i++) {
+                struct attr_default a = {{0}, param_copy(&ps.v[i]), b->n_stack};
+                snprintf(a.target, sizeof(a.target), "%s", type);
+                CV_PUSH(p->attrs, p->n_attrs, p->cap_attrs, a);
+                ps.v[i].used = true;
+            }
+        }
     } else if (IS("Option")) {
         if (!read_params(p, &ps, err))
             goto fail;
@@ -520,11 +588,13 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     } else if (IS("Shape")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
+        attrs_apply(p, "shape", &ps);
         dir = dir_of(p, d);
         ok = cv_b_shape(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "Shape", err);
     } else if (IS("Material")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
+        attrs_apply(p, "material", &ps);
         dir = dir_of(p, d);
         int idx;
         ok = cv_b_material(b, type, NULL, &ps, &loc, dir, err, &idx) &&
@@ -534,6 +604,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     } else if (IS("MakeNamedMaterial")) {
         if (!typed(p, d, &name, &ps, err))
             goto fail;
+        attrs_apply(p, "material", &ps);
         dir = dir_of(p, d);
         const char *ty = cv_params_string(&ps, "type", NULL);
         int idx;
@@ -566,6 +637,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             free(kind);
             goto fail;
         }
+        attrs_apply(p, "texture", &ps);
         dir = dir_of(p, d);
         ok = cv_b_texture(b, name, kind, type, &ps, &loc, dir, err) &&
              cv_b_check_unused(b, &ps, "Texture", err);
@@ -573,17 +645,20 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     } else if (IS("LightSource")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
+        attrs_apply(p, "light", &ps);
         dir = dir_of(p, d);
         ok = cv_b_light(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "LightSource", err);
     } else if (IS("AreaLightSource")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
+        attrs_apply(p, "light", &ps);
         dir = dir_of(p, d);
         ok = cv_b_area_light(b, type, &ps, &loc, dir, err) &&
              cv_b_check_unused(b, &ps, "AreaLightSource", err);
     } else if (IS("MakeNamedMedium")) {
         if (!typed(p, d, &name, &ps, err))
             goto fail;
+        attrs_apply(p, "medium", &ps);
         for (size_t i = 0; i < ps.n; i++)
             ps.v[i].used = true;
         CV_PUSH(b->media, b->n_media, b->cap_media, cv_xstrdup(name));
@@ -660,6 +735,9 @@ static bool parse_with(struct parser *p, struct cv_error *err)
         pop_file(p);
     free(p->lx);
     free(p->real);
+    for (size_t i = 0; i < p->n_attrs; i++)
+        param_free(&p->attrs[i].p);
+    free(p->attrs);
     if (ok && p->b->n_stack > 0) {
         struct cv_loc *l = &p->b->stack_loc[p->b->n_stack - 1];
         return cv_fail(err, "%s:%d:%d: %s not closed at end of input", l->file, l->line, l->col,

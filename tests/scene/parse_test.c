@@ -472,6 +472,24 @@ static void test_more(void)
         tap_ok(vpos(s, 0, 0, 0, 0), "EndTime transforms do not move the shutter-open scene");
     }
     cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nAttributeBegin\nAttribute \"shape\" \"float radius\" 3\n"
+                "Attribute \"material\" \"rgb reflectance\" [0.1 0.1 0.1]\nMaterial \"diffuse\"\n"
+                "Shape \"sphere\"\nShape \"sphere\" \"float radius\" 1\nAttributeEnd\nShape \"sphere\"\n",
+                "Attribute defaults");
+    if (s) {
+        bool r3 = false, after = true;
+        uint32_t per = s->n_triangles / 3;
+        for (uint32_t v = 0; v < s->n_vertices; v++)
+            r3 = r3 || near(s->vertices[v].pos_u.z, 3, 1e-5);
+        for (uint32_t t = 2 * per; t < s->n_triangles; t++)
+            for (int k = 0; k < 3; k++) {
+                uint32_t v = (&s->triangles[t].idx.x)[k];
+                after = after && fabs(s->vertices[v].pos_u.z) <= 1 + 1e-5;
+            }
+        tap_ok(r3 && after && s->warnings == 0, "Attribute \"shape\" radius applies inside its scope only");
+        tap_ok(near(tri_mat(s, 0)->reflectance.x, 0.1, 1e-6), "Attribute \"material\" default");
+    }
+    cv_scene_destroy(&s);
     fails("WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 30 \"point3 P\" [0 0 0 1 0 0 0 1 0]"
           " \"integer indices\" [0 1 2]\n", false, "main.pbrt:2:1: loopsubdiv with 30 levels", "loopsubdiv bounded");
 }
