@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "scene/builder.h"
@@ -104,10 +105,25 @@ void cv_b_free(struct cv_builder *b)
     }
     free(b->objects);
     free(b->color_space);
+    free(b->main_dir);
     for (size_t i = 0; i < b->n_paths; i++)
         free(b->paths[i]);
     free(b->paths);
     memset(b, 0, sizeof(*b));
+}
+
+char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name)
+{
+    char *path = cv_path_join(dir, name);
+    if (b->main_dir && !cv_path_exists(path)) {
+        char *alt = cv_path_join(b->main_dir, name);
+        if (cv_path_exists(alt)) {
+            free(path);
+            return alt;
+        }
+        free(alt);
+    }
+    return path;
 }
 
 int cv_b_lookup(const struct cv_named *v, size_t n, const char *name)

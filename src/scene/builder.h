@@ -102,6 +102,7 @@ struct cv_builder {
     char *color_space;
     struct cv_named *images;     /* "path|srgb" -> texture index */
     size_t n_images, cap_images;
+    char *main_dir;              /* folder of the top-level scene file */
     char **paths;                /* every file read, kept for locations */
     size_t n_paths, cap_paths;
 };
@@ -126,6 +127,10 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
 uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);
 int cv_b_add_texture(struct cv_builder *b, const CvTexture *t);
 uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power);
+/* A file named in the scene: relative to the folder of the file that names
+ * it (dir); failing that, relative to the top-level file's folder, which is
+ * what pbrt itself does for nested includes. Newly allocated. */
+char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name);
 int cv_b_lookup(const struct cv_named *v, size_t n, const char *name);
 void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *name, int index);
 

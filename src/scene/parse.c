@@ -707,7 +707,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (!expect_string(p, d, &name, err))
             return false;
         dir = dir_of(p, d);
-        char *path = cv_path_join(dir, name);
+        char *path = cv_b_resolve(b, dir, name);
         ok = push_file(p, path, name, d, err);
         free(path);
     } else {
@@ -750,6 +750,8 @@ static bool parse_with(struct parser *p, struct cv_error *err)
 bool cv_parse_file(struct cv_builder *b, const char *path, struct cv_error *err)
 {
     struct parser p = {.b = b};
+    free(b->main_dir);
+    b->main_dir = cv_path_dirname(path);
     if (!push_file(&p, path, path, NULL, err)) {
         free(p.lx);
         free(p.real);
@@ -762,6 +764,8 @@ bool cv_parse_string(struct cv_builder *b, const char *name, const char *text, s
                      struct cv_error *err)
 {
     struct parser p = {.b = b};
+    free(b->main_dir);
+    b->main_dir = cv_path_dirname(name);
     struct cv_lexer lx;
     cv_lexer_open_string(&lx, name, text, len);
     CV_PUSH(p.lx, p.n_lx, p.cap_lx, lx);

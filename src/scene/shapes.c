@@ -449,7 +449,7 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
         if (!file) {
             ok = cv_fail(err, "%s:%d:%d: plymesh has no \"string filename\"", loc->file, loc->line, loc->col);
         } else {
-            char *path = cv_path_join(dir, file);
+            char *path = cv_b_resolve(b, dir, file);
             ok = cv_ply_read(path, &ply, err);
             free(path);
             if (!ok)

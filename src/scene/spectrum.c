@@ -219,7 +219,7 @@ bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
                 rgb[0] = rgb[1] = rgb[2] = 1;
                 break;
             }
-            char *path = cv_path_join(dir, s);
+            char *path = cv_b_resolve(b, dir, s);
             double *pairs = NULL;
             size_t n = 0;
             if (!read_spd(path, &pairs, &n, err)) {

@@ -502,6 +502,10 @@ static void test_include(void)
     struct cv_scene *s = ok_load("WorldBegin\nInclude \"sub/inc.pbrt\"\nImport \"sub/geo.pbrt\"\n", "Include/Import");
     tap_ok(s && s->n_triangles == 2, "includes resolve relative to the including file");
     cv_scene_destroy(&s);
+    th_write_str("sub/nested.pbrt", "Shape \"plymesh\" \"string filename\" \"quad.ply\"\n");
+    s = ok_load("WorldBegin\nInclude \"sub/nested.pbrt\"\n", "file named in an include, found from the main folder");
+    tap_ok(s && s->n_triangles == 2, "pbrt-style fallback to the top-level folder");
+    cv_scene_destroy(&s);
     th_write_str("a.pbrt", "Include \"b.pbrt\"\n");
     th_write_str("b.pbrt", "\n  Include \"a.pbrt\"\n");
     fails("WorldBegin\nInclude \"a.pbrt\"\n", false, "b.pbrt:2:3: recursive include of \"a.pbrt\"", "recursive include");
