@@ -68,6 +68,7 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     b->crop[1] = b->crop[3] = 1;
     b->iso = 100;
     b->exposure_time = 1;
+    b->film_exposure_time = 1;
     s->settings.spp = 16;
     s->settings.max_depth = 5;
     s->settings.filter = CV_FILTER_GAUSSIAN;

@@ -97,7 +97,7 @@ struct cv_builder {
     bool has_screen;
     int xres, yres;
     double crop[4];
-    double iso, exposure_time;
+    double iso, exposure_time, film_exposure_time;
     int default_material;        /* created on first use, -1 before */
     char *color_space;
     struct cv_named *images;     /* "path|srgb" -> texture index */

@@ -77,6 +77,7 @@ bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
     free(b->s->settings.film_filename);
     b->s->settings.film_filename = fn ? cv_xstrdup(fn) : NULL;
     b->iso = cv_params_float(ps, "iso", 100);
+    b->film_exposure_time = cv_params_float(ps, "exposuretime", 1);
     double scale = cv_params_float(ps, "scale", 1); /* v3 */
     b->s->settings.exposure = (float)scale;
     /* accepted, with no effect on the flat scene */
@@ -119,5 +120,6 @@ void cv_b_finish_camera(struct cv_builder *b)
     s->settings.height = (uint32_t)b->yres;
     for (int i = 0; i < 4; i++)
         s->settings.crop[i] = (float)b->crop[i];
-    s->settings.exposure *= (float)(b->iso / 100 * b->exposure_time);
+    /* pbrt-v4's imaging ratio: exposure time * ISO / 100 */
+    s->settings.exposure *= (float)(b->iso / 100 * b->exposure_time * b->film_exposure_time);
 }

@@ -78,7 +78,7 @@ static const char *const dict[] = {
     "\"point3 P\" [ 0 0 0 1 0 0 0 1 0 ]", "Shape \"sphere\"", "Shape \"trianglemesh\"", "\"rgb L\" [ 1 1 1 ]",
     "AreaLightSource \"diffuse\"", "Include \"quad.ply\"", "\"string filename\" \"quad.ply\"",
     "\"spectrum eta\" [ 300 1 800 2 ]", "\"blackbody L\" 6500", "\"texture reflectance\" \"m\"",
-    "Material \"mix\"", "MakeNamedMaterial \"x\"", "\"bool twosided\" true", "element vertex 3\n",
+    "Material \"mix\"", "MakeNamedMaterial \"x\"", "\"bool twosided\" true", "Attribute \"shape\" \"float radius\" 0.5", "Import \"errors.pbrt\"", "element vertex 3\n",
     "property float x\n", "property list uchar int vertex_indices\n", "end_header\n", "4294967295",
     "format binary_big_endian 1.0\n", "\xff\xff\xff\xff", "\0",
 };

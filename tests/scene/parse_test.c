@@ -145,7 +145,7 @@ static void test_settings(void)
                strcmp(st->film_filename, "out.exr") == 0, "names as written");
         tap_ok(st->filter == CV_FILTER_BOX && near(st->filter_radius[0], 0.5, 1e-6), "filter");
         tap_ok(s->camera.crop.x == 32 && s->camera.crop.y == 32 && s->camera.film.z == 0, "crop window in pixels");
-        tap_ok(near(st->exposure, 2, 1e-6), "iso 200 doubles exposure");
+        tap_ok(near(st->exposure, 1, 1e-6), "iso 200 x exposuretime 0.5");
     }
     cv_scene_destroy(&s);
     s = ok_load("Film \"image\" \"integer xresolution\" 10 \"integer yresolution\" 10\n"
