@@ -134,7 +134,7 @@ static void test_settings(void)
 {
     struct cv_scene *s = ok_load(
         "Film \"rgb\" \"integer xresolution\" [ 64 ] \"integer yresolution\" [ 32 ]"
-        " \"float cropwindow\" [ 0 0.5 0 1 ] \"string filename\" \"out.exr\" \"float iso\" 200\n"
+        " \"float cropwindow\" [ 0 0.5 0 1 ] \"string filename\" \"out.exr\" \"float iso\" 200 \"float exposuretime\" 0.5\n"
         "Sampler \"halton\" \"integer pixelsamples\" 8\nPixelFilter \"box\" \"float xradius\" 0.5 \"float yradius\" 0.5\n"
         "Integrator \"volpath\" \"integer maxdepth\" [ 7 ]\nAccelerator \"bvh\"\nCamera \"perspective\"\nWorldBegin\n",
         "Film/Sampler/PixelFilter/Integrator/Accelerator");
