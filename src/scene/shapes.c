@@ -6,7 +6,8 @@
  * the silhouette within 1 - cos(pi/128) = 3e-4 of the radius (sub-pixel for
  * any sensible framing), and the vertices carry the analytic normals and pbrt's
  * (u, v) parameterisation, so shading matches the true surface.
- * Bilinear patches become two triangles each (exact when planar).
+ * Bilinear patches become two triangles each (exact when planar); a v3
+ * heightfield becomes its grid of triangles.
  * loopsubdiv is subdivided on load with Loop's rules (boundaries kept as
  * creases); vertex normals are the area-weighted face normals of the result
  * rather than pbrt's limit-surface normals, and positions are not pushed to
@@ -151,6 +152,37 @@ static bool cylinder(struct cv_params *ps, struct geo *g)
         }
     grid_tris(g, 0, nu, 1, zmax < zmin);
     return r != 0 && zmin != zmax && phimax > 0;
+}
+
+/* pbrt-v3 heightfield: Pz over the unit square, nu x nv samples. */
+static bool heightfield(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
+                        struct geo *g, struct cv_error *err)
+{
+    int nu = cv_params_int(ps, "nu", -1), nv = cv_params_int(ps, "nv", -1);
+    struct cv_param *z = cv_params_array(ps, "Pz");
+    if (nu < 2 || nv < 2 || !z || (double)nu * nv != (double)z->n_nums)
+        return cv_fail(err, "%s:%d:%d: heightfield needs nu, nv >= 2 and nu*nv \"float Pz\" values",
+                       loc->file, loc->line, loc->col);
+    (void)b;
+    for (int j = 0; j < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            double u = (double)i / (nu - 1), v = (double)j / (nv - 1);
+            double p[3] = {u, v, z->nums[(size_t)j * nu + i]};
+            g->P = cv_xgrow(g->P, &g->cap_p, (g->nv + 1) * 3, sizeof(float));
+            g->uv = cv_xgrow(g->uv, &g->cap_uv, (g->nv + 1) * 2, sizeof(float));
+            for (int c = 0; c < 3; c++)
+                g->P[g->nv * 3 + c] = (float)p[c];
+            g->uv[g->nv * 2] = (float)u;
+            g->uv[g->nv * 2 + 1] = (float)v;
+            g->nv++;
+        }
+    for (int j = 0; j < nv - 1; j++)
+        for (int i = 0; i < nu - 1; i++) {
+            uint32_t a = (uint32_t)(j * nu + i), c = a + (uint32_t)nu;
+            push_tri(g, a, a + 1, c + 1);
+            push_tri(g, a, c + 1, c);
+        }
+    return true;
 }
 
 /* ---- Loop subdivision ---- */
@@ -475,6 +507,8 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
         analytic = true;
         if (!cylinder(ps, &g))
             g.nt = 0;
+    } else if (strcmp(type, "heightfield") == 0) {
+        ok = heightfield(b, ps, loc, &g, err);
     } else if (strcmp(type, "loopsubdiv") == 0) {
         ok = loop_subdivide(b, ps, loc, &g, err);
     } else {

@@ -188,6 +188,10 @@ static void test_shapes(void)
     tap_ok(s && s->n_triangles == 4 * 16 && (s->triangles[0].idx.w & CV_TRI_HAS_NORMAL),
            "loopsubdiv: 4^levels triangles with normals");
     cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"heightfield\" \"integer nu\" 3 \"integer nv\" 2 \"float Pz\" [0 1 0 0 2 0]\n",
+                "heightfield");
+    tap_ok(s && s->n_triangles == 4 && near(s->bounds_max[2], 2, 1e-6), "heightfield grid");
+    cv_scene_destroy(&s);
     s = ok_load("WorldBegin\nShape \"curves\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n", "curves");
     tap_ok(s && s->n_triangles == 0 && s->warnings == 1, "curves: warning, nothing added");
     cv_scene_destroy(&s);
