@@ -264,6 +264,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
     bool affine = mm[3][0] == 0 && mm[3][1] == 0 && mm[3][2] == 0 && mm[3][3] == 1;
     const double(*ni)[4] = inv.m;
     double sgn = flip_n ? -1 : 1;
+    int finite = 1;
     for (size_t i = 0; i < m->n_verts; i++) {
         double p[3] = {m->P[3 * i], m->P[3 * i + 1], m->P[3 * i + 2]}, w[3];
         if (affine) {
@@ -274,6 +275,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
         }
         CvVertex *v = &V[nv0 + i];
         v->pos_u = (cv_vec4){(float)w[0], (float)w[1], (float)w[2], m->uv ? m->uv[2 * i] : 0};
+        finite &= isfinite(v->pos_u.x) & isfinite(v->pos_u.y) & isfinite(v->pos_u.z);
         v->nrm_v = (cv_vec4){0, 0, 0, m->uv ? m->uv[2 * i + 1] : 0};
         if (m->N) {
             double n[3] = {m->N[3 * i], m->N[3 * i + 1], m->N[3 * i + 2]}, o[3];
@@ -287,6 +289,9 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
             v->nrm_v.z = (float)(o[2] * l);
         }
     }
+    if (!finite) /* the arrays grew, but their lengths below are not committed */
+        return cv_fail(err, "%s:%d:%d: vertex positions are not finite after the transform",
+                       loc->file, loc->line, loc->col);
     for (size_t i = 0; i < m->n_tris; i++)
         T[nt0 + i].idx = (cv_uvec4){(uint32_t)nv0 + m->idx[3 * i], (uint32_t)nv0 + m->idx[3 * i + 1],
                                     (uint32_t)nv0 + m->idx[3 * i + 2], flags};

@@ -544,6 +544,8 @@ static void test_errors(void)
     fails("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1]\n", false, "main.pbrt:2:22: parameter \"point3 P\" has 4 values",
           "wrong value count");
     fails("WorldBegin\nMaterial \"diffuse\" \"bool x\" 3\n", false, "main.pbrt:2:29: bool parameter", "bool from a number");
+    fails("WorldBegin\nScale 1e300 1 1\nScale 1e300 1 1\n" TRI, false, "main.pbrt:4:1: vertex positions are not finite",
+          "overflowing transform");
     fails("WorldBegin\nObjectInstance \"none\"\n", false, "main.pbrt:2:1: unknown object", "unknown object");
     fails("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" \"no-such.spd\"\n", false,
           "main.pbrt:2:22: spectrum \"no-such.spd\" is neither a known name nor a readable file", "bad spectrum");
