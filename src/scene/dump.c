@@ -39,13 +39,15 @@ static uint64_t mix64(uint64_t h, uint64_t v)
     return h;
 }
 
+/* Hashes f rounded to 17 bits of mantissa (about 5 significant digits). */
 static uint64_t qhash(uint64_t h, float f)
 {
-    char buf[32];
-    snprintf(buf, sizeof(buf), "%.5g", f == 0 ? 0.0 : (double)f); /* -0 == 0 */
-    for (char *p = buf; *p; p++)
-        h = mix64(h, (unsigned char)*p);
-    return h;
+    if (f == 0 || !isfinite(f)) /* -0 == 0 */
+        return mix64(h, f == 0 ? 0 : 1);
+    int e;
+    double m = frexp((double)f, &e);
+    long long q = llround(m * 131072.0);
+    return mix64(mix64(h, (uint64_t)q), (uint64_t)(e + 2048));
 }
 
 void cv_scene_dump(const struct cv_scene *s, FILE *o)
