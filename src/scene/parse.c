@@ -190,9 +190,28 @@ static bool read_params(struct parser *p, struct cv_params *ps, struct cv_error 
                            t.file, t.line, t.col, (int)(t.len > 60 ? 60 : t.len), t.text);
         }
         if (!cv_param_type_from_word(ty, &type)) {
-            cv_fail(err, "%s:%d:%d: unknown parameter type \"%s\"", t.file, t.line, t.col, ty);
+            /* unsupported type: warn, skip its values, go on */
+            struct cv_loc l = {t.file, t.line, t.col};
+            bool w = cv_b_warn(p->b, err, &l, "unknown parameter type \"%s\"; \"%s\" ignored", ty, nm);
             free(decl);
-            return false;
+            if (!w)
+                return false;
+            struct cv_token v;
+            if (!next(p, &v, err))
+                return false;
+            if (v.kind == CV_TOK_LBRACKET) {
+                do {
+                    if (!next(p, &v, err))
+                        return false;
+                    if (v.kind == CV_TOK_EOF || v.kind == CV_TOK_LBRACKET)
+                        return cv_fail(err, "%s:%d:%d: unbalanced '[' (opened at %d:%d)", v.file,
+                                       v.line, v.col, t.line, t.col);
+                } while (v.kind != CV_TOK_RBRACKET);
+            } else if (v.kind != CV_TOK_NUMBER && v.kind != CV_TOK_STRING && v.kind != CV_TOK_WORD) {
+                return cv_fail(err, "%s:%d:%d: expected a value for \"%s %s\"", v.file, v.line,
+                               v.col, ty, nm);
+            }
+            continue;
         }
         struct cv_param pa = {.type = type, .name = cv_xstrdup(nm), .file = t.file,
                               .line = t.line, .col = t.col};

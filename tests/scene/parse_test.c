@@ -537,8 +537,13 @@ static void test_errors(void)
     fails("WorldBegin\nNamedMaterial \"x\"\n", false, "main.pbrt:2:1: unknown named material \"x\"", "unknown material");
     fails("WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" \"nope\"\n", false,
           "main.pbrt:2:20: unknown texture \"nope\"", "unknown texture");
-    fails("WorldBegin\nShape \"sphere\" \"flot radius\" 1\n", false, "main.pbrt:2:16: unknown parameter type \"flot\"",
-          "unknown parameter type");
+    fails("WorldBegin\nShape \"sphere\" \"flot radius\" 1\n", true, "main.pbrt:2:16: unknown parameter type \"flot\"",
+          "unknown parameter type (--strict)");
+    struct cv_error e2 = {0};
+    struct cv_scene *s = th_load("WorldBegin\nShape \"sphere\" \"flot radius\" [ 1 ] \"float zmin\" 0\n", false, &e2);
+    tap_ok(s && s->warnings == 1 && strstr(th_log_text(), "main.pbrt:2:16: unknown parameter type \"flot\""),
+           "unknown parameter type is a warning with location");
+    cv_scene_destroy(&s);
     fails("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 5]\n", false,
           "index 5 out of range", "index out of range");
     fails("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1]\n", false, "main.pbrt:2:22: parameter \"point3 P\" has 4 values",
