@@ -193,7 +193,7 @@ static bool read_params(struct parser *p, struct cv_params *ps, struct cv_error 
             /* unsupported type: warn, skip its values, go on */
             struct cv_loc l = {t.file, t.line, t.col};
             bool w = cv_b_warn(p->b, err, &l, "unknown parameter type \"%s\"; \"%s\" ignored", ty, nm);
-            free(decl);
+            free(decl); /* ty and nm point into it: not used below */
             if (!w)
                 return false;
             struct cv_token v;
@@ -208,8 +208,7 @@ static bool read_params(struct parser *p, struct cv_params *ps, struct cv_error 
                                        v.line, v.col, t.line, t.col);
                 } while (v.kind != CV_TOK_RBRACKET);
             } else if (v.kind != CV_TOK_NUMBER && v.kind != CV_TOK_STRING && v.kind != CV_TOK_WORD) {
-                return cv_fail(err, "%s:%d:%d: expected a value for \"%s %s\"", v.file, v.line,
-                               v.col, ty, nm);
+                return cv_fail(err, "%s:%d:%d: expected a parameter value", v.file, v.line, v.col);
             }
             continue;
         }
