@@ -1,4 +1,4 @@
-/* dump.c: see dump.h. The geometry checksum hashes positions rounded to 5
+/* dump.c: see dump.h. The geometry checksum hashes positions rounded to about 5
  * significant digits, triangle by triangle, so two loads of the same scene
  * written in different syntaxes compare equal. */
 #include <math.h>
