@@ -15,7 +15,3 @@ libcavalry_a_SOURCES += \
 	src/scene/lights.c \
 	src/scene/camera.c \
 	src/scene/dump.c src/scene/dump.h
-# stb_image's implementation comes from Debian's libstb.
-CV_LIBS += $(STB_LIBS)
-# glsl/shared/scene.h includes "shared/common.h" (the GLSL include root is glsl/).
-AM_CPPFLAGS += -I$(top_srcdir)/glsl
