@@ -31,16 +31,29 @@ vec3 cv_bvh_safe_inv(vec3 d)
     return 1.0 / m;
 }
 
-// Conservative slab test: both ends widened by a few ulps so rounding never
-// culls a box that a triangle at the current hit distance touches.
-bool cv_bvh_slab(vec3 o, vec3 inv, vec3 lo, vec3 hi, float tmin, float tmax, out float tnear)
+// Conservative slab test. The watertight triangle test's t is only as exact
+// as the vertices' distance from the origin allows (a ray starting just off
+// a plane of large triangles gets t errors far above an ulp of t), so both
+// ends are widened by err_k * (L1 distance of the box's far corner): err_k =
+// a few float epsilons / |d|, from cv_bvh_err_k. Without that, a box could
+// be culled although a triangle in it reports a t at or below the hit.
+float cv_bvh_err_k(vec3 d)
 {
-    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+    return 1.0e-6 / max(length(d), 1.0e-30);
+}
+
+bool cv_bvh_slab(vec3 o, vec3 inv, float err_k, vec3 lo, vec3 hi, float tmin, float tmax,
+                 out float tnear)
+{
+    vec3 lo_o = lo - o, hi_o = hi - o;
+    vec3 t0 = lo_o * inv, t1 = hi_o * inv;
     vec3 tn = min(t0, t1), tf = max(t0, t1);
+    vec3 m = max(abs(lo_o), abs(hi_o));
+    float pad = (m.x + m.y + m.z) * err_k;
     float a = max(max(tn.x, tn.y), max(tn.z, tmin));
     float b = min(min(tf.x, tf.y), min(tf.z, tmax));
-    a -= abs(a) * 2.0e-6;
-    b += abs(b) * 2.0e-6;
+    a -= abs(a) * 2.0e-6 + pad;
+    b += abs(b) * 2.0e-6 + pad;
     tnear = a;
     return a <= b;
 }
@@ -79,6 +92,7 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
 {
     CvRayTri r = cv_ray_tri_setup(o, d);
     vec3 inv = cv_bvh_safe_inv(d);
+    float err_k = cv_bvh_err_k(d);
     hit = CvHit(tmax, 0xffffffffu, 0.0, 0.0);
     int stack_node[CV_BVH_STACK_SIZE];
     float stack_t[CV_BVH_STACK_SIZE];
@@ -89,8 +103,8 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
         int lw = floatBitsToInt(nd.lmin.w), lc = floatBitsToInt(nd.lmax.w);
         int rw = floatBitsToInt(nd.rmin.w), rc = floatBitsToInt(nd.rmax.w);
         float tl, tr;
-        bool hl = cv_bvh_slab(o, inv, nd.lmin.xyz, nd.lmax.xyz, tmin, hit.t, tl);
-        bool hr = cv_bvh_slab(o, inv, nd.rmin.xyz, nd.rmax.xyz, tmin, hit.t, tr);
+        bool hl = cv_bvh_slab(o, inv, err_k, nd.lmin.xyz, nd.lmax.xyz, tmin, hit.t, tl);
+        bool hr = cv_bvh_slab(o, inv, err_k, nd.rmin.xyz, nd.rmax.xyz, tmin, hit.t, tr);
         if (hl && lc > 0) {
             cv_bvh_leaf_closest(r, lw, lc, tmin, hit);
             hl = false;
@@ -117,7 +131,7 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
         while (sp > 0) {
             sp--;
             float te = stack_t[sp];
-            if (te <= hit.t + abs(hit.t) * 2.0e-6) {
+            if (te <= hit.t) {
                 node = stack_node[sp];
                 found = true;
                 break;
@@ -133,6 +147,7 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
 {
     CvRayTri r = cv_ray_tri_setup(o, d);
     vec3 inv = cv_bvh_safe_inv(d);
+    float err_k = cv_bvh_err_k(d);
     int stack_node[CV_BVH_STACK_SIZE];
     int sp = 0;
     int node = 0;
@@ -141,8 +156,8 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
         int lw = floatBitsToInt(nd.lmin.w), lc = floatBitsToInt(nd.lmax.w);
         int rw = floatBitsToInt(nd.rmin.w), rc = floatBitsToInt(nd.rmax.w);
         float tl, tr;
-        bool hl = cv_bvh_slab(o, inv, nd.lmin.xyz, nd.lmax.xyz, tmin, tmax, tl);
-        bool hr = cv_bvh_slab(o, inv, nd.rmin.xyz, nd.rmax.xyz, tmin, tmax, tr);
+        bool hl = cv_bvh_slab(o, inv, err_k, nd.lmin.xyz, nd.lmax.xyz, tmin, tmax, tl);
+        bool hr = cv_bvh_slab(o, inv, err_k, nd.rmin.xyz, nd.rmax.xyz, tmin, tmax, tr);
         if (hl && lc > 0) {
             if (cv_bvh_leaf_any(r, lw, lc, tmin, tmax))
                 return true;

@@ -46,7 +46,7 @@ static struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bv
     uint32_t *visits = calloc(nn, 4), *slot_seen = calloc(n + 1, 4), *prim_seen = calloc(n + 1, 4);
     if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes, &err) ||
         !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (n ? n : 1) * 4, prims, &err)) {
-        snprintf(ti.why, sizeof(ti.why), "read back: %s", err.msg);
+        snprintf(ti.why, sizeof(ti.why), "read back: %.200s", err.msg);
         ti.ok = false;
         goto out;
     }
@@ -63,16 +63,20 @@ static struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bv
             ti.depth = (int)d;
         const CvBvhNode *nd = &nodes[ni];
         const cv_vec4 *cb[2][2] = {{&nd->lmin, &nd->lmax}, {&nd->rmin, &nd->rmax}};
+        float cbox[2][2][3];
+        for (int c = 0; c < 2; c++)
+            for (int e = 0; e < 2; e++)
+                memcpy(cbox[c][e], cb[c][e], sizeof(cbox[c][e]));
         float ulo[3], uhi[3];
         for (int k = 0; k < 3; k++) {
-            ulo[k] = fminf((&nd->lmin.x)[k], (&nd->rmin.x)[k]);
-            uhi[k] = fmaxf((&nd->lmax.x)[k], (&nd->rmax.x)[k]);
+            ulo[k] = fminf(cbox[0][0][k], cbox[1][0][k]);
+            uhi[k] = fmaxf(cbox[0][1][k], cbox[1][1][k]);
         }
         if (ni == 0)
             root_area = half_area3(ulo, uhi);
         sum += CV_BVH_COST_INNER * half_area3(ulo, uhi);
         for (int c = 0; c < 2 && ti.ok; c++) {
-            const float *lo = &cb[c][0]->x, *hi = &cb[c][1]->x;
+            const float *lo = cbox[c][0], *hi = cbox[c][1];
             int32_t word, count;
             memcpy(&word, &cb[c][0]->w, 4);
             memcpy(&count, &cb[c][1]->w, 4);
@@ -115,8 +119,12 @@ static struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bv
                     break;
                 }
                 const CvBvhNode *ch = &nodes[word];
-                if (!box_in(&ch->lmin.x, &ch->lmax.x, lo, hi) ||
-                    !box_in(&ch->rmin.x, &ch->rmax.x, lo, hi)) {
+                float b[4][3];
+                memcpy(b[0], &ch->lmin, 12);
+                memcpy(b[1], &ch->lmax, 12);
+                memcpy(b[2], &ch->rmin, 12);
+                memcpy(b[3], &ch->rmax, 12);
+                if (!box_in(b[0], b[1], lo, hi) || !box_in(b[2], b[3], lo, hi)) {
                     snprintf(ti.why, sizeof(ti.why), "node %d: a child box leaves the parent's", word);
                     ti.ok = false;
                     break;
@@ -280,8 +288,17 @@ static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *
     for (uint32_t i = 0; i < n_rays; i++) {
         const uint32_t *g = &got[4 * i], *w = &want[4 * i];
         hits += w[1] != 0xffffffffu;
-        if ((g[1] != w[1] || (w[1] != 0xffffffffu && g[0] != w[0])) && bad_hit++ == 0)
-            first = i;
+        if ((g[1] != w[1] || (w[1] != 0xffffffffu && g[0] != w[0])) && bad_hit++ < 3) {
+            float gt, wt;
+            memcpy(&gt, &g[0], 4);
+            memcpy(&wt, &w[0], 4);
+            tap_diag("ray %u: o (%g %g %g) d (%g %g %g) [%g, %g]: bvh prim %d t %.9g, brute prim %d t %.9g",
+                     i, rays[8 * i], rays[8 * i + 1], rays[8 * i + 2], rays[8 * i + 4],
+                     rays[8 * i + 5], rays[8 * i + 6], rays[8 * i + 3], rays[8 * i + 7],
+                     (int)g[1], gt, (int)w[1], wt);
+            if (bad_hit == 1)
+                first = i;
+        }
         bad_any += g[2] != w[2] || w[2] != (w[1] != 0xffffffffu);
     }
     tap_ok(bad_hit == 0, "%s: closest hit equals brute force (%u of %u rays differ, first %u; "
@@ -338,8 +355,9 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
         tap_ok(tl.ok, "%s: LBVH tree invariants hold (%u nodes, depth %d) %s", name, sl->n_nodes,
                tl.depth, tl.why);
         tap_ok(ti.depth < 64, "%s: depth %d fits the traversal stack", name, ti.depth);
-        tap_ok(fabs(ti.sah - s->sah_cost) <= 1e-3 * ti.sah + 1e-6,
-               "%s: GPU SAH %.4f equals the read-back tree's %.4f", name, s->sah_cost, ti.sah);
+        if (m->nt >= 2)
+            tap_ok(fabs(ti.sah - s->sah_cost) <= 1e-3 * ti.sah + 1e-6,
+                   "%s: GPU SAH %.4f equals the read-back tree's %.4f", name, s->sah_cost, ti.sah);
         if (check_sah) {
             double ref = ref_sah(m);
             tap_ok(ti.sah < tl.sah, "%s: SAH after restructuring %.4f < LBVH %.4f", name, ti.sah,
