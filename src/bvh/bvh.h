@@ -27,7 +27,9 @@ struct cv_bvh_params {
 struct cv_bvh_params cv_bvh_default_params(void);
 
 struct cv_bvh_stats {
-    /* GPU times from GL_TIME_ELAPSED queries, milliseconds. */
+    /* Milliseconds per phase from GL_TIME_ELAPSED queries; on software
+     * renderers (llvmpipe, whose queries read 0) CPU time between glFinish
+     * calls. ms_total is their sum. ms_collapse covers collapse + layout. */
     double ms_bounds, ms_morton, ms_sort, ms_hierarchy, ms_refit, ms_treelet, ms_collapse,
         ms_total;
     /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
