@@ -89,7 +89,8 @@ void restructure(int root)
         }
         vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
         int count = 0;
-        for (int k = 0; k < nl; k++) {
+        // A constant bound lets the compiler unroll (bits >= nl are 0 in s).
+        for (int k = 0; k < TREELET_SIZE; k++) {
             if ((s & (1u << k)) != 0u) {
                 lo = min(lo, llo[k]);
                 hi = max(hi, lhi[k]);
