@@ -1,0 +1,59 @@
+#version 450
+// glsl/bvh/emit.comp: writes the final CvBvhNode of every live inner node
+// at its scanned index; children that are leaves or collapsed subtrees
+// become leaf references into the primitive order. The invocation of the
+// last inner node also stores the final node count in info[0].
+#include "shared/bvh.h"
+#include "shared/bindings.h"
+
+layout(local_size_x = 256) in;
+#include "../lib/index.glsl"
+
+layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Offsets { uint offsets[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Index { uint index[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer Info { uint info[]; };
+// Written as raw words: the .w fields are integers, and small ones are
+// float denormals that no float path should get a chance to flush.
+layout(std430, binding = CV_BIND_BVH_NODES) writeonly buffer Out { uvec4 out_words[]; };
+
+uniform uint u_n;
+
+bool is_live(int node)
+{
+    return node < int(u_n) - 1 && (offsets[node] & 0x80000000u) == 0u &&
+           (nodes[node].link.w & CV_BVH_COLLAPSE) == 0;
+}
+
+void child_words(int c, out int word, out int count)
+{
+    if (is_live(c)) {
+        word = int(index[c]);
+        count = 0;
+    } else {
+        word = int(offsets[c] & 0x7fffffffu);
+        count = nodes[c].link.w & CV_BVH_COUNT_MASK;
+    }
+}
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i + 1u >= u_n)
+        return;
+    int node = int(i);
+    bool live = is_live(node);
+    if (i + 2u == u_n)
+        info[0] = index[node] + (live ? 1u : 0u);
+    if (!live)
+        return;
+    ivec4 link = nodes[node].link;
+    int lw, lc, rw, rc;
+    child_words(link.x, lw, lc);
+    child_words(link.y, rw, rc);
+    uint o = 4u * index[node];
+    out_words[o] = uvec4(floatBitsToUint(nodes[link.x].bmin.xyz), uint(lw));
+    out_words[o + 1u] = uvec4(floatBitsToUint(nodes[link.x].bmax.xyz), uint(lc));
+    out_words[o + 2u] = uvec4(floatBitsToUint(nodes[link.y].bmin.xyz), uint(rw));
+    out_words[o + 3u] = uvec4(floatBitsToUint(nodes[link.y].bmax.xyz), uint(rc));
+}
