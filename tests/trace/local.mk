@@ -1,1 +1,8 @@
-# tests/trace: see tests/local.mk
+# tests/trace
+# ---- bsdf / light sampling tests (branch bsdf) ----
+check_PROGRAMS += tests/trace/bsdf_chi2_test
+TESTS += tests/trace/bsdf_chi2_test
+tests_trace_bsdf_chi2_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h \
+	glsl/trace/test/bsdf_probe.comp
+# ---- end bsdf / light block ----
