@@ -115,7 +115,7 @@ static void probe_close(struct probe *p)
     cv_buffer_destroy(&p->out);
 }
 
-static void probe_dir(double theta_deg, double phi_deg, float w[3])
+static inline void probe_dir(double theta_deg, double phi_deg, float w[3])
 {
     double t = theta_deg * M_PI / 180, ph = phi_deg * M_PI / 180;
     w[0] = (float)(sin(t) * cos(ph));
