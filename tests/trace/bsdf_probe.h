@@ -44,7 +44,7 @@ static void probe_frame(struct probe *p, const float ng[3], const float ns[3], c
 }
 
 /* Like probe_open with the given texture table and texels (uvec2 each). */
-static bool probe_open_tex(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
+static inline bool probe_open_tex(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
                            const CvTexture *tex, size_t n_tex, const uint32_t *texels, size_t n_texels,
                            struct cv_error *err)
 {
@@ -60,7 +60,7 @@ static bool probe_open_tex(struct cv_gpu *gpu, struct probe *p, const CvMaterial
     return p->materials && p->textures && p->texels;
 }
 
-static bool probe_open(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
+static inline bool probe_open(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
                        struct cv_error *err)
 {
     memset(p, 0, sizeof(*p));
