@@ -87,7 +87,7 @@ int main(void)
         {"dielectric eta 1.5 a=0.1", dielectric(1.5f, 0.1f), {30, 70, 150}, 3},
         {"dielectric eta 1.5 a=0.6", dielectric(1.5f, 0.6f), {30, 70, 150}, 3},
         {"dielectric eta 0.7 a=0.3", dielectric(0.7f, 0.3f), {20, 60, 120}, 3},
-        {"dielectric eta 1.33 aniso 0.1x0.4", (CvMaterial){0}, {45, 135}, 2},
+        {"dielectric eta 1.33 aniso 0.05x0.4", (CvMaterial){0}, {45, 135}, 2},
         {"coated diffuse a=0.15", coated_diffuse(0.15f, 0.8f), {30, 75}, 2},
         {"coated diffuse a=0.6", coated_diffuse(0.6f, 1.0f), {30, 110}, 2},
         {"coated conductor a=0.2 base 0.4", coated_conductor(0.2f, 0.4f), {30, 70}, 2},
@@ -97,7 +97,7 @@ int main(void)
         {"plastic a=0.6", plastic(0.6f), {50, 100}, 2},
     };
     {
-        CvMaterial m = dielectric(1.33f, 0.1f);
+        CvMaterial m = dielectric(1.33f, 0.05f);
         m.roughness.y = 0.4f;
         cfgs[8].m = m;
     }
