@@ -424,6 +424,9 @@ int main(void)
     struct cv_program *prog = cv_program_get(gpu, "trace/test/light_probe.comp", NULL, &err);
     if (!tap_ok(prog != NULL, "light_probe.comp compiles: %s", prog ? "" : err.msg))
         return tap_done();
+    struct cv_program *shade = cv_program_get(gpu, "trace/test/shade_compile.comp", NULL, &err);
+    tap_ok(shade != NULL, "material and light code compile together in one shader: %s",
+           shade ? "yes" : err.msg);
     double alpha = stats_sidak(0.01, N_CHI2);
     env_test(prog, false, alpha);
     env_test(prog, true, alpha);

@@ -14,5 +14,6 @@ TESTS += tests/trace/light_sampling_test
 tests_trace_light_sampling_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h \
 	glsl/trace/test/light_probe.comp \
+	glsl/trace/test/shade_compile.comp \
 	glsl/trace/test/bsdf_probe.comp
 # ---- end bsdf / light block ----

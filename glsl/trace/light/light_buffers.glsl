@@ -18,10 +18,23 @@ layout(std430, binding = CV_BIND_LIGHTS) readonly buffer CvLights { CvLight ligh
 layout(std430, binding = CV_BIND_LIGHT_CDF) readonly buffer CvLightCdf { float light_cdf[]; };
 layout(std430, binding = CV_BIND_ENV_DIST) readonly buffer CvEnvDist { float env_dist[]; };
 
-#ifndef CV_SCENE_BUFFERS_DECLARED
+// Vertices and triangles: light.glsl reads them as CV_LIGHT_VERTS[] and
+// CV_LIGHT_TRIS[], whichever declaration came first: ours (or another with
+// the same names under CV_SCENE_BUFFERS_DECLARED), or
+// glsl/bvh/scene_buffers.glsl's cv_vertices / cv_triangles. Including the
+// BVH's file after this one is fine too: SSBO blocks may alias a binding.
+#if defined(CV_SCENE_BUFFERS_DECLARED)
+#define CV_LIGHT_VERTS vertices
+#define CV_LIGHT_TRIS triangles
+#elif defined(CV_BVH_SCENE_BUFFERS_GLSL)
+#define CV_LIGHT_VERTS cv_vertices
+#define CV_LIGHT_TRIS cv_triangles
+#else
 #define CV_SCENE_BUFFERS_DECLARED
 layout(std430, binding = CV_BIND_VERTICES) readonly buffer CvVertices { CvVertex vertices[]; };
 layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer CvTriangles { CvTriangle triangles[]; };
+#define CV_LIGHT_VERTS vertices
+#define CV_LIGHT_TRIS triangles
 #endif
 
 #ifndef CV_TEXTURE_BUFFERS_DECLARED
