@@ -119,6 +119,8 @@ uint cv_material_resolve(uint material, vec2 uv, float u_mix, float lod)
         CvMaterial m = materials[material];
         if (m.type != CV_MAT_MIX)
             break;
+        if (m.mix_a < 0 || m.mix_b < 0)
+            break;  // malformed: resolves to no surface
         float amt = cv_tex_eval(m.amount_tex, vec4(m.amount), uv, lod).x;
         if (amt <= 0.0) {
             material = uint(m.mix_a);
