@@ -1,7 +1,5 @@
 # src/trace: see Makefile.am
 # ---- bsdf / light sampling (branch bsdf) ----
-# glsl/shared/*.h include each other as "shared/x.h" (same line as src/scene).
-AM_CPPFLAGS += -I$(top_srcdir)/glsl
 GLSL_FILES += \
 	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \
 	glsl/trace/bsdf/bsdf.glsl glsl/trace/bsdf/bsdf_sample.glsl glsl/trace/bsdf/material_buffers.glsl \
