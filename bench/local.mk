@@ -1,1 +1,8 @@
-# bench/local.mk
+# bench/local.mk: benchmark tooling. gen_scene writes scenes of a given
+# triangle count, cavalry_bench measures load/BVH/render with GL timer
+# queries, plot draws convergence curves; `make bench` runs bench/run.sh.
+noinst_PROGRAMS += bench/gen_scene bench/plot
+bench_gen_scene_SOURCES = bench/gen_scene.c
+bench_gen_scene_LDADD = -lm
+bench_plot_SOURCES = bench/plot.c
+bench_plot_LDADD = $(PNG_LIBS) $(ZLIB_LIBS) -lm
