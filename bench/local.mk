@@ -6,3 +6,7 @@ bench_gen_scene_SOURCES = bench/gen_scene.c
 bench_gen_scene_LDADD = -lm
 bench_plot_SOURCES = bench/plot.c
 bench_plot_LDADD = $(PNG_LIBS) $(ZLIB_LIBS) -lm
+noinst_PROGRAMS += bench/cavalry_bench
+bench_cavalry_bench_SOURCES = bench/cavalry_bench.c bench/bench.h bench/record.c \
+	bench/stages.c bench/summarize.c bench/exr_read.c
+bench_cavalry_bench_LDADD = $(CV_LIBS)
