@@ -10,6 +10,7 @@
  *   --relmse A B    relMSE of EXR image A against reference B.
  * Measurements that this build cannot make are listed under "unavailable.*"
  * with the reason, never invented. */
+#define _XOPEN_SOURCE 700   /* nftw */
 #include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +20,7 @@
 #include <epoxy/gl.h>
 
 #include "base/error.h"
+#include "base/file.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "bench/bench.h"
@@ -43,6 +45,7 @@ static void usage(FILE *f)
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
 
+#ifdef BENCH_HAVE_LOADER
 static double scan_bytes;
 
 static int add_size(const char *path, const struct stat *st, int type, struct FTW *ftw)
@@ -64,6 +67,7 @@ static double scene_input_bytes(const char *scene_path)
     free(dir);
     return scan_bytes;
 }
+#endif
 
 static double relmse(const float *img, const float *ref, size_t n)
 {

@@ -10,3 +10,4 @@ noinst_PROGRAMS += bench/cavalry_bench
 bench_cavalry_bench_SOURCES = bench/cavalry_bench.c bench/bench.h bench/record.c \
 	bench/stages.c bench/summarize.c bench/exr_read.c
 bench_cavalry_bench_LDADD = $(CV_LIBS)
+bench_cavalry_bench_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
