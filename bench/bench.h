@@ -64,11 +64,15 @@ bool bench_gpu_stages(struct cv_gpu *gpu, struct cv_scene *scene,
                       const struct bench_run_params *p, struct bench_record *r,
                       struct cv_error *err);
 
-/* Convergence: relMSE against reference RGB at 1, 2, 4, ... spp, written
- * as CSV rows "spp,seconds,gpu_seconds,relmse". */
+/* Convergence: relMSE against reference RGB (ref_w x ref_h) at 1, 2, 4, ...
+ * up to p->spp, as CSV rows "spp,seconds,gpu_seconds,relmse"; seconds are
+ * render time only (passes, not read-back). ref_rgb NULL: the reference is
+ * rendered first with ref_spp samples at p's size. relMSE is the mean over
+ * pixels and channels of (x - ref)^2 / (ref^2 + 0.01). */
 bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,
                     const struct bench_run_params *p, const float *ref_rgb,
-                    unsigned ref_w, unsigned ref_h, FILE *csv, struct cv_error *err);
+                    unsigned ref_w, unsigned ref_h, unsigned ref_spp, FILE *csv,
+                    struct cv_error *err);
 
 /* Reads an OpenEXR image as linear RGB floats (caller frees). */
 bool bench_read_exr(const char *path, float **rgb, unsigned *w, unsigned *h,

@@ -40,8 +40,8 @@ static void usage(FILE *f)
     fputs("usage: cavalry_bench --bench SCENE.pbrt [--spp N] [--repeat K] [--width W]\n"
           "                     [--height H] [--json] [--gpu INDEX] [--no-gpu]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
-          "       cavalry_bench --converge SCENE.pbrt --reference REF.exr [--spp N]\n"
-          "                     [--csv OUT.csv]\n"
+          "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
+          "                     [--spp N] [--width W --height H] [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
 
@@ -90,7 +90,7 @@ static void record_gpu(struct bench_record *r, const struct cv_gpu *gpu)
 
 struct opts {
     const char *scene, *reference, *csv, *out;
-    unsigned spp, repeat, width, height;
+    unsigned spp, repeat, width, height, ref_spp;
     int gpu_index;
     bool no_gpu;
 };
@@ -185,7 +185,7 @@ static bool parse_uint(const char *s, unsigned *v)
 int main(int argc, char **argv)
 {
     bench_now_ms();
-    struct opts o = {.spp = 16, .repeat = 1, .gpu_index = -1, .csv = NULL};
+    struct opts o = {.spp = 16, .repeat = 1, .ref_spp = 4096, .gpu_index = -1, .csv = NULL};
     enum { M_NONE, M_BENCH, M_SUMMARIZE, M_CONVERGE, M_RELMSE } mode = M_NONE;
     char **files = cv_xcalloc((size_t)argc, sizeof(char *));
     int n_files = 0;
@@ -214,7 +214,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--no-gpu")) {
             o.no_gpu = true;
         } else if ((!strcmp(a, "--spp") || !strcmp(a, "--repeat") || !strcmp(a, "--width") ||
-                    !strcmp(a, "--height") || !strcmp(a, "--gpu")) && has) {
+                    !strcmp(a, "--height") || !strcmp(a, "--gpu") || !strcmp(a, "--ref-spp")) && has) {
             unsigned v;
             if (!parse_uint(argv[++i], &v)) {
                 fprintf(stderr, "cavalry_bench: %s: bad number \"%s\"\n", a, argv[i]);
@@ -224,6 +224,7 @@ int main(int argc, char **argv)
             else if (!strcmp(a, "--repeat")) o.repeat = v;
             else if (!strcmp(a, "--width")) o.width = v;
             else if (!strcmp(a, "--height")) o.height = v;
+            else if (!strcmp(a, "--ref-spp")) o.ref_spp = v;
             else o.gpu_index = (int)v;
         } else if (a[0] != '-') {
             files[n_files++] = argv[i];
@@ -293,14 +294,9 @@ int main(int argc, char **argv)
     }
     case M_CONVERGE: {
         float *ref = NULL;
-        unsigned rw, rh;
+        unsigned rw = 0, rh = 0;
         FILE *csv = stdout;
-        if (!o.reference) {
-            fprintf(stderr, "cavalry_bench: --converge needs --reference REF.exr\n");
-            rc = 2;
-            break;
-        }
-        if (!bench_read_exr(o.reference, &ref, &rw, &rh, &err)) {
+        if (o.reference && !bench_read_exr(o.reference, &ref, &rw, &rh, &err)) {
             fprintf(stderr, "cavalry_bench: %s\n", err.msg);
             rc = 1;
             break;
@@ -313,8 +309,10 @@ int main(int argc, char **argv)
             rc = 1;
         } else if (!cv_scene_load(o.scene, &(struct cv_scene_load_params){0}, &scene, &err) ||
                    !cv_gpu_create(&gp, &gpu, &err) ||
-                   !bench_converge(gpu, scene, &(struct bench_run_params){.spp = o.spp},
-                                   ref, rw, rh, csv, &err)) {
+                   !bench_converge(gpu, scene,
+                                   &(struct bench_run_params){.spp = o.spp, .width = o.width,
+                                                              .height = o.height},
+                                   ref, rw, rh, o.ref_spp, csv, &err)) {
             fprintf(stderr, "cavalry_bench: %s: %s\n", o.scene, err.msg);
             rc = 1;
         }

@@ -11,3 +11,12 @@ bench_cavalry_bench_SOURCES = bench/cavalry_bench.c bench/bench.h bench/record.c
 	bench/stages.c bench/summarize.c bench/exr_read.c
 bench_cavalry_bench_LDADD = $(CV_LIBS)
 bench_cavalry_bench_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
+
+# `make bench`: the quick set (minutes on llvmpipe) against this build tree.
+# Full sizes, e.g. on the GPU machine: bench/run.sh --binary bench/cavalry_bench
+.PHONY: bench
+bench: bench/cavalry_bench bench/gen_scene
+	$(SHELL) $(srcdir)/bench/run.sh --quick --binary bench/cavalry_bench \
+		--work bench/out --out bench/out/quick.json
+
+EXTRA_DIST += bench/run.sh bench/converge.sh bench/README.md

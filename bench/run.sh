@@ -126,8 +126,10 @@ for s in $scenes; do
 done
 
 summary="$work/summary.json"
-"$binary" --summarize "$records" --out "$summary" || exit 1
+"$binary" --summarize "$records" --out "$summary" 2> "$work/table.txt" ||
+    { cat "$work/table.txt" >&2; exit 1; }
 cat "$summary"
+cat "$work/table.txt" >&2
 [ -z "$out" ] || cp "$summary" "$out" || exit 1
 
 # Keep results of hardware GPU runs in the repository, named by date, GPU

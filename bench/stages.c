@@ -162,28 +162,50 @@ bool bench_gpu_stages(struct cv_gpu *gpu, struct cv_scene *scene,
 #endif
 }
 
+#ifdef BENCH_HAVE_RENDER
+static bool make_renderer(struct cv_gpu *gpu, struct cv_scene *scene, struct cv_bvh *bvh,
+                          unsigned w, unsigned h, struct cv_renderer **out,
+                          struct cv_error *err)
+{
+    struct cv_render_params rp;
+    memset(&rp, 0, sizeof rp);
+    rp.width = w;
+    rp.height = h;
+    return cv_renderer_create(gpu, scene, bvh, &rp, out, err);
+}
+#endif
+
 bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,
                     const struct bench_run_params *p, const float *ref_rgb,
-                    unsigned ref_w, unsigned ref_h, FILE *csv, struct cv_error *err)
+                    unsigned ref_w, unsigned ref_h, unsigned ref_spp, FILE *csv,
+                    struct cv_error *err)
 {
 #ifdef BENCH_HAVE_RENDER
     struct cv_bvh *bvh = NULL;
     if (!cv_bvh_build(gpu, scene, &bvh, err))
         return false;
-    struct cv_render_params rp;
-    memset(&rp, 0, sizeof rp);
-    rp.width = ref_w;
-    rp.height = ref_h;
-    struct cv_renderer *ren = NULL;
-    if (!cv_renderer_create(gpu, scene, bvh, &rp, &ren, err)) {
-        cv_bvh_destroy(&bvh);
-        return false;
+    if (!ref_rgb) {
+        ref_w = p->width ? p->width : scene->settings.width;
+        ref_h = p->height ? p->height : scene->settings.height;
     }
     size_t n = (size_t)ref_w * ref_h * 3;
-    float *img = cv_xmalloc(n * sizeof(float));
-    fprintf(csv, "spp,seconds,gpu_seconds,relmse\n");
-    double t0 = bench_now_ms(), gpu_ms = 0, render_wall_ms = 0;
+    float *img = cv_xmalloc(n * sizeof(float)), *own_ref = NULL;
+    struct cv_renderer *ren = NULL;
     bool ok = true;
+    if (!ref_rgb) {
+        /* A long render of the same scene is the reference. */
+        own_ref = cv_xmalloc(n * sizeof(float));
+        ok = make_renderer(gpu, scene, bvh, ref_w, ref_h, &ren, err);
+        for (unsigned s = 0; s < ref_spp && ok; s++)
+            ok = cv_renderer_pass(ren, err);
+        ok = ok && cv_renderer_read_rgb(ren, own_ref, err);
+        cv_renderer_destroy(&ren);
+        ref_rgb = own_ref;
+    }
+    ok = ok && make_renderer(gpu, scene, bvh, ref_w, ref_h, &ren, err);
+    if (ok)
+        fprintf(csv, "spp,seconds,gpu_seconds,relmse\n");
+    double gpu_ms = 0, render_wall_ms = 0;
     for (unsigned s = 1, next = 1; s <= p->spp && ok; s++) {
         double w0 = bench_now_ms();
         struct bench_timer tm;
@@ -206,14 +228,15 @@ bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,
                 sum / (double)n);
         fflush(csv);
     }
-    (void)t0;
     free(img);
+    free(own_ref);
     cv_renderer_destroy(&ren);
     cv_bvh_destroy(&bvh);
     return ok;
 #else
-    (void)gpu, (void)scene, (void)p, (void)ref_rgb, (void)ref_w, (void)ref_h, (void)csv;
-    return cv_fail(err, "convergence needs the renderer (trace/render.h), which is not in "
-                   "this build");
+    (void)gpu, (void)scene, (void)p, (void)ref_rgb, (void)ref_w, (void)ref_h, (void)ref_spp;
+    (void)csv;
+    return cv_fail(err, "convergence needs the BVH and the renderer (bvh/bvh.h, "
+                   "trace/render.h), which are not in this build");
 #endif
 }

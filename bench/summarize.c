@@ -72,6 +72,71 @@ static void cell(FILE *out, const struct scene_runs *s, const char *key, double 
     fprintf(out, " %*s", width, buf);
 }
 
+/* The last two parts of a path ("gen-1M-seed1/scene.pbrt"): enough to tell
+ * scenes apart in a narrow column. */
+static const char *short_name(const char *path)
+{
+    const char *p = path + strlen(path), *cut = path;
+    int slashes = 0;
+    while (p > path) {
+        if (*--p == '/' && ++slashes == 2) {
+            cut = p + 1;
+            break;
+        }
+    }
+    size_t n = strlen(cut);
+    return n > 30 ? cut + n - 30 : cut;
+}
+
+static void print_table(FILE *t, const struct scene_runs *sc, int n_sc)
+{
+    const struct bench_field *g = bench_get(&sc[0].runs[0], "gpu.renderer");
+    const struct bench_field *v = bench_get(&sc[0].runs[0], "gpu.version");
+    fprintf(t, "GPU: %s | %s | medians of the repeats\n", g ? g->str : "?", v ? v->str : "?");
+    fprintf(t, "%-30s %9s %8s %7s %8s %7s %6s %8s %8s %9s %9s %7s\n", "scene", "tris", "load ms",
+            "MB/s", "BVH ms", "SAH", "B/tri", "Mrays/s", "Msmp/s", "1stpass", "N spp ms",
+            "peakMiB");
+    for (int k = 0; k < n_sc; k++) {
+        const struct scene_runs *s = &sc[k];
+        fprintf(t, "%-30s", short_name(s->name));
+        cell(t, s, "scene.triangles", 1, "%.0f", 9);
+        cell(t, s, "load.wall_ms", 1, "%.1f", 8);
+        cell(t, s, "load.mb_per_s", 1, "%.0f", 7);
+        cell(t, s, "bvh.build_gpu_ms", 1, "%.1f", 8);
+        cell(t, s, "bvh.sah_cost", 1, "%.1f", 7);
+        cell(t, s, "bvh.bytes_per_triangle", 1, "%.1f", 6);
+        cell(t, s, "render.rays_per_s", 1e-6, "%.1f", 8);
+        cell(t, s, "render.samples_per_s", 1e-6, "%.2f", 8);
+        cell(t, s, "render.first_pass_from_start_ms", 1, "%.0f", 9);
+        cell(t, s, "render.time_to_spp_wall_ms", 1, "%.0f", 9);
+        cell(t, s, "gpu.peak_used_mib", 1, "%.0f", 7);
+        fputc('\n', t);
+    }
+    /* Each reason once, with the scenes it applies to counted. */
+    for (int k = 0; k < n_sc; k++) {
+        const struct bench_record *r = &sc[k].runs[0];
+        for (int i = 0; i < r->n; i++) {
+            const struct bench_field *f = &r->f[i];
+            if (f->is_num || strncmp(f->key, "unavailable.", 12))
+                continue;
+            bool seen = false;
+            for (int j = 0; j < k && !seen; j++) {
+                const struct bench_field *o = bench_get(&sc[j].runs[0], f->key);
+                seen = o && !o->is_num && !strcmp(o->str, f->str);
+            }
+            if (seen)
+                continue;
+            int count = 0;
+            for (int j = 0; j < n_sc; j++) {
+                const struct bench_field *o = bench_get(&sc[j].runs[0], f->key);
+                count += o && !o->is_num && !strcmp(o->str, f->str);
+            }
+            fprintf(t, "unavailable: %s: %s (%d of %d scenes)\n", f->key + 12, f->str, count,
+                    n_sc);
+        }
+    }
+}
+
 bool bench_summarize(char **files, int n_files, FILE *json, FILE *table, struct cv_error *err)
 {
     struct scene_runs *sc = NULL;
@@ -177,37 +242,8 @@ bool bench_summarize(char **files, int n_files, FILE *json, FILE *table, struct 
     }
     fputs("  ]\n}\n", json);
 
-    if (table) {
-        const struct bench_field *g = bench_get(first, "gpu.renderer");
-        const struct bench_field *v = bench_get(first, "gpu.version");
-        fprintf(table, "GPU: %s | %s | medians of repeats\n", g ? g->str : "?", v ? v->str : "?");
-        fprintf(table, "%-28s %10s %9s %8s %9s %8s %6s %9s %10s %10s %9s %8s\n", "scene", "tris",
-                "load ms", "load MB/s", "BVH ms", "SAH", "B/tri", "Mrays/s", "Msamples/s",
-                "1st pass ms", "to-N ms", "peak MiB");
-        for (int k = 0; k < n_sc; k++) {
-            const struct scene_runs *s = &sc[k];
-            const char *nm = strrchr(s->name, '/');
-            nm = nm && strlen(s->name) > 28 ? nm + 1 : s->name;
-            fprintf(table, "%-28.28s", nm);
-            cell(table, s, "scene.triangles", 1, "%.0f", 10);
-            cell(table, s, "load.wall_ms", 1, "%.1f", 9);
-            cell(table, s, "load.mb_per_s", 1, "%.0f", 8);
-            cell(table, s, "bvh.build_gpu_ms", 1, "%.1f", 9);
-            cell(table, s, "bvh.sah_cost", 1, "%.1f", 8);
-            cell(table, s, "bvh.bytes_per_triangle", 1, "%.1f", 6);
-            cell(table, s, "render.rays_per_s", 1e-6, "%.1f", 9);
-            cell(table, s, "render.samples_per_s", 1e-6, "%.2f", 10);
-            cell(table, s, "render.first_pass_from_start_ms", 1, "%.0f", 10);
-            cell(table, s, "render.time_to_spp_wall_ms", 1, "%.0f", 9);
-            cell(table, s, "gpu.peak_used_mib", 1, "%.0f", 8);
-            fputc('\n', table);
-            for (int i = 0; i < s->runs[0].n; i++) {
-                const struct bench_field *f = &s->runs[0].f[i];
-                if (!f->is_num && !strncmp(f->key, "unavailable.", 12))
-                    fprintf(table, "    unavailable: %s (%s)\n", f->key + 12, f->str);
-            }
-        }
-    }
+    if (table)
+        print_table(table, sc, n_sc);
     for (int k = 0; k < n_sc; k++) {
         for (int i = 0; i < sc[k].n; i++)
             bench_record_free(&sc[k].runs[i]);
