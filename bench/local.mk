@@ -20,3 +20,5 @@ bench: bench/cavalry_bench bench/gen_scene
 		--work bench/out --out bench/out/quick.json
 
 EXTRA_DIST += bench/run.sh bench/converge.sh bench/README.md
+TESTS += bench/bench_test.sh
+EXTRA_DIST += bench/bench_test.sh
