@@ -56,6 +56,7 @@ double bench_timer_end(struct bench_timer *t);
 struct bench_run_params {
     unsigned spp;               /* passes of one sample per pixel */
     unsigned width, height;     /* 0: as the scene file says */
+    const char *integrator;     /* "path" (NULL) or "rlpath" */
 };
 
 /* BVH build and rendering through the bvh and trace stages; each records

@@ -38,10 +38,12 @@
 static void usage(FILE *f)
 {
     fputs("usage: cavalry_bench --bench SCENE.pbrt [--spp N] [--repeat K] [--width W]\n"
-          "                     [--height H] [--json] [--gpu INDEX] [--no-gpu]\n"
+          "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
+          "                     [--no-gpu]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
-          "                     [--spp N] [--width W --height H] [--csv OUT.csv]\n"
+          "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
+          "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
 
@@ -89,7 +91,7 @@ static void record_gpu(struct bench_record *r, const struct cv_gpu *gpu)
 }
 
 struct opts {
-    const char *scene, *reference, *csv, *out;
+    const char *scene, *reference, *csv, *out, *integrator;
     unsigned spp, repeat, width, height, ref_spp;
     int gpu_index;
     bool no_gpu;
@@ -152,7 +154,8 @@ static bool bench_once(const struct opts *o, unsigned rep, struct cv_gpu **gpu,
     struct cv_scene *scene = NULL;
     ok = load_scene(o->scene, &r, &scene, err);
     if (ok && *gpu) {
-        struct bench_run_params p = {.spp = o->spp, .width = o->width, .height = o->height};
+        struct bench_run_params p = {.spp = o->spp, .width = o->width, .height = o->height,
+                                     .integrator = o->integrator};
         ok = bench_gpu_stages(*gpu, scene, &p, &r, err);
     }
     cv_scene_destroy(&scene);
@@ -205,6 +208,8 @@ int main(int argc, char **argv)
             mode = M_RELMSE;
         } else if (!strcmp(a, "--reference") && has) {
             o.reference = argv[++i];
+        } else if (!strcmp(a, "--integrator") && has) {
+            o.integrator = argv[++i];
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
         } else if (!strcmp(a, "--out") && has) {
@@ -311,7 +316,8 @@ int main(int argc, char **argv)
                    !cv_gpu_create(&gp, &gpu, &err) ||
                    !bench_converge(gpu, scene,
                                    &(struct bench_run_params){.spp = o.spp, .width = o.width,
-                                                              .height = o.height},
+                                                              .height = o.height,
+                                                              .integrator = o.integrator},
                                    ref, rw, rh, o.ref_spp, csv, &err)) {
             fprintf(stderr, "cavalry_bench: %s: %s\n", o.scene, err.msg);
             rc = 1;

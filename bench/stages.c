@@ -1,34 +1,11 @@
 /* stages.c: the BVH build and rendering measurements, made through the bvh
- * and trace stages' public headers. Those stages land separately; until a
- * header is in the build its part is compiled out and the record says which
- * measurements are unavailable and why.
- *
- * What this file expects of them (the interface the bench is written to):
- *   bvh/bvh.h:
- *     bool cv_bvh_build(struct cv_gpu *, const struct cv_scene *,
- *                       struct cv_bvh **out, struct cv_error *);
- *     void cv_bvh_stats(const struct cv_bvh *, struct cv_bvh_stats *out);
- *       struct cv_bvh_stats { unsigned n_phases;
- *           struct { const char *name; double gpu_ms; } phase[];
- *           double sah_cost; double bytes; (GPU bytes of nodes+indices)
- *           unsigned n_nodes; };
- *     void cv_bvh_destroy(struct cv_bvh **);
- *   trace/render.h:
- *     bool cv_renderer_create(struct cv_gpu *, const struct cv_scene *,
- *                             const struct cv_bvh *,
- *                             const struct cv_render_params *,
- *                             struct cv_renderer **out, struct cv_error *);
- *       struct cv_render_params { unsigned width, height; ... };
- *     bool cv_renderer_pass(struct cv_renderer *, struct cv_error *);
- *       (adds one sample per pixel; asynchronous)
- *     void cv_renderer_counters(const struct cv_renderer *,
- *                               struct cv_render_counters *out);
- *       struct cv_render_counters { uint64_t primary_rays, secondary_rays,
- *           shadow_rays, samples; }   (totals since creation)
- *     bool cv_renderer_read_rgb(struct cv_renderer *, float *rgb, struct cv_error *);
- *       (the mean image so far, width*height*3 floats)
- *     void cv_renderer_destroy(struct cv_renderer **);
- */
+ * stage (bvh/bvh.h: cv_bvh_build over GL buffers, cv_bvh_stats with GPU
+ * phase times) and the trace stage (trace/render.h: cv_renderer_create,
+ * cv_renderer_pass, cv_renderer_counters with rays by kind and pass GPU time,
+ * cv_renderer_read). Both stages time their GPU work with GL_TIME_ELAPSED
+ * queries themselves, and GL does not nest those, so this file adds none
+ * around their calls. Where a stage header is not in the build, its part is
+ * compiled out and the record says which measurements are unavailable. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -39,99 +16,154 @@
 
 #include "base/mem.h"
 #include "bench/bench.h"
+#include "gpu/buffer.h"
 
 #if defined(__has_include)
 #if __has_include("bvh/bvh.h")
 #include "bvh/bvh.h"
 #define BENCH_HAVE_BVH 1
 #endif
-#if __has_include("trace/render.h") && defined(BENCH_HAVE_BVH)
+#if __has_include("trace/render.h")
 #include "trace/render.h"
 #define BENCH_HAVE_RENDER 1
 #endif
 #endif
 
 #ifdef BENCH_HAVE_BVH
-static bool build_bvh(struct cv_gpu *gpu, struct cv_scene *scene, struct bench_record *r,
-                      struct cv_bvh **out, struct cv_error *err)
+/* The BVH on its own, over the scene uploaded here, so that its phases are
+ * measured apart from the renderer's set-up (which builds its own). */
+static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
+                        struct bench_record *r, struct cv_error *err)
 {
-    /* No timer query around the build: the BVH stage times its phases with
-     * its own GL_TIME_ELAPSED queries, and GL forbids nesting them. */
-    double t0 = bench_now_ms();
-    if (!cv_bvh_build(gpu, scene, out, err)) {
-        cv_error_prefix(err, "building the BVH");
+    GLuint vb = cv_buffer_create((size_t)scene->n_vertices * sizeof(CvVertex), scene->vertices,
+                                 "bench vertices", err);
+    GLuint tb = vb ? cv_buffer_create((size_t)scene->n_triangles * sizeof(CvTriangle),
+                                      scene->triangles, "bench triangles", err)
+                   : 0;
+    if (!vb || !tb) {
+        cv_buffer_destroy(&vb);
+        cv_error_prefix(err, "uploading the scene for the BVH");
         return false;
     }
     glFinish();
-    bench_num(r, "bvh.build_wall_ms", bench_now_ms() - t0);
-    bench_gpu_memory_sample(gpu);
-    struct cv_bvh_stats st;
-    memset(&st, 0, sizeof st);
-    cv_bvh_stats(*out, &st);
-    double gpu_ms = 0;
-    for (unsigned i = 0; i < st.n_phases; i++) {
-        gpu_ms += st.phase[i].gpu_ms;
-        char key[96];
-        snprintf(key, sizeof key, "bvh.phase.%s_ms", st.phase[i].name);
-        bench_num(r, key, st.phase[i].gpu_ms);
+    double t0 = bench_now_ms();
+    struct cv_bvh *bvh = NULL;
+    bool ok = cv_bvh_build(gpu, vb, tb, scene->n_triangles, NULL, &bvh, err);
+    if (ok) {
+        glFinish();
+        bench_num(r, "bvh.build_wall_ms", bench_now_ms() - t0);
+        bench_gpu_memory_sample(gpu);
+        const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
+        static const char *names[] = {"bounds", "morton", "sort", "hierarchy", "refit",
+                                      "treelet", "collapse"};
+        const double ms[] = {st->ms_bounds, st->ms_morton, st->ms_sort, st->ms_hierarchy,
+                             st->ms_refit, st->ms_treelet, st->ms_collapse};
+        for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++) {
+            char key[96];
+            snprintf(key, sizeof key, "bvh.phase.%s_ms", names[i]);
+            bench_num(r, key, ms[i]);
+        }
+        bench_num(r, "bvh.build_gpu_ms", st->ms_total);
+        bench_num(r, "bvh.sah_cost", st->sah_cost);
+        bench_num(r, "bvh.nodes", st->n_nodes);
+        bench_num(r, "bvh.mb", (double)st->bytes / 1e6);
+        bench_num(r, "bvh.scratch_mb", (double)st->scratch_bytes / 1e6);
+        if (scene->n_triangles)
+            bench_num(r, "bvh.bytes_per_triangle", (double)st->bytes / scene->n_triangles);
+        if (st->ms_total > 0)
+            bench_num(r, "bvh.mtriangles_per_s", scene->n_triangles / (st->ms_total * 1e3));
+    } else {
+        cv_error_prefix(err, "building the BVH");
     }
-    bench_num(r, "bvh.build_gpu_ms", gpu_ms);
-    bench_num(r, "bvh.sah_cost", st.sah_cost);
-    bench_num(r, "bvh.nodes", st.n_nodes);
-    bench_num(r, "bvh.bytes_per_triangle",
-              scene->n_triangles ? (double)st.bytes / scene->n_triangles : 0);
-    return true;
+    cv_bvh_destroy(&bvh);
+    cv_buffer_destroy(&tb);
+    cv_buffer_destroy(&vb);
+    return ok;
 }
 #endif
 
 #ifdef BENCH_HAVE_RENDER
-static bool render(struct cv_gpu *gpu, struct cv_scene *scene, struct cv_bvh *bvh,
-                   const struct bench_run_params *p, struct bench_record *r,
-                   struct cv_error *err)
+static int integrator_id(const char *name)
+{
+    if (!name || !strcmp(name, "path"))
+        return CV_INTEGRATOR_PATH;
+    if (!strcmp(name, "rlpath"))
+        return CV_INTEGRATOR_RLPATH;
+    return -1;
+}
+
+static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
+                          const struct bench_run_params *p, unsigned w, unsigned h,
+                          struct cv_renderer **out, struct cv_error *err)
 {
     struct cv_render_params rp;
     memset(&rp, 0, sizeof rp);
-    rp.width = p->width ? p->width : scene->settings.width;
-    rp.height = p->height ? p->height : scene->settings.height;
+    rp.width = w;
+    rp.height = h;
+    rp.seed = 1;
+    rp.integrator = integrator_id(p->integrator);
+    if (rp.integrator < 0)
+        return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
+    return cv_renderer_create(gpu, scene, &rp, out, err);
+}
+
+static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
+                           const struct bench_run_params *p, struct bench_record *r,
+                           struct cv_error *err)
+{
+    double t0 = bench_now_ms();
     struct cv_renderer *ren = NULL;
-    if (!cv_renderer_create(gpu, scene, bvh, &rp, &ren, err))
+    if (!make_renderer(gpu, scene, p, p->width, p->height, &ren, err))
         return false;
-    bench_num(r, "render.width", rp.width);
-    bench_num(r, "render.height", rp.height);
+    glFinish();
+    bench_num(r, "render.create_wall_ms", bench_now_ms() - t0);
+    bench_gpu_memory_sample(gpu);
+    uint32_t w, h;
+    cv_renderer_size(ren, &w, &h);
+    bench_num(r, "render.width", w);
+    bench_num(r, "render.height", h);
     bench_num(r, "render.spp", p->spp);
-    double t0 = bench_now_ms(), gpu_ms = 0;
-    double *pass_ms = cv_xcalloc(p->spp ? p->spp : 1, sizeof(double));
-    bool ok = true;
-    for (unsigned s = 0; s < p->spp && ok; s++) {
-        struct bench_timer tm;
-        bench_timer_begin(&tm);
-        ok = cv_renderer_pass(ren, err);
-        pass_ms[s] = bench_timer_end(&tm);    /* waits: the pass is complete */
-        gpu_ms += pass_ms[s];
-        bench_gpu_memory_sample(gpu);
-        if (s == 0) {
-            bench_num(r, "render.first_pass_from_start_ms", bench_now_ms());
-            bench_num(r, "render.first_pass_gpu_ms", pass_ms[0]);
-        }
-    }
+    bench_str(r, "render.integrator", p->integrator ? p->integrator : "path");
+
+    /* First pass: reading the counters waits for the GPU, so the time after
+     * it is when the first complete image exists. */
+    struct cv_render_counters c1, c;
+    double p0 = bench_now_ms();
+    bool ok = cv_renderer_pass(ren, 1, err) && cv_renderer_counters(ren, &c1, err);
     if (ok) {
-        glFinish();
-        bench_num(r, "render.time_to_spp_wall_ms", bench_now_ms() - t0);
-        bench_num(r, "render.time_to_spp_gpu_ms", gpu_ms);
-        struct cv_render_counters c;
-        memset(&c, 0, sizeof c);
-        cv_renderer_counters(ren, &c);
-        double secs = gpu_ms * 1e-3;
+        bench_num(r, "render.first_pass_from_start_ms", bench_now_ms());
+        bench_num(r, "render.first_pass_gpu_ms", c1.gpu_ms);
+        bench_gpu_memory_sample(gpu);
+    }
+    /* The rest one pass of 1 spp at a time, as a progressive render does. */
+    for (unsigned s = 1; s < p->spp && ok; s++)
+        ok = cv_renderer_pass(ren, 1, err);
+    ok = ok && cv_renderer_counters(ren, &c, err);
+    if (ok) {
+        bench_num(r, "render.time_to_spp_wall_ms", bench_now_ms() - p0);
+        bench_num(r, "render.time_to_spp_gpu_ms", c.gpu_ms);
+        bench_gpu_memory_sample(gpu);
+        /* llvmpipe answers GL_TIME_ELAPSED with near-zero times; there the
+         * CPU is the device and the wall clock is the honest measure. */
+        double secs = c.gpu_ms * 1e-3;
+        if (gpu->info.software) {
+            secs = (bench_now_ms() - p0) * 1e-3;
+            bench_str(r, "render.rate_clock", "wall (software renderer)");
+        } else {
+            bench_str(r, "render.rate_clock", "gpu (GL_TIME_ELAPSED)");
+        }
         if (secs > 0) {
             bench_num(r, "render.primary_rays_per_s", (double)c.primary_rays / secs);
             bench_num(r, "render.secondary_rays_per_s", (double)c.secondary_rays / secs);
             bench_num(r, "render.shadow_rays_per_s", (double)c.shadow_rays / secs);
             bench_num(r, "render.rays_per_s",
                       (double)(c.primary_rays + c.secondary_rays + c.shadow_rays) / secs);
-            bench_num(r, "render.samples_per_s", (double)c.samples / secs);
+            bench_num(r, "render.samples_per_s", (double)w * h * p->spp / secs);
         }
+        bench_num(r, "render.primary_rays", (double)c.primary_rays);
+        bench_num(r, "render.secondary_rays", (double)c.secondary_rays);
+        bench_num(r, "render.shadow_rays", (double)c.shadow_rays);
     }
-    free(pass_ms);
     cv_renderer_destroy(&ren);
     return ok;
 }
@@ -142,38 +174,19 @@ bool bench_gpu_stages(struct cv_gpu *gpu, struct cv_scene *scene,
                       struct cv_error *err)
 {
 #ifdef BENCH_HAVE_BVH
-    struct cv_bvh *bvh = NULL;
-    if (!build_bvh(gpu, scene, r, &bvh, err))
+    if (!measure_bvh(gpu, scene, r, err))
         return false;
-#ifdef BENCH_HAVE_RENDER
-    bool ok = render(gpu, scene, bvh, p, r, err);
-    cv_bvh_destroy(&bvh);
-    return ok;
 #else
-    cv_bvh_destroy(&bvh);
-    bench_unavailable(r, "render", "trace/render.h is not in this build");
-    return true;
+    bench_unavailable(r, "bvh", "bvh/bvh.h is not in this build");
 #endif
+#ifdef BENCH_HAVE_RENDER
+    return measure_render(gpu, scene, p, r, err);
 #else
     (void)gpu, (void)scene, (void)p, (void)err;
-    bench_unavailable(r, "bvh", "bvh/bvh.h is not in this build");
     bench_unavailable(r, "render", "trace/render.h is not in this build");
     return true;
 #endif
 }
-
-#ifdef BENCH_HAVE_RENDER
-static bool make_renderer(struct cv_gpu *gpu, struct cv_scene *scene, struct cv_bvh *bvh,
-                          unsigned w, unsigned h, struct cv_renderer **out,
-                          struct cv_error *err)
-{
-    struct cv_render_params rp;
-    memset(&rp, 0, sizeof rp);
-    rp.width = w;
-    rp.height = h;
-    return cv_renderer_create(gpu, scene, bvh, &rp, out, err);
-}
-#endif
 
 bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,
                     const struct bench_run_params *p, const float *ref_rgb,
@@ -181,62 +194,73 @@ bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,
                     struct cv_error *err)
 {
 #ifdef BENCH_HAVE_RENDER
-    struct cv_bvh *bvh = NULL;
-    if (!cv_bvh_build(gpu, scene, &bvh, err))
-        return false;
-    if (!ref_rgb) {
-        ref_w = p->width ? p->width : scene->settings.width;
-        ref_h = p->height ? p->height : scene->settings.height;
-    }
-    size_t n = (size_t)ref_w * ref_h * 3;
-    float *img = cv_xmalloc(n * sizeof(float)), *own_ref = NULL;
+    unsigned want_w = ref_rgb ? ref_w : p->width, want_h = ref_rgb ? ref_h : p->height;
     struct cv_renderer *ren = NULL;
+    uint32_t w = 0, h = 0;
+    float *rgba = NULL, *own_ref = NULL;
     bool ok = true;
     if (!ref_rgb) {
         /* A long render of the same scene is the reference. */
-        own_ref = cv_xmalloc(n * sizeof(float));
-        ok = make_renderer(gpu, scene, bvh, ref_w, ref_h, &ren, err);
+        ok = make_renderer(gpu, scene, p, want_w, want_h, &ren, err);
+        if (ok) {
+            cv_renderer_size(ren, &w, &h);
+            rgba = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
+            own_ref = cv_xmalloc((size_t)w * h * 3 * sizeof(float));
+        }
         for (unsigned s = 0; s < ref_spp && ok; s++)
-            ok = cv_renderer_pass(ren, err);
-        ok = ok && cv_renderer_read_rgb(ren, own_ref, err);
+            ok = cv_renderer_pass(ren, 1, err);
+        ok = ok && cv_renderer_read(ren, rgba, NULL, NULL, NULL, err);
+        for (size_t i = 0; ok && i < (size_t)w * h; i++)
+            memcpy(own_ref + 3 * i, rgba + 4 * i, 3 * sizeof(float));
         cv_renderer_destroy(&ren);
         ref_rgb = own_ref;
+        ref_w = w, ref_h = h;
     }
-    ok = ok && make_renderer(gpu, scene, bvh, ref_w, ref_h, &ren, err);
+    ok = ok && make_renderer(gpu, scene, p, want_w, want_h, &ren, err);
+    if (ok) {
+        cv_renderer_size(ren, &w, &h);
+        if (w != ref_w || h != ref_h)
+            ok = cv_fail(err, "the render is %ux%u but the reference %ux%u (crop window?)",
+                         w, h, ref_w, ref_h);
+    }
+    if (ok && !rgba)
+        rgba = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
     if (ok)
         fprintf(csv, "spp,seconds,gpu_seconds,relmse\n");
-    double gpu_ms = 0, render_wall_ms = 0;
+    double wall_ms = 0, mark = bench_now_ms();
+    size_t n = (size_t)w * h;
     for (unsigned s = 1, next = 1; s <= p->spp && ok; s++) {
-        double w0 = bench_now_ms();
-        struct bench_timer tm;
-        bench_timer_begin(&tm);
-        ok = cv_renderer_pass(ren, err);
-        gpu_ms += bench_timer_end(&tm);
-        render_wall_ms += bench_now_ms() - w0;
+        ok = cv_renderer_pass(ren, 1, err);
         if (!ok || s != next)
             continue;
         next *= 2;
-        /* Read-back and error are not render time: only passes count. */
-        if (!(ok = cv_renderer_read_rgb(ren, img, err)))
+        struct cv_render_counters c;
+        /* Counters wait for the GPU: the wall time up to here is render time;
+         * read-back and the error sum are not counted. */
+        if (!(ok = cv_renderer_counters(ren, &c, err)))
+            break;
+        wall_ms += bench_now_ms() - mark;
+        if (!(ok = cv_renderer_read(ren, rgba, NULL, NULL, NULL, err)))
             break;
         double sum = 0;
-        for (size_t i = 0; i < n; i++) {
-            double d = (double)img[i] - ref_rgb[i];
-            sum += d * d / ((double)ref_rgb[i] * ref_rgb[i] + 1e-2);
-        }
-        fprintf(csv, "%u,%.6g,%.6g,%.6g\n", s, render_wall_ms * 1e-3, gpu_ms * 1e-3,
-                sum / (double)n);
+        for (size_t i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++) {
+                double ref = ref_rgb[3 * i + k], d = (double)rgba[4 * i + k] - ref;
+                sum += d * d / (ref * ref + 1e-2);
+            }
+        fprintf(csv, "%u,%.6g,%.6g,%.6g\n", s, wall_ms * 1e-3, c.gpu_ms * 1e-3,
+                n ? sum / (3.0 * (double)n) : 0.0);
         fflush(csv);
+        mark = bench_now_ms();
     }
-    free(img);
+    free(rgba);
     free(own_ref);
     cv_renderer_destroy(&ren);
-    cv_bvh_destroy(&bvh);
     return ok;
 #else
     (void)gpu, (void)scene, (void)p, (void)ref_rgb, (void)ref_w, (void)ref_h, (void)ref_spp;
     (void)csv;
-    return cv_fail(err, "convergence needs the BVH and the renderer (bvh/bvh.h, "
-                   "trace/render.h), which are not in this build");
+    return cv_fail(err, "convergence needs the renderer (trace/render.h), which is not in "
+                   "this build");
 #endif
 }
