@@ -5,13 +5,15 @@
 # from process start; the summary gives median, min, max and spread.
 #
 # usage: bench/run.sh [--binary PATH] [--quick] [--repeat K] [--spp N]
+#                     [--size WxH] [--sizes "1M 4M"] [--timeout SEC]
 #                     [--out results.json] [--work DIR] [--save] [scenes...]
 #   --binary PATH  cavalry_bench to run (default: next to this script, then
 #                  ./bench/cavalry_bench of the build tree); gen_scene is
 #                  taken from the same folder.
-#   --quick        small generated scenes (100k, 300k, 100k indirect), small
-#                  images and few samples: minutes on llvmpipe.
-#                  Default (full): 1M, 4M, 16M and 1M indirect at 1280x720.
+#   --quick        small generated scenes (100k, 300k, 100k indirect), 160x90,
+#                  2 spp, 300 s per run at most: minutes on llvmpipe.
+#                  Default (full): 1M, 4M, 16M and 1M indirect at 1280x720, 64 spp.
+#   --sizes, --size, --spp, --repeat (3), --timeout: override those.
 #   --save         also write bench/results/YYYY-MM-DD_<gpu>_<driver>.json
 #                  (done by default for full runs on a hardware GPU).
 #   scenes         .pbrt files to run instead of the fixed set.
@@ -28,6 +30,9 @@ out=
 work=
 save=auto
 scenes=
+size=
+sizes=
+limit=
 
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -39,7 +44,10 @@ while [ $# -gt 0 ]; do
     --work) work=$2; shift 2 ;;
     --save) save=yes; shift ;;
     --no-save) save=no; shift ;;
-    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --size) size=$2; shift 2 ;;
+    --sizes) sizes=$2; shift 2 ;;
+    --timeout) limit=$2; shift 2 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     -*) echo "run.sh: unknown option $1" >&2; exit 2 ;;
     *) scenes="$scenes $1"; shift ;;
     esac
@@ -60,15 +68,22 @@ gen="$bindir/gen_scene"
 mkdir -p "$work/scenes" || exit 1
 
 if [ "$quick" = yes ]; then
-    sizes="100k 300k"
+    [ -n "$sizes" ] || sizes="100k 300k"
     indirect="100k"
-    size_args="--width 320 --height 180"
-    [ -n "$spp" ] || spp=4
+    [ -n "$size" ] || size=160x90
+    [ -n "$spp" ] || spp=2
+    [ -n "$limit" ] || limit=300
 else
-    sizes="1M 4M 16M"
+    [ -n "$sizes" ] || sizes="1M 4M 16M"
     indirect="1M"
-    size_args="--width 1280 --height 720"
+    [ -n "$size" ] || size=1280x720
     [ -n "$spp" ] || spp=64
+fi
+size_args="--width ${size%x*} --height ${size#*x}"
+# A run that outlives --timeout is recorded as such and the set goes on.
+runner=
+if [ -n "$limit" ] && command -v timeout >/dev/null 2>&1; then
+    runner="timeout $limit"
 fi
 
 # The fixed set: generated scenes, then the shared pbrt scenes where present.
@@ -111,11 +126,12 @@ for s in $scenes; do
     while [ "$k" -lt "$repeat" ]; do
         echo "run.sh: $s (repeat $((k + 1))/$repeat)" >&2
         # shellcheck disable=SC2086
-        "$binary" --bench "$s" --spp "$spp" $size_args --repeat 1 --json \
+        $runner "$binary" --bench "$s" --spp "$spp" $size_args --repeat 1 --json \
             >> "$records" 2> "$work/stderr.txt"
         rc=$?
         if [ $rc -ne 0 ]; then
             msg=$(tail -n 1 "$work/stderr.txt")
+            [ $rc -ne 124 ] || msg="timed out after $limit s (--timeout)"
             echo "run.sh: $s failed (exit $rc): $msg" >&2
             printf '{"scene": "%s", "repeat": %d, "unavailable.run": "exit %d: %s"}\n' \
                 "$(json_escape "$s")" "$k" "$rc" "$(json_escape "$msg")" >> "$records"
