@@ -66,8 +66,9 @@ bool bench_gpu_stages(struct cv_gpu *gpu, struct cv_scene *scene,
                       struct cv_error *err);
 
 /* Convergence: relMSE against reference RGB (ref_w x ref_h) at 1, 2, 4, ...
- * up to p->spp, as CSV rows "spp,seconds,gpu_seconds,relmse"; seconds are
- * render time only (passes, not read-back). ref_rgb NULL: the reference is
+ * up to p->spp, as CSV rows "spp,seconds,wall_seconds,gpu_seconds,relmse";
+ * times are render time only (passes, not read-back); "seconds" is the GPU
+ * time, or the wall time on a software renderer. ref_rgb NULL: the reference is
  * rendered first with ref_spp samples at p's size. relMSE is the mean over
  * pixels and channels of (x - ref)^2 / (ref^2 + 0.01). */
 bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,

@@ -5,18 +5,22 @@
 #
 # usage: bench/converge.sh [--binary PATH] [--reference REF.exr | --ref-spp N]
 #                          [--spp N] [--width W --height H] [--out DIR]
-#                          [--title T] LABEL=SCENE.pbrt...
-#   Each LABEL=SCENE is one series: relMSE at 1, 2, 4, ... up to --spp
+#                          [--integrator path|rlpath]
+#                          [--title T] LABEL=SCENE.pbrt[@INTEGRATOR]...
+#   Each LABEL=SCENE is one series (@path or @rlpath picks its integrator,
+#   e.g. path=room.pbrt@path rlpath=room.pbrt@rlpath): relMSE at 1, 2, 4, ... up to --spp
 #   (default 1024) samples per pixel against --reference, or against a
 #   render of that scene at --ref-spp (default 4096) when none is given.
-#   Writes DIR/LABEL.csv (spp,seconds,gpu_seconds,relmse) and
-#   DIR/convergence.png (relMSE vs GPU seconds). Default DIR: bench/out/converge.
+#   Writes DIR/LABEL.csv (spp,seconds,wall_seconds,gpu_seconds,relmse;
+#   seconds = GPU time, wall time on llvmpipe) and DIR/convergence.png
+#   (relMSE vs seconds). Default DIR: bench/out/converge.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 binary=
 ref_args=
 spp=1024
 size_args=
+integ=
 out=
 title="relMSE vs render time"
 series=
@@ -26,10 +30,11 @@ while [ $# -gt 0 ]; do
     --reference) ref_args="--reference $2"; shift 2 ;;
     --ref-spp) ref_args="--ref-spp $2"; shift 2 ;;
     --spp) spp=$2; shift 2 ;;
+    --integrator) integ="--integrator $2"; shift 2 ;;
     --width|--height) size_args="$size_args $1 $2"; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --title) title=$2; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     -*) echo "converge.sh: unknown option $1" >&2; exit 2 ;;
     *=*) series="$series $1"; shift ;;
     *) echo "converge.sh: series must be LABEL=SCENE.pbrt, got $1" >&2; exit 2 ;;
@@ -43,20 +48,24 @@ if [ -z "$binary" ] || [ ! -x "$binary" ]; then
     exit 2
 fi
 plot="$(cd "$(dirname "$binary")" && pwd)/plot"
-[ -n "$series" ] || { sed -n '5,10p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+[ -n "$series" ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0" >&2; exit 2; }
 [ -n "$out" ] || out="$(dirname "$binary")/out/converge"
 mkdir -p "$out" || exit 1
 csvs=
 for s in $series; do
     label=${s%%=*}
     scene=${s#*=}
-    echo "converge.sh: $label: $scene" >&2
+    this_integ=$integ
+    case "$scene" in
+    *@*) this_integ="--integrator ${scene##*@}"; scene=${scene%@*} ;;
+    esac
+    echo "converge.sh: $label: $scene $this_integ" >&2
     # shellcheck disable=SC2086
-    "$binary" --converge "$scene" $ref_args --spp "$spp" $size_args --csv "$out/$label.csv" ||
+    "$binary" --converge "$scene" $ref_args --spp "$spp" $size_args $this_integ --csv "$out/$label.csv" ||
         exit 1
     csvs="$csvs $out/$label.csv=$label"
 done
 # shellcheck disable=SC2086
-"$plot" --out "$out/convergence.png" --title "$title" --x gpu_seconds --y relmse \
-    --xlabel "GPU time (s)" --ylabel "relMSE" $csvs || exit 1
+"$plot" --out "$out/convergence.png" --title "$title" --x seconds --y relmse \
+    --xlabel "render time (s)" --ylabel "relMSE" $csvs || exit 1
 echo "converge.sh: wrote $out/convergence.png" >&2
