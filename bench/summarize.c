@@ -105,8 +105,8 @@ static void print_table(FILE *t, const struct scene_runs *sc, int n_sc)
         cell(t, s, "bvh.build_gpu_ms", 1, "%.1f", 8);
         cell(t, s, "bvh.sah_cost", 1, "%.1f", 7);
         cell(t, s, "bvh.bytes_per_triangle", 1, "%.1f", 6);
-        cell(t, s, "render.rays_per_s", 1e-6, "%.1f", 8);
-        cell(t, s, "render.samples_per_s", 1e-6, "%.2f", 8);
+        cell(t, s, "render.rays_per_s", 1e-6, "%.3g", 8);
+        cell(t, s, "render.samples_per_s", 1e-6, "%.3g", 8);
         cell(t, s, "render.first_pass_from_start_ms", 1, "%.0f", 9);
         cell(t, s, "render.time_to_spp_wall_ms", 1, "%.0f", 9);
         cell(t, s, "gpu.peak_used_mib", 1, "%.0f", 7);
