@@ -1,1 +1,24 @@
-# bench/local.mk
+# bench/local.mk: benchmark tooling. gen_scene writes scenes of a given
+# triangle count, cavalry_bench measures load/BVH/render with GL timer
+# queries, plot draws convergence curves; `make bench` runs bench/run.sh.
+noinst_PROGRAMS += bench/gen_scene bench/plot
+bench_gen_scene_SOURCES = bench/gen_scene.c
+bench_gen_scene_LDADD = -lm
+bench_plot_SOURCES = bench/plot.c
+bench_plot_LDADD = $(PNG_LIBS) $(ZLIB_LIBS) -lm
+noinst_PROGRAMS += bench/cavalry_bench
+bench_cavalry_bench_SOURCES = bench/cavalry_bench.c bench/bench.h bench/record.c \
+	bench/stages.c bench/summarize.c bench/exr_read.c
+bench_cavalry_bench_LDADD = $(CV_LIBS)
+bench_cavalry_bench_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
+
+# `make bench`: the quick set (minutes on llvmpipe) against this build tree.
+# Full sizes, e.g. on the GPU machine: bench/run.sh --binary bench/cavalry_bench
+.PHONY: bench
+bench: bench/cavalry_bench bench/gen_scene
+	$(SHELL) $(srcdir)/bench/run.sh --quick --binary bench/cavalry_bench \
+		--work bench/out --out bench/out/quick.json
+
+EXTRA_DIST += bench/run.sh bench/converge.sh bench/README.md
+TESTS += bench/bench_test.sh
+EXTRA_DIST += bench/bench_test.sh
