@@ -1,1 +1,8 @@
-# src/manifest: see Makefile.am
+# src/manifest: the batch manifest reader (libyaml) and job sharding.
+libcavalry_a_SOURCES += \
+	src/manifest/diag.c src/manifest/diag.h \
+	src/manifest/yaml_view.c src/manifest/yaml_view.h \
+	src/manifest/job_parse.c src/manifest/job_parse.h \
+	src/manifest/job_hash.c src/manifest/job_hash.h \
+	src/manifest/manifest.c src/manifest/manifest.h \
+	src/manifest/shard.c src/manifest/shard.h

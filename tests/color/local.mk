@@ -1,1 +1,7 @@
-# tests/color: see tests/local.mk
+# tests/color
+check_PROGRAMS += tests/color/color_gpu_test tests/color/ocio_test
+TESTS += tests/color/color_gpu_test tests/color/ocio_test
+tests_color_color_gpu_test_LDADD = $(CV_LIBS)
+tests_color_ocio_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/data/color/lut_look.ocio tests/data/color/warm.cube \
+	tests/data/color/curve.spi1d tests/data/color/small.spi1d tests/data/color/broken.ocio

@@ -1,0 +1,26 @@
+#version 450
+// glsl/color/display.comp: the display transform pass. Reads the renderer's
+// scene-linear RGBA (vec4 per pixel, row-major, top row first) and writes the
+// display-referred RGBA of the same layout. The colour maths is the function
+// OpenColorIO generates for the job's processor: src/color/color_pass.c puts
+// its text where the marker line below stands (with #line directives, so
+// compiler messages inside it name "color/ocio-generated").
+layout(local_size_x = 64) in;
+
+#include "../lib/index.glsl"
+#include "shared/bindings.h"
+
+layout(std430, binding = CV_BIND_STAGE0) readonly buffer ColorIn { vec4 color_in[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer ColorOut { vec4 color_out[]; };
+
+uniform uint u_count;   // pixels
+
+//@cavalry-ocio-function
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i >= u_count)
+        return;
+    color_out[i] = cv_ocio_display(color_in[i]);
+}

@@ -1,0 +1,38 @@
+/* job_parse.h: turns one job mapping (or the `defaults` mapping) of the
+ * manifest into a cv_job whose has_ flags say what it set, and merges the
+ * defaults under a job. Paths stay as written here; manifest.c resolves
+ * them once the defaults are merged. */
+#ifndef CV_MANIFEST_JOB_PARSE_H
+#define CV_MANIFEST_JOB_PARSE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include <yaml.h>
+
+#include "manifest/diag.h"
+#include "manifest/manifest.h"
+
+struct cv_ypos {
+    size_t line, col;          /* 1-based; 0 when not given */
+};
+
+/* A job while being read: after cv_job_parse, job.output holds the output
+ * template and job.color.config the config as written; job.scene is NULL. */
+struct cv_job_draft {
+    struct cv_job job;
+    struct cv_ypos at, name_at, scene_at, output_at, config_at;
+};
+
+/* Reads map into *out (zeroed first). In defaults `name` is not a valid key.
+ * Every problem goes to d; the draft keeps whatever was valid. */
+void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
+                  struct cv_diag *d, struct cv_job_draft *out);
+
+/* Fills everything job did not set from defaults (strings are copied). */
+void cv_job_merge(struct cv_job_draft *job, const struct cv_job_draft *defaults);
+
+/* Frees the strings of a job, not the struct itself. */
+void cv_job_free(struct cv_job *job);
+
+#endif

@@ -1,0 +1,395 @@
+/* manifest.c: cv_manifest_load and friends (see manifest.h). The flow is
+ * parse (libyaml document) -> read the top level, defaults and each job
+ * (job_parse.c) -> merge defaults -> resolve paths and check the files they
+ * name -> hash. Every stage keeps going after a problem so that one run shows
+ * the user all of them. */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <yaml.h>
+
+#include "base/file.h"
+#include "base/mem.h"
+#include "manifest/diag.h"
+#include "manifest/job_hash.h"
+#include "manifest/job_parse.h"
+#include "manifest/manifest.h"
+#include "manifest/yaml_view.h"
+
+static const char *const top_keys[] = {"version", "defaults", "jobs", "x-*"};
+
+/* The output template when neither job nor defaults give one: the job's name
+ * next to the manifest. */
+#define DEFAULT_OUTPUT "{name}"
+
+/* libyaml reader errors (bad UTF-8) carry a byte offset, not a mark. */
+static void offset_to_mark(const char *data, size_t len, size_t offset, size_t *line,
+                           size_t *col)
+{
+    *line = 1;
+    *col = 1;
+    for (size_t i = 0; i < offset && i < len; i++) {
+        if (data[i] == '\n') {
+            ++*line;
+            *col = 1;
+        } else {
+            ++*col;
+        }
+    }
+}
+
+static void syntax_error(yaml_parser_t *p, const char *data, size_t len, struct cv_diag *d)
+{
+    size_t line = p->problem_mark.line + 1, col = p->problem_mark.column + 1;
+    const char *problem = p->problem ? p->problem : "malformed YAML";
+    if (p->error == YAML_READER_ERROR) {
+        offset_to_mark(data, len, p->problem_offset, &line, &col);
+        cv_diag_add(d, line, col, "YAML error: %s", problem);
+    } else if (p->context) {
+        cv_diag_add(d, line, col, "YAML syntax error: %s (%s at line %zu, column %zu)", problem,
+                    p->context, p->context_mark.line + 1, p->context_mark.column + 1);
+    } else {
+        cv_diag_add(d, line, col, "YAML syntax error: %s", problem);
+    }
+}
+
+static char *expand_output(const char *tmpl, const char *name)
+{
+    size_t n = 0, nl = strlen(name);
+    for (const char *p = strstr(tmpl, "{name}"); p; p = strstr(p + 6, "{name}"))
+        n++;
+    char *out = cv_xmalloc(strlen(tmpl) + n * nl + 1), *o = out;
+    for (const char *p = tmpl; *p;) {
+        if (!strncmp(p, "{name}", 6)) {
+            memcpy(o, name, nl);
+            o += nl;
+            p += 6;
+        } else {
+            *o++ = *p++;
+        }
+    }
+    *o = '\0';
+    return out;
+}
+
+static bool is_ocio_uri(const char *s)
+{
+    return !strncmp(s, "ocio://", 7);
+}
+
+/* Resolves and checks one merged job; draft index i is only for messages. */
+static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, struct cv_diag *d)
+{
+    struct cv_job *j = &dr->job;
+    char label[160];
+    if (j->name)
+        snprintf(label, sizeof(label), "job \"%s\" (line %zu)", j->name, dr->at.line);
+    else
+        snprintf(label, sizeof(label), "job %zu (line %zu)", i + 1, dr->at.line);
+    if (!j->name && !dr->name_at.line)
+        cv_diag_add(d, dr->at.line, dr->at.col, "job %zu: missing required key \"name\"", i + 1);
+
+    if (!j->has_formats)
+        j->formats = CV_FORMAT_EXR;
+    if (!j->exr.has_compression)
+        j->exr.compression = CV_JOB_EXR_ZIP;
+    if (!j->exr.has_half)
+        j->exr.half = true;
+    if (!j->png.has_bits)
+        j->png.bits = 8;
+
+    const char *tmpl = j->has_output ? j->output : DEFAULT_OUTPUT;
+    char *expanded = expand_output(tmpl, j->name ? j->name : "");
+    free(j->output);
+    j->output = cv_path_join(dir, expanded);
+    free(expanded);
+
+    struct stat st = {0};
+    bool scene_ok = false;
+    if (!j->scene_as_written) {
+        cv_diag_add(d, dr->at.line, dr->at.col,
+                    "%s: missing required key \"scene\" (give it in the job or in defaults)",
+                    label);
+    } else {
+        j->scene = cv_path_join(dir, j->scene_as_written);
+        if (stat(j->scene, &st) != 0)
+            cv_diag_add(d, dr->scene_at.line, dr->scene_at.col,
+                        "%s: scene file \"%s\" not found (%s: %s)", label, j->scene_as_written,
+                        j->scene, strerror(errno));
+        else if (!S_ISREG(st.st_mode))
+            cv_diag_add(d, dr->scene_at.line, dr->scene_at.col,
+                        "%s: scene \"%s\" is not a regular file", label, j->scene_as_written);
+        else
+            scene_ok = true;
+    }
+    if (scene_ok)
+        j->settings_hash = cv_job_settings_hash(j, (long long)st.st_size,
+                                                (long long)st.st_mtim.tv_sec);
+
+    if (j->color.config && !is_ocio_uri(j->color.config)) {
+        char *path = cv_path_join(dir, j->color.config);
+        struct stat cst;
+        if (stat(path, &cst) != 0)
+            cv_diag_add(d, dr->config_at.line, dr->config_at.col,
+                        "%s: color config \"%s\" not found (%s: %s)", label, j->color.config,
+                        path, strerror(errno));
+        free(j->color.config);
+        j->color.config = path;
+    }
+}
+
+/* Names and output files must be unique: two jobs writing one file would
+ * silently overwrite each other on a farm. */
+static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
+                         struct cv_diag *d)
+{
+    for (size_t i = 0; i < n; i++) {
+        struct cv_job_draft *a = &jobs[i];
+        for (size_t k = 0; k < i; k++) {
+            struct cv_job_draft *b = &jobs[k];
+            if (a->job.name && b->job.name && !strcmp(a->job.name, b->job.name)) {
+                cv_diag_add(d, a->name_at.line, a->name_at.col,
+                            "duplicate job name \"%s\" (first defined at %s:%zu:%zu)",
+                            a->job.name, file, b->name_at.line, b->name_at.col);
+                break;
+            }
+            if (a->job.name && b->job.name && !strcmp(a->job.output, b->job.output)) {
+                struct cv_ypos at = a->output_at.line ? a->output_at : a->at;
+                cv_diag_add(d, at.line, at.col,
+                            "job \"%s\": output \"%s\" is also the output of job \"%s\" "
+                            "(line %zu); put {name} in the output template",
+                            a->job.name, a->job.output, b->job.name, b->at.line);
+                break;
+            }
+        }
+    }
+}
+
+static void read_version(yaml_node_t *v, struct cv_diag *d)
+{
+    long long version;
+    if (!cv_yread_int(v, d, "version", 0, 1000000, &version))
+        return;
+    if (version != CV_MANIFEST_VERSION)
+        cv_diag_add(d, cv_yline(v), cv_ycol(v),
+                    "unsupported manifest version %lld; this cavalry reads version %d", version,
+                    CV_MANIFEST_VERSION);
+}
+
+/* Reads the document into drafts; returns the count, *jobs allocated. */
+static size_t read_document(yaml_document_t *doc, yaml_node_t *root, struct cv_diag *d,
+                            struct cv_job_draft *defaults, struct cv_job_draft **jobs)
+{
+    *jobs = NULL;
+    memset(defaults, 0, sizeof(*defaults));
+    if (root->type != YAML_MAPPING_NODE) {
+        cv_diag_add(d, cv_yline(root), cv_ycol(root),
+                    "manifest: expected a mapping with version, defaults and jobs, got %s",
+                    cv_ykind(root));
+        return 0;
+    }
+    struct cv_ypair *pairs;
+    size_t np = cv_ymap_pairs(doc, root, d, &pairs);
+    yaml_node_t *version = NULL, *def = NULL, *list = NULL;
+    for (size_t i = 0; i < np; i++) {
+        const char *k = cv_ykey(&pairs[i]);
+        if (!strcmp(k, "version"))
+            version = pairs[i].value;
+        else if (!strcmp(k, "defaults"))
+            def = pairs[i].value;
+        else if (!strcmp(k, "jobs"))
+            list = pairs[i].value;
+        else if (strncmp(k, "x-", 2) != 0) /* x-*: room for anchors, ignored */
+            cv_yunknown_key(&pairs[i], d, "the manifest", top_keys, CV_ARRAY_SIZE(top_keys));
+    }
+    free(pairs);
+
+    if (version)
+        read_version(version, d);
+    else
+        cv_diag_add(d, cv_yline(root), cv_ycol(root),
+                    "missing required key \"version\" (write \"version: %d\" at the top)",
+                    CV_MANIFEST_VERSION);
+    if (def)
+        cv_job_parse(doc, def, true, d, defaults);
+    if (!list) {
+        cv_diag_add(d, cv_yline(root), cv_ycol(root),
+                    "missing required key \"jobs\" (a list of jobs)");
+        return 0;
+    }
+    if (list->type != YAML_SEQUENCE_NODE) {
+        cv_diag_add(d, cv_yline(list), cv_ycol(list), "jobs: expected a list of jobs, got %s",
+                    cv_ykind(list));
+        return 0;
+    }
+    size_t n = (size_t)(list->data.sequence.items.top - list->data.sequence.items.start);
+    if (n == 0) {
+        cv_diag_add(d, cv_yline(list), cv_ycol(list), "jobs: the list is empty");
+        return 0;
+    }
+    *jobs = cv_xcalloc(n, sizeof(**jobs));
+    for (size_t i = 0; i < n; i++) {
+        yaml_node_t *item = yaml_document_get_node(doc, list->data.sequence.items.start[i]);
+        cv_job_parse(doc, item, false, d, &(*jobs)[i]);
+    }
+    return n;
+}
+
+bool cv_manifest_load(const char *path, struct cv_manifest **out, struct cv_error *err)
+{
+    *out = NULL;
+    char *data;
+    size_t len;
+    if (!cv_read_file(path, &data, &len, err))
+        return false;
+
+    struct cv_diag d = {.file = path};
+    yaml_parser_t parser;
+    yaml_document_t doc;
+    if (!yaml_parser_initialize(&parser)) {
+        free(data);
+        return cv_fail(err, "%s: cannot initialise the YAML parser", path);
+    }
+    yaml_parser_set_input_string(&parser, (const unsigned char *)data, len);
+    if (!yaml_parser_load(&parser, &doc)) {
+        syntax_error(&parser, data, len, &d);
+        yaml_parser_delete(&parser);
+        free(data);
+        return cv_diag_finish(&d, err);
+    }
+    yaml_node_t *root = yaml_document_get_root_node(&doc);
+    if (!root) {
+        cv_diag_add(&d, 1, 1, "the manifest is empty (expected version, defaults and jobs)");
+    } else {
+        /* A second document would be ignored silently; say so instead. */
+        yaml_document_t extra;
+        if (!yaml_parser_load(&parser, &extra)) {
+            syntax_error(&parser, data, len, &d);
+        } else {
+            yaml_node_t *r2 = yaml_document_get_root_node(&extra);
+            if (r2)
+                cv_diag_add(&d, cv_yline(r2), cv_ycol(r2),
+                            "a manifest holds one YAML document; found a second one");
+            yaml_document_delete(&extra);
+        }
+    }
+
+    struct cv_job_draft defaults, *drafts = NULL;
+    size_t n = root ? read_document(&doc, root, &d, &defaults, &drafts) : 0;
+    if (!root)
+        memset(&defaults, 0, sizeof(defaults));
+    /* "./scenes/a.pbrt" helps no one: keep paths of a manifest in the
+     * working folder as written. */
+    char *dir = cv_path_dirname(path);
+    if (!strcmp(dir, "."))
+        dir[0] = '\0';
+    for (size_t i = 0; i < n; i++) {
+        cv_job_merge(&drafts[i], &defaults);
+        resolve_job(&drafts[i], i, dir, &d);
+    }
+    check_unique(drafts, n, path, &d);
+    free(dir);
+    cv_job_free(&defaults.job);
+    yaml_document_delete(&doc);
+    yaml_parser_delete(&parser);
+    free(data);
+
+    if (!cv_diag_finish(&d, err)) {
+        for (size_t i = 0; i < n; i++)
+            cv_job_free(&drafts[i].job);
+        free(drafts);
+        return false;
+    }
+    struct cv_manifest *m = cv_xcalloc(1, sizeof(*m));
+    m->path = cv_xstrdup(path);
+    m->n_jobs = n;
+    m->jobs = cv_xcalloc(n, sizeof(*m->jobs));
+    for (size_t i = 0; i < n; i++)
+        m->jobs[i] = drafts[i].job;
+    free(drafts);
+    *out = m;
+    return true;
+}
+
+void cv_manifest_destroy(struct cv_manifest **m)
+{
+    if (!m || !*m)
+        return;
+    for (size_t i = 0; i < (*m)->n_jobs; i++)
+        cv_job_free(&(*m)->jobs[i]);
+    free((*m)->jobs);
+    free((*m)->path);
+    free(*m);
+    *m = NULL;
+}
+
+char *cv_job_output_path(const struct cv_job *job, const char *ext)
+{
+    if (!ext)
+        return cv_xstrdup(job->output);
+    return cv_xasprintf("%s.%s", job->output, ext);
+}
+
+const struct cv_job *cv_manifest_find_job(const struct cv_manifest *m, const char *name)
+{
+    for (size_t i = 0; i < m->n_jobs; i++)
+        if (!strcmp(m->jobs[i].name, name))
+            return &m->jobs[i];
+    return NULL;
+}
+
+const char *cv_integrator_name(enum cv_integrator integrator)
+{
+    switch (integrator) {
+    case CV_INTEGRATOR_PATH:
+        return "path";
+    case CV_INTEGRATOR_RLPATH:
+        return "rlpath";
+    default:
+        return NULL;
+    }
+}
+
+const char *cv_job_compression_name(enum cv_job_compression compression)
+{
+    switch (compression) {
+    case CV_JOB_EXR_NONE:
+        return "none";
+    case CV_JOB_EXR_ZIP:
+        return "zip";
+    case CV_JOB_EXR_PIZ:
+        return "piz";
+    case CV_JOB_EXR_DWAA:
+        return "dwaa";
+    default:
+        return NULL;
+    }
+}
+
+const char *cv_format_ext(unsigned format_bit)
+{
+    switch (format_bit) {
+    case CV_FORMAT_EXR:
+        return "exr";
+    case CV_FORMAT_PNG:
+        return "png";
+    default:
+        return NULL;
+    }
+}
+
+const char *cv_aov_name(unsigned aov_bit)
+{
+    switch (aov_bit) {
+    case CV_AOV_ALBEDO:
+        return "albedo";
+    case CV_AOV_NORMAL:
+        return "normal";
+    case CV_AOV_DEPTH:
+        return "depth";
+    default:
+        return NULL;
+    }
+}

@@ -1,0 +1,147 @@
+/* manifest.h: the batch manifest (cavalry-manifest(5)), read with libyaml
+ * and fully validated before anything renders. A loaded manifest is a list
+ * of resolved jobs: `defaults` merged under each job (nested mappings key by
+ * key), paths joined to the manifest's folder, outputs templated.
+ *
+ * Optional render settings carry a has_ flag (or an UNSET enum value, or a
+ * NULL string): unset means "use what the scene file says". Output settings
+ * (formats, exr, png, aovs, output) always hold a value after loading; their
+ * has_ flags only tell whether the manifest set them. */
+#ifndef CV_MANIFEST_MANIFEST_H
+#define CV_MANIFEST_MANIFEST_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "base/error.h"
+
+/* The only manifest version this reader understands. */
+#define CV_MANIFEST_VERSION 1
+
+enum cv_format_bits {
+    CV_FORMAT_EXR = 1u << 0,
+    CV_FORMAT_PNG = 1u << 1,
+};
+
+enum cv_aov_bits {
+    CV_AOV_ALBEDO = 1u << 0,
+    CV_AOV_NORMAL = 1u << 1,
+    CV_AOV_DEPTH = 1u << 2,
+};
+
+enum cv_integrator {
+    CV_INTEGRATOR_UNSET = 0,   /* the scene's integrator */
+    CV_INTEGRATOR_PATH,
+    CV_INTEGRATOR_RLPATH,
+};
+
+enum cv_job_compression {
+    CV_JOB_EXR_NONE,
+    CV_JOB_EXR_ZIP,                /* the default */
+    CV_JOB_EXR_PIZ,
+    CV_JOB_EXR_DWAA,
+};
+
+struct cv_job_color {
+    char *config;              /* OCIO config: resolved path, or an "ocio://" URI as
+                                * written; NULL = unset (the built-in default) */
+    char *display;             /* NULL = the config's default display */
+    char *view;                /* NULL = the display's default view */
+    char *look;                /* NULL = no look */
+    bool has_exposure;
+    float exposure;            /* [stops], added to the scene's exposure */
+};
+
+struct cv_job_exr {
+    bool has_half, has_compression;
+    bool half;                 /* default true: 16-bit half channels (float on request) */
+    enum cv_job_compression compression;   /* default CV_JOB_EXR_ZIP */
+};
+
+struct cv_job_png {
+    bool has_bits;
+    unsigned bits;             /* 8 (default) or 16 */
+};
+
+struct cv_job_camera {
+    bool has_fov;
+    float fov;                 /* [degrees], full angle of the shorter image axis, (0, 180) */
+    bool has_lookat;
+    float eye[3], at[3], up[3];   /* world space, as pbrt's LookAt */
+};
+
+struct cv_job_rlpath {
+    bool has_grid, has_directions, has_mix;
+    uint32_t grid;             /* spatial cells per axis, >= 1 */
+    uint32_t directions;       /* directional bins per cell, >= 1 */
+    float mix;                 /* [0,1]: share of guided vs. BSDF sampling */
+};
+
+struct cv_job {
+    char *name;                /* unique in the manifest, [A-Za-z0-9._-]+ */
+    unsigned line, col;        /* 1-based position of the job in the manifest */
+    char *scene;               /* path to open: manifest folder joined with scene_as_written */
+    char *scene_as_written;    /* as in the manifest, for messages and the hash */
+    char *output;              /* resolved output path without extension */
+    bool has_output, has_formats, has_aovs;
+    unsigned formats;          /* CV_FORMAT_* bits, never 0; default CV_FORMAT_EXR */
+    unsigned aovs;             /* CV_AOV_* bits; default 0 */
+
+    bool has_resolution;
+    uint32_t width, height;    /* [pixels] */
+    bool has_spp;
+    uint32_t spp;              /* samples per pixel, >= 1 */
+    bool has_time_limit;
+    double time_limit;         /* [seconds], > 0 */
+    enum cv_integrator integrator;
+    bool has_max_depth;
+    uint32_t max_depth;        /* >= 1 */
+    bool has_seed;
+    uint32_t seed;
+
+    struct cv_job_color color;
+    struct cv_job_exr exr;
+    struct cv_job_png png;
+    struct cv_job_camera camera;
+    struct cv_job_rlpath rlpath;
+
+    /* 16 lowercase hex digits: FNV-1a 64 of a canonical text of every setting
+     * that changes the rendered pixels or the files written (everything but
+     * name, output and formats), plus the scene file's size and mtime. Equal
+     * hashes mean "same render"; --resume compares it with the one stored in
+     * an output's metadata. */
+    char *settings_hash;
+};
+
+struct cv_manifest {
+    char *path;                /* as given to cv_manifest_load */
+    struct cv_job *jobs;       /* in manifest order */
+    size_t n_jobs;
+};
+
+/* Reads and validates the manifest at path, including that every scene (and
+ * colour config) file it names exists. On failure returns false, *out is
+ * NULL and err holds every problem found, one "path:line:col: message" per
+ * line, in document order. On success *out is owned by the caller. */
+bool cv_manifest_load(const char *path, struct cv_manifest **out, struct cv_error *err);
+
+/* Accepts NULL and *m == NULL; clears *m. */
+void cv_manifest_destroy(struct cv_manifest **m);
+
+/* Newly allocated "<output>.<ext>" (free()); ext without the dot, e.g. "exr";
+ * NULL ext gives the output path alone. */
+char *cv_job_output_path(const struct cv_job *job, const char *ext);
+
+/* Names as written in a manifest, for plans, logs and metadata. Each takes
+ * one value (one bit for the bit sets) and returns a static string, or NULL
+ * for CV_INTEGRATOR_UNSET and anything out of range. */
+const char *cv_integrator_name(enum cv_integrator integrator);
+const char *cv_job_compression_name(enum cv_job_compression compression);
+const char *cv_format_ext(unsigned format_bit);     /* "exr", "png" */
+const char *cv_aov_name(unsigned aov_bit);          /* "albedo", "normal", "depth" */
+
+/* The job with this name, or NULL. */
+const struct cv_job *cv_manifest_find_job(const struct cv_manifest *m, const char *name);
+
+#endif

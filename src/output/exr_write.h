@@ -1,0 +1,71 @@
+/* exr_write.h: the scene-linear image as OpenEXR, through OpenEXR's C API:
+ * RGBA in half (default) or float, a chosen compression, optional AOV
+ * layers (albedo.R/G/B, N.X/Y/Z, Z), chromaticities (Rec.709 primaries, D65
+ * white), "software" and the caller's metadata as attributes. The file is
+ * written atomically (output/atomic_file.h). */
+#ifndef CV_OUTPUT_EXR_WRITE_H
+#define CV_OUTPUT_EXR_WRITE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "output/metadata.h"
+
+enum cv_exr_compression {
+    CV_EXR_ZIP = 0, /* the default: lossless, good on noisy renders */
+    CV_EXR_NONE,
+    CV_EXR_ZIPS,
+    CV_EXR_PIZ,
+    CV_EXR_RLE,
+    CV_EXR_DWAA, /* lossy; needs OpenEXR >= 3.2 (cv_exr_compression_supported) */
+    CV_EXR_DWAB, /* lossy; likewise */
+};
+
+/* Channel storage of one layer. */
+enum cv_exr_pixel {
+    CV_EXR_PIXEL_AS_IMAGE = 0, /* whatever the RGBA channels use */
+    CV_EXR_PIXEL_HALF,
+    CV_EXR_PIXEL_FLOAT,        /* advisable for Z */
+};
+
+/* One extra layer (AOV). data holds width*height*n_channels floats,
+ * interleaved, top row first, borrowed for the call. Channel names are
+ * "name.channel" ("albedo.R", "N.X"), or just "channel" when name is NULL
+ * or "" (the depth layer: name NULL, channels {"Z"}). */
+struct cv_image_layer {
+    const char *name;
+    uint32_t n_channels; /* 1 to 4 */
+    const char *channels[4];
+    const float *data;
+    enum cv_exr_pixel pixel;
+};
+
+struct cv_exr_params {
+    const float *rgba;   /* width*height*4 floats, top row first, borrowed */
+    uint32_t width, height;
+    bool use_float;      /* false: half (the default; magnitudes above 65504
+                          * become infinity, NaN stays NaN), true: float32 */
+    enum cv_exr_compression compression;
+    const struct cv_image_layer *layers; /* n_layers of them, may be NULL */
+    size_t n_layers;
+    const struct cv_metadata *meta; /* may be NULL */
+};
+
+/* Whether the OpenEXR library linked at run time can write c. */
+bool cv_exr_compression_supported(enum cv_exr_compression c);
+/* Parses "none", "zip", "zips", "piz", "rle", "dwaa", "dwab"; fails for a
+ * method this OpenEXR cannot write, saying so. */
+bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
+                              struct cv_error *err);
+const char *cv_exr_compression_name(enum cv_exr_compression c);
+
+/* Writes path atomically. Metadata becomes attributes of the same name:
+ * strings as string, integers as int (double when outside 32 bits), floats
+ * as float. The error names the path and the reason (e.g. "No space left
+ * on device"); on failure nothing is left behind and an older file under
+ * path is untouched. */
+bool cv_exr_write(const char *path, const struct cv_exr_params *p, struct cv_error *err);
+
+#endif
