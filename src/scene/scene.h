@@ -31,6 +31,22 @@ struct cv_render_settings {
     float exposure;                  /* film iso/exposure scale folded in, 1 by default */
 };
 
+/* Importer conventions the later stages rely on (beyond glsl/shared/scene.h):
+ * - Vertex normals are stored as pbrt stores them: transformed to world
+ *   space, normalised, and already negated for ReverseOrientation (and, for
+ *   tessellated quadrics, for a handedness swap too). CV_TRI_REVERSE is for
+ *   the geometric normal of triangles without vertex normals; with normals,
+ *   face the geometric normal towards the shading normal, as pbrt does.
+ * - The geometric normal of a triangle is cross(p1 - p0, p2 - p0).
+ * - Image texels: row 0 is the top row of the file; pbrt looks images up at
+ *   (u, 1 - v). 8-bit sources flagged CV_TEXF_SRGB were decoded to linear.
+ * - coatedconductor: eta.xyz is the conductor's eta, eta.w the coat's.
+ * - Area lights: L is radiance with "scale" and "power" applied; L.w the
+ *   triangle's world-space area. light_power: luminance flux (area: Y(L) *
+ *   area * pi * sides; point: 4 pi Y(I); spot: cone-weighted; distant and
+ *   infinite: from the scene's bounding sphere).
+ * - Instanced objects are flattened (copied per instance).
+ * - Quadrics are tessellated (see shapes.c for the accuracy). */
 struct cv_scene {
     CvVertex *vertices;
     uint32_t n_vertices;
@@ -67,6 +83,11 @@ struct cv_scene_load_params {
  * returns false with err naming file:line:col; *out is untouched. */
 bool cv_scene_load(const char *path, const struct cv_scene_load_params *params,
                    struct cv_scene **out, struct cv_error *err);
+/* The same from text in memory; name stands for the file in messages and
+ * Include paths resolve relative to its folder. */
+bool cv_scene_load_string(const char *name, const char *text, size_t len,
+                          const struct cv_scene_load_params *params, struct cv_scene **out,
+                          struct cv_error *err);
 /* Accepts NULL; clears the pointer. */
 void cv_scene_destroy(struct cv_scene **scene);
 

@@ -1,0 +1,575 @@
+/* parse_test.c: every directive and parameter type of the pbrt importer,
+ * what each becomes in the flat scene, and the errors (with file:line:col)
+ * for broken input. */
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <OpenEXR/ImfCRgbaFile.h>
+
+#include "scene/image.h"
+#include "scene/scene.h"
+#include "tests/scene/scene_helpers.h"
+#include "tests/tap.h"
+
+#define TRI "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n"
+
+static struct cv_scene *ok_load(const char *text, const char *desc)
+{
+    struct cv_error err = {0};
+    struct cv_scene *s = th_load(text, false, &err);
+    tap_ok(s != NULL, "%s loads%s%s", desc, s ? "" : ": ", s ? "" : err.msg);
+    return s;
+}
+
+static void fails(const char *text, bool strict, const char *expect, const char *desc)
+{
+    struct cv_error err = {0};
+    struct cv_scene *s = th_load(text, strict, &err);
+    tap_ok(!s && strstr(err.msg, expect) != NULL, "%s fails with \"%s\": %s", desc, expect, err.msg);
+    cv_scene_destroy(&s);
+}
+
+static bool near(double a, double b, double eps) { return fabs(a - b) <= eps; }
+
+static bool vpos(const struct cv_scene *s, uint32_t v, double x, double y, double z)
+{
+    if (!s || v >= s->n_vertices)
+        return false;
+    const cv_vec4 *p = &s->vertices[v].pos_u;
+    return near(p->x, x, 1e-5) && near(p->y, y, 1e-5) && near(p->z, z, 1e-5);
+}
+
+static const CvMaterial *tri_mat(const struct cv_scene *s, uint32_t t)
+{
+    return &s->materials[s->triangles[t].idx.w & CV_TRI_MATERIAL_MASK];
+}
+
+static void test_transforms(void)
+{
+    struct cv_scene *s;
+    s = ok_load("WorldBegin\nTranslate 1 2 3\n" TRI, "Translate");
+    tap_ok(vpos(s, 0, 1, 2, 3), "Translate moves vertices");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nScale 2 2 2 Rotate 90 0 0 1\n" TRI, "Scale+Rotate");
+    tap_ok(vpos(s, 1, 0, 2, 0), "Rotate then Scale (pbrt order)");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nTransform [1 0 0 0 0 1 0 0 0 0 1 0 5 6 7 1]\n" TRI, "Transform");
+    tap_ok(vpos(s, 0, 5, 6, 7), "Transform is column-major like pbrt");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nTranslate 1 0 0 ConcatTransform [2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1]\n" TRI,
+                "ConcatTransform");
+    tap_ok(vpos(s, 1, 3, 0, 0), "ConcatTransform post-multiplies");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nTranslate 1 0 0 Identity\n" TRI, "Identity");
+    tap_ok(vpos(s, 0, 0, 0, 0), "Identity resets");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nTranslate 4 0 0 CoordinateSystem \"a\" Identity CoordSysTransform \"a\"\n" TRI,
+                "CoordinateSystem");
+    tap_ok(vpos(s, 0, 4, 0, 0), "CoordSysTransform restores a named system");
+    cv_scene_destroy(&s);
+    s = ok_load("LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]\n"
+                "Film \"rgb\" \"integer xresolution\" 200 \"integer yresolution\" 100\nWorldBegin\n",
+                "LookAt + Camera");
+    if (s) {
+        const CvCamera *c = &s->camera;
+        tap_ok(near(c->to_world[0].w, 0, 1e-6) && near(c->to_world[2].w, 5, 1e-6),
+               "camera position from LookAt");
+        tap_ok(near(c->to_world[2].z, -1, 1e-6), "camera looks down -z in world");
+        tap_ok(near(c->lens.z, tan(M_PI / 6), 1e-6), "tan(fov/2)");
+        tap_ok(near(c->screen.x, -2, 1e-6) && near(c->screen.w, 1, 1e-6), "screen window from aspect 2");
+        tap_ok(c->film.x == 200 && c->film.y == 100 && c->crop.x == 200, "film size");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("Scale -1 1 1\nLookAt 0 0 5 0 0 0 0 1 0\nCamera \"orthographic\" \"float screenwindow\" [-2 2 -1 1]\n"
+                "WorldBegin\nAttributeBegin\nCoordSysTransform \"camera\"\nLightSource \"distant\"\nAttributeEnd\n",
+                "CoordSysTransform camera");
+    if (s) {
+        tap_ok(s->camera.crop.z == CV_CAMERA_ORTHOGRAPHIC && near(s->camera.screen.x, -2, 1e-6),
+               "orthographic with screenwindow");
+        tap_ok(s->n_lights == 1 && near(s->lights[0].direction.z, -1, 1e-6),
+               "distant light in camera space points along the view");
+    }
+    cv_scene_destroy(&s);
+}
+
+static void test_attributes(void)
+{
+    struct cv_scene *s;
+    s = ok_load("WorldBegin\nAttributeBegin\nTranslate 1 0 0\nAttributeEnd\n" TRI, "AttributeBegin/End");
+    tap_ok(vpos(s, 0, 0, 0, 0), "AttributeEnd restores the transform");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMaterial \"diffuse\"\nAttributeBegin\nMaterial \"conductor\"\n" TRI
+                "AttributeEnd\n" TRI, "material in attributes");
+    tap_ok(s && tri_mat(s, 0)->type == CV_MAT_CONDUCTOR && tri_mat(s, 1)->type == CV_MAT_DIFFUSE,
+           "AttributeEnd restores the material");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nTransformBegin\nTranslate 1 0 0\nTransformEnd\n" TRI, "TransformBegin/End");
+    tap_ok(vpos(s, 0, 0, 0, 0), "TransformEnd restores the transform");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nReverseOrientation\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]"
+                " \"normal N\" [0 0 1 0 0 1 0 0 1]\n", "ReverseOrientation");
+    tap_ok(s && (s->triangles[0].idx.w & CV_TRI_REVERSE) && (s->triangles[0].idx.w & CV_TRI_HAS_NORMAL) &&
+           near(s->vertices[0].nrm_v.z, -1, 1e-6), "ReverseOrientation flags and flips normals");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nScale -1 1 1\n" TRI "ReverseOrientation\n" TRI, "handedness");
+    tap_ok(s && (s->triangles[0].idx.w & CV_TRI_REVERSE) && !(s->triangles[1].idx.w & CV_TRI_REVERSE),
+           "a handedness swap flags, and ReverseOrientation cancels it");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nObjectBegin \"o\"\n" TRI "ObjectEnd\nTranslate 5 0 0\nObjectInstance \"o\"\n"
+                "Translate 5 0 0\nObjectInstance \"o\"\n", "ObjectBegin/Instance");
+    tap_ok(s && s->n_triangles == 2 && vpos(s, 3, 10, 0, 0), "instances are flattened with their transform");
+    cv_scene_destroy(&s);
+    s = ok_load("Option \"bool disablepixeljitter\" true\nColorSpace \"srgb\"\nWorldBegin\n"
+                "Attribute \"shape\" \"float radius\" [ 2 ]\n" TRI "WorldEnd\n", "Option, ColorSpace, Attribute, WorldEnd");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [1 1 1]\n"
+                "MediumInterface \"fog\" \"\"\nMediumInterface \"fog\"\n" TRI, "media parse");
+    tap_ok(s && s->warnings >= 1, "media are reported as not rendered");
+    cv_scene_destroy(&s);
+}
+
+static void test_settings(void)
+{
+    struct cv_scene *s = ok_load(
+        "Film \"rgb\" \"integer xresolution\" [ 64 ] \"integer yresolution\" [ 32 ]"
+        " \"float cropwindow\" [ 0 0.5 0 1 ] \"string filename\" \"out.exr\" \"float iso\" 200 \"float exposuretime\" 0.5\n"
+        "Sampler \"halton\" \"integer pixelsamples\" 8\nPixelFilter \"box\" \"float xradius\" 0.5 \"float yradius\" 0.5\n"
+        "Integrator \"volpath\" \"integer maxdepth\" [ 7 ]\nAccelerator \"bvh\"\nCamera \"perspective\"\nWorldBegin\n",
+        "Film/Sampler/PixelFilter/Integrator/Accelerator");
+    if (s) {
+        const struct cv_render_settings *st = &s->settings;
+        tap_ok(st->width == 64 && st->height == 32 && st->spp == 8 && st->max_depth == 7, "resolution, spp, maxdepth");
+        tap_ok(strcmp(st->integrator, "volpath") == 0 && strcmp(st->sampler, "halton") == 0 &&
+               strcmp(st->film_filename, "out.exr") == 0, "names as written");
+        tap_ok(st->filter == CV_FILTER_BOX && near(st->filter_radius[0], 0.5, 1e-6), "filter");
+        tap_ok(s->camera.crop.x == 32 && s->camera.crop.y == 32 && s->camera.film.z == 0, "crop window in pixels");
+        tap_ok(near(st->exposure, 1, 1e-6), "iso 200 x exposuretime 0.5");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("Film \"image\" \"integer xresolution\" 10 \"integer yresolution\" 10\n"
+                "PixelFilter \"gaussian\" \"float xwidth\" 2 \"float ywidth\" 2\nWorldBegin\n", "v3 Film image");
+    tap_ok(s && s->settings.width == 10 && s->settings.filter == CV_FILTER_GAUSSIAN &&
+           near(s->settings.filter_radius[1], 2, 1e-6), "v3 widths");
+    cv_scene_destroy(&s);
+}
+
+static void test_shapes(void)
+{
+    struct cv_scene *s;
+    s = ok_load("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n", "bilinearmesh");
+    tap_ok(s && s->n_triangles == 2, "bilinear patch -> 2 triangles");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"sphere\" \"float radius\" 2\n", "sphere");
+    tap_ok(s && s->n_triangles > 1000 && near(s->bounds_max[2], 2, 1e-5) && near(s->bounds_min[0], -2, 1e-3),
+           "sphere tessellated to its radius");
+    tap_ok(s && (s->triangles[0].idx.w & CV_TRI_HAS_NORMAL) && (s->triangles[0].idx.w & CV_TRI_HAS_UV),
+           "sphere has normals and uv");
+    if (s) {
+        /* outward: geometric normal of a triangle agrees with its vertex normal */
+        const CvTriangle *t = &s->triangles[s->n_triangles / 2];
+        const cv_vec4 *a = &s->vertices[t->idx.x].pos_u, *b = &s->vertices[t->idx.y].pos_u,
+                      *c = &s->vertices[t->idx.z].pos_u;
+        double e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z}, e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const cv_vec4 *vn = &s->vertices[t->idx.x].nrm_v;
+        tap_ok(n[0] * vn->x + n[1] * vn->y + n[2] * vn->z > 0, "sphere winding faces outward");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"disk\" \"float radius\" 1 \"float height\" 0.5\n", "disk");
+    tap_ok(s && s->n_triangles >= 64 && near(s->bounds_min[2], 0.5, 1e-6), "disk");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"cylinder\" \"float radius\" 1 \"float zmin\" 0 \"float zmax\" 3\n", "cylinder");
+    tap_ok(s && s->n_triangles >= 128 && near(s->bounds_max[2], 3, 1e-6), "cylinder");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 2 \"point3 P\" [0 0 0 1 0 0 0 1 0 0 0 1]"
+                " \"integer indices\" [0 2 1 0 1 3 0 3 2 1 2 3]\n", "loopsubdiv");
+    tap_ok(s && s->n_triangles == 4 * 16 && (s->triangles[0].idx.w & CV_TRI_HAS_NORMAL),
+           "loopsubdiv: 4^levels triangles with normals");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"heightfield\" \"integer nu\" 3 \"integer nv\" 2 \"float Pz\" [0 1 0 0 2 0]\n",
+                "heightfield");
+    tap_ok(s && s->n_triangles == 4 && near(s->bounds_max[2], 2, 1e-6), "heightfield grid");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"curves\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n", "curves");
+    tap_ok(s && s->n_triangles == 0 && s->warnings == 1, "curves: warning, nothing added");
+    cv_scene_destroy(&s);
+    th_write_str("quad.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    s = ok_load("WorldBegin\nShape \"plymesh\" \"string filename\" \"quad.ply\"\n", "plymesh");
+    tap_ok(s && s->n_triangles == 2, "plymesh quad -> 2 triangles");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMaterial \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]"
+                " \"float alpha\" 0.25 \"float uv\" [0 0 1 0 0 1]\n", "alpha on a shape, v3 float uv");
+    tap_ok(s && near(tri_mat(s, 0)->alpha, 0.25, 1e-6) && (s->triangles[0].idx.w & CV_TRI_HAS_UV) &&
+           near(s->vertices[1].pos_u.w, 1, 1e-6), "alpha becomes a material cut-out; uv stored");
+    cv_scene_destroy(&s);
+}
+
+static double lum(cv_vec4 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+static void test_materials(void)
+{
+    th_write_str("flat.spd", "# flat\n300 2.0\n800 2.0\n");
+    struct cv_scene *s = ok_load(
+        "WorldBegin\n"
+        "MakeNamedMaterial \"a\" \"string type\" \"matte\" \"rgb Kd\" [0.1 0.2 0.3]\n"
+        "MakeNamedMaterial \"b\" \"string type\" [ \"conductor\" ] \"spectrum eta\" \"metal-Au-eta\""
+        " \"spectrum k\" \"metal-Au-k\" \"float roughness\" 0.25\n"
+        "MakeNamedMaterial \"c\" \"string type\" \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n"
+        "MakeNamedMaterial \"d\" \"string type\" \"glass\" \"float index\" 1.33\n"
+        "MakeNamedMaterial \"e\" \"string type\" \"metal\" \"spectrum eta\" \"flat.spd\""
+        " \"float uroughness\" 0.1 \"float vroughness\" 0.2 \"bool remaproughness\" \"false\"\n"
+        "MakeNamedMaterial \"f\" \"string type\" \"mix\" \"string materials\" [\"a\" \"b\"] \"float amount\" 0.3\n"
+        "MakeNamedMaterial \"g\" \"string type\" \"plastic\" \"color Kd\" [0.5 0.5 0.5]\n"
+        "MakeNamedMaterial \"h\" \"string type\" \"coateddiffuse\" \"float roughness\" 0.04\n"
+        "MakeNamedMaterial \"i\" \"string type\" \"coatedconductor\" \"float conductor.roughness\" 0.01"
+        " \"float interface.eta\" 1.4\n"
+        "MakeNamedMaterial \"j\" \"string type\" \"mirror\"\n"
+        "MakeNamedMaterial \"k\" \"string type\" \"substrate\"\n"
+        "MakeNamedMaterial \"l\" \"string type\" \"uber\"\n"
+        "MakeNamedMaterial \"m\" \"string type\" \"diffusetransmission\"\n"
+        "MakeNamedMaterial \"n\" \"string type\" \"interface\"\n"
+        "MakeNamedMaterial \"o\" \"string type\" \"diffuse\" \"spectrum reflectance\" [400 0.5 500 0.5 700 0.5]\n"
+        "MakeNamedMaterial \"p\" \"string type\" \"mix\" \"string namedmaterial1\" \"a\" \"string namedmaterial2\" \"c\"\n"
+        "MakeNamedMaterial \"q\" \"string type\" \"thindielectric\"\n"
+        "NamedMaterial \"b\"\n" TRI,
+        "all material types");
+    if (s) {
+        const CvMaterial *m = s->materials;
+        tap_ok(s->n_materials == 17, "17 materials (%u)", s->n_materials);
+        tap_ok(m[0].type == CV_MAT_DIFFUSE && near(m[0].reflectance.y, 0.2, 1e-6), "matte Kd");
+        tap_ok(m[1].type == CV_MAT_CONDUCTOR && near(m[1].eta.x, 0.143119, 1e-5) &&
+               near(m[1].roughness.x, 0.5, 1e-6), "conductor: named Au eta, v4 remap sqrt");
+        tap_ok(m[2].type == CV_MAT_DIELECTRIC && near(m[2].eta.x, 1.5185, 1e-3), "dielectric glass-BK7");
+        tap_ok(near(m[3].eta.x, 1.33, 1e-6), "v3 glass index");
+        tap_ok(near(lum(m[4].eta), 2.0, 0.01) && near(m[4].roughness.y, 0.2, 1e-6), ".spd file; no remap; vroughness");
+        tap_ok(m[5].type == CV_MAT_MIX && m[5].mix_a == 0 && m[5].mix_b == 1 && near(m[5].amount, 0.3, 1e-6), "mix (v4)");
+        tap_ok(m[6].type == CV_MAT_PLASTIC && near(m[6].specular.x, 0.25, 1e-6), "plastic defaults");
+        tap_ok(m[7].type == CV_MAT_COATED_DIFFUSE && near(m[7].roughness.x, 0.2, 1e-6) && near(m[7].eta.x, 1.5, 1e-6),
+               "coateddiffuse");
+        tap_ok(m[8].type == CV_MAT_COATED_CONDUCTOR && near(m[8].roughness2.x, 0.1, 1e-6) && near(m[8].eta.w, 1.4, 1e-6),
+               "coatedconductor");
+        tap_ok(m[9].type == CV_MAT_MIRROR && near(m[9].reflectance.x, 0.9, 1e-6), "mirror");
+        tap_ok(m[10].type == CV_MAT_COATED_DIFFUSE, "substrate");
+        tap_ok(m[11].type == CV_MAT_PLASTIC, "uber");
+        tap_ok(m[12].type == CV_MAT_DIFFUSE_TRANSMISSION && near(m[12].specular.x, 0.25, 1e-6), "diffusetransmission");
+        tap_ok(m[13].type == CV_MAT_INTERFACE, "interface");
+        tap_ok(near(lum(m[14].reflectance), 0.5, 2e-3), "spectrum pairs keep their luminance (%g)", lum(m[14].reflectance));
+        tap_ok(m[15].mix_b == 2, "mix (v3 namedmaterial1/2)");
+        tap_ok(m[16].type == CV_MAT_THIN_DIELECTRIC, "thindielectric");
+        tap_ok((s->triangles[0].idx.w & CV_TRI_MATERIAL_MASK) == 1, "NamedMaterial sets the triangle's material");
+    }
+    cv_scene_destroy(&s);
+}
+
+static void write_tga(const char *rel, int w, int h, const unsigned char *rgb)
+{
+    unsigned char hdr[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, (unsigned char)w, 0, (unsigned char)h, 0, 24, 0x20};
+    size_t n = (size_t)w * h * 3;
+    unsigned char *buf = malloc(18 + n);
+    memcpy(buf, hdr, 18);
+    for (size_t i = 0; i < (size_t)w * h; i++) { /* BGR */
+        buf[18 + i * 3] = rgb[i * 3 + 2];
+        buf[18 + i * 3 + 1] = rgb[i * 3 + 1];
+        buf[18 + i * 3 + 2] = rgb[i * 3];
+    }
+    th_write(rel, buf, 18 + n);
+    free(buf);
+}
+
+static void write_pfm(const char *rel, int w, int h, float v)
+{
+    char hdr[64];
+    int n = snprintf(hdr, sizeof(hdr), "PF\n%d %d\n-1.0\n", w, h);
+    size_t count = (size_t)w * h * 3;
+    unsigned char *buf = malloc((size_t)n + count * 4);
+    memcpy(buf, hdr, (size_t)n);
+    for (size_t i = 0; i < count; i++)
+        memcpy(buf + n + i * 4, &v, 4);
+    th_write(rel, buf, (size_t)n + count * 4);
+    free(buf);
+}
+
+static void write_exr(const char *rel, int w, int h, float v)
+{
+    ImfHeader *hdr = ImfNewHeader();
+    ImfHeaderSetDataWindow(hdr, 0, 0, w - 1, h - 1);
+    ImfHeaderSetDisplayWindow(hdr, 0, 0, w - 1, h - 1);
+    ImfOutputFile *out = ImfOpenOutputFile(th_path(rel), hdr, IMF_WRITE_RGBA);
+    ImfRgba *px = calloc((size_t)w * h, sizeof(ImfRgba));
+    for (int i = 0; i < w * h; i++) {
+        ImfFloatToHalf(v, &px[i].r);
+        ImfFloatToHalf(v * 2, &px[i].g);
+        ImfFloatToHalf(v * 4, &px[i].b);
+        ImfFloatToHalf(1, &px[i].a);
+    }
+    if (out) {
+        ImfOutputSetFrameBuffer(out, px, 1, (size_t)w);
+        ImfOutputWritePixels(out, h);
+        ImfCloseOutputFile(out);
+    }
+    free(px);
+    ImfDeleteHeader(hdr);
+}
+
+static void test_textures(void)
+{
+    unsigned char px[2 * 2 * 3] = {255, 255, 255, 0, 0, 0, 128, 128, 128, 255, 0, 0};
+    write_tga("t.tga", 2, 2, px);
+    write_pfm("f.pfm", 4, 2, 0.5f);
+    write_exr("e.exr", 8, 4, 0.25f);
+    struct cv_scene *s = ok_load(
+        "WorldBegin\nTexture \"e\" \"spectrum\" \"imagemap\" \"string filename\" \"e.exr\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"e\"\n" TRI, "EXR texture");
+    if (s) {
+        const CvTexture *t = &s->textures[s->n_textures - 1];
+        uint32_t w0 = s->texels[2 * t->offset], w1 = s->texels[2 * t->offset + 1];
+        tap_ok(t->width == 8 && t->height == 4 && t->levels == 4 && !(t->flags & CV_TEXF_SRGB) &&
+               near(cv_half_to_float((uint16_t)(w0 >> 16)), 0.5, 1e-6) &&
+               near(cv_half_to_float((uint16_t)(w1 & 0xffff)), 1.0, 1e-6), "EXR read as linear half RGBA");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load(
+        "WorldBegin\n"
+        "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"float uscale\" 4"
+        " \"string wrap\" \"clamp\"\n"
+        "Texture \"lin\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"string encoding\" \"linear\"\n"
+        "Texture \"hdr\" \"float\" \"imagemap\" \"string filename\" \"f.pfm\"\n"
+        "Texture \"ck\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [1 0 0] \"texture tex2\" \"img\"\n"
+        "Texture \"k\" \"float\" \"constant\" \"float value\" 0.7\n"
+        "Texture \"sc\" \"spectrum\" \"scale\" \"texture tex\" \"img\" \"float scale\" 0.5\n"
+        "Texture \"sc3\" \"spectrum\" \"scale\" \"texture tex1\" \"img\" \"rgb tex2\" [2 2 2]\n"
+        "Texture \"mx\" \"spectrum\" \"mix\" \"texture tex1\" \"img\" \"rgb tex2\" [0 0 1] \"texture amount\" \"k\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"sc\" \"texture displacement\" \"k\"\n" TRI,
+        "textures");
+    if (s) {
+        const CvTexture *t = s->textures;
+        int img = -1;
+        for (uint32_t i = 0; i < s->n_textures; i++)
+            if (t[i].type == CV_TEX_IMAGE && (t[i].flags & CV_TEXF_WRAP_CLAMP))
+                img = (int)i;
+        tap_ok(img >= 0 && t[img].width == 2 && t[img].levels == 2 && (t[img].flags & CV_TEXF_SRGB) &&
+               near(t[img].uv_map.x, 4, 1e-6), "imagemap: size, mips, sRGB flag, uscale, wrap");
+        if (img >= 0) {
+            uint32_t w0 = s->texels[2 * t[img].offset];
+            tap_ok((w0 & 0xffff) == 0x3c00, "white texel is half 1.0");
+            uint32_t g = s->texels[2 * (t[img].offset + 2)];
+            tap_ok(near(cv_half_to_float((uint16_t)(g & 0xffff)), 0.2158, 2e-3), "sRGB 128 decoded to linear");
+            uint32_t top = s->texels[2 * (t[img].offset + 4)];
+            tap_ok(near(cv_half_to_float((uint16_t)(top & 0xffff)), (1 + 0 + 0.2158 + 1) / 4, 3e-3),
+                   "mip level 1 is the box average");
+        }
+        bool lin = false, hdr = false, ck = false, sc = false, mx = false;
+        for (uint32_t i = 0; i < s->n_textures; i++) {
+            if (t[i].type == CV_TEX_IMAGE && !(t[i].flags & CV_TEXF_SRGB) && t[i].width == 2)
+                lin = true;
+            if (t[i].type == CV_TEX_IMAGE && (t[i].flags & CV_TEXF_FLOAT) && t[i].width == 4)
+                hdr = true;
+            if (t[i].type == CV_TEX_CHECKERBOARD && near(t[i].value_a.x, 1, 1e-6) && t[i].tex_b >= 0)
+                ck = true;
+            if (t[i].type == CV_TEX_SCALE && near(t[i].value_b.x, 0.5, 1e-6) && t[i].tex_a >= 0)
+                sc = true;
+            if (t[i].type == CV_TEX_MIX && t[i].amount_tex >= 0 && near(t[i].value_b.z, 1, 1e-6))
+                mx = true;
+        }
+        tap_ok(lin, "encoding linear");
+        tap_ok(hdr, "PFM float texture");
+        tap_ok(ck && sc && mx, "checkerboard, scale, mix");
+        const CvMaterial *m = tri_mat(s, 0);
+        tap_ok(m->reflectance_tex >= 0 && s->textures[m->reflectance_tex].type == CV_TEX_SCALE &&
+               m->displacement_tex >= 0, "material texture slots");
+    }
+    cv_scene_destroy(&s);
+}
+
+static void test_lights(void)
+{
+    write_pfm("env.pfm", 4, 2, 2.0f);
+    write_pfm("oct.pfm", 2, 2, 1.0f);
+    struct cv_scene *s = ok_load(
+        "WorldBegin\n"
+        "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100 \"point3 from\" [1 2 3]\n"
+        "LightSource \"spot\" \"blackbody I\" 3000 \"float coneangle\" 20 \"float conedelta\" 5\n"
+        "LightSource \"distant\" \"color L\" [2 2 2] \"point from\" [0 0 0] \"point to\" [0 -1 0]\n"
+        "LightSource \"infinite\" \"rgb L\" [0.5 0.5 0.5]\n"
+        "LightSource \"infinite\" \"string mapname\" \"env.pfm\"\n"
+        "LightSource \"infinite\" \"string filename\" \"oct.pfm\" \"float scale\" 3\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"float power\" 10 \"bool twosided\" true\n"
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 2 0 0 0 2 0] \"integer indices\" [0 1 2]\n"
+        "AttributeEnd\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4] \"float scale\" 0.5\n" TRI "AttributeEnd\n" TRI,
+        "lights");
+    if (s) {
+        tap_ok(s->n_lights == 8, "8 lights (%u)", s->n_lights);
+        const CvLight *l = s->lights;
+        tap_ok(l[0].type == CV_LIGHT_POINT && near(l[0].L.x, 100 / (4 * M_PI), 1e-4) && near(l[0].position.z, 3, 1e-6),
+               "point light power and position");
+        tap_ok(l[1].type == CV_LIGHT_SPOT && near(lum(l[1].L), 1, 1e-3) && near(l[1].direction.w, cos(20 * M_PI / 180), 1e-6) &&
+               near(l[1].position.w, cos(15 * M_PI / 180), 1e-6), "spot: blackbody normalised, cone cosines");
+        tap_ok(l[2].type == CV_LIGHT_DISTANT && near(l[2].direction.y, -1, 1e-6), "distant direction (travel)");
+        tap_ok(l[3].type == CV_LIGHT_INFINITE, "infinite constant");
+        tap_ok(l[4].type == CV_LIGHT_INFINITE_MAP && !(l[4].flags & CV_LIGHTF_EQUAL_AREA) && l[4].tex >= 0,
+               "v3 lat-long map");
+        tap_ok(l[5].type == CV_LIGHT_INFINITE_MAP && (l[5].flags & CV_LIGHTF_EQUAL_AREA) && near(l[5].L.x, 3, 1e-6),
+               "v4 equal-area map with scale");
+        tap_ok(l[6].type == CV_LIGHT_AREA && (l[6].flags & CV_LIGHTF_TWO_SIDED) && near(l[6].L.w, 2, 1e-6) &&
+               near(l[6].L.x, 10 / (M_PI * 2 * 2), 1e-5), "area light: area in L.w, power over both sides");
+        tap_ok(near(l[7].L.x, 2, 1e-6), "area light scale");
+        tap_ok(s->n_triangles == 3 && s->tri_light[0] == 6 && s->tri_light[1] == 7 && s->tri_light[2] == -1,
+               "tri_light maps emitting triangles to their light");
+        bool pos = true;
+        for (uint32_t i = 0; i < s->n_lights; i++)
+            pos = pos && s->light_power[i] > 0;
+        tap_ok(pos, "every light has a positive sampling power");
+    }
+    cv_scene_destroy(&s);
+}
+
+static void test_params(void)
+{
+    struct cv_scene *s = ok_load(
+        "WorldBegin\n"
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"point2 uv\" [0 0 1 0 0 1]"
+        " \"normal N\" [0 0 1 0 0 1 0 0 1] \"integer indices\" [0 1 2] \"vector3 S\" [1 0 0 1 0 0 1 0 0]\n"
+        "Material \"conductor\" \"bool remaproughness\" false \"float roughness\" 0.04\n" TRI
+        "Material \"conductor\" \"bool remaproughness\" \"false\" \"float roughness\" 0.04\n" TRI
+        "Material \"diffuse\" \"vector2 foo\" [1 2] \"point3 bar\" [1 2 3] \"blackbody baz\" 5000\n" TRI,
+        "every parameter type");
+    if (s) {
+        tap_ok(near(s->vertices[1].pos_u.w, 1, 1e-6) && near(s->vertices[2].nrm_v.w, 1, 1e-6), "point2 uv");
+        tap_ok(near(tri_mat(s, 1)->roughness.x, 0.04, 1e-6) && near(tri_mat(s, 2)->roughness.x, 0.04, 1e-6),
+               "bool unquoted and quoted");
+        tap_ok(s->warnings == 3, "three unused parameters warned (%u)", s->warnings);
+    }
+    cv_scene_destroy(&s);
+    s = th_load("Camera \"perspective\" \"float fov\" 45 \"float foo\" 1\nWorldBegin\n", false,
+                &(struct cv_error){0});
+    const char *log = th_log_text();
+    tap_ok(s && strstr(log, "main.pbrt:1:37: Camera: parameter \"float foo\" unused") != NULL,
+           "unused parameter warning names file:line:col: %s", log);
+    cv_scene_destroy(&s);
+    fails("Camera \"perspective\" \"float fov\" 45 \"float foo\" 1\nWorldBegin\n", true,
+          "main.pbrt:1:37: Camera: parameter \"float foo\" unused", "--strict");
+}
+
+static void test_more(void)
+{
+    unsigned char px[2 * 2 * 3] = {128, 128, 255, 128, 128, 255, 128, 128, 255, 128, 128, 255};
+    write_tga("n.tga", 2, 2, px);
+    struct cv_scene *s = ok_load(
+        "WorldBegin\nTransformTimes 0 1\nActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n"
+        "Texture \"r\" \"float\" \"imagemap\" \"string filename\" \"n.tga\"\n"
+        "Material \"conductor\" \"texture roughness\" \"r\" \"string normalmap\" \"n.tga\"\n"
+        "MakeNamedMaterial \"x\" \"string type\" \"diffuse\"\nMakeNamedMaterial \"x\" \"string type\" \"diffuse\"\n"
+        "LightSource \"point\" \"blackbody I\" [ 6500 2 ]\n" TRI,
+        "ActiveTransform, TransformTimes, roughness texture, normal map, v3 blackbody");
+    if (s) {
+        const CvMaterial *m = tri_mat(s, 0);
+        tap_ok(m->roughness_u_tex >= 0 && m->roughness_v_tex == m->roughness_u_tex &&
+               (m->flags & CV_MATF_REMAP_ROUGHNESS), "textured roughness is remapped per lookup");
+        tap_ok(m->normal_tex >= 0 && !(s->textures[m->normal_tex].flags & CV_TEXF_SRGB), "normal map is linear");
+        tap_ok(s->warnings == 2, "motion blur and the redefined material warn (%u)", s->warnings);
+        tap_ok(near(lum(s->lights[0].L), 2, 2e-3), "v3 blackbody [T scale]");
+        tap_ok(vpos(s, 0, 0, 0, 0), "EndTime transforms do not move the shutter-open scene");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nAttributeBegin\nAttribute \"shape\" \"float radius\" 3\n"
+                "Attribute \"material\" \"rgb reflectance\" [0.1 0.1 0.1]\nMaterial \"diffuse\"\n"
+                "Shape \"sphere\"\nShape \"sphere\" \"float radius\" 1\nAttributeEnd\nShape \"sphere\"\n",
+                "Attribute defaults");
+    if (s) {
+        bool r3 = false, after = true;
+        uint32_t per = s->n_triangles / 3;
+        for (uint32_t v = 0; v < s->n_vertices; v++)
+            r3 = r3 || near(s->vertices[v].pos_u.z, 3, 1e-5);
+        for (uint32_t t = 2 * per; t < s->n_triangles; t++)
+            for (int k = 0; k < 3; k++) {
+                uint32_t v = (&s->triangles[t].idx.x)[k];
+                after = after && fabs(s->vertices[v].pos_u.z) <= 1 + 1e-5;
+            }
+        tap_ok(r3 && after && s->warnings == 0, "Attribute \"shape\" radius applies inside its scope only");
+        tap_ok(near(tri_mat(s, 0)->reflectance.x, 0.1, 1e-6), "Attribute \"material\" default");
+    }
+    cv_scene_destroy(&s);
+    fails("WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 30 \"point3 P\" [0 0 0 1 0 0 0 1 0]"
+          " \"integer indices\" [0 1 2]\n", false, "main.pbrt:2:1: loopsubdiv with 30 levels", "loopsubdiv bounded");
+}
+
+static void test_include(void)
+{
+    mkdir(th_path("sub"), 0755);
+    th_write_str("sub/inc.pbrt", "Include \"geo.pbrt\"\n");
+    th_write_str("sub/geo.pbrt", TRI);
+    struct cv_scene *s = ok_load("WorldBegin\nInclude \"sub/inc.pbrt\"\nImport \"sub/geo.pbrt\"\n", "Include/Import");
+    tap_ok(s && s->n_triangles == 2, "includes resolve relative to the including file");
+    cv_scene_destroy(&s);
+    th_write_str("sub/nested.pbrt", "Shape \"plymesh\" \"string filename\" \"quad.ply\"\n");
+    s = ok_load("WorldBegin\nInclude \"sub/nested.pbrt\"\n", "file named in an include, found from the main folder");
+    tap_ok(s && s->n_triangles == 2, "pbrt-style fallback to the top-level folder");
+    cv_scene_destroy(&s);
+    th_write_str("a.pbrt", "Include \"b.pbrt\"\n");
+    th_write_str("b.pbrt", "\n  Include \"a.pbrt\"\n");
+    fails("WorldBegin\nInclude \"a.pbrt\"\n", false, "b.pbrt:2:3: recursive include of \"a.pbrt\"", "recursive include");
+    fails("WorldBegin\nInclude \"nothere.pbrt\"\n", false, "main.pbrt:2:1: cannot include \"nothere.pbrt\"",
+          "missing include");
+    fails("WorldBegin\nShape \"plymesh\" \"string filename\" \"none.ply\"\n", false, "main.pbrt:2:1: plymesh \"none.ply\"",
+          "missing ply");
+    th_write_str("bad.pbrt", "Translate 1 2\n");
+    fails("Include \"bad.pbrt\"\n", false, "bad.pbrt:2:1: Translate expects 3 numbers", "error inside an include");
+}
+
+static void test_errors(void)
+{
+    fails("Translate 1 2x 3\n", false, "main.pbrt:1:13: bad number \"2x\"", "bad number");
+    fails("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0", false, "main.pbrt:2:40: unbalanced '['",
+          "truncated file inside brackets");
+    fails("WorldBegin\nShape \"trianglem", false, "main.pbrt:2:7: unterminated string", "truncated string");
+    fails("WorldBegin\nShape \"sphere\" \"float radius\" [ 1\nWorldEnd\n", false,
+          "main.pbrt:3:1: unexpected \"WorldEnd\"", "unbalanced brackets");
+    fails("Translate 1 2 3 ]\n", false, "main.pbrt:1:17: expected a directive", "stray ]");
+    fails("WorldBegin\nAttributeEnd\n", false, "main.pbrt:2:1: AttributeEnd without a matching AttributeBegin",
+          "AttributeEnd without begin");
+    fails("WorldBegin\n  AttributeBegin\n", false, "main.pbrt:2:3: AttributeBegin not closed", "AttributeBegin unclosed");
+    fails("Frobnicate 3\n", false, "main.pbrt:1:1: unknown directive \"Frobnicate\"", "unknown directive");
+    fails("WorldBegin\nNamedMaterial \"x\"\n", false, "main.pbrt:2:1: unknown named material \"x\"", "unknown material");
+    fails("WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" \"nope\"\n", false,
+          "main.pbrt:2:20: unknown texture \"nope\"", "unknown texture");
+    fails("WorldBegin\nShape \"sphere\" \"flot radius\" 1\n", true, "main.pbrt:2:16: unknown parameter type \"flot\"",
+          "unknown parameter type (--strict)");
+    struct cv_error e2 = {0};
+    struct cv_scene *s = th_load("WorldBegin\nShape \"sphere\" \"flot radius\" [ 1 ] \"float zmin\" 0\n", false, &e2);
+    tap_ok(s && s->warnings == 1 && strstr(th_log_text(), "main.pbrt:2:16: unknown parameter type \"flot\""),
+           "unknown parameter type is a warning with location");
+    cv_scene_destroy(&s);
+    fails("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 5]\n", false,
+          "index 5 out of range", "index out of range");
+    fails("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1]\n", false, "main.pbrt:2:22: parameter \"point3 P\" has 4 values",
+          "wrong value count");
+    fails("WorldBegin\nMaterial \"diffuse\" \"bool x\" 3\n", false, "main.pbrt:2:29: bool parameter", "bool from a number");
+    fails("WorldBegin\nScale 1e300 1 1\nScale 1e300 1 1\n" TRI, false, "main.pbrt:4:1: vertex positions are not finite",
+          "overflowing transform");
+    fails("WorldBegin\nObjectInstance \"none\"\n", false, "main.pbrt:2:1: unknown object", "unknown object");
+    fails("WorldBegin\nMaterial \"conductor\" \"spectrum eta\" \"no-such.spd\"\n", false,
+          "main.pbrt:2:22: spectrum \"no-such.spd\" is neither a known name nor a readable file", "bad spectrum");
+}
+
+int main(void)
+{
+    th_init();
+    test_transforms();
+    test_attributes();
+    test_settings();
+    test_shapes();
+    test_materials();
+    test_textures();
+    test_lights();
+    test_params();
+    test_more();
+    test_include();
+    test_errors();
+    th_cleanup();
+    return tap_done();
+}
