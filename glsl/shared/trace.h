@@ -55,7 +55,7 @@ CV_STRUCT(CvTraceQueues) {
     CV_UVEC4 args[4];      /* indirect dispatch arguments, CV_ARGS_* */
     CV_UVEC4 stats[3];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 128);
+CV_CHECK_SIZE(CvTraceQueues, 144);
 
 /* Ray flags (CvRayItem.beta.w as bits). */
 #define CV_RAYF_SPECULAR 1u        /* the last bounce was specular (no MIS on emission) */
@@ -113,7 +113,7 @@ CV_STRUCT(CvPassParams) {
     CV_UVEC4 seed;         /* x, y: job seed lo/hi; z: sampler (0 sobol, 1 independent); w: max depth */
     CV_UVEC4 film;         /* x, y: full film resolution; z, w: crop origin */
     CV_UVEC4 misc;         /* x: depth; y: filter type; z: light count; w: flags */
-    CV_VEC4 filter;        /* x, y: filter radius; z: gaussian sigma */
+    CV_VEC4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
     CV_VEC4 cam_to_world[3];
     CV_VEC4 screen;
     CV_VEC4 lens;          /* x: radius, y: focal distance, z: tan(fov/2); w: camera type */

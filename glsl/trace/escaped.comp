@@ -2,6 +2,7 @@
 // glsl/trace/escaped.comp: rays that left the scene pick up environment
 // light, MIS-weighted against the light sampling that could have found the
 // same direction (not for camera rays or after specular bounces).
+#include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "shading.glsl"

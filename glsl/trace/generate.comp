@@ -2,6 +2,7 @@
 // glsl/trace/generate.comp: one camera ray per pixel of the crop for the
 // current sample index, written to the output ray queue; each adds weight 1
 // to its pixel (filter importance sampling).
+#include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "sampler.glsl"
@@ -23,8 +24,8 @@ void main()
     vec2 uf = cv_sample_2d(film_pixel, cv_sample_index(), 0u, seed, sampler);
     vec2 ul = cv_sample_2d(film_pixel, cv_sample_index(), 1u, seed, sampler);
     vec2 raster = vec2(px) + 0.5 +
-                  vec2(cv_filter_offset(uf.x, u_pass.filter.x, false),
-                       cv_filter_offset(uf.y, u_pass.filter.y, true));
+                  vec2(cv_filter_offset(uf.x, u_pass.pixel_filter.x, false),
+                       cv_filter_offset(uf.y, u_pass.pixel_filter.y, true));
     vec3 o, d;
     cv_camera_ray(raster, ul, o, d);
     CvRayItem r;

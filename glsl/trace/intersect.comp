@@ -3,6 +3,7 @@
 // to the hit queue, misses to the escaped queue. Alpha cut-outs are handled
 // here by continuing the ray past a surface whose alpha test lets it through,
 // so the depth does not change.
+#include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "sampler.glsl"

@@ -4,6 +4,7 @@
 // count back. PREPARE_MODE 0 starts a depth (the rays written last become
 // this depth's input; the other queues empty), 1 follows intersection (hits,
 // escaped), 2 follows shading (shadow rays).
+#include "shared/trace.h"
 layout(local_size_x = 1) in;
 #include "common.glsl"
 

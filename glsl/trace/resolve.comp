@@ -1,6 +1,7 @@
 #version 450
 // glsl/trace/resolve.comp: the film as linear RGB (radiance sum / weight,
 // alpha 1), one vec4 per pixel of the crop, row-major, top row first.
+#include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 

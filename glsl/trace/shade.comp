@@ -4,6 +4,7 @@
 // maximum depth, next-event estimation (a shadow ray queued with its
 // MIS-weighted contribution; skipped for delta BSDFs) and BSDF sampling of
 // the bounce ray with Russian roulette.
+#include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "sampler.glsl"

@@ -2,6 +2,7 @@
 // glsl/trace/shadow.comp: next-event shadow rays; an unoccluded one adds its
 // contribution to its pixel. With alpha cut-outs in the scene, occluders
 // that the alpha test lets through are skipped.
+#include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "sampler.glsl"

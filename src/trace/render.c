@@ -34,7 +34,8 @@ enum stage {
 struct cv_renderer {
     struct cv_gpu *gpu;
     struct cv_scene_gpu scene;
-    struct cv_program *prog[ST_COUNT];
+    /* copies: the cache's entries move as it grows (ids stay valid) */
+    struct cv_program prog[ST_COUNT];
     uint32_t n_pixels, crop_w, crop_h;
     uint32_t max_depth;
     bool aovs, has_env;
@@ -112,7 +113,7 @@ static void setup_filter(struct cv_renderer *r, const struct cv_render_settings 
         break;
     }
     u->misc.y = type;
-    u->filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
+    u->pixel_filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
     float tx[CV_FILTER_TABLE + 4] = {0}, ty[CV_FILTER_TABLE + 4] = {0};
     if (type == 2) {
         cv_gaussian_filter_table(rx, st->filter_sigma, tx, CV_FILTER_TABLE);
@@ -153,8 +154,9 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     setup_camera(r, scene, p);
     setup_filter(r, &scene->settings);
     if ((uint64_t)r->crop_w * r->crop_h > (1u << 26)) {
+        uint32_t w = r->crop_w, h = r->crop_h;
         free(r);
-        return cv_fail(err, "film of %ux%u pixels is too large", r->crop_w, r->crop_h);
+        return cv_fail(err, "film of %ux%u pixels is too large", w, h);
     }
     r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
                               p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
@@ -180,8 +182,10 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
         const char *const *d = defines;
         if (s >= ST_PREPARE0 && s <= ST_PREPARE2)
             d = prep[s - ST_PREPARE0];
-        r->prog[s] = cv_program_get(gpu, stage_files[s], d, err);
-        if (!r->prog[s]) {
+        struct cv_program *pr = cv_program_get(gpu, stage_files[s], d, err);
+        if (pr)
+            r->prog[s] = *pr;
+        if (!pr) {
             cv_renderer_destroy(&r);
             return false;
         }
@@ -252,7 +256,7 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         r->pass.misc.x = 0;
         glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
         cv_buffer_bind(r->rays[1], CV_BIND_RAYS_OUT);
-        cv_program_dispatch_1d(r->prog[ST_GENERATE], r->n_pixels);
+        cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
         for (uint32_t d = 0; d <= r->max_depth; d++) {
             if (d > 0) {
                 r->pass.misc.x = d;
@@ -261,14 +265,14 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
             /* the rays written last are read now */
             cv_buffer_bind(r->rays[(d + 1) & 1], CV_BIND_RAYS_IN);
             cv_buffer_bind(r->rays[d & 1], CV_BIND_RAYS_OUT);
-            dispatch_one(r->prog[ST_PREPARE0]);
-            dispatch_indirect(r->prog[ST_INTERSECT], CV_ARGS_RAYS);
-            dispatch_one(r->prog[ST_PREPARE1]);
+            dispatch_one(&r->prog[ST_PREPARE0]);
+            dispatch_indirect(&r->prog[ST_INTERSECT], CV_ARGS_RAYS);
+            dispatch_one(&r->prog[ST_PREPARE1]);
             if (r->has_env)
-                dispatch_indirect(r->prog[ST_ESCAPED], CV_ARGS_ESCAPED);
-            dispatch_indirect(r->prog[ST_SHADE], CV_ARGS_HITS);
-            dispatch_one(r->prog[ST_PREPARE2]);
-            dispatch_indirect(r->prog[ST_SHADOW], CV_ARGS_SHADOW);
+                dispatch_indirect(&r->prog[ST_ESCAPED], CV_ARGS_ESCAPED);
+            dispatch_indirect(&r->prog[ST_SHADE], CV_ARGS_HITS);
+            dispatch_one(&r->prog[ST_PREPARE2]);
+            dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
         }
     }
     glEndQuery(GL_TIME_ELAPSED);
@@ -314,7 +318,7 @@ GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
 {
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     bind_all(r);
-    cv_program_dispatch_1d(r->prog[ST_RESOLVE], r->n_pixels);
+    cv_program_dispatch_1d(&r->prog[ST_RESOLVE], r->n_pixels);
     if (!cv_gl_check(err, "resolving the film"))
         return 0;
     return r->resolved;
