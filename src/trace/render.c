@@ -153,7 +153,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                                 : (scene->settings.max_depth ? scene->settings.max_depth : 5);
     setup_camera(r, scene, p);
     setup_filter(r, &scene->settings);
-    if ((uint64_t)r->crop_w * r->crop_h > (1u << 26)) {
+    if ((uint64_t)r->crop_w * r->crop_h > (1u << 24)) {
         uint32_t w = r->crop_w, h = r->crop_h;
         free(r);
         return cv_fail(err, "film of %ux%u pixels is too large", w, h);
