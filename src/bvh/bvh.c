@@ -1,9 +1,12 @@
 /* bvh.c: see bvh.h. The host only allocates, binds and dispatches; every
  * phase runs in glsl/bvh. Times come from one GL_TIME_ELAPSED query per
- * phase (queries cannot nest, so the total is their sum). */
+ * phase (queries cannot nest, so the total is their sum). Software
+ * renderers (llvmpipe) report 0 for those queries around compute work, so
+ * there each phase is timed on the CPU clock after glFinish instead. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "base/mem.h"
 #include "bvh/bvh.h"
@@ -33,8 +36,37 @@ struct build {
     struct cv_radix_sort *sort;
     struct cv_scan *scan;
     GLuint queries[PH_COUNT];
+    bool cpu_timing;
+    double cpu_ms[PH_COUNT], cpu_start;
     uint64_t scratch;
 };
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void phase_begin(struct build *b, int phase)
+{
+    if (b->cpu_timing) {
+        glFinish();
+        b->cpu_start = now_ms();
+    } else {
+        glBeginQuery(GL_TIME_ELAPSED, b->queries[phase]);
+    }
+}
+
+static void phase_end(struct build *b, int phase)
+{
+    if (b->cpu_timing) {
+        glFinish();
+        b->cpu_ms[phase] = now_ms() - b->cpu_start;
+    } else {
+        glEndQuery(GL_TIME_ELAPSED);
+    }
+}
 
 struct cv_bvh_params cv_bvh_default_params(void)
 {
@@ -123,7 +155,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
 
     /* Centroid bounds: one reduction level per factor of 256. */
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_BOUNDS]);
+    phase_begin(b, PH_BOUNDS);
     cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0 + 1);
     set_uint(bounds_tri, "u_n", n);
     cv_program_dispatch_1d(bounds_tri, n);
@@ -137,37 +169,37 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         src = dst;
         dst = t;
     }
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_BOUNDS);
 
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_MORTON]);
+    phase_begin(b, PH_MORTON);
     cv_buffer_bind(src, CV_BIND_STAGE0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
     set_uint(morton, "u_n", n);
     cv_program_dispatch_1d(morton, n);
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_MORTON);
 
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_SORT]);
+    phase_begin(b, PH_SORT);
     bool ok = cv_radix_sort_run(b->sort, b->keys, b->vals, n, MORTON_BITS, err);
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_SORT);
     if (!ok)
         return false;
 
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_HIERARCHY]);
+    phase_begin(b, PH_HIERARCHY);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0);
     cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->counters, CV_BIND_STAGE0 + 2);
     set_uint(hier, "u_n", n);
     cv_program_dispatch_1d(hier, n);
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_HIERARCHY);
 
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_REFIT]);
+    phase_begin(b, PH_REFIT);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
     set_uint(refit, "u_n", n);
     cv_program_dispatch_1d(refit, n);
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_REFIT);
 
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_TREELET]);
+    phase_begin(b, PH_TREELET);
     set_uint(treelet, "u_n", n);
     for (int r = 0; r < p->treelet_rounds; r++) {
         cv_buffer_zero(b->counters);
@@ -178,9 +210,9 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         set_uint(treelet, "u_gamma", (uint32_t)p->treelet_size);
         cv_program_dispatch_1d(treelet, n);
     }
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_TREELET);
 
-    glBeginQuery(GL_TIME_ELAPSED, b->queries[PH_COLLAPSE]);
+    phase_begin(b, PH_COLLAPSE);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
     cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
@@ -197,7 +229,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         set_uint(emit, "u_n", n);
         cv_program_dispatch_1d(emit, n);
     }
-    glEndQuery(GL_TIME_ELAPSED);
+    phase_end(b, PH_COLLAPSE);
     if (!ok)
         return false;
     return cv_gl_check(err, "building the BVH of %u triangles", n);
@@ -256,8 +288,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     s->ms_total = 0;
     for (int i = 0; i < PH_COUNT; i++) {
         GLuint64 ns = 0;
-        glGetQueryObjectui64v(b->queries[i], GL_QUERY_RESULT, &ns);
-        *ms[i] = ns * 1e-6;
+        if (!b->cpu_timing)
+            glGetQueryObjectui64v(b->queries[i], GL_QUERY_RESULT, &ns);
+        *ms[i] = b->cpu_timing ? b->cpu_ms[i] : ns * 1e-6;
         s->ms_total += *ms[i];
     }
     float lo[3] = {root.bmin.x, root.bmin.y, root.bmin.z};
@@ -286,7 +319,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
     if (n_triangles < 2) {
         ok = build_trivial(bvh, n_triangles, err);
     } else {
-        struct build b = {.gpu = gpu, .n = n_triangles};
+        struct build b = {.gpu = gpu, .n = n_triangles, .cpu_timing = gpu->info.software};
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);
     }
