@@ -2,7 +2,11 @@
  * triangles (half uniform with varied sizes, half in dense clusters; fixed
  * seed), builds the BVH several times and prints the median time of each
  * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
- *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse]
+ *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--check] [--ref]
+ * --ref also builds a CPU binned-SAH tree over the same triangles and prints
+ * its SAH cost for comparison.
+ * --check reads the last tree back and verifies its invariants (as the
+ * tests do) and prints its depth; the exit status is 1 when they fail.
  * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
 #include "config.h"
 
@@ -33,6 +37,7 @@ int main(int argc, char **argv)
     uint32_t n = (uint32_t)strtoul(argv[1], NULL, 10);
     int reps = 3;
     struct cv_bvh_params params = cv_bvh_default_params();
+    bool check = false, ref = false;
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
             reps = atoi(argv[++i]);
@@ -40,6 +45,10 @@ int main(int argc, char **argv)
             params.treelet_rounds = atoi(argv[++i]);
         else if (strcmp(argv[i], "--treelet") == 0 && i + 1 < argc)
             params.treelet_size = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--ref") == 0)
+            ref = true;
+        else if (strcmp(argv[i], "--check") == 0)
+            check = true;
         else if (strcmp(argv[i], "--no-collapse") == 0)
             params.collapse_leaves = false;
         else {
@@ -50,6 +59,7 @@ int main(int argc, char **argv)
     if (reps < 1 || reps > 101)
         reps = 3;
     struct cv_error err = {{0}};
+    int status = 0;
     struct cv_gpu *gpu = NULL;
     if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
         fprintf(stderr, "bvh_bench: %s\n", err.msg);
@@ -63,7 +73,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "bvh_bench: %s\n", err.msg);
         return 1;
     }
-    mesh_free(&m);
+    double ref_cost = ref ? ref_sah(&m) : 0.0;
+    if (!check)
+        mesh_free(&m);
 
     /* One untimed build compiles the shaders. */
     struct cv_bvh *bvh = NULL;
@@ -82,6 +94,13 @@ int main(int argc, char **argv)
             return 1;
         }
         last = *cv_bvh_stats(bvh);
+        if (check && r == reps - 1) {
+            struct tree_info ti = check_tree(&m, bvh);
+            fprintf(stderr, "check: %s (depth %d, read-back SAH %.4f) %s\n",
+                    ti.ok ? "tree invariants hold" : "TREE INVALID", ti.depth, ti.sah, ti.why);
+            if (!ti.ok)
+                status = 1;
+        }
         double v[N_PHASES] = {last.ms_bounds, last.ms_morton, last.ms_sort,  last.ms_hierarchy,
                               last.ms_refit,  last.ms_treelet, last.ms_collapse, last.ms_total};
         for (int p = 0; p < N_PHASES; p++)
@@ -105,7 +124,10 @@ int main(int argc, char **argv)
     printf("  ms per million triangles: %.3f\n", med[7] * 1e6 / (n ? n : 1));
     printf("  nodes %u, %.2f bytes/triangle (+ %.2f bytes/triangle scratch while building)\n",
            last.n_nodes, (double)last.bytes / (n ? n : 1), (double)last.scratch_bytes / (n ? n : 1));
-    printf("  SAH cost %.4f\n", last.sah_cost);
+    printf("  SAH cost %.4f", last.sah_cost);
+    if (ref)
+        printf(" (CPU binned SAH %.4f: %+.1f%%)", ref_cost, 100.0 * (last.sah_cost / ref_cost - 1));
+    printf("\n");
     printf("{\"triangles\": %u, \"renderer\": \"%s\", \"reps\": %d, \"treelet_rounds\": %d, "
            "\"treelet_size\": %d, \"collapse_leaves\": %s",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
@@ -113,13 +135,14 @@ int main(int argc, char **argv)
     for (int p = 0; p < N_PHASES; p++)
         printf(", \"ms_%s\": %.4f", names[p], med[p]);
     printf(", \"ms_lbvh\": %.4f, \"nodes\": %u, \"bytes\": %llu, \"bytes_per_triangle\": %.3f, "
-           "\"scratch_bytes\": %llu, \"sah_cost\": %.5f}\n",
+           "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f}\n",
            lbvh, last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
-           (unsigned long long)last.scratch_bytes, last.sah_cost);
+           (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost);
     for (int p = 0; p < N_PHASES; p++)
         free(t[p]);
     cv_buffer_destroy(&vb);
     cv_buffer_destroy(&tb);
+    mesh_free(&m);
     cv_gpu_destroy(&gpu);
-    return 0;
+    return status;
 }

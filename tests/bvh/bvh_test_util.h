@@ -6,12 +6,14 @@
 #define CV_TESTS_BVH_UTIL_H
 
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "glsl/shared/bvh.h"
 #include "glsl/shared/scene.h"
+#include "bvh/bvh.h"
 #include "gpu/buffer.h"
 
 struct mesh {
@@ -281,6 +283,154 @@ static inline double ref_sah(const struct mesh *m)
     free(r.c);
     free(r.ids);
     return cost;
+}
+
+/* ---- reading a GPU tree back ---- */
+
+struct tree_info {
+    bool ok;
+    double sah;
+    int depth;
+    char why[256];
+};
+
+static inline bool box_in(const float *lo, const float *hi, const float *plo, const float *phi)
+{
+    for (int k = 0; k < 3; k++)
+        if (lo[k] < plo[k] || hi[k] > phi[k])
+            return false;
+    return true;
+}
+
+/* Reads the finished tree back and checks: every triangle in exactly one
+ * leaf slot, every node reached exactly once from the root, every child box
+ * inside its parent's (a triangle's box inside its leaf's). Also returns the
+ * depth and the SAH cost of what was read. */
+static inline struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bvh)
+{
+    struct tree_info ti = {.ok = true};
+    struct cv_error err = {{0}};
+    const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
+    uint32_t nn = st->n_nodes, n = m->nt;
+    CvBvhNode *nodes = malloc((size_t)nn * sizeof(*nodes));
+    uint32_t *prims = malloc((n ? n : 1) * 4);
+    uint32_t *stack = malloc(256 * 4), *depth_of = malloc(256 * 4);
+    uint32_t *visits = calloc(nn, 4), *slot_seen = calloc(n + 1, 4), *prim_seen = calloc(n + 1, 4);
+    if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes, &err) ||
+        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (n ? n : 1) * 4, prims, &err)) {
+        snprintf(ti.why, sizeof(ti.why), "read back: %.200s", err.msg);
+        ti.ok = false;
+        goto out;
+    }
+    int sp = 0;
+    stack[sp] = 0;
+    depth_of[sp++] = 1;
+    visits[0] = 1;
+    double sum = 0, root_area = 0;
+    while (sp > 0 && ti.ok) {
+        sp--;
+        uint32_t ni = stack[sp], d = depth_of[sp];
+        if ((int)d > ti.depth)
+            ti.depth = (int)d;
+        const CvBvhNode *nd = &nodes[ni];
+        const cv_vec4 *cb[2][2] = {{&nd->lmin, &nd->lmax}, {&nd->rmin, &nd->rmax}};
+        float cbox[2][2][3];
+        for (int c = 0; c < 2; c++)
+            for (int e = 0; e < 2; e++)
+                memcpy(cbox[c][e], cb[c][e], sizeof(cbox[c][e]));
+        float ulo[3], uhi[3];
+        for (int k = 0; k < 3; k++) {
+            ulo[k] = fminf(cbox[0][0][k], cbox[1][0][k]);
+            uhi[k] = fmaxf(cbox[0][1][k], cbox[1][1][k]);
+        }
+        if (ni == 0)
+            root_area = half_area3(ulo, uhi);
+        sum += CV_BVH_COST_INNER * half_area3(ulo, uhi);
+        for (int c = 0; c < 2 && ti.ok; c++) {
+            const float *lo = cbox[c][0], *hi = cbox[c][1];
+            int32_t word, count;
+            memcpy(&word, &cb[c][0]->w, 4);
+            memcpy(&count, &cb[c][1]->w, 4);
+            if (count > 0) {
+                if (word < 0 || (uint32_t)word + (uint32_t)count > n) {
+                    snprintf(ti.why, sizeof(ti.why), "node %u: leaf range %d+%d out of %u", ni,
+                             word, count, n);
+                    ti.ok = false;
+                    break;
+                }
+                if (n >= 2)
+                    sum += CV_BVH_COST_TRI * half_area3(lo, hi) * count;
+                for (int32_t s = word; s < word + count; s++) {
+                    slot_seen[s]++;
+                    uint32_t p = prims[s];
+                    if (p >= n) {
+                        snprintf(ti.why, sizeof(ti.why), "slot %d holds %u", s, p);
+                        ti.ok = false;
+                        break;
+                    }
+                    prim_seen[p]++;
+                    float tlo[3], thi[3];
+                    tri_box(m, p, tlo, thi);
+                    if (!box_in(tlo, thi, lo, hi)) {
+                        snprintf(ti.why, sizeof(ti.why), "triangle %u outside its leaf box", p);
+                        ti.ok = false;
+                    }
+                }
+            } else if (count == 0 && n < 2 && lo[0] > hi[0]) {
+                /* the empty child of a trivial tree */
+            } else {
+                if (count < 0 || word <= 0 || (uint32_t)word >= nn) {
+                    snprintf(ti.why, sizeof(ti.why), "node %u: child %d count %d", ni, word, count);
+                    ti.ok = false;
+                    break;
+                }
+                if (visits[word]++) {
+                    snprintf(ti.why, sizeof(ti.why), "node %d reached twice", word);
+                    ti.ok = false;
+                    break;
+                }
+                const CvBvhNode *ch = &nodes[word];
+                float b[4][3];
+                memcpy(b[0], &ch->lmin, 12);
+                memcpy(b[1], &ch->lmax, 12);
+                memcpy(b[2], &ch->rmin, 12);
+                memcpy(b[3], &ch->rmax, 12);
+                if (!box_in(b[0], b[1], lo, hi) || !box_in(b[2], b[3], lo, hi)) {
+                    snprintf(ti.why, sizeof(ti.why), "node %d: a child box leaves the parent's", word);
+                    ti.ok = false;
+                    break;
+                }
+                if (sp >= 256) {
+                    snprintf(ti.why, sizeof(ti.why), "deeper than 256");
+                    ti.ok = false;
+                    break;
+                }
+                stack[sp] = (uint32_t)word;
+                depth_of[sp++] = d + 1;
+            }
+        }
+    }
+    for (uint32_t i = 0; ti.ok && i < nn; i++)
+        if (visits[i] != 1) {
+            snprintf(ti.why, sizeof(ti.why), "node %u reached %u times", i, visits[i]);
+            ti.ok = false;
+        }
+    for (uint32_t i = 0; ti.ok && i < n; i++)
+        if (prim_seen[i] != 1 || slot_seen[i] != 1) {
+            snprintf(ti.why, sizeof(ti.why), "triangle %u in %u leaves, slot %u used %u times", i,
+                     prim_seen[i], i, slot_seen[i]);
+            ti.ok = false;
+        }
+    ti.sah = root_area > 0 ? sum / root_area : 0;
+out:
+    free(stack);
+    free(depth_of);
+    free(nodes);
+    free(prims);
+    free(visits);
+    free(slot_seen);
+    free(prim_seen);
+    return ti;
 }
 
 #endif
