@@ -20,10 +20,19 @@ int delta(int i, int j)
 {
     if (j < 0 || j >= int(u_n))
         return -1;
+#ifdef KEY64
+    uvec2 a = uvec2(keys[2 * i], keys[2 * i + 1]), b = uvec2(keys[2 * j], keys[2 * j + 1]);
+    if (a == b)
+        return 64 + 31 - findMSB(uint(i ^ j));
+    if (a.y != b.y)
+        return 31 - findMSB(a.y ^ b.y);
+    return 32 + 31 - findMSB(a.x ^ b.x);
+#else
     uint a = keys[i], b = keys[j];
     if (a == b)
         return 32 + 31 - findMSB(uint(i ^ j));
     return 31 - findMSB(a ^ b);
+#endif
 }
 
 void main()

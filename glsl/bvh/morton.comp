@@ -1,7 +1,8 @@
 #version 450
-// glsl/bvh/morton.comp: 30-bit Morton code of each triangle's centroid,
-// quantised to 1024 cells per axis inside the centroid bounds; writes the
-// key and the triangle index as the value for the radix sort.
+// glsl/bvh/morton.comp: Morton code of each triangle's centroid inside the
+// centroid bounds: 30 bits (1024 cells per axis), or with KEY64 60 bits
+// (2^20 cells per axis) stored as two words, low first. Writes the key and
+// the triangle index as the value for the radix sort.
 #include "shared/scene.h"
 #include "shared/bindings.h"
 
@@ -37,7 +38,18 @@ void main()
     // A flat axis (all centroids equal there) maps to cell 0.
     vec3 inv = vec3(ext.x > 0.0 ? 1.0 / ext.x : 0.0, ext.y > 0.0 ? 1.0 / ext.y : 0.0,
                     ext.z > 0.0 ? 1.0 / ext.z : 0.0);
+#ifdef KEY64
+    // Interleaving is bitwise, so the high 10 bits of each axis make the
+    // high 30 bits of the code.
+    uvec3 q = uvec3(clamp((c - lo) * inv * 1048576.0, vec3(0.0), vec3(1048575.0)));
+    uint low = (spread10(q.x) << 2) | (spread10(q.y) << 1) | spread10(q.z);
+    uvec3 h = q >> 10;
+    uint high = (spread10(h.x) << 2) | (spread10(h.y) << 1) | spread10(h.z);
+    keys[2u * i] = low | (high << 30);
+    keys[2u * i + 1u] = high >> 2;
+#else
     uvec3 q = uvec3(clamp((c - lo) * inv * 1024.0, vec3(0.0), vec3(1023.0)));
     keys[i] = (spread10(q.x) << 2) | (spread10(q.y) << 1) | spread10(q.z);
+#endif
     vals[i] = i;
 }

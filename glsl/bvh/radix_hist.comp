@@ -2,7 +2,8 @@
 // glsl/bvh/radix_hist.comp: first step of one 4-bit radix sort pass. Each
 // workgroup counts the digits of its tile of 1024 keys and writes the counts
 // digit-major (hist[digit * n_tiles + tile]) so that one exclusive scan of
-// the whole array yields every tile's scatter base, stably.
+// the whole array yields every tile's scatter base, stably. With KEY64 a
+// key is two words (low, high) and u_shift runs over 0..63.
 #include "shared/bindings.h"
 
 layout(local_size_x = 256) in;
@@ -27,8 +28,14 @@ void main()
     barrier();
     for (uint k = 0; k < 4; k++) {
         uint i = tile * 1024u + k * 256u + l;
-        if (i < u_n)
-            atomicAdd(s_count[(keys[i] >> u_shift) & 15u], 1u);
+        if (i < u_n) {
+#ifdef KEY64
+            uint w = keys[2u * i + (u_shift >> 5)];
+#else
+            uint w = keys[i];
+#endif
+            atomicAdd(s_count[(w >> (u_shift & 31u)) & 15u], 1u);
+        }
     }
     barrier();
     if (l < 16)

@@ -4,6 +4,7 @@
 // packed 16 bits each into two uvec4 (a tile holds at most 1024 keys, so no
 // field overflows) and scanned across the workgroup, which gives every key
 // its stable rank among equal digits. Destination = scanned tile base + rank.
+// With KEY64 a key is two words (low, high) and u_shift runs over 0..63.
 #include "shared/bindings.h"
 
 layout(local_size_x = 256) in;
@@ -41,17 +42,29 @@ void main()
     if (tile >= n_tiles)
         return;
     uint l = gl_LocalInvocationID.x;
-    uint key[4], val[4], dig[4];
+#ifdef KEY64
+    uvec2 key[4];
+#else
+    uint key[4];
+#endif
+    uint val[4], dig[4];
     uvec4 lo = uvec4(0), hi = uvec4(0);
     for (uint k = 0; k < 4; k++) {
         uint i = tile * 1024u + l * 4u + k;
         dig[k] = 16u;
-        key[k] = 0u;
         val[k] = 0u;
+#ifdef KEY64
+        key[k] = uvec2(0u);
+        if (i < u_n) {
+            key[k] = uvec2(keys[2u * i], keys[2u * i + 1u]);
+            dig[k] = (key[k][u_shift >> 5] >> (u_shift & 31u)) & 15u;
+#else
+        key[k] = 0u;
         if (i < u_n) {
             key[k] = keys[i];
-            val[k] = vals[i];
             dig[k] = (key[k] >> u_shift) & 15u;
+#endif
+            val[k] = vals[i];
             if (dig[k] < 8u)
                 lo += one_hot(dig[k]);
             else
@@ -88,7 +101,12 @@ void main()
             before += dig[j] == d ? 1u : 0u;
         uint rank = (d < 8u ? field(plo, d) : field(phi, d)) + before;
         uint dst = s_base[d] + rank;
+#ifdef KEY64
+        keys_out[2u * dst] = key[k].x;
+        keys_out[2u * dst + 1u] = key[k].y;
+#else
         keys_out[dst] = key[k];
+#endif
         vals_out[dst] = val[k];
     }
 }

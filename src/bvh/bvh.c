@@ -19,7 +19,10 @@
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
-#define MORTON_BITS 30
+/* 60-bit Morton codes (20 bits per axis, two words); 30 bits halves the
+ * sort but crowds large scenes into equal codes. Both are supported by the
+ * shaders (KEY64 or not). */
+#define MORTON_BITS 60
 
 enum { PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE, PH_COUNT };
 
@@ -135,6 +138,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     const char *bounds_defs[] = {"FROM_TRIANGLES", NULL};
     const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
     const char *refit_defs[] = {nc, NULL};
+    const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
     const char *treelet_defs[] = {tdef, nc, NULL};
     struct cv_program progs[8];
     struct cv_program *bounds_tri = &progs[0], *bounds = &progs[1], *morton = &progs[2],
@@ -142,8 +146,8 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
                       *layout = &progs[6], *emit = &progs[7];
     if (!cv_bvh_program(b->gpu, "bvh/bounds.comp", bounds_defs, bounds_tri, err) ||
         !cv_bvh_program(b->gpu, "bvh/bounds.comp", NULL, bounds, err) ||
-        !cv_bvh_program(b->gpu, "bvh/morton.comp", NULL, morton, err) ||
-        !cv_bvh_program(b->gpu, "bvh/hierarchy.comp", NULL, hier, err) ||
+        !cv_bvh_program(b->gpu, "bvh/morton.comp", key_defs, morton, err) ||
+        !cv_bvh_program(b->gpu, "bvh/hierarchy.comp", key_defs, hier, err) ||
         !cv_bvh_program(b->gpu, "bvh/refit.comp", refit_defs, refit, err) ||
         !cv_bvh_program(b->gpu, "bvh/treelet.comp", treelet_defs, treelet, err) ||
         !cv_bvh_program(b->gpu, "bvh/layout.comp", NULL, layout, err) ||
@@ -250,7 +254,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     uint64_t g0 = (n + 255) / 256, g1 = (g0 + 255) / 256;
     if (!(b->bounds_a = scratch(b, g0 * 32, "bvh bounds", err)) ||
         !(b->bounds_b = scratch(b, g1 * 32, "bvh bounds", err)) ||
-        !(b->keys = scratch(b, n * 4, "bvh keys", err)) ||
+        !(b->keys = scratch(b, n * (MORTON_BITS > 32 ? 8 : 4), "bvh keys", err)) ||
         !(b->vals = scratch(b, n * 4, "bvh ids", err)) ||
         !(b->nodes = scratch(b, (2 * n - 1) * sizeof(CvBvhBuildNode), "bvh build nodes", err)) ||
         !(b->counters = scratch(b, (n - 1) * 4, "bvh counters", err)) ||
@@ -261,7 +265,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(bvh->prims = cv_buffer_create(n * 4, NULL, "bvh prims", err)))
         return false;
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
-    if (!(b->sort = cv_radix_sort_create(b->gpu, b->n, err)) ||
+    if (!(b->sort = cv_radix_sort_create(b->gpu, b->n, MORTON_BITS, err)) ||
         !(b->scan = cv_scan_create(b->gpu, b->n, err)))
         return false;
     b->scratch += cv_radix_sort_bytes(b->sort) + cv_scan_bytes(b->scan);

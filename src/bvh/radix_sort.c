@@ -18,19 +18,26 @@
 struct cv_radix_sort {
     struct cv_gpu *gpu;
     uint32_t max_n;
+    int max_bits;
     GLuint keys, vals, hist;
     struct cv_scan *scan;
     uint64_t bytes;
 };
 
-struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n,
+struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, int max_bits,
                                            struct cv_error *err)
 {
+    if (max_bits < 1 || max_bits > 64) {
+        cv_fail(err, "radix sort keys of %d bits", max_bits);
+        return NULL;
+    }
+    size_t words = max_bits > 32 ? 2 : 1;
     struct cv_radix_sort *rs = cv_xcalloc(1, sizeof(*rs));
     rs->gpu = gpu;
     rs->max_n = max_n < 1 ? 1 : max_n;
+    rs->max_bits = max_bits;
     uint32_t tiles = (rs->max_n + RADIX_TILE - 1) / RADIX_TILE;
-    rs->keys = cv_buffer_create((size_t)rs->max_n * 4, NULL, "radix keys", err);
+    rs->keys = cv_buffer_create((size_t)rs->max_n * 4 * words, NULL, "radix keys", err);
     rs->vals = rs->keys ? cv_buffer_create((size_t)rs->max_n * 4, NULL, "radix vals", err) : 0;
     rs->hist = rs->vals ? cv_buffer_create((size_t)tiles * 16 * 4, NULL, "radix hist", err) : 0;
     rs->scan = rs->hist ? cv_scan_create(gpu, tiles * 16, err) : NULL;
@@ -38,7 +45,7 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n,
         cv_radix_sort_destroy(&rs);
         return NULL;
     }
-    rs->bytes = (uint64_t)rs->max_n * 8 + (uint64_t)tiles * 64 + cv_scan_bytes(rs->scan);
+    rs->bytes = (uint64_t)rs->max_n * 4 * (words + 1) + (uint64_t)tiles * 64 + cv_scan_bytes(rs->scan);
     return rs;
 }
 
@@ -47,15 +54,18 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
 {
     if (n > rs->max_n)
         return cv_fail(err, "radix sort of %u keys, scratch holds %u", n, rs->max_n);
+    if (bits < 1 || bits > rs->max_bits)
+        return cv_fail(err, "radix sort of %d-bit keys, scratch made for %d", bits, rs->max_bits);
+    const char *key64[] = {"KEY64", NULL};
+    const char *const *defs = bits > 32 ? key64 : NULL;
+    size_t words = bits > 32 ? 2 : 1;
     if (n < 2)
         return true;
     struct cv_program hist_prog, scatter_prog, *hist = &hist_prog, *scatter = &scatter_prog;
-    if (!cv_bvh_program(rs->gpu, "bvh/radix_hist.comp", NULL, hist, err) ||
-        !cv_bvh_program(rs->gpu, "bvh/radix_scatter.comp", NULL, scatter, err))
+    if (!cv_bvh_program(rs->gpu, "bvh/radix_hist.comp", defs, hist, err) ||
+        !cv_bvh_program(rs->gpu, "bvh/radix_scatter.comp", defs, scatter, err))
         return false;
     int passes = (bits + 3) / 4;
-    if (passes < 1)
-        passes = 1;
     uint32_t tiles = (n + RADIX_TILE - 1) / RADIX_TILE;
     GLuint src_k = keys, src_v = vals, dst_k = rs->keys, dst_v = rs->vals;
     for (int pass = 0; pass < passes; pass++) {
@@ -82,7 +92,7 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
         dst_v = tv;
     }
     if (src_k != keys) {
-        glCopyNamedBufferSubData(src_k, keys, 0, 0, (GLsizeiptr)n * 4);
+        glCopyNamedBufferSubData(src_k, keys, 0, 0, (GLsizeiptr)(n * 4 * words));
         glCopyNamedBufferSubData(src_v, vals, 0, 0, (GLsizeiptr)n * 4);
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
     }

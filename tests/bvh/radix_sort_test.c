@@ -1,6 +1,7 @@
 /* radix_sort_test.c: the GPU radix sort equals a stable CPU sort of the same
  * keys with their indices, for random and adversarial key sets (all equal,
- * sorted, reversed, few distinct, full 32-bit, an odd pass count), and the
+ * sorted, reversed, few distinct, full 32-bit, an odd pass count, 60- and
+ * 64-bit keys of two words), and the
  * GPU prefix sum equals a CPU one across several scan levels. */
 #include "config.h"
 
@@ -22,7 +23,7 @@ static uint32_t next_rand(void)
     return rng;
 }
 
-static uint32_t *g_keys;
+static uint64_t *g_keys;
 static int cmp_pair(const void *a, const void *b)
 {
     uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
@@ -31,26 +32,33 @@ static int cmp_pair(const void *a, const void *b)
     return x < y ? -1 : (x > y);
 }
 
-static void check_sort(struct cv_radix_sort *rs, const char *name, uint32_t *keys, uint32_t n,
+static void check_sort(struct cv_radix_sort *rs, const char *name, uint64_t *keys, uint32_t n,
                        int bits)
 {
     struct cv_error err = {{0}};
-    uint32_t *vals = malloc(n * 4), *order = malloc(n * 4);
-    uint32_t *got_k = malloc(n * 4), *got_v = malloc(n * 4);
-    uint32_t mask = bits >= 32 ? 0xffffffffu : (1u << bits) - 1u;
+    size_t words = bits > 32 ? 2 : 1;
+    uint32_t *vals = malloc(n * 4), *order = malloc(n * 4), *up = malloc(n * 4 * words);
+    uint32_t *got_k = malloc(n * 4 * words), *got_v = malloc(n * 4);
+    uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1u;
     for (uint32_t i = 0; i < n; i++) {
         keys[i] &= mask;
         vals[i] = order[i] = i;
+        up[words * i] = (uint32_t)keys[i];
+        if (words == 2)
+            up[2 * i + 1] = (uint32_t)(keys[i] >> 32);
     }
-    GLuint bk = cv_buffer_create(n * 4, keys, "keys", &err);
+    GLuint bk = cv_buffer_create(n * 4 * words, up, "keys", &err);
     GLuint bv = cv_buffer_create(n * 4, vals, "vals", &err);
     bool ok = bk && bv && cv_radix_sort_run(rs, bk, bv, n, bits, &err) &&
-              cv_buffer_read(bk, 0, n * 4, got_k, &err) && cv_buffer_read(bv, 0, n * 4, got_v, &err);
+              cv_buffer_read(bk, 0, n * 4 * words, got_k, &err) && cv_buffer_read(bv, 0, n * 4, got_v, &err);
     g_keys = keys;
     qsort(order, n, 4, cmp_pair);
     uint32_t bad = 0, first = 0;
     for (uint32_t i = 0; ok && i < n; i++) {
-        if ((got_v[i] != order[i] || got_k[i] != keys[order[i]]) && bad++ == 0)
+        uint64_t k = got_k[words * i];
+        if (words == 2)
+            k |= (uint64_t)got_k[2 * i + 1] << 32;
+        if ((got_v[i] != order[i] || k != keys[order[i]]) && bad++ == 0)
             first = i;
     }
     tap_ok(ok && bad == 0, "%s (n=%u, %d bits): %s, %u misplaced (first at %u)", name, n, bits,
@@ -58,6 +66,7 @@ static void check_sort(struct cv_radix_sort *rs, const char *name, uint32_t *key
     cv_buffer_destroy(&bk);
     cv_buffer_destroy(&bv);
     free(vals);
+    free(up);
     free(order);
     free(got_k);
     free(got_v);
@@ -91,10 +100,10 @@ int main(void)
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct cv_error err = {{0}};
     const uint32_t n = 60001;
-    struct cv_radix_sort *rs = cv_radix_sort_create(gpu, n, &err);
+    struct cv_radix_sort *rs = cv_radix_sort_create(gpu, n, 64, &err);
     if (!tap_ok(rs != NULL, "sort scratch created: %s", rs ? "yes" : err.msg))
         return tap_done();
-    uint32_t *keys = malloc(n * 4);
+    uint64_t *keys = malloc(n * 8);
 
     for (uint32_t i = 0; i < n; i++)
         keys[i] = next_rand();
@@ -123,6 +132,15 @@ int main(void)
     keys[0] = 5;
     keys[1] = 3;
     check_sort(rs, "two keys", keys, 2, 30);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = (uint64_t)next_rand() << 32 | next_rand();
+    check_sort(rs, "random 60-bit", keys, n, 60);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = (uint64_t)(next_rand() % 4u) << 40 | (next_rand() % 2u);
+    check_sort(rs, "64-bit, few distinct in both words", keys, n, 64);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = (uint64_t)(n - i) << 33;
+    check_sort(rs, "64-bit reversed (high word only)", keys, n, 64);
     cv_radix_sort_destroy(&rs);
     tap_ok(rs == NULL, "destroy clears the pointer");
 
