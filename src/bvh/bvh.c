@@ -312,6 +312,8 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
 {
     *out = NULL;
     struct cv_bvh_params p = params ? *params : cv_bvh_default_params();
+    if (p.treelet_size == 0)
+        p.treelet_size = 7;
     if (p.treelet_size < 3 || p.treelet_size > 8)
         return cv_fail(err, "BVH treelet size %d is outside 3..8", p.treelet_size);
     if (p.treelet_rounds < 0 || p.treelet_rounds > 32)

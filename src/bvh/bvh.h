@@ -19,7 +19,7 @@
 
 struct cv_bvh_params {
     int treelet_rounds;    /* default 3; 0 = plain LBVH */
-    int treelet_size;      /* leaves per treelet, 3..8; default 7 */
+    int treelet_size;      /* leaves per treelet, 3..8; default 7 (0 also means 7) */
     bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
 };
 

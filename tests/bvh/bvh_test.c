@@ -1,6 +1,7 @@
 /* bvh_test.c: builds GPU BVHs over generated meshes (a clustered soup, a
  * height field with shared edges, a degenerate planar mesh full of equal
- * centroids, and 1-3 triangle meshes), reads each tree back and checks its
+ * centroids, and 1-3 triangle meshes), with and without treelet
+ * restructuring and leaf collapsing, reads each tree back and checks its
  * invariants and SAH cost (restructured below plain LBVH, within 10 % of a
  * CPU binned-SAH build), then traces ~100 000 rays through it and requires
  * closest hit (primitive and t) and any-hit to equal a GLSL brute force over
@@ -229,6 +230,18 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
                  s->n_nodes);
         check_rays(gpu, name, m, bvh, vb, tb, n_rays);
     }
+    /* Without collapsing every leaf holds one triangle: n - 1 nodes. */
+    struct cv_bvh_params flat = cv_bvh_default_params();
+    flat.collapse_leaves = false;
+    struct cv_bvh *fb = NULL;
+    if (m->nt >= 2 && tap_ok(cv_bvh_build(gpu, vb, tb, m->nt, &flat, &fb, &err),
+                             "%s: built without leaf collapsing: %s", name, fb ? "yes" : err.msg)) {
+        struct tree_info tf = check_tree(m, fb);
+        tap_ok(tf.ok && cv_bvh_stats(fb)->n_nodes == m->nt - 1,
+               "%s: uncollapsed tree valid with %u nodes for %u triangles %s", name,
+               cv_bvh_stats(fb)->n_nodes, m->nt, tf.why);
+    }
+    cv_bvh_destroy(&fb);
     cv_bvh_destroy(&bvh);
     cv_bvh_destroy(&lbvh);
     tap_ok(bvh == NULL, "%s: destroy clears the pointer", name);
