@@ -22,7 +22,9 @@ void main()
     if (valid) {
         CvRayItem r = rays_in[i];
         float tmin = 0.0;
+#ifndef CV_EMPTY_SCENE
         hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
+#endif
 #ifdef CV_HAS_ALPHA
         for (uint k = 0u; hit && k < 64u; k++) {
             uint word = cv_triangles[h.prim].idx.w;

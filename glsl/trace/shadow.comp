@@ -30,6 +30,8 @@ void main()
             return;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;
     }
+#elif defined(CV_EMPTY_SCENE)
+    cv_film_add(pixel, s.L.rgb);
 #else
     if (!cv_trace_any(s.o.xyz, s.d.xyz, 0.0, s.o.w))
         cv_film_add(pixel, s.L.rgb);

@@ -8,7 +8,7 @@ GLSL_FILES += \
 	glsl/shared/trace.h \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
 	glsl/trace/geometry.glsl glsl/trace/shading.glsl \
-	glsl/trace/fallback/scene_buffers.glsl glsl/trace/fallback/traverse_brute.glsl \
+	glsl/trace/scene_buffers.glsl \
 	glsl/trace/fallback/bsdf_basic.glsl glsl/trace/fallback/light_basic.glsl \
 	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \

@@ -171,6 +171,8 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
 
     const char *defines[4];
     int nd = 0;
+    if (r->scene.empty)
+        defines[nd++] = "CV_EMPTY_SCENE";
     if (r->aovs)
         defines[nd++] = "CV_AOVS";
     if (r->scene.has_alpha)
