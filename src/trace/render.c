@@ -42,7 +42,7 @@ struct cv_renderer {
     uint32_t spp_done;
     CvPassParams pass;
     GLuint ubo, queues, rays[2], hits, escaped, shadow, film, aov, resolved;
-    GLuint *queries;               /* GL_TIME_ELAPSED per pass, not yet read */
+    GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
 };
@@ -248,9 +248,11 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return true;
     if ((uint64_t)r->spp_done + spp > UINT32_MAX)
         return cv_fail(err, "more than 2^32 samples per pixel");
-    GLuint query = 0;
-    glGenQueries(1, &query);
-    glBeginQuery(GL_TIME_ELAPSED, query);
+    /* timestamps rather than GL_TIME_ELAPSED: llvmpipe reports 0 elapsed
+     * time for compute work */
+    GLuint query[2] = {0, 0};
+    glGenQueries(2, query);
+    glQueryCounter(query[0], GL_TIMESTAMP);
     bind_all(r);
     const size_t depth_at = offsetof(CvPassParams, misc);
     for (uint32_t s = 0; s < spp; s++) {
@@ -277,8 +279,9 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
             dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
         }
     }
-    glEndQuery(GL_TIME_ELAPSED);
-    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query);
+    glQueryCounter(query[1], GL_TIMESTAMP);
+    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[0]);
+    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[1]);
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
         return false;
     r->spp_done += spp;
@@ -299,12 +302,13 @@ void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *he
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err)
 {
-    for (size_t i = 0; i < r->n_queries; i++) {
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(r->queries[i], GL_QUERY_RESULT, &ns);
-        r->gpu_ms += (double)ns * 1e-6;
-        glDeleteQueries(1, &r->queries[i]);
+    for (size_t i = 0; i + 1 < r->n_queries; i += 2) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(r->queries[i], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(r->queries[i + 1], GL_QUERY_RESULT, &t1);
+        r->gpu_ms += t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
     }
+    glDeleteQueries((GLsizei)r->n_queries, r->queries);
     r->n_queries = 0;
     CvTraceQueues q;
     if (!cv_buffer_read(r->queues, 0, sizeof(q), &q, err))
@@ -371,8 +375,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (!rp || !*rp)
         return;
     struct cv_renderer *r = *rp;
-    for (size_t i = 0; i < r->n_queries; i++)
-        glDeleteQueries(1, &r->queries[i]);
+    if (r->n_queries)
+        glDeleteQueries((GLsizei)r->n_queries, r->queries);
     free(r->queries);
     GLuint *bufs[] = {&r->ubo, &r->queues, &r->rays[0], &r->rays[1], &r->hits, &r->escaped,
                       &r->shadow, &r->film, &r->aov, &r->resolved};
