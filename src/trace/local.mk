@@ -12,4 +12,4 @@ GLSL_FILES += \
 	glsl/trace/fallback/bsdf_basic.glsl glsl/trace/fallback/light_basic.glsl \
 	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
-	glsl/trace/resolve.comp
+	glsl/trace/resolve.comp glsl/trace/test/sampler_probe.comp
