@@ -14,3 +14,10 @@ EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h \
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
 # --- end of pipeline tests ---
+# ---- bsdf / light sampling tests (branch bsdf) ----
+check_PROGRAMS += tests/trace/bsdf_chi2_test
+TESTS += tests/trace/bsdf_chi2_test
+tests_trace_bsdf_chi2_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h \
+	glsl/trace/test/bsdf_probe.comp
+# ---- end bsdf / light block ----
