@@ -111,12 +111,12 @@ static bool apply_overrides(const struct cv_job *job, struct cv_scene *s, struct
 static int integrator_of(const struct cv_job *job, const struct cv_scene *s)
 {
     if (job->integrator == CV_INTEGRATOR_RLPATH)
-        return CV_INTEGRATOR_RLPATH_ID;
+        return CV_RENDER_RLPATH;
     if (job->integrator == CV_INTEGRATOR_UNSET && s->settings.integrator &&
         strcmp(s->settings.integrator, "path") != 0)
         cv_warn("job \"%s\": scene asks for integrator \"%s\"; rendering with \"path\"", job->name,
                 s->settings.integrator);
-    return CV_INTEGRATOR_PATH_ID;
+    return CV_RENDER_PATH;
 }
 
 static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_job *job,
@@ -127,7 +127,7 @@ static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_job 
     cv_metadata_set_string(m, "cavalry.job", job->name);
     cv_metadata_set_string(m, "cavalry.scene", job->scene_as_written);
     cv_metadata_set_string(m, "cavalry.integrator",
-                           integrator == CV_INTEGRATOR_RLPATH_ID ? "rlpath" : "path");
+                           integrator == CV_RENDER_RLPATH ? "rlpath" : "path");
     cv_metadata_set_int(m, "cavalry.spp", res->spp);
     cv_metadata_set_int(m, "cavalry.seed", job->has_seed ? job->seed : 0);
     cv_metadata_set_float(m, "cavalry.renderTime", res->seconds);
@@ -270,7 +270,6 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
     double limit = job->has_time_limit ? job->time_limit : 0;
     if (opt->time_limit > 0 && (limit == 0 || opt->time_limit < limit))
         limit = opt->time_limit;
-    uint32_t w = s.camera.crop.x, h = s.camera.crop.y;
 
     bool ok = true;
     uint32_t pass_spp = 1;
@@ -308,8 +307,15 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
         pass_spp = (uint32_t)fmax(1.0, fmin(want, 4.0 * n));
     }
     res->spp = cv_renderer_spp_done(r);
+    uint32_t w, h;
+    cv_renderer_size(r, &w, &h);
     if (ok && res->spp == 0)
         ok = cv_fail(err, "job \"%s\": stopped before the first pass finished", job->name);
+    if (ok) {
+        char *first = cv_job_output_path(job, NULL);
+        ok = cv_mkdir_parents(first, err);
+        free(first);
+    }
     if (ok) {
         res->seconds = now_seconds() - t0;
         struct cv_metadata *meta = job_metadata(gpu, job, res, integrator);

@@ -137,9 +137,9 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                         const struct cv_render_params *p, struct cv_renderer **out,
                         struct cv_error *err)
 {
-    if (p->integrator == CV_INTEGRATOR_RLPATH)
+    if (p->integrator == CV_RENDER_RLPATH)
         return cv_fail(err, "integrator \"rlpath\" is not implemented yet; use \"path\"");
-    if (p->integrator != CV_INTEGRATOR_PATH)
+    if (p->integrator != CV_RENDER_PATH)
         return cv_fail(err, "unknown integrator %d", p->integrator);
     if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);

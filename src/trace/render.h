@@ -15,8 +15,8 @@
 #include "gpu/context.h"
 #include "scene/scene.h"
 
-#define CV_INTEGRATOR_PATH 0
-#define CV_INTEGRATOR_RLPATH 1   /* not implemented yet: rejected */
+#define CV_RENDER_PATH 0
+#define CV_RENDER_RLPATH 1   /* not implemented yet: rejected */
 
 struct cv_render_params {
     uint32_t width, height;      /* film resolution [pixels]; 0: the scene's */

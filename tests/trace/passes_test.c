@@ -112,7 +112,7 @@ int main(void)
         cv_scene_destroy(&sc);
     }
 
-    struct cv_render_params bad = {.integrator = CV_INTEGRATOR_RLPATH};
+    struct cv_render_params bad = {.integrator = CV_RENDER_RLPATH};
     tap_ok(!cv_renderer_create(gpu, s, &bad, &r, &err) && strstr(err.msg, "rlpath"),
            "rlpath is rejected: %s", err.msg);
     cv_scene_destroy(&s);
