@@ -13,7 +13,9 @@ layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Nodes { CvBvhBuildN
 layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Offsets { uint offsets[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Index { uint index[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer Info { uint info[]; };
-layout(std430, binding = CV_BIND_BVH_NODES) writeonly buffer Out { CvBvhNode out_nodes[]; };
+// Written as raw words: the .w fields are integers, and small ones are
+// float denormals that no float path should get a chance to flush.
+layout(std430, binding = CV_BIND_BVH_NODES) writeonly buffer Out { uvec4 out_words[]; };
 
 uniform uint u_n;
 
@@ -49,10 +51,9 @@ void main()
     int lw, lc, rw, rc;
     child_words(link.x, lw, lc);
     child_words(link.y, rw, rc);
-    CvBvhNode o;
-    o.lmin = vec4(nodes[link.x].bmin.xyz, intBitsToFloat(lw));
-    o.lmax = vec4(nodes[link.x].bmax.xyz, intBitsToFloat(lc));
-    o.rmin = vec4(nodes[link.y].bmin.xyz, intBitsToFloat(rw));
-    o.rmax = vec4(nodes[link.y].bmax.xyz, intBitsToFloat(rc));
-    out_nodes[index[node]] = o;
+    uint o = 4u * index[node];
+    out_words[o] = uvec4(floatBitsToUint(nodes[link.x].bmin.xyz), uint(lw));
+    out_words[o + 1u] = uvec4(floatBitsToUint(nodes[link.x].bmax.xyz), uint(lc));
+    out_words[o + 2u] = uvec4(floatBitsToUint(nodes[link.y].bmin.xyz), uint(rw));
+    out_words[o + 3u] = uvec4(floatBitsToUint(nodes[link.y].bmax.xyz), uint(rc));
 }

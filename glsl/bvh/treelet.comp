@@ -32,43 +32,53 @@ void restructure(int root)
     // The subtree below was refreshed this round; compare against that.
     cv_bvh_update_node(root);
     int n_inner = int(u_n) - 1;
+    // Each treelet leaf is loaded once (the buffer is coherent, so every
+    // load goes to L2: this is the latency that the climb serialises).
     int leaves[TREELET_SIZE];
     int inner[TREELET_SIZE - 1];
-    int nl = 2, ni = 1;
+    vec3 llo[TREELET_SIZE], lhi[TREELET_SIZE];
+    float lcost[TREELET_SIZE], larea[TREELET_SIZE];
+    int lcount[TREELET_SIZE];
+    int nl = 0, ni = 1;
     inner[0] = root;
-    leaves[0] = nodes[root].link.x;
-    leaves[1] = nodes[root].link.y;
+    ivec4 rlink = nodes[root].link;
+    for (int side = 0; side < 2; side++) {
+        int c = side == 0 ? rlink.x : rlink.y;
+        vec4 a = nodes[c].bmin, b = nodes[c].bmax;
+        leaves[nl] = c;
+        llo[nl] = a.xyz;
+        lcost[nl] = a.w;
+        lhi[nl] = b.xyz;
+        larea[nl] = cv_half_area(a.xyz, b.xyz);
+        lcount[nl++] = nodes[c].link.w & CV_BVH_COUNT_MASK;
+    }
     while (nl < TREELET_SIZE) {
         int best = -1;
         float best_area = -1.0;
         for (int k = 0; k < nl; k++) {
-            int c = leaves[k];
-            if (c < n_inner) {
-                float a = cv_half_area(nodes[c].bmin.xyz, nodes[c].bmax.xyz);
-                if (a > best_area) {
-                    best_area = a;
-                    best = k;
-                }
+            if (leaves[k] < n_inner && larea[k] > best_area) {
+                best_area = larea[k];
+                best = k;
             }
         }
         if (best < 0)
             break;
         int c = leaves[best];
         inner[ni++] = c;
-        leaves[best] = nodes[c].link.x;
-        leaves[nl++] = nodes[c].link.y;
+        ivec4 clink = nodes[c].link;
+        for (int side = 0; side < 2; side++) {
+            int g = side == 0 ? clink.x : clink.y;
+            int k = side == 0 ? best : nl++;
+            vec4 a = nodes[g].bmin, b = nodes[g].bmax;
+            leaves[k] = g;
+            llo[k] = a.xyz;
+            lcost[k] = a.w;
+            lhi[k] = b.xyz;
+            larea[k] = cv_half_area(a.xyz, b.xyz);
+            lcount[k] = nodes[g].link.w & CV_BVH_COUNT_MASK;
+        }
     }
 
-    vec3 llo[TREELET_SIZE], lhi[TREELET_SIZE];
-    float lcost[TREELET_SIZE];
-    int lcount[TREELET_SIZE];
-    for (int k = 0; k < nl; k++) {
-        vec4 a = nodes[leaves[k]].bmin;
-        llo[k] = a.xyz;
-        lcost[k] = a.w;
-        lhi[k] = nodes[leaves[k]].bmax.xyz;
-        lcount[k] = nodes[leaves[k]].link.w & CV_BVH_COUNT_MASK;
-    }
     float copt[N_SUBSETS];
     uint popt[N_SUBSETS];
     uint full = (1u << nl) - 1u;
@@ -79,7 +89,8 @@ void restructure(int root)
         }
         vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
         int count = 0;
-        for (int k = 0; k < nl; k++) {
+        // A constant bound lets the compiler unroll (bits >= nl are 0 in s).
+        for (int k = 0; k < TREELET_SIZE; k++) {
             if ((s & (1u << k)) != 0u) {
                 lo = min(lo, llo[k]);
                 hi = max(hi, lhi[k]);

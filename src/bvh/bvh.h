@@ -27,7 +27,9 @@ struct cv_bvh_params {
 struct cv_bvh_params cv_bvh_default_params(void);
 
 struct cv_bvh_stats {
-    /* GPU times from GL_TIME_ELAPSED queries, milliseconds. */
+    /* Milliseconds per phase from GL_TIME_ELAPSED queries; on software
+     * renderers (llvmpipe, whose queries read 0) CPU time between glFinish
+     * calls. ms_total is their sum. ms_collapse covers collapse + layout. */
     double ms_bounds, ms_morton, ms_sort, ms_hierarchy, ms_refit, ms_treelet, ms_collapse,
         ms_total;
     /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
@@ -42,8 +44,13 @@ struct cv_bvh;
 
 /* Builds over n_triangles CvTriangle of `triangles` indexing CvVertex of
  * `vertices` (glsl/shared/scene.h); the caller keeps both buffers alive and
- * unchanged while the BVH is used. params NULL: defaults. Leaves GL state
- * with stage-private bindings changed. */
+ * unchanged while the BVH is used. params NULL: defaults. Changes buffer
+ * bindings: the two scene buffers end bound at CV_BIND_VERTICES/TRIANGLES,
+ * stage-private slots (CV_BIND_STAGE0..+4) and the BVH slots hold scratch,
+ * so call cv_bvh_bind() before tracing. Waits for the GPU at the end (it
+ * reads the node count and the root's cost). A single SSBO must hold 48
+ * bytes per node of the build tree (2n - 1 nodes): on llvmpipe (128 MiB
+ * blocks) that caps n near 1.39 M; NVIDIA allows 2 GiB, about 22 M. */
 bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
                   const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err);
 /* Binds the nodes at CV_BIND_BVH_NODES and the primitive order at

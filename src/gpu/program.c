@@ -15,9 +15,11 @@
  * as line f * CV_GLSL_LINE_STRIDE + l. */
 #define CV_GLSL_LINE_STRIDE 100000
 
+/* Programs are allocated one by one: callers keep the pointers while the
+ * cache grows. */
 struct cache_entry {
     char *key;
-    struct cv_program prog;
+    struct cv_program *prog;
 };
 
 struct cv_program_cache {
@@ -36,10 +38,11 @@ void cv_program_cache_destroy(struct cv_program_cache **cache)
         return;
     for (size_t i = 0; i < (*cache)->n; i++) {
         struct cache_entry *e = &(*cache)->entries[i];
-        if (e->prog.id)
-            glDeleteProgram(e->prog.id);
+        if (e->prog->id)
+            glDeleteProgram(e->prog->id);
         free(e->key);
-        free(e->prog.path);
+        free(e->prog->path);
+        free(e->prog);
     }
     free((*cache)->entries);
     free(*cache);
@@ -397,7 +400,7 @@ struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
     for (size_t i = 0; i < c->n; i++) {
         if (strcmp(c->entries[i].key, key.s) == 0) {
             free(key.s);
-            return &c->entries[i].prog;
+            return c->entries[i].prog;
         }
     }
     struct cv_program prog = {0};
@@ -405,9 +408,10 @@ struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
         free(key.s);
         return NULL;
     }
-    struct cache_entry e = {.key = key.s, .prog = prog};
+    struct cache_entry e = {.key = key.s, .prog = cv_xmalloc(sizeof(prog))};
+    *e.prog = prog;
     CV_PUSH(c->entries, c->n, c->cap, e);
-    return &c->entries[c->n - 1].prog;
+    return e.prog;
 }
 
 void cv_program_dispatch(const struct cv_program *prog, uint32_t n_x, uint32_t n_y, uint32_t n_z)

@@ -433,4 +433,62 @@ out:
     return ti;
 }
 
+/* ---- rays ---- */
+
+/* Rays (origin, tmin), (direction, tmax) for rays_test.comp: random
+ * directions from around the mesh, rays aimed into random triangles or at
+ * their vertices, axis-aligned rays, and short finite segments. */
+static inline void make_rays(const struct mesh *m, float *rays, uint32_t n)
+{
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < m->nv; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], (&m->v[i].pos_u.x)[k]);
+            hi[k] = fmaxf(hi[k], (&m->v[i].pos_u.x)[k]);
+        }
+    float ext = 0;
+    for (int k = 0; k < 3; k++)
+        ext = fmaxf(ext, hi[k] - lo[k]);
+    ext = fmaxf(ext, 1.0f);
+    for (uint32_t i = 0; i < n; i++) {
+        float *o = &rays[8 * i], *d = &rays[8 * i + 4];
+        for (int k = 0; k < 3; k++)
+            o[k] = lo[k] - 0.2f * ext + (float)mesh_rand() * ((hi[k] - lo[k]) + 0.4f * ext);
+        o[3] = 0.0f;
+        d[3] = 1.0e30f;
+        int kind = (int)(mesh_rand() * 5);
+        if ((kind == 1 || kind == 2) && m->nt > 0) {
+            const uint32_t *ix = &m->t[(uint32_t)(mesh_rand() * m->nt) % m->nt].idx.x;
+            float target[3];
+            double b1 = mesh_rand(), b2 = mesh_rand();
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
+            if (kind == 2) {
+                b1 = mesh_rand() < 0.5 ? 1 : 0;
+                b2 = b1 > 0 ? 0 : (mesh_rand() < 0.5 ? 1 : 0);
+            }
+            for (int k = 0; k < 3; k++)
+                target[k] = (float)((1 - b1 - b2) * (&m->v[ix[0]].pos_u.x)[k] +
+                                    b1 * (&m->v[ix[1]].pos_u.x)[k] + b2 * (&m->v[ix[2]].pos_u.x)[k]);
+            for (int k = 0; k < 3; k++)
+                d[k] = target[k] - o[k];
+        } else if (kind == 3) {
+            d[0] = d[1] = d[2] = 0.0f;
+            d[(int)(mesh_rand() * 3) % 3] = mesh_rand() < 0.5 ? -1.0f : 1.0f;
+        } else {
+            do {
+                for (int k = 0; k < 3; k++)
+                    d[k] = (float)(mesh_rand() * 2 - 1);
+            } while (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 1 ||
+                     d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-4);
+            if (kind == 4) {
+                o[3] = (float)mesh_rand() * 0.1f * ext;
+                d[3] = (float)mesh_rand() * 2.0f * ext;
+            }
+        }
+    }
+}
+
 #endif
