@@ -2,17 +2,11 @@
  * triangles (half uniform with varied sizes, half in dense clusters; fixed
  * seed), builds the BVH several times and prints the median time of each
  * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
-<<<<<<< HEAD
- *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--check] [--ref]
- * --ref also builds a CPU binned-SAH tree over the same triangles and prints
- * its SAH cost for comparison.
-=======
  *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--check] [--ref] [--rays R]
  * --ref also builds a CPU binned-SAH tree over the same triangles and prints
  * its SAH cost for comparison.
  * --rays R traces R rays (closest hit + any hit, glsl/bvh/rays_test.comp)
  * through the default tree and a plain LBVH and prints rays per second.
->>>>>>> main
  * --check reads the last tree back and verifies its invariants (as the
  * tests do) and prints its depth; the exit status is 1 when they fail.
  * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
@@ -21,22 +15,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-<<<<<<< HEAD
-
-#include "bvh/bvh.h"
-=======
 #include <time.h>
 
 #include "bvh/bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/program.h"
->>>>>>> main
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "tests/bvh/bvh_test_util.h"
 
-<<<<<<< HEAD
-=======
 static double bench_ms(void)
 {
     struct timespec ts;
@@ -44,7 +31,6 @@ static double bench_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
->>>>>>> main
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -64,10 +50,7 @@ int main(int argc, char **argv)
     int reps = 3;
     struct cv_bvh_params params = cv_bvh_default_params();
     bool check = false, ref = false;
-<<<<<<< HEAD
-=======
     uint32_t n_rays = 0;
->>>>>>> main
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
             reps = atoi(argv[++i]);
@@ -75,11 +58,8 @@ int main(int argc, char **argv)
             params.treelet_rounds = atoi(argv[++i]);
         else if (strcmp(argv[i], "--treelet") == 0 && i + 1 < argc)
             params.treelet_size = atoi(argv[++i]);
-<<<<<<< HEAD
-=======
         else if (strcmp(argv[i], "--rays") == 0 && i + 1 < argc)
             n_rays = (uint32_t)strtoul(argv[++i], NULL, 10);
->>>>>>> main
         else if (strcmp(argv[i], "--ref") == 0)
             ref = true;
         else if (strcmp(argv[i], "--check") == 0)
@@ -109,14 +89,11 @@ int main(int argc, char **argv)
         return 1;
     }
     double ref_cost = ref ? ref_sah(&m) : 0.0;
-<<<<<<< HEAD
-=======
     float *rays = NULL;
     if (n_rays) {
         rays = malloc((size_t)n_rays * 32);
         make_rays(&m, rays, n_rays);
     }
->>>>>>> main
     if (!check)
         mesh_free(&m);
 
@@ -181,8 +158,6 @@ int main(int argc, char **argv)
            "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f}\n",
            lbvh, last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
            (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost);
-<<<<<<< HEAD
-=======
     double mrays[2] = {0, 0};
     if (n_rays) {
         GLuint rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err);
@@ -219,7 +194,6 @@ int main(int argc, char **argv)
         cv_buffer_destroy(&res);
     }
     free(rays);
->>>>>>> main
     for (int p = 0; p < N_PHASES; p++)
         free(t[p]);
     cv_buffer_destroy(&vb);
