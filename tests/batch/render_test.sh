@@ -5,11 +5,11 @@
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
-exr_attr="$(dirname "$0")/exr_attr"
+exr_attr="$CV_TEST_BUILDDIR/batch/exr_attr"
 cp "$data/tiny.pbrt" "$data/jobs.yaml" "$tmp/"
 cd "$tmp"
 
-check "renders" "$CAVALRY_BATCH" --progress=json jobs.yaml >run1.jsonl 2>run1.err
+check_out "renders" run1.jsonl "$CAVALRY_BATCH" --progress=json jobs.yaml 2>run1.err
 for f in out/a.exr out/a.png out/b.exr out/b.png out/c.png; do
     check "$f written" test -s "$f"
 done
@@ -18,20 +18,20 @@ check "no temporary files left" test -z "$(find out -name '.*.tmp')"
 check "three jobs finished" test "$(grep -c '"event":"job_finished"' run1.jsonl)" -eq 3
 check "json ends with batch_finished" sh -c 'tail -n 1 run1.jsonl | grep -q "\"event\":\"batch_finished\",\"done\":3"'
 check "status complete" test "$("$exr_attr" out/a.exr cavalry.status)" = complete
-check "spp recorded" test "$("$exr_attr" out/a.exr cavalry.job)" = a
+check "job name recorded" test "$("$exr_attr" out/a.exr cavalry.job)" = a
 check "settings hash recorded" sh -c "\"$exr_attr\" out/a.exr cavalry.settingsHash | grep -Eq '^[0-9a-f]{16}\$'"
 
-check "resume skips all" "$CAVALRY_BATCH" --progress=json --resume jobs.yaml >run2.jsonl 2>run2.err
+check_out "resume skips all" run2.jsonl "$CAVALRY_BATCH" --progress=json --resume jobs.yaml 2>run2.err
 check "three skipped" test "$(grep -c '"event":"job_skipped"' run2.jsonl)" -eq 3
 
 sed 's/    spp: 2/    spp: 3/' jobs.yaml >jobs2.yaml && mv jobs2.yaml jobs.yaml
-check "resume after a change" "$CAVALRY_BATCH" --progress=json --resume jobs.yaml >run3.jsonl 2>run3.err
+check_out "resume after a change" run3.jsonl "$CAVALRY_BATCH" --progress=json --resume jobs.yaml 2>run3.err
 check "only the changed job renders" sh -c 'grep "\"event\":\"job_finished\"" run3.jsonl | grep -q "\"job\":\"b\"" && test "$(grep -c "\"event\":\"job_finished\"" run3.jsonl)" -eq 1'
 
-check "--force renders again" "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml >run4.jsonl 2>run4.err
+check_out "--force renders again" run4.jsonl "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run4.err
 check "--only renders one job" test "$(grep -c '"event":"job_finished"' run4.jsonl)" -eq 1
 
-check "--dry-run" "$CAVALRY_BATCH" --dry-run --resume jobs.yaml >plan.txt 2>plan.err
+check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
 check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3
 check "plan knows what is up to date" test "$(grep -c 'up to date' plan.txt)" -eq 3
 done_testing

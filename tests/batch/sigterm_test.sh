@@ -4,7 +4,7 @@
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
-exr_attr="$(dirname "$0")/exr_attr"
+exr_attr="$CV_TEST_BUILDDIR/batch/exr_attr"
 cp "$data/tiny.pbrt" "$data/long.yaml" "$tmp/"
 cd "$tmp"
 "$CAVALRY_BATCH" --progress=json long.yaml >run.jsonl 2>run.err &
