@@ -15,5 +15,7 @@ ok() { tap_n=$((tap_n + 1)); echo "ok $tap_n - $*"; }
 not_ok() { tap_n=$((tap_n + 1)); tap_failed=$((tap_failed + 1)); echo "not ok $tap_n - $*"; }
 # check DESCRIPTION COMMAND...: ok when the command succeeds.
 check() { d=$1; shift; if "$@"; then ok "$d"; else not_ok "$d"; fi; }
+# check_out DESCRIPTION FILE COMMAND...: the same, the command's output in FILE.
+check_out() { d=$1; f=$2; shift 2; if "$@" >"$f"; then ok "$d"; else not_ok "$d"; fi; }
 done_testing() { echo "1..$tap_n"; [ "$tap_failed" -eq 0 ]; }
 skip_all() { echo "1..0 # SKIP $*"; trap - EXIT; rm -rf "$tmp"; exit 0; }

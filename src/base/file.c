@@ -59,6 +59,30 @@ char *cv_path_join(const char *dir, const char *rel)
     return cv_xasprintf("%s%s%s", dir, dir[n - 1] == '/' ? "" : "/", rel);
 }
 
+bool cv_mkdir_parents(const char *path, struct cv_error *err)
+{
+    char *dir = cv_path_dirname(path);
+    bool ok = true;
+    for (char *p = dir + 1; ok; p++) {
+        bool end = *p == '\0';
+        if (*p != '/' && !end)
+            continue;
+        *p = '\0';
+        struct stat st;
+        if (stat(dir, &st) != 0) {
+            if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+                ok = cv_fail(err, "%s: cannot create folder: %s", dir, strerror(errno));
+        } else if (!S_ISDIR(st.st_mode)) {
+            ok = cv_fail(err, "%s: not a folder", dir);
+        }
+        if (end)
+            break;
+        *p = '/';
+    }
+    free(dir);
+    return ok;
+}
+
 bool cv_path_exists(const char *path)
 {
     struct stat st;

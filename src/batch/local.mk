@@ -1,1 +1,6 @@
-# src/batch: see Makefile.am
+# src/batch: runs a manifest's jobs.
+libcavalry_a_SOURCES += \
+	src/batch/batch.c src/batch/batch.h \
+	src/batch/progress.c src/batch/progress.h \
+	src/batch/run_job.c src/batch/run_job.h \
+	src/batch/signals.c src/batch/signals.h

@@ -1,4 +1,6 @@
-/* cli.c: the command line of cavalry-batch (see cavalry-batch(1)). */
+/* cli.c: the command line of cavalry-batch (see cavalry-batch(1)). Parses
+ * options, fills the batch options and maps the batch's outcome to the
+ * documented exit status. */
 #include "config.h"
 
 #include <getopt.h>
@@ -7,22 +9,42 @@
 #include <string.h>
 
 #include "base/log.h"
+#include "batch/batch.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "gpu/context.h"
+#include "scene/dump.h"
+#include "scene/scene.h"
 
 static void usage(FILE *out)
 {
     fputs("usage: cavalry-batch [OPTION]... MANIFEST.yaml\n"
+          "       cavalry-batch --list-gpus\n"
+          "       cavalry-batch --dump-scene SCENE.pbrt\n"
           "Render the jobs of a batch manifest on a headless GPU.\n"
           "\n"
-          "  -h, --help            show this help and exit\n"
-          "  -V, --version         show the version and exit\n"
-          "      --list-gpus       list the GPUs and which one would be used\n"
-          "      --gpu=N           use EGL device N (see --list-gpus)\n"
-          "      --backend=NAME    auto, egl or osmesa\n"
-          "  -q, --quiet           only errors\n"
-          "  -v, --verbose         more detail (twice: debug)\n",
+          "  -h, --help              show this help and exit\n"
+          "  -V, --version           show the version and exit\n"
+          "      --check             validate the manifest and its scenes, render nothing\n"
+          "      --dry-run           print what would be rendered\n"
+          "      --only=NAME         render only the job NAME\n"
+          "      --resume            skip jobs whose outputs exist and match their settings\n"
+          "      --force             render every selected job, even when up to date\n"
+          "      --fail-fast         stop at the first failed job\n"
+          "      --shard-index=I     render shard I (0-based) of --shard-count\n"
+          "      --shard-count=N     split the jobs into N shards (see ENVIRONMENT)\n"
+          "      --time-limit=SEC    stop each job after SEC seconds\n"
+          "      --progress=MODE     auto, bar, json or none\n"
+          "      --strict            treat scene warnings as errors\n"
+          "      --dump-scene=FILE   print a summary of a pbrt scene and exit\n"
+          "      --list-gpus         list the GPUs and which one would be used\n"
+          "      --gpu=N             use EGL device N (see --list-gpus)\n"
+          "      --backend=NAME      auto, egl or osmesa\n"
+          "  -q, --quiet             only errors\n"
+          "  -v, --verbose           more detail (twice: debug)\n"
+          "\n"
+          "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
+          "or scene, 4 no usable GPU, 130 interrupted (partial images written).\n",
           out);
 }
 
@@ -39,12 +61,82 @@ static bool parse_backend(const char *s, enum cv_gpu_backend *b)
     return true;
 }
 
+static bool parse_uint(const char *s, unsigned max, unsigned *out)
+{
+    char *end;
+    if (!s || !*s || *s == '-')
+        return false;
+    unsigned long v = strtoul(s, &end, 10);
+    if (*end || v > max)
+        return false;
+    *out = (unsigned)v;
+    return true;
+}
+
+/* Farm schedulers say which task this is: Slurm job arrays, and Kubernetes
+ * indexed Jobs (which give no count: --shard-count must be set). */
+static bool shard_from_environment(struct cv_batch_options *o, bool *have_index, bool have_count)
+{
+    const char *id = getenv("SLURM_ARRAY_TASK_ID");
+    const char *count = getenv("SLURM_ARRAY_TASK_COUNT");
+    const char *min = getenv("SLURM_ARRAY_TASK_MIN");
+    unsigned v, c, m = 0;
+    if (!*have_index && id && count && parse_uint(id, 1u << 30, &v) &&
+        parse_uint(count, 1u << 30, &c)) {
+        if ((min && !parse_uint(min, 1u << 30, &m)) || m > v)
+            return false;
+        o->shard_index = v - m;
+        *have_index = true;
+        if (!have_count)
+            o->shard_count = c;
+        return true;
+    }
+    const char *k8s = getenv("JOB_COMPLETION_INDEX");
+    if (!*have_index && k8s) {
+        if (!parse_uint(k8s, 1u << 30, &v))
+            return false;
+        o->shard_index = v;
+        *have_index = true;
+    }
+    return true;
+}
+
+static int dump_scene(const char *path, bool strict)
+{
+    struct cv_scene *scene = NULL;
+    struct cv_error err = {{0}};
+    struct cv_scene_load_params lp = {.strict = strict};
+    if (!cv_scene_load(path, &lp, &scene, &err)) {
+        cv_error_log("%s", err.msg);
+        return CV_EXIT_INVALID;
+    }
+    cv_scene_dump(scene, stdout);
+    cv_scene_destroy(&scene);
+    return CV_EXIT_OK;
+}
+
 int cv_cli_main(int argc, char **argv)
 {
-    enum { OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND };
+    enum {
+        OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
+        OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
+        OPT_STRICT, OPT_DUMP_SCENE,
+    };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
+        {"check", no_argument, NULL, OPT_CHECK},
+        {"dry-run", no_argument, NULL, OPT_DRY_RUN},
+        {"only", required_argument, NULL, OPT_ONLY},
+        {"resume", no_argument, NULL, OPT_RESUME},
+        {"force", no_argument, NULL, OPT_FORCE},
+        {"fail-fast", no_argument, NULL, OPT_FAIL_FAST},
+        {"shard-index", required_argument, NULL, OPT_SHARD_INDEX},
+        {"shard-count", required_argument, NULL, OPT_SHARD_COUNT},
+        {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
+        {"progress", required_argument, NULL, OPT_PROGRESS},
+        {"strict", no_argument, NULL, OPT_STRICT},
+        {"dump-scene", required_argument, NULL, OPT_DUMP_SCENE},
         {"list-gpus", no_argument, NULL, OPT_LIST_GPUS},
         {"gpu", required_argument, NULL, OPT_GPU},
         {"backend", required_argument, NULL, OPT_BACKEND},
@@ -52,9 +144,11 @@ int cv_cli_main(int argc, char **argv)
         {"verbose", no_argument, NULL, 'v'},
         {NULL, 0, NULL, 0},
     };
-    struct cv_gpu_params gpu_params = {.gpu_index = -1, .backend = CV_BACKEND_AUTO};
-    bool list_gpus = false;
+    struct cv_batch_options o = {.gpu = {.gpu_index = -1, .backend = CV_BACKEND_AUTO}};
+    bool list_gpus = false, have_index = false, have_count = false;
+    const char *dump = NULL;
     int verbosity = 0, c;
+    unsigned u;
     while ((c = getopt_long(argc, argv, "hVqv", longopts, NULL)) != -1) {
         switch (c) {
         case 'h':
@@ -63,32 +157,63 @@ int cv_cli_main(int argc, char **argv)
         case 'V':
             printf("cavalry-batch %s\n", PACKAGE_VERSION);
             return CV_EXIT_OK;
-        case OPT_LIST_GPUS:
-            list_gpus = true;
+        case OPT_CHECK: o.check_only = true; break;
+        case OPT_DRY_RUN: o.dry_run = true; break;
+        case OPT_ONLY: o.only = optarg; break;
+        case OPT_RESUME: o.resume = true; break;
+        case OPT_FORCE: o.force = true; break;
+        case OPT_FAIL_FAST: o.fail_fast = true; break;
+        case OPT_STRICT: o.strict = true; break;
+        case OPT_DUMP_SCENE: dump = optarg; break;
+        case OPT_LIST_GPUS: list_gpus = true; break;
+        case OPT_SHARD_INDEX:
+        case OPT_SHARD_COUNT:
+            if (!parse_uint(optarg, 1u << 30, &u)) {
+                fprintf(stderr, "cavalry-batch: --%s wants a number, not \"%s\"\n",
+                        c == OPT_SHARD_INDEX ? "shard-index" : "shard-count", optarg);
+                return CV_EXIT_USAGE;
+            }
+            if (c == OPT_SHARD_INDEX) {
+                o.shard_index = u;
+                have_index = true;
+            } else {
+                o.shard_count = u;
+                have_count = true;
+            }
             break;
-        case OPT_GPU: {
+        case OPT_TIME_LIMIT: {
             char *end;
-            long v = strtol(optarg, &end, 10);
-            if (*end || v < 0 || v > 1000) {
+            o.time_limit = strtod(optarg, &end);
+            if (*end || !(o.time_limit > 0)) {
+                fprintf(stderr, "cavalry-batch: --time-limit wants seconds > 0, not \"%s\"\n",
+                        optarg);
+                return CV_EXIT_USAGE;
+            }
+            break;
+        }
+        case OPT_PROGRESS:
+            if (!cv_progress_mode_parse(optarg, &o.progress)) {
+                fprintf(stderr, "cavalry-batch: unknown progress mode \"%s\" (auto, bar, json, none)\n",
+                        optarg);
+                return CV_EXIT_USAGE;
+            }
+            break;
+        case OPT_GPU:
+            if (!parse_uint(optarg, 1000, &u)) {
                 fprintf(stderr, "cavalry-batch: --gpu wants a device index, not \"%s\"\n", optarg);
                 return CV_EXIT_USAGE;
             }
-            gpu_params.gpu_index = (int)v;
+            o.gpu.gpu_index = (int)u;
             break;
-        }
         case OPT_BACKEND:
-            if (!parse_backend(optarg, &gpu_params.backend)) {
+            if (!parse_backend(optarg, &o.gpu.backend)) {
                 fprintf(stderr, "cavalry-batch: unknown backend \"%s\" (auto, egl, osmesa)\n",
                         optarg);
                 return CV_EXIT_USAGE;
             }
             break;
-        case 'q':
-            verbosity--;
-            break;
-        case 'v':
-            verbosity++;
-            break;
+        case 'q': verbosity--; break;
+        case 'v': verbosity++; break;
         default:
             usage(stderr);
             return CV_EXIT_USAGE;
@@ -96,19 +221,43 @@ int cv_cli_main(int argc, char **argv)
     }
     cv_log_set_level(verbosity < 0 ? CV_LOG_ERROR
                      : verbosity == 0 ? CV_LOG_INFO
+                     : verbosity == 1 ? CV_LOG_INFO
                                       : CV_LOG_DEBUG);
     if (list_gpus) {
         struct cv_error err = {{0}};
-        if (!cv_gpu_list(&gpu_params, stdout, &err)) {
+        if (!cv_gpu_list(&o.gpu, stdout, &err)) {
             cv_error_log("%s", err.msg);
             return CV_EXIT_NO_GPU;
         }
         return CV_EXIT_OK;
     }
-    if (optind >= argc) {
+    if (dump)
+        return dump_scene(dump, o.strict);
+    if (optind != argc - 1) {
+        fprintf(stderr, "cavalry-batch: %s\n",
+                optind >= argc ? "no manifest given" : "one manifest at a time");
         usage(stderr);
         return CV_EXIT_USAGE;
     }
-    cv_error_log("rendering manifests is not built yet");
-    return CV_EXIT_USAGE;
+    if (!shard_from_environment(&o, &have_index, have_count)) {
+        fprintf(stderr, "cavalry-batch: cannot read the shard from the environment\n");
+        return CV_EXIT_USAGE;
+    }
+    if (have_index && !o.shard_count) {
+        fprintf(stderr, "cavalry-batch: a shard index needs --shard-count\n");
+        return CV_EXIT_USAGE;
+    }
+    if (o.shard_count && o.shard_index >= o.shard_count) {
+        fprintf(stderr, "cavalry-batch: shard index %u is not below shard count %u\n",
+                o.shard_index, o.shard_count);
+        return CV_EXIT_USAGE;
+    }
+    switch (cv_batch_run(argv[optind], &o)) {
+    case CV_BATCH_OK: return CV_EXIT_OK;
+    case CV_BATCH_JOBS_FAILED: return CV_EXIT_JOBS_FAILED;
+    case CV_BATCH_INVALID: return CV_EXIT_INVALID;
+    case CV_BATCH_NO_GPU: return CV_EXIT_NO_GPU;
+    case CV_BATCH_INTERRUPTED: return CV_EXIT_INTERRUPTED;
+    }
+    return CV_EXIT_JOBS_FAILED;
 }

@@ -26,6 +26,25 @@ int main(void)
     free(d);
     free(j);
 
+    char tmpl[] = "/tmp/cv-mkdir-XXXXXX";
+    char *base = mkdtemp(tmpl);
+    char *deep = cv_xasprintf("%s/a/b/c/out.exr", base);
+    tap_ok(cv_mkdir_parents(deep, &err), "mkdir parents: %s", err.msg);
+    char *made = cv_path_dirname(deep);
+    tap_ok(cv_path_exists(made), "folders made");
+    tap_ok(cv_mkdir_parents(deep, &err), "again: nothing to do");
+    char *under_file = cv_xasprintf("%s/a/b/c/f/x.exr", base);
+    char *file = cv_xasprintf("%s/a/b/c/f", base);
+    FILE *ff = fopen(file, "w");
+    if (ff)
+        fclose(ff);
+    tap_ok(!cv_mkdir_parents(under_file, &err) && strstr(err.msg, "not a folder"),
+           "a file in the way: %s", err.msg);
+    free(deep);
+    free(made);
+    free(under_file);
+    free(file);
+
     int *v = NULL;
     size_t n = 0, cap = 0;
     for (int i = 0; i < 1000; i++)

@@ -1,1 +1,3 @@
-# tests/cli: see tests/local.mk
+# tests/cli
+TESTS += tests/cli/help_man_test.sh
+EXTRA_DIST += tests/cli/help_man_test.sh

@@ -1,4 +1,19 @@
-# tests/trace
+# tests/trace: see tests/local.mk
+# --- pipeline tests (the BSDF helper keeps its bsdf_*/light_* lines in a separate block) ---
+check_PROGRAMS += tests/trace/analytic_test tests/trace/furnace_test tests/trace/passes_test \
+	tests/trace/cornell_test tests/trace/sampler_test tests/trace/filter_table_test
+TESTS += tests/trace/analytic_test tests/trace/furnace_test tests/trace/passes_test \
+	tests/trace/cornell_test tests/trace/sampler_test tests/trace/filter_table_test
+tests_trace_analytic_test_LDADD = $(CV_LIBS)
+tests_trace_furnace_test_LDADD = $(CV_LIBS)
+tests_trace_passes_test_LDADD = $(CV_LIBS)
+tests_trace_cornell_test_LDADD = $(CV_LIBS)
+tests_trace_sampler_test_LDADD = $(CV_LIBS)
+tests_trace_filter_table_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h \
+	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
+	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
+# --- end of pipeline tests ---
 # ---- bsdf / light sampling tests (branch bsdf) ----
 check_PROGRAMS += tests/trace/bsdf_chi2_test
 TESTS += tests/trace/bsdf_chi2_test

@@ -1,0 +1,186 @@
+/* batch.c: the batch loop. Validate everything first (manifest, then every
+ * scene the selected jobs name), then open one GPU context and run the jobs
+ * in manifest order; a scene shared by several jobs is loaded once. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "base/log.h"
+#include "base/mem.h"
+#include "batch/batch.h"
+#include "batch/run_job.h"
+#include "batch/signals.h"
+#include "manifest/manifest.h"
+#include "manifest/shard.h"
+#include "scene/scene.h"
+
+struct loaded_scene {
+    const char *path;            /* borrowed from the first job naming it */
+    struct cv_scene *scene;
+    size_t last_use;             /* index of the last selected job using it */
+};
+
+struct plan {
+    size_t *jobs;                /* selected job indices, manifest order */
+    size_t n_jobs, cap_jobs;
+    struct loaded_scene *scenes;
+    size_t n_scenes, cap_scenes;
+    size_t *scene_of;            /* per selected job: index into scenes */
+};
+
+static void plan_free(struct plan *p)
+{
+    for (size_t i = 0; i < p->n_scenes; i++)
+        cv_scene_destroy(&p->scenes[i].scene);
+    free(p->scenes);
+    free(p->jobs);
+    free(p->scene_of);
+}
+
+static bool select_jobs(const struct cv_manifest *m, const struct cv_batch_options *opt,
+                        struct plan *p, struct cv_error *err)
+{
+    if (opt->only && !cv_manifest_find_job(m, opt->only))
+        return cv_fail(err, "%s: no job named \"%s\"", m->path, opt->only);
+    for (size_t i = 0; i < m->n_jobs; i++) {
+        if (opt->only && strcmp(m->jobs[i].name, opt->only) != 0)
+            continue;
+        if (opt->shard_count && !cv_shard_select(m->n_jobs, opt->shard_index, opt->shard_count, i))
+            continue;
+        CV_PUSH(p->jobs, p->n_jobs, p->cap_jobs, i);
+    }
+    return true;
+}
+
+/* Loads every scene once; reports every broken scene, not just the first. */
+static bool load_scenes(const struct cv_manifest *m, const struct cv_batch_options *opt,
+                        struct plan *p, struct cv_error *err)
+{
+    p->scene_of = cv_xcalloc(p->n_jobs, sizeof(size_t));
+    bool ok = true;
+    char *all = NULL;
+    for (size_t k = 0; k < p->n_jobs; k++) {
+        const struct cv_job *job = &m->jobs[p->jobs[k]];
+        size_t s = 0;
+        while (s < p->n_scenes && strcmp(p->scenes[s].path, job->scene) != 0)
+            s++;
+        if (s == p->n_scenes) {
+            struct loaded_scene ls = {.path = job->scene};
+            struct cv_error e = {{0}};
+            struct cv_scene_load_params lp = {.strict = opt->strict};
+            if (!cv_scene_load(job->scene, &lp, &ls.scene, &e)) {
+                char *msg = cv_xasprintf("%s%s%s:%u:%u: job \"%s\": %s", all ? all : "",
+                                         all ? "\n" : "", m->path, job->line, job->col, job->name,
+                                         e.msg);
+                free(all);
+                all = msg;
+                ok = false;
+            }
+            CV_PUSH(p->scenes, p->n_scenes, p->cap_scenes, ls);
+        }
+        p->scene_of[k] = s;
+        p->scenes[s].last_use = k;
+    }
+    if (!ok) {
+        cv_fail(err, "%s", all);
+        free(all);
+    }
+    return ok;
+}
+
+static void print_plan(const struct cv_manifest *m, const struct plan *p,
+                       const struct cv_batch_options *opt)
+{
+    for (size_t k = 0; k < p->n_jobs; k++) {
+        const struct cv_job *job = &m->jobs[p->jobs[k]];
+        const struct cv_scene *s = p->scenes[p->scene_of[k]].scene;
+        uint32_t w = job->has_resolution ? job->width : s->settings.width;
+        uint32_t h = job->has_resolution ? job->height : s->settings.height;
+        uint32_t spp = job->has_spp ? job->spp : s->settings.spp;
+        bool skip = opt->resume && !opt->force && cv_job_outputs_current(job);
+        printf("%s: %s -> %s [%s%s%s] %ux%u, %u spp%s\n", job->name, job->scene_as_written,
+               job->output, job->formats & CV_FORMAT_EXR ? "exr" : "",
+               job->formats == (CV_FORMAT_EXR | CV_FORMAT_PNG) ? "," : "",
+               job->formats & CV_FORMAT_PNG ? "png" : "", w, h, spp,
+               skip ? " (up to date: skipped)" : "");
+    }
+}
+
+enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_batch_options *opt)
+{
+    struct cv_error err = {{0}};
+    struct cv_manifest *m = NULL;
+    if (!cv_manifest_load(manifest_path, &m, &err)) {
+        cv_error_log("%s", err.msg);
+        return CV_BATCH_INVALID;
+    }
+    struct plan plan = {0};
+    enum cv_batch_status status = CV_BATCH_OK;
+    if (!select_jobs(m, opt, &plan, &err) || !load_scenes(m, opt, &plan, &err)) {
+        cv_error_log("%s", err.msg);
+        status = CV_BATCH_INVALID;
+        goto done;
+    }
+    if (opt->check_only) {
+        printf("%s: valid: %zu job(s) selected, %zu scene(s)\n", manifest_path, plan.n_jobs,
+               plan.n_scenes);
+        goto done;
+    }
+    if (opt->dry_run) {
+        print_plan(m, &plan, opt);
+        goto done;
+    }
+    if (plan.n_jobs == 0) {
+        cv_info("no job in this shard");
+        goto done;
+    }
+
+    struct cv_gpu *gpu = NULL;
+    if (!cv_gpu_create(&opt->gpu, &gpu, &err)) {
+        cv_error_log("%s", err.msg);
+        status = CV_BATCH_NO_GPU;
+        goto done;
+    }
+    cv_signals_install();
+    struct cv_progress *progress =
+        cv_progress_create(opt->progress, stderr, stdout);
+    unsigned failed = 0;
+    for (size_t k = 0; k < plan.n_jobs && !cv_signals_interrupted(); k++) {
+        const struct cv_job *job = &m->jobs[plan.jobs[k]];
+        struct loaded_scene *ls = &plan.scenes[plan.scene_of[k]];
+        if (opt->resume && !opt->force && cv_job_outputs_current(job)) {
+            cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0,
+                                  "outputs up to date");
+        } else {
+            cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)plan.n_jobs,
+                                    job->has_spp ? job->spp : ls->scene->settings.spp);
+            struct cv_job_result res;
+            struct cv_error jerr = {{0}};
+            if (cv_run_job(gpu, job, ls->scene, opt, progress, &res, &jerr)) {
+                cv_progress_job_ended(progress, job->name, res.partial ? CV_JOB_PARTIAL : CV_JOB_DONE,
+                                      res.spp, res.seconds, res.written);
+            } else {
+                failed++;
+                cv_error_log("%s", jerr.msg);
+                cv_progress_job_ended(progress, job->name, CV_JOB_FAILED, res.spp, res.seconds,
+                                      jerr.msg);
+                if (opt->fail_fast)
+                    break;
+            }
+        }
+        /* Free a scene after the last job that uses it. */
+        if (ls->last_use == k)
+            cv_scene_destroy(&ls->scene);
+    }
+    cv_progress_summary(progress);
+    cv_progress_destroy(&progress);
+    cv_gpu_destroy(&gpu);
+    if (cv_signals_interrupted())
+        status = CV_BATCH_INTERRUPTED;
+    else if (failed)
+        status = CV_BATCH_JOBS_FAILED;
+done:
+    plan_free(&plan);
+    cv_manifest_destroy(&m);
+    return status;
+}

@@ -1,0 +1,36 @@
+/* batch.h: runs a manifest's jobs on one GPU context. The whole manifest and
+ * every scene its selected jobs name are validated before anything renders;
+ * a failing job does not stop the others unless fail_fast. */
+#ifndef CV_BATCH_BATCH_H
+#define CV_BATCH_BATCH_H
+
+#include <stdbool.h>
+
+#include "batch/progress.h"
+#include "gpu/context.h"
+
+struct cv_batch_options {
+    const char *only;              /* run only this job; NULL: all */
+    struct cv_gpu_params gpu;
+    bool check_only;               /* validate manifest and scenes, render nothing */
+    bool dry_run;                  /* print the plan, render nothing */
+    bool resume;                   /* skip jobs whose outputs came from the same settings */
+    bool force;                    /* overwrite outputs even when resuming would skip */
+    bool fail_fast;                /* stop at the first failed job */
+    bool strict;                   /* scene warnings are errors */
+    unsigned shard_index, shard_count;  /* shard_count 0: no sharding */
+    double time_limit;             /* [s] per job, 0: only the manifest's */
+    enum cv_progress_mode progress;
+};
+
+enum cv_batch_status {
+    CV_BATCH_OK,                   /* every selected job done (or skipped) */
+    CV_BATCH_JOBS_FAILED,
+    CV_BATCH_INVALID,              /* manifest or a scene is invalid: nothing rendered */
+    CV_BATCH_NO_GPU,
+    CV_BATCH_INTERRUPTED,          /* SIGINT/SIGTERM: the job in flight wrote a partial image */
+};
+
+enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_batch_options *opt);
+
+#endif

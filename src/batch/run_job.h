@@ -1,0 +1,30 @@
+/* run_job.h: one job, start to finish: scene → renderer → passes →
+ * colour → files. */
+#ifndef CV_BATCH_RUN_JOB_H
+#define CV_BATCH_RUN_JOB_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "batch/batch.h"
+#include "batch/progress.h"
+#include "gpu/context.h"
+#include "manifest/manifest.h"
+#include "scene/scene.h"
+
+struct cv_job_result {
+    uint32_t spp;                  /* samples per pixel rendered */
+    double seconds;                /* wall clock of the whole job */
+    bool partial;                  /* stopped by a signal */
+    char written[1024];            /* the files written, space-separated */
+};
+
+bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_scene *scene,
+                const struct cv_batch_options *opt, struct cv_progress *progress,
+                struct cv_job_result *result, struct cv_error *err);
+
+/* Whether every output of the job exists, is complete, and was rendered
+ * from the same settings (the settings hash in its metadata). */
+bool cv_job_outputs_current(const struct cv_job *job);
+
+#endif

@@ -1,0 +1,43 @@
+/* signals.c: see signals.h. */
+#include <signal.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "batch/signals.h"
+
+static volatile sig_atomic_t received;
+
+static void on_signal(int sig)
+{
+    if (received) {
+        /* Asked twice: the user means it. Nothing half-written remains,
+         * since every output goes through a temporary file. */
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    received = sig;
+    static const char msg[] = "\ncavalry-batch: stopping after this pass (signal again to quit now)\n";
+    ssize_t ignored = write(STDERR_FILENO, msg, sizeof(msg) - 1);
+    (void)ignored;
+}
+
+void cv_signals_install(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+bool cv_signals_interrupted(void)
+{
+    return received != 0;
+}
+
+int cv_signals_which(void)
+{
+    return received;
+}

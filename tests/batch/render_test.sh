@@ -1,0 +1,37 @@
+#!/bin/sh
+# render_test.sh: a small batch renders every job in both formats with the
+# metadata --resume relies on; --resume skips finished jobs and redoes a
+# changed one; --only and --dry-run do what they say.
+. "${srcdir:-.}/tests/setup.sh"
+"$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
+data="$CV_TEST_DATA/batch"
+exr_attr="$CV_TEST_BUILDDIR/batch/exr_attr"
+cp "$data/tiny.pbrt" "$data/jobs.yaml" "$tmp/"
+cd "$tmp"
+
+check_out "renders" run1.jsonl "$CAVALRY_BATCH" --progress=json jobs.yaml 2>run1.err
+for f in out/a.exr out/a.png out/b.exr out/b.png out/c.png; do
+    check "$f written" test -s "$f"
+done
+check "c has no EXR (png only)" test ! -e out/c.exr
+check "no temporary files left" test -z "$(find out -name '.*.tmp')"
+check "three jobs finished" test "$(grep -c '"event":"job_finished"' run1.jsonl)" -eq 3
+check "json ends with batch_finished" sh -c 'tail -n 1 run1.jsonl | grep -q "\"event\":\"batch_finished\",\"done\":3"'
+check "status complete" test "$("$exr_attr" out/a.exr cavalry.status)" = complete
+check "job name recorded" test "$("$exr_attr" out/a.exr cavalry.job)" = a
+check "settings hash recorded" sh -c "\"$exr_attr\" out/a.exr cavalry.settingsHash | grep -Eq '^[0-9a-f]{16}\$'"
+
+check_out "resume skips all" run2.jsonl "$CAVALRY_BATCH" --progress=json --resume jobs.yaml 2>run2.err
+check "three skipped" test "$(grep -c '"event":"job_skipped"' run2.jsonl)" -eq 3
+
+sed 's/    spp: 2/    spp: 3/' jobs.yaml >jobs2.yaml && mv jobs2.yaml jobs.yaml
+check_out "resume after a change" run3.jsonl "$CAVALRY_BATCH" --progress=json --resume jobs.yaml 2>run3.err
+check "only the changed job renders" sh -c 'grep "\"event\":\"job_finished\"" run3.jsonl | grep -q "\"job\":\"b\"" && test "$(grep -c "\"event\":\"job_finished\"" run3.jsonl)" -eq 1'
+
+check_out "--force renders again" run4.jsonl "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run4.err
+check "--only renders one job" test "$(grep -c '"event":"job_finished"' run4.jsonl)" -eq 1
+
+check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
+check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3
+check "plan knows what is up to date" test "$(grep -c 'up to date' plan.txt)" -eq 3
+done_testing
