@@ -86,9 +86,9 @@ static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
 static int integrator_id(const char *name)
 {
     if (!name || !strcmp(name, "path"))
-        return CV_INTEGRATOR_PATH;
+        return CV_RENDER_PATH;
     if (!strcmp(name, "rlpath"))
-        return CV_INTEGRATOR_RLPATH;
+        return CV_RENDER_RLPATH;
     return -1;
 }
 
