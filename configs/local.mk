@@ -3,3 +3,4 @@
 # to read, copy and point color.config or $OCIO at.
 configsdir = $(pkgdatadir)/configs
 dist_configs_DATA = configs/cavalry.ocio
+EXTRA_DIST += configs/example/manifest.yaml configs/example/scene.pbrt

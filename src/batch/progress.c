@@ -3,6 +3,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/log.h"
 #include "base/mem.h"
 #include "batch/progress.h"
 
@@ -207,7 +208,8 @@ void cv_progress_summary(struct cv_progress *p)
         json_end(p);
         return;
     }
-    if (p->mode == CV_PROGRESS_NONE && counts[CV_JOB_FAILED] == 0)
+    /* The table is for people and logs; -q keeps it for failures only. */
+    if (cv_log_get_level() < CV_LOG_INFO && counts[CV_JOB_FAILED] == 0)
         return;
     close_line(p);
     size_t w = 4;
