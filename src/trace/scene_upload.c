@@ -34,9 +34,17 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g.has_env = true;
-    for (uint32_t i = 0; i < s->n_materials; i++)
-        if (s->materials[i].alpha_tex >= 0 || s->materials[i].alpha < 1)
+    g.basic_materials = true;
+    for (uint32_t i = 0; i < s->n_materials; i++) {
+        const CvMaterial *m = &s->materials[i];
+        if (m->alpha_tex >= 0 || m->alpha < 1 || m->type == CV_MAT_INTERFACE)
             g.has_alpha = true;
+        if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
+            m->displacement_tex >= 0 || m->normal_tex >= 0)
+            g.basic_materials = false;
+    }
+    if (g.has_alpha)
+        g.basic_materials = false;
     float *cdf = cv_xcalloc(s->n_lights ? s->n_lights : 1, sizeof(float));
     cv_light_cdf(s->light_power, s->n_lights, cdf);
     bool ok = up(&g.vertices, s->n_vertices * sizeof(CvVertex), s->vertices, "scene vertices", err) &&
