@@ -26,8 +26,9 @@
 #define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[2n] */
 #define CV_BIND_SHADOW (CV_BIND_STAGE0 + 3)    /* CvShadowItem[n] */
 #define CV_BIND_FILM (CV_BIND_STAGE0 + 4)      /* CvFilmPixel[n] */
-#define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 5)  /* vec4[n]: resolve output */
-#define CV_BIND_ENV_DIST (CV_BIND_STAGE0 + 6)  /* environment map distribution (envmap_dist.h) */
+/* CV_BIND_STAGE0 + 5 (15) is CV_BIND_ENV_DIST, the environment map
+ * distribution (glsl/shared/envmap.h, src/trace/envmap_dist.h). */
+#define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 6)  /* vec4[n]: resolve output */
 
 /* Queue counters (slots of CvTraceQueues.count). */
 #define CV_Q_RAYS_IN 0u
