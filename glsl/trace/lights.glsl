@@ -4,6 +4,7 @@
 #define CV_TRACE_LIGHTS_GLSL
 
 #include "scene_buffers.glsl"
-#include "fallback/light_basic.glsl"
+#include "light/light_buffers.glsl"
+#include "light/light.glsl"
 
 #endif

@@ -6,6 +6,9 @@
 #define CV_TRACE_MATERIALS_GLSL
 
 #include "bsdf/material_buffers.glsl"
+// outside the #if: the loader includes a file once, and light.glsl needs it
+#include "../lib/constants.glsl"
+#include "bsdf/texture.glsl"
 #ifdef CV_BSDF_BASIC
 #include "bsdf_basic.glsl"
 #else

@@ -12,6 +12,9 @@
 
 layout(std430, binding = CV_BIND_VERTICES) readonly buffer CvVertexBuffer { CvVertex cv_vertices[]; };
 layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer CvTriangleBuffer { CvTriangle cv_triangles[]; };
+// same names as the BVH's declaration: later code (light_buffers.glsl)
+// takes them as that one (tracing stages include tracing.glsl first)
+#define CV_BVH_SCENE_BUFFERS_GLSL
 
 #endif
 #endif

@@ -9,7 +9,5 @@
 #include "shared/bindings.h"
 
 layout(std430, binding = CV_BIND_TRI_LIGHT) readonly buffer CvTriLightBlock { int cv_tri_light[]; };
-layout(std430, binding = CV_BIND_LIGHTS) readonly buffer CvLightBlock { CvLight cv_lights[]; };
-layout(std430, binding = CV_BIND_LIGHT_CDF) readonly buffer CvLightCdfBlock { float cv_light_cdf[]; };
 
 #endif
