@@ -13,20 +13,22 @@
 /* Every stage shader runs this many invocations per group. */
 #define CV_TRACE_GROUP 64
 
-/* Binding points (stage-private range, see bindings.h). Ray queues are
- * double-buffered by depth parity: rays of depth d are read from
- * CV_BIND_RAYS_IN and the bounce rays written to CV_BIND_RAYS_OUT; the host
- * swaps the two buffers between depths. */
+/* Binding points (stage-private range, see bindings.h). Few buffers, each
+ * holding related queues, because Mesa counts every declared storage block
+ * against its limit of 16 per shader.
+ * - CV_BIND_RAYS: the ray queue, double-buffered by depth parity: with
+ *   capacity n (pixels of the crop), rays of depth d sit at
+ *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
+ * - CV_BIND_HITS: hits at [0, n), escaped rays at [n, 2n) (their .ray only).
+ * Items refer to rays by their index within the depth's half. */
 #define CV_BIND_QUEUES (CV_BIND_STAGE0 + 0)    /* CvTraceQueues */
-#define CV_BIND_RAYS_IN (CV_BIND_STAGE0 + 1)   /* CvRayItem[] */
-#define CV_BIND_RAYS_OUT (CV_BIND_STAGE0 + 2)  /* CvRayItem[] */
-#define CV_BIND_HITS (CV_BIND_STAGE0 + 3)      /* CvHitItem[] */
-#define CV_BIND_ESCAPED (CV_BIND_STAGE0 + 4)   /* uint[]: indices into the input rays */
-#define CV_BIND_SHADOW (CV_BIND_STAGE0 + 5)    /* CvShadowItem[] */
-#define CV_BIND_FILM (CV_BIND_STAGE0 + 6)      /* vec4[]: rgb radiance sum, w: weight sum */
-#define CV_BIND_AOV (CV_BIND_STAGE0 + 7)       /* CvAovPixel[] */
-#define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 8)  /* vec4[]: resolve output */
-#define CV_BIND_ENV_DIST (CV_BIND_STAGE0 + 9)  /* environment map distribution (envmap_dist.h) */
+#define CV_BIND_RAYS (CV_BIND_STAGE0 + 1)      /* CvRayItem[2n] */
+#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[2n] */
+#define CV_BIND_SHADOW (CV_BIND_STAGE0 + 3)    /* CvShadowItem[n] */
+#define CV_BIND_FILM (CV_BIND_STAGE0 + 4)      /* CvFilmPixel[n] */
+/* CV_BIND_STAGE0 + 5 (15) is CV_BIND_ENV_DIST, the environment map
+ * distribution (glsl/shared/envmap.h, src/trace/envmap_dist.h). */
+#define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 6)  /* vec4[n]: resolve output */
 
 /* Queue counters (slots of CvTraceQueues.count). */
 #define CV_Q_RAYS_IN 0u
@@ -97,15 +99,17 @@ CV_STRUCT(CvShadowItem) {
 } CV_END(CvShadowItem)
 CV_CHECK_SIZE(CvShadowItem, 48);
 
-/* Per-pixel AOV sums over samples (divide by the film weight):
- * albedo.rgb: albedo at the first non-specular hit; albedo.w: camera
- * distance to the first hit (0 when the ray escaped); normal.xyz: shading
- * normal at the first hit. */
-CV_STRUCT(CvAovPixel) {
+/* Per-pixel sums over samples. L.rgb: radiance; L.w: filter weight (1 per
+ * sample: filter importance sampling). AOVs (divide by L.w), written only
+ * when the renderer keeps them: albedo.rgb: albedo at the first
+ * non-specular hit; albedo.w: camera distance to the first hit (0 when the
+ * ray escaped); normal.xyz: shading normal at the first hit. */
+CV_STRUCT(CvFilmPixel) {
+    CV_VEC4 L;
     CV_VEC4 albedo;
     CV_VEC4 normal;
-} CV_END(CvAovPixel)
-CV_CHECK_SIZE(CvAovPixel, 32);
+} CV_END(CvFilmPixel)
+CV_CHECK_SIZE(CvFilmPixel, 48);
 
 /* Per-pass constants, in a uniform block at binding 0. */
 #define CV_UBO_PASS 0

@@ -6,23 +6,27 @@
 
 #include "shared/trace.h"
 #include "../lib/index.glsl"
+#include "../lib/constants.glsl"
+#include "../lib/sampling.glsl"
 
 layout(std140, binding = CV_UBO_PASS) uniform CvPassBlock { CvPassParams u_pass; };
 
 layout(std430, binding = CV_BIND_QUEUES) coherent buffer CvQueueBlock { CvTraceQueues q; };
-layout(std430, binding = CV_BIND_RAYS_IN) readonly buffer CvRaysIn { CvRayItem rays_in[]; };
-layout(std430, binding = CV_BIND_RAYS_OUT) writeonly buffer CvRaysOut { CvRayItem rays_out[]; };
+layout(std430, binding = CV_BIND_RAYS) buffer CvRays { CvRayItem rays[]; };
 layout(std430, binding = CV_BIND_HITS) buffer CvHits { CvHitItem hits[]; };
-layout(std430, binding = CV_BIND_ESCAPED) buffer CvEscaped { uint escaped[]; };
 layout(std430, binding = CV_BIND_SHADOW) buffer CvShadow { CvShadowItem shadows[]; };
-layout(std430, binding = CV_BIND_FILM) buffer CvFilm { vec4 film[]; };
-layout(std430, binding = CV_BIND_AOV) buffer CvAov { CvAovPixel aov[]; };
-
-const float CV_PI = 3.14159265358979323846;
+layout(std430, binding = CV_BIND_FILM) buffer CvFilm { CvFilmPixel film[]; };
 
 uint cv_depth() { return u_pass.misc.x; }
 uint cv_max_depth() { return u_pass.seed.w; }
 uint cv_sample_index() { return u_pass.frame.w; }
+uint cv_capacity() { return u_pass.frame.x; }
+
+// The depth's input rays and the bounce rays it writes (see trace.h).
+CvRayItem cv_ray_in(uint i) { return rays[((cv_depth() + 1u) & 1u) * cv_capacity() + i]; }
+void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_depth() & 1u) * cv_capacity() + slot] = r; }
+uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
+void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray; }
 
 // Dimension pairs: 0 filter, 1 lens, then CV_PAIRS_PER_BOUNCE per depth.
 #define CV_PAIRS_PER_BOUNCE 4u
@@ -77,16 +81,6 @@ uvec2 cv_queue_slots(bool push0, uint queue0, bool push1, uint queue1)
     return uvec2(cv_q_base[0] + cv_q_flags[li], cv_q_base[1] + cv_q_flags[CV_TRACE_GROUP + li]);
 }
 
-float cv_power_heuristic(float fa, float fb)
-{
-    float a = fa * fa, b = fb * fb;
-    if (isinf(a))
-        return 1.0;
-    return a + b > 0.0 ? a / (a + b) : 0.0;
-}
-
-float cv_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
-
 bool cv_finite3(vec3 v)
 {
     return !(any(isnan(v)) || any(isinf(v)));
@@ -97,7 +91,7 @@ bool cv_finite3(vec3 v)
 void cv_film_add(uint pixel, vec3 L)
 {
     if (cv_finite3(L) && cv_max3(L) > 0.0)
-        film[pixel].rgb += L;
+        film[pixel].L.rgb += L;
 }
 
 #endif

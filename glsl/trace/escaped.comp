@@ -5,14 +5,15 @@
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
-#include "shading.glsl"
+#include "geometry.glsl"
+#include "lights.glsl"
 
 void main()
 {
     uint i = cv_global_index();
     if (i >= q.count[CV_Q_ESCAPED])
         return;
-    CvRayItem r = rays_in[escaped[i]];
+    CvRayItem r = cv_ray_in(cv_escaped_ray(i));
     uint pixel = uint(r.o.w);
     uint flags = uint(r.beta.w);
     vec3 Le = cv_env_Le(r.d.xyz);

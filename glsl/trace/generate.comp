@@ -32,6 +32,6 @@ void main()
     r.o = vec4(o, float(i));
     r.d = vec4(d, 0.0);
     r.beta = vec4(1.0, 1.0, 1.0, float(0u));
-    rays_out[i] = r;
-    film[i].w += 1.0;
+    rays[cv_capacity() + i] = r; // depth 0 reads the odd half
+    film[i].L.w += 1.0;
 }

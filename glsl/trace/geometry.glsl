@@ -1,11 +1,9 @@
-// glsl/trace/geometry.glsl: where the trace stages get the scene buffers and
-// ray traversal from (one place to switch), and the surface point of a hit.
+// glsl/trace/geometry.glsl: the surface point of a hit from the scene's
+// triangles. Stages that trace include tracing.glsl first.
 #ifndef CV_TRACE_GEOMETRY_GLSL
 #define CV_TRACE_GEOMETRY_GLSL
 
-#include "../bvh/scene_buffers.glsl"
-#include "../bvh/traverse.glsl"
-#include "scene_buffers.glsl"
+#include "mesh_buffers.glsl"
 
 struct CvSurface {
     vec3 p;

@@ -7,7 +7,9 @@
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "sampler.glsl"
-#include "shading.glsl"
+#include "tracing.glsl"
+#include "geometry.glsl"
+#include "materials.glsl"
 
 void main()
 {
@@ -20,7 +22,7 @@ void main()
     h.b1 = 0.0;
     h.b2 = 0.0;
     if (valid) {
-        CvRayItem r = rays_in[i];
+        CvRayItem r = cv_ray_in(i);
         float tmin = 0.0;
 #ifndef CV_EMPTY_SCENE
         hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
@@ -51,6 +53,6 @@ void main()
         it.pad2 = 0u;
         hits[slot.x] = it;
     } else if (valid) {
-        escaped[slot.y] = i;
+        cv_escaped_push(slot.y, i);
     }
 }

@@ -12,6 +12,6 @@ void main()
     uint i = cv_global_index();
     if (i >= u_pass.frame.x)
         return;
-    vec4 f = film[i];
+    vec4 f = film[i].L;
     resolved[i] = vec4(f.w > 0.0 ? f.rgb / f.w : vec3(0.0), 1.0);
 }

@@ -6,7 +6,9 @@
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "sampler.glsl"
-#include "shading.glsl"
+#include "tracing.glsl"
+#include "geometry.glsl"
+#include "materials.glsl"
 
 void main()
 {

@@ -7,9 +7,8 @@ libcavalry_a_SOURCES += \
 GLSL_FILES += \
 	glsl/shared/trace.h \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
-	glsl/trace/geometry.glsl glsl/trace/shading.glsl \
-	glsl/trace/scene_buffers.glsl \
-	glsl/trace/fallback/bsdf_basic.glsl glsl/trace/fallback/light_basic.glsl \
+	glsl/trace/geometry.glsl glsl/trace/tracing.glsl glsl/trace/mesh_buffers.glsl \
+	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
 	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
 	glsl/trace/resolve.comp glsl/trace/test/sampler_probe.comp

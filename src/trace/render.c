@@ -41,7 +41,7 @@ struct cv_renderer {
     bool aovs, has_env;
     uint32_t spp_done;
     CvPassParams pass;
-    GLuint ubo, queues, rays[2], hits, escaped, shadow, film, aov, resolved;
+    GLuint ubo, queues, rays, hits, shadow, film, resolved;
     GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
@@ -169,7 +169,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     }
     r->has_env = r->scene.has_env;
 
-    const char *defines[4];
+    const char *defines[5];
     int nd = 0;
     if (r->scene.empty)
         defines[nd++] = "CV_EMPTY_SCENE";
@@ -177,6 +177,8 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
         defines[nd++] = "CV_AOVS";
     if (r->scene.has_alpha)
         defines[nd++] = "CV_HAS_ALPHA";
+    if (r->scene.basic_materials)
+        defines[nd++] = "CV_BSDF_BASIC";
     defines[nd] = NULL;
     const char *prep[3][2] = {{"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                               {"PREPARE_MODE=2", NULL}};
@@ -197,13 +199,10 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     bool ok = true;
     r->ubo = make(sizeof(CvPassParams), "trace pass params", &ok, err);
     r->queues = make(sizeof(CvTraceQueues), "trace queues", &ok, err);
-    r->rays[0] = make(n * sizeof(CvRayItem), "trace rays A", &ok, err);
-    r->rays[1] = make(n * sizeof(CvRayItem), "trace rays B", &ok, err);
-    r->hits = make(n * sizeof(CvHitItem), "trace hits", &ok, err);
-    r->escaped = make(n * sizeof(uint32_t), "trace escaped", &ok, err);
+    r->rays = make(2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
+    r->hits = make(2 * n * sizeof(CvHitItem), "trace hits and escaped", &ok, err);
     r->shadow = make(n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
-    r->film = make(n * 4 * sizeof(float), "trace film", &ok, err);
-    r->aov = make(r->aovs ? n * sizeof(CvAovPixel) : 16, "trace aovs", &ok, err);
+    r->film = make(n * sizeof(CvFilmPixel), "trace film", &ok, err);
     r->resolved = make(n * 4 * sizeof(float), "trace resolved", &ok, err);
     if (!ok) {
         cv_error_prefix(err, "allocating the film and queues for %ux%u: ", r->crop_w, r->crop_h);
@@ -219,11 +218,10 @@ static void bind_all(struct cv_renderer *r)
     cv_scene_bind(&r->scene);
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_PASS, r->ubo);
     cv_buffer_bind(r->queues, CV_BIND_QUEUES);
+    cv_buffer_bind(r->rays, CV_BIND_RAYS);
     cv_buffer_bind(r->hits, CV_BIND_HITS);
-    cv_buffer_bind(r->escaped, CV_BIND_ESCAPED);
     cv_buffer_bind(r->shadow, CV_BIND_SHADOW);
     cv_buffer_bind(r->film, CV_BIND_FILM);
-    cv_buffer_bind(r->aov, CV_BIND_AOV);
     cv_buffer_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
 }
@@ -259,16 +257,12 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         r->pass.frame.w = r->spp_done + s;
         r->pass.misc.x = 0;
         glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
-        cv_buffer_bind(r->rays[1], CV_BIND_RAYS_OUT);
         cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
         for (uint32_t d = 0; d <= r->max_depth; d++) {
             if (d > 0) {
                 r->pass.misc.x = d;
                 glNamedBufferSubData(r->ubo, (GLintptr)depth_at, sizeof(cv_uvec4), &r->pass.misc);
             }
-            /* the rays written last are read now */
-            cv_buffer_bind(r->rays[(d + 1) & 1], CV_BIND_RAYS_IN);
-            cv_buffer_bind(r->rays[d & 1], CV_BIND_RAYS_OUT);
             dispatch_one(&r->prog[ST_PREPARE0]);
             dispatch_indirect(&r->prog[ST_INTERSECT], CV_ARGS_RAYS);
             dispatch_one(&r->prog[ST_PREPARE1]);
@@ -344,12 +338,10 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
     }
     if (!albedo3 && !normal3 && !depth1)
         return true;
-    float *film = cv_xmalloc(n * 4 * sizeof(float));
-    CvAovPixel *aov = cv_xmalloc(n * sizeof(CvAovPixel));
-    bool ok = cv_buffer_read(r->film, 0, n * 4 * sizeof(float), film, err) &&
-              cv_buffer_read(r->aov, 0, n * sizeof(CvAovPixel), aov, err);
+    CvFilmPixel *aov = cv_xmalloc(n * sizeof(CvFilmPixel));
+    bool ok = cv_buffer_read(r->film, 0, n * sizeof(CvFilmPixel), aov, err);
     for (size_t i = 0; ok && i < n; i++) {
-        float w = film[4 * i + 3], inv = w > 0 ? 1 / w : 0;
+        float w = aov[i].L.w, inv = w > 0 ? 1 / w : 0;
         if (albedo3) {
             albedo3[3 * i + 0] = aov[i].albedo.x * inv;
             albedo3[3 * i + 1] = aov[i].albedo.y * inv;
@@ -365,7 +357,6 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
         if (depth1)
             depth1[i] = aov[i].albedo.w * inv;
     }
-    free(film);
     free(aov);
     return ok;
 }
@@ -378,8 +369,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (r->n_queries)
         glDeleteQueries((GLsizei)r->n_queries, r->queries);
     free(r->queries);
-    GLuint *bufs[] = {&r->ubo, &r->queues, &r->rays[0], &r->rays[1], &r->hits, &r->escaped,
-                      &r->shadow, &r->film, &r->aov, &r->resolved};
+    GLuint *bufs[] = {&r->ubo, &r->queues, &r->rays, &r->hits, &r->shadow, &r->film,
+                      &r->resolved};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_scene_gpu_release(&r->scene);

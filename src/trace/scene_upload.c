@@ -5,6 +5,8 @@
 #include "base/mem.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
+#include "glsl/shared/envmap.h"
+#include "trace/envmap_dist.h"
 #include "trace/scene_upload.h"
 
 void cv_light_cdf(const float *power, uint32_t n, float *cdf)
@@ -21,6 +23,75 @@ void cv_light_cdf(const float *power, uint32_t n, float *cdf)
         cdf[n - 1] = 1;
 }
 
+static float half_to_float(uint16_t h)
+{
+    uint32_t s = (uint32_t)(h >> 15) << 31, e = (h >> 10) & 31u, m = h & 1023u, bits;
+    if (e == 0 && m == 0) {
+        bits = s;
+    } else if (e == 0) {
+        float f = (float)m / 16777216.0f; /* 2^-24 */
+        return (h >> 15) ? -f : f;
+    } else if (e == 31) {
+        bits = s | 0x7f800000u | (m << 13);
+    } else {
+        bits = s | ((e + 112u) << 23) | (m << 13);
+    }
+    float f;
+    memcpy(&f, &bits, 4);
+    return f;
+}
+
+/* Environment-map distributions of the image infinite lights, one float
+ * buffer (glsl/shared/envmap.h); each such light's prim becomes its offset
+ * in `lights` (a copy). *dist is at least one float. */
+static bool build_env_dists(const struct cv_scene *s, CvLight *lights, float **dist, size_t *n,
+                            struct cv_error *err)
+{
+    size_t total = 1;
+    for (uint32_t i = 0; i < s->n_lights; i++) {
+        const CvLight *l = &lights[i];
+        if (l->type != CV_LIGHT_INFINITE_MAP)
+            continue;
+        if (l->tex < 0 || (uint32_t)l->tex >= s->n_textures)
+            return cv_fail(err, "image infinite light %u has no texture", i);
+        const CvTexture *t = &s->textures[l->tex];
+        total += cv_envmap_dist_floats(t->width, t->height);
+    }
+    float *out = cv_xcalloc(total, sizeof(float));
+    size_t at = 0;
+    for (uint32_t i = 0; i < s->n_lights; i++) {
+        CvLight *l = &lights[i];
+        if (l->type != CV_LIGHT_INFINITE_MAP)
+            continue;
+        const CvTexture *t = &s->textures[l->tex];
+        size_t np = (size_t)t->width * t->height;
+        if ((uint64_t)t->offset + np > s->n_texels) {
+            free(out);
+            return cv_fail(err, "image infinite light %u: texels out of range", i);
+        }
+        float *rgba = cv_xmalloc(np * 4 * sizeof(float));
+        for (size_t k = 0; k < np; k++) {
+            uint32_t w0 = s->texels[2 * (t->offset + k)], w1 = s->texels[2 * (t->offset + k) + 1];
+            rgba[4 * k + 0] = half_to_float((uint16_t)(w0 & 0xffff));
+            rgba[4 * k + 1] = half_to_float((uint16_t)(w0 >> 16));
+            rgba[4 * k + 2] = half_to_float((uint16_t)(w1 & 0xffff));
+            rgba[4 * k + 3] = half_to_float((uint16_t)(w1 >> 16));
+        }
+        bool ok = cv_envmap_dist_build(rgba, t->width, t->height, 4,
+                                       (l->flags & CV_LIGHTF_EQUAL_AREA) != 0, out + at, err);
+        free(rgba);
+        if (!ok) {
+            free(out);
+            return false;
+        }
+        l->prim = (uint32_t)at;
+        at += cv_envmap_dist_floats(t->width, t->height);
+    }
+    *dist = out;
+    *n = total;
+    return true;
+}
+
 static bool up(GLuint *b, size_t bytes, const void *data, const char *label, struct cv_error *err)
 {
     *b = cv_buffer_create(bytes, data, label, err);
@@ -34,20 +105,41 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g.has_env = true;
-    for (uint32_t i = 0; i < s->n_materials; i++)
-        if (s->materials[i].alpha_tex >= 0 || s->materials[i].alpha < 1)
+    g.basic_materials = true;
+    for (uint32_t i = 0; i < s->n_materials; i++) {
+        const CvMaterial *m = &s->materials[i];
+        if (m->alpha_tex >= 0 || m->alpha < 1 || m->type == CV_MAT_INTERFACE)
             g.has_alpha = true;
+        if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
+            m->displacement_tex >= 0 || m->normal_tex >= 0)
+            g.basic_materials = false;
+    }
+    if (g.has_alpha)
+        g.basic_materials = false;
     float *cdf = cv_xcalloc(s->n_lights ? s->n_lights : 1, sizeof(float));
     cv_light_cdf(s->light_power, s->n_lights, cdf);
+    CvLight *lights = cv_xcalloc(s->n_lights ? s->n_lights : 1, sizeof(CvLight));
+    if (s->n_lights)
+        memcpy(lights, s->lights, s->n_lights * sizeof(CvLight));
+    float *env = NULL;
+    size_t n_env = 0;
+    if (!build_env_dists(s, lights, &env, &n_env, err)) {
+        free(cdf);
+        free(lights);
+        return false;
+    }
     bool ok = up(&g.vertices, s->n_vertices * sizeof(CvVertex), s->vertices, "scene vertices", err) &&
               up(&g.triangles, s->n_triangles * sizeof(CvTriangle), s->triangles, "scene triangles", err) &&
               up(&g.tri_light, s->n_triangles * sizeof(int32_t), s->tri_light, "scene triangle lights", err) &&
               up(&g.materials, s->n_materials * sizeof(CvMaterial), s->materials, "scene materials", err) &&
               up(&g.textures, s->n_textures * sizeof(CvTexture), s->textures, "scene textures", err) &&
               up(&g.texels, (size_t)s->n_texels * 8, s->texels, "scene texels", err) &&
-              up(&g.lights, s->n_lights * sizeof(CvLight), s->lights, "scene lights", err) &&
-              up(&g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err);
+              up(&g.lights, s->n_lights * sizeof(CvLight), lights, "scene lights", err) &&
+              up(&g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err) &&
+              up(&g.env_dist, n_env * sizeof(float), env, "environment distributions", err);
     free(cdf);
+    free(lights);
+    free(env);
     if (!ok) {
         cv_scene_gpu_release(&g);
         return false;
@@ -72,6 +164,7 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->texels, CV_BIND_TEXELS);
     cv_buffer_bind(g->lights, CV_BIND_LIGHTS);
     cv_buffer_bind(g->light_cdf, CV_BIND_LIGHT_CDF);
+    cv_buffer_bind(g->env_dist, CV_BIND_ENV_DIST);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -79,7 +172,7 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
 void cv_scene_gpu_release(struct cv_scene_gpu *g)
 {
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
-                   &g->textures, &g->texels, &g->lights, &g->light_cdf};
+                   &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     cv_bvh_destroy(&g->bvh);

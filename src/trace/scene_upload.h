@@ -16,9 +16,11 @@
 
 struct cv_scene_gpu {
     GLuint vertices, triangles, tri_light, materials, textures, texels, lights, light_cdf;
+    GLuint env_dist;  /* environment-map distributions (glsl/shared/envmap.h) */
     bool has_env;     /* an infinite light exists */
     bool has_alpha;   /* some material has an alpha cut-out */
     bool empty;       /* no triangles: no BVH, nothing to hit */
+    bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     struct cv_bvh *bvh;
 };
 
