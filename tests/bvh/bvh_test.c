@@ -6,7 +6,9 @@
  * CPU binned-SAH build), then traces ~100 000 rays through it and requires
  * closest hit (primitive and t) and any-hit to equal a GLSL brute force over
  * all triangles exactly; the brute force is itself compared with a CPU port
- * of the watertight test. */
+ * of the watertight test. Finally traverses a deliberately corrupt tree
+ * (cycles, children out of range, leaves past the primitive buffer), which
+ * must end rather than hang the GPU. */
 #include "config.h"
 
 #include <math.h>
@@ -196,6 +198,70 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
     cv_buffer_destroy(&tb);
 }
 
+/* One CvBvhNode child: box, word, count. */
+static void set_child(float *node, int side, float lo, float hi, int32_t word, int32_t count)
+{
+    float *c = node + 8 * side;
+    for (int k = 0; k < 3; k++) {
+        c[k] = lo;
+        c[4 + k] = hi;
+    }
+    memcpy(&c[3], &word, 4);
+    memcpy(&c[7], &count, 4);
+}
+
+static void check_corrupt(struct cv_gpu *gpu)
+{
+    struct cv_error err = {{0}};
+    struct mesh m;
+    mesh_soup(&m, 3);
+    const float big = 1.0e30f;
+    float nodes[4][16];
+    /* Root: an inner child and a leaf running far past the primitives;
+     * node 1 points at itself (a cycle) and node 2; node 2 at node 3 and
+     * beyond the array; node 3 has garbage words and counts. */
+    set_child(nodes[0], 0, -big, big, 1, 0);
+    set_child(nodes[0], 1, -big, big, 0, 1000);
+    set_child(nodes[1], 0, -big, big, 1, 0);
+    set_child(nodes[1], 1, -big, big, 2, 0);
+    set_child(nodes[2], 0, -big, big, 3, 0);
+    set_child(nodes[2], 1, -big, big, 77, 0);
+    set_child(nodes[3], 0, -big, big, -5, -3);
+    set_child(nodes[3], 1, -big, big, 1 << 30, 1 << 29);
+    uint32_t prims[2] = {99999, 0};
+    uint32_t n_rays = 256;
+    float *rays = malloc((size_t)n_rays * 32);
+    uint32_t *got = malloc((size_t)n_rays * 16);
+    make_rays(&m, rays, n_rays);
+    GLuint vb = 0, tb = 0;
+    GLuint nb = cv_buffer_create(sizeof(nodes), nodes, "corrupt nodes", &err);
+    GLuint pb = nb ? cv_buffer_create(sizeof(prims), prims, "corrupt prims", &err) : 0;
+    GLuint rb = pb ? cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err) : 0;
+    GLuint res = rb ? cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", &err) : 0;
+    bool ok = res && mesh_upload(&m, &vb, &tb, &err);
+    if (ok) {
+        cv_buffer_bind(vb, CV_BIND_VERTICES);
+        cv_buffer_bind(tb, CV_BIND_TRIANGLES);
+        cv_buffer_bind(nb, CV_BIND_BVH_NODES);
+        cv_buffer_bind(pb, CV_BIND_BVH_PRIMS);
+        ok = trace(gpu, false, rb, res, n_rays, m.nt, got, &err);
+    }
+    tap_ok(ok, "corrupt tree: %u rays traced and ended: %s", n_rays, ok ? "yes" : err.msg);
+    uint32_t bad = 0;
+    for (uint32_t i = 0; ok && i < n_rays; i++)
+        bad += got[4 * i + 1] != 0xffffffffu && got[4 * i + 1] != 0;
+    tap_ok(ok && bad == 0, "corrupt tree: only the one real primitive is ever hit (%u others)", bad);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    cv_buffer_destroy(&nb);
+    cv_buffer_destroy(&pb);
+    cv_buffer_destroy(&rb);
+    cv_buffer_destroy(&res);
+    free(rays);
+    free(got);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
@@ -209,13 +275,14 @@ int main(void)
     mesh_planar(&m, 3000);
     check_mesh(gpu, "planar duplicates", &m, 32000, true);
     mesh_free(&m);
-    for (uint32_t n = 1; n <= 3; n++) {
+    for (uint32_t n = 0; n <= 3; n++) {
         char name[32];
         snprintf(name, sizeof(name), "%u triangle(s)", n);
         mesh_soup(&m, n);
         check_mesh(gpu, name, &m, 1000, false);
         mesh_free(&m);
     }
+    check_corrupt(gpu);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }
