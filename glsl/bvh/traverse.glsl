@@ -22,6 +22,11 @@
 #define CV_BVH_STACK_SIZE 64
 #endif
 
+#ifdef CV_BVH_COUNT_STEPS
+// Nodes visited by the queries of this invocation, for tests.
+uint cv_bvh_steps = 0u;
+#endif
+
 struct CvHit {
     float t;
     uint prim;  // index into cv_triangles
@@ -127,6 +132,9 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
     int sp = 0;
     int node = 0;
     for (int steps = cv_bvh_nodes.length(); steps > 0; steps--) {
+#ifdef CV_BVH_COUNT_STEPS
+        cv_bvh_steps++;
+#endif
         CvBvhNode nd = cv_bvh_nodes[node];
         int lw = floatBitsToInt(nd.lmin.w), lc = floatBitsToInt(nd.lmax.w);
         int rw = floatBitsToInt(nd.rmin.w), rc = floatBitsToInt(nd.rmax.w);
@@ -182,6 +190,9 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
     int sp = 0;
     int node = 0;
     for (int steps = cv_bvh_nodes.length(); steps > 0; steps--) {
+#ifdef CV_BVH_COUNT_STEPS
+        cv_bvh_steps++;
+#endif
         CvBvhNode nd = cv_bvh_nodes[node];
         int lw = floatBitsToInt(nd.lmin.w), lc = floatBitsToInt(nd.lmax.w);
         int rw = floatBitsToInt(nd.rmin.w), rc = floatBitsToInt(nd.rmax.w);

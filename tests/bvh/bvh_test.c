@@ -94,9 +94,10 @@ static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *
               trace(gpu, true, rb, res, n_rays, m->nt, want, &err);
     if (!tap_ok(ok, "%s: %u rays traced: %s", name, n_rays, ok ? "yes" : err.msg))
         goto out;
-    uint32_t bad_hit = 0, bad_any = 0, hits = 0, first = 0;
+    uint32_t bad_hit = 0, bad_any = 0, hits = 0, first = 0, steps = 0;
     for (uint32_t i = 0; i < n_rays; i++) {
         const uint32_t *g = &got[4 * i], *w = &want[4 * i];
+        steps = g[3] > steps ? g[3] : steps;
         hits += w[1] != 0xffffffffu;
         if ((g[1] != w[1] || (w[1] != 0xffffffffu && g[0] != w[0])) && bad_hit++ < 3) {
             float gt, wt;
@@ -114,6 +115,11 @@ static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *
     tap_ok(bad_hit == 0, "%s: closest hit equals brute force (%u of %u rays differ, first %u; "
            "%u hits)", name, bad_hit, n_rays, first, hits);
     tap_ok(bad_any == 0, "%s: any-hit equals brute force (%u differ)", name, bad_any);
+    /* Each query visits a node at most once (a revisit would be a loop that
+     * llvmpipe cuts short but a real GPU does not). */
+    uint32_t n_nodes = cv_bvh_stats(bvh)->n_nodes;
+    tap_ok(steps <= 2 * n_nodes, "%s: at most %u nodes visited per ray (tree has %u)", name, steps,
+           n_nodes);
 
     /* CPU sanity check of the GLSL brute force on the first rays. */
     uint32_t n_cpu = n_rays < 1500 ? n_rays : 1500, agree = 0;
@@ -247,10 +253,15 @@ static void check_corrupt(struct cv_gpu *gpu)
         ok = trace(gpu, false, rb, res, n_rays, m.nt, got, &err);
     }
     tap_ok(ok, "corrupt tree: %u rays traced and ended: %s", n_rays, ok ? "yes" : err.msg);
-    uint32_t bad = 0;
-    for (uint32_t i = 0; ok && i < n_rays; i++)
+    uint32_t bad = 0, steps = 0;
+    for (uint32_t i = 0; ok && i < n_rays; i++) {
         bad += got[4 * i + 1] != 0xffffffffu && got[4 * i + 1] != 0;
+        steps = got[4 * i + 3] > steps ? got[4 * i + 3] : steps;
+    }
     tap_ok(ok && bad == 0, "corrupt tree: only the one real primitive is ever hit (%u others)", bad);
+    /* llvmpipe ends endless loops itself after 65535 rounds, so only the
+     * step count shows a missing bound there: closest + any-hit, 4 nodes. */
+    tap_ok(ok && steps <= 8, "corrupt tree: at most %u nodes visited per ray (8 allowed)", steps);
     cv_buffer_destroy(&vb);
     cv_buffer_destroy(&tb);
     cv_buffer_destroy(&nb);
