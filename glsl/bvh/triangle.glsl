@@ -63,9 +63,11 @@ CvRayTri cv_ray_tri_setup(vec3 o, vec3 d)
     return r;
 }
 
-// True when the ray's line crosses the triangle (any t; the caller checks
-// the range). b1, b2 weight v1, v2.
-bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1, out float b2)
+// True when the ray's line crosses the triangle at a t that may lie in
+// [tmin, tmax] (false only when t surely lies outside; the caller compares
+// the exact t). b1, b2 weight v1, v2.
+bool cv_ray_tri_range(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, float tmin, float tmax, out float t,
+                      out float b1, out float b2)
 {
     precise vec3 a = v0 - r.o, b = v1 - r.o, c = v2 - r.o;
     precise float az = a[r.k.z], bz = b[r.k.z], cz = c[r.k.z];
@@ -92,11 +94,24 @@ bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1
     if (det == 0.0)
         return false;
     precise float tz = r.s.z * az * u + r.s.z * bz * v + r.s.z * cz * w;
+    // The driver's quotient is within a few ulps of the exact one: far
+    // outside the range it decides alone, and the exact division (double
+    // arithmetic) runs only for candidates.
+    float tq = tz / det;
+    if (tq > tmax + abs(tmax) * 1.0e-5 || tq < tmin - abs(tmin) * 1.0e-5)
+        return false;
     t = cv_div_rn(tz, det);
     // The barycentrics shade but decide nothing: plain division is enough.
     b1 = v / det;
     b2 = w / det;
     return !isnan(t) && !isinf(t);
+}
+
+// The same over all t (the caller checks the range).
+bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1, out float b2)
+{
+    const float big = 3.4028235e38;
+    return cv_ray_tri_range(r, v0, v1, v2, -big, big, t, b1, b2);
 }
 
 #endif
