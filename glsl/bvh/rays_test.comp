@@ -32,7 +32,7 @@ void main()
     any = false;
     for (uint p = 0; p < u_n_tris; p++) {
         float t, b1, b2;
-        if (cv_bvh_tri(r, p, a.w, b.w, t, b1, b2) && t > a.w && t < b.w) {
+        if (cv_bvh_tri(r, p, t, b1, b2) && t > a.w && t < b.w) {
             any = true;
             if (t < hit.t || (t == hit.t && p < hit.prim))
                 hit = CvHit(t, p, b1, b2);

@@ -71,10 +71,7 @@ bool cv_bvh_slab(vec3 o, vec3 inv, float err_k, vec3 lo, vec3 hi, float tmin, fl
     return a <= b && lo.x <= hi.x;
 }
 
-// Triangle prim against the ray; false also when t surely lies outside
-// [tmin, tmax] (see cv_ray_tri_range).
-bool cv_bvh_tri(CvRayTri r, uint prim, float tmin, float tmax, out float t, out float b1,
-                out float b2)
+bool cv_bvh_tri(CvRayTri r, uint prim, out float t, out float b1, out float b2)
 {
     t = 0.0;
     b1 = 0.0;
@@ -82,8 +79,8 @@ bool cv_bvh_tri(CvRayTri r, uint prim, float tmin, float tmax, out float t, out 
     if (prim >= uint(cv_triangles.length()))
         return false;
     uvec4 idx = cv_triangles[prim].idx;
-    return cv_ray_tri_range(r, cv_vertices[idx.x].pos_u.xyz, cv_vertices[idx.y].pos_u.xyz,
-                            cv_vertices[idx.z].pos_u.xyz, tmin, tmax, t, b1, b2);
+    return cv_ray_tri(r, cv_vertices[idx.x].pos_u.xyz, cv_vertices[idx.y].pos_u.xyz,
+                      cv_vertices[idx.z].pos_u.xyz, t, b1, b2);
 }
 
 // The part of prims[first..first+count) that exists.
@@ -106,7 +103,7 @@ void cv_bvh_leaf_closest(CvRayTri r, int first, int count, float tmin, inout CvH
     for (int k = 0; k < count; k++) {
         uint prim = cv_bvh_prims[first + k];
         float t, b1, b2;
-        if (cv_bvh_tri(r, prim, tmin, hit.t, t, b1, b2) && t > tmin &&
+        if (cv_bvh_tri(r, prim, t, b1, b2) && t > tmin &&
             (t < hit.t || (t == hit.t && prim < hit.prim && hit.prim != 0xffffffffu))) {
             hit = CvHit(t, prim, b1, b2);
         }
@@ -118,7 +115,7 @@ bool cv_bvh_leaf_any(CvRayTri r, int first, int count, float tmin, float tmax)
     count = cv_bvh_leaf_count(first, count);
     for (int k = 0; k < count; k++) {
         float t, b1, b2;
-        if (cv_bvh_tri(r, cv_bvh_prims[first + k], tmin, tmax, t, b1, b2) && t > tmin && t < tmax)
+        if (cv_bvh_tri(r, cv_bvh_prims[first + k], t, b1, b2) && t > tmin && t < tmax)
             return true;
     }
     return false;
