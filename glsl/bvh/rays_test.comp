@@ -3,7 +3,9 @@
 // invocation either through the BVH (traverse.glsl) or, with BRUTE_FORCE,
 // against every triangle with the same watertight routine and the same
 // tie rule (lowest t, then lowest index). Rays: (origin, tmin), (dir, tmax).
-// Result: (t bits, prim, any-hit, 0); prim = 0xffffffff on a miss.
+// Result: (t bits, prim, any-hit, nodes visited by both traversals, 0 for
+// the brute force); prim = 0xffffffff on a miss.
+#define CV_BVH_COUNT_STEPS
 #include "scene_buffers.glsl"
 #include "traverse.glsl"
 
@@ -40,5 +42,10 @@ void main()
     cv_trace_closest(a.xyz, b.xyz, a.w, b.w, hit);
     any = cv_trace_any(a.xyz, b.xyz, a.w, b.w);
 #endif
-    results[i] = uvec4(floatBitsToUint(hit.t), hit.prim, any ? 1u : 0u, 0u);
+    #ifdef BRUTE_FORCE
+    uint steps = 0u;
+#else
+    uint steps = cv_bvh_steps;
+#endif
+    results[i] = uvec4(floatBitsToUint(hit.t), hit.prim, any ? 1u : 0u, steps);
 }

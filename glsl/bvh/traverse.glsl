@@ -5,7 +5,14 @@
 // A hit counts when tmin < t < tmax; among hits at the same t the lowest
 // triangle index wins, so the result does not depend on the tree.
 // Define CV_BVH_STACK_SIZE before including to change the stack (default
-// 64 entries; the tree depth must stay below it).
+// 64 entries; the tree depth must stay below it, deeper subtrees are
+// skipped rather than overflow it).
+// A corrupt or uninitialised tree must never hang the GPU (a reset kills
+// every job on the device), so nothing here trusts the node words: inner
+// children must lie in 1..length-1 (the root is nobody's child, which also
+// rejects the empty child of a tiny tree), leaf ranges are clipped to the
+// primitive buffer, primitives to the triangle buffer, and the loop stops
+// after as many steps as there are nodes, which a valid tree never needs.
 #ifndef CV_BVH_TRAVERSE_GLSL
 #define CV_BVH_TRAVERSE_GLSL
 
@@ -13,6 +20,11 @@
 
 #ifndef CV_BVH_STACK_SIZE
 #define CV_BVH_STACK_SIZE 64
+#endif
+
+#ifdef CV_BVH_COUNT_STEPS
+// Nodes visited by the queries of this invocation, for tests.
+uint cv_bvh_steps = 0u;
 #endif
 
 struct CvHit {
@@ -55,19 +67,39 @@ bool cv_bvh_slab(vec3 o, vec3 inv, float err_k, vec3 lo, vec3 hi, float tmin, fl
     a -= abs(a) * 2.0e-6 + pad;
     b += abs(b) * 2.0e-6 + pad;
     tnear = a;
-    return a <= b;
+    // min/max above would turn an inverted (empty) box inside out.
+    return a <= b && lo.x <= hi.x;
 }
 
 bool cv_bvh_tri(CvRayTri r, uint prim, out float t, out float b1, out float b2)
 {
+    t = 0.0;
+    b1 = 0.0;
+    b2 = 0.0;
+    if (prim >= uint(cv_triangles.length()))
+        return false;
     uvec4 idx = cv_triangles[prim].idx;
     return cv_ray_tri(r, cv_vertices[idx.x].pos_u.xyz, cv_vertices[idx.y].pos_u.xyz,
                       cv_vertices[idx.z].pos_u.xyz, t, b1, b2);
 }
 
+// The part of prims[first..first+count) that exists.
+int cv_bvh_leaf_count(int first, int count)
+{
+    int n = cv_bvh_prims.length();
+    return first < 0 || first >= n ? 0 : clamp(count, 0, n - first);
+}
+
+// True when a child word may be entered as an inner node.
+bool cv_bvh_inner_ok(int node)
+{
+    return node > 0 && node < cv_bvh_nodes.length();
+}
+
 // Updates hit when prims[first..first+count) holds a better one.
 void cv_bvh_leaf_closest(CvRayTri r, int first, int count, float tmin, inout CvHit hit)
 {
+    count = cv_bvh_leaf_count(first, count);
     for (int k = 0; k < count; k++) {
         uint prim = cv_bvh_prims[first + k];
         float t, b1, b2;
@@ -80,6 +112,7 @@ void cv_bvh_leaf_closest(CvRayTri r, int first, int count, float tmin, inout CvH
 
 bool cv_bvh_leaf_any(CvRayTri r, int first, int count, float tmin, float tmax)
 {
+    count = cv_bvh_leaf_count(first, count);
     for (int k = 0; k < count; k++) {
         float t, b1, b2;
         if (cv_bvh_tri(r, cv_bvh_prims[first + k], t, b1, b2) && t > tmin && t < tmax)
@@ -98,7 +131,10 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
     float stack_t[CV_BVH_STACK_SIZE];
     int sp = 0;
     int node = 0;
-    for (;;) {
+    for (int steps = cv_bvh_nodes.length(); steps > 0; steps--) {
+#ifdef CV_BVH_COUNT_STEPS
+        cv_bvh_steps++;
+#endif
         CvBvhNode nd = cv_bvh_nodes[node];
         int lw = floatBitsToInt(nd.lmin.w), lc = floatBitsToInt(nd.lmax.w);
         int rw = floatBitsToInt(nd.rmin.w), rc = floatBitsToInt(nd.rmax.w);
@@ -113,6 +149,8 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
             cv_bvh_leaf_closest(r, rw, rc, tmin, hit);
             hr = false;
         }
+        hl = hl && lc == 0 && cv_bvh_inner_ok(lw);
+        hr = hr && rc == 0 && cv_bvh_inner_ok(rw);
         if (hl && hr) {
             bool left_first = tl <= tr;
             node = left_first ? lw : rw;
@@ -151,7 +189,10 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
     int stack_node[CV_BVH_STACK_SIZE];
     int sp = 0;
     int node = 0;
-    for (;;) {
+    for (int steps = cv_bvh_nodes.length(); steps > 0; steps--) {
+#ifdef CV_BVH_COUNT_STEPS
+        cv_bvh_steps++;
+#endif
         CvBvhNode nd = cv_bvh_nodes[node];
         int lw = floatBitsToInt(nd.lmin.w), lc = floatBitsToInt(nd.lmax.w);
         int rw = floatBitsToInt(nd.rmin.w), rc = floatBitsToInt(nd.rmax.w);
@@ -168,6 +209,8 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
                 return true;
             hr = false;
         }
+        hl = hl && lc == 0 && cv_bvh_inner_ok(lw);
+        hr = hr && rc == 0 && cv_bvh_inner_ok(rw);
         if (hl && hr) {
             bool left_first = tl <= tr;
             node = left_first ? lw : rw;

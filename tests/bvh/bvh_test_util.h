@@ -120,9 +120,11 @@ static inline void mesh_planar(struct mesh *m, uint32_t n)
 
 static inline bool mesh_upload(const struct mesh *m, GLuint *vb, GLuint *tb, struct cv_error *err)
 {
-    *vb = cv_buffer_create((m->nv ? m->nv : 1) * sizeof(CvVertex), m->v, "test vertices", err);
-    *tb = *vb ? cv_buffer_create((m->nt ? m->nt : 1) * sizeof(CvTriangle), m->t, "test triangles",
-                                 err)
+    /* An empty mesh still binds: one zeroed element each. */
+    *vb = cv_buffer_create((m->nv ? m->nv : 1) * sizeof(CvVertex), m->nv ? m->v : NULL,
+                           "test vertices", err);
+    *tb = *vb ? cv_buffer_create((m->nt ? m->nt : 1) * sizeof(CvTriangle), m->nt ? m->t : NULL,
+                                 "test triangles", err)
               : 0;
     return *tb != 0;
 }
