@@ -1,1 +1,21 @@
-# src/scene: see Makefile.am
+# src/scene: pbrt-v3/v4 scene import into the flat GPU scene.
+libcavalry_a_SOURCES += \
+	src/scene/scene.c src/scene/scene.h \
+	src/scene/token.c src/scene/token.h \
+	src/scene/params.c src/scene/params.h \
+	src/scene/parse.c src/scene/parse.h \
+	src/scene/builder.c src/scene/builder.h \
+	src/scene/transform.c src/scene/transform.h \
+	src/scene/ply.c src/scene/ply.h \
+	src/scene/shapes.c \
+	src/scene/materials.c \
+	src/scene/spectrum.c \
+	src/scene/image.c src/scene/image.h \
+	src/scene/texture.c \
+	src/scene/lights.c \
+	src/scene/camera.c \
+	src/scene/dump.c src/scene/dump.h
+# stb_image's implementation comes from Debian's libstb.
+CV_LIBS += $(STB_LIBS)
+# glsl/shared/scene.h includes "shared/common.h" (the GLSL include root is glsl/).
+AM_CPPFLAGS += -I$(top_srcdir)/glsl

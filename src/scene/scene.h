@@ -67,6 +67,11 @@ struct cv_scene_load_params {
  * returns false with err naming file:line:col; *out is untouched. */
 bool cv_scene_load(const char *path, const struct cv_scene_load_params *params,
                    struct cv_scene **out, struct cv_error *err);
+/* The same from text in memory; name stands for the file in messages and
+ * Include paths resolve relative to its folder. */
+bool cv_scene_load_string(const char *name, const char *text, size_t len,
+                          const struct cv_scene_load_params *params, struct cv_scene **out,
+                          struct cv_error *err);
 /* Accepts NULL; clears the pointer. */
 void cv_scene_destroy(struct cv_scene **scene);
 

@@ -1,1 +1,15 @@
-# src/trace: see Makefile.am
+# src/trace: the wavefront path tracer (host side; shaders in glsl/trace).
+libcavalry_a_SOURCES += \
+	src/trace/filter_table.c src/trace/filter_table.h \
+	src/trace/render.c src/trace/render.h \
+	src/trace/scene_upload.c src/trace/scene_upload.h
+
+GLSL_FILES += \
+	glsl/shared/trace.h \
+	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
+	glsl/trace/geometry.glsl glsl/trace/shading.glsl \
+	glsl/trace/fallback/scene_buffers.glsl glsl/trace/fallback/traverse_brute.glsl \
+	glsl/trace/fallback/bsdf_basic.glsl glsl/trace/fallback/light_basic.glsl \
+	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
+	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
+	glsl/trace/resolve.comp

@@ -1,1 +1,3 @@
-# tests/scene: see tests/local.mk
+# tests/scene
+check_PROGRAMS += tests/scene/dump_scene
+tests_scene_dump_scene_LDADD = $(CV_LIBS)

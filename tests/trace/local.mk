@@ -1,1 +1,9 @@
 # tests/trace: see tests/local.mk
+# --- pipeline tests (the BSDF helper keeps its bsdf_*/light_* lines in a separate block) ---
+check_PROGRAMS += tests/trace/analytic_test
+TESTS += tests/trace/analytic_test
+tests_trace_analytic_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/trace_test_util.h \
+	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
+	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
+# --- end of pipeline tests ---

@@ -1,0 +1,78 @@
+// glsl/trace/camera.glsl: camera rays by the conventions of CvCamera
+// (glsl/shared/scene.h) and the pixel filter by importance sampling: the
+// sample offset is distributed as the filter, so every sample weighs 1.
+#ifndef CV_TRACE_CAMERA_GLSL
+#define CV_TRACE_CAMERA_GLSL
+
+#define CV_FILTER_BOX 0u
+#define CV_FILTER_TRIANGLE 1u
+#define CV_FILTER_GAUSSIAN 2u
+
+float cv_filter_table(bool y_axis, uint i)
+{
+    vec4 v = y_axis ? u_pass.filter_y[i >> 2] : u_pass.filter_x[i >> 2];
+    return v[i & 3u];
+}
+
+// Offset in pixels along one axis for a uniform u.
+float cv_filter_offset(float u, float radius, bool y_axis)
+{
+    uint type = u_pass.misc.y;
+    if (type == CV_FILTER_TRIANGLE)
+        return u < 0.5 ? radius * (sqrt(2.0 * u) - 1.0) : radius * (1.0 - sqrt(2.0 - 2.0 * u));
+    if (type == CV_FILTER_GAUSSIAN) {
+        // tabulated inverse CDF of the truncated Gaussian on [0,1] -> [-1,1]
+        float x = u * float(CV_FILTER_TABLE);
+        uint i = min(uint(x), uint(CV_FILTER_TABLE) - 1u);
+        float a = cv_filter_table(y_axis, i), b = cv_filter_table(y_axis, i + 1u);
+        return radius * (2.0 * mix(a, b, x - float(i)) - 1.0);
+    }
+    return radius * (2.0 * u - 1.0);
+}
+
+vec2 cv_concentric_disk(vec2 u)
+{
+    vec2 o = 2.0 * u - 1.0;
+    if (o.x == 0.0 && o.y == 0.0)
+        return vec2(0.0);
+    float r, theta;
+    if (abs(o.x) > abs(o.y)) {
+        r = o.x;
+        theta = (CV_PI / 4.0) * (o.y / o.x);
+    } else {
+        r = o.y;
+        theta = CV_PI / 2.0 - (CV_PI / 4.0) * (o.x / o.y);
+    }
+    return r * vec2(cos(theta), sin(theta));
+}
+
+// Raster position (full film pixels) to a world-space ray.
+void cv_camera_ray(vec2 raster, vec2 u_lens, out vec3 o, out vec3 d)
+{
+    vec4 s = u_pass.screen;
+    vec2 film = vec2(u_pass.film.xy);
+    float sx = s.x + (raster.x / film.x) * (s.y - s.x);
+    float sy = s.w - (raster.y / film.y) * (s.w - s.z);
+    vec3 oc, dc;
+    if (u_pass.lens.w == 1.0) { // orthographic
+        oc = vec3(sx, sy, 0.0);
+        dc = vec3(0.0, 0.0, 1.0);
+    } else {
+        oc = vec3(0.0);
+        dc = normalize(vec3(sx * u_pass.lens.z, sy * u_pass.lens.z, 1.0));
+    }
+    if (u_pass.lens.x > 0.0) {
+        vec2 pl = u_pass.lens.x * cv_concentric_disk(u_lens);
+        float ft = u_pass.lens.y / dc.z;
+        vec3 pf = oc + dc * ft;
+        oc = vec3(oc.xy + pl, 0.0);
+        dc = normalize(pf - oc);
+    }
+    mat3 r = mat3(u_pass.cam_to_world[0].xyz, u_pass.cam_to_world[1].xyz,
+                  u_pass.cam_to_world[2].xyz); // columns are the rows: use transpose
+    r = transpose(r);
+    o = r * oc + vec3(u_pass.cam_to_world[0].w, u_pass.cam_to_world[1].w, u_pass.cam_to_world[2].w);
+    d = normalize(r * dc);
+}
+
+#endif

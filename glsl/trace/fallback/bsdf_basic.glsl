@@ -1,0 +1,97 @@
+// glsl/trace/fallback/bsdf_basic.glsl: a stand-in for the BSDF stage's
+// interface (glsl/trace/bsdf/bsdf.glsl) with only Lambertian reflection and
+// perfect mirrors, so the pipeline can be tested before the real materials
+// land. Every other material reads as Lambertian with its reflectance.
+#ifndef CV_TRACE_FALLBACK_BSDF_GLSL
+#define CV_TRACE_FALLBACK_BSDF_GLSL
+
+#define CV_BSDF_REFLECTION 1u
+#define CV_BSDF_TRANSMISSION 2u
+#define CV_BSDF_SPECULAR 4u
+
+struct CvShadingPoint {
+    vec3 p;
+    vec3 ng;
+    vec3 ns;
+    vec3 dpdu;
+    vec2 uv;
+    bool front;
+};
+
+struct CvBsdf {
+    vec3 n;      // shading normal
+    vec3 r;      // reflectance
+    bool mirror;
+};
+
+struct CvBsdfSample {
+    vec3 wi;
+    vec3 f;
+    float pdf;
+    uint flags;
+};
+
+CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
+{
+    CvMaterial m = cv_materials[material];
+    CvBsdf b;
+    b.n = sp.ns;
+    b.r = m.reflectance.rgb;
+    b.mirror = m.type == CV_MAT_MIRROR;
+    return b;
+}
+
+bool cv_bsdf_is_delta(CvBsdf b) { return b.mirror; }
+vec3 cv_bsdf_albedo(CvBsdf b) { return b.r; }
+
+vec3 cv_bsdf_f(CvBsdf b, vec3 wo, vec3 wi)
+{
+    if (b.mirror || dot(wo, b.n) * dot(wi, b.n) <= 0.0)
+        return vec3(0.0);
+    return b.r / CV_PI;
+}
+
+float cv_bsdf_pdf(CvBsdf b, vec3 wo, vec3 wi)
+{
+    if (b.mirror || dot(wo, b.n) * dot(wi, b.n) <= 0.0)
+        return 0.0;
+    return abs(dot(wi, b.n)) / CV_PI;
+}
+
+void cv_fallback_basis(vec3 n, out vec3 t, out vec3 bt)
+{
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    bt = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+bool cv_bsdf_sample(CvBsdf b, vec3 wo, float uc, vec2 u2, out CvBsdfSample s)
+{
+    vec3 n = dot(wo, b.n) < 0.0 ? -b.n : b.n;
+    if (b.mirror) {
+        s.wi = reflect(-wo, n);
+        float c = abs(dot(s.wi, n));
+        s.f = c > 0.0 ? b.r / c : vec3(0.0);
+        s.pdf = 1.0;
+        s.flags = CV_BSDF_REFLECTION | CV_BSDF_SPECULAR;
+        return c > 0.0;
+    }
+    float r = sqrt(u2.x), phi = 2.0 * CV_PI * u2.y;
+    vec3 t, bt;
+    cv_fallback_basis(n, t, bt);
+    float z = sqrt(max(0.0, 1.0 - u2.x));
+    s.wi = normalize(r * cos(phi) * t + r * sin(phi) * bt + z * n);
+    s.pdf = z / CV_PI;
+    s.f = b.r / CV_PI;
+    s.flags = CV_BSDF_REFLECTION;
+    return s.pdf > 0.0;
+}
+
+bool cv_material_alpha_pass(uint material, vec2 uv, float u)
+{
+    return false;
+}
+
+#endif

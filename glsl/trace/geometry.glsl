@@ -1,0 +1,66 @@
+// glsl/trace/geometry.glsl: where the trace stages get the scene buffers and
+// ray traversal from (one place to switch), and the surface point of a hit.
+#ifndef CV_TRACE_GEOMETRY_GLSL
+#define CV_TRACE_GEOMETRY_GLSL
+
+#include "fallback/scene_buffers.glsl"
+#include "fallback/traverse_brute.glsl"
+
+struct CvSurface {
+    vec3 p;
+    vec3 ng;     // geometric normal (pbrt's orientation, ReverseOrientation applied)
+    vec3 ns;     // shading normal, same hemisphere as ng
+    vec3 dpdu;
+    vec2 uv;
+    uint material;
+    uint flags;
+};
+
+CvSurface cv_surface(uint prim, float b1, float b2)
+{
+    uvec4 idx = cv_triangles[prim].idx;
+    CvVertex v0 = cv_vertices[idx.x], v1 = cv_vertices[idx.y], v2 = cv_vertices[idx.z];
+    float b0 = 1.0 - b1 - b2;
+    CvSurface s;
+    s.flags = idx.w & ~CV_TRI_MATERIAL_MASK;
+    s.material = idx.w & CV_TRI_MATERIAL_MASK;
+    vec3 p0 = v0.pos_u.xyz, p1 = v1.pos_u.xyz, p2 = v2.pos_u.xyz;
+    s.p = b0 * p0 + b1 * p1 + b2 * p2;
+    vec2 uv0 = vec2(0.0, 0.0), uv1 = vec2(1.0, 0.0), uv2 = vec2(1.0, 1.0);
+    if ((s.flags & CV_TRI_HAS_UV) != 0u) {
+        uv0 = vec2(v0.pos_u.w, v0.nrm_v.w);
+        uv1 = vec2(v1.pos_u.w, v1.nrm_v.w);
+        uv2 = vec2(v2.pos_u.w, v2.nrm_v.w);
+    }
+    s.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+    vec3 e1 = p1 - p0, e2 = p2 - p0;
+    vec3 ng = normalize(cross(e1, e2));
+    if ((s.flags & CV_TRI_REVERSE) != 0u)
+        ng = -ng;
+    // dp/du from the uv parameterisation, as pbrt's Triangle
+    vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+    float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    vec3 dpdu = vec3(0.0);
+    if (abs(det) > 1e-9)
+        dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+    if (dot(dpdu, dpdu) < 1e-20 || any(isnan(dpdu))) {
+        vec3 a = abs(ng.x) > 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+        dpdu = normalize(cross(a, ng));
+    }
+    s.ns = ng;
+    if ((s.flags & CV_TRI_HAS_NORMAL) != 0u) {
+        vec3 n = b0 * v0.nrm_v.xyz + b1 * v1.nrm_v.xyz + b2 * v2.nrm_v.xyz;
+        if (dot(n, n) > 0.0) {
+            n = normalize(n);
+            // pbrt orients the geometric normal by the shading normal
+            ng = dot(ng, n) < 0.0 ? -ng : ng;
+            s.ns = n;
+        }
+    }
+    s.ng = ng;
+    s.dpdu = dpdu;
+    return s;
+}
+
+#endif

@@ -1,0 +1,49 @@
+#version 450
+// glsl/trace/intersect.comp: closest hit for every ray of this depth; hits go
+// to the hit queue, misses to the escaped queue. Alpha cut-outs are handled
+// here by continuing the ray past a surface whose alpha test lets it through,
+// so the depth does not change.
+#include "shared/trace.h"
+layout(local_size_x = CV_TRACE_GROUP) in;
+#include "common.glsl"
+#include "sampler.glsl"
+#include "shading.glsl"
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i >= q.count_a.x)
+        return;
+    CvRayItem r = rays_in[i];
+    CvHit h;
+    float tmin = 0.0;
+    bool hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
+#ifdef CV_HAS_ALPHA
+    for (uint k = 0u; hit && k < 64u; k++) {
+        uint word = cv_triangles[h.prim].idx.w;
+        CvSurface s = cv_surface(h.prim, h.b1, h.b2);
+        float u = cv_u32_to_unit(cv_hash4(floatBitsToUint(r.o.w), cv_sample_index(), h.prim,
+                                          cv_depth() * 64u + k));
+        if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))
+            break;
+        tmin = h.t * (1.0 + 1e-5) + 1e-6;
+        hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
+    }
+#endif
+    if (hit) {
+        uint slot = atomicAdd(q.count_a.z, 1u);
+        CvHitItem it;
+        it.ray = i;
+        it.prim = h.prim;
+        it.b1 = h.b1;
+        it.b2 = h.b2;
+        it.t = h.t;
+        it.pad0 = 0u;
+        it.pad1 = 0u;
+        it.pad2 = 0u;
+        hits[slot] = it;
+    } else {
+        uint slot = atomicAdd(q.count_a.w, 1u);
+        escaped[slot] = i;
+    }
+}

@@ -1,0 +1,45 @@
+#version 450
+// glsl/trace/prepare.comp: one invocation that turns queue counters into
+// indirect dispatch arguments between stages, so the host never reads a
+// count back. PREPARE_MODE 0 starts a depth (the rays written last become
+// this depth's input; the other queues empty), 1 follows intersection (hits,
+// escaped), 2 follows shading (shadow rays).
+#include "shared/trace.h"
+layout(local_size_x = 1) in;
+#include "common.glsl"
+
+uvec4 cv_groups(uint n)
+{
+    uint g = (n + uint(CV_TRACE_GROUP) - 1u) / uint(CV_TRACE_GROUP);
+    uint gy = 1u;
+    if (g > 65535u) {
+        gy = (g + 65534u) / 65535u;
+        g = (g + gy - 1u) / gy;
+    }
+    return uvec4(g, gy, 1u, 0u);
+}
+
+void cv_stat_add(uint slot, uint n)
+{
+    uint lo = q.stats[slot].x + n;
+    if (lo < n)
+        q.stats[slot].y += 1u;
+    q.stats[slot].x = lo;
+}
+
+void main()
+{
+#if PREPARE_MODE == 0
+    uint n = q.count_a.y;
+    q.count_a = uvec4(n, 0u, 0u, 0u);
+    q.count_b.x = 0u;
+    q.args[CV_ARGS_RAYS] = cv_groups(n);
+    cv_stat_add(cv_depth() == 0u ? CV_STAT_PRIMARY : CV_STAT_SECONDARY, n);
+#elif PREPARE_MODE == 1
+    q.args[CV_ARGS_HITS] = cv_groups(q.count_a.z);
+    q.args[CV_ARGS_ESCAPED] = cv_groups(q.count_a.w);
+#else
+    q.args[CV_ARGS_SHADOW] = cv_groups(q.count_b.x);
+    cv_stat_add(CV_STAT_SHADOW, q.count_b.x);
+#endif
+}

@@ -1,0 +1,17 @@
+#version 450
+// glsl/trace/resolve.comp: the film as linear RGB (radiance sum / weight,
+// alpha 1), one vec4 per pixel of the crop, row-major, top row first.
+#include "shared/trace.h"
+layout(local_size_x = CV_TRACE_GROUP) in;
+#include "common.glsl"
+
+layout(std430, binding = CV_BIND_RESOLVED) writeonly buffer CvResolved { vec4 resolved[]; };
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i >= u_pass.frame.x)
+        return;
+    vec4 f = film[i];
+    resolved[i] = vec4(f.w > 0.0 ? f.rgb / f.w : vec3(0.0), 1.0);
+}

@@ -1,0 +1,120 @@
+#version 450
+// glsl/trace/shade.comp: everything that happens at a surface hit: emitted
+// light (MIS-weighted against light sampling), the AOVs, then, below the
+// maximum depth, next-event estimation (a shadow ray queued with its
+// MIS-weighted contribution; skipped for delta BSDFs) and BSDF sampling of
+// the bounce ray with Russian roulette.
+#include "shared/trace.h"
+layout(local_size_x = CV_TRACE_GROUP) in;
+#include "common.glsl"
+#include "sampler.glsl"
+#include "shading.glsl"
+
+uint cv_film_pixel(uint i)
+{
+    uint cw = u_pass.frame.y;
+    uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
+    return px.y * u_pass.film.x + px.x;
+}
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i >= q.count_a.z)
+        return;
+    CvHitItem h = hits[i];
+    CvRayItem r = rays_in[h.ray];
+    uint pixel = floatBitsToUint(r.o.w);
+    uint flags = floatBitsToUint(r.beta.w);
+    uint depth = cv_depth();
+    vec3 beta = r.beta.rgb;
+    vec3 wo = -r.d.xyz;
+    CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+    bool front = dot(wo, sf.ng) > 0.0;
+
+    int light = cv_tri_light[h.prim];
+    if (light >= 0) {
+        vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
+        if (cv_max3(Le) > 0.0) {
+            float w = 1.0;
+            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+                w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
+            cv_film_add(pixel, beta * Le * w);
+        }
+    }
+
+    uint fp = cv_film_pixel(pixel);
+    uint si = cv_sample_index();
+    uvec2 seed = u_pass.seed.xy;
+    uint smp = u_pass.seed.z;
+    uint pair = 2u + depth * CV_PAIRS_PER_BOUNCE;
+    vec2 u_bsdf = cv_sample_2d(fp, si, pair + CV_PAIR_BSDF_U2, seed, smp);
+    vec2 u_bc = cv_sample_2d(fp, si, pair + CV_PAIR_BSDF_UC, seed, smp);
+    vec2 u_light = cv_sample_2d(fp, si, pair + CV_PAIR_LIGHT_U2, seed, smp);
+    vec2 u_lc = cv_sample_2d(fp, si, pair + CV_PAIR_LIGHT_UC, seed, smp);
+
+    CvShadingPoint sp;
+    sp.p = sf.p;
+    sp.ng = sf.ng;
+    sp.ns = sf.ns;
+    sp.dpdu = sf.dpdu;
+    sp.uv = sf.uv;
+    sp.front = front;
+    CvBsdf b = cv_bsdf_at(sf.material, sp, u_bc.y);
+    bool delta = cv_bsdf_is_delta(b);
+
+#ifdef CV_AOVS
+    if (depth == 0u) {
+        aov[pixel].normal.xyz += sf.ns;
+        aov[pixel].albedo.w += h.t;
+    }
+    if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
+        aov[pixel].albedo.rgb += cv_bsdf_albedo(b);
+        flags |= CV_RAYF_ALBEDO_DONE;
+    }
+#endif
+    if (depth >= cv_max_depth())
+        return;
+
+    if (!delta && u_pass.misc.z > 0u) {
+        CvLightSample ls;
+        if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
+            vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
+            if (cv_max3(f) > 0.0) {
+                float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, cv_bsdf_pdf(b, wo, ls.wi));
+                vec3 Ld = beta * f * ls.L * (w / ls.pdf);
+                if (cv_finite3(Ld)) {
+                    CvShadowItem s;
+                    s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
+                               ls.dist * (1.0 - 1e-4));
+                    s.d = vec4(ls.wi, uintBitsToFloat(pixel));
+                    s.L = vec4(Ld, 0.0);
+                    shadows[atomicAdd(q.count_b.x, 1u)] = s;
+                }
+            }
+        }
+    }
+
+    CvBsdfSample bs;
+    if (!cv_bsdf_sample(b, wo, u_bc.x, u_bsdf, bs) || bs.pdf <= 0.0)
+        return;
+    beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / bs.pdf);
+    if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
+        return;
+    bool specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+    if (depth >= 3u) {
+        float m = cv_max3(beta);
+        if (m < 1.0) {
+            float qd = max(0.0, 1.0 - m);
+            if (u_lc.y < qd)
+                return;
+            beta /= 1.0 - qd;
+        }
+    }
+    flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
+    CvRayItem nr;
+    nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
+    nr.d = vec4(bs.wi, specular ? 0.0 : bs.pdf);
+    nr.beta = vec4(beta, uintBitsToFloat(flags));
+    rays_out[atomicAdd(q.count_a.y, 1u)] = nr;
+}

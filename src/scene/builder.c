@@ -1,0 +1,395 @@
+/* builder.c: graphics state bookkeeping and the growth of the flat scene:
+ * meshes go in transformed to world space with their material word and
+ * flags, emitting triangles become one area light each, object instances are
+ * flattened (copied per instance: the scenes we target instance little, and
+ * a flat list keeps the BVH and shaders simple). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/log.h"
+#include "base/mem.h"
+#include "scene/builder.h"
+
+bool cv_b_warn(struct cv_builder *b, struct cv_error *err, const struct cv_loc *loc,
+               const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof(msg), fmt, ap);
+    va_end(ap);
+    b->s->warnings++;
+    if (b->strict) {
+        if (loc)
+            return cv_fail(err, "%s:%d:%d: %s (--strict)", loc->file, loc->line, loc->col, msg);
+        return cv_fail(err, "%s (--strict)", msg);
+    }
+    if (loc)
+        cv_warn("%s:%d:%d: %s", loc->file, loc->line, loc->col, msg);
+    else
+        cv_warn("%s", msg);
+    return true;
+}
+
+bool cv_b_check_unused(struct cv_builder *b, struct cv_params *ps, const char *directive,
+                       struct cv_error *err)
+{
+    for (size_t i = 0; i < ps->n; i++) {
+        struct cv_param *p = &ps->v[i];
+        if (p->used)
+            continue;
+        struct cv_loc loc = {p->file, p->line, p->col};
+        if (!cv_b_warn(b, err, &loc, "%s: parameter \"%s %s\" unused", directive,
+                       cv_param_type_name(p->type), p->name))
+            return false;
+    }
+    return true;
+}
+
+void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
+{
+    memset(b, 0, sizeof(*b));
+    b->s = s;
+    b->strict = strict;
+    b->gs.ctm = cv_mat4_identity();
+    b->gs.material = -1;
+    b->gs.area.tex = -1;
+    b->cur_object = -1;
+    b->default_material = -1;
+    b->camera_to_world = cv_mat4_identity();
+    b->fov = 90;
+    b->focaldistance = 1e6;
+    b->xres = 1280;
+    b->yres = 720;
+    b->crop[1] = b->crop[3] = 1;
+    b->iso = 100;
+    b->exposure_time = 1;
+    s->settings.spp = 16;
+    s->settings.max_depth = 5;
+    s->settings.filter = CV_FILTER_GAUSSIAN;
+    s->settings.filter_radius[0] = s->settings.filter_radius[1] = 1.5f;
+    s->settings.filter_sigma = 0.5f;
+    s->settings.exposure = 1;
+    s->settings.crop[1] = s->settings.crop[3] = 1;
+}
+
+static void free_named(struct cv_named *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(v[i].name);
+    free(v);
+}
+
+void cv_b_free(struct cv_builder *b)
+{
+    free(b->stack);
+    free(b->stack_loc);
+    free_named(b->materials_named, b->n_materials_named);
+    free_named(b->float_tex, b->n_float_tex);
+    free_named(b->spec_tex, b->n_spec_tex);
+    free_named(b->images, b->n_images);
+    for (size_t i = 0; i < b->n_media; i++)
+        free(b->media[i]);
+    free(b->media);
+    for (size_t i = 0; i < b->n_coordsys; i++)
+        free(b->coordsys[i].name);
+    free(b->coordsys);
+    for (size_t i = 0; i < b->n_objects; i++) {
+        free(b->objects[i].name);
+        free(b->objects[i].v);
+        free(b->objects[i].t);
+    }
+    free(b->objects);
+    free(b->color_space);
+    for (size_t i = 0; i < b->n_paths; i++)
+        free(b->paths[i]);
+    free(b->paths);
+    memset(b, 0, sizeof(*b));
+}
+
+int cv_b_lookup(const struct cv_named *v, size_t n, const char *name)
+{
+    for (size_t i = n; i-- > 0;)
+        if (strcmp(v[i].name, name) == 0)
+            return v[i].index;
+    return -1;
+}
+
+void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *name, int index)
+{
+    for (size_t i = 0; i < *n; i++)
+        if (strcmp((*v)[i].name, name) == 0) {
+            (*v)[i].index = index;
+            return;
+        }
+    struct cv_named e = {cv_xstrdup(name), index};
+    CV_PUSH(*v, *n, *cap, e);
+}
+
+uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name)
+{
+    struct cv_scene *s = b->s;
+    size_t cap = b->cap_m, n = s->n_materials;
+    CV_PUSH(s->materials, n, b->cap_m, *m);
+    if (cap != b->cap_m)
+        s->material_names = cv_xrealloc(s->material_names, b->cap_m * sizeof(char *));
+    s->material_names[s->n_materials] = name ? cv_xstrdup(name) : NULL;
+    s->n_materials = (uint32_t)n;
+    return (uint32_t)(n - 1);
+}
+
+int cv_b_add_texture(struct cv_builder *b, const CvTexture *t)
+{
+    size_t n = b->s->n_textures;
+    CV_PUSH(b->s->textures, n, b->cap_tex, *t);
+    b->s->n_textures = (uint32_t)n;
+    return (int)(n - 1);
+}
+
+uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power)
+{
+    struct cv_scene *s = b->s;
+    size_t cap = b->cap_l, n = s->n_lights;
+    CV_PUSH(s->lights, n, b->cap_l, *l);
+    if (cap != b->cap_l)
+        s->light_power = cv_xrealloc(s->light_power, b->cap_l * sizeof(float));
+    s->light_power[s->n_lights] = power;
+    s->n_lights = (uint32_t)n;
+    return (uint32_t)(n - 1);
+}
+
+static uint32_t current_material(struct cv_builder *b)
+{
+    if (b->gs.material >= 0)
+        return (uint32_t)b->gs.material;
+    if (b->default_material < 0) {
+        /* pbrt's default: diffuse, reflectance 0.5 */
+        CvMaterial m;
+        memset(&m, 0, sizeof(m));
+        m.type = CV_MAT_DIFFUSE;
+        m.reflectance = (cv_vec4){0.5f, 0.5f, 0.5f, 0};
+        m.displacement_tex = m.normal_tex = m.reflectance_tex = m.specular_tex = -1;
+        m.roughness_u_tex = m.roughness_v_tex = m.alpha_tex = m.amount_tex = m.eta_tex = -1;
+        m.mix_a = m.mix_b = -1;
+        m.alpha = 1;
+        b->default_material = (int)cv_b_add_material(b, &m, "(default)");
+    }
+    return (uint32_t)b->default_material;
+}
+
+static double tri_area(const CvVertex *v, const CvTriangle *t)
+{
+    const cv_vec4 *a = &v[t->idx.x].pos_u, *bb = &v[t->idx.y].pos_u, *c = &v[t->idx.z].pos_u;
+    double e1[3] = {bb->x - a->x, bb->y - a->y, bb->z - a->z};
+    double e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+    double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2],
+           z = e1[0] * e2[1] - e1[1] * e2[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+static double luminance(const double rgb[3])
+{
+    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct cv_loc *loc,
+                    struct cv_error *err)
+{
+    struct cv_scene *s = b->s;
+    if (m->n_tris == 0)
+        return true;
+    struct cv_object *obj = b->cur_object >= 0 ? &b->objects[b->cur_object] : NULL;
+    size_t nv0 = obj ? obj->nv : s->n_vertices;
+    size_t nt0 = obj ? obj->nt : s->n_triangles;
+    if (nv0 + m->n_verts > 0xffffffffu || nt0 + m->n_tris > 0xffffffffu)
+        return cv_fail(err, "%s:%d:%d: scene exceeds 2^32 vertices or triangles", loc->file,
+                       loc->line, loc->col);
+    uint32_t mat = current_material(b);
+    if (mat > CV_TRI_MATERIAL_MASK)
+        return cv_fail(err, "%s:%d:%d: more than 2^24 materials", loc->file, loc->line, loc->col);
+
+    const struct cv_mat4 *M = &b->gs.ctm;
+    struct cv_mat4 inv;
+    cv_mat4_inverse(M, &inv);
+    bool swaps = cv_mat4_det3(M) < 0;
+    bool flip_n = m->analytic ? (b->gs.reverse != swaps) : b->gs.reverse;
+    uint32_t flags = mat;
+    if (m->uv)
+        flags |= CV_TRI_HAS_UV;
+    if (m->N)
+        flags |= CV_TRI_HAS_NORMAL;
+    if (b->gs.reverse != swaps)
+        flags |= CV_TRI_REVERSE;
+
+    CvVertex *V;
+    CvTriangle *T;
+    size_t need_v = nv0 + m->n_verts, need_t = nt0 + m->n_tris;
+    if (obj) {
+        obj->v = cv_xgrow(obj->v, &obj->cap_v, need_v, sizeof(CvVertex));
+        obj->t = cv_xgrow(obj->t, &obj->cap_t, need_t, sizeof(CvTriangle));
+        V = obj->v;
+        T = obj->t;
+    } else {
+        size_t cap_t = b->cap_t;
+        s->vertices = cv_xgrow(s->vertices, &b->cap_v, need_v, sizeof(CvVertex));
+        s->triangles = cv_xgrow(s->triangles, &b->cap_t, need_t, sizeof(CvTriangle));
+        if (cap_t != b->cap_t)
+            s->tri_light = cv_xrealloc(s->tri_light, b->cap_t * sizeof(int32_t));
+        V = s->vertices;
+        T = s->triangles;
+    }
+    for (size_t i = 0; i < m->n_verts; i++) {
+        double p[3] = {m->P[3 * i], m->P[3 * i + 1], m->P[3 * i + 2]}, w[3];
+        cv_mat4_point(M, p, w);
+        CvVertex *v = &V[nv0 + i];
+        v->pos_u = (cv_vec4){(float)w[0], (float)w[1], (float)w[2], m->uv ? m->uv[2 * i] : 0};
+        v->nrm_v = (cv_vec4){0, 0, 0, m->uv ? m->uv[2 * i + 1] : 0};
+        if (m->N) {
+            double n[3] = {m->N[3 * i], m->N[3 * i + 1], m->N[3 * i + 2]}, o[3];
+            cv_mat4_normal(&inv, n, o);
+            double l = sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+            if (l > 0)
+                l = (flip_n ? -1 : 1) / l;
+            v->nrm_v.x = (float)(o[0] * l);
+            v->nrm_v.y = (float)(o[1] * l);
+            v->nrm_v.z = (float)(o[2] * l);
+        }
+    }
+    for (size_t i = 0; i < m->n_tris; i++)
+        T[nt0 + i].idx = (cv_uvec4){(uint32_t)nv0 + m->idx[3 * i], (uint32_t)nv0 + m->idx[3 * i + 1],
+                                    (uint32_t)nv0 + m->idx[3 * i + 2], flags};
+    if (obj) {
+        obj->nv = need_v;
+        obj->nt = need_t;
+        if (b->gs.area.on && !cv_b_warn(b, err, loc, "area lights inside object definitions are ignored (as in pbrt)"))
+            return false;
+        return true;
+    }
+    s->n_vertices = (uint32_t)need_v;
+    s->n_triangles = (uint32_t)need_t;
+    for (size_t i = nt0; i < need_t; i++)
+        s->tri_light[i] = -1;
+    if (b->gs.area.on) {
+        const struct cv_area_state *a = &b->gs.area;
+        double L[3] = {a->L[0], a->L[1], a->L[2]};
+        double sides = a->twosided ? 2 : 1;
+        if (a->power > 0) {
+            double total = 0;
+            for (size_t i = nt0; i < need_t; i++)
+                total += tri_area(V, &T[i]);
+            double k = M_PI * sides * total;
+            if (k > 0)
+                for (int c = 0; c < 3; c++)
+                    L[c] *= a->power / k;
+        }
+        double y = luminance(L);
+        for (size_t i = nt0; i < need_t; i++) {
+            double area = tri_area(V, &T[i]);
+            CvLight l;
+            memset(&l, 0, sizeof(l));
+            l.type = CV_LIGHT_AREA;
+            l.flags = a->twosided ? CV_LIGHTF_TWO_SIDED : 0;
+            l.tex = a->tex;
+            l.prim = (uint32_t)i;
+            l.L = (cv_vec4){(float)L[0], (float)L[1], (float)L[2], (float)area};
+            double power = y * area * M_PI * sides;
+            if (a->tex >= 0 && !(power > 0))
+                power = area * M_PI * sides; /* textured: texture scale unknown here */
+            s->tri_light[i] = (int32_t)cv_b_add_light(b, &l, (float)power);
+        }
+    }
+    return true;
+}
+
+bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err)
+{
+    struct cv_object *o = &b->objects[index];
+    if (o->nt == 0)
+        return true;
+    /* Object vertices are already in the space of their definition; the
+     * instance transform goes on top (pbrt: render-from-instance). */
+    float *P = cv_xmalloc(o->nv * 3 * sizeof(float));
+    float *N = cv_xmalloc(o->nv * 3 * sizeof(float));
+    float *uv = cv_xmalloc(o->nv * 2 * sizeof(float));
+    uint32_t *idx = cv_xmalloc(o->nt * 3 * sizeof(uint32_t));
+    for (size_t i = 0; i < o->nv; i++) {
+        P[3 * i] = o->v[i].pos_u.x;
+        P[3 * i + 1] = o->v[i].pos_u.y;
+        P[3 * i + 2] = o->v[i].pos_u.z;
+        N[3 * i] = o->v[i].nrm_v.x;
+        N[3 * i + 1] = o->v[i].nrm_v.y;
+        N[3 * i + 2] = o->v[i].nrm_v.z;
+        uv[2 * i] = o->v[i].pos_u.w;
+        uv[2 * i + 1] = o->v[i].nrm_v.w;
+    }
+    for (size_t i = 0; i < o->nt; i++) {
+        idx[3 * i] = o->v ? o->t[i].idx.x : 0;
+        idx[3 * i + 1] = o->t[i].idx.y;
+        idx[3 * i + 2] = o->t[i].idx.z;
+    }
+    /* Emit with a neutral graphics state except the transform; then restore
+     * the per-triangle words of the definition (material, flags). */
+    struct cv_gstate saved = b->gs;
+    b->gs.reverse = false;
+    b->gs.area.on = false;
+    struct cv_mesh m = {o->nv, o->nt, P, N, uv, idx, false};
+    size_t nt0 = b->s->n_triangles;
+    bool ok = cv_b_emit_mesh(b, &m, loc, err);
+    b->gs = saved;
+    if (ok) {
+        CvTriangle *T = b->cur_object >= 0 ? b->objects[b->cur_object].t + b->objects[b->cur_object].nt - o->nt
+                                           : b->s->triangles + nt0;
+        bool swaps = cv_mat4_det3(&b->gs.ctm) < 0;
+        for (size_t i = 0; i < o->nt; i++) {
+            uint32_t w = o->t[i].idx.w;
+            if (swaps)
+                w ^= CV_TRI_REVERSE;
+            T[i].idx.w = w;
+        }
+    }
+    free(P);
+    free(N);
+    free(uv);
+    free(idx);
+    return ok;
+}
+
+bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
+{
+    struct cv_scene *s = b->s;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < s->n_vertices; i++) {
+        const float *p = &s->vertices[i].pos_u.x;
+        for (int c = 0; c < 3; c++) {
+            if (p[c] < lo[c])
+                lo[c] = p[c];
+            if (p[c] > hi[c])
+                hi[c] = p[c];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        s->bounds_min[c] = s->n_vertices ? (float)lo[c] : 0;
+        s->bounds_max[c] = s->n_vertices ? (float)hi[c] : 0;
+    }
+    /* Distant and infinite lights scale with the scene's bounding sphere. */
+    double r = 0;
+    for (int c = 0; c < 3; c++)
+        r += (double)(s->bounds_max[c] - s->bounds_min[c]) * (s->bounds_max[c] - s->bounds_min[c]);
+    r = 0.5 * sqrt(r);
+    for (size_t i = 0; i < s->n_lights; i++) {
+        CvLight *l = &s->lights[i];
+        double rgb[3] = {l->L.x, l->L.y, l->L.z};
+        if (l->type == CV_LIGHT_DISTANT)
+            s->light_power[i] = (float)(M_PI * r * r * luminance(rgb));
+        else if (l->type == CV_LIGHT_INFINITE || l->type == CV_LIGHT_INFINITE_MAP)
+            s->light_power[i] = (float)(4 * M_PI * M_PI * r * r * luminance(rgb) *
+                                        (l->type == CV_LIGHT_INFINITE_MAP ? s->light_power[i] : 1));
+    }
+    if (b->cur_object >= 0)
+        return cv_fail(err, "ObjectBegin \"%s\" not closed at end of input", b->objects[b->cur_object].name);
+    cv_b_finish_camera(b);
+    return true;
+}

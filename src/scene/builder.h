@@ -1,0 +1,176 @@
+/* builder.h: the graphics state behind the parser (transform stack,
+ * attributes, named materials/textures/media, object instances) and the
+ * flat scene it grows. Internal to src/scene: the parser calls one cv_b_*
+ * function per directive; shapes, materials, textures, lights and the camera
+ * each live in their own file but share this state. */
+#ifndef CV_SCENE_BUILDER_H
+#define CV_SCENE_BUILDER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "scene/params.h"
+#include "scene/scene.h"
+#include "scene/transform.h"
+
+struct cv_loc {
+    const char *file;
+    int line, col;
+};
+
+struct cv_area_state {
+    bool on;
+    double L[3];         /* already multiplied by scale (and power, per shape) */
+    double power;        /* v4 "power" (watts), <= 0 when absent */
+    bool twosided;
+    int tex;             /* emission texture or -1 */
+};
+
+struct cv_gstate {
+    struct cv_mat4 ctm;
+    bool reverse;
+    int material;        /* index into scene materials, -1: default */
+    struct cv_area_state area;
+    bool transform_only; /* pushed by TransformBegin */
+};
+
+/* A mesh in object space handed to cv_b_emit_mesh; arrays are borrowed. */
+struct cv_mesh {
+    size_t n_verts, n_tris;
+    const float *P;        /* 3 per vertex */
+    const float *N;        /* 3 per vertex or NULL */
+    const float *uv;       /* 2 per vertex or NULL */
+    const uint32_t *idx;   /* 3 per triangle, all < n_verts (checked by caller) */
+    bool analytic;         /* tessellated quadric: N flips on handedness too (pbrt) */
+};
+
+struct cv_named {
+    char *name;
+    int index;
+};
+
+struct cv_object {
+    char *name;
+    CvVertex *v;
+    size_t nv, cap_v;
+    CvTriangle *t;
+    size_t nt, cap_t;
+};
+
+struct cv_coordsys {
+    char *name;
+    struct cv_mat4 m;
+};
+
+struct cv_builder {
+    struct cv_scene *s;
+    size_t cap_v, cap_t, cap_m, cap_tex, cap_texel, cap_l;
+
+    struct cv_gstate gs;
+    struct cv_gstate *stack;
+    size_t n_stack, cap_stack;
+    struct cv_loc *stack_loc;    /* where each push happened */
+
+    struct cv_named *materials_named;
+    size_t n_materials_named, cap_materials_named;
+    struct cv_named *float_tex, *spec_tex;
+    size_t n_float_tex, cap_float_tex, n_spec_tex, cap_spec_tex;
+    char **media;
+    size_t n_media, cap_media;
+    struct cv_coordsys *coordsys;
+    size_t n_coordsys, cap_coordsys;
+    struct cv_object *objects;
+    size_t n_objects, cap_objects;
+    int cur_object;              /* -1 outside ObjectBegin */
+
+    bool strict;
+    bool world;                  /* after WorldBegin */
+    bool camera_set;
+    struct cv_mat4 camera_to_world;
+    /* camera and film parameters, applied when the scene is finished */
+    uint32_t cam_type;
+    double fov, lensradius, focaldistance, frameaspect, screen[4];
+    bool has_screen;
+    int xres, yres;
+    double crop[4];
+    double iso, exposure_time;
+    int default_material;        /* created on first use, -1 before */
+    char *color_space;
+    struct cv_named *images;     /* "path|srgb" -> texture index */
+    size_t n_images, cap_images;
+    char **paths;                /* every file read, kept for locations */
+    size_t n_paths, cap_paths;
+};
+
+/* Reports a warning with location; false (err set) when strict. */
+bool cv_b_warn(struct cv_builder *b, struct cv_error *err, const struct cv_loc *loc,
+               const char *fmt, ...) CV_PRINTF(4, 5);
+/* Warns about every parameter no lookup used. */
+bool cv_b_check_unused(struct cv_builder *b, struct cv_params *ps, const char *directive,
+                       struct cv_error *err);
+
+void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict);
+void cv_b_free(struct cv_builder *b);
+/* Fills the camera, bounds, light powers; trims arrays. */
+bool cv_b_finish(struct cv_builder *b, struct cv_error *err);
+
+/* Appends a mesh with the current transform, material, area light. */
+bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct cv_loc *loc,
+                    struct cv_error *err);
+/* Copies object `index` with the current transform (flattened instancing). */
+bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err);
+uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);
+int cv_b_add_texture(struct cv_builder *b, const CvTexture *t);
+uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power);
+int cv_b_lookup(const struct cv_named *v, size_t n, const char *name);
+void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *name, int index);
+
+/* Directives (see the files named). */
+bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
+                const struct cv_loc *loc, const char *dir, struct cv_error *err);  /* shapes.c */
+bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
+                   struct cv_params *ps, const struct cv_loc *loc, const char *dir,
+                   struct cv_error *err, int *out);                              /* materials.c */
+bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, const char *cls,
+                  struct cv_params *ps, const struct cv_loc *loc, const char *dir,
+                  struct cv_error *err);                                         /* texture.c */
+/* Loads an image file as an image texture (mip-mapped); srgb: decode 8-bit
+ * sources as sRGB. Returns the index or -1 (err set). Cached by path. */
+int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
+                       const struct cv_loc *loc, struct cv_error *err);
+bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
+                const struct cv_loc *loc, const char *dir, struct cv_error *err); /* lights.c */
+bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *ps,
+                     const struct cv_loc *loc, const char *dir, struct cv_error *err);
+bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
+                 const struct cv_loc *loc, struct cv_error *err);                /* camera.c */
+bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
+               const struct cv_loc *loc, struct cv_error *err);
+void cv_b_finish_camera(struct cv_builder *b);
+
+/* Resolves a colour parameter (rgb, spectrum, blackbody) to linear RGB.
+ * kind says how a spectrum is read: reflectance, unbounded (eta, k) or
+ * illuminant (normalised to luminance 1, as pbrt-v4 does for lights).
+ * Returns false on error; *found false when absent. (spectrum.c) */
+enum cv_spectrum_kind {
+    CV_SPEC_REFLECTANCE,
+    CV_SPEC_UNBOUNDED,
+    CV_SPEC_ILLUMINANT,
+};
+bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
+                enum cv_spectrum_kind kind, const char *dir, double rgb[3], bool *found,
+                struct cv_error *err);
+/* A colour-or-texture slot: sets *tex (-1 if constant) and rgb. */
+bool cv_b_color_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
+                    enum cv_spectrum_kind kind, const char *dir, double rgb[3], int *tex,
+                    struct cv_error *err);
+/* An index of refraction: float, rgb (green), named glass or spectrum at 550 nm. */
+bool cv_b_scalar_eta(struct cv_builder *b, struct cv_params *ps, const char *name,
+                     const char *dir, double *eta, bool *found, struct cv_error *err);
+/* A float-or-texture slot. */
+bool cv_b_float_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
+                    double *val, int *tex, struct cv_error *err);
+
+#endif

@@ -1,0 +1,123 @@
+/* camera.c: Camera and Film into CvCamera and the render settings, with
+ * pbrt's conventions (the CTM at Camera is world-to-camera; the screen
+ * window spans [-aspect, aspect] x [-1, 1] on the longer axis; fov is
+ * measured on the shorter axis). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/mem.h"
+#include "scene/builder.h"
+
+bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
+                 const struct cv_loc *loc, struct cv_error *err)
+{
+    if (b->camera_set && !cv_b_warn(b, err, loc, "second Camera replaces the first"))
+        return false;
+    struct cv_mat4 inv;
+    if (!cv_mat4_inverse(&b->gs.ctm, &inv))
+        return cv_fail(err, "%s:%d:%d: the camera transform is singular", loc->file, loc->line, loc->col);
+    b->camera_to_world = inv;
+    b->camera_set = true;
+    size_t i;
+    for (i = 0; i < b->n_coordsys; i++)
+        if (strcmp(b->coordsys[i].name, "camera") == 0)
+            break;
+    if (i == b->n_coordsys) {
+        struct cv_coordsys c = {cv_xstrdup("camera"), inv};
+        CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
+    } else {
+        b->coordsys[i].m = inv;
+    }
+    if (strcmp(type, "perspective") == 0) {
+        b->cam_type = CV_CAMERA_PERSPECTIVE;
+    } else if (strcmp(type, "orthographic") == 0) {
+        b->cam_type = CV_CAMERA_ORTHOGRAPHIC;
+    } else {
+        if (!cv_b_warn(b, err, loc, "camera \"%s\" is not supported; perspective used", type))
+            return false;
+        b->cam_type = CV_CAMERA_PERSPECTIVE;
+        for (size_t k = 0; k < ps->n; k++)
+            ps->v[k].used = true;
+    }
+    b->fov = cv_params_float(ps, "fov", 90);
+    double half = cv_params_float(ps, "halffov", -1);
+    if (half > 0)
+        b->fov = 2 * half;
+    if (!(b->fov > 0 && b->fov < 180))
+        return cv_fail(err, "%s:%d:%d: fov must be in (0, 180) degrees", loc->file, loc->line, loc->col);
+    b->lensradius = cv_params_float(ps, "lensradius", 0);
+    b->focaldistance = cv_params_float(ps, "focaldistance", 1e6);
+    b->frameaspect = cv_params_float(ps, "frameaspectratio", -1);
+    b->has_screen = cv_params_floats(ps, "screenwindow", b->screen, 4);
+    double open = cv_params_float(ps, "shutteropen", 0), close = cv_params_float(ps, "shutterclose", 1);
+    b->exposure_time = close - open;
+    return true;
+}
+
+bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
+               const struct cv_loc *loc, struct cv_error *err)
+{
+    if (strcmp(type, "rgb") != 0 && strcmp(type, "image") != 0 && strcmp(type, "gbuffer") != 0 &&
+        !cv_b_warn(b, err, loc, "film \"%s\" read as \"rgb\"", type))
+        return false;
+    b->xres = cv_params_int(ps, "xresolution", 1280);
+    b->yres = cv_params_int(ps, "yresolution", 720);
+    if (b->xres <= 0 || b->yres <= 0 || b->xres > 1 << 16 || b->yres > 1 << 16)
+        return cv_fail(err, "%s:%d:%d: film resolution must be in 1..65536", loc->file, loc->line, loc->col);
+    double crop[4] = {0, 1, 0, 1};
+    if (cv_params_floats(ps, "cropwindow", crop, 4)) {
+        for (int i = 0; i < 4; i++)
+            crop[i] = crop[i] < 0 ? 0 : crop[i] > 1 ? 1 : crop[i];
+        if (!(crop[0] < crop[1] && crop[2] < crop[3]))
+            return cv_fail(err, "%s:%d:%d: empty crop window", loc->file, loc->line, loc->col);
+    }
+    memcpy(b->crop, crop, sizeof(crop));
+    const char *fn = cv_params_string(ps, "filename", NULL);
+    free(b->s->settings.film_filename);
+    b->s->settings.film_filename = fn ? cv_xstrdup(fn) : NULL;
+    b->iso = cv_params_float(ps, "iso", 100);
+    double scale = cv_params_float(ps, "scale", 1); /* v3 */
+    b->s->settings.exposure = (float)scale;
+    /* accepted, with no effect on the flat scene */
+    static const char *const known[] = {"diagonal", "maxcomponentvalue", "savefp16", "sensor",
+                                        "whitebalance", "writefp16", "pixelbounds"};
+    for (size_t i = 0; i < CV_ARRAY_SIZE(known); i++)
+        cv_params_find(ps, known[i]);
+    return true;
+}
+
+void cv_b_finish_camera(struct cv_builder *b)
+{
+    struct cv_scene *s = b->s;
+    CvCamera *c = &s->camera;
+    memset(c, 0, sizeof(*c));
+    for (int r = 0; r < 3; r++)
+        c->to_world[r] = (cv_vec4){(float)b->camera_to_world.m[r][0], (float)b->camera_to_world.m[r][1],
+                                   (float)b->camera_to_world.m[r][2], (float)b->camera_to_world.m[r][3]};
+    double aspect = b->frameaspect > 0 ? b->frameaspect : (double)b->xres / b->yres;
+    double sw[4];
+    if (b->has_screen) {
+        memcpy(sw, b->screen, sizeof(sw));
+    } else if (aspect > 1) {
+        sw[0] = -aspect; sw[1] = aspect; sw[2] = -1; sw[3] = 1;
+    } else {
+        sw[0] = -1; sw[1] = 1; sw[2] = -1 / aspect; sw[3] = 1 / aspect;
+    }
+    c->screen = (cv_vec4){(float)sw[0], (float)sw[1], (float)sw[2], (float)sw[3]};
+    c->lens = (cv_vec4){(float)b->lensradius, (float)b->focaldistance,
+                        (float)tan(b->fov * M_PI / 360), 0};
+    uint32_t x0 = (uint32_t)ceil(b->xres * b->crop[0]), x1 = (uint32_t)ceil(b->xres * b->crop[1]);
+    uint32_t y0 = (uint32_t)ceil(b->yres * b->crop[2]), y1 = (uint32_t)ceil(b->yres * b->crop[3]);
+    if (x1 <= x0)
+        x1 = x0 + 1;
+    if (y1 <= y0)
+        y1 = y0 + 1;
+    c->film = (cv_uvec4){(uint32_t)b->xres, (uint32_t)b->yres, x0, y0};
+    c->crop = (cv_uvec4){x1 - x0, y1 - y0, b->cam_type, 0};
+    s->settings.width = (uint32_t)b->xres;
+    s->settings.height = (uint32_t)b->yres;
+    for (int i = 0; i < 4; i++)
+        s->settings.crop[i] = (float)b->crop[i];
+    s->settings.exposure *= (float)(b->iso / 100 * b->exposure_time);
+}

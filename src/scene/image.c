@@ -1,0 +1,225 @@
+/* image.c: reading the image formats pbrt scenes use. */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include <OpenEXR/ImfCRgbaFile.h>
+#include <stb/stb_image.h>
+
+#include "base/file.h"
+#include "base/mem.h"
+#include "scene/image.h"
+
+#define MAX_DIM 65536
+
+uint16_t cv_float_to_half(float f)
+{
+    union { float f; uint32_t u; } v = {f};
+    uint32_t sign = (v.u >> 16) & 0x8000u;
+    uint32_t exp = (v.u >> 23) & 0xffu, mant = v.u & 0x7fffffu;
+    if (exp == 0xff) /* inf, nan */
+        return (uint16_t)(sign | 0x7c00u | (mant ? 0x200u : 0));
+    int e = (int)exp - 127 + 15;
+    if (e >= 31)
+        return (uint16_t)(sign | 0x7c00u);
+    if (e <= 0) {
+        if (e < -10)
+            return (uint16_t)sign;
+        mant |= 0x800000u;
+        int shift = 14 - e;
+        uint32_t h = mant >> shift;
+        uint32_t rem = mant & ((1u << shift) - 1), half = 1u << (shift - 1);
+        if (rem > half || (rem == half && (h & 1)))
+            h++;
+        return (uint16_t)(sign | h);
+    }
+    uint32_t h = ((uint32_t)e << 10) | (mant >> 13);
+    uint32_t rem = mant & 0x1fffu;
+    if (rem > 0x1000u || (rem == 0x1000u && (h & 1)))
+        h++; /* may carry into the exponent: still correct */
+    return (uint16_t)(sign | h);
+}
+
+float cv_half_to_float(uint16_t h)
+{
+    uint32_t sign = (uint32_t)(h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
+    union { uint32_t u; float f; } v;
+    if (e == 0) {
+        float f = ldexpf((float)m, -24);
+        return sign ? -f : f;
+    }
+    if (e == 31)
+        v.u = sign | 0x7f800000u | (m << 13);
+    else
+        v.u = sign | ((e + 112) << 23) | (m << 13);
+    return v.f;
+}
+
+static float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+static const char *ext_of(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot ? dot + 1 : "";
+}
+
+static bool ext_is(const char *path, const char *e)
+{
+    const char *x = ext_of(path);
+    return strcasecmp(x, e) == 0;
+}
+
+bool cv_image_is_float_file(const char *path)
+{
+    return ext_is(path, "exr") || ext_is(path, "pfm") || ext_is(path, "hdr");
+}
+
+static bool load_pfm(const char *path, struct cv_image *img, struct cv_error *err)
+{
+    char *data;
+    size_t len;
+    if (!cv_read_file(path, &data, &len, err))
+        return false;
+    char type[3] = {0};
+    int w = 0, h = 0, n = 0;
+    double scale = 0;
+    if (sscanf(data, "%2s %d %d %lf%n", type, &w, &h, &scale, &n) != 4 ||
+        (strcmp(type, "PF") != 0 && strcmp(type, "Pf") != 0) || w <= 0 || h <= 0 ||
+        w > MAX_DIM || h > MAX_DIM || scale == 0) {
+        free(data);
+        return cv_fail(err, "%s: not a valid PFM header", path);
+    }
+    size_t off = (size_t)n + 1; /* one whitespace character after the scale */
+    int ch = type[1] == 'F' ? 3 : 1;
+    size_t need = (size_t)w * h * ch * 4;
+    if (off > len || len - off < need) {
+        free(data);
+        return cv_fail(err, "%s: PFM data truncated", path);
+    }
+    bool swap = (scale > 0) != 0; /* positive scale: big endian */
+    const unsigned char *p = (const unsigned char *)data + off;
+    img->width = w;
+    img->height = h;
+    img->is_float = true;
+    img->rgba = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            /* PFM rows go bottom to top */
+            float *o = &img->rgba[((size_t)(h - 1 - y) * w + x) * 4];
+            for (int c = 0; c < ch; c++) {
+                unsigned char b[4];
+                memcpy(b, p + (((size_t)y * w + x) * ch + c) * 4, 4);
+                if (swap) {
+                    unsigned char t = b[0]; b[0] = b[3]; b[3] = t;
+                    t = b[1]; b[1] = b[2]; b[2] = t;
+                }
+                float f;
+                memcpy(&f, b, 4);
+                o[c] = f * (float)fabs(scale);
+            }
+            if (ch == 1)
+                o[1] = o[2] = o[0];
+            o[3] = 1;
+        }
+    free(data);
+    return true;
+}
+
+static bool load_exr(const char *path, struct cv_image *img, struct cv_error *err)
+{
+    ImfInputFile *in = ImfOpenInputFile(path);
+    if (!in)
+        return cv_fail(err, "%s: %s", path, ImfErrorMessage());
+    int x0, y0, x1, y1;
+    ImfHeaderDataWindow(ImfInputHeader(in), &x0, &y0, &x1, &y1);
+    long w = (long)x1 - x0 + 1, h = (long)y1 - y0 + 1;
+    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM) {
+        ImfCloseInputFile(in);
+        return cv_fail(err, "%s: bad EXR data window", path);
+    }
+    ImfRgba *px = cv_xmalloc((size_t)w * h * sizeof(ImfRgba));
+    ImfInputSetFrameBuffer(in, px - x0 - (long)y0 * w, 1, (size_t)w);
+    if (!ImfInputReadPixels(in, y0, y1)) {
+        cv_fail(err, "%s: %s", path, ImfErrorMessage());
+        free(px);
+        ImfCloseInputFile(in);
+        return false;
+    }
+    ImfCloseInputFile(in);
+    img->width = (int)w;
+    img->height = (int)h;
+    img->is_float = true;
+    img->rgba = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
+    ImfHalfToFloatArray((int)(w * h * 4), (const ImfHalf *)px, img->rgba);
+    free(px);
+    return true;
+}
+
+static bool load_stb(const char *path, bool srgb, struct cv_image *img, struct cv_error *err)
+{
+    int w, h, n;
+    if (stbi_is_hdr(path)) {
+        float *f = stbi_loadf(path, &w, &h, &n, 4);
+        if (!f)
+            return cv_fail(err, "%s: %s", path, stbi_failure_reason());
+        img->width = w;
+        img->height = h;
+        img->is_float = true;
+        img->rgba = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
+        memcpy(img->rgba, f, (size_t)w * h * 4 * sizeof(float));
+        stbi_image_free(f);
+        return true;
+    }
+    bool is16 = stbi_is_16_bit(path);
+    void *d = is16 ? (void *)stbi_load_16(path, &w, &h, &n, 4) : (void *)stbi_load(path, &w, &h, &n, 4);
+    if (!d)
+        return cv_fail(err, "%s: %s", path, stbi_failure_reason());
+    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM) {
+        stbi_image_free(d);
+        return cv_fail(err, "%s: image too large", path);
+    }
+    img->width = w;
+    img->height = h;
+    img->is_float = false;
+    size_t count = (size_t)w * h * 4;
+    img->rgba = cv_xmalloc(count * sizeof(float));
+    float lut[256];
+    for (int i = 0; i < 256; i++)
+        lut[i] = srgb ? srgb_to_linear(i / 255.0f) : i / 255.0f;
+    for (size_t i = 0; i < count; i++) {
+        bool alpha = (i & 3) == 3;
+        if (is16) {
+            float v = ((const uint16_t *)d)[i] / 65535.0f;
+            img->rgba[i] = srgb && !alpha ? srgb_to_linear(v) : v;
+        } else {
+            uint8_t v = ((const uint8_t *)d)[i];
+            img->rgba[i] = alpha ? v / 255.0f : lut[v];
+        }
+    }
+    stbi_image_free(d);
+    return true;
+}
+
+bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_error *err)
+{
+    memset(img, 0, sizeof(*img));
+    if (!cv_path_exists(path))
+        return cv_fail(err, "%s: no such file", path);
+    if (ext_is(path, "pfm"))
+        return load_pfm(path, img, err);
+    if (ext_is(path, "exr"))
+        return load_exr(path, img, err);
+    return load_stb(path, srgb, img, err);
+}
+
+void cv_image_free(struct cv_image *img)
+{
+    free(img->rgba);
+    memset(img, 0, sizeof(*img));
+}

@@ -1,0 +1,28 @@
+/* image.h: image files into float RGBA (linear), for textures and
+ * environment maps: PNG/TGA/JPEG/BMP/HDR via stb_image, PFM, EXR via the
+ * OpenEXR C API. Row 0 is the top of the image as stored in the file. */
+#ifndef CV_SCENE_IMAGE_H
+#define CV_SCENE_IMAGE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+
+struct cv_image {
+    int width, height;
+    float *rgba;      /* width*height*4, owned */
+    bool is_float;    /* the source held float/half data (linear by nature) */
+};
+
+/* srgb: decode 8/16-bit sources from sRGB to linear (float sources are
+ * never decoded). */
+bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_error *err);
+void cv_image_free(struct cv_image *img);
+/* True if the 8/16-bit integer format is used by that file name (by extension). */
+bool cv_image_is_float_file(const char *path);
+
+uint16_t cv_float_to_half(float f);
+float cv_half_to_float(uint16_t h);
+
+#endif

@@ -1,0 +1,332 @@
+/* materials.c: pbrt-v3 and pbrt-v4 material names onto CvMaterial. v3
+ * names use pbrt-v3's roughness remapping, v4 names pbrt-v4's (sqrt), so
+ * that each renders as its own pbrt would. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/mem.h"
+#include "scene/builder.h"
+
+static void mat_init(CvMaterial *m, uint32_t type)
+{
+    memset(m, 0, sizeof(*m));
+    m->type = type;
+    m->displacement_tex = m->normal_tex = m->reflectance_tex = m->specular_tex = -1;
+    m->roughness_u_tex = m->roughness_v_tex = m->alpha_tex = m->amount_tex = m->eta_tex = -1;
+    m->mix_a = m->mix_b = -1;
+    m->alpha = 1;
+    m->amount = 0.5f;
+}
+
+static cv_vec4 v4(const double c[3], double w)
+{
+    return (cv_vec4){(float)c[0], (float)c[1], (float)c[2], (float)w};
+}
+
+static double remap_v3(double r)
+{
+    r = r > 1e-3 ? r : 1e-3;
+    double x = log(r);
+    return 1.62142 + 0.819955 * x + 0.1734 * x * x + 0.0171201 * x * x * x +
+           0.000640711 * x * x * x * x;
+}
+
+static double remap_v4(double r) { return sqrt(r > 0 ? r : 0); }
+
+/* roughness / uroughness / vroughness (with prefix) into alpha u,v and
+ * textures; def is the default roughness. */
+static bool roughness(struct cv_builder *b, struct cv_params *ps, const char *prefix, double def,
+                      bool v3, float *au, float *av, int *tu, int *tv, bool *textured,
+                      struct cv_error *err)
+{
+    char n_r[64], n_u[64], n_v[64];
+    snprintf(n_r, sizeof(n_r), "%sroughness", prefix);
+    snprintf(n_u, sizeof(n_u), "%suroughness", prefix);
+    snprintf(n_v, sizeof(n_v), "%svroughness", prefix);
+    double r = def, u, v;
+    int tr, t1, t2;
+    if (!cv_b_float_tex(b, ps, n_r, &r, &tr, err))
+        return false;
+    u = v = r;
+    t1 = t2 = tr;
+    if (!cv_b_float_tex(b, ps, n_u, &u, &t1, err) || !cv_b_float_tex(b, ps, n_v, &v, &t2, err))
+        return false;
+    if (t1 < 0 && tr >= 0 && !cv_params_find(ps, n_u))
+        t1 = tr;
+    if (t2 < 0 && tr >= 0 && !cv_params_find(ps, n_v))
+        t2 = tr;
+    bool remap = cv_params_bool(ps, "remaproughness", true);
+    if (remap) {
+        u = v3 ? remap_v3(u) : remap_v4(u);
+        v = v3 ? remap_v3(v) : remap_v4(v);
+    }
+    *au = (float)u;
+    *av = (float)v;
+    if (tu)
+        *tu = t1;
+    if (tv)
+        *tv = t2;
+    if ((t1 >= 0 || t2 >= 0) && remap)
+        *textured = true;
+    return true;
+}
+
+static bool color(struct cv_builder *b, struct cv_params *ps, const char *name, double def,
+                  enum cv_spectrum_kind kind, const char *dir, cv_vec4 *out, int *tex,
+                  struct cv_error *err)
+{
+    double rgb[3] = {def, def, def};
+    int t = -1;
+    if (!cv_b_color_tex(b, ps, name, kind, dir, rgb, &t, err))
+        return false;
+    *out = v4(rgb, out->w);
+    if (tex)
+        *tex = t;
+    else if (t >= 0)
+        return cv_fail(err, "texture not supported for \"%s\"", name);
+    return true;
+}
+
+static bool conductor(struct cv_builder *b, struct cv_params *ps, const char *prefix,
+                      const char *dir, CvMaterial *m, cv_vec4 *eta, cv_vec4 *k,
+                      struct cv_error *err)
+{
+    static const double cu_eta[3] = {0.200438, 0.924033, 1.10221},
+                        cu_k[3] = {3.91295, 2.45285, 2.14219};
+    char n_eta[64], n_k[64], n_r[64];
+    snprintf(n_eta, sizeof(n_eta), "%seta", prefix);
+    snprintf(n_k, sizeof(n_k), "%sk", prefix);
+    snprintf(n_r, sizeof(n_r), "%sreflectance", prefix);
+    double e[3], kk[3], r[3];
+    bool fe, fk, fr;
+    if (!cv_b_color(b, ps, n_eta, CV_SPEC_UNBOUNDED, dir, e, &fe, err) ||
+        !cv_b_color(b, ps, n_k, CV_SPEC_UNBOUNDED, dir, kk, &fk, err))
+        return false;
+    int rt = -1;
+    fr = false;
+    for (size_t i = 0; i < ps->n; i++)
+        if (strcmp(ps->v[i].name, n_r) == 0)
+            fr = true;
+    if (fr) {
+        r[0] = r[1] = r[2] = 0;
+        if (!cv_b_color_tex(b, ps, n_r, CV_SPEC_REFLECTANCE, dir, r, &rt, err))
+            return false;
+        m->flags |= CV_MATF_CONDUCTOR_REFLECTANCE;
+        m->reflectance = v4(r, 0);
+        m->reflectance_tex = rt;
+    }
+    *eta = v4(fe ? e : cu_eta, eta->w);
+    *k = v4(fk ? kk : cu_k, 0);
+    return true;
+}
+
+bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
+                   struct cv_params *ps, const struct cv_loc *loc, const char *dir,
+                   struct cv_error *err, int *out)
+{
+    CvMaterial m;
+    bool textured = false;
+    float au, av;
+    mat_init(&m, CV_MAT_DIFFUSE);
+#define ROUGH(prefix, def, v3)                                                            \
+    roughness(b, ps, prefix, def, v3, &au, &av, &m.roughness_u_tex, &m.roughness_v_tex,  \
+              &textured, err)
+
+    if (strcmp(type, "diffuse") == 0 || strcmp(type, "matte") == 0) {
+        if (!color(b, ps, strcmp(type, "matte") == 0 ? "Kd" : "reflectance", 0.5,
+                   CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err))
+            return false;
+        double sigma = 0;
+        int st;
+        if (!cv_b_float_tex(b, ps, "sigma", &sigma, &st, err))
+            return false;
+        if ((sigma != 0 || st >= 0) && !cv_b_warn(b, err, loc, "matte \"sigma\" (Oren-Nayar) is not supported; Lambertian used"))
+            return false;
+    } else if (strcmp(type, "plastic") == 0 || strcmp(type, "uber") == 0) {
+        m.type = CV_MAT_PLASTIC;
+        if (!color(b, ps, "Kd", 0.25, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err) ||
+            !color(b, ps, "Ks", 0.25, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err) ||
+            !ROUGH("", 0.1, true))
+            return false;
+        m.roughness = (cv_vec4){au, av, 0, 0};
+        if (strcmp(type, "uber") == 0) {
+            cv_vec4 kr = {0}, kt = {0}, op = {0};
+            if (!color(b, ps, "Kr", 0, CV_SPEC_REFLECTANCE, dir, &kr, NULL, err) ||
+                !color(b, ps, "Kt", 0, CV_SPEC_REFLECTANCE, dir, &kt, NULL, err) ||
+                !color(b, ps, "opacity", 1, CV_SPEC_REFLECTANCE, dir, &op, NULL, err))
+                return false;
+            double eta = cv_params_float(ps, "eta", cv_params_float(ps, "index", 1.5));
+            m.eta.x = (float)eta;
+            m.alpha = (op.x + op.y + op.z) / 3;
+            if ((kr.x + kr.y + kr.z + kt.x + kt.y + kt.z) > 0 &&
+                !cv_b_warn(b, err, loc, "uber Kr/Kt are not rendered (plastic approximation)"))
+                return false;
+        }
+    } else if (strcmp(type, "metal") == 0 || strcmp(type, "conductor") == 0) {
+        bool v3 = strcmp(type, "metal") == 0;
+        m.type = CV_MAT_CONDUCTOR;
+        if (!conductor(b, ps, "", dir, &m, &m.eta, &m.k, err) || !ROUGH("", v3 ? 0.01 : 0, v3))
+            return false;
+        m.roughness = (cv_vec4){au, av, 0, 0};
+    } else if (strcmp(type, "glass") == 0 || strcmp(type, "dielectric") == 0 ||
+               strcmp(type, "thindielectric") == 0) {
+        bool v3 = strcmp(type, "glass") == 0;
+        m.type = strcmp(type, "thindielectric") == 0 ? CV_MAT_THIN_DIELECTRIC : CV_MAT_DIELECTRIC;
+        double eta = 1.5;
+        bool found;
+        if (!cv_b_scalar_eta(b, ps, "eta", dir, &eta, &found, err))
+            return false;
+        if (!found && !cv_b_scalar_eta(b, ps, "index", dir, &eta, &found, err))
+            return false;
+        m.eta = (cv_vec4){(float)eta, (float)eta, (float)eta, 0};
+        m.reflectance = m.specular = (cv_vec4){1, 1, 1, 0};
+        if (v3 && (!color(b, ps, "Kr", 1, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err) ||
+                   !color(b, ps, "Kt", 1, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err)))
+            return false;
+        if (m.type == CV_MAT_DIELECTRIC) {
+            if (!ROUGH("", 0, v3))
+                return false;
+            m.roughness = (cv_vec4){au, av, 0, 0};
+        }
+    } else if (strcmp(type, "mirror") == 0) {
+        m.type = CV_MAT_MIRROR;
+        if (!color(b, ps, "Kr", 0.9, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err))
+            return false;
+    } else if (strcmp(type, "substrate") == 0) {
+        /* Ashikhmin-Shirley substrate is rendered as a coated diffuse
+         * (Kd under a rough dielectric coat tinted by Ks). */
+        m.type = CV_MAT_COATED_DIFFUSE;
+        if (!color(b, ps, "Kd", 0.5, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err) ||
+            !color(b, ps, "Ks", 0.5, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err) ||
+            !ROUGH("", 0.1, true))
+            return false;
+        m.roughness = (cv_vec4){au, av, 0.01f, 0};
+        m.eta.x = 1.5f;
+        m.roughness2 = (cv_vec4){0, 0, 10, 1};
+    } else if (strcmp(type, "coateddiffuse") == 0) {
+        m.type = CV_MAT_COATED_DIFFUSE;
+        if (!color(b, ps, "reflectance", 0.5, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err) ||
+            !color(b, ps, "albedo", 0, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err) ||
+            !ROUGH("", 0, false))
+            return false;
+        double eta = 1.5;
+        bool found;
+        if (!cv_b_scalar_eta(b, ps, "eta", dir, &eta, &found, err))
+            return false;
+        m.eta.x = (float)eta;
+        m.roughness = (cv_vec4){au, av, (float)cv_params_float(ps, "thickness", 0.01),
+                                (float)cv_params_float(ps, "g", 0)};
+        m.roughness2 = (cv_vec4){0, 0, (float)cv_params_int(ps, "maxdepth", 10),
+                                 (float)cv_params_int(ps, "nsamples", 1)};
+    } else if (strcmp(type, "coatedconductor") == 0) {
+        /* eta.xyz: conductor eta; eta.w: interface (coat) eta. */
+        m.type = CV_MAT_COATED_CONDUCTOR;
+        float iu, iv;
+        if (!roughness(b, ps, "interface.", 0, false, &iu, &iv, &m.roughness_u_tex,
+                       &m.roughness_v_tex, &textured, err) ||
+            !roughness(b, ps, "conductor.", 0, false, &au, &av, NULL, NULL, &textured, err) ||
+            !conductor(b, ps, "conductor.", dir, &m, &m.eta, &m.k, err))
+            return false;
+        if (cv_params_find(ps, "reflectance") && !(m.flags & CV_MATF_CONDUCTOR_REFLECTANCE)) {
+            double r[3] = {0, 0, 0};
+            int rt;
+            if (!cv_b_color_tex(b, ps, "reflectance", CV_SPEC_REFLECTANCE, dir, r, &rt, err))
+                return false;
+            m.flags |= CV_MATF_CONDUCTOR_REFLECTANCE;
+            m.reflectance = v4(r, 0);
+            m.reflectance_tex = rt;
+        }
+        double eta = 1.5;
+        bool found;
+        if (!cv_b_scalar_eta(b, ps, "interface.eta", dir, &eta, &found, err))
+            return false;
+        m.eta.w = (float)eta;
+        if (!color(b, ps, "albedo", 0, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err))
+            return false;
+        m.roughness = (cv_vec4){iu, iv, (float)cv_params_float(ps, "thickness", 0.01),
+                                (float)cv_params_float(ps, "g", 0)};
+        m.roughness2 = (cv_vec4){au, av, (float)cv_params_int(ps, "maxdepth", 10),
+                                 (float)cv_params_int(ps, "nsamples", 1)};
+    } else if (strcmp(type, "diffusetransmission") == 0 || strcmp(type, "translucent") == 0) {
+        bool v3 = strcmp(type, "translucent") == 0;
+        m.type = CV_MAT_DIFFUSE_TRANSMISSION;
+        if (!color(b, ps, v3 ? "reflect" : "reflectance", v3 ? 0.5 : 0.25, CV_SPEC_REFLECTANCE,
+                   dir, &m.reflectance, &m.reflectance_tex, err) ||
+            !color(b, ps, v3 ? "transmit" : "transmittance", v3 ? 0.5 : 0.25, CV_SPEC_REFLECTANCE,
+                   dir, &m.specular, &m.specular_tex, err))
+            return false;
+        double sc = cv_params_float(ps, "scale", 1);
+        m.reflectance.x *= (float)sc; m.reflectance.y *= (float)sc; m.reflectance.z *= (float)sc;
+        m.specular.x *= (float)sc; m.specular.y *= (float)sc; m.specular.z *= (float)sc;
+        if (v3) {
+            cv_vec4 kd = {0}, ks = {0};
+            if (!color(b, ps, "Kd", 0.25, CV_SPEC_REFLECTANCE, dir, &kd, NULL, err) ||
+                !color(b, ps, "Ks", 0.25, CV_SPEC_REFLECTANCE, dir, &ks, NULL, err))
+                return false;
+            cv_params_float(ps, "roughness", 0);
+            m.reflectance.x *= kd.x; m.reflectance.y *= kd.y; m.reflectance.z *= kd.z;
+            m.specular.x *= kd.x; m.specular.y *= kd.y; m.specular.z *= kd.z;
+            if (!cv_b_warn(b, err, loc, "translucent: rendered as diffuse transmission (Ks ignored)"))
+                return false;
+        }
+    } else if (strcmp(type, "mix") == 0) {
+        m.type = CV_MAT_MIX;
+        double amount = 0.5;
+        int at;
+        if (!cv_b_float_tex(b, ps, "amount", &amount, &at, err))
+            return false;
+        m.amount = (float)amount;
+        m.amount_tex = at;
+        struct cv_param *mats = cv_params_find(ps, "materials");
+        const char *n1 = NULL, *n2 = NULL;
+        if (mats && mats->n_strs == 2) {
+            n1 = mats->strs[0];
+            n2 = mats->strs[1];
+        } else {
+            n1 = cv_params_string(ps, "namedmaterial1", NULL);
+            n2 = cv_params_string(ps, "namedmaterial2", NULL);
+        }
+        if (!n1 || !n2)
+            return cv_fail(err, "%s:%d:%d: mix needs two materials (\"string materials\" or namedmaterial1/2)",
+                           loc->file, loc->line, loc->col);
+        m.mix_a = cv_b_lookup(b->materials_named, b->n_materials_named, n1);
+        m.mix_b = cv_b_lookup(b->materials_named, b->n_materials_named, n2);
+        if (m.mix_a < 0 || m.mix_b < 0)
+            return cv_fail(err, "%s:%d:%d: mix: unknown named material \"%s\"", loc->file,
+                           loc->line, loc->col, m.mix_a < 0 ? n1 : n2);
+    } else if (strcmp(type, "interface") == 0 || strcmp(type, "") == 0 ||
+               strcmp(type, "none") == 0) {
+        m.type = CV_MAT_INTERFACE;
+        m.eta.x = 1;
+    } else {
+        if (!cv_b_warn(b, err, loc, "material \"%s\" is not supported; using diffuse 0.5", type))
+            return false;
+        for (size_t i = 0; i < ps->n; i++)
+            ps->v[i].used = true;
+        m.reflectance = (cv_vec4){0.5f, 0.5f, 0.5f, 0};
+    }
+#undef ROUGH
+    if (textured)
+        m.flags |= CV_MATF_REMAP_ROUGHNESS;
+    /* common to all: bump, normal map, cut-out */
+    double d = 0;
+    if (!cv_b_float_tex(b, ps, "displacement", &d, &m.displacement_tex, err) ||
+        !cv_b_float_tex(b, ps, "bumpmap", &d, &m.displacement_tex, err))
+        return false;
+    const char *nm = cv_params_string(ps, "normalmap", NULL);
+    if (nm) {
+        m.normal_tex = cv_b_image_texture(b, nm, dir, false, loc, err);
+        if (m.normal_tex < 0)
+            return false;
+    }
+    double alpha = 1;
+    if (!cv_b_float_tex(b, ps, "alpha", &alpha, &m.alpha_tex, err))
+        return false;
+    if (alpha != 1)
+        m.alpha = (float)alpha;
+    cv_params_string(ps, "type", NULL);
+    *out = (int)cv_b_add_material(b, &m, name);
+    return true;
+}

@@ -1,0 +1,679 @@
+/* parse.c: the directive loop. One function per directive group; the
+ * transform and attribute directives act on the builder's graphics state
+ * here, the rest go to the builder files. */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/file.h"
+#include "base/log.h"
+#include "base/mem.h"
+#include "scene/parse.h"
+#include "scene/token.h"
+
+#define MAX_INCLUDE_DEPTH 64
+
+struct parser {
+    struct cv_builder *b;
+    struct cv_lexer *lx;       /* stack of open files */
+    size_t n_lx, cap_lx;
+    char **real;               /* canonical paths of open files, for recursion */
+};
+
+#define LOC_OF(tok) {(tok).file, (tok).line, (tok).col}
+
+static struct cv_lexer *top(struct parser *p) { return &p->lx[p->n_lx - 1]; }
+
+/* Next token across included files: EOF of an include pops back. */
+static bool next(struct parser *p, struct cv_token *t, struct cv_error *err)
+{
+    return cv_lexer_next(top(p), t, err);
+}
+
+static bool peek(struct parser *p, struct cv_token *t, struct cv_error *err)
+{
+    return cv_lexer_peek(top(p), t, err);
+}
+
+static bool expect_string(struct parser *p, const struct cv_token *dir, char **out,
+                          struct cv_error *err)
+{
+    struct cv_token t;
+    if (!next(p, &t, err))
+        return false;
+    if (t.kind != CV_TOK_STRING)
+        return cv_fail(err, "%s:%d:%d: %.*s expects a quoted string here", t.file, t.line,
+                       t.col, (int)dir->len, dir->text);
+    *out = cv_token_strdup(&t);
+    return true;
+}
+
+static bool read_numbers(struct parser *p, const struct cv_token *dir, double *out, size_t n,
+                         struct cv_error *err)
+{
+    struct cv_token t;
+    bool bracket = false;
+    if (!peek(p, &t, err))
+        return false;
+    if (t.kind == CV_TOK_LBRACKET) {
+        bracket = true;
+        next(p, &t, err);
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (!next(p, &t, err))
+            return false;
+        if (t.kind != CV_TOK_NUMBER)
+            return cv_fail(err, "%s:%d:%d: %.*s expects %zu numbers", t.file, t.line, t.col,
+                           (int)dir->len, dir->text, n);
+        if (!cv_token_number(&t, &out[i], err))
+            return false;
+    }
+    if (bracket) {
+        if (!next(p, &t, err))
+            return false;
+        if (t.kind != CV_TOK_RBRACKET)
+            return cv_fail(err, "%s:%d:%d: expected ']' after %zu numbers of %.*s", t.file,
+                           t.line, t.col, n, (int)dir->len, dir->text);
+    }
+    return true;
+}
+
+/* One value of a parameter list: number, string or bare true/false. */
+static bool add_value(struct cv_param *pa, const struct cv_token *t, size_t *cap_n,
+                      size_t *cap_s, struct cv_error *err)
+{
+    if (t->kind == CV_TOK_NUMBER) {
+        double v;
+        if (!cv_token_number(t, &v, err))
+            return false;
+        if (pa->type == CV_PARAM_BOOL)
+            return cv_fail(err, "%s:%d:%d: bool parameter \"%s\" expects true or false",
+                           t->file, t->line, t->col, pa->name);
+        CV_PUSH(pa->nums, pa->n_nums, *cap_n, v);
+        return true;
+    }
+    if (t->kind == CV_TOK_STRING || t->kind == CV_TOK_WORD) {
+        if (pa->type == CV_PARAM_BOOL) {
+            if (cv_token_is(t, "true")) {
+                CV_PUSH(pa->nums, pa->n_nums, *cap_n, 1.0);
+                return true;
+            }
+            if (cv_token_is(t, "false")) {
+                CV_PUSH(pa->nums, pa->n_nums, *cap_n, 0.0);
+                return true;
+            }
+            return cv_fail(err, "%s:%d:%d: bool parameter \"%s\" expects true or false, not \"%.*s\"",
+                           t->file, t->line, t->col, pa->name, (int)t->len, t->text);
+        }
+        if (t->kind == CV_TOK_WORD)
+            return cv_fail(err, "%s:%d:%d: unexpected \"%.*s\" in the values of \"%s\"",
+                           t->file, t->line, t->col, (int)(t->len > 40 ? 40 : t->len), t->text,
+                           pa->name);
+        if (pa->type != CV_PARAM_STRING && pa->type != CV_PARAM_TEXTURE &&
+            pa->type != CV_PARAM_SPECTRUM)
+            return cv_fail(err, "%s:%d:%d: parameter \"%s\" of type %s expects numbers, not a string",
+                           t->file, t->line, t->col, pa->name, cv_param_type_name(pa->type));
+        CV_PUSH(pa->strs, pa->n_strs, *cap_s, cv_token_strdup(t));
+        return true;
+    }
+    return cv_fail(err, "%s:%d:%d: unexpected '%.*s' in the values of \"%s\"", t->file, t->line,
+                   t->col, (int)t->len, t->text, pa->name);
+}
+
+static bool check_count(struct cv_param *pa, struct cv_error *err)
+{
+    size_t per = 1;
+    switch (pa->type) {
+    case CV_PARAM_POINT2: case CV_PARAM_VECTOR2: per = 2; break;
+    case CV_PARAM_POINT3: case CV_PARAM_VECTOR3: case CV_PARAM_NORMAL: case CV_PARAM_RGB:
+        per = 3; break;
+    case CV_PARAM_SPECTRUM: per = pa->n_strs ? 1 : 2; break;
+    default: break;
+    }
+    size_t n = pa->n_nums + pa->n_strs;
+    if (n == 0 || (pa->n_nums && pa->n_strs) || n % per != 0)
+        return cv_fail(err, "%s:%d:%d: parameter \"%s %s\" has %zu values, expected a non-zero multiple of %zu",
+                       pa->file, pa->line, pa->col, cv_param_type_name(pa->type), pa->name, n, per);
+    return true;
+}
+
+/* Parameter list: ("type name" value-or-[values])* up to the next directive. */
+static bool read_params(struct parser *p, struct cv_params *ps, struct cv_error *err)
+{
+    for (;;) {
+        struct cv_token t;
+        if (!peek(p, &t, err))
+            return false;
+        if (t.kind != CV_TOK_STRING)
+            return true;
+        next(p, &t, err);
+        /* "type name": split on whitespace */
+        char *decl = cv_token_strdup(&t);
+        char *s = decl, *ty, *nm;
+        while (*s == ' ' || *s == '\t')
+            s++;
+        ty = s;
+        while (*s && *s != ' ' && *s != '\t')
+            s++;
+        if (*s)
+            *s++ = 0;
+        while (*s == ' ' || *s == '\t')
+            s++;
+        nm = s;
+        while (*s && *s != ' ' && *s != '\t')
+            s++;
+        bool trailing = false;
+        if (*s) {
+            *s++ = 0;
+            while (*s == ' ' || *s == '\t')
+                s++;
+            trailing = *s != 0;
+        }
+        enum cv_param_type type;
+        if (!*nm || trailing) {
+            free(decl);
+            return cv_fail(err, "%s:%d:%d: expected \"type name\" in a parameter list, found \"%.*s\"",
+                           t.file, t.line, t.col, (int)(t.len > 60 ? 60 : t.len), t.text);
+        }
+        if (!cv_param_type_from_word(ty, &type)) {
+            cv_fail(err, "%s:%d:%d: unknown parameter type \"%s\"", t.file, t.line, t.col, ty);
+            free(decl);
+            return false;
+        }
+        struct cv_param pa = {.type = type, .name = cv_xstrdup(nm), .file = t.file,
+                              .line = t.line, .col = t.col};
+        free(decl);
+        size_t cap_n = 0, cap_s = 0;
+        CV_PUSH(ps->v, ps->n, ps->cap, pa);
+        struct cv_param *pp = &ps->v[ps->n - 1];
+        struct cv_token v;
+        if (!next(p, &v, err))
+            return false;
+        if (v.kind == CV_TOK_LBRACKET) {
+            for (;;) {
+                if (!next(p, &v, err))
+                    return false;
+                if (v.kind == CV_TOK_RBRACKET)
+                    break;
+                if (v.kind == CV_TOK_EOF || v.kind == CV_TOK_LBRACKET)
+                    return cv_fail(err, "%s:%d:%d: unbalanced '[' (opened at %d:%d) for parameter \"%s\"",
+                                   v.file, v.line, v.col, pp->line, pp->col, pp->name);
+                if (!add_value(pp, &v, &cap_n, &cap_s, err))
+                    return false;
+            }
+        } else if (v.kind == CV_TOK_EOF) {
+            return cv_fail(err, "%s:%d:%d: file ends before the value of parameter \"%s\"",
+                           v.file, v.line, v.col, pp->name);
+        } else if (!add_value(pp, &v, &cap_n, &cap_s, err)) {
+            return false;
+        }
+        if (!check_count(pp, err))
+            return false;
+    }
+}
+
+static bool push_file(struct parser *p, const char *path, const struct cv_token *from,
+                      struct cv_error *err)
+{
+    if (p->n_lx >= MAX_INCLUDE_DEPTH)
+        return cv_fail(err, "%s:%d:%d: includes nested deeper than %d", from->file, from->line,
+                       from->col, MAX_INCLUDE_DEPTH);
+    char *real = realpath(path, NULL);
+    for (size_t i = 0; real && i < p->n_lx; i++)
+        if (p->real[i] && strcmp(p->real[i], real) == 0) {
+            free(real);
+            return cv_fail(err, "%s:%d:%d: recursive include of \"%s\"", from->file, from->line,
+                           from->col, path);
+        }
+    struct cv_lexer lx;
+    if (!cv_lexer_open(&lx, path, err)) {
+        free(real);
+        if (from)
+            cv_error_prefix(err, "%s:%d:%d: cannot include \"%s\"", from->file, from->line,
+                            from->col, path);
+        return false;
+    }
+    size_t cap = p->cap_lx;
+    CV_PUSH(p->lx, p->n_lx, p->cap_lx, lx);
+    p->real = cv_xrealloc(p->real, p->cap_lx * sizeof(char *));
+    (void)cap;
+    p->real[p->n_lx - 1] = real;
+    return true;
+}
+
+static void pop_file(struct parser *p)
+{
+    p->n_lx--;
+    /* Locations keep pointing at the path: the builder owns it from now on. */
+    struct cv_builder *b = p->b;
+    CV_PUSH(b->paths, b->n_paths, b->cap_paths, p->lx[p->n_lx].path);
+    p->lx[p->n_lx].path = NULL;
+    cv_lexer_close(&p->lx[p->n_lx]);
+    free(p->real[p->n_lx]);
+}
+
+static void apply(struct cv_builder *b, struct cv_mat4 m)
+{
+    b->gs.ctm = cv_mat4_mul(&b->gs.ctm, &m);
+}
+
+static bool attr_push(struct cv_builder *b, bool transform_only, const struct cv_loc *loc)
+{
+    struct cv_gstate g = b->gs;
+    g.transform_only = transform_only;
+    size_t cap = b->cap_stack;
+    CV_PUSH(b->stack, b->n_stack, b->cap_stack, g);
+    if (cap != b->cap_stack)
+        b->stack_loc = cv_xrealloc(b->stack_loc, b->cap_stack * sizeof(*b->stack_loc));
+    b->stack_loc[b->n_stack - 1] = *loc;
+    return true;
+}
+
+static bool attr_pop(struct cv_builder *b, bool transform_only, const struct cv_token *t,
+                     struct cv_error *err)
+{
+    const char *what = transform_only ? "TransformEnd" : "AttributeEnd";
+    if (b->n_stack == 0)
+        return cv_fail(err, "%s:%d:%d: %s without a matching %s", t->file, t->line, t->col, what,
+                       transform_only ? "TransformBegin" : "AttributeBegin");
+    struct cv_gstate *g = &b->stack[b->n_stack - 1];
+    if (g->transform_only != transform_only) {
+        struct cv_loc *l = &b->stack_loc[b->n_stack - 1];
+        struct cv_loc here = {t->file, t->line, t->col};
+        if (!cv_b_warn(b, err, &here, "%s closes the %s opened at %s:%d:%d", what,
+                       g->transform_only ? "TransformBegin" : "AttributeBegin", l->file,
+                       l->line, l->col))
+            return false;
+    }
+    if (transform_only)
+        b->gs.ctm = g->ctm;
+    else
+        b->gs = *g;
+    b->n_stack--;
+    return true;
+}
+
+static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_error *err);
+
+static bool run(struct parser *p, size_t base, struct cv_error *err)
+{
+    while (p->n_lx > base) {
+        struct cv_token t;
+        if (!next(p, &t, err))
+            return false;
+        if (t.kind == CV_TOK_EOF) {
+            pop_file(p);
+            continue;
+        }
+        if (t.kind != CV_TOK_WORD)
+            return cv_fail(err, "%s:%d:%d: expected a directive, found %s\"%.*s\"", t.file,
+                           t.line, t.col,
+                           t.kind == CV_TOK_STRING ? "string " : t.kind == CV_TOK_NUMBER ? "number " : "",
+                           (int)(t.len > 40 ? 40 : t.len), t.text);
+        if (!do_directive(p, &t, err))
+            return false;
+    }
+    return true;
+}
+
+/* Directives with "type" params: Shape, Material, LightSource, ... */
+static bool typed(struct parser *p, const struct cv_token *d, char **type, struct cv_params *ps,
+                  struct cv_error *err)
+{
+    if (!expect_string(p, d, type, err))
+        return false;
+    return read_params(p, ps, err);
+}
+
+static char *dir_of(struct parser *p, const struct cv_token *d)
+{
+    (void)p;
+    return cv_path_dirname(d->file);
+}
+
+static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_error *err)
+{
+    struct cv_builder *b = p->b;
+    struct cv_loc loc = LOC_OF(*d);
+    double v[16];
+    char *type = NULL, *name = NULL, *dir = NULL;
+    struct cv_params ps = {0};
+    bool ok = true;
+
+#define IS(w) cv_token_is(d, w)
+    if (IS("Translate")) {
+        if (!read_numbers(p, d, v, 3, err))
+            return false;
+        apply(b, cv_mat4_translate(v[0], v[1], v[2]));
+    } else if (IS("Scale")) {
+        if (!read_numbers(p, d, v, 3, err))
+            return false;
+        apply(b, cv_mat4_scale(v[0], v[1], v[2]));
+    } else if (IS("Rotate")) {
+        if (!read_numbers(p, d, v, 4, err))
+            return false;
+        apply(b, cv_mat4_rotate(v[0], v[1], v[2], v[3]));
+    } else if (IS("LookAt")) {
+        if (!read_numbers(p, d, v, 9, err))
+            return false;
+        struct cv_mat4 m;
+        if (!cv_mat4_look_at(v, v + 3, v + 6, &m)) {
+            if (!cv_b_warn(b, err, &loc, "degenerate LookAt ignored"))
+                return false;
+        } else {
+            apply(b, m);
+        }
+    } else if (IS("Transform") || IS("ConcatTransform")) {
+        if (!read_numbers(p, d, v, 16, err))
+            return false;
+        struct cv_mat4 m;
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++)
+                m.m[j][i] = v[i * 4 + j];
+        if (IS("Transform"))
+            b->gs.ctm = m;
+        else
+            apply(b, m);
+    } else if (IS("Identity")) {
+        b->gs.ctm = cv_mat4_identity();
+    } else if (IS("CoordinateSystem") || IS("CoordSysTransform")) {
+        if (!expect_string(p, d, &name, err))
+            return false;
+        size_t i;
+        for (i = 0; i < b->n_coordsys; i++)
+            if (strcmp(b->coordsys[i].name, name) == 0)
+                break;
+        if (IS("CoordinateSystem")) {
+            if (i == b->n_coordsys) {
+                struct cv_coordsys c = {cv_xstrdup(name), b->gs.ctm};
+                CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
+            } else {
+                b->coordsys[i].m = b->gs.ctm;
+            }
+        } else if (i == b->n_coordsys) {
+            ok = cv_b_warn(b, err, &loc, "unknown coordinate system \"%s\"", name);
+        } else {
+            b->gs.ctm = b->coordsys[i].m;
+        }
+    } else if (IS("ActiveTransform")) {
+        struct cv_token t;
+        if (!next(p, &t, err))
+            return false;
+        if (t.kind != CV_TOK_WORD ||
+            !(cv_token_is(&t, "StartTime") || cv_token_is(&t, "EndTime") || cv_token_is(&t, "All")))
+            return cv_fail(err, "%s:%d:%d: ActiveTransform expects StartTime, EndTime or All",
+                           t.file, t.line, t.col);
+        /* Motion blur is not rendered: every transform applies at once, as at
+         * shutter open when StartTime and EndTime agree. */
+        if (!cv_token_is(&t, "All"))
+            ok = cv_b_warn(b, err, &loc, "ActiveTransform %.*s: motion blur is not supported; "
+                           "transforms apply to both times", (int)t.len, t.text);
+    } else if (IS("TransformTimes")) {
+        if (!read_numbers(p, d, v, 2, err))
+            return false;
+    } else if (IS("ReverseOrientation")) {
+        b->gs.reverse = !b->gs.reverse;
+    } else if (IS("AttributeBegin") || IS("TransformBegin")) {
+        attr_push(b, IS("TransformBegin"), &loc);
+    } else if (IS("AttributeEnd") || IS("TransformEnd")) {
+        if (!attr_pop(b, IS("TransformEnd"), d, err))
+            return false;
+    } else if (IS("Attribute")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        /* v4 per-target defaults ("shape", "light", "material", ...): not
+         * used by the importer; reported as unused below. */
+        ok = cv_b_check_unused(b, &ps, "Attribute", err);
+    } else if (IS("Option")) {
+        if (!read_params(p, &ps, err))
+            goto fail;
+        for (size_t i = 0; i < ps.n; i++)
+            ps.v[i].used = true;
+        ok = ps.n == 0 || cv_b_warn(b, err, &loc, "Option \"%s\" noted and ignored", ps.v[0].name);
+    } else if (IS("ColorSpace")) {
+        if (!expect_string(p, d, &name, err))
+            return false;
+        if (strcmp(name, "srgb") != 0)
+            ok = cv_b_warn(b, err, &loc, "ColorSpace \"%s\": colours are read as linear sRGB/Rec.709", name);
+        free(b->color_space);
+        b->color_space = name;
+        name = NULL;
+    } else if (IS("WorldBegin")) {
+        if (b->world)
+            ok = cv_b_warn(b, err, &loc, "WorldBegin repeated");
+        b->world = true;
+        /* pbrt: the camera's named coordinate system, then the world starts
+         * with the identity transform. */
+        b->gs.ctm = cv_mat4_identity();
+        struct cv_coordsys c = {cv_xstrdup("world"), cv_mat4_identity()};
+        CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
+    } else if (IS("WorldEnd")) {
+        /* v3: end of scene; nothing to do. */
+    } else if (IS("Camera")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        ok = cv_b_camera(b, type, &ps, &loc, err) && cv_b_check_unused(b, &ps, "Camera", err);
+    } else if (IS("Film")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        ok = cv_b_film(b, type, &ps, &loc, err) && cv_b_check_unused(b, &ps, "Film", err);
+    } else if (IS("Sampler")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        int spp = cv_params_int(&ps, "pixelsamples", 16);
+        b->s->settings.spp = spp > 0 ? (uint32_t)spp : 1;
+        free(b->s->settings.sampler);
+        b->s->settings.sampler = type;
+        type = NULL;
+        for (size_t i = 0; i < ps.n; i++)
+            ps.v[i].used = true; /* sampler tuning has no meaning here */
+    } else if (IS("PixelFilter")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        struct cv_render_settings *st = &b->s->settings;
+        double def = strcmp(type, "gaussian") == 0 ? 1.5 : strcmp(type, "box") == 0 ? 0.5 : 2;
+        if (strcmp(type, "box") == 0)
+            st->filter = CV_FILTER_BOX;
+        else if (strcmp(type, "triangle") == 0)
+            st->filter = CV_FILTER_TRIANGLE;
+        else if (strcmp(type, "gaussian") == 0)
+            st->filter = CV_FILTER_GAUSSIAN;
+        else
+            ok = cv_b_warn(b, err, &loc, "pixel filter \"%s\" is not supported; using a gaussian", type),
+            st->filter = CV_FILTER_GAUSSIAN;
+        /* v4 radius, v3 width (which pbrt-v3 also meant as a radius) */
+        st->filter_radius[0] = (float)cv_params_float(&ps, "xradius", cv_params_float(&ps, "xwidth", def));
+        st->filter_radius[1] = (float)cv_params_float(&ps, "yradius", cv_params_float(&ps, "ywidth", def));
+        st->filter_sigma = (float)cv_params_float(&ps, "sigma", 0.5);
+        cv_params_float(&ps, "alpha", 0);
+        ok = ok && cv_b_check_unused(b, &ps, "PixelFilter", err);
+    } else if (IS("Integrator")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        int md = cv_params_int(&ps, "maxdepth", 5);
+        b->s->settings.max_depth = md > 0 ? (uint32_t)md : 0;
+        free(b->s->settings.integrator);
+        b->s->settings.integrator = type;
+        type = NULL;
+        for (size_t i = 0; i < ps.n; i++)
+            ps.v[i].used = true;
+    } else if (IS("Accelerator")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        for (size_t i = 0; i < ps.n; i++)
+            ps.v[i].used = true;
+        cv_info("%s:%d:%d: Accelerator \"%s\" ignored (Cavalry builds its own BVH)", loc.file,
+                loc.line, loc.col, type);
+    } else if (IS("Shape")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        dir = dir_of(p, d);
+        ok = cv_b_shape(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "Shape", err);
+    } else if (IS("Material")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        dir = dir_of(p, d);
+        int idx;
+        ok = cv_b_material(b, type, NULL, &ps, &loc, dir, err, &idx) &&
+             cv_b_check_unused(b, &ps, "Material", err);
+        if (ok)
+            b->gs.material = idx;
+    } else if (IS("MakeNamedMaterial")) {
+        if (!typed(p, d, &name, &ps, err))
+            goto fail;
+        dir = dir_of(p, d);
+        const char *ty = cv_params_string(&ps, "type", NULL);
+        int idx;
+        if (!ty) {
+            ok = cv_fail(err, "%s:%d:%d: MakeNamedMaterial \"%s\" has no \"string type\"",
+                         loc.file, loc.line, loc.col, name);
+        } else {
+            ok = cv_b_material(b, ty, name, &ps, &loc, dir, err, &idx) &&
+                 cv_b_check_unused(b, &ps, "MakeNamedMaterial", err);
+            if (ok) {
+                if (cv_b_lookup(b->materials_named, b->n_materials_named, name) >= 0)
+                    ok = cv_b_warn(b, err, &loc, "named material \"%s\" redefined", name);
+                cv_b_set_named(&b->materials_named, &b->n_materials_named,
+                               &b->cap_materials_named, name, idx);
+            }
+        }
+    } else if (IS("NamedMaterial")) {
+        if (!expect_string(p, d, &name, err))
+            return false;
+        int idx = cv_b_lookup(b->materials_named, b->n_materials_named, name);
+        if (idx < 0)
+            ok = cv_fail(err, "%s:%d:%d: unknown named material \"%s\"", loc.file, loc.line,
+                         loc.col, name);
+        else
+            b->gs.material = idx;
+    } else if (IS("Texture")) {
+        char *kind = NULL;
+        if (!expect_string(p, d, &name, err) || !expect_string(p, d, &kind, err) ||
+            !typed(p, d, &type, &ps, err)) {
+            free(kind);
+            goto fail;
+        }
+        dir = dir_of(p, d);
+        ok = cv_b_texture(b, name, kind, type, &ps, &loc, dir, err) &&
+             cv_b_check_unused(b, &ps, "Texture", err);
+        free(kind);
+    } else if (IS("LightSource")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        dir = dir_of(p, d);
+        ok = cv_b_light(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "LightSource", err);
+    } else if (IS("AreaLightSource")) {
+        if (!typed(p, d, &type, &ps, err))
+            goto fail;
+        dir = dir_of(p, d);
+        ok = cv_b_area_light(b, type, &ps, &loc, dir, err) &&
+             cv_b_check_unused(b, &ps, "AreaLightSource", err);
+    } else if (IS("MakeNamedMedium")) {
+        if (!typed(p, d, &name, &ps, err))
+            goto fail;
+        for (size_t i = 0; i < ps.n; i++)
+            ps.v[i].used = true;
+        CV_PUSH(b->media, b->n_media, b->cap_media, cv_xstrdup(name));
+        ok = cv_b_warn(b, err, &loc, "medium \"%s\" parsed; participating media are not rendered", name);
+    } else if (IS("MediumInterface")) {
+        /* one or two names: inside [outside] */
+        if (!expect_string(p, d, &name, err))
+            return false;
+        struct cv_token t;
+        if (!peek(p, &t, err))
+            goto fail;
+        if (t.kind == CV_TOK_STRING)
+            next(p, &t, err);
+    } else if (IS("ObjectBegin")) {
+        if (!expect_string(p, d, &name, err))
+            return false;
+        if (b->cur_object >= 0) {
+            ok = cv_fail(err, "%s:%d:%d: ObjectBegin \"%s\" inside another ObjectBegin",
+                         loc.file, loc.line, loc.col, name);
+        } else {
+            attr_push(b, false, &loc);
+            struct cv_object o = {0};
+            o.name = name;
+            name = NULL;
+            CV_PUSH(b->objects, b->n_objects, b->cap_objects, o);
+            b->cur_object = (int)b->n_objects - 1;
+        }
+    } else if (IS("ObjectEnd")) {
+        if (b->cur_object < 0)
+            return cv_fail(err, "%s:%d:%d: ObjectEnd without ObjectBegin", loc.file, loc.line, loc.col);
+        b->cur_object = -1;
+        if (!attr_pop(b, false, d, err))
+            return false;
+    } else if (IS("ObjectInstance")) {
+        if (!expect_string(p, d, &name, err))
+            return false;
+        int found = -1;
+        for (size_t i = 0; i < b->n_objects; i++)
+            if (strcmp(b->objects[i].name, name) == 0)
+                found = (int)i;
+        if (found < 0 || found == b->cur_object)
+            ok = cv_fail(err, "%s:%d:%d: unknown object \"%s\"", loc.file, loc.line, loc.col, name);
+        else
+            ok = cv_b_instance(b, found, &loc, err);
+    } else if (IS("Include") || IS("Import")) {
+        if (!expect_string(p, d, &name, err))
+            return false;
+        dir = dir_of(p, d);
+        char *path = cv_path_join(dir, name);
+        ok = push_file(p, path, d, err);
+        free(path);
+    } else {
+        return cv_fail(err, "%s:%d:%d: unknown directive \"%.*s\"", d->file, d->line, d->col,
+                       (int)(d->len > 40 ? 40 : d->len), d->text);
+    }
+#undef IS
+    cv_params_free(&ps);
+    free(type);
+    free(name);
+    free(dir);
+    return ok;
+fail:
+    cv_params_free(&ps);
+    free(type);
+    free(name);
+    free(dir);
+    return false;
+}
+
+static bool parse_with(struct parser *p, struct cv_error *err)
+{
+    bool ok = run(p, 0, err);
+    while (p->n_lx > 0)
+        pop_file(p);
+    free(p->lx);
+    free(p->real);
+    if (ok && p->b->n_stack > 0) {
+        struct cv_loc *l = &p->b->stack_loc[p->b->n_stack - 1];
+        return cv_fail(err, "%s:%d:%d: %s not closed at end of input", l->file, l->line, l->col,
+                       p->b->stack[p->b->n_stack - 1].transform_only ? "TransformBegin"
+                                                                     : "AttributeBegin");
+    }
+    return ok;
+}
+
+bool cv_parse_file(struct cv_builder *b, const char *path, struct cv_error *err)
+{
+    struct parser p = {.b = b};
+    if (!push_file(&p, path, NULL, err)) {
+        free(p.lx);
+        free(p.real);
+        return false;
+    }
+    return parse_with(&p, err);
+}
+
+bool cv_parse_string(struct cv_builder *b, const char *name, const char *text, size_t len,
+                     struct cv_error *err)
+{
+    struct parser p = {.b = b};
+    struct cv_lexer lx;
+    cv_lexer_open_string(&lx, name, text, len);
+    CV_PUSH(p.lx, p.n_lx, p.cap_lx, lx);
+    p.real = cv_xcalloc(p.cap_lx, sizeof(char *));
+    return parse_with(&p, err);
+}

@@ -1,0 +1,340 @@
+/* spectrum.c: colours and spectra to linear Rec.709 RGB. Spectra are
+ * integrated against the CIE 1931 matching functions given by the
+ * multi-lobe Gaussian fit of Wyman, Sloan and Shirley (JCGT 2013), which is
+ * within a few percent of the tables and needs no data. Named metal spectra
+ * are stored as their RGB conversions (eta, k), named glasses as their index
+ * at 550 nm: the renderer is RGB, so that is all that survives anyway. */
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/file.h"
+#include "base/mem.h"
+#include "scene/builder.h"
+
+static double lobe(double l, double mu, double s1, double s2)
+{
+    double t = (l - mu) / (l < mu ? s1 : s2);
+    return exp(-0.5 * t * t);
+}
+
+static void cie_xyz(double l, double xyz[3])
+{
+    xyz[0] = 1.056 * lobe(l, 599.8, 37.9, 31.0) + 0.362 * lobe(l, 442.0, 16.0, 26.7) -
+             0.065 * lobe(l, 501.1, 20.4, 26.2);
+    xyz[1] = 0.821 * lobe(l, 568.8, 46.9, 40.5) + 0.286 * lobe(l, 530.9, 16.3, 31.1);
+    xyz[2] = 1.217 * lobe(l, 437.0, 11.8, 36.0) + 0.681 * lobe(l, 459.0, 26.0, 13.8);
+}
+
+static void xyz_to_rgb(const double xyz[3], double rgb[3])
+{
+    rgb[0] = 3.2404542 * xyz[0] - 1.5371385 * xyz[1] - 0.4985314 * xyz[2];
+    rgb[1] = -0.9692660 * xyz[0] + 1.8760108 * xyz[1] + 0.0415560 * xyz[2];
+    rgb[2] = 0.0556434 * xyz[0] - 0.2040259 * xyz[1] + 1.0572252 * xyz[2];
+}
+
+/* Piecewise-linear spectrum from sorted (lambda, value) pairs, clamped. */
+static double eval_pairs(const double *pairs, size_t n, double l)
+{
+    if (n == 0)
+        return 0;
+    if (l <= pairs[0])
+        return pairs[1];
+    if (l >= pairs[2 * (n - 1)])
+        return pairs[2 * (n - 1) + 1];
+    size_t lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+        size_t mid = (lo + hi) / 2;
+        if (pairs[2 * mid] <= l)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double l0 = pairs[2 * lo], l1 = pairs[2 * hi];
+    double t = l1 > l0 ? (l - l0) / (l1 - l0) : 0;
+    return pairs[2 * lo + 1] * (1 - t) + pairs[2 * hi + 1] * t;
+}
+
+static double planck(double l_nm, double T)
+{
+    const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+    double l = l_nm * 1e-9;
+    return (2 * h * c * c) / (pow(l, 5) * (exp((h * c) / (l * kb * T)) - 1));
+}
+
+/* Integrates spectrum f (pairs, or blackbody when T > 0) to RGB. */
+static void spectrum_rgb(const double *pairs, size_t n, double T, enum cv_spectrum_kind kind,
+                         double rgb[3])
+{
+    double xyz[3] = {0, 0, 0}, ysum = 0;
+    for (double l = 360; l <= 830; l += 1) {
+        double m[3], v = T > 0 ? planck(l, T) : eval_pairs(pairs, n, l);
+        cie_xyz(l, m);
+        for (int c = 0; c < 3; c++)
+            xyz[c] += v * m[c];
+        ysum += m[1];
+    }
+    double norm = kind == CV_SPEC_ILLUMINANT ? xyz[1] : ysum;
+    if (!(fabs(norm) > 0)) {
+        rgb[0] = rgb[1] = rgb[2] = 0;
+        return;
+    }
+    for (int c = 0; c < 3; c++)
+        xyz[c] /= norm;
+    xyz_to_rgb(xyz, rgb);
+}
+
+static const struct {
+    const char *name;
+    double rgb[3];
+} named_rgb[] = {
+    {"metal-Ag-eta", {0.155265, 0.116723, 0.138342}},
+    {"metal-Ag-k", {4.82835, 3.12225, 2.14696}},
+    {"metal-Al-eta", {1.65746, 0.880369, 0.521229}},
+    {"metal-Al-k", {9.22387, 6.26952, 4.837}},
+    {"metal-Au-eta", {0.143119, 0.374957, 1.44248}},
+    {"metal-Au-k", {3.98316, 2.38572, 1.60322}},
+    {"metal-Cu-eta", {0.200438, 0.924033, 1.10221}},
+    {"metal-Cu-k", {3.91295, 2.45285, 2.14219}},
+    {"metal-CuZn-eta", {0.444, 0.527, 1.094}},
+    {"metal-CuZn-k", {3.695, 2.765, 1.829}},
+    {"metal-MgO-eta", {1.732, 1.738, 1.760}},
+    {"metal-MgO-k", {0, 0, 0}},
+    {"metal-TiO2-eta", {2.58, 2.67, 2.87}},
+    {"metal-TiO2-k", {0, 0, 0}},
+    {"glass-BK7", {1.5185, 1.5185, 1.5185}},
+    {"glass-BAF10", {1.6732, 1.6732, 1.6732}},
+    {"glass-FK51A", {1.4879, 1.4879, 1.4879}},
+    {"glass-LASF9", {1.8559, 1.8559, 1.8559}},
+    {"glass-F5", {1.6777, 1.6777, 1.6777}},
+    {"glass-F10", {1.7358, 1.7358, 1.7358}},
+    {"glass-F11", {1.7919, 1.7919, 1.7919}},
+    {"stdillum-D65", {1, 1, 1}},
+    {"illum-acesD60", {1, 1, 1}},
+};
+
+/* Reads a .spd file: "lambda value" pairs, # comments. */
+static bool read_spd(const char *path, double **pairs, size_t *n, struct cv_error *err)
+{
+    char *data;
+    size_t len;
+    if (!cv_read_file(path, &data, &len, err))
+        return false;
+    size_t cap = 0, count = 0;
+    double *v = NULL;
+    char *s = data;
+    while (*s) {
+        if (*s == '#') {
+            while (*s && *s != '\n')
+                s++;
+            continue;
+        }
+        if (isspace((unsigned char)*s) || *s == ',') {
+            s++;
+            continue;
+        }
+        char *end;
+        double x = strtod(s, &end);
+        if (end == s || !isfinite(x)) {
+            free(v);
+            free(data);
+            return cv_fail(err, "%s: not a number in the spectrum file", path);
+        }
+        CV_PUSH(v, count, cap, x);
+        s = end;
+    }
+    free(data);
+    if (count < 2 || count % 2) {
+        free(v);
+        return cv_fail(err, "%s: a spectrum file needs (wavelength, value) pairs", path);
+    }
+    *pairs = v;
+    *n = count / 2;
+    return true;
+}
+
+static bool sorted_pairs(const double *p, size_t n)
+{
+    for (size_t i = 1; i < n; i++)
+        if (!(p[2 * i] > p[2 * (i - 1)]))
+            return false;
+    return true;
+}
+
+bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
+                enum cv_spectrum_kind kind, const char *dir, double rgb[3], bool *found,
+                struct cv_error *err)
+{
+    *found = false;
+    struct cv_param *p = NULL;
+    for (size_t i = ps->n; i-- > 0;)
+        if (strcmp(ps->v[i].name, name) == 0 && ps->v[i].type != CV_PARAM_TEXTURE) {
+            p = &ps->v[i];
+            break;
+        }
+    if (!p)
+        return true;
+    p->used = true;
+    struct cv_loc loc = {p->file, p->line, p->col};
+    switch (p->type) {
+    case CV_PARAM_RGB:
+        if (p->n_nums != 3)
+            return cv_fail(err, "%s:%d:%d: \"%s\" needs 3 values", p->file, p->line, p->col, name);
+        for (int c = 0; c < 3; c++)
+            rgb[c] = p->nums[c];
+        break;
+    case CV_PARAM_FLOAT:
+        rgb[0] = rgb[1] = rgb[2] = p->nums[0];
+        break;
+    case CV_PARAM_BLACKBODY: {
+        double T = p->nums[0];
+        if (!(T > 0))
+            return cv_fail(err, "%s:%d:%d: blackbody temperature must be positive", p->file,
+                           p->line, p->col);
+        spectrum_rgb(NULL, 0, T, CV_SPEC_ILLUMINANT, rgb);
+        if (p->n_nums >= 2) /* v3: [T scale] */
+            for (int c = 0; c < 3; c++)
+                rgb[c] *= p->nums[1];
+        break;
+    }
+    case CV_PARAM_SPECTRUM:
+        if (p->n_strs) {
+            const char *s = p->strs[0];
+            size_t i;
+            for (i = 0; i < CV_ARRAY_SIZE(named_rgb); i++)
+                if (strcmp(named_rgb[i].name, s) == 0)
+                    break;
+            if (i < CV_ARRAY_SIZE(named_rgb)) {
+                memcpy(rgb, named_rgb[i].rgb, sizeof(double) * 3);
+                break;
+            }
+            if (strcmp(s, "stdillum-A") == 0) {
+                spectrum_rgb(NULL, 0, 2856, CV_SPEC_ILLUMINANT, rgb);
+                break;
+            }
+            if (strncmp(s, "stdillum-", 9) == 0 || strncmp(s, "illum-", 6) == 0) {
+                if (!cv_b_warn(b, err, &loc, "named spectrum \"%s\" read as white", s))
+                    return false;
+                rgb[0] = rgb[1] = rgb[2] = 1;
+                break;
+            }
+            char *path = cv_path_join(dir, s);
+            double *pairs = NULL;
+            size_t n = 0;
+            if (!read_spd(path, &pairs, &n, err)) {
+                free(path);
+                cv_error_prefix(err, "%s:%d:%d: spectrum \"%s\" is neither a known name nor a readable file",
+                                p->file, p->line, p->col, s);
+                return false;
+            }
+            free(path);
+            if (!sorted_pairs(pairs, n)) {
+                free(pairs);
+                return cv_fail(err, "%s:%d:%d: spectrum file \"%s\": wavelengths must increase",
+                               p->file, p->line, p->col, s);
+            }
+            spectrum_rgb(pairs, n, 0, kind, rgb);
+            free(pairs);
+        } else {
+            if (!sorted_pairs(p->nums, p->n_nums / 2))
+                return cv_fail(err, "%s:%d:%d: spectrum \"%s\": wavelengths must increase",
+                               p->file, p->line, p->col, name);
+            spectrum_rgb(p->nums, p->n_nums / 2, 0, kind, rgb);
+        }
+        break;
+    default:
+        return cv_fail(err, "%s:%d:%d: \"%s\" must be a colour (rgb, spectrum, blackbody), not %s",
+                       p->file, p->line, p->col, name, cv_param_type_name(p->type));
+    }
+    for (int c = 0; c < 3; c++)
+        if (!isfinite(rgb[c]))
+            return cv_fail(err, "%s:%d:%d: \"%s\" is not finite", p->file, p->line, p->col, name);
+    *found = true;
+    return true;
+}
+
+bool cv_b_scalar_eta(struct cv_builder *b, struct cv_params *ps, const char *name,
+                     const char *dir, double *eta, bool *found, struct cv_error *err)
+{
+    /* A spectrally varying eta would need spectral dispersion; pbrt-v4
+     * collapses a constant one too. Use the value at 550 nm (green). */
+    struct cv_param *p = NULL;
+    *found = false;
+    for (size_t i = ps->n; i-- > 0;)
+        if (strcmp(ps->v[i].name, name) == 0 && ps->v[i].type != CV_PARAM_TEXTURE) {
+            p = &ps->v[i];
+            break;
+        }
+    if (!p)
+        return true;
+    if (p->type == CV_PARAM_SPECTRUM && p->n_strs == 0) {
+        p->used = true;
+        if (!sorted_pairs(p->nums, p->n_nums / 2))
+            return cv_fail(err, "%s:%d:%d: spectrum \"%s\": wavelengths must increase",
+                           p->file, p->line, p->col, name);
+        *eta = eval_pairs(p->nums, p->n_nums / 2, 550);
+        *found = true;
+        return true;
+    }
+    double rgb[3];
+    if (!cv_b_color(b, ps, name, CV_SPEC_UNBOUNDED, dir, rgb, found, err))
+        return false;
+    if (*found)
+        *eta = p->type == CV_PARAM_RGB ? rgb[1] : (rgb[0] + rgb[1] + rgb[2]) / 3;
+    return true;
+}
+
+bool cv_b_color_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
+                    enum cv_spectrum_kind kind, const char *dir, double rgb[3], int *tex,
+                    struct cv_error *err)
+{
+    *tex = -1;
+    for (size_t i = ps->n; i-- > 0;) {
+        struct cv_param *p = &ps->v[i];
+        if (strcmp(p->name, name) != 0)
+            continue;
+        if (p->type != CV_PARAM_TEXTURE)
+            break;
+        p->used = true;
+        int t = cv_b_lookup(b->spec_tex, b->n_spec_tex, p->strs[0]);
+        if (t < 0)
+            t = cv_b_lookup(b->float_tex, b->n_float_tex, p->strs[0]);
+        if (t < 0)
+            return cv_fail(err, "%s:%d:%d: unknown texture \"%s\"", p->file, p->line, p->col,
+                           p->strs[0]);
+        *tex = t;
+        return true;
+    }
+    bool found;
+    return cv_b_color(b, ps, name, kind, dir, rgb, &found, err);
+}
+
+bool cv_b_float_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
+                    double *val, int *tex, struct cv_error *err)
+{
+    *tex = -1;
+    for (size_t i = ps->n; i-- > 0;) {
+        struct cv_param *p = &ps->v[i];
+        if (strcmp(p->name, name) != 0)
+            continue;
+        if (p->type == CV_PARAM_TEXTURE) {
+            p->used = true;
+            int t = cv_b_lookup(b->float_tex, b->n_float_tex, p->strs[0]);
+            if (t < 0)
+                t = cv_b_lookup(b->spec_tex, b->n_spec_tex, p->strs[0]);
+            if (t < 0)
+                return cv_fail(err, "%s:%d:%d: unknown float texture \"%s\"", p->file, p->line,
+                               p->col, p->strs[0]);
+            *tex = t;
+            return true;
+        }
+        if ((p->type == CV_PARAM_FLOAT || p->type == CV_PARAM_INTEGER) && p->n_nums) {
+            p->used = true;
+            *val = p->nums[0];
+            return true;
+        }
+        break;
+    }
+    return true;
+}

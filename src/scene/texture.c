@@ -1,0 +1,259 @@
+/* texture.c: pbrt textures into CvTexture records, and image files into the
+ * shared half-float texel buffer with a box-filtered mip chain. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/file.h"
+#include "base/mem.h"
+#include "scene/builder.h"
+#include "scene/image.h"
+
+static void tex_init(CvTexture *t, uint32_t type)
+{
+    memset(t, 0, sizeof(*t));
+    t->type = type;
+    t->tex_a = t->tex_b = t->amount_tex = -1;
+    t->uv_map = (cv_vec4){1, 1, 0, 0};
+    t->scale = 1;
+    t->amount = 0.5f;
+}
+
+/* Appends levels of img to the texel buffer; returns the first texel. */
+static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uint32_t *levels,
+                           struct cv_error *err, bool *ok)
+{
+    struct cv_scene *s = b->s;
+    int w = img->width, h = img->height;
+    uint64_t total = 0;
+    uint32_t nl = 0;
+    for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
+        total += (uint64_t)lw * lh;
+        nl++;
+        if (lw == 1 && lh == 1)
+            break;
+    }
+    *ok = true;
+    if (s->n_texels + total > 0xffffffffu) {
+        *ok = cv_fail(err, "texel buffer exceeds 2^32 texels");
+        return 0;
+    }
+    uint32_t offset = (uint32_t)s->n_texels;
+    s->texels = cv_xgrow(s->texels, &b->cap_texel, (size_t)(s->n_texels + total) * 2, sizeof(uint32_t));
+    float *cur = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
+    memcpy(cur, img->rgba, (size_t)w * h * 4 * sizeof(float));
+    uint32_t *out = s->texels + s->n_texels * 2;
+    for (int lw = w, lh = h;;) {
+        for (size_t i = 0; i < (size_t)lw * lh; i++) {
+            const float *c = &cur[i * 4];
+            out[2 * i] = cv_float_to_half(c[0]) | ((uint32_t)cv_float_to_half(c[1]) << 16);
+            out[2 * i + 1] = cv_float_to_half(c[2]) | ((uint32_t)cv_float_to_half(c[3]) << 16);
+        }
+        out += (size_t)lw * lh * 2;
+        if (lw == 1 && lh == 1)
+            break;
+        int nw = lw > 1 ? lw / 2 : 1, nh = lh > 1 ? lh / 2 : 1;
+        float *next = cv_xmalloc((size_t)nw * nh * 4 * sizeof(float));
+        for (int y = 0; y < nh; y++)
+            for (int x = 0; x < nw; x++)
+                for (int c = 0; c < 4; c++) {
+                    /* box filter over the 2x2 (or odd edge 3) footprint */
+                    int x0 = x * 2, y0 = y * 2;
+                    int x1 = (x == nw - 1) ? lw - 1 : x0 + 1, y1 = (y == nh - 1) ? lh - 1 : y0 + 1;
+                    double sum = 0;
+                    int cnt = 0;
+                    for (int yy = y0; yy <= y1; yy++)
+                        for (int xx = x0; xx <= x1; xx++) {
+                            sum += cur[((size_t)yy * lw + xx) * 4 + c];
+                            cnt++;
+                        }
+                    next[((size_t)y * nw + x) * 4 + c] = (float)(sum / cnt);
+                }
+        free(cur);
+        cur = next;
+        lw = nw;
+        lh = nh;
+    }
+    free(cur);
+    s->n_texels += total;
+    *levels = nl;
+    return offset;
+}
+
+int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
+                       const struct cv_loc *loc, struct cv_error *err)
+{
+    char *path = cv_path_join(dir, file);
+    char *key = cv_xasprintf("%s|%d", path, srgb);
+    int idx = cv_b_lookup(b->images, b->n_images, key);
+    if (idx >= 0) {
+        free(path);
+        free(key);
+        return idx;
+    }
+    struct cv_image img;
+    if (!cv_image_load(path, srgb, &img, err)) {
+        cv_error_prefix(err, "%s:%d:%d: image \"%s\"", loc->file, loc->line, loc->col, file);
+        free(path);
+        free(key);
+        return -1;
+    }
+    CvTexture t;
+    tex_init(&t, CV_TEX_IMAGE);
+    bool ok;
+    t.offset = add_texels(b, &img, &t.levels, err, &ok);
+    t.width = (uint32_t)img.width;
+    t.height = (uint32_t)img.height;
+    if (srgb && !img.is_float)
+        t.flags |= CV_TEXF_SRGB;
+    cv_image_free(&img);
+    free(path);
+    if (!ok) {
+        free(key);
+        return -1;
+    }
+    idx = cv_b_add_texture(b, &t);
+    cv_b_set_named(&b->images, &b->n_images, &b->cap_images, key, idx);
+    free(key);
+    return idx;
+}
+
+/* A value-or-texture slot of a texture: float or spectrum per `is_float`. */
+static bool slot(struct cv_builder *b, struct cv_params *ps, const char *name, bool is_float,
+                 double def, const char *dir, cv_vec4 *val, int *tex, struct cv_error *err)
+{
+    if (is_float) {
+        double v = def;
+        if (!cv_b_float_tex(b, ps, name, &v, tex, err))
+            return false;
+        *val = (cv_vec4){(float)v, (float)v, (float)v, 1};
+        return true;
+    }
+    double rgb[3] = {def, def, def};
+    if (!cv_b_color_tex(b, ps, name, CV_SPEC_REFLECTANCE, dir, rgb, tex, err))
+        return false;
+    *val = (cv_vec4){(float)rgb[0], (float)rgb[1], (float)rgb[2], 1};
+    return true;
+}
+
+static bool uv_mapping(struct cv_builder *b, struct cv_params *ps, CvTexture *t,
+                       const struct cv_loc *loc, struct cv_error *err)
+{
+    const char *mapping = cv_params_string(ps, "mapping", "uv");
+    if (strcmp(mapping, "uv") != 0 &&
+        !cv_b_warn(b, err, loc, "texture mapping \"%s\" is not supported; uv used", mapping))
+        return false;
+    t->uv_map = (cv_vec4){(float)cv_params_float(ps, "uscale", 1), (float)cv_params_float(ps, "vscale", 1),
+                          (float)cv_params_float(ps, "udelta", 0), (float)cv_params_float(ps, "vdelta", 0)};
+    return true;
+}
+
+bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, const char *cls,
+                  struct cv_params *ps, const struct cv_loc *loc, const char *dir,
+                  struct cv_error *err)
+{
+    bool is_float;
+    if (strcmp(kind, "float") == 0)
+        is_float = true;
+    else if (strcmp(kind, "spectrum") == 0 || strcmp(kind, "color") == 0 || strcmp(kind, "rgb") == 0)
+        is_float = false;
+    else
+        return cv_fail(err, "%s:%d:%d: texture \"%s\": type must be \"float\" or \"spectrum\", not \"%s\"",
+                       loc->file, loc->line, loc->col, name, kind);
+    CvTexture t;
+    tex_init(&t, CV_TEX_CONSTANT);
+    if (strcmp(cls, "imagemap") == 0) {
+        const char *file = cv_params_string(ps, "filename", NULL);
+        if (!file)
+            return cv_fail(err, "%s:%d:%d: imagemap \"%s\" has no filename", loc->file, loc->line,
+                           loc->col, name);
+        /* v4 "encoding" (sRGB default for 8-bit), v3 "gamma" (bool) */
+        bool srgb = true;
+        const char *enc = cv_params_string(ps, "encoding", NULL);
+        if (enc) {
+            if (strcmp(enc, "linear") == 0)
+                srgb = false;
+            else if (strcmp(enc, "sRGB") != 0 &&
+                     !cv_b_warn(b, err, loc, "encoding \"%s\" read as sRGB", enc))
+                return false;
+        } else {
+            struct cv_param *g = cv_params_find(ps, "gamma");
+            if (g && g->type == CV_PARAM_BOOL)
+                srgb = g->nums[0] != 0;
+            else if (g)
+                g->used = false;
+            /* pbrt-v3 decodes 8-bit PNG/TGA as sRGB unless gamma is false */
+        }
+        int img = cv_b_image_texture(b, file, dir, srgb, loc, err);
+        if (img < 0)
+            return false;
+        t = b->s->textures[img];
+        double sc = cv_params_float(ps, "scale", 1);
+        t.scale = (float)sc;
+        if (cv_params_bool(ps, "invert", false))
+            t.flags |= CV_TEXF_INVERT;
+        const char *wrap = cv_params_string(ps, "wrap", "repeat");
+        if (strcmp(wrap, "clamp") == 0)
+            t.flags |= CV_TEXF_WRAP_CLAMP;
+        else if (strcmp(wrap, "black") == 0)
+            t.flags |= CV_TEXF_WRAP_BLACK;
+        else if (strcmp(wrap, "repeat") != 0 &&
+                 !cv_b_warn(b, err, loc, "wrap mode \"%s\" unknown; repeat used", wrap))
+            return false;
+        const char *filter = cv_params_string(ps, "filter", "bilinear");
+        bool trilinear = cv_params_bool(ps, "trilinear", false);
+        if ((strcmp(filter, "bilinear") == 0 || strcmp(filter, "point") == 0) && !trilinear &&
+            cv_params_find(ps, "filter"))
+            t.flags |= CV_TEXF_BILERP;
+        cv_params_float(ps, "maxanisotropy", 8);
+        if (!uv_mapping(b, ps, &t, loc, err))
+            return false;
+    } else if (strcmp(cls, "constant") == 0) {
+        if (!slot(b, ps, "value", is_float, 1, dir, &t.value_a, &t.tex_a, err))
+            return false;
+    } else if (strcmp(cls, "scale") == 0) {
+        t.type = CV_TEX_SCALE;
+        if (cv_params_find(ps, "tex1") || cv_params_find(ps, "tex2")) { /* v3 */
+            if (!slot(b, ps, "tex1", is_float, 1, dir, &t.value_a, &t.tex_a, err) ||
+                !slot(b, ps, "tex2", is_float, 1, dir, &t.value_b, &t.tex_b, err))
+                return false;
+        } else {
+            if (!slot(b, ps, "tex", is_float, 1, dir, &t.value_a, &t.tex_a, err) ||
+                !slot(b, ps, "scale", true, 1, dir, &t.value_b, &t.tex_b, err))
+                return false;
+        }
+    } else if (strcmp(cls, "mix") == 0) {
+        t.type = CV_TEX_MIX;
+        double amount = 0.5;
+        if (!slot(b, ps, "tex1", is_float, 0, dir, &t.value_a, &t.tex_a, err) ||
+            !slot(b, ps, "tex2", is_float, 1, dir, &t.value_b, &t.tex_b, err) ||
+            !cv_b_float_tex(b, ps, "amount", &amount, &t.amount_tex, err))
+            return false;
+        t.amount = (float)amount;
+    } else if (strcmp(cls, "checkerboard") == 0) {
+        t.type = CV_TEX_CHECKERBOARD;
+        if (!slot(b, ps, "tex1", is_float, 1, dir, &t.value_a, &t.tex_a, err) ||
+            !slot(b, ps, "tex2", is_float, 0, dir, &t.value_b, &t.tex_b, err))
+            return false;
+        if (cv_params_int(ps, "dimension", 2) != 2 &&
+            !cv_b_warn(b, err, loc, "3D checkerboard is not supported; 2D used"))
+            return false;
+        cv_params_string(ps, "aamode", NULL);
+        if (!uv_mapping(b, ps, &t, loc, err))
+            return false;
+    } else {
+        if (!cv_b_warn(b, err, loc, "texture class \"%s\" is not supported; constant 0.5 used", cls))
+            return false;
+        for (size_t i = 0; i < ps->n; i++)
+            ps->v[i].used = true;
+        t.value_a = (cv_vec4){0.5f, 0.5f, 0.5f, 1};
+    }
+    if (is_float)
+        t.flags |= CV_TEXF_FLOAT;
+    int idx = cv_b_add_texture(b, &t);
+    if (is_float)
+        cv_b_set_named(&b->float_tex, &b->n_float_tex, &b->cap_float_tex, name, idx);
+    else
+        cv_b_set_named(&b->spec_tex, &b->n_spec_tex, &b->cap_spec_tex, name, idx);
+    return true;
+}

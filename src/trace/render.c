@@ -1,0 +1,382 @@
+/* render.c: see render.h. The stage order per sample and depth follows
+ * pbrt-v4's wavefront integrator: generate camera rays; per depth: reset the
+ * queues, intersect (closest), escaped rays, surface hits (emission, NEE,
+ * BSDF sampling), shadow rays; the film accumulates in place. Queue counts
+ * stay on the GPU: prepare.comp turns them into indirect dispatch
+ * arguments. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/log.h"
+#include "base/mem.h"
+#include "glsl/shared/trace.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "gpu/program.h"
+#include "trace/filter_table.h"
+#include "trace/render.h"
+#include "trace/scene_upload.h"
+
+enum stage {
+    ST_GENERATE,
+    ST_PREPARE0,
+    ST_PREPARE1,
+    ST_PREPARE2,
+    ST_INTERSECT,
+    ST_ESCAPED,
+    ST_SHADE,
+    ST_SHADOW,
+    ST_RESOLVE,
+    ST_COUNT
+};
+
+struct cv_renderer {
+    struct cv_gpu *gpu;
+    struct cv_scene_gpu scene;
+    /* copies: the cache's entries move as it grows (ids stay valid) */
+    struct cv_program prog[ST_COUNT];
+    uint32_t n_pixels, crop_w, crop_h;
+    uint32_t max_depth;
+    bool aovs, has_env;
+    uint32_t spp_done;
+    CvPassParams pass;
+    GLuint ubo, queues, rays[2], hits, escaped, shadow, film, aov, resolved;
+    GLuint *queries;               /* GL_TIME_ELAPSED per pass, not yet read */
+    size_t n_queries, cap_queries;
+    double gpu_ms;
+};
+
+static const char *const stage_files[ST_COUNT] = {
+    "trace/generate.comp", "trace/prepare.comp", "trace/prepare.comp", "trace/prepare.comp",
+    "trace/intersect.comp", "trace/escaped.comp", "trace/shade.comp", "trace/shadow.comp",
+    "trace/resolve.comp",
+};
+
+/* The film: the scene's, or the override with the scene's crop window. */
+static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
+                         const struct cv_render_params *p)
+{
+    const CvCamera *c = &s->camera;
+    uint32_t w = p->width ? p->width : c->film.x, h = p->height ? p->height : c->film.y;
+    uint32_t x0 = c->film.z, y0 = c->film.w, cw = c->crop.x, ch = c->crop.y;
+    cv_vec4 screen = c->screen;
+    if (w != c->film.x || h != c->film.y) {
+        const float *cr = s->settings.crop;
+        x0 = (uint32_t)ceil(w * (double)cr[0]);
+        y0 = (uint32_t)ceil(h * (double)cr[2]);
+        uint32_t x1 = (uint32_t)ceil(w * (double)cr[1]), y1 = (uint32_t)ceil(h * (double)cr[3]);
+        cw = x1 > x0 ? x1 - x0 : 1;
+        ch = y1 > y0 ? y1 - y0 : 1;
+        double old_aspect = (double)c->film.x / c->film.y, aspect = (double)w / h;
+        if (fabs(old_aspect - aspect) > 1e-6 * aspect) {
+            /* pbrt's default screen window for the new aspect ratio */
+            if (aspect > 1)
+                screen = (cv_vec4){(float)-aspect, (float)aspect, -1, 1};
+            else
+                screen = (cv_vec4){-1, 1, (float)(-1 / aspect), (float)(1 / aspect)};
+            cv_warn("film %ux%u changes the scene's aspect ratio: default screen window used", w, h);
+        }
+    }
+    r->crop_w = cw;
+    r->crop_h = ch;
+    r->n_pixels = cw * ch;
+    CvPassParams *u = &r->pass;
+    u->frame = (cv_uvec4){r->n_pixels, cw, ch, 0};
+    u->film = (cv_uvec4){w, h, x0, y0};
+    for (int i = 0; i < 3; i++)
+        u->cam_to_world[i] = c->to_world[i];
+    u->screen = screen;
+    u->lens = (cv_vec4){c->lens.x, c->lens.y, c->lens.z, c->crop.z == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f};
+}
+
+static void setup_filter(struct cv_renderer *r, const struct cv_render_settings *st)
+{
+    CvPassParams *u = &r->pass;
+    float rx = st->filter_radius[0], ry = st->filter_radius[1];
+    uint32_t type = 0;
+    switch (st->filter) {
+    case CV_FILTER_BOX:
+        type = 0;
+        if (rx <= 0) rx = 0.5f;
+        if (ry <= 0) ry = 0.5f;
+        break;
+    case CV_FILTER_TRIANGLE:
+        type = 1;
+        if (rx <= 0) rx = 2;
+        if (ry <= 0) ry = 2;
+        break;
+    case CV_FILTER_GAUSSIAN:
+        type = 2;
+        if (rx <= 0) rx = 1.5f;
+        if (ry <= 0) ry = 1.5f;
+        break;
+    }
+    u->misc.y = type;
+    u->pixel_filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
+    float tx[CV_FILTER_TABLE + 4] = {0}, ty[CV_FILTER_TABLE + 4] = {0};
+    if (type == 2) {
+        cv_gaussian_filter_table(rx, st->filter_sigma, tx, CV_FILTER_TABLE);
+        cv_gaussian_filter_table(ry, st->filter_sigma, ty, CV_FILTER_TABLE);
+    }
+    memcpy(u->filter_x, tx, sizeof(u->filter_x));
+    memcpy(u->filter_y, ty, sizeof(u->filter_y));
+}
+
+static GLuint make(size_t bytes, const char *label, bool *ok, struct cv_error *err)
+{
+    if (!*ok)
+        return 0;
+    GLuint b = cv_buffer_create(bytes, NULL, label, err);
+    if (!b)
+        *ok = false;
+    return b;
+}
+
+bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
+                        const struct cv_render_params *p, struct cv_renderer **out,
+                        struct cv_error *err)
+{
+    if (p->integrator == CV_INTEGRATOR_RLPATH)
+        return cv_fail(err, "integrator \"rlpath\" is not implemented yet; use \"path\"");
+    if (p->integrator != CV_INTEGRATOR_PATH)
+        return cv_fail(err, "unknown integrator %d", p->integrator);
+    if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
+        return cv_fail(err, "unknown sampler %d", (int)p->sampler);
+    if (scene->camera.film.x == 0 || scene->camera.film.y == 0)
+        return cv_fail(err, "scene has no film resolution");
+
+    struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
+    r->gpu = gpu;
+    r->aovs = p->aovs;
+    r->max_depth = p->max_depth ? p->max_depth
+                                : (scene->settings.max_depth ? scene->settings.max_depth : 5);
+    setup_camera(r, scene, p);
+    setup_filter(r, &scene->settings);
+    if ((uint64_t)r->crop_w * r->crop_h > (1u << 26)) {
+        uint32_t w = r->crop_w, h = r->crop_h;
+        free(r);
+        return cv_fail(err, "film of %ux%u pixels is too large", w, h);
+    }
+    r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
+                              p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
+    r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
+
+    if (!cv_scene_upload(gpu, scene, &r->scene, err)) {
+        cv_error_prefix(err, "uploading the scene: ");
+        free(r);
+        return false;
+    }
+    r->has_env = r->scene.has_env;
+
+    const char *defines[4];
+    int nd = 0;
+    if (r->aovs)
+        defines[nd++] = "CV_AOVS";
+    if (r->scene.has_alpha)
+        defines[nd++] = "CV_HAS_ALPHA";
+    defines[nd] = NULL;
+    const char *prep[3][2] = {{"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
+                              {"PREPARE_MODE=2", NULL}};
+    for (int s = 0; s < ST_COUNT; s++) {
+        const char *const *d = defines;
+        if (s >= ST_PREPARE0 && s <= ST_PREPARE2)
+            d = prep[s - ST_PREPARE0];
+        struct cv_program *pr = cv_program_get(gpu, stage_files[s], d, err);
+        if (pr)
+            r->prog[s] = *pr;
+        if (!pr) {
+            cv_renderer_destroy(&r);
+            return false;
+        }
+    }
+
+    size_t n = r->n_pixels;
+    bool ok = true;
+    r->ubo = make(sizeof(CvPassParams), "trace pass params", &ok, err);
+    r->queues = make(sizeof(CvTraceQueues), "trace queues", &ok, err);
+    r->rays[0] = make(n * sizeof(CvRayItem), "trace rays A", &ok, err);
+    r->rays[1] = make(n * sizeof(CvRayItem), "trace rays B", &ok, err);
+    r->hits = make(n * sizeof(CvHitItem), "trace hits", &ok, err);
+    r->escaped = make(n * sizeof(uint32_t), "trace escaped", &ok, err);
+    r->shadow = make(n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
+    r->film = make(n * 4 * sizeof(float), "trace film", &ok, err);
+    r->aov = make(r->aovs ? n * sizeof(CvAovPixel) : 16, "trace aovs", &ok, err);
+    r->resolved = make(n * 4 * sizeof(float), "trace resolved", &ok, err);
+    if (!ok) {
+        cv_error_prefix(err, "allocating the film and queues for %ux%u: ", r->crop_w, r->crop_h);
+        cv_renderer_destroy(&r);
+        return false;
+    }
+    *out = r;
+    return true;
+}
+
+static void bind_all(struct cv_renderer *r)
+{
+    cv_scene_bind(&r->scene);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_PASS, r->ubo);
+    cv_buffer_bind(r->queues, CV_BIND_QUEUES);
+    cv_buffer_bind(r->hits, CV_BIND_HITS);
+    cv_buffer_bind(r->escaped, CV_BIND_ESCAPED);
+    cv_buffer_bind(r->shadow, CV_BIND_SHADOW);
+    cv_buffer_bind(r->film, CV_BIND_FILM);
+    cv_buffer_bind(r->aov, CV_BIND_AOV);
+    cv_buffer_bind(r->resolved, CV_BIND_RESOLVED);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
+}
+
+static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
+{
+    glUseProgram(prog->id);
+    glDispatchComputeIndirect((GLintptr)(CV_ARGS_OFFSET + 16 * slot));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+static void dispatch_one(const struct cv_program *prog)
+{
+    glUseProgram(prog->id);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
+{
+    if (spp == 0)
+        return true;
+    if ((uint64_t)r->spp_done + spp > UINT32_MAX)
+        return cv_fail(err, "more than 2^32 samples per pixel");
+    GLuint query = 0;
+    glGenQueries(1, &query);
+    glBeginQuery(GL_TIME_ELAPSED, query);
+    bind_all(r);
+    const size_t depth_at = offsetof(CvPassParams, misc);
+    for (uint32_t s = 0; s < spp; s++) {
+        r->pass.frame.w = r->spp_done + s;
+        r->pass.misc.x = 0;
+        glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
+        cv_buffer_bind(r->rays[1], CV_BIND_RAYS_OUT);
+        cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
+        for (uint32_t d = 0; d <= r->max_depth; d++) {
+            if (d > 0) {
+                r->pass.misc.x = d;
+                glNamedBufferSubData(r->ubo, (GLintptr)depth_at, sizeof(cv_uvec4), &r->pass.misc);
+            }
+            /* the rays written last are read now */
+            cv_buffer_bind(r->rays[(d + 1) & 1], CV_BIND_RAYS_IN);
+            cv_buffer_bind(r->rays[d & 1], CV_BIND_RAYS_OUT);
+            dispatch_one(&r->prog[ST_PREPARE0]);
+            dispatch_indirect(&r->prog[ST_INTERSECT], CV_ARGS_RAYS);
+            dispatch_one(&r->prog[ST_PREPARE1]);
+            if (r->has_env)
+                dispatch_indirect(&r->prog[ST_ESCAPED], CV_ARGS_ESCAPED);
+            dispatch_indirect(&r->prog[ST_SHADE], CV_ARGS_HITS);
+            dispatch_one(&r->prog[ST_PREPARE2]);
+            dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
+        }
+    }
+    glEndQuery(GL_TIME_ELAPSED);
+    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query);
+    if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
+        return false;
+    r->spp_done += spp;
+    return true;
+}
+
+uint32_t cv_renderer_spp_done(const struct cv_renderer *r)
+{
+    return r->spp_done;
+}
+
+void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *height)
+{
+    *width = r->crop_w;
+    *height = r->crop_h;
+}
+
+bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
+                          struct cv_error *err)
+{
+    for (size_t i = 0; i < r->n_queries; i++) {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(r->queries[i], GL_QUERY_RESULT, &ns);
+        r->gpu_ms += (double)ns * 1e-6;
+        glDeleteQueries(1, &r->queries[i]);
+    }
+    r->n_queries = 0;
+    CvTraceQueues q;
+    if (!cv_buffer_read(r->queues, 0, sizeof(q), &q, err))
+        return false;
+    c->primary_rays = (uint64_t)q.stats[CV_STAT_PRIMARY].y << 32 | q.stats[CV_STAT_PRIMARY].x;
+    c->secondary_rays = (uint64_t)q.stats[CV_STAT_SECONDARY].y << 32 | q.stats[CV_STAT_SECONDARY].x;
+    c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
+    c->gpu_ms = r->gpu_ms;
+    return cv_gl_check(err, "reading render counters");
+}
+
+GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
+{
+    glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
+    bind_all(r);
+    cv_program_dispatch_1d(&r->prog[ST_RESOLVE], r->n_pixels);
+    if (!cv_gl_check(err, "resolving the film"))
+        return 0;
+    return r->resolved;
+}
+
+bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float *normal3,
+                      float *depth1, struct cv_error *err)
+{
+    if ((albedo3 || normal3 || depth1) && !r->aovs)
+        return cv_fail(err, "AOVs requested from a renderer made without them");
+    size_t n = r->n_pixels;
+    if (rgba) {
+        if (!cv_renderer_resolve(r, err))
+            return false;
+        if (!cv_buffer_read(r->resolved, 0, n * 4 * sizeof(float), rgba, err))
+            return false;
+    }
+    if (!albedo3 && !normal3 && !depth1)
+        return true;
+    float *film = cv_xmalloc(n * 4 * sizeof(float));
+    CvAovPixel *aov = cv_xmalloc(n * sizeof(CvAovPixel));
+    bool ok = cv_buffer_read(r->film, 0, n * 4 * sizeof(float), film, err) &&
+              cv_buffer_read(r->aov, 0, n * sizeof(CvAovPixel), aov, err);
+    for (size_t i = 0; ok && i < n; i++) {
+        float w = film[4 * i + 3], inv = w > 0 ? 1 / w : 0;
+        if (albedo3) {
+            albedo3[3 * i + 0] = aov[i].albedo.x * inv;
+            albedo3[3 * i + 1] = aov[i].albedo.y * inv;
+            albedo3[3 * i + 2] = aov[i].albedo.z * inv;
+        }
+        if (normal3) {
+            float x = aov[i].normal.x, y = aov[i].normal.y, z = aov[i].normal.z;
+            float len = sqrtf(x * x + y * y + z * z), s = len > 0 ? 1 / len : 0;
+            normal3[3 * i + 0] = x * s;
+            normal3[3 * i + 1] = y * s;
+            normal3[3 * i + 2] = z * s;
+        }
+        if (depth1)
+            depth1[i] = aov[i].albedo.w * inv;
+    }
+    free(film);
+    free(aov);
+    return ok;
+}
+
+void cv_renderer_destroy(struct cv_renderer **rp)
+{
+    if (!rp || !*rp)
+        return;
+    struct cv_renderer *r = *rp;
+    for (size_t i = 0; i < r->n_queries; i++)
+        glDeleteQueries(1, &r->queries[i]);
+    free(r->queries);
+    GLuint *bufs[] = {&r->ubo, &r->queues, &r->rays[0], &r->rays[1], &r->hits, &r->escaped,
+                      &r->shadow, &r->film, &r->aov, &r->resolved};
+    for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
+        cv_buffer_destroy(bufs[i]);
+    cv_scene_gpu_release(&r->scene);
+    free(r);
+    *rp = NULL;
+}

@@ -1,0 +1,72 @@
+/* render.h: the wavefront path tracer's host API, which the batch stage
+ * drives: create a renderer for a scene, add passes of samples per pixel
+ * (progressive: the image is valid after any pass), resolve or read back the
+ * film. All GPU work of a pass is queued without CPU read-back; counters and
+ * images are the only read-backs. */
+#ifndef CV_TRACE_RENDER_H
+#define CV_TRACE_RENDER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <epoxy/gl.h>
+
+#include "base/error.h"
+#include "gpu/context.h"
+#include "scene/scene.h"
+
+#define CV_INTEGRATOR_PATH 0
+#define CV_INTEGRATOR_RLPATH 1   /* not implemented yet: rejected */
+
+struct cv_render_params {
+    uint32_t width, height;      /* film resolution [pixels]; 0: the scene's */
+    uint32_t max_depth;          /* 0: the scene's (5 when the scene says nothing) */
+    uint64_t seed;               /* job seed: same seed, same image */
+    int integrator;              /* CV_INTEGRATOR_* */
+    bool aovs;                   /* keep albedo, normal and depth per pixel */
+    enum { CV_SAMPLER_SOBOL, CV_SAMPLER_INDEPENDENT } sampler;
+};
+
+struct cv_renderer;
+
+/* Uploads the scene (the renderer keeps no pointer to it), builds the BVH and
+ * compiles the stage programs. The scene's crop window applies to the film
+ * (also when the resolution is overridden). */
+bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
+                        const struct cv_render_params *p, struct cv_renderer **out,
+                        struct cv_error *err);
+
+/* Adds spp samples per pixel, continuing the pixel sample sequences where the
+ * last pass stopped. Queues GPU work only. */
+bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err);
+
+uint32_t cv_renderer_spp_done(const struct cv_renderer *r);
+
+/* Rendered pixels of the crop: width and height of the film buffers. */
+void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *height);
+
+/* Totals since creation: rays traced by kind and GPU time of all passes
+ * [milliseconds] (GL_TIME_ELAPSED). Reading waits for the GPU. */
+struct cv_render_counters {
+    uint64_t primary_rays, secondary_rays, shadow_rays;
+    double gpu_ms;
+};
+bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
+                          struct cv_error *err);
+
+/* SSBO of one vec4 per pixel of the crop (linear Rec.709 RGB = sum / weight,
+ * alpha 1), row-major, top row first. Owned by the renderer, valid until the
+ * next resolve or destroy. 0 on error. */
+GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err);
+
+/* CPU copies: rgba 4 floats per pixel; albedo3 and normal3 3 floats, depth1
+ * one (camera distance to the first hit, 0 where the ray escaped); the AOV
+ * pointers may be NULL, and must be when the renderer was made without
+ * aovs. Buffers hold width * height pixels (cv_renderer_size). */
+bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float *normal3,
+                      float *depth1, struct cv_error *err);
+
+/* Accepts NULL; clears the pointer. */
+void cv_renderer_destroy(struct cv_renderer **r);
+
+#endif
