@@ -13,3 +13,10 @@ GLSL_FILES += \
 	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
 	glsl/trace/resolve.comp
+
+# --- rlpath (reinforcement-learning path guiding) ---
+libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h
+GLSL_FILES += glsl/shared/rlpath.h \
+	glsl/trace/rlpath/guide.glsl glsl/trace/rlpath/shade.comp \
+	glsl/trace/rlpath/update.comp glsl/trace/rlpath/test_sample.comp
+# --- end of rlpath ---

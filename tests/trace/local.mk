@@ -7,3 +7,9 @@ EXTRA_DIST += tests/trace/trace_test_util.h \
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
 # --- end of pipeline tests ---
+# --- rlpath tests (reinforcement-learning path guiding) ---
+check_PROGRAMS += tests/trace/rlpath_sample_test
+TESTS += tests/trace/rlpath_sample_test
+tests_trace_rlpath_sample_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/rlpath_stats.h
+# --- end of rlpath tests ---

@@ -1,0 +1,128 @@
+// glsl/trace/rlpath/guide.glsl: the Q-table of the rlpath integrator (layout
+// in shared/rlpath.h): cell and bin lookup, sampling a direction from a
+// cell's learned distribution and its pdf, the mixture with the BSDF, and the
+// temporal-difference update.
+//
+// The learned distribution of a cell: bin b has probability
+//   P_b = (Q_b + e) / (S + bins * e),  S = sum of Q_b,  e = floor * S / bins
+// (plus a tiny absolute floor, so an unvisited cell is uniform), and is
+// uniform in solid angle within the bin: pdf(w) = P_b * bins / (4 pi).
+// Include after the local_size layout line.
+#ifndef CV_RLPATH_GUIDE_GLSL
+#define CV_RLPATH_GUIDE_GLSL
+
+#include "shared/rlpath.h"
+
+layout(std140, binding = CV_UBO_RLPATH) uniform CvRlBlock { CvRlParams u_rl; };
+layout(std430, binding = CV_BIND_RL_Q) coherent buffer CvRlQ { uint rl_q[]; };
+
+const float CV_RL_PI = 3.14159265358979323846;
+
+uint cv_rl_bins() { return u_rl.dirs.z; }
+float cv_rl_mix_weight() { return u_rl.grid_min.w; }
+
+uint cv_rl_cell(vec3 p)
+{
+    ivec3 c = ivec3(floor((p - u_rl.grid_min.xyz) * u_rl.grid_scale.xyz));
+    c = clamp(c, ivec3(0), ivec3(u_rl.dims.xyz) - 1);
+    return (uint(c.z) * u_rl.dims.y + uint(c.y)) * u_rl.dims.x + uint(c.x);
+}
+
+uint cv_rl_bin(vec3 w)
+{
+    uint nz = u_rl.dirs.x, np = u_rl.dirs.y;
+    uint iz = min(uint(max(0.0, (w.z + 1.0) * 0.5 * float(nz))), nz - 1u);
+    float u = (atan(w.y, w.x) + CV_RL_PI) * (0.5 / CV_RL_PI);
+    uint ip = min(uint(max(0.0, u * float(np))), np - 1u);
+    return iz * np + ip;
+}
+
+// The direction of bin b at (u1, u2) in [0,1)^2 within it; (0.5, 0.5) is
+// its centre.
+vec3 cv_rl_bin_dir(uint b, vec2 u)
+{
+    uint np = u_rl.dirs.y;
+    float z = -1.0 + 2.0 * (float(b / np) + u.x) / float(u_rl.dirs.x);
+    float phi = -CV_RL_PI + 2.0 * CV_RL_PI * (float(b % np) + u.y) / float(np);
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    return vec3(r * cos(phi), r * sin(phi), clamp(z, -1.0, 1.0));
+}
+
+float cv_rl_q(uint entry) { return uintBitsToFloat(rl_q[2u * entry]); }
+
+// The floor e of a cell whose bins sum to s.
+float cv_rl_floor(float s)
+{
+    return max(u_rl.grid_scale.w * s / float(cv_rl_bins()), 1e-20);
+}
+
+float cv_rl_cell_sum(uint cell)
+{
+    uint base = cell * cv_rl_bins();
+    float s = 0.0;
+    for (uint b = 0u; b < cv_rl_bins(); b++)
+        s += cv_rl_q(base + b);
+    return s;
+}
+
+// Solid-angle pdf of w under the distribution of a cell whose bins sum to s.
+float cv_rl_pdf(uint cell, float s, vec3 w)
+{
+    float bins = float(cv_rl_bins()), e = cv_rl_floor(s);
+    float pb = (cv_rl_q(cell * cv_rl_bins() + cv_rl_bin(w)) + e) / (s + bins * e);
+    return pb * bins / (4.0 * CV_RL_PI);
+}
+
+// Samples a direction from the cell (bins summing to s) with u in [0,1)^2:
+// u.x picks the bin by its CDF and, rescaled within the bin's interval,
+// the z position in the bin; u.y the phi position. Returns the bin; pdf is
+// the solid-angle density of the direction.
+uint cv_rl_sample(uint cell, float s, vec2 u, out vec3 w, out float pdf)
+{
+    uint n = cv_rl_bins(), base = cell * n;
+    float e = cv_rl_floor(s), total = s + float(n) * e;
+    float target = u.x * total, c = 0.0, p = 0.0;
+    uint b = 0u;
+    for (; b < n; b++) {
+        p = cv_rl_q(base + b) + e;
+        if (target < c + p || b == n - 1u)
+            break;
+        c += p;
+    }
+    float ux = clamp((target - c) / p, 0.0, 0.99999994);
+    w = cv_rl_bin_dir(b, vec2(ux, u.y));
+    pdf = (p / total) * float(n) / (4.0 * CV_RL_PI);
+    return b;
+}
+
+// The one-sample mixture of guiding (weight m) and the BSDF: the density the
+// path throughput and the MIS weights use.
+float cv_rl_mix_pdf(float m, float pdf_guide, float pdf_bsdf)
+{
+    return m * pdf_guide + (1.0 - m) * pdf_bsdf;
+}
+
+// Q(entry) <- (1 - a) Q + a target with a = 1 / (1 + visits). The visit
+// count is bumped first, so concurrent updates of one entry each get their
+// own learning rate; the float is then replaced by compare-and-swap on its
+// bits, retried while another thread changed it in between (bounded: an
+// update lost under extreme contention only slows learning, never biases
+// the image, whose estimator is unbiased for any table).
+void cv_rl_update(uint entry, float target)
+{
+    if (entry == CV_RL_NONE || !(target >= 0.0) || isinf(target))
+        return;
+    uint visits = atomicAdd(rl_q[2u * entry + 1u], 1u);
+    float a = 1.0 / (1.0 + float(visits));
+    uint old = rl_q[2u * entry];
+    for (int i = 0; i < 64; i++) {
+        float q = uintBitsToFloat(old);
+        uint nv = floatBitsToUint(q + a * (target - q));
+        uint seen = atomicCompSwap(rl_q[2u * entry], old, nv);
+        if (seen == old)
+            break;
+        old = seen;
+    }
+}
+
+#endif
