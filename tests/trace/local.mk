@@ -13,3 +13,13 @@ TESTS += tests/trace/rlpath_sample_test
 tests_trace_rlpath_sample_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/trace/rlpath_stats.h
 # --- end of rlpath tests ---
+# --- rlpath tests, part 2 ---
+check_PROGRAMS += tests/trace/rlpath_converge_test
+TESTS += tests/trace/rlpath_converge_test
+tests_trace_rlpath_converge_test_LDADD = $(CV_LIBS)
+# --- end of rlpath tests, part 2 ---
+# --- rlpath benchmark (not a test: `make tests/trace/rlpath_bench`) ---
+EXTRA_PROGRAMS = tests/trace/rlpath_bench
+tests_trace_rlpath_bench_LDADD = $(CV_LIBS)
+CLEANFILES += tests/trace/rlpath_bench
+# --- end of rlpath benchmark ---
