@@ -13,13 +13,18 @@
  * are not tied to one normal, so both sides of a thin wall share a cell and
  * each learns its own hemisphere).
  *
- * Table (CV_BIND_RL_Q, uint[]): entry e = cell * bins + bin holds
- * [2e] = Q as float bits (learned incident radiance, scalar: the channel
- * mean), [2e+1] = visit count. Floats are updated by a compare-and-swap loop
- * on the bits (GLSL has no float atomics in core 4.5).
+ The table and the path state are buffers read through buffer textures
+ * bound as images (r32ui and rgba32ui), not as storage blocks: the shade
+ * stage already uses the 16 storage blocks llvmpipe allows per shader, and
+ * image atomics serve as well.
  *
- * Path state (CV_BIND_RL_PATH, uvec4 per pixel of the crop; each pixel has
- * one path in flight): x: entry of the last bounce whose value the next hit
+ * Table (image unit CV_IMAGE_RL_Q, r32ui texels): entry e = cell * bins +
+ * bin holds texel 2e = Q as float bits (learned incident radiance, scalar:
+ * the channel mean), texel 2e+1 = visit count. Floats are updated by a
+ * compare-and-swap loop on the bits (GLSL has no float atomics in core 4.5).
+ *
+ * Path state (image unit CV_IMAGE_RL_PATH, one rgba32ui texel per pixel of
+ * the crop; each pixel has one path in flight): x: entry of the last bounce whose value the next hit
  * will update (CV_RL_NONE: none), y: the depth that bounce left from,
  * z: entry of a pending update, w: its target as float bits. */
 #ifndef CV_SHARED_RLPATH_H
@@ -28,8 +33,8 @@
 #include "shared/common.h"
 #include "shared/bindings.h"
 
-#define CV_BIND_RL_Q (CV_BIND_STAGE0 + 10)     /* uint[]: Q bits and visits */
-#define CV_BIND_RL_PATH (CV_BIND_STAGE0 + 11)  /* uvec4[] per pixel */
+#define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: Q bits and visits */
+#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rgba32ui: path state per pixel */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */
 
 #define CV_RL_NONE 0xffffffffu

@@ -50,20 +50,22 @@
 #define CV_STAT_SHADOW 2u
 
 CV_STRUCT(CvTraceQueues) {
-    CV_UVEC4 count_a;      /* x: rays in, y: rays out, z: hits, w: escaped */
-    CV_UVEC4 count_b;      /* x: shadow; y..w unused */
+    CV_UINT count[8];      /* CV_Q_*; a scalar array because llvmpipe's atomics on
+                            * vector components returned duplicate slots */
     CV_UVEC4 args[4];      /* indirect dispatch arguments, CV_ARGS_* */
     CV_UVEC4 stats[3];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
 CV_CHECK_SIZE(CvTraceQueues, 144);
 
-/* Ray flags (CvRayItem.beta.w as bits). */
+/* Ray flags (CvRayItem.beta.w, as a float holding the integer). */
 #define CV_RAYF_SPECULAR 1u        /* the last bounce was specular (no MIS on emission) */
 #define CV_RAYF_ALBEDO_DONE 2u     /* the albedo AOV has been written for this sample */
 
-/* A path's next ray. o.w: pixel index (uint bits); d.w: the BSDF pdf of d
- * at the previous vertex (solid angle), 0 for camera rays; beta.rgb: path
- * throughput; beta.w: CV_RAYF_* bits. */
+/* A path's next ray. o.w: pixel index of the crop (a float holding the
+ * integer: exact below 2^24, which the host enforces; integer bit patterns
+ * would be denormals that some GPUs flush); d.w: the BSDF pdf of d at the
+ * previous vertex (solid angle), 0 for camera rays and after specular
+ * bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits. */
 CV_STRUCT(CvRayItem) {
     CV_VEC4 o;
     CV_VEC4 d;
@@ -85,7 +87,7 @@ CV_STRUCT(CvHitItem) {
 } CV_END(CvHitItem)
 CV_CHECK_SIZE(CvHitItem, 32);
 
-/* A next-event shadow ray: o.w: tmax; d.w: pixel (uint bits); L.rgb: the
+/* A next-event shadow ray: o.w: tmax; d.w: pixel (as in CvRayItem); L.rgb: the
  * contribution (MIS-weighted, divided by the light pdf) added to the pixel
  * when unoccluded. */
 CV_STRUCT(CvShadowItem) {

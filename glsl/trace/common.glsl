@@ -46,6 +46,37 @@ vec3 cv_offset_ray(vec3 p, vec3 n)
                 abs(p.z) < origin ? p.z + float_scale * n.z : p_i.z);
 }
 
+// Queue slots for a whole group: every invocation says whether it pushes to
+// each of two queues; invocation 0 takes the group's range of each queue
+// with one atomic and hands out slots in invocation order. Call from uniform
+// control flow (no invocation may have returned). Besides saving atomics,
+// this avoids llvmpipe (Mesa 22.3) losing per-invocation atomicAdd results
+// in partially active SIMD vectors, which dropped and duplicated items.
+shared uint cv_q_flags[2 * CV_TRACE_GROUP];
+shared uint cv_q_base[2];
+
+uvec2 cv_queue_slots(bool push0, uint queue0, bool push1, uint queue1)
+{
+    uint li = gl_LocalInvocationIndex;
+    cv_q_flags[li] = push0 ? 1u : 0u;
+    cv_q_flags[CV_TRACE_GROUP + li] = push1 ? 1u : 0u;
+    barrier();
+    if (li == 0u) {
+        uint a = 0u, b = 0u;
+        for (uint k = 0u; k < uint(CV_TRACE_GROUP); k++) {
+            uint fa = cv_q_flags[k], fb = cv_q_flags[CV_TRACE_GROUP + k];
+            cv_q_flags[k] = a;
+            cv_q_flags[CV_TRACE_GROUP + k] = b;
+            a += fa;
+            b += fb;
+        }
+        cv_q_base[0] = a > 0u ? atomicAdd(q.count[queue0], a) : 0u;
+        cv_q_base[1] = b > 0u ? atomicAdd(q.count[queue1], b) : 0u;
+    }
+    barrier();
+    return uvec2(cv_q_base[0] + cv_q_flags[li], cv_q_base[1] + cv_q_flags[CV_TRACE_GROUP + li]);
+}
+
 float cv_power_heuristic(float fa, float fb)
 {
     float a = fa * fa, b = fb * fb;

@@ -10,11 +10,11 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 void main()
 {
     uint i = cv_global_index();
-    if (i >= q.count_a.w)
+    if (i >= q.count[CV_Q_ESCAPED])
         return;
     CvRayItem r = rays_in[escaped[i]];
-    uint pixel = floatBitsToUint(r.o.w);
-    uint flags = floatBitsToUint(r.beta.w);
+    uint pixel = uint(r.o.w);
+    uint flags = uint(r.beta.w);
     vec3 Le = cv_env_Le(r.d.xyz);
     if (cv_max3(Le) <= 0.0)
         return;

@@ -13,7 +13,7 @@ void main()
     uint i = cv_global_index();
     uint n = u_pass.frame.x;
     if (i == 0u)
-        q.count_a.y = n;
+        q.count[CV_Q_RAYS_OUT] = n;
     if (i >= n)
         return;
     uint cw = u_pass.frame.y;
@@ -29,9 +29,9 @@ void main()
     vec3 o, d;
     cv_camera_ray(raster, ul, o, d);
     CvRayItem r;
-    r.o = vec4(o, uintBitsToFloat(i));
+    r.o = vec4(o, float(i));
     r.d = vec4(d, 0.0);
-    r.beta = vec4(1.0, 1.0, 1.0, uintBitsToFloat(0u));
+    r.beta = vec4(1.0, 1.0, 1.0, float(0u));
     rays_out[i] = r;
     film[i].w += 1.0;
 }

@@ -3,8 +3,9 @@
 #ifndef CV_TRACE_GEOMETRY_GLSL
 #define CV_TRACE_GEOMETRY_GLSL
 
-#include "fallback/scene_buffers.glsl"
-#include "fallback/traverse_brute.glsl"
+#include "../bvh/scene_buffers.glsl"
+#include "../bvh/traverse.glsl"
+#include "scene_buffers.glsl"
 
 struct CvSurface {
     vec3 p;

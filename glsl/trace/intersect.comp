@@ -12,26 +12,34 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 void main()
 {
     uint i = cv_global_index();
-    if (i >= q.count_a.x)
-        return;
-    CvRayItem r = rays_in[i];
+    bool valid = i < q.count[CV_Q_RAYS_IN];
+    bool hit = false;
     CvHit h;
-    float tmin = 0.0;
-    bool hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
-#ifdef CV_HAS_ALPHA
-    for (uint k = 0u; hit && k < 64u; k++) {
-        uint word = cv_triangles[h.prim].idx.w;
-        CvSurface s = cv_surface(h.prim, h.b1, h.b2);
-        float u = cv_u32_to_unit(cv_hash4(floatBitsToUint(r.o.w), cv_sample_index(), h.prim,
-                                          cv_depth() * 64u + k));
-        if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))
-            break;
-        tmin = h.t * (1.0 + 1e-5) + 1e-6;
+    h.t = 0.0;
+    h.prim = 0u;
+    h.b1 = 0.0;
+    h.b2 = 0.0;
+    if (valid) {
+        CvRayItem r = rays_in[i];
+        float tmin = 0.0;
+#ifndef CV_EMPTY_SCENE
         hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
-    }
 #endif
-    if (hit) {
-        uint slot = atomicAdd(q.count_a.z, 1u);
+#ifdef CV_HAS_ALPHA
+        for (uint k = 0u; hit && k < 64u; k++) {
+            uint word = cv_triangles[h.prim].idx.w;
+            CvSurface s = cv_surface(h.prim, h.b1, h.b2);
+            float u = cv_u32_to_unit(cv_hash4(uint(r.o.w), cv_sample_index(), h.prim,
+                                              cv_depth() * 64u + k));
+            if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))
+                break;
+            tmin = h.t * (1.0 + 1e-5) + 1e-6;
+            hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
+        }
+#endif
+    }
+    uvec2 slot = cv_queue_slots(valid && hit, CV_Q_HITS, valid && !hit, CV_Q_ESCAPED);
+    if (valid && hit) {
         CvHitItem it;
         it.ray = i;
         it.prim = h.prim;
@@ -41,9 +49,8 @@ void main()
         it.pad0 = 0u;
         it.pad1 = 0u;
         it.pad2 = 0u;
-        hits[slot] = it;
-    } else {
-        uint slot = atomicAdd(q.count_a.w, 1u);
-        escaped[slot] = i;
+        hits[slot.x] = it;
+    } else if (valid) {
+        escaped[slot.y] = i;
     }
 }

@@ -30,16 +30,19 @@ void cv_stat_add(uint slot, uint n)
 void main()
 {
 #if PREPARE_MODE == 0
-    uint n = q.count_a.y;
-    q.count_a = uvec4(n, 0u, 0u, 0u);
-    q.count_b.x = 0u;
+    uint n = q.count[CV_Q_RAYS_OUT];
+    q.count[CV_Q_RAYS_IN] = n;
+    q.count[CV_Q_RAYS_OUT] = 0u;
+    q.count[CV_Q_HITS] = 0u;
+    q.count[CV_Q_ESCAPED] = 0u;
+    q.count[CV_Q_SHADOW] = 0u;
     q.args[CV_ARGS_RAYS] = cv_groups(n);
     cv_stat_add(cv_depth() == 0u ? CV_STAT_PRIMARY : CV_STAT_SECONDARY, n);
 #elif PREPARE_MODE == 1
-    q.args[CV_ARGS_HITS] = cv_groups(q.count_a.z);
-    q.args[CV_ARGS_ESCAPED] = cv_groups(q.count_a.w);
+    q.args[CV_ARGS_HITS] = cv_groups(q.count[CV_Q_HITS]);
+    q.args[CV_ARGS_ESCAPED] = cv_groups(q.count[CV_Q_ESCAPED]);
 #else
-    q.args[CV_ARGS_SHADOW] = cv_groups(q.count_b.x);
-    cv_stat_add(CV_STAT_SHADOW, q.count_b.x);
+    q.args[CV_ARGS_SHADOW] = cv_groups(q.count[CV_Q_SHADOW]);
+    cv_stat_add(CV_STAT_SHADOW, q.count[CV_Q_SHADOW]);
 #endif
 }

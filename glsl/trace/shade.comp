@@ -17,15 +17,17 @@ uint cv_film_pixel(uint i)
     return px.y * u_pass.film.x + px.x;
 }
 
-void main()
+// Shades hit i; what it queues comes back in the out parameters, so that
+// main() can take queue slots in uniform control flow.
+void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ray,
+              out CvRayItem nr)
 {
-    uint i = cv_global_index();
-    if (i >= q.count_a.z)
-        return;
+    push_shadow = false;
+    push_ray = false;
     CvHitItem h = hits[i];
     CvRayItem r = rays_in[h.ray];
-    uint pixel = floatBitsToUint(r.o.w);
-    uint flags = floatBitsToUint(r.beta.w);
+    uint pixel = uint(r.o.w);
+    uint flags = uint(r.beta.w);
     uint depth = cv_depth();
     vec3 beta = r.beta.rgb;
     vec3 wo = -r.d.xyz;
@@ -84,12 +86,11 @@ void main()
                 float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, cv_bsdf_pdf(b, wo, ls.wi));
                 vec3 Ld = beta * f * ls.L * (w / ls.pdf);
                 if (cv_finite3(Ld)) {
-                    CvShadowItem s;
+                    push_shadow = true;
                     s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
                                ls.dist * (1.0 - 1e-4));
-                    s.d = vec4(ls.wi, uintBitsToFloat(pixel));
+                    s.d = vec4(ls.wi, float(pixel));
                     s.L = vec4(Ld, 0.0);
-                    shadows[atomicAdd(q.count_b.x, 1u)] = s;
                 }
             }
         }
@@ -112,9 +113,23 @@ void main()
         }
     }
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
-    CvRayItem nr;
+    push_ray = true;
     nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : bs.pdf);
-    nr.beta = vec4(beta, uintBitsToFloat(flags));
-    rays_out[atomicAdd(q.count_a.y, 1u)] = nr;
+    nr.beta = vec4(beta, float(flags));
+}
+
+void main()
+{
+    uint i = cv_global_index();
+    bool push_shadow = false, push_ray = false;
+    CvShadowItem s;
+    CvRayItem nr;
+    if (i < q.count[CV_Q_HITS])
+        cv_shade(i, push_shadow, s, push_ray, nr);
+    uvec2 slot = cv_queue_slots(push_shadow, CV_Q_SHADOW, push_ray, CV_Q_RAYS_OUT);
+    if (push_shadow)
+        shadows[slot.x] = s;
+    if (push_ray)
+        rays_out[slot.y] = nr;
 }

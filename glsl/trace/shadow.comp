@@ -11,10 +11,10 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 void main()
 {
     uint i = cv_global_index();
-    if (i >= q.count_b.x)
+    if (i >= q.count[CV_Q_SHADOW])
         return;
     CvShadowItem s = shadows[i];
-    uint pixel = floatBitsToUint(s.d.w);
+    uint pixel = uint(s.d.w);
 #ifdef CV_HAS_ALPHA
     float tmin = 0.0;
     CvHit h;
@@ -30,6 +30,8 @@ void main()
             return;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;
     }
+#elif defined(CV_EMPTY_SCENE)
+    cv_film_add(pixel, s.L.rgb);
 #else
     if (!cv_trace_any(s.o.xyz, s.d.xyz, 0.0, s.o.w))
         cv_film_add(pixel, s.L.rgb);

@@ -1,1 +1,15 @@
-# src/bvh: see Makefile.am
+# src/bvh: GPU BVH build (LBVH + treelet restructuring) and traversal GLSL.
+libcavalry_a_SOURCES += \
+	src/bvh/bvh.c src/bvh/bvh.h \
+	src/bvh/radix_sort.c src/bvh/radix_sort.h \
+	src/bvh/scan.c src/bvh/scan.h src/bvh/program_copy.h
+
+GLSL_FILES += \
+	glsl/shared/bvh.h \
+	glsl/bvh/bounds.comp glsl/bvh/morton.comp \
+	glsl/bvh/radix_hist.comp glsl/bvh/radix_scatter.comp \
+	glsl/bvh/scan_block.comp glsl/bvh/scan_add.comp \
+	glsl/bvh/hierarchy.comp glsl/bvh/refit.comp glsl/bvh/sah.glsl glsl/bvh/treelet.comp \
+	glsl/bvh/layout.comp glsl/bvh/emit.comp \
+	glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
+	glsl/bvh/rays_test.comp

@@ -8,11 +8,21 @@ GLSL_FILES += \
 	glsl/shared/trace.h \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
 	glsl/trace/geometry.glsl glsl/trace/shading.glsl \
-	glsl/trace/fallback/scene_buffers.glsl glsl/trace/fallback/traverse_brute.glsl \
+	glsl/trace/scene_buffers.glsl \
 	glsl/trace/fallback/bsdf_basic.glsl glsl/trace/fallback/light_basic.glsl \
 	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
-	glsl/trace/resolve.comp
+	glsl/trace/resolve.comp glsl/trace/test/sampler_probe.comp
+# ---- bsdf / light sampling (branch bsdf) ----
+# glsl/shared/*.h include each other as "shared/x.h" (same line as src/scene).
+AM_CPPFLAGS += -I$(top_srcdir)/glsl
+GLSL_FILES += \
+	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \
+	glsl/trace/bsdf/bsdf.glsl glsl/trace/bsdf/bsdf_sample.glsl glsl/trace/bsdf/material_buffers.glsl \
+	glsl/trace/bsdf/fresnel.glsl glsl/trace/bsdf/microfacet.glsl glsl/trace/bsdf/diffuse.glsl \
+	glsl/trace/bsdf/conductor.glsl glsl/trace/bsdf/dielectric.glsl glsl/trace/bsdf/coated.glsl \
+	glsl/trace/bsdf/texture.glsl
+# ---- end bsdf / light block ----
 
 # --- rlpath (reinforcement-learning path guiding) ---
 libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h

@@ -43,7 +43,7 @@ struct cv_renderer {
     uint32_t spp_done;
     CvPassParams pass;
     GLuint ubo, queues, rays[2], hits, escaped, shadow, film, aov, resolved;
-    GLuint *queries;               /* GL_TIME_ELAPSED per pass, not yet read */
+    GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
     struct cv_rlpath *rl;          /* CV_INTEGRATOR_RLPATH, else NULL */
@@ -153,7 +153,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                                 : (scene->settings.max_depth ? scene->settings.max_depth : 5);
     setup_camera(r, scene, p);
     setup_filter(r, &scene->settings);
-    if ((uint64_t)r->crop_w * r->crop_h > (1u << 26)) {
+    if ((uint64_t)r->crop_w * r->crop_h > (1u << 24)) {
         uint32_t w = r->crop_w, h = r->crop_h;
         free(r);
         return cv_fail(err, "film of %ux%u pixels is too large", w, h);
@@ -171,6 +171,8 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
 
     const char *defines[4];
     int nd = 0;
+    if (r->scene.empty)
+        defines[nd++] = "CV_EMPTY_SCENE";
     if (r->aovs)
         defines[nd++] = "CV_AOVS";
     if (r->scene.has_alpha)
@@ -259,9 +261,11 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return true;
     if ((uint64_t)r->spp_done + spp > UINT32_MAX)
         return cv_fail(err, "more than 2^32 samples per pixel");
-    GLuint query = 0;
-    glGenQueries(1, &query);
-    glBeginQuery(GL_TIME_ELAPSED, query);
+    /* timestamps rather than GL_TIME_ELAPSED: llvmpipe reports 0 elapsed
+     * time for compute work */
+    GLuint query[2] = {0, 0};
+    glGenQueries(2, query);
+    glQueryCounter(query[0], GL_TIMESTAMP);
     bind_all(r);
     const size_t depth_at = offsetof(CvPassParams, misc);
     for (uint32_t s = 0; s < spp; s++) {
@@ -290,8 +294,9 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
             dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
         }
     }
-    glEndQuery(GL_TIME_ELAPSED);
-    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query);
+    glQueryCounter(query[1], GL_TIMESTAMP);
+    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[0]);
+    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[1]);
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
         return false;
     r->spp_done += spp;
@@ -312,12 +317,13 @@ void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *he
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err)
 {
-    for (size_t i = 0; i < r->n_queries; i++) {
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(r->queries[i], GL_QUERY_RESULT, &ns);
-        r->gpu_ms += (double)ns * 1e-6;
-        glDeleteQueries(1, &r->queries[i]);
+    for (size_t i = 0; i + 1 < r->n_queries; i += 2) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(r->queries[i], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(r->queries[i + 1], GL_QUERY_RESULT, &t1);
+        r->gpu_ms += t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
     }
+    glDeleteQueries((GLsizei)r->n_queries, r->queries);
     r->n_queries = 0;
     CvTraceQueues q;
     if (!cv_buffer_read(r->queues, 0, sizeof(q), &q, err))
@@ -384,8 +390,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (!rp || !*rp)
         return;
     struct cv_renderer *r = *rp;
-    for (size_t i = 0; i < r->n_queries; i++)
-        glDeleteQueries(1, &r->queries[i]);
+    if (r->n_queries)
+        glDeleteQueries((GLsizei)r->n_queries, r->queries);
     free(r->queries);
     GLuint *bufs[] = {&r->ubo, &r->queues, &r->rays[0], &r->rays[1], &r->hits, &r->escaped,
                       &r->shadow, &r->film, &r->aov, &r->resolved};

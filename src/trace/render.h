@@ -51,7 +51,8 @@ uint32_t cv_renderer_spp_done(const struct cv_renderer *r);
 void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *height);
 
 /* Totals since creation: rays traced by kind and GPU time of all passes
- * [milliseconds] (GL_TIME_ELAPSED). Reading waits for the GPU. */
+ * [milliseconds] (GL_TIMESTAMP queries around each pass; GL_TIME_ELAPSED
+ * reads 0 for compute on llvmpipe). Reading waits for the GPU. */
 struct cv_render_counters {
     uint64_t primary_rays, secondary_rays, shadow_rays;
     double gpu_ms;

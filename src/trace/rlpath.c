@@ -16,6 +16,7 @@ struct cv_rlpath {
     uint32_t n_pixels;
     struct cv_program shade, update_hits, update_escaped;  /* copies (see render.c) */
     GLuint ubo, table, path;
+    GLuint table_tex, path_tex;   /* buffer textures over table and path */
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -84,6 +85,24 @@ uint64_t cv_rlpath_table_bytes(const CvRlParams *p)
     return (uint64_t)p->dims.w * p->dirs.z * 2 * sizeof(uint32_t);
 }
 
+GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
+{
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max);
+    if (max > 0 && texels > (size_t)max) {
+        cv_fail(err, "%zu texels exceed this GPU's buffer texture limit of %d", texels, max);
+        return 0;
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &tex);
+    glTextureBuffer(tex, format, buf);
+    if (!cv_gl_check(err, "buffer texture of %zu texels", texels)) {
+        glDeleteTextures(1, &tex);
+        return 0;
+    }
+    return tex;
+}
+
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
                       const char *const *defines, struct cv_rlpath **out,
                       struct cv_error *err)
@@ -114,7 +133,12 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     if (rl->table)
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);
-    if (!rl->path) {
+    size_t entries = (size_t)layout->dims.w * layout->dirs.z;
+    if (rl->path)
+        rl->table_tex = cv_rlpath_buffer_texture(rl->table, GL_R32UI, 2 * entries, err);
+    if (rl->table_tex)
+        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
+    if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u cells x %u directions: ", layout->dims.w,
                         layout->dirs.z);
         cv_rlpath_destroy(&rl);
@@ -132,19 +156,23 @@ const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl)
 void cv_rlpath_bind(const struct cv_rlpath *rl)
 {
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
-    cv_buffer_bind(rl->table, CV_BIND_RL_Q);
-    cv_buffer_bind(rl->path, CV_BIND_RL_PATH);
+    glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32UI);
 }
 
 static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
 {
     glUseProgram(prog->id);
     glDispatchComputeIndirect((GLintptr)(CV_ARGS_OFFSET + 16 * slot));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 void cv_rlpath_update(const struct cv_rlpath *rl)
 {
+    /* the shade stage's image writes (path state) */
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     dispatch_indirect(&rl->update_hits, CV_ARGS_HITS);
     dispatch_indirect(&rl->update_escaped, CV_ARGS_ESCAPED);
 }
@@ -175,6 +203,10 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
     if (!rlp || !*rlp)
         return;
     struct cv_rlpath *rl = *rlp;
+    if (rl->table_tex)
+        glDeleteTextures(1, &rl->table_tex);
+    if (rl->path_tex)
+        glDeleteTextures(1, &rl->path_tex);
     cv_buffer_destroy(&rl->ubo);
     cv_buffer_destroy(&rl->table);
     cv_buffer_destroy(&rl->path);

@@ -52,7 +52,12 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
         cv_scene_gpu_release(&g);
         return false;
     }
-    (void)gpu;
+    g.empty = s->n_triangles == 0;
+    if (!g.empty && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, NULL, &g.bvh, err)) {
+        cv_error_prefix(err, "building the BVH: ");
+        cv_scene_gpu_release(&g);
+        return false;
+    }
     *out = g;
     return true;
 }
@@ -67,6 +72,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->texels, CV_BIND_TEXELS);
     cv_buffer_bind(g->lights, CV_BIND_LIGHTS);
     cv_buffer_bind(g->light_cdf, CV_BIND_LIGHT_CDF);
+    if (g->bvh)
+        cv_bvh_bind(g->bvh);
 }
 
 void cv_scene_gpu_release(struct cv_scene_gpu *g)
@@ -75,5 +82,6 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
                    &g->textures, &g->texels, &g->lights, &g->light_cdf};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
+    cv_bvh_destroy(&g->bvh);
     memset(g, 0, sizeof(*g));
 }

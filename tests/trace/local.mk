@@ -1,25 +1,34 @@
 # tests/trace: see tests/local.mk
 # --- pipeline tests (the BSDF helper keeps its bsdf_*/light_* lines in a separate block) ---
-check_PROGRAMS += tests/trace/analytic_test
-TESTS += tests/trace/analytic_test
+check_PROGRAMS += tests/trace/analytic_test tests/trace/furnace_test tests/trace/passes_test \
+	tests/trace/cornell_test tests/trace/sampler_test tests/trace/filter_table_test
+TESTS += tests/trace/analytic_test tests/trace/furnace_test tests/trace/passes_test \
+	tests/trace/cornell_test tests/trace/sampler_test tests/trace/filter_table_test
 tests_trace_analytic_test_LDADD = $(CV_LIBS)
-EXTRA_DIST += tests/trace/trace_test_util.h \
+tests_trace_furnace_test_LDADD = $(CV_LIBS)
+tests_trace_passes_test_LDADD = $(CV_LIBS)
+tests_trace_cornell_test_LDADD = $(CV_LIBS)
+tests_trace_sampler_test_LDADD = $(CV_LIBS)
+tests_trace_filter_table_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h \
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
 # --- end of pipeline tests ---
+# ---- bsdf / light sampling tests (branch bsdf) ----
+check_PROGRAMS += tests/trace/bsdf_chi2_test
+TESTS += tests/trace/bsdf_chi2_test
+tests_trace_bsdf_chi2_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h \
+	glsl/trace/test/bsdf_probe.comp
+# ---- end bsdf / light block ----
 # --- rlpath tests (reinforcement-learning path guiding) ---
-check_PROGRAMS += tests/trace/rlpath_sample_test
-TESTS += tests/trace/rlpath_sample_test
+check_PROGRAMS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test
+TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test
 tests_trace_rlpath_sample_test_LDADD = $(CV_LIBS)
-EXTRA_DIST += tests/trace/rlpath_stats.h
-# --- end of rlpath tests ---
-# --- rlpath tests, part 2 ---
-check_PROGRAMS += tests/trace/rlpath_converge_test
-TESTS += tests/trace/rlpath_converge_test
 tests_trace_rlpath_converge_test_LDADD = $(CV_LIBS)
-# --- end of rlpath tests, part 2 ---
-# --- rlpath benchmark (not a test: `make tests/trace/rlpath_bench`) ---
+EXTRA_DIST += tests/trace/rlpath_stats.h
+# the benchmark is not a test: `make tests/trace/rlpath_bench`
 EXTRA_PROGRAMS = tests/trace/rlpath_bench
 tests_trace_rlpath_bench_LDADD = $(CV_LIBS)
 CLEANFILES += tests/trace/rlpath_bench
-# --- end of rlpath benchmark ---
+# --- end of rlpath tests ---

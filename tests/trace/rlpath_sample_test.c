@@ -79,7 +79,7 @@ static void grid_dir(uint32_t iz, uint32_t ip, double fz, double fp, uint32_t hz
 struct rig {
     struct cv_gpu *gpu;
     CvRlParams params;
-    GLuint ubo, table, out, in;
+    GLuint ubo, table, out, in, table_tex;
 };
 
 /* Runs TEST_MODE mode over n items; out gets 8 floats per item. */
@@ -93,7 +93,7 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
     if (!prog)
         return false;
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
-    cv_buffer_bind(g->table, CV_BIND_RL_Q);
+    glBindImageTexture(CV_IMAGE_RL_Q, g->table_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     cv_buffer_bind(g->out, CV_BIND_STAGE0 + 12);
     cv_buffer_bind(g->in, CV_BIND_STAGE0 + 13);
     glUseProgram(prog->id);
@@ -165,7 +165,10 @@ int main(void)
             v[0] = (float)w[0], v[1] = (float)w[1], v[2] = (float)w[2];
         }
     g.in = cv_buffer_create((size_t)QZ * QP * 4 * sizeof(float), inq, "test in", &err);
-    if (!tap_ok(g.ubo && g.table && g.out && g.in, "buffers: %s", err.msg))
+    if (g.table)
+        g.table_tex = cv_rlpath_buffer_texture(g.table, GL_R32UI, 2 * (size_t)g.params.dims.w * nb,
+                                               &err);
+    if (!tap_ok(g.ubo && g.table && g.out && g.in && g.table_tex, "buffers: %s", err.msg))
         return tap_done();
     float *out = malloc((size_t)(N > QZ * QP ? N : QZ * QP) * 8 * sizeof(float));
 
@@ -271,6 +274,7 @@ int main(void)
     free(q);
     free(out);
     free(inq);
+    glDeleteTextures(1, &g.table_tex);
     cv_buffer_destroy(&g.ubo);
     cv_buffer_destroy(&g.table);
     cv_buffer_destroy(&g.out);

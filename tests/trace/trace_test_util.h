@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file.h"
 #include "base/mem.h"
 #include "scene/scene.h"
 #include "tests/gpu/gpu_test_util.h"

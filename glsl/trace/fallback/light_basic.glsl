@@ -30,8 +30,8 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
     if (nl == 0u)
         return false;
     uint i = 0u;
-    while (i + 1u < nl && u3.x >= cv_light_cdf[i])
-        i++;
+    for (uint k = 0u; k + 1u < nl; k++)
+        i += u3.x >= cv_light_cdf[k] ? 1u : 0u;
     float pmf = cv_light_pmf(i);
     if (pmf <= 0.0)
         return false;
@@ -71,6 +71,8 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         s.dist = sqrt(d2);
         s.wi = d / s.dist;
         float c = dot(-s.wi, nl3);
+        if (abs(dot(p - p0, nl3)) < 1e-5 * (1.0 + length(p0)))
+            return false; // p lies on the light's plane: no light reaches it
         bool front = c > 0.0;
         if (!front && (l.flags & CV_LIGHTF_TWO_SIDED) == 0u)
             return false;

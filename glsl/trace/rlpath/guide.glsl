@@ -14,7 +14,11 @@
 #include "shared/rlpath.h"
 
 layout(std140, binding = CV_UBO_RLPATH) uniform CvRlBlock { CvRlParams u_rl; };
-layout(std430, binding = CV_BIND_RL_Q) coherent buffer CvRlQ { uint rl_q[]; };
+#ifdef CV_RL_TABLE_WRITE
+layout(r32ui, binding = CV_IMAGE_RL_Q) uniform coherent uimageBuffer rl_q;
+#else
+layout(r32ui, binding = CV_IMAGE_RL_Q) uniform readonly uimageBuffer rl_q;
+#endif
 
 const float CV_RL_PI = 3.14159265358979323846;
 
@@ -48,7 +52,7 @@ vec3 cv_rl_bin_dir(uint b, vec2 u)
     return vec3(r * cos(phi), r * sin(phi), clamp(z, -1.0, 1.0));
 }
 
-float cv_rl_q(uint entry) { return uintBitsToFloat(rl_q[2u * entry]); }
+float cv_rl_q(uint entry) { return uintBitsToFloat(imageLoad(rl_q, int(2u * entry)).x); }
 
 // The floor e of a cell whose bins sum to s.
 float cv_rl_floor(float s)
@@ -102,6 +106,7 @@ float cv_rl_mix_pdf(float m, float pdf_guide, float pdf_bsdf)
     return m * pdf_guide + (1.0 - m) * pdf_bsdf;
 }
 
+#ifdef CV_RL_TABLE_WRITE
 // Q(entry) <- (1 - a) Q + a target with a = 1 / (1 + visits). The visit
 // count is bumped first, so concurrent updates of one entry each get their
 // own learning rate; the float is then replaced by compare-and-swap on its
@@ -112,17 +117,19 @@ void cv_rl_update(uint entry, float target)
 {
     if (entry == CV_RL_NONE || !(target >= 0.0) || isinf(target))
         return;
-    uint visits = atomicAdd(rl_q[2u * entry + 1u], 1u);
+    int at = int(2u * entry);
+    uint visits = imageAtomicAdd(rl_q, at + 1, 1u);
     float a = 1.0 / (1.0 + float(visits));
-    uint old = rl_q[2u * entry];
+    uint old = imageLoad(rl_q, at).x;
     for (int i = 0; i < 64; i++) {
         float q = uintBitsToFloat(old);
         uint nv = floatBitsToUint(q + a * (target - q));
-        uint seen = atomicCompSwap(rl_q[2u * entry], old, nv);
+        uint seen = imageAtomicCompSwap(rl_q, at, old, nv);
         if (seen == old)
             break;
         old = seen;
     }
 }
+#endif
 
 #endif

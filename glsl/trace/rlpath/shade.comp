@@ -18,7 +18,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../shading.glsl"
 #include "guide.glsl"
 
-layout(std430, binding = CV_BIND_RL_PATH) buffer CvRlPath { uvec4 rl_path[]; };
+layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
 
 uint cv_film_pixel(uint i)
 {
@@ -29,15 +29,17 @@ uint cv_film_pixel(uint i)
 
 float cv_mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
 
-void main()
+// Shades hit i; what it queues comes back in the out parameters, so that
+// main() can take queue slots in uniform control flow (as trace/shade.comp).
+void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ray,
+              out CvRayItem nr)
 {
-    uint i = cv_global_index();
-    if (i >= q.count_a.z)
-        return;
+    push_shadow = false;
+    push_ray = false;
     CvHitItem h = hits[i];
     CvRayItem r = rays_in[h.ray];
-    uint pixel = floatBitsToUint(r.o.w);
-    uint flags = floatBitsToUint(r.beta.w);
+    uint pixel = uint(r.o.w);
+    uint flags = uint(r.beta.w);
     uint depth = cv_depth();
     vec3 beta = r.beta.rgb;
     vec3 wo = -r.d.xyz;
@@ -45,9 +47,9 @@ void main()
     bool front = dot(wo, sf.ng) > 0.0;
 
     // the bounce that led here, if it is to learn from this hit
-    uvec4 st = rl_path[pixel];
+    uvec4 st = imageLoad(rl_path, int(pixel));
     uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
-    rl_path[pixel] = uvec4(CV_RL_NONE, 0u, CV_RL_NONE, 0u);
+    uvec4 nst = uvec4(CV_RL_NONE, 0u, CV_RL_NONE, 0u);
     float target = 0.0;
 
     int light = cv_tri_light[h.prim];
@@ -110,7 +112,8 @@ void main()
 #endif
     // a delta BSDF learns from its sampled direction below
     if (learn != CV_RL_NONE && (!delta || depth >= cv_max_depth()))
-        rl_path[pixel].zw = uvec2(learn, floatBitsToUint(target));
+        nst.zw = uvec2(learn, floatBitsToUint(target));
+    imageStore(rl_path, int(pixel), nst);
     if (depth >= cv_max_depth())
         return;
 
@@ -124,12 +127,11 @@ void main()
                 float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
                 vec3 Ld = beta * f * ls.L * (w / ls.pdf);
                 if (cv_finite3(Ld)) {
-                    CvShadowItem s;
+                    push_shadow = true;
                     s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
                                ls.dist * (1.0 - 1e-4));
-                    s.d = vec4(ls.wi, uintBitsToFloat(pixel));
+                    s.d = vec4(ls.wi, float(pixel));
                     s.L = vec4(Ld, 0.0);
-                    shadows[atomicAdd(q.count_b.x, 1u)] = s;
                 }
             }
         }
@@ -161,7 +163,8 @@ void main()
         // one-sample estimate of the reflected radiance through the delta lobe
         float qd = cv_rl_q(base + cv_rl_bin(bs.wi));
         float t = target + qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / bs.pdf;
-        rl_path[pixel].zw = uvec2(learn, floatBitsToUint(t));
+        nst.zw = uvec2(learn, floatBitsToUint(t));
+        imageStore(rl_path, int(pixel), nst);
     }
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
     if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
@@ -176,10 +179,25 @@ void main()
         }
     }
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
-    CvRayItem nr;
+    push_ray = true;
     nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
-    nr.beta = vec4(beta, uintBitsToFloat(flags));
-    rays_out[atomicAdd(q.count_a.y, 1u)] = nr;
-    rl_path[pixel].xy = uvec2(base + cv_rl_bin(bs.wi), depth);
+    nr.beta = vec4(beta, float(flags));
+    nst.xy = uvec2(base + cv_rl_bin(bs.wi), depth);
+    imageStore(rl_path, int(pixel), nst);
+}
+
+void main()
+{
+    uint i = cv_global_index();
+    bool push_shadow = false, push_ray = false;
+    CvShadowItem s;
+    CvRayItem nr;
+    if (i < q.count[CV_Q_HITS])
+        cv_shade(i, push_shadow, s, push_ray, nr);
+    uvec2 slot = cv_queue_slots(push_shadow, CV_Q_SHADOW, push_ray, CV_Q_RAYS_OUT);
+    if (push_shadow)
+        shadows[slot.x] = s;
+    if (push_ray)
+        rays_out[slot.y] = nr;
 }

@@ -9,33 +9,36 @@
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../common.glsl"
 #include "../shading.glsl"
+#define CV_RL_TABLE_WRITE
 #include "guide.glsl"
 
-layout(std430, binding = CV_BIND_RL_PATH) buffer CvRlPath { uvec4 rl_path[]; };
+layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
 
 void main()
 {
     uint i = cv_global_index();
 #if UPDATE_MODE == 0
-    if (i >= q.count_a.z)
+    if (i >= q.count[CV_Q_HITS])
         return;
-    uint pixel = floatBitsToUint(rays_in[hits[i].ray].o.w);
-    uvec4 st = rl_path[pixel];
+    uint pixel = uint(rays_in[hits[i].ray].o.w);
+    uvec4 st = imageLoad(rl_path, int(pixel));
     if (st.z == CV_RL_NONE)
         return;
     cv_rl_update(st.z, uintBitsToFloat(st.w));
-    rl_path[pixel].z = CV_RL_NONE;
+    st.z = CV_RL_NONE;
+    imageStore(rl_path, int(pixel), st);
 #else
-    if (i >= q.count_a.w)
+    if (i >= q.count[CV_Q_ESCAPED])
         return;
     CvRayItem r = rays_in[escaped[i]];
-    uint pixel = floatBitsToUint(r.o.w);
-    uvec4 st = rl_path[pixel];
+    uint pixel = uint(r.o.w);
+    uvec4 st = imageLoad(rl_path, int(pixel));
     uint depth = cv_depth();
     if (depth == 0u || st.x == CV_RL_NONE || st.y + 1u != depth)
         return;
     vec3 Le = cv_env_Le(r.d.xyz);
     cv_rl_update(st.x, (Le.x + Le.y + Le.z) * (1.0 / 3.0));
-    rl_path[pixel].x = CV_RL_NONE;
+    st.x = CV_RL_NONE;
+    imageStore(rl_path, int(pixel), st);
 #endif
 }

@@ -1,0 +1,45 @@
+#version 450
+// glsl/bvh/refit.comp: bottom-up bounds, primitive counts and SAH costs.
+// One invocation per leaf climbs towards the root; at each inner node the
+// first arrival stops (atomic counter) and the second, which knows both
+// children are final, computes the node and climbs on.
+#include "shared/scene.h"
+#include "shared/bvh.h"
+#include "shared/bindings.h"
+
+layout(local_size_x = 256) in;
+#include "../lib/index.glsl"
+
+layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
+layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
+layout(std430, binding = CV_BIND_STAGE0) readonly buffer Vals { uint vals[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
+
+uniform uint u_n;
+
+#include "sah.glsl"
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i >= u_n)
+        return;
+    int node = int(u_n) - 1 + int(i);
+    uvec4 t = tris[vals[i]].idx;
+    vec3 a = verts[t.x].pos_u.xyz, b = verts[t.y].pos_u.xyz, c = verts[t.z].pos_u.xyz;
+    vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
+    nodes[node].bmin = vec4(lo, float(CV_BVH_COST_TRI) * cv_half_area(lo, hi));
+    nodes[node].bmax = vec4(hi, 0.0);
+    nodes[node].link.w = 1;
+    memoryBarrierBuffer();
+    int p = nodes[node].link.z;
+    while (p >= 0) {
+        if (atomicAdd(counters[p], 1u) == 0u)
+            return;
+        memoryBarrierBuffer();
+        cv_bvh_update_node(p);
+        memoryBarrierBuffer();
+        p = nodes[p].link.z;
+    }
+}

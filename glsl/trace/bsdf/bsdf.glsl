@@ -1,0 +1,393 @@
+// glsl/trace/bsdf/bsdf.glsl: the BSDF interface the wavefront shade stage
+// calls. cv_bsdf_at resolves a material at a shading point (mix materials,
+// textures, bump and normal maps, shading frame) into a CvBsdf; the other
+// functions evaluate, sample and give the pdf of it in world space.
+//
+// The including shader must declare the scene's material, texture and texel
+// buffers first (include material_buffers.glsl).
+//
+// Conventions (pbrt-v4): directions point away from the surface; f carries no
+// cosine; pdfs are per solid angle. The shading frame's z is the shading
+// normal (turned to ng's side); reflection-only BSDFs are two-sided (they
+// reflect on whichever side wo lies); dielectrics see eta from +z and 1/eta
+// from below. Transmission through a dielectric divides radiance by eta^2.
+// CV_MAT_INTERFACE is no surface: cv_material_alpha_pass reports it as
+// passed-through, and a CvBsdf of that type reflects nothing.
+#ifndef CV_BSDF_BSDF_GLSL
+#define CV_BSDF_BSDF_GLSL
+
+#include "../../lib/constants.glsl"
+#include "../../lib/frame.glsl"
+#include "bsdf_sample.glsl"
+#include "fresnel.glsl"
+#include "microfacet.glsl"
+#include "diffuse.glsl"
+#include "conductor.glsl"
+#include "dielectric.glsl"
+#include "coated.glsl"
+#include "texture.glsl"
+
+// ng: geometric normal as stored (oriented by CV_TRI_REVERSE); ns: shading
+// normal (interpolated), dpdu: surface tangent along u; front: wo on ng's
+// side. uv: surface texture coordinates.
+struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front; };
+
+// A material resolved at one point. Fields by type:
+//  DIFFUSE c0 = R | CONDUCTOR c0 = eta, c1 = k, alpha.xy
+//  DIELECTRIC eta, alpha.xy, c0 = Kr, c1 = Kt | THIN_DIELECTRIC eta | MIRROR c0 = Kr
+//  COATED_DIFFUSE c0 = R, eta, alpha.xy (coat), thickness
+//  COATED_CONDUCTOR eta (coat), alpha.xy (coat), alpha.zw (base), c0/c1 = base eta/k over coat eta, thickness
+//  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
+struct CvBsdf {
+    uint type;
+    uint material;
+    CvFrame frame;
+    vec3 ng;
+    vec3 c0;
+    vec3 c1;
+    vec4 alpha;
+    float eta;
+    float thickness;
+};
+
+float cv_roughness_v3_to_alpha(float r)
+{
+    float x = log(max(r, 1e-3));
+    return 1.62142 + 0.819955 * x + 0.1734 * x * x + 0.0171201 * x * x * x + 0.000640711 * x * x * x * x;
+}
+
+vec2 cv_material_alpha(CvMaterial m, vec2 uv, float lod)
+{
+    vec2 a = m.roughness.xy;
+    bool remap = (m.flags & CV_MATF_REMAP_ROUGHNESS) != 0u;
+    if (m.roughness_u_tex >= 0) {
+        float r = cv_tex_eval(m.roughness_u_tex, vec4(a.x), uv, lod).x;
+        a.x = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(r) : sqrt(max(r, 0.0))) : r;
+    }
+    if (m.roughness_v_tex >= 0) {
+        float r = cv_tex_eval(m.roughness_v_tex, vec4(a.y), uv, lod).x;
+        a.y = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(r) : sqrt(max(r, 0.0))) : r;
+    }
+    return max(a, vec2(0.0));
+}
+
+// Conductor eta and k; "reflectance" conductors as pbrt-v4: eta = 1,
+// k = 2 sqrt(r) / sqrt(1 - r), which reproduces r at normal incidence.
+void cv_material_conductor(CvMaterial m, vec2 uv, float lod, out vec3 eta, out vec3 k)
+{
+    if ((m.flags & CV_MATF_CONDUCTOR_REFLECTANCE) != 0u) {
+        vec3 r = clamp(cv_tex_eval(m.reflectance_tex, m.reflectance, uv, lod).rgb, 0.0, 0.9999);
+        eta = vec3(1.0);
+        k = 2.0 * sqrt(r) / sqrt(1.0 - r);
+    } else {
+        eta = m.eta.rgb;
+        k = m.k.rgb;
+    }
+}
+
+// Bump mapping as pbrt's BumpMap with a fixed finite-difference step in uv
+// (no ray differentials here); dpdv is taken perpendicular to dpdu with the
+// same length, since the shading point carries no dpdv.
+vec3 cv_bump_normal(int tex, vec3 ns, vec3 dpdu, vec2 uv, float lod)
+{
+    const float du = 0.0005, dv = 0.0005;
+    float d0 = cv_tex_eval(tex, vec4(0.0), uv, lod).x;
+    float d_u = cv_tex_eval(tex, vec4(0.0), uv + vec2(du, 0.0), lod).x;
+    float d_v = cv_tex_eval(tex, vec4(0.0), uv + vec2(0.0, dv), lod).x;
+    vec3 tu = dpdu - ns * dot(ns, dpdu);
+    if (!(dot(tu, tu) > 1e-20))
+        return ns;
+    vec3 tv = cross(ns, tu);
+    vec3 pu = tu + (d_u - d0) / du * ns;
+    vec3 pv = tv + (d_v - d0) / dv * ns;
+    vec3 n = cross(pu, pv);
+    if (!(dot(n, n) > 0.0))
+        return ns;
+    n = normalize(n);
+    return dot(n, ns) < 0.0 ? -n : n;
+}
+
+// Tangent-space normal map as pbrt-v4: rgb in [0,1] -> [-1,1], frame (dpdu, ns).
+vec3 cv_normal_map(int tex, vec3 ns, vec3 dpdu, vec2 uv, float lod)
+{
+    vec3 c = 2.0 * cv_tex_eval(tex, vec4(0.5, 0.5, 1.0, 1.0), uv, lod).rgb - 1.0;
+    if (!(dot(c, c) > 0.0))
+        return ns;
+    CvFrame f = cv_frame_from_xz(normalize(dpdu), ns);
+    return normalize(cv_from_local(f, normalize(c)));
+}
+
+// Picks among nested mix materials: mix_b with probability `amount`, the
+// random number rescaled at each level so nested mixes stay independent.
+uint cv_material_resolve(uint material, vec2 uv, float u_mix, float lod)
+{
+    for (int depth = 0; depth < 8; depth++) {
+        CvMaterial m = materials[material];
+        if (m.type != CV_MAT_MIX)
+            break;
+        float amt = cv_tex_eval(m.amount_tex, vec4(m.amount), uv, lod).x;
+        if (amt <= 0.0) {
+            material = uint(m.mix_a);
+        } else if (amt >= 1.0) {
+            material = uint(m.mix_b);
+        } else if (u_mix < amt) {
+            material = uint(m.mix_b);
+            u_mix = u_mix / amt;
+        } else {
+            material = uint(m.mix_a);
+            u_mix = (u_mix - amt) / (1.0 - amt);
+        }
+        u_mix = min(u_mix, CV_ONE_MINUS_EPS);
+    }
+    return material;
+}
+
+// lod: mip level of detail for image textures (0 = finest).
+CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
+{
+    vec2 uv = sp.uv;
+    material = cv_material_resolve(material, uv, u_mix, lod);
+    CvMaterial m = materials[material];
+    CvBsdf b;
+    b.type = m.type == CV_MAT_MIX ? CV_MAT_INTERFACE : m.type;
+    b.material = material;
+    b.ng = sp.ng;
+    b.c0 = vec3(0.0);
+    b.c1 = vec3(0.0);
+    b.alpha = vec4(0.0);
+    b.eta = 1.0;
+    b.thickness = 0.0;
+
+    vec3 ns = sp.ns;
+    if (!(dot(ns, ns) > 0.0))
+        ns = sp.ng;
+    ns = normalize(ns);
+    if (dot(ns, sp.ng) < 0.0)
+        ns = -ns;
+    if (m.normal_tex >= 0)
+        ns = cv_normal_map(m.normal_tex, ns, sp.dpdu, uv, lod);
+    else if (m.displacement_tex >= 0)
+        ns = cv_bump_normal(m.displacement_tex, ns, sp.dpdu, uv, lod);
+    b.frame = cv_frame_from_xz(sp.dpdu, ns);
+
+    vec3 refl = cv_tex_eval(m.reflectance_tex, m.reflectance, uv, lod).rgb;
+    vec3 spec = cv_tex_eval(m.specular_tex, m.specular, uv, lod).rgb;
+    float eta = cv_tex_eval(m.eta_tex, vec4(m.eta.x), uv, lod).x;
+    if (b.type == CV_MAT_DIFFUSE) {
+        b.c0 = clamp(refl, 0.0, 1.0);
+    } else if (b.type == CV_MAT_CONDUCTOR) {
+        cv_material_conductor(m, uv, lod, b.c0, b.c1);
+        b.alpha.xy = cv_material_alpha(m, uv, lod);
+    } else if (b.type == CV_MAT_DIELECTRIC) {
+        b.eta = eta > 0.0 ? eta : 1.0;
+        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.c0 = refl;
+        b.c1 = spec;
+    } else if (b.type == CV_MAT_THIN_DIELECTRIC) {
+        b.eta = eta > 0.0 ? eta : 1.0;
+    } else if (b.type == CV_MAT_MIRROR) {
+        b.c0 = refl;
+    } else if (b.type == CV_MAT_COATED_DIFFUSE) {
+        b.c0 = clamp(refl, 0.0, 1.0);
+        b.eta = eta > 0.0 ? eta : 1.5;
+        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.thickness = m.roughness.z;
+    } else if (b.type == CV_MAT_COATED_CONDUCTOR) {
+        b.eta = m.eta.w > 0.0 ? m.eta.w : 1.5;
+        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.alpha.zw = max(m.roughness2.xy, vec2(0.0));
+        b.thickness = m.roughness.z;
+        cv_material_conductor(m, uv, lod, b.c0, b.c1);
+        b.c0 /= b.eta;
+        b.c1 /= b.eta;
+    } else if (b.type == CV_MAT_DIFFUSE_TRANSMISSION) {
+        b.c0 = clamp(refl, 0.0, 1.0);
+        b.c1 = clamp(spec, 0.0, 1.0);
+    } else if (b.type == CV_MAT_PLASTIC) {
+        b.c0 = clamp(refl, 0.0, 1.0);
+        b.c1 = clamp(spec, 0.0, 1.0);
+        b.alpha.xy = cv_material_alpha(m, uv, lod);
+    }
+    return b;
+}
+
+CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
+{
+    return cv_bsdf_at_lod(material, sp, u_mix, 0.0);
+}
+
+// Two-sided layered lobes work with wo on +z.
+bool cv_bsdf_mirrored(CvBsdf b)
+{
+    return b.type == CV_MAT_COATED_DIFFUSE || b.type == CV_MAT_COATED_CONDUCTOR || b.type == CV_MAT_PLASTIC;
+}
+
+vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
+{
+    if (cv_bsdf_mirrored(b) && wo.z < 0.0) {
+        wo.z = -wo.z;
+        wi.z = -wi.z;
+    }
+    switch (b.type) {
+    case CV_MAT_DIFFUSE:
+        return cv_diffuse_f(b.c0, wo, wi);
+    case CV_MAT_CONDUCTOR:
+        return cv_conductor_f(b.alpha.xy, b.c0, b.c1, wo, wi);
+    case CV_MAT_DIELECTRIC:
+        return cv_dielectric_f(b.eta, b.alpha.xy, b.c0, b.c1, wo, wi);
+    case CV_MAT_COATED_DIFFUSE:
+        return cv_coated_diffuse_f(b.c0, b.eta, b.alpha.xy, b.thickness, wo, wi);
+    case CV_MAT_COATED_CONDUCTOR:
+        return cv_coated_conductor_f(b.eta, b.alpha.xy, b.thickness, b.alpha.zw, b.c0, b.c1, wo, wi);
+    case CV_MAT_DIFFUSE_TRANSMISSION:
+        return cv_difftrans_f(b.c0, b.c1, wo, wi);
+    case CV_MAT_PLASTIC:
+        return cv_plastic_f(b.c0, b.c1, b.alpha.xy, wo, wi);
+    default:
+        return vec3(0.0);
+    }
+}
+
+float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
+{
+    if (cv_bsdf_mirrored(b) && wo.z < 0.0) {
+        wo.z = -wo.z;
+        wi.z = -wi.z;
+    }
+    switch (b.type) {
+    case CV_MAT_DIFFUSE:
+        return cv_diffuse_pdf(wo, wi);
+    case CV_MAT_CONDUCTOR:
+        return cv_conductor_pdf(b.alpha.xy, wo, wi);
+    case CV_MAT_DIELECTRIC:
+        return cv_dielectric_pdf(b.eta, b.alpha.xy, wo, wi);
+    case CV_MAT_COATED_DIFFUSE:
+        return cv_coated_diffuse_pdf(b.c0, b.eta, b.alpha.xy, wo, wi);
+    case CV_MAT_COATED_CONDUCTOR:
+        return cv_coated_conductor_pdf(b.eta, b.alpha.xy, b.alpha.zw, b.c0, b.c1, wo, wi);
+    case CV_MAT_DIFFUSE_TRANSMISSION:
+        return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
+    case CV_MAT_PLASTIC:
+        return cv_plastic_pdf(b.c0, b.c1, b.alpha.xy, wo, wi);
+    default:
+        return 0.0;
+    }
+}
+
+vec3 cv_bsdf_f(CvBsdf b, vec3 wo, vec3 wi)
+{
+    return cv_bsdf_f_local(b, cv_to_local(b.frame, wo), cv_to_local(b.frame, wi));
+}
+
+float cv_bsdf_pdf(CvBsdf b, vec3 wo, vec3 wi)
+{
+    return cv_bsdf_pdf_local(b, cv_to_local(b.frame, wo), cv_to_local(b.frame, wi));
+}
+
+// uc picks a lobe, u places the direction. s.wi is in world space.
+bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample s)
+{
+    vec3 wo = cv_to_local(b.frame, wo_world);
+    bool flip = cv_bsdf_mirrored(b) && wo.z < 0.0;
+    if (flip)
+        wo.z = -wo.z;
+    bool ok = false;
+    s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
+    switch (b.type) {
+    case CV_MAT_DIFFUSE:
+        ok = cv_diffuse_sample(b.c0, wo, u, s);
+        break;
+    case CV_MAT_CONDUCTOR:
+        ok = cv_conductor_sample(b.alpha.xy, b.c0, b.c1, wo, u, s);
+        break;
+    case CV_MAT_DIELECTRIC:
+        ok = cv_dielectric_sample(b.eta, b.alpha.xy, b.c0, b.c1, wo, uc, u, s);
+        break;
+    case CV_MAT_THIN_DIELECTRIC:
+        ok = cv_thin_dielectric_sample(b.eta, wo, uc, s);
+        break;
+    case CV_MAT_MIRROR:
+        if (wo.z != 0.0) {
+            vec3 wi = vec3(-wo.x, -wo.y, wo.z);
+            s = CvBsdfSample(wi, b.c0 / abs(wi.z), 1.0, CV_BSDF_REFLECTION | CV_BSDF_SPECULAR);
+            ok = true;
+        }
+        break;
+    case CV_MAT_COATED_DIFFUSE:
+        ok = cv_coated_diffuse_sample(b.c0, b.eta, b.alpha.xy, b.thickness, wo, uc, u, s);
+        break;
+    case CV_MAT_COATED_CONDUCTOR:
+        ok = cv_coated_conductor_sample(b.eta, b.alpha.xy, b.thickness, b.alpha.zw, b.c0, b.c1, wo, uc, u, s);
+        break;
+    case CV_MAT_DIFFUSE_TRANSMISSION:
+        ok = cv_difftrans_sample(b.c0, b.c1, wo, uc, u, s);
+        break;
+    case CV_MAT_PLASTIC:
+        ok = cv_plastic_sample(b.c0, b.c1, b.alpha.xy, wo, uc, u, s);
+        break;
+    default:
+        break;
+    }
+    if (!ok || !(s.pdf > 0.0) || any(isnan(s.f)) || any(isinf(s.f)))
+        return false;
+    if (flip)
+        s.wi.z = -s.wi.z;
+    s.wi = normalize(cv_from_local(b.frame, s.wi));
+    return true;
+}
+
+bool cv_bsdf_is_delta(CvBsdf b)
+{
+    if (b.type == CV_MAT_MIRROR || b.type == CV_MAT_THIN_DIELECTRIC)
+        return true;
+    if (b.type == CV_MAT_CONDUCTOR)
+        return cv_mf_smooth(b.alpha.xy);
+    if (b.type == CV_MAT_DIELECTRIC)
+        return cv_dielectric_is_delta(b.eta, b.alpha.xy);
+    if (b.type == CV_MAT_COATED_CONDUCTOR)
+        return cv_mf_smooth(b.alpha.xy) && cv_mf_smooth(b.alpha.zw);
+    return false;
+}
+
+// Surface colour for the albedo AOV.
+vec3 cv_bsdf_albedo(CvBsdf b)
+{
+    switch (b.type) {
+    case CV_MAT_DIFFUSE:
+    case CV_MAT_COATED_DIFFUSE:
+        return b.c0;
+    case CV_MAT_CONDUCTOR:
+        return cv_fr_complex(1.0, b.c0, b.c1);
+    case CV_MAT_COATED_CONDUCTOR:
+        return cv_fr_complex(1.0, b.c0, b.c1);
+    case CV_MAT_DIELECTRIC:
+        return b.c1;
+    case CV_MAT_THIN_DIELECTRIC:
+        return vec3(1.0);
+    case CV_MAT_MIRROR:
+        return b.c0;
+    case CV_MAT_DIFFUSE_TRANSMISSION:
+        return clamp(b.c0 + b.c1, 0.0, 1.0);
+    case CV_MAT_PLASTIC:
+        return clamp(b.c0 + b.c1, 0.0, 1.0);
+    default:
+        return vec3(0.0);
+    }
+}
+
+// Alpha cut-outs (pbrt-v4: a stochastic test against u for 0 < alpha < 1)
+// and interface materials: true = the ray continues through the surface.
+bool cv_material_alpha_pass(uint material, vec2 uv, float u)
+{
+    CvMaterial m = materials[material];
+    if (m.type == CV_MAT_INTERFACE)
+        return true;
+    float a = m.alpha_tex >= 0 ? cv_tex_eval(m.alpha_tex, vec4(m.alpha), uv, 0.0).x : m.alpha;
+    if (a >= 1.0)
+        return false;
+    if (a <= 0.0)
+        return true;
+    return u >= a;
+}
+
+#endif

@@ -1,0 +1,51 @@
+#version 450
+// glsl/trace/test/bsdf_probe.comp: drives the shipped BSDF code for the
+// tests in tests/trace/bsdf_*: samples it (mode 0) or evaluates f and pdf at
+// given directions (mode 1) for one material at one fixed shading point.
+layout(local_size_x = 64) in;
+
+#include "lib/index.glsl"
+#include "lib/rng.glsl"
+#include "trace/bsdf/material_buffers.glsl"
+#include "trace/bsdf/bsdf.glsl"
+
+layout(std430, binding = CV_BIND_STAGE0) readonly buffer ProbeIn { vec4 probe_in[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer ProbeOut { vec4 probe_out[]; };
+
+uniform uint u_mode;
+uniform uint u_count;
+uniform uint u_material;
+uniform uint u_seed;
+uniform vec3 u_wo;
+uniform vec3 u_ng;
+uniform vec3 u_ns;
+uniform vec3 u_dpdu;
+uniform vec2 u_uv;
+
+void main()
+{
+    uint i = cv_global_index();
+    if (i >= u_count)
+        return;
+    /* probe */
+    CvShadingPoint sp = CvShadingPoint(vec3(0.0), u_ng, u_ns, u_dpdu, u_uv, dot(u_wo, u_ng) > 0.0);
+    CvRng rng = cv_rng_init(u_seed, i);
+    CvBsdf b = cv_bsdf_at(u_material, sp, cv_rng_next(rng));
+    if (u_mode == 0u) {
+        float uc = cv_rng_next(rng);
+        vec2 u = cv_rng_next2(rng);
+        CvBsdfSample s;
+        if (!cv_bsdf_sample(b, u_wo, uc, u, s)) {
+            probe_out[3u * i] = vec4(0.0, 0.0, 0.0, -1.0);
+            probe_out[3u * i + 1u] = vec4(0.0);
+            probe_out[3u * i + 2u] = vec4(0.0);
+            return;
+        }
+        probe_out[3u * i] = vec4(s.wi, s.pdf);
+        probe_out[3u * i + 1u] = vec4(s.f, float(s.flags));
+        probe_out[3u * i + 2u] = vec4(cv_bsdf_f(b, u_wo, s.wi), cv_bsdf_pdf(b, u_wo, s.wi));
+    } else {
+        vec3 wi = probe_in[i].xyz;
+        probe_out[i] = vec4(cv_bsdf_f(b, u_wo, wi), cv_bsdf_pdf(b, u_wo, wi));
+    }
+}

@@ -1,0 +1,370 @@
+/* bvh.c: see bvh.h. The host only allocates, binds and dispatches; every
+ * phase runs in glsl/bvh. Times come from one GL_TIME_ELAPSED query per
+ * phase (queries cannot nest, so the total is their sum). Software
+ * renderers (llvmpipe) report 0 for those queries around compute work, so
+ * there each phase is timed on the CPU clock after glFinish instead. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "base/mem.h"
+#include "bvh/bvh.h"
+#include "bvh/program_copy.h"
+#include "bvh/radix_sort.h"
+#include "bvh/scan.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/bvh.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "gpu/program.h"
+
+/* 60-bit Morton codes (20 bits per axis, two words); 30 bits halves the
+ * sort but crowds large scenes into equal codes. Both are supported by the
+ * shaders (KEY64 or not). */
+#define MORTON_BITS 60
+
+enum { PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE, PH_COUNT };
+
+struct cv_bvh {
+    GLuint nodes, prims;
+    struct cv_bvh_stats stats;
+};
+
+/* Scratch of one build; everything here is freed when it ends. */
+struct build {
+    struct cv_gpu *gpu;
+    uint32_t n;
+    GLuint bounds_a, bounds_b, keys, vals, nodes, counters, offsets, live, info, out_nodes;
+    struct cv_radix_sort *sort;
+    struct cv_scan *scan;
+    GLuint queries[PH_COUNT];
+    bool cpu_timing;
+    double cpu_ms[PH_COUNT], cpu_start;
+    uint64_t scratch;
+};
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void phase_begin(struct build *b, int phase)
+{
+    if (b->cpu_timing) {
+        glFinish();
+        b->cpu_start = now_ms();
+    } else {
+        glBeginQuery(GL_TIME_ELAPSED, b->queries[phase]);
+    }
+}
+
+static void phase_end(struct build *b, int phase)
+{
+    if (b->cpu_timing) {
+        glFinish();
+        b->cpu_ms[phase] = now_ms() - b->cpu_start;
+    } else {
+        glEndQuery(GL_TIME_ELAPSED);
+    }
+}
+
+struct cv_bvh_params cv_bvh_default_params(void)
+{
+    return (struct cv_bvh_params){.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true};
+}
+
+static void set_uint(const struct cv_program *prog, const char *name, uint32_t v)
+{
+    glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, name), v);
+}
+
+static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct cv_error *err)
+{
+    if (bytes == 0)
+        bytes = 16;
+    if (b->gpu->info.max_ssbo_bytes > 0 && bytes > (uint64_t)b->gpu->info.max_ssbo_bytes) {
+        cv_fail(err, "%s needs %llu bytes, more than one storage buffer may hold (%lld)", label,
+                (unsigned long long)bytes, b->gpu->info.max_ssbo_bytes);
+        return 0;
+    }
+    b->scratch += bytes;
+    return cv_buffer_create((size_t)bytes, NULL, label, err);
+}
+
+static void build_free(struct build *b)
+{
+    GLuint *bufs[] = {&b->bounds_a, &b->bounds_b, &b->keys, &b->vals, &b->nodes,
+                      &b->counters, &b->offsets, &b->live, &b->info, &b->out_nodes};
+    for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
+        cv_buffer_destroy(bufs[i]);
+    cv_radix_sort_destroy(&b->sort);
+    cv_scan_destroy(&b->scan);
+    if (b->queries[0])
+        glDeleteQueries(PH_COUNT, b->queries);
+}
+
+/* 0 or 1 triangles: one root whose children are the triangle (with a box
+ * that every ray enters) and an empty child. */
+static bool build_trivial(struct cv_bvh *bvh, uint32_t n, struct cv_error *err)
+{
+    const float big = 1.0e38f;
+    float node[16] = {-big, -big, -big, 0, big, big, big, 0, big, big, big, 0, -big, -big, -big, 0};
+    int32_t count = (int32_t)n;
+    memcpy(&node[7], &count, 4);
+    if (n == 0) {
+        for (int i = 0; i < 3; i++) {
+            node[i] = big;
+            node[4 + i] = -big;
+        }
+    }
+    uint32_t prim = 0;
+    bvh->nodes = cv_buffer_create(sizeof(node), node, "bvh nodes", err);
+    bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
+    bvh->stats.bytes = sizeof(node) + 4;
+    bvh->stats.n_nodes = 1;
+    bvh->stats.sah_cost = n;
+    return bvh->prims != 0;
+}
+
+static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint vertices,
+                       GLuint triangles, struct cv_error *err)
+{
+    uint32_t n = b->n;
+    char tdef[32];
+    snprintf(tdef, sizeof(tdef), "TREELET_SIZE=%d", p->treelet_size);
+    const char *bounds_defs[] = {"FROM_TRIANGLES", NULL};
+    const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
+    const char *refit_defs[] = {nc, NULL};
+    const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
+    const char *treelet_defs[] = {tdef, nc, NULL};
+    struct cv_program progs[8];
+    struct cv_program *bounds_tri = &progs[0], *bounds = &progs[1], *morton = &progs[2],
+                      *hier = &progs[3], *refit = &progs[4], *treelet = &progs[5],
+                      *layout = &progs[6], *emit = &progs[7];
+    if (!cv_bvh_program(b->gpu, "bvh/bounds.comp", bounds_defs, bounds_tri, err) ||
+        !cv_bvh_program(b->gpu, "bvh/bounds.comp", NULL, bounds, err) ||
+        !cv_bvh_program(b->gpu, "bvh/morton.comp", key_defs, morton, err) ||
+        !cv_bvh_program(b->gpu, "bvh/hierarchy.comp", key_defs, hier, err) ||
+        !cv_bvh_program(b->gpu, "bvh/refit.comp", refit_defs, refit, err) ||
+        !cv_bvh_program(b->gpu, "bvh/treelet.comp", treelet_defs, treelet, err) ||
+        !cv_bvh_program(b->gpu, "bvh/layout.comp", NULL, layout, err) ||
+        !cv_bvh_program(b->gpu, "bvh/emit.comp", NULL, emit, err))
+        return false;
+
+    glGenQueries(PH_COUNT, b->queries);
+    cv_buffer_bind(vertices, CV_BIND_VERTICES);
+    cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
+
+    /* Centroid bounds: one reduction level per factor of 256. */
+    phase_begin(b, PH_BOUNDS);
+    cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0 + 1);
+    set_uint(bounds_tri, "u_n", n);
+    cv_program_dispatch_1d(bounds_tri, n);
+    GLuint src = b->bounds_a, dst = b->bounds_b;
+    for (uint32_t m = (n + 255) / 256; m > 1; m = (m + 255) / 256) {
+        cv_buffer_bind(src, CV_BIND_STAGE0);
+        cv_buffer_bind(dst, CV_BIND_STAGE0 + 1);
+        set_uint(bounds, "u_n", m);
+        cv_program_dispatch_1d(bounds, m);
+        GLuint t = src;
+        src = dst;
+        dst = t;
+    }
+    phase_end(b, PH_BOUNDS);
+
+    phase_begin(b, PH_MORTON);
+    cv_buffer_bind(src, CV_BIND_STAGE0);
+    cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
+    set_uint(morton, "u_n", n);
+    cv_program_dispatch_1d(morton, n);
+    phase_end(b, PH_MORTON);
+
+    phase_begin(b, PH_SORT);
+    bool ok = cv_radix_sort_run(b->sort, b->keys, b->vals, n, MORTON_BITS, err);
+    phase_end(b, PH_SORT);
+    if (!ok)
+        return false;
+
+    phase_begin(b, PH_HIERARCHY);
+    cv_buffer_bind(b->keys, CV_BIND_STAGE0);
+    cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(b->counters, CV_BIND_STAGE0 + 2);
+    set_uint(hier, "u_n", n);
+    cv_program_dispatch_1d(hier, n);
+    phase_end(b, PH_HIERARCHY);
+
+    phase_begin(b, PH_REFIT);
+    cv_buffer_bind(b->vals, CV_BIND_STAGE0);
+    set_uint(refit, "u_n", n);
+    cv_program_dispatch_1d(refit, n);
+    phase_end(b, PH_REFIT);
+
+    phase_begin(b, PH_TREELET);
+    set_uint(treelet, "u_n", n);
+    for (int r = 0; r < p->treelet_rounds; r++) {
+        cv_buffer_zero(b->counters);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        /* Every round restructures every subtree of at least treelet_size
+         * triangles: doubling that bound per round (as Karras & Aila
+         * suggest for speed) cost 4-5 % SAH on our test meshes. */
+        set_uint(treelet, "u_gamma", (uint32_t)p->treelet_size);
+        cv_program_dispatch_1d(treelet, n);
+    }
+    phase_end(b, PH_TREELET);
+
+    phase_begin(b, PH_COLLAPSE);
+    cv_buffer_bind(b->vals, CV_BIND_STAGE0);
+    cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
+    set_uint(layout, "u_n", n);
+    cv_program_dispatch_1d(layout, 2 * (uint64_t)n - 1);
+    ok = cv_scan_exclusive(b->scan, b->live, n - 1, err);
+    if (ok) {
+        cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
+        cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
+        cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
+        cv_buffer_bind(b->info, CV_BIND_STAGE0 + 4);
+        cv_buffer_bind(b->out_nodes, CV_BIND_BVH_NODES);
+        set_uint(emit, "u_n", n);
+        cv_program_dispatch_1d(emit, n);
+    }
+    phase_end(b, PH_COLLAPSE);
+    if (!ok)
+        return false;
+    return cv_gl_check(err, "building the BVH of %u triangles", n);
+}
+
+static double half_area(const float lo[3], const float hi[3])
+{
+    double e[3];
+    for (int i = 0; i < 3; i++)
+        e[i] = hi[i] > lo[i] ? (double)hi[i] - lo[i] : 0.0;
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+}
+
+static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_params *p,
+                       GLuint vertices, GLuint triangles, struct cv_error *err)
+{
+    uint64_t n = b->n;
+    uint64_t g0 = (n + 255) / 256, g1 = (g0 + 255) / 256;
+    if (!(b->bounds_a = scratch(b, g0 * 32, "bvh bounds", err)) ||
+        !(b->bounds_b = scratch(b, g1 * 32, "bvh bounds", err)) ||
+        !(b->keys = scratch(b, n * (MORTON_BITS > 32 ? 8 : 4), "bvh keys", err)) ||
+        !(b->vals = scratch(b, n * 4, "bvh ids", err)) ||
+        !(b->nodes = scratch(b, (2 * n - 1) * sizeof(CvBvhBuildNode), "bvh build nodes", err)) ||
+        !(b->counters = scratch(b, (n - 1) * 4, "bvh counters", err)) ||
+        !(b->offsets = scratch(b, (2 * n - 1) * 4, "bvh offsets", err)) ||
+        !(b->live = scratch(b, (n - 1) * 4, "bvh live nodes", err)) ||
+        !(b->info = scratch(b, 16, "bvh info", err)) ||
+        !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
+        !(bvh->prims = cv_buffer_create(n * 4, NULL, "bvh prims", err)))
+        return false;
+    cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
+    if (!(b->sort = cv_radix_sort_create(b->gpu, b->n, MORTON_BITS, err)) ||
+        !(b->scan = cv_scan_create(b->gpu, b->n, err)))
+        return false;
+    b->scratch += cv_radix_sort_bytes(b->sort) + cv_scan_bytes(b->scan);
+    if (!run_phases(b, p, vertices, triangles, err))
+        return false;
+
+    uint32_t n_nodes = 0;
+    CvBvhBuildNode root;
+    if (!cv_buffer_read(b->info, 0, 4, &n_nodes, err) ||
+        !cv_buffer_read(b->nodes, 0, sizeof(root), &root, err))
+        return false;
+    if (n_nodes == 0 || n_nodes > n - 1)
+        return cv_fail(err, "BVH build produced %u nodes for %llu triangles", n_nodes,
+                       (unsigned long long)n);
+    /* Keep only the live prefix of the node array. */
+    if (!(bvh->nodes = cv_buffer_create((size_t)n_nodes * sizeof(CvBvhNode), NULL, "bvh nodes", err)))
+        return false;
+    glCopyNamedBufferSubData(b->out_nodes, bvh->nodes, 0, 0, (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+
+    struct cv_bvh_stats *s = &bvh->stats;
+    double *ms[PH_COUNT] = {&s->ms_bounds, &s->ms_morton, &s->ms_sort, &s->ms_hierarchy,
+                            &s->ms_refit, &s->ms_treelet, &s->ms_collapse};
+    s->ms_total = 0;
+    for (int i = 0; i < PH_COUNT; i++) {
+        GLuint64 ns = 0;
+        if (!b->cpu_timing)
+            glGetQueryObjectui64v(b->queries[i], GL_QUERY_RESULT, &ns);
+        *ms[i] = b->cpu_timing ? b->cpu_ms[i] : ns * 1e-6;
+        s->ms_total += *ms[i];
+    }
+    float lo[3] = {root.bmin.x, root.bmin.y, root.bmin.z};
+    float hi[3] = {root.bmax.x, root.bmax.y, root.bmax.z};
+    double a = half_area(lo, hi);
+    s->sah_cost = a > 0 ? root.bmin.w / a : 0.0;
+    s->n_nodes = n_nodes;
+    s->bytes = (uint64_t)n_nodes * sizeof(CvBvhNode) + n * 4;
+    s->scratch_bytes = b->scratch;
+    return cv_gl_check(err, "finishing the BVH");
+}
+
+bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
+                  const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err)
+{
+    *out = NULL;
+    struct cv_bvh_params p = params ? *params : cv_bvh_default_params();
+    if (p.treelet_size == 0)
+        p.treelet_size = 7;
+    if (p.treelet_size < 3 || p.treelet_size > 8)
+        return cv_fail(err, "BVH treelet size %d is outside 3..8", p.treelet_size);
+    if (p.treelet_rounds < 0 || p.treelet_rounds > 32)
+        return cv_fail(err, "BVH treelet rounds %d is outside 0..32", p.treelet_rounds);
+    if (n_triangles > CV_BVH_COUNT_MASK)
+        return cv_fail(err, "%u triangles are more than the BVH can hold", n_triangles);
+    struct cv_bvh *bvh = cv_xcalloc(1, sizeof(*bvh));
+    bool ok;
+    if (n_triangles < 2) {
+        ok = build_trivial(bvh, n_triangles, err);
+    } else {
+        struct build b = {.gpu = gpu, .n = n_triangles, .cpu_timing = gpu->info.software};
+        ok = build_full(bvh, &b, &p, vertices, triangles, err);
+        build_free(&b);
+    }
+    if (!ok) {
+        cv_error_prefix(err, "building the BVH");
+        cv_bvh_destroy(&bvh);
+        return false;
+    }
+    *out = bvh;
+    return true;
+}
+
+void cv_bvh_bind(const struct cv_bvh *bvh)
+{
+    cv_buffer_bind(bvh->nodes, CV_BIND_BVH_NODES);
+    cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
+}
+
+const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh)
+{
+    return &bvh->stats;
+}
+
+GLuint cv_bvh_nodes_buffer(const struct cv_bvh *bvh)
+{
+    return bvh->nodes;
+}
+
+GLuint cv_bvh_prims_buffer(const struct cv_bvh *bvh)
+{
+    return bvh->prims;
+}
+
+void cv_bvh_destroy(struct cv_bvh **bvh)
+{
+    if (!bvh || !*bvh)
+        return;
+    cv_buffer_destroy(&(*bvh)->nodes);
+    cv_buffer_destroy(&(*bvh)->prims);
+    free(*bvh);
+    *bvh = NULL;
+}

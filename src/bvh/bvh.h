@@ -1,0 +1,59 @@
+/* bvh.h: the GPU BVH over a scene's triangles, built entirely in compute
+ * shaders (glsl/bvh): centroid bounds, 60-bit Morton codes, radix sort,
+ * Karras 2012 hierarchy, bottom-up refit, treelet restructuring (Karras &
+ * Aila 2013), SAH leaf collapsing and the final layout of
+ * glsl/shared/bvh.h. Nothing of the tree is read back to the CPU (only the
+ * final node count and the root's cost, for the stats).
+ * Shaders trace against it with glsl/bvh/scene_buffers.glsl and
+ * glsl/bvh/traverse.glsl after cv_bvh_bind(). */
+#ifndef CV_BVH_BVH_H
+#define CV_BVH_BVH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <epoxy/gl.h>
+
+#include "base/error.h"
+#include "gpu/context.h"
+
+struct cv_bvh_params {
+    int treelet_rounds;    /* default 3; 0 = plain LBVH */
+    int treelet_size;      /* leaves per treelet, 3..8; default 7 (0 also means 7) */
+    bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
+};
+
+/* Defaults as above. */
+struct cv_bvh_params cv_bvh_default_params(void);
+
+struct cv_bvh_stats {
+    /* GPU times from GL_TIME_ELAPSED queries, milliseconds. */
+    double ms_bounds, ms_morton, ms_sort, ms_hierarchy, ms_refit, ms_treelet, ms_collapse,
+        ms_total;
+    /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
+     * over leaves of 1.0 * A(leaf) * triangles, divided by A(root). */
+    double sah_cost;
+    uint64_t bytes;        /* GPU bytes the finished BVH keeps (nodes + prims) */
+    uint64_t scratch_bytes;/* peak GPU scratch during the build, freed after */
+    uint32_t n_nodes;      /* final CvBvhNode count */
+};
+
+struct cv_bvh;
+
+/* Builds over n_triangles CvTriangle of `triangles` indexing CvVertex of
+ * `vertices` (glsl/shared/scene.h); the caller keeps both buffers alive and
+ * unchanged while the BVH is used. params NULL: defaults. Leaves GL state
+ * with stage-private bindings changed. */
+bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
+                  const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err);
+/* Binds the nodes at CV_BIND_BVH_NODES and the primitive order at
+ * CV_BIND_BVH_PRIMS (not the scene buffers). */
+void cv_bvh_bind(const struct cv_bvh *bvh);
+const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh);
+/* The GL buffers (owned by the BVH), for tests and tools. */
+GLuint cv_bvh_nodes_buffer(const struct cv_bvh *bvh);
+GLuint cv_bvh_prims_buffer(const struct cv_bvh *bvh);
+/* Accepts NULL; clears the pointer. */
+void cv_bvh_destroy(struct cv_bvh **bvh);
+
+#endif

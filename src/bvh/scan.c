@@ -1,0 +1,96 @@
+/* scan.c: see scan.h. Tiles of 1024 are scanned in one dispatch, their
+ * totals scanned recursively (one level per factor of 1024), then added
+ * back. */
+#include <stdlib.h>
+
+#include "base/mem.h"
+#include "bvh/program_copy.h"
+#include "bvh/scan.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "gpu/program.h"
+
+#define SCAN_TILE 1024u
+#define SCAN_MAX_LEVELS 6
+
+struct cv_scan {
+    struct cv_gpu *gpu;
+    GLuint sums[SCAN_MAX_LEVELS];
+    uint32_t sums_n[SCAN_MAX_LEVELS];
+    int n_levels;
+    uint64_t bytes;
+};
+
+struct cv_scan *cv_scan_create(struct cv_gpu *gpu, uint32_t max_n, struct cv_error *err)
+{
+    struct cv_scan *scan = cv_xcalloc(1, sizeof(*scan));
+    scan->gpu = gpu;
+    uint32_t n = max_n < 1 ? 1 : max_n;
+    do {
+        n = (n + SCAN_TILE - 1) / SCAN_TILE;
+        if (scan->n_levels == SCAN_MAX_LEVELS) {
+            cv_scan_destroy(&scan);
+            cv_fail(err, "scan of %u elements is too large", max_n);
+            return NULL;
+        }
+        scan->sums_n[scan->n_levels] = n;
+        scan->sums[scan->n_levels] = cv_buffer_create((size_t)n * 4, NULL, "bvh scan sums", err);
+        scan->bytes += (uint64_t)n * 4;
+        if (!scan->sums[scan->n_levels++]) {
+            cv_scan_destroy(&scan);
+            return NULL;
+        }
+    } while (n > 1);
+    return scan;
+}
+
+static bool scan_level(struct cv_scan *scan, GLuint buf, uint32_t n, int level,
+                       struct cv_error *err)
+{
+    /* Copies: the cache may move its entries when it grows. */
+    struct cv_program block_prog, add_prog, *block = &block_prog, *add = &add_prog;
+    if (!cv_bvh_program(scan->gpu, "bvh/scan_block.comp", NULL, block, err) ||
+        !cv_bvh_program(scan->gpu, "bvh/scan_add.comp", NULL, add, err))
+        return false;
+    if (level >= scan->n_levels)
+        return cv_fail(err, "scan: more elements than the scratch was made for");
+    uint32_t tiles = (n + SCAN_TILE - 1) / SCAN_TILE;
+    cv_buffer_bind(buf, CV_BIND_STAGE0);
+    cv_buffer_bind(scan->sums[level], CV_BIND_STAGE0 + 1);
+    glProgramUniform1ui(block->id, glGetUniformLocation(block->id, "u_n"), n);
+    cv_program_dispatch_1d(block, (uint64_t)tiles * block->local_size[0]);
+    if (tiles > 1) {
+        if (!scan_level(scan, scan->sums[level], tiles, level + 1, err))
+            return false;
+        cv_buffer_bind(buf, CV_BIND_STAGE0);
+        cv_buffer_bind(scan->sums[level], CV_BIND_STAGE0 + 1);
+        glProgramUniform1ui(add->id, glGetUniformLocation(add->id, "u_n"), n);
+        cv_program_dispatch_1d(add, n);
+    }
+    return true;
+}
+
+bool cv_scan_exclusive(struct cv_scan *scan, GLuint buf, uint32_t n, struct cv_error *err)
+{
+    if (n == 0)
+        return true;
+    if (!scan_level(scan, buf, n, 0, err))
+        return false;
+    return cv_gl_check(err, "prefix sum of %u elements", n);
+}
+
+uint64_t cv_scan_bytes(const struct cv_scan *scan)
+{
+    return scan->bytes;
+}
+
+void cv_scan_destroy(struct cv_scan **scan)
+{
+    if (!scan || !*scan)
+        return;
+    for (int i = 0; i < SCAN_MAX_LEVELS; i++)
+        cv_buffer_destroy(&(*scan)->sums[i]);
+    free(*scan);
+    *scan = NULL;
+}

@@ -1,0 +1,148 @@
+/* bvh_bench.c: benchmark of the GPU BVH build (not a test). Generates N
+ * triangles (half uniform with varied sizes, half in dense clusters; fixed
+ * seed), builds the BVH several times and prints the median time of each
+ * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
+ *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--check] [--ref]
+ * --ref also builds a CPU binned-SAH tree over the same triangles and prints
+ * its SAH cost for comparison.
+ * --check reads the last tree back and verifies its invariants (as the
+ * tests do) and prints its depth; the exit status is 1 when they fail.
+ * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh/bvh.h"
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "tests/bvh/bvh_test_util.h"
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+#define N_PHASES 8
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s N [--reps R] [--rounds R] [--treelet S] [--no-collapse]\n",
+                argv[0]);
+        return 2;
+    }
+    uint32_t n = (uint32_t)strtoul(argv[1], NULL, 10);
+    int reps = 3;
+    struct cv_bvh_params params = cv_bvh_default_params();
+    bool check = false, ref = false;
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
+            reps = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--rounds") == 0 && i + 1 < argc)
+            params.treelet_rounds = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--treelet") == 0 && i + 1 < argc)
+            params.treelet_size = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--ref") == 0)
+            ref = true;
+        else if (strcmp(argv[i], "--check") == 0)
+            check = true;
+        else if (strcmp(argv[i], "--no-collapse") == 0)
+            params.collapse_leaves = false;
+        else {
+            fprintf(stderr, "unknown argument %s\n", argv[i]);
+            return 2;
+        }
+    }
+    if (reps < 1 || reps > 101)
+        reps = 3;
+    struct cv_error err = {{0}};
+    int status = 0;
+    struct cv_gpu *gpu = NULL;
+    if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
+        fprintf(stderr, "bvh_bench: %s\n", err.msg);
+        return 1;
+    }
+    fprintf(stderr, "GPU: %s | %s\n", gpu->info.renderer, gpu->info.version);
+    struct mesh m;
+    mesh_soup(&m, n);
+    GLuint vb = 0, tb = 0;
+    if (!mesh_upload(&m, &vb, &tb, &err)) {
+        fprintf(stderr, "bvh_bench: %s\n", err.msg);
+        return 1;
+    }
+    double ref_cost = ref ? ref_sah(&m) : 0.0;
+    if (!check)
+        mesh_free(&m);
+
+    /* One untimed build compiles the shaders. */
+    struct cv_bvh *bvh = NULL;
+    if (!cv_bvh_build(gpu, vb, tb, n, &params, &bvh, &err)) {
+        fprintf(stderr, "bvh_bench: %s\n", err.msg);
+        return 1;
+    }
+    cv_bvh_destroy(&bvh);
+    double *t[N_PHASES];
+    for (int p = 0; p < N_PHASES; p++)
+        t[p] = calloc((size_t)reps, sizeof(double));
+    struct cv_bvh_stats last = {0};
+    for (int r = 0; r < reps; r++) {
+        if (!cv_bvh_build(gpu, vb, tb, n, &params, &bvh, &err)) {
+            fprintf(stderr, "bvh_bench: %s\n", err.msg);
+            return 1;
+        }
+        last = *cv_bvh_stats(bvh);
+        if (check && r == reps - 1) {
+            struct tree_info ti = check_tree(&m, bvh);
+            fprintf(stderr, "check: %s (depth %d, read-back SAH %.4f) %s\n",
+                    ti.ok ? "tree invariants hold" : "TREE INVALID", ti.depth, ti.sah, ti.why);
+            if (!ti.ok)
+                status = 1;
+        }
+        double v[N_PHASES] = {last.ms_bounds, last.ms_morton, last.ms_sort,  last.ms_hierarchy,
+                              last.ms_refit,  last.ms_treelet, last.ms_collapse, last.ms_total};
+        for (int p = 0; p < N_PHASES; p++)
+            t[p][r] = v[p];
+        cv_bvh_destroy(&bvh);
+    }
+    const char *names[N_PHASES] = {"bounds", "morton", "sort", "hierarchy",
+                                   "refit",  "treelet", "collapse", "total"};
+    double med[N_PHASES];
+    for (int p = 0; p < N_PHASES; p++) {
+        qsort(t[p], (size_t)reps, sizeof(double), cmp_double);
+        med[p] = t[p][reps / 2];
+    }
+    double lbvh = med[0] + med[1] + med[2] + med[3] + med[4];
+    printf("BVH build of %u triangles on %s (median of %d; rounds %d, treelet %d, collapse %s)\n",
+           n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
+           params.collapse_leaves ? "on" : "off");
+    for (int p = 0; p < N_PHASES; p++)
+        printf("  %-10s %10.3f ms\n", names[p], med[p]);
+    printf("  LBVH part  %10.3f ms (bounds..refit)\n", lbvh);
+    printf("  ms per million triangles: %.3f\n", med[7] * 1e6 / (n ? n : 1));
+    printf("  nodes %u, %.2f bytes/triangle (+ %.2f bytes/triangle scratch while building)\n",
+           last.n_nodes, (double)last.bytes / (n ? n : 1), (double)last.scratch_bytes / (n ? n : 1));
+    printf("  SAH cost %.4f", last.sah_cost);
+    if (ref)
+        printf(" (CPU binned SAH %.4f: %+.1f%%)", ref_cost, 100.0 * (last.sah_cost / ref_cost - 1));
+    printf("\n");
+    printf("{\"triangles\": %u, \"renderer\": \"%s\", \"reps\": %d, \"treelet_rounds\": %d, "
+           "\"treelet_size\": %d, \"collapse_leaves\": %s",
+           n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
+           params.collapse_leaves ? "true" : "false");
+    for (int p = 0; p < N_PHASES; p++)
+        printf(", \"ms_%s\": %.4f", names[p], med[p]);
+    printf(", \"ms_lbvh\": %.4f, \"nodes\": %u, \"bytes\": %llu, \"bytes_per_triangle\": %.3f, "
+           "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f}\n",
+           lbvh, last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
+           (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost);
+    for (int p = 0; p < N_PHASES; p++)
+        free(t[p]);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    mesh_free(&m);
+    cv_gpu_destroy(&gpu);
+    return status;
+}

@@ -1,0 +1,436 @@
+/* bvh_test_util.h: for the BVH test and benchmark. Generated meshes (fixed
+ * seeds) uploaded as CvVertex/CvTriangle buffers, the SAH cost of a tree
+ * read back from the GPU, and a CPU binned-SAH reference builder that exists
+ * only to judge the GPU tree. */
+#ifndef CV_TESTS_BVH_UTIL_H
+#define CV_TESTS_BVH_UTIL_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "glsl/shared/bvh.h"
+#include "glsl/shared/scene.h"
+#include "bvh/bvh.h"
+#include "gpu/buffer.h"
+
+struct mesh {
+    CvVertex *v;
+    CvTriangle *t;
+    uint32_t nv, nt;
+};
+
+static uint64_t mesh_rng = 88172645463325252ull;
+static inline double mesh_rand(void)
+{
+    mesh_rng ^= mesh_rng << 13;
+    mesh_rng ^= mesh_rng >> 7;
+    mesh_rng ^= mesh_rng << 17;
+    return (double)(mesh_rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static inline void mesh_alloc(struct mesh *m, uint32_t nv, uint32_t nt)
+{
+    m->v = calloc(nv ? nv : 1, sizeof(CvVertex));
+    m->t = calloc(nt ? nt : 1, sizeof(CvTriangle));
+    m->nv = nv;
+    m->nt = nt;
+}
+
+static inline void mesh_free(struct mesh *m)
+{
+    free(m->v);
+    free(m->t);
+    memset(m, 0, sizeof(*m));
+}
+
+static inline void set_v(struct mesh *m, uint32_t i, double x, double y, double z)
+{
+    m->v[i].pos_u = (cv_vec4){(float)x, (float)y, (float)z, 0};
+}
+
+/* Triangle soup of varied sizes: a uniform part and a few dense clusters. */
+static inline void mesh_soup(struct mesh *m, uint32_t n)
+{
+    mesh_alloc(m, 3 * n, n);
+    double cl[8][3];
+    for (int c = 0; c < 8; c++)
+        for (int k = 0; k < 3; k++)
+            cl[c][k] = mesh_rand() * 100.0;
+    for (uint32_t i = 0; i < n; i++) {
+        double c[3], size;
+        if (mesh_rand() < 0.5) {
+            for (int k = 0; k < 3; k++)
+                c[k] = mesh_rand() * 100.0;
+            size = mesh_rand() < 0.05 ? 5.0 + mesh_rand() * 10.0 : 0.2 + mesh_rand();
+        } else {
+            int q = (int)(mesh_rand() * 8);
+            for (int k = 0; k < 3; k++)
+                c[k] = cl[q][k] + (mesh_rand() - 0.5) * 4.0;
+            size = 0.02 + mesh_rand() * 0.1;
+        }
+        for (int j = 0; j < 3; j++)
+            set_v(m, 3 * i + j, c[0] + (mesh_rand() - 0.5) * size, c[1] + (mesh_rand() - 0.5) * size,
+                  c[2] + (mesh_rand() - 0.5) * size);
+        m->t[i].idx = (cv_uvec4){3 * i, 3 * i + 1, 3 * i + 2, 0};
+    }
+}
+
+/* A closed-ish bumpy height field: k x k quads sharing edges and vertices. */
+static inline void mesh_grid(struct mesh *m, uint32_t k)
+{
+    mesh_alloc(m, (k + 1) * (k + 1), 2 * k * k);
+    for (uint32_t y = 0; y <= k; y++)
+        for (uint32_t x = 0; x <= k; x++)
+            set_v(m, y * (k + 1) + x, x, y, 2.0 * sin(x * 0.4) * cos(y * 0.3));
+    uint32_t t = 0;
+    for (uint32_t y = 0; y < k; y++)
+        for (uint32_t x = 0; x < k; x++) {
+            uint32_t a = y * (k + 1) + x, b = a + 1, c = a + k + 1, d = c + 1;
+            m->t[t++].idx = (cv_uvec4){a, b, d, 0};
+            m->t[t++].idx = (cv_uvec4){a, d, c, 0};
+        }
+}
+
+/* Degenerate: every triangle in the plane z = 0, most of them copies of a
+ * few (equal centroids, equal Morton codes), some large and overlapping. */
+static inline void mesh_planar(struct mesh *m, uint32_t n)
+{
+    mesh_alloc(m, 3 * n, n);
+    for (uint32_t i = 0; i < n; i++) {
+        double cx, cy, s;
+        if (i % 10 < 7) {
+            uint32_t q = (i * 2654435761u) % 23u;
+            cx = (q % 5) * 3.0;
+            cy = (q / 5) * 3.0;
+            s = 1.0;
+        } else {
+            cx = mesh_rand() * 12.0;
+            cy = mesh_rand() * 12.0;
+            s = 0.5 + mesh_rand() * 6.0;
+        }
+        set_v(m, 3 * i, cx - s, cy - s, 0);
+        set_v(m, 3 * i + 1, cx + s, cy - 0.5 * s, 0);
+        set_v(m, 3 * i + 2, cx, cy + s, 0);
+        m->t[i].idx = (cv_uvec4){3 * i, 3 * i + 1, 3 * i + 2, 0};
+    }
+}
+
+static inline bool mesh_upload(const struct mesh *m, GLuint *vb, GLuint *tb, struct cv_error *err)
+{
+    *vb = cv_buffer_create((m->nv ? m->nv : 1) * sizeof(CvVertex), m->v, "test vertices", err);
+    *tb = *vb ? cv_buffer_create((m->nt ? m->nt : 1) * sizeof(CvTriangle), m->t, "test triangles",
+                                 err)
+              : 0;
+    return *tb != 0;
+}
+
+static inline void tri_box(const struct mesh *m, uint32_t t, float lo[3], float hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    const uint32_t *ix = &m->t[t].idx.x;
+    for (int j = 0; j < 3; j++) {
+        const float *p = &m->v[ix[j]].pos_u.x;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], p[k]);
+            hi[k] = fmaxf(hi[k], p[k]);
+        }
+    }
+}
+
+static inline double half_area3(const float lo[3], const float hi[3])
+{
+    double e[3];
+    for (int k = 0; k < 3; k++)
+        e[k] = hi[k] > lo[k] ? (double)hi[k] - lo[k] : 0.0;
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+}
+
+/* ---- CPU binned SAH reference (same costs and leaf limit as the GPU) ---- */
+
+struct ref_ctx {
+    const struct mesh *m;
+    float (*lo)[3], (*hi)[3], (*c)[3];
+    uint32_t *ids;
+};
+
+#define REF_BINS 32
+
+static double ref_build(struct ref_ctx *r, uint32_t begin, uint32_t end)
+{
+    uint32_t n = end - begin;
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = begin; i < end; i++) {
+        uint32_t t = r->ids[i];
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], r->lo[t][k]);
+            hi[k] = fmaxf(hi[k], r->hi[t][k]);
+            clo[k] = fminf(clo[k], r->c[t][k]);
+            chi[k] = fmaxf(chi[k], r->c[t][k]);
+        }
+    }
+    double area = half_area3(lo, hi);
+    double leaf = CV_BVH_COST_TRI * area * n;
+    if (n == 1)
+        return leaf;
+    double best = INFINITY;
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; axis++) {
+        double ext = (double)chi[axis] - clo[axis];
+        if (!(ext > 0))
+            continue;
+        float blo[REF_BINS][3], bhi[REF_BINS][3];
+        uint32_t cnt[REF_BINS] = {0};
+        for (int b = 0; b < REF_BINS; b++)
+            for (int k = 0; k < 3; k++) {
+                blo[b][k] = INFINITY;
+                bhi[b][k] = -INFINITY;
+            }
+        for (uint32_t i = begin; i < end; i++) {
+            uint32_t t = r->ids[i];
+            int b = (int)((r->c[t][axis] - clo[axis]) / ext * REF_BINS);
+            b = b < 0 ? 0 : b >= REF_BINS ? REF_BINS - 1 : b;
+            cnt[b]++;
+            for (int k = 0; k < 3; k++) {
+                blo[b][k] = fminf(blo[b][k], r->lo[t][k]);
+                bhi[b][k] = fmaxf(bhi[b][k], r->hi[t][k]);
+            }
+        }
+        double right_area[REF_BINS];
+        uint32_t right_cnt[REF_BINS];
+        float rlo[3] = {INFINITY, INFINITY, INFINITY}, rhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        uint32_t rc = 0;
+        for (int b = REF_BINS - 1; b > 0; b--) {
+            for (int k = 0; k < 3; k++) {
+                rlo[k] = fminf(rlo[k], blo[b][k]);
+                rhi[k] = fmaxf(rhi[k], bhi[b][k]);
+            }
+            rc += cnt[b];
+            right_area[b] = half_area3(rlo, rhi);
+            right_cnt[b] = rc;
+        }
+        float llo[3] = {INFINITY, INFINITY, INFINITY}, lhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        uint32_t lc = 0;
+        for (int b = 0; b < REF_BINS - 1; b++) {
+            for (int k = 0; k < 3; k++) {
+                llo[k] = fminf(llo[k], blo[b][k]);
+                lhi[k] = fmaxf(lhi[k], bhi[b][k]);
+            }
+            lc += cnt[b];
+            if (lc == 0 || right_cnt[b + 1] == 0)
+                continue;
+            double c = half_area3(llo, lhi) * lc + right_area[b + 1] * right_cnt[b + 1];
+            if (c < best) {
+                best = c;
+                best_axis = axis;
+                best_bin = b;
+            }
+        }
+    }
+    uint32_t mid;
+    if (best_axis < 0) {
+        mid = begin + n / 2;  /* all centroids equal: split by index */
+    } else {
+        double ext = (double)chi[best_axis] - clo[best_axis];
+        uint32_t i = begin, j = end;
+        while (i < j) {
+            uint32_t t = r->ids[i];
+            int b = (int)((r->c[t][best_axis] - clo[best_axis]) / ext * REF_BINS);
+            b = b < 0 ? 0 : b >= REF_BINS ? REF_BINS - 1 : b;
+            if (b <= best_bin) {
+                i++;
+            } else {
+                r->ids[i] = r->ids[--j];
+                r->ids[j] = t;
+            }
+        }
+        mid = i;
+    }
+    double split = CV_BVH_COST_INNER * area + ref_build(r, begin, mid) + ref_build(r, mid, end);
+    return n <= CV_BVH_MAX_LEAF && leaf <= split ? leaf : split;
+}
+
+/* SAH cost (normalised by the root area) of a binned-SAH build. */
+static inline double ref_sah(const struct mesh *m)
+{
+    struct ref_ctx r = {.m = m};
+    uint32_t n = m->nt;
+    r.lo = malloc(n * sizeof(*r.lo));
+    r.hi = malloc(n * sizeof(*r.hi));
+    r.c = malloc(n * sizeof(*r.c));
+    r.ids = malloc(n * sizeof(*r.ids));
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t t = 0; t < n; t++) {
+        tri_box(m, t, r.lo[t], r.hi[t]);
+        const uint32_t *ix = &m->t[t].idx.x;
+        for (int k = 0; k < 3; k++) {
+            r.c[t][k] = ((&m->v[ix[0]].pos_u.x)[k] + (&m->v[ix[1]].pos_u.x)[k] +
+                         (&m->v[ix[2]].pos_u.x)[k]) / 3.0f;
+            lo[k] = fminf(lo[k], r.lo[t][k]);
+            hi[k] = fmaxf(hi[k], r.hi[t][k]);
+        }
+        r.ids[t] = t;
+    }
+    double cost = ref_build(&r, 0, n) / half_area3(lo, hi);
+    free(r.lo);
+    free(r.hi);
+    free(r.c);
+    free(r.ids);
+    return cost;
+}
+
+/* ---- reading a GPU tree back ---- */
+
+struct tree_info {
+    bool ok;
+    double sah;
+    int depth;
+    char why[256];
+};
+
+static inline bool box_in(const float *lo, const float *hi, const float *plo, const float *phi)
+{
+    for (int k = 0; k < 3; k++)
+        if (lo[k] < plo[k] || hi[k] > phi[k])
+            return false;
+    return true;
+}
+
+/* Reads the finished tree back and checks: every triangle in exactly one
+ * leaf slot, every node reached exactly once from the root, every child box
+ * inside its parent's (a triangle's box inside its leaf's). Also returns the
+ * depth and the SAH cost of what was read. */
+static inline struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bvh)
+{
+    struct tree_info ti = {.ok = true};
+    struct cv_error err = {{0}};
+    const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
+    uint32_t nn = st->n_nodes, n = m->nt;
+    CvBvhNode *nodes = malloc((size_t)nn * sizeof(*nodes));
+    uint32_t *prims = malloc((n ? n : 1) * 4);
+    uint32_t *stack = malloc(256 * 4), *depth_of = malloc(256 * 4);
+    uint32_t *visits = calloc(nn, 4), *slot_seen = calloc(n + 1, 4), *prim_seen = calloc(n + 1, 4);
+    if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes, &err) ||
+        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (n ? n : 1) * 4, prims, &err)) {
+        snprintf(ti.why, sizeof(ti.why), "read back: %.200s", err.msg);
+        ti.ok = false;
+        goto out;
+    }
+    int sp = 0;
+    stack[sp] = 0;
+    depth_of[sp++] = 1;
+    visits[0] = 1;
+    double sum = 0, root_area = 0;
+    while (sp > 0 && ti.ok) {
+        sp--;
+        uint32_t ni = stack[sp], d = depth_of[sp];
+        if ((int)d > ti.depth)
+            ti.depth = (int)d;
+        const CvBvhNode *nd = &nodes[ni];
+        const cv_vec4 *cb[2][2] = {{&nd->lmin, &nd->lmax}, {&nd->rmin, &nd->rmax}};
+        float cbox[2][2][3];
+        for (int c = 0; c < 2; c++)
+            for (int e = 0; e < 2; e++)
+                memcpy(cbox[c][e], cb[c][e], sizeof(cbox[c][e]));
+        float ulo[3], uhi[3];
+        for (int k = 0; k < 3; k++) {
+            ulo[k] = fminf(cbox[0][0][k], cbox[1][0][k]);
+            uhi[k] = fmaxf(cbox[0][1][k], cbox[1][1][k]);
+        }
+        if (ni == 0)
+            root_area = half_area3(ulo, uhi);
+        sum += CV_BVH_COST_INNER * half_area3(ulo, uhi);
+        for (int c = 0; c < 2 && ti.ok; c++) {
+            const float *lo = cbox[c][0], *hi = cbox[c][1];
+            int32_t word, count;
+            memcpy(&word, &cb[c][0]->w, 4);
+            memcpy(&count, &cb[c][1]->w, 4);
+            if (count > 0) {
+                if (word < 0 || (uint32_t)word + (uint32_t)count > n) {
+                    snprintf(ti.why, sizeof(ti.why), "node %u: leaf range %d+%d out of %u", ni,
+                             word, count, n);
+                    ti.ok = false;
+                    break;
+                }
+                if (n >= 2)
+                    sum += CV_BVH_COST_TRI * half_area3(lo, hi) * count;
+                for (int32_t s = word; s < word + count; s++) {
+                    slot_seen[s]++;
+                    uint32_t p = prims[s];
+                    if (p >= n) {
+                        snprintf(ti.why, sizeof(ti.why), "slot %d holds %u", s, p);
+                        ti.ok = false;
+                        break;
+                    }
+                    prim_seen[p]++;
+                    float tlo[3], thi[3];
+                    tri_box(m, p, tlo, thi);
+                    if (!box_in(tlo, thi, lo, hi)) {
+                        snprintf(ti.why, sizeof(ti.why), "triangle %u outside its leaf box", p);
+                        ti.ok = false;
+                    }
+                }
+            } else if (count == 0 && n < 2 && lo[0] > hi[0]) {
+                /* the empty child of a trivial tree */
+            } else {
+                if (count < 0 || word <= 0 || (uint32_t)word >= nn) {
+                    snprintf(ti.why, sizeof(ti.why), "node %u: child %d count %d", ni, word, count);
+                    ti.ok = false;
+                    break;
+                }
+                if (visits[word]++) {
+                    snprintf(ti.why, sizeof(ti.why), "node %d reached twice", word);
+                    ti.ok = false;
+                    break;
+                }
+                const CvBvhNode *ch = &nodes[word];
+                float b[4][3];
+                memcpy(b[0], &ch->lmin, 12);
+                memcpy(b[1], &ch->lmax, 12);
+                memcpy(b[2], &ch->rmin, 12);
+                memcpy(b[3], &ch->rmax, 12);
+                if (!box_in(b[0], b[1], lo, hi) || !box_in(b[2], b[3], lo, hi)) {
+                    snprintf(ti.why, sizeof(ti.why), "node %d: a child box leaves the parent's", word);
+                    ti.ok = false;
+                    break;
+                }
+                if (sp >= 256) {
+                    snprintf(ti.why, sizeof(ti.why), "deeper than 256");
+                    ti.ok = false;
+                    break;
+                }
+                stack[sp] = (uint32_t)word;
+                depth_of[sp++] = d + 1;
+            }
+        }
+    }
+    for (uint32_t i = 0; ti.ok && i < nn; i++)
+        if (visits[i] != 1) {
+            snprintf(ti.why, sizeof(ti.why), "node %u reached %u times", i, visits[i]);
+            ti.ok = false;
+        }
+    for (uint32_t i = 0; ti.ok && i < n; i++)
+        if (prim_seen[i] != 1 || slot_seen[i] != 1) {
+            snprintf(ti.why, sizeof(ti.why), "triangle %u in %u leaves, slot %u used %u times", i,
+                     prim_seen[i], i, slot_seen[i]);
+            ti.ok = false;
+        }
+    ti.sah = root_area > 0 ? sum / root_area : 0;
+out:
+    free(stack);
+    free(depth_of);
+    free(nodes);
+    free(prims);
+    free(visits);
+    free(slot_seen);
+    free(prim_seen);
+    return ti;
+}
+
+#endif
