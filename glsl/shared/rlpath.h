@@ -47,6 +47,9 @@
 /* Every bin gets at least this share of the mean bin value, so the learned
  * distribution never has zero density anywhere on the sphere. */
 #define CV_RL_FLOOR 0.02f
+/* Added to the clamped cosine of the bin weights: bins below the surface
+ * keep some probability (for transmission and the support). */
+#define CV_RL_COS_FLOOR 0.1
 
 CV_STRUCT(CvRlParams) {
     CV_VEC4 grid_min;      /* xyz: grid origin (world); w: mixture weight of guiding */

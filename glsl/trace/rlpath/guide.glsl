@@ -3,9 +3,13 @@
 // cell's learned distribution and its pdf, the mixture with the BSDF, and the
 // temporal-difference update.
 //
-// The learned distribution of a cell: bin b has probability
-//   P_b = (Q_b + e) / (S + bins * e),  S = sum of Q_b,  e = floor * S / bins
-// (plus a tiny absolute floor, so an unvisited cell is uniform), and is
+// The learned distribution of a cell at a point with normal n: bin b has
+// probability P_b = w_b / W with
+//   w_b = (Q_b + e) * (max(cos(centre_b, n), 0) + CV_RL_COS_FLOOR),
+//   e = floor * S / bins (S = sum of Q_b; a tiny absolute floor makes an
+//   unvisited cell follow the floored cosine), W = sum of w_b,
+// (Q times the cosine, the part of the reflected radiance the table knows,
+// as Dahm and Keller's product with the BSDF for a diffuse surface), and is
 // uniform in solid angle within the bin: pdf(w) = P_b * bins / (4 pi).
 // Include after the local_size layout line.
 #ifndef CV_RLPATH_GUIDE_GLSL
@@ -69,33 +73,53 @@ float cv_rl_cell_sum(uint cell)
     return s;
 }
 
-// Solid-angle pdf of w under the distribution of a cell whose bins sum to s.
-float cv_rl_pdf(uint cell, float s, vec3 w)
+// The sampling weight of bin b of a cell (first entry base, floor e) at a
+// point with normal n (facing the side that reflects): the learned radiance
+// times the cosine at the bin's centre, both floored so that no bin is 0.
+float cv_rl_weight(uint base, uint b, float e, vec3 n)
 {
-    float bins = float(cv_rl_bins()), e = cv_rl_floor(s);
-    float pb = (cv_rl_q(cell * cv_rl_bins() + cv_rl_bin(w)) + e) / (s + bins * e);
-    return pb * bins / (4.0 * CV_RL_PI);
+    float c = dot(cv_rl_bin_dir(b, vec2(0.5)), n);
+    return (cv_rl_q(base + b) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
 }
 
-// Samples a direction from the cell (bins summing to s) with u in [0,1)^2:
-// u.x picks the bin by its CDF and, rescaled within the bin's interval,
-// the z position in the bin; u.y the phi position. Returns the bin; pdf is
-// the solid-angle density of the direction.
-uint cv_rl_sample(uint cell, float s, vec2 u, out vec3 w, out float pdf)
+// The sum W of the weights of a cell (bins summing to s) at normal n.
+float cv_rl_total(uint cell, float s, vec3 n)
 {
-    uint n = cv_rl_bins(), base = cell * n;
-    float e = cv_rl_floor(s), total = s + float(n) * e;
-    float target = u.x * total, c = 0.0, p = 0.0;
+    uint base = cell * cv_rl_bins();
+    float e = cv_rl_floor(s), t = 0.0;
+    for (uint b = 0u; b < cv_rl_bins(); b++)
+        t += cv_rl_weight(base, b, e, n);
+    return t;
+}
+
+// Solid-angle pdf of w under the distribution of a cell (bins summing to
+// s, weights to W at normal n).
+float cv_rl_pdf(uint cell, float s, float W, vec3 n, vec3 w)
+{
+    uint nb = cv_rl_bins();
+    float wb = cv_rl_weight(cell * nb, cv_rl_bin(w), cv_rl_floor(s), n);
+    return (wb / W) * float(nb) / (4.0 * CV_RL_PI);
+}
+
+// Samples a direction from the cell with u in [0,1)^2: u.x picks the bin by
+// the CDF of the weights and, rescaled within the bin's interval, the z
+// position in the bin; u.y the phi position. Returns the bin; pdf is the
+// solid-angle density of the direction.
+uint cv_rl_sample(uint cell, float s, float W, vec3 n, vec2 u, out vec3 w, out float pdf)
+{
+    uint nb = cv_rl_bins(), base = cell * nb;
+    float e = cv_rl_floor(s);
+    float target = u.x * W, c = 0.0, p = 0.0;
     uint b = 0u;
-    for (; b < n; b++) {
-        p = cv_rl_q(base + b) + e;
-        if (target < c + p || b == n - 1u)
+    for (; b < nb; b++) {
+        p = cv_rl_weight(base, b, e, n);
+        if (target < c + p || b == nb - 1u)
             break;
         c += p;
     }
     float ux = clamp((target - c) / p, 0.0, 0.99999994);
     w = cv_rl_bin_dir(b, vec2(ux, u.y));
-    pdf = (p / total) * float(n) / (4.0 * CV_RL_PI);
+    pdf = (p / W) * float(nb) / (4.0 * CV_RL_PI);
     return b;
 }
 

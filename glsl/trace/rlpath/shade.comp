@@ -99,6 +99,9 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     }
     target += reflected * (4.0 * CV_PI / float(nb));
     float m = delta ? 0.0 : cv_rl_mix_weight();
+    // the guiding weights use the normal on the side the path came from
+    vec3 gn = dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns;
+    float wsum = m > 0.0 ? cv_rl_total(cell, qsum, gn) : 1.0;
 
 #ifdef CV_AOVS
     if (depth == 0u) {
@@ -122,7 +125,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
             vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
             if (cv_max3(f) > 0.0) {
-                float pm = cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, ls.wi) : 0.0,
+                float pm = cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, wsum, gn, ls.wi) : 0.0,
                                          cv_bsdf_pdf(b, wo, ls.wi));
                 float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
                 vec3 Ld = beta * f * ls.L * (w / ls.pdf);
@@ -143,10 +146,10 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     bool specular;
     if (m > 0.0 && u_bsdf.x < m) {
         float pq;
-        cv_rl_sample(cell, qsum, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
+        cv_rl_sample(cell, qsum, wsum, gn, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
         bs.f = cv_bsdf_f(b, wo, bs.wi);
         // re-evaluated, so the density is the one the MIS weights see
-        pdf = cv_rl_mix_pdf(m, cv_rl_pdf(cell, qsum, bs.wi), cv_bsdf_pdf(b, wo, bs.wi));
+        pdf = cv_rl_mix_pdf(m, cv_rl_pdf(cell, qsum, wsum, gn, bs.wi), cv_bsdf_pdf(b, wo, bs.wi));
         specular = false;
     } else {
         vec2 u = m > 0.0 ? vec2(min((u_bsdf.x - m) / (1.0 - m), 0.99999994), u_bsdf.y) : u_bsdf;
@@ -155,7 +158,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
         // a delta lobe is chosen with probability (1 - m) * bs.pdf
         pdf = specular ? (1.0 - m) * bs.pdf
-                       : cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, bs.wi) : 0.0, bs.pdf);
+                       : cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, wsum, gn, bs.wi) : 0.0, bs.pdf);
     }
     if (!(pdf > 0.0))
         return;

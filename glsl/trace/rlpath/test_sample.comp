@@ -1,6 +1,7 @@
 #version 450
 // glsl/trace/rlpath/test_sample.comp: exercises guide.glsl for
 // tests/trace/rlpath_sample_test.c on cell 0 of a table the test filled.
+// The guiding normal is TEST_NORMAL throughout.
 // TEST_MODE 0: draw directions from the learned distribution (w, pdf at
 // sampling; pdf evaluated again at w). TEST_MODE 1: draw from the mixture of
 // guiding (weight m) and a Lambertian lobe about TEST_NORMAL, the way
@@ -46,10 +47,11 @@ void main()
     if (i >= u_n)
         return;
     float s = cv_rl_cell_sum(0u);
+    float W = cv_rl_total(0u, s, TEST_NORMAL);
     float m = cv_rl_mix_weight();
 #if TEST_MODE == 2
     vec3 w = inv[i].xyz;
-    float pq = cv_rl_pdf(0u, s, w);
+    float pq = cv_rl_pdf(0u, s, W, TEST_NORMAL, w);
     outv[2u * i] = vec4(pq, cv_rl_mix_pdf(m, pq, lambert_pdf(w)), 0.0, 0.0);
     outv[2u * i + 1u] = vec4(0.0);
 #else
@@ -58,15 +60,15 @@ void main()
     vec3 w;
     float pdf;
 #if TEST_MODE == 0
-    cv_rl_sample(0u, s, u, w, pdf);
+    cv_rl_sample(0u, s, W, TEST_NORMAL, u, w, pdf);
     outv[2u * i] = vec4(w, pdf);
-    outv[2u * i + 1u] = vec4(cv_rl_pdf(0u, s, w), 0.0, 0.0, 0.0);
+    outv[2u * i + 1u] = vec4(cv_rl_pdf(0u, s, W, TEST_NORMAL, w), 0.0, 0.0, 0.0);
 #else
     if (u.x < m)
-        cv_rl_sample(0u, s, vec2(min(u.x / m, 0.99999994), u.y), w, pdf);
+        cv_rl_sample(0u, s, W, TEST_NORMAL, vec2(min(u.x / m, 0.99999994), u.y), w, pdf);
     else
         w = lambert_sample(vec2(min((u.x - m) / (1.0 - m), 0.99999994), u.y));
-    float pq = cv_rl_pdf(0u, s, w), pb = lambert_pdf(w);
+    float pq = cv_rl_pdf(0u, s, W, TEST_NORMAL, w), pb = lambert_pdf(w);
     outv[2u * i] = vec4(w, cv_rl_mix_pdf(m, pq, pb));
     outv[2u * i + 1u] = vec4(pq, pb, 0.0, 0.0);
 #endif
