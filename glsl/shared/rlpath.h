@@ -41,9 +41,9 @@
 #define CV_RL_MAX_BINS 1024u
 
 /* Defaults for options given as 0 (or a mix <= 0). */
-#define CV_RL_DEFAULT_GRID 16u
+#define CV_RL_DEFAULT_GRID 8u
 #define CV_RL_DEFAULT_DIRECTIONS 128u
-#define CV_RL_DEFAULT_MIX 0.5f
+#define CV_RL_DEFAULT_MIX 0.3f
 /* Every bin gets at least this share of the mean bin value, so the learned
  * distribution never has zero density anywhere on the sphere. */
 #define CV_RL_FLOOR 0.02f

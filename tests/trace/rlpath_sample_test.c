@@ -138,9 +138,10 @@ static void test_layout(void)
     CvRlParams p;
     const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 0.5f};
     tap_ok(cv_rlpath_layout(lo, hi, 0, 0, 0, &p, &err), "layout with defaults: %s", err.msg);
-    tap_ok(p.dims.x == 16 && p.dims.y == 8 && p.dims.z == 4 && p.dims.w == 16 * 8 * 4,
-           "grid 16 along the longest axis, proportional elsewhere (%u %u %u)", p.dims.x,
-           p.dims.y, p.dims.z);
+    const uint32_t g = CV_RL_DEFAULT_GRID;
+    tap_ok(p.dims.x == g && p.dims.y == g / 2 && p.dims.z == g / 4 && p.dims.w == g * g * g / 8,
+           "default grid %u along the longest axis, proportional elsewhere (%u %u %u)", g,
+           p.dims.x, p.dims.y, p.dims.z);
     tap_ok(p.dirs.x == 8 && p.dirs.y == 16 && p.dirs.z == 128, "128 directions: 8 x 16 (%u x %u)",
            p.dirs.x, p.dirs.y);
     tap_ok(p.grid_min.w == CV_RL_DEFAULT_MIX, "default mix %g", p.grid_min.w);
