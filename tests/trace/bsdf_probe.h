@@ -43,7 +43,24 @@ static void probe_frame(struct probe *p, const float ng[3], const float ns[3], c
     memcpy(p->dpdu, dpdu, sizeof(p->dpdu));
 }
 
-static bool probe_open(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
+/* Like probe_open with the given texture table and texels (uvec2 each). */
+static inline bool probe_open_tex(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
+                           const CvTexture *tex, size_t n_tex, const uint32_t *texels, size_t n_texels,
+                           struct cv_error *err)
+{
+    memset(p, 0, sizeof(*p));
+    p->prog = cv_program_get(gpu, "trace/test/bsdf_probe.comp", NULL, err);
+    if (!p->prog)
+        return false;
+    p->materials = cv_buffer_create(n_mats * sizeof(*mats), mats, "probe materials", err);
+    p->textures = cv_buffer_create(n_tex * sizeof(*tex), tex, "probe textures", err);
+    p->texels = cv_buffer_create(n_texels * 8, texels, "probe texels", err);
+    float z[3] = {0, 0, 1}, x[3] = {1, 0, 0};
+    probe_frame(p, z, z, x);
+    return p->materials && p->textures && p->texels;
+}
+
+static inline bool probe_open(struct cv_gpu *gpu, struct probe *p, const CvMaterial *mats, size_t n_mats,
                        struct cv_error *err)
 {
     memset(p, 0, sizeof(*p));
@@ -76,15 +93,17 @@ static bool probe_reserve(GLuint *buf, size_t *cap, size_t bytes, struct cv_erro
 
 /* mode 0: n samples, out gets 12 floats each (wi, pdf | f, flags |
  * f_eval, pdf_eval; pdf < 0: sampling failed). mode 1: `dirs` (4 floats
- * each) evaluated, out gets 4 floats each (f, pdf). */
+ * each) evaluated, out gets 4 floats each (f, pdf). mode 2: `dirs` holds
+ * (u, v, u_mix, u_alpha), out gets 8 floats each (albedo, alpha pass |
+ * shading normal, resolved type). */
 static bool probe_run(struct probe *p, unsigned mode, unsigned material, const float wo[3], unsigned seed,
                       const float *dirs, size_t n, float *out, struct cv_error *err)
 {
-    size_t out_bytes = n * (mode == 0 ? 12 : 4) * sizeof(float);
+    size_t out_bytes = n * (mode == 0 ? 12 : (mode == 1 ? 4 : 8)) * sizeof(float);
     if (!probe_reserve(&p->out, &p->cap_out, out_bytes, err) ||
-        !probe_reserve(&p->in, &p->cap_in, mode == 1 ? n * 4 * sizeof(float) : 16, err))
+        !probe_reserve(&p->in, &p->cap_in, mode >= 1 ? n * 4 * sizeof(float) : 16, err))
         return false;
-    if (mode == 1 && !cv_buffer_upload(p->in, 0, n * 4 * sizeof(float), dirs, err))
+    if (mode >= 1 && !cv_buffer_upload(p->in, 0, n * 4 * sizeof(float), dirs, err))
         return false;
     cv_buffer_bind(p->materials, CV_BIND_MATERIALS);
     cv_buffer_bind(p->textures, CV_BIND_TEXTURES);
@@ -115,7 +134,7 @@ static void probe_close(struct probe *p)
     cv_buffer_destroy(&p->out);
 }
 
-static void probe_dir(double theta_deg, double phi_deg, float w[3])
+static inline void probe_dir(double theta_deg, double phi_deg, float w[3])
 {
     double t = theta_deg * M_PI / 180, ph = phi_deg * M_PI / 180;
     w[0] = (float)(sin(t) * cos(ph));

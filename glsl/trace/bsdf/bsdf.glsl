@@ -56,27 +56,23 @@ float cv_roughness_v3_to_alpha(float r)
     return 1.62142 + 0.819955 * x + 0.1734 * x * x + 0.0171201 * x * x * x + 0.000640711 * x * x * x * x;
 }
 
-vec2 cv_material_alpha(CvMaterial m, vec2 uv, float lod)
+vec2 cv_material_alpha(CvMaterial m, float ru, float rv)
 {
     vec2 a = m.roughness.xy;
     bool remap = (m.flags & CV_MATF_REMAP_ROUGHNESS) != 0u;
-    if (m.roughness_u_tex >= 0) {
-        float r = cv_tex_eval(m.roughness_u_tex, vec4(a.x), uv, lod).x;
-        a.x = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(r) : sqrt(max(r, 0.0))) : r;
-    }
-    if (m.roughness_v_tex >= 0) {
-        float r = cv_tex_eval(m.roughness_v_tex, vec4(a.y), uv, lod).x;
-        a.y = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(r) : sqrt(max(r, 0.0))) : r;
-    }
+    if (m.roughness_u_tex >= 0)
+        a.x = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(ru) : sqrt(max(ru, 0.0))) : ru;
+    if (m.roughness_v_tex >= 0)
+        a.y = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(rv) : sqrt(max(rv, 0.0))) : rv;
     return max(a, vec2(0.0));
 }
 
 // Conductor eta and k; "reflectance" conductors as pbrt-v4: eta = 1,
 // k = 2 sqrt(r) / sqrt(1 - r), which reproduces r at normal incidence.
-void cv_material_conductor(CvMaterial m, vec2 uv, float lod, out vec3 eta, out vec3 k)
+void cv_material_conductor(CvMaterial m, vec3 refl, out vec3 eta, out vec3 k)
 {
     if ((m.flags & CV_MATF_CONDUCTOR_REFLECTANCE) != 0u) {
-        vec3 r = clamp(cv_tex_eval(m.reflectance_tex, m.reflectance, uv, lod).rgb, 0.0, 0.9999);
+        vec3 r = clamp(refl, 0.0, 0.9999);
         eta = vec3(1.0);
         k = 2.0 * sqrt(r) / sqrt(1.0 - r);
     } else {
@@ -85,21 +81,19 @@ void cv_material_conductor(CvMaterial m, vec2 uv, float lod, out vec3 eta, out v
     }
 }
 
-// Bump mapping as pbrt's BumpMap with a fixed finite-difference step in uv
-// (no ray differentials here); dpdv is taken perpendicular to dpdu with the
-// same length, since the shading point carries no dpdv.
-vec3 cv_bump_normal(int tex, vec3 ns, vec3 dpdu, vec2 uv, float lod)
+// Bump mapping as pbrt's BumpMap from displacement values at uv, uv + (du, 0)
+// and uv + (0, dv) (CV_BUMP_DELTA: no ray differentials here); dpdv is taken
+// perpendicular to dpdu with the same length, since the shading point
+// carries no dpdv.
+#define CV_BUMP_DELTA 0.0005
+vec3 cv_bump_normal(float d0, float d_u, float d_v, vec3 ns, vec3 dpdu)
 {
-    const float du = 0.0005, dv = 0.0005;
-    float d0 = cv_tex_eval(tex, vec4(0.0), uv, lod).x;
-    float d_u = cv_tex_eval(tex, vec4(0.0), uv + vec2(du, 0.0), lod).x;
-    float d_v = cv_tex_eval(tex, vec4(0.0), uv + vec2(0.0, dv), lod).x;
     vec3 tu = dpdu - ns * dot(ns, dpdu);
     if (!(dot(tu, tu) > 1e-20))
         return ns;
     vec3 tv = cross(ns, tu);
-    vec3 pu = tu + (d_u - d0) / du * ns;
-    vec3 pv = tv + (d_v - d0) / dv * ns;
+    vec3 pu = tu + (d_u - d0) / CV_BUMP_DELTA * ns;
+    vec3 pv = tv + (d_v - d0) / CV_BUMP_DELTA * ns;
     vec3 n = cross(pu, pv);
     if (!(dot(n, n) > 0.0))
         return ns;
@@ -108,12 +102,12 @@ vec3 cv_bump_normal(int tex, vec3 ns, vec3 dpdu, vec2 uv, float lod)
 }
 
 // Tangent-space normal map as pbrt-v4: rgb in [0,1] -> [-1,1], frame (dpdu, ns).
-vec3 cv_normal_map(int tex, vec3 ns, vec3 dpdu, vec2 uv, float lod)
+vec3 cv_normal_map(vec3 rgb, vec3 ns, vec3 dpdu)
 {
-    vec3 c = 2.0 * cv_tex_eval(tex, vec4(0.5, 0.5, 1.0, 1.0), uv, lod).rgb - 1.0;
+    vec3 c = 2.0 * rgb - 1.0;
     if (!(dot(c, c) > 0.0))
         return ns;
-    CvFrame f = cv_frame_from_xz(normalize(dpdu), ns);
+    CvFrame f = cv_frame_from_xz(dpdu, ns);
     return normalize(cv_from_local(f, normalize(c)));
 }
 
@@ -125,6 +119,8 @@ uint cv_material_resolve(uint material, vec2 uv, float u_mix, float lod)
         CvMaterial m = materials[material];
         if (m.type != CV_MAT_MIX)
             break;
+        if (m.mix_a < 0 || m.mix_b < 0)
+            break;  // malformed: resolves to no surface
         float amt = cv_tex_eval(m.amount_tex, vec4(m.amount), uv, lod).x;
         if (amt <= 0.0) {
             material = uint(m.mix_a);
@@ -158,6 +154,21 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     b.eta = 1.0;
     b.thickness = 0.0;
 
+    // Every texture the material reads, evaluated in one loop (one inlined
+    // copy of the texture code): reflectance, specular, eta, roughness u, v,
+    // normal map, displacement at uv, uv + du, uv + dv.
+    int ids[9] = int[9](m.reflectance_tex, m.specular_tex, m.eta_tex, m.roughness_u_tex, m.roughness_v_tex,
+                        m.normal_tex, m.displacement_tex, m.displacement_tex, m.displacement_tex);
+    vec4 vals[9] = vec4[9](m.reflectance, m.specular, vec4(m.eta.x), vec4(m.roughness.x), vec4(m.roughness.y),
+                           vec4(0.5, 0.5, 1.0, 1.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    int n_tex = m.displacement_tex >= 0 ? 9 : 6;
+    for (int k = 0; k < n_tex; k++) {
+        vec2 tuv = uv + (k == 7 ? vec2(CV_BUMP_DELTA, 0.0) : (k == 8 ? vec2(0.0, CV_BUMP_DELTA) : vec2(0.0)));
+        vals[k] = cv_tex_eval(ids[k], vals[k], tuv, lod);
+    }
+    vec3 refl = vals[0].rgb, spec = vals[1].rgb;
+    float eta = vals[2].x;
+
     vec3 ns = sp.ns;
     if (!(dot(ns, ns) > 0.0))
         ns = sp.ng;
@@ -165,22 +176,23 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     if (dot(ns, sp.ng) < 0.0)
         ns = -ns;
     if (m.normal_tex >= 0)
-        ns = cv_normal_map(m.normal_tex, ns, sp.dpdu, uv, lod);
+        ns = cv_normal_map(vals[5].rgb, ns, sp.dpdu);
     else if (m.displacement_tex >= 0)
-        ns = cv_bump_normal(m.displacement_tex, ns, sp.dpdu, uv, lod);
+        ns = cv_bump_normal(vals[6].x, vals[7].x, vals[8].x, ns, sp.dpdu);
     b.frame = cv_frame_from_xz(sp.dpdu, ns);
+    vec2 alpha = cv_material_alpha(m, vals[3].x, vals[4].x);
+    vec3 ceta, ck;
+    cv_material_conductor(m, refl, ceta, ck);
 
-    vec3 refl = cv_tex_eval(m.reflectance_tex, m.reflectance, uv, lod).rgb;
-    vec3 spec = cv_tex_eval(m.specular_tex, m.specular, uv, lod).rgb;
-    float eta = cv_tex_eval(m.eta_tex, vec4(m.eta.x), uv, lod).x;
     if (b.type == CV_MAT_DIFFUSE) {
         b.c0 = clamp(refl, 0.0, 1.0);
     } else if (b.type == CV_MAT_CONDUCTOR) {
-        cv_material_conductor(m, uv, lod, b.c0, b.c1);
-        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.c0 = ceta;
+        b.c1 = ck;
+        b.alpha.xy = alpha;
     } else if (b.type == CV_MAT_DIELECTRIC) {
         b.eta = eta > 0.0 ? eta : 1.0;
-        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.alpha.xy = alpha;
         b.c0 = refl;
         b.c1 = spec;
     } else if (b.type == CV_MAT_THIN_DIELECTRIC) {
@@ -190,14 +202,15 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     } else if (b.type == CV_MAT_COATED_DIFFUSE) {
         b.c0 = clamp(refl, 0.0, 1.0);
         b.eta = eta > 0.0 ? eta : 1.5;
-        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.alpha.xy = alpha;
         b.thickness = m.roughness.z;
     } else if (b.type == CV_MAT_COATED_CONDUCTOR) {
         b.eta = m.eta.w > 0.0 ? m.eta.w : 1.5;
-        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.alpha.xy = alpha;
         b.alpha.zw = max(m.roughness2.xy, vec2(0.0));
         b.thickness = m.roughness.z;
-        cv_material_conductor(m, uv, lod, b.c0, b.c1);
+        b.c0 = ceta;
+        b.c1 = ck;
         b.c0 /= b.eta;
         b.c1 /= b.eta;
     } else if (b.type == CV_MAT_DIFFUSE_TRANSMISSION) {
@@ -206,7 +219,7 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     } else if (b.type == CV_MAT_PLASTIC) {
         b.c0 = clamp(refl, 0.0, 1.0);
         b.c1 = clamp(spec, 0.0, 1.0);
-        b.alpha.xy = cv_material_alpha(m, uv, lod);
+        b.alpha.xy = alpha;
     }
     return b;
 }

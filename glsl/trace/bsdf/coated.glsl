@@ -17,8 +17,9 @@
 //    the total at most 1 for R <= 1;
 //  - coated conductor: one pass through the coat to the conductor (conductor
 //    eta and k divided by the coat eta, as pbrt does) and out; light the coat
-//    reflects back down is dropped, so very rough bases come out darker than
-//    pbrt-v4's random walk. Energy is never gained.
+//    reflects back down is dropped (except for a smooth coat over a smooth
+//    base, where the bounces sum exactly), so rough bases come out darker
+//    than pbrt-v4's random walk. Energy is never gained.
 // Non-reciprocal in the coat Fresnel weights, which camera paths don't need.
 //
 // pbrt-v3 plastic is here too: Lambertian Kd + microfacet Ks with pbrt-v3's
@@ -166,13 +167,19 @@ float cv_coated_conductor_base_pdf(float eta, vec2 alpha2, vec3 wo, vec3 wi)
 }
 
 // The delta part when the base is smooth: mirror direction, value per |cos|.
-vec3 cv_coated_conductor_base_delta(float eta, float thickness, vec3 ceta, vec3 ck, vec3 wo)
+// With a smooth base every internal bounce stays on the mirror direction,
+// so when the coat is smooth too the bounces between coat and base sum
+// exactly: (1-F)^2 Tr^2 Fc / (1 - F Tr^2 Fc) (the coat reflects F from
+// inside at the refracted angle, as from outside).
+vec3 cv_coated_conductor_base_delta(float eta, float thickness, vec3 ceta, vec3 ck, vec3 wo, bool coat_smooth)
 {
     vec3 wot;
     if (!cv_coat_snell_in(wo, eta, wot))
         return vec3(0.0);
-    float t = (1.0 - cv_fr_dielectric(wo.z, eta)) * cv_coat_tr(thickness, wot.z);
-    return t * t * cv_fr_complex(wot.z, ceta, ck);
+    float F = cv_fr_dielectric(wo.z, eta), tr = cv_coat_tr(thickness, wot.z);
+    vec3 fc = cv_fr_complex(wot.z, ceta, ck);
+    vec3 once = cv_sqr((1.0 - F) * tr) * fc;
+    return coat_smooth ? once / (vec3(1.0) - F * tr * tr * fc) : once;
 }
 
 vec3 cv_coated_conductor_f(float eta, vec2 alpha, float thickness, vec2 alpha2, vec3 ceta, vec3 ck,
@@ -216,7 +223,7 @@ bool cv_coated_conductor_sample(float eta, vec2 alpha, float thickness, vec2 alp
             pdf += ps;
         }
         if (base_delta) {
-            f += cv_coated_conductor_base_delta(eta, thickness, ceta, ck, wo);
+            f += cv_coated_conductor_base_delta(eta, thickness, ceta, ck, wo, coat_delta);
             pdf += 1.0 - ps;
         }
         s = CvBsdfSample(mirror, f / mirror.z, pdf, CV_BSDF_REFLECTION | CV_BSDF_SPECULAR);

@@ -27,34 +27,39 @@ vec4 cv_texel_fetch(uint base, uint w, uint h, ivec2 xy, uint flags)
     return vec4(unpackHalf2x16(t.x), unpackHalf2x16(t.y));
 }
 
-// Bilinear lookup at (s, t) in [0,1]^2 (t = 0: top row) of one mip level.
-vec4 cv_image_level(CvTexture tx, uint level, vec2 st)
+// Bilinear lookups at (s, t) in [0,1]^2 (t = 0: top row) in up to two mip
+// levels, blended by the fraction of lod. Written as loops so that the
+// fetch is compiled once.
+vec4 cv_image_lookup(CvTexture tx, vec2 st, float lod)
 {
+    bool mip = (tx.flags & CV_TEXF_BILERP) == 0u && tx.levels > 1u && lod > 0.0;
+    lod = mip ? min(lod, float(tx.levels - 1u)) : 0.0;
+    uint l0 = uint(floor(lod));
+    float lf = lod - float(l0);
+    int n_levels = lf > 0.0 ? 2 : 1;
     uint base = tx.offset, w = max(tx.width, 1u), h = max(tx.height, 1u);
-    for (uint l = 0u; l < level; l++) {
+    for (uint l = 0u; l < l0; l++) {
         base += w * h;
         w = max(w / 2u, 1u);
         h = max(h / 2u, 1u);
     }
-    vec2 p = st * vec2(w, h) - 0.5;
-    vec2 f = p - floor(p);
-    ivec2 i = ivec2(floor(p));
-    vec4 a = cv_texel_fetch(base, w, h, i, tx.flags);
-    vec4 b = cv_texel_fetch(base, w, h, i + ivec2(1, 0), tx.flags);
-    vec4 c = cv_texel_fetch(base, w, h, i + ivec2(0, 1), tx.flags);
-    vec4 d = cv_texel_fetch(base, w, h, i + ivec2(1, 1), tx.flags);
-    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
-}
-
-vec4 cv_image_lookup(CvTexture tx, vec2 st, float lod)
-{
-    if ((tx.flags & CV_TEXF_BILERP) != 0u || tx.levels <= 1u || !(lod > 0.0))
-        return cv_image_level(tx, 0u, st);
-    lod = min(lod, float(tx.levels - 1u));
-    uint l0 = uint(floor(lod));
-    float f = lod - float(l0);
-    vec4 a = cv_image_level(tx, l0, st);
-    return f > 0.0 ? mix(a, cv_image_level(tx, min(l0 + 1u, tx.levels - 1u), st), f) : a;
+    vec4 result = vec4(0.0);
+    for (int level = 0; level < n_levels; level++) {
+        vec2 p = st * vec2(w, h) - 0.5;
+        vec2 f = p - floor(p);
+        ivec2 i = ivec2(floor(p));
+        vec4 sum = vec4(0.0);
+        for (int c = 0; c < 4; c++) {
+            ivec2 o = ivec2(c & 1, c >> 1);
+            vec2 wt = mix(1.0 - f, f, vec2(o));
+            sum += wt.x * wt.y * cv_texel_fetch(base, w, h, i + o, tx.flags);
+        }
+        result += (level == 0 ? 1.0 - lf : lf) * sum;
+        base += w * h;
+        w = max(w / 2u, 1u);
+        h = max(h / 2u, 1u);
+    }
+    return result;
 }
 
 vec2 cv_tex_st(CvTexture tx, vec2 uv)
@@ -73,21 +78,15 @@ vec4 cv_tex_finish(CvTexture tx, vec4 v)
     return v;
 }
 
-// Constants and images only.
-vec4 cv_tex_leaf(int id, vec4 fallback, vec2 uv, float lod)
+bool cv_tex_is_leaf(uint type) { return type == CV_TEX_IMAGE || type == CV_TEX_CONSTANT; }
+
+vec4 cv_tex_leaf(CvTexture tx, vec2 uv, float lod)
 {
-    if (id < 0)
-        return fallback;
-    CvTexture tx = textures[id];
     if (tx.type == CV_TEX_IMAGE)
         return cv_tex_finish(tx, cv_image_lookup(tx, cv_tex_st(tx, uv), lod));
-    if (tx.type == CV_TEX_CONSTANT)
-        return cv_tex_finish(tx, tx.value_a);
-    return fallback;
+    return cv_tex_finish(tx, tx.value_a);
 }
 
-// One composite level whose operands are leaves. `kind` selects how the
-// operand a/b values are combined.
 vec4 cv_tex_combine(CvTexture tx, vec4 a, vec4 b, float amount, vec2 uv)
 {
     if (tx.type == CV_TEX_SCALE)
@@ -99,26 +98,14 @@ vec4 cv_tex_combine(CvTexture tx, vec4 a, vec4 b, float amount, vec2 uv)
         int c = int(floor(m.x)) + int(floor(m.y));
         return cv_tex_finish(tx, (c & 1) == 0 ? a : b);
     }
-    if (tx.type == CV_TEX_CONSTANT)
-        return cv_tex_finish(tx, tx.value_a);
     return a;
-}
-
-vec4 cv_tex_level1(int id, vec4 fallback, vec2 uv, float lod)
-{
-    if (id < 0)
-        return fallback;
-    CvTexture tx = textures[id];
-    if (tx.type == CV_TEX_IMAGE || tx.type == CV_TEX_CONSTANT)
-        return cv_tex_leaf(id, fallback, uv, lod);
-    vec4 a = cv_tex_leaf(tx.tex_a, tx.value_a, uv, lod);
-    vec4 b = cv_tex_leaf(tx.tex_b, tx.value_b, uv, lod);
-    float amt = cv_tex_leaf(tx.amount_tex, vec4(tx.amount), uv, lod).x;
-    return cv_tex_combine(tx, a, b, amt, uv);
 }
 
 // Evaluates texture `id` at uv; `fallback` (the material's constant) when
 // id < 0. Float textures return their value in every channel.
+// The tree (root, its operands a/b/amount, their operands) is flattened into
+// 13 slots and evaluated bottom-up in one loop, so the image lookup is
+// compiled once: llvmpipe's compile time grows fast with inlined copies.
 vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
 {
     if (id < 0)
@@ -126,13 +113,53 @@ vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
 #ifdef CV_TEX_DISABLE
     return fallback;
 #endif
-    CvTexture tx = textures[id];
-    if (tx.type == CV_TEX_IMAGE || tx.type == CV_TEX_CONSTANT)
-        return cv_tex_leaf(id, fallback, uv, lod);
-    vec4 a = cv_tex_level1(tx.tex_a, tx.value_a, uv, lod);
-    vec4 b = cv_tex_level1(tx.tex_b, tx.value_b, uv, lod);
-    float amt = cv_tex_level1(tx.amount_tex, vec4(tx.amount), uv, lod).x;
-    return cv_tex_combine(tx, a, b, amt, uv);
+    int ids[13];
+    vec4 vals[13];
+    ids[0] = id;
+    vals[0] = fallback;
+    int n = 1;
+    CvTexture root = textures[id];
+    if (!cv_tex_is_leaf(root.type)) {
+        ids[1] = root.tex_a;
+        vals[1] = root.value_a;
+        ids[2] = root.tex_b;
+        vals[2] = root.value_b;
+        ids[3] = root.amount_tex;
+        vals[3] = vec4(root.amount);
+        n = 4;
+        for (int c = 1; c < 4; c++) {
+            int g = 4 + 3 * (c - 1);
+            ids[g] = ids[g + 1] = ids[g + 2] = -1;
+            vals[g] = vals[g + 1] = vals[g + 2] = vec4(0.0);
+            if (ids[c] >= 0) {
+                CvTexture t = textures[ids[c]];
+                if (!cv_tex_is_leaf(t.type)) {
+                    ids[g] = t.tex_a;
+                    vals[g] = t.value_a;
+                    ids[g + 1] = t.tex_b;
+                    vals[g + 1] = t.value_b;
+                    ids[g + 2] = t.amount_tex;
+                    vals[g + 2] = vec4(t.amount);
+                    n = 13;
+                }
+            }
+        }
+    }
+    for (int k = n - 1; k >= 0; k--) {
+        int t = ids[k];
+        if (t < 0)
+            continue;
+        CvTexture tx = textures[t];
+        if (cv_tex_is_leaf(tx.type)) {
+            vals[k] = cv_tex_leaf(tx, uv, lod);
+        } else if (k < 4) {
+            int f = k == 0 ? 1 : 4 + 3 * (k - 1);
+            vals[k] = cv_tex_combine(tx, vals[f], vals[f + 1], vals[f + 2].x, uv);
+        } else {
+            vals[k] = tx.value_a;  // nested deeper than two composites
+        }
+    }
+    return vals[0];
 }
 
 #endif

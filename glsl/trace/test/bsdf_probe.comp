@@ -1,7 +1,9 @@
 #version 450
 // glsl/trace/test/bsdf_probe.comp: drives the shipped BSDF code for the
 // tests in tests/trace/bsdf_*: samples it (mode 0) or evaluates f and pdf at
-// given directions (mode 1) for one material at one fixed shading point.
+// given directions (mode 1) for one material at one fixed shading point;
+// mode 2 resolves the material at probe_in[i] = (u, v, u_mix, u_alpha) and
+// returns (albedo, alpha pass) and (shading normal, type).
 layout(local_size_x = 64) in;
 
 #include "lib/index.glsl"
@@ -28,6 +30,14 @@ void main()
     if (i >= u_count)
         return;
     /* probe */
+    if (u_mode == 2u) {
+        vec4 q = probe_in[i];
+        CvShadingPoint spq = CvShadingPoint(vec3(0.0), u_ng, u_ns, u_dpdu, q.xy, true);
+        CvBsdf bq = cv_bsdf_at(u_material, spq, q.z);
+        probe_out[2u * i] = vec4(cv_bsdf_albedo(bq), cv_material_alpha_pass(u_material, q.xy, q.w) ? 1.0 : 0.0);
+        probe_out[2u * i + 1u] = vec4(bq.frame.z, float(bq.type));
+        return;
+    }
     CvShadingPoint sp = CvShadingPoint(vec3(0.0), u_ng, u_ns, u_dpdu, u_uv, dot(u_wo, u_ng) > 0.0);
     CvRng rng = cv_rng_init(u_seed, i);
     CvBsdf b = cv_bsdf_at(u_material, sp, cv_rng_next(rng));
