@@ -23,3 +23,10 @@ libcavalry_a_SOURCES += src/trace/envmap_dist.c src/trace/envmap_dist.h
 GLSL_FILES += glsl/shared/envmap.h glsl/trace/light/light.glsl glsl/trace/light/light_buffers.glsl \
 	glsl/trace/light/envmap.glsl
 # ---- end bsdf / light block ----
+
+# --- rlpath (reinforcement-learning path guiding) ---
+libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h
+GLSL_FILES += glsl/shared/rlpath.h \
+	glsl/trace/rlpath/guide.glsl glsl/trace/rlpath/shade.comp \
+	glsl/trace/rlpath/update.comp glsl/trace/rlpath/test_sample.comp
+# --- end of rlpath ---
