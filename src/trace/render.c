@@ -182,7 +182,11 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     defines[nd] = NULL;
     const char *prep[3][2] = {{"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                               {"PREPARE_MODE=2", NULL}};
+    bool rl = p->integrator == CV_RENDER_RLPATH;
     for (int s = 0; s < ST_COUNT; s++) {
+        /* rlpath's shade stage replaces this one, with the same defines */
+        if (s == ST_SHADE && rl)
+            continue;
         const char *const *d = defines;
         if (s >= ST_PREPARE0 && s <= ST_PREPARE2)
             d = prep[s - ST_PREPARE0];
@@ -195,7 +199,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
         }
     }
 
-    if (p->integrator == CV_RENDER_RLPATH) {
+    if (rl) {
         CvRlParams rp;
         if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
                               p->rl_mix, &rp, err) ||

@@ -15,7 +15,9 @@
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../common.glsl"
 #include "../sampler.glsl"
-#include "../shading.glsl"
+#include "../geometry.glsl"
+#include "../materials.glsl"
+#include "../lights.glsl"
 #include "guide.glsl"
 
 layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
@@ -37,7 +39,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     push_shadow = false;
     push_ray = false;
     CvHitItem h = hits[i];
-    CvRayItem r = rays_in[h.ray];
+    CvRayItem r = cv_ray_in(h.ray);
     uint pixel = uint(r.o.w);
     uint flags = uint(r.beta.w);
     uint depth = cv_depth();
@@ -105,11 +107,11 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 
 #ifdef CV_AOVS
     if (depth == 0u) {
-        aov[pixel].normal.xyz += sf.ns;
-        aov[pixel].albedo.w += h.t;
+        film[pixel].normal.xyz += sf.ns;
+        film[pixel].albedo.w += h.t;
     }
     if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
-        aov[pixel].albedo.rgb += cv_bsdf_albedo(b);
+        film[pixel].albedo.rgb += cv_bsdf_albedo(b);
         flags |= CV_RAYF_ALBEDO_DONE;
     }
 #endif
@@ -202,5 +204,5 @@ void main()
     if (push_shadow)
         shadows[slot.x] = s;
     if (push_ray)
-        rays_out[slot.y] = nr;
+        cv_ray_out(slot.y, nr);
 }

@@ -8,7 +8,8 @@
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../common.glsl"
-#include "../shading.glsl"
+#include "../geometry.glsl"
+#include "../lights.glsl"
 #define CV_RL_TABLE_WRITE
 #include "guide.glsl"
 
@@ -20,7 +21,7 @@ void main()
 #if UPDATE_MODE == 0
     if (i >= q.count[CV_Q_HITS])
         return;
-    uint pixel = uint(rays_in[hits[i].ray].o.w);
+    uint pixel = uint(cv_ray_in(hits[i].ray).o.w);
     uvec4 st = imageLoad(rl_path, int(pixel));
     if (st.z == CV_RL_NONE)
         return;
@@ -30,7 +31,7 @@ void main()
 #else
     if (i >= q.count[CV_Q_ESCAPED])
         return;
-    CvRayItem r = rays_in[escaped[i]];
+    CvRayItem r = cv_ray_in(cv_escaped_ray(i));
     uint pixel = uint(r.o.w);
     uvec4 st = imageLoad(rl_path, int(pixel));
     uint depth = cv_depth();
