@@ -13,10 +13,10 @@
  * are not tied to one normal, so both sides of a thin wall share a cell and
  * each learns its own hemisphere).
  *
- The table and the path state are buffers read through buffer textures
+ * The table and the path state are buffers read through buffer textures
  * bound as images (r32ui and rgba32ui), not as storage blocks: the shade
- * stage already uses the 16 storage blocks llvmpipe allows per shader, and
- * image atomics serve as well.
+ * stage already declares 14 of the 16 storage blocks Mesa allows per shader
+ * (more as the pipeline grows), and image atomics serve as well.
  *
  * Table (image unit CV_IMAGE_RL_Q, r32ui texels): entry e = cell * bins +
  * bin holds texel 2e = Q as float bits (learned incident radiance, scalar:

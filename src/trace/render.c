@@ -1,7 +1,8 @@
 /* render.c: see render.h. The stage order per sample and depth follows
  * pbrt-v4's wavefront integrator: generate camera rays; per depth: reset the
  * queues, intersect (closest), escaped rays, surface hits (emission, NEE,
- * BSDF sampling), shadow rays; the film accumulates in place. Queue counts
+ * BSDF sampling; with rlpath, its own shade stage and then its table
+ * update), shadow rays; the film accumulates in place. Queue counts
  * stay on the GPU: prepare.comp turns them into indirect dispatch
  * arguments. */
 #include <math.h>

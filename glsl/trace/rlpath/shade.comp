@@ -10,7 +10,8 @@
 //   Le(y, -w) + sum over bins b of Q(y, b) f(y, -w, w_b) |cos| 4 pi / bins,
 // and leaves it in the path state for update.comp: the table is only read
 // here, so one dispatch sees one table and the sampling and MIS densities of
-// a vertex agree. Keep in step with trace/shade.comp.
+// a vertex agree. Keep in step with trace/shade.comp (both take their
+// per-hit inputs from surface_inputs.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../common.glsl"
