@@ -11,13 +11,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "geometry.glsl"
 #include "materials.glsl"
 #include "lights.glsl"
-
-uint cv_film_pixel(uint i)
-{
-    uint cw = u_pass.frame.y;
-    uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
-    return px.y * u_pass.film.x + px.x;
-}
+#include "surface_inputs.glsl"
 
 // Shades hit i; what it queues comes back in the out parameters, so that
 // main() can take queue slots in uniform control flow.
@@ -47,24 +41,12 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         }
     }
 
-    uint fp = cv_film_pixel(pixel);
-    uint si = cv_sample_index();
-    uvec2 seed = u_pass.seed.xy;
-    uint smp = u_pass.seed.z;
-    uint pair = 2u + depth * CV_PAIRS_PER_BOUNCE;
-    vec2 u_bsdf = cv_sample_2d(fp, si, pair + CV_PAIR_BSDF_U2, seed, smp);
-    vec2 u_bc = cv_sample_2d(fp, si, pair + CV_PAIR_BSDF_UC, seed, smp);
-    vec2 u_light = cv_sample_2d(fp, si, pair + CV_PAIR_LIGHT_U2, seed, smp);
-    vec2 u_lc = cv_sample_2d(fp, si, pair + CV_PAIR_LIGHT_UC, seed, smp);
+    vec2 u_bsdf = cv_bounce_2d(pixel, CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(pixel, CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(pixel, CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(pixel, CV_PAIR_LIGHT_UC);
 
-    CvShadingPoint sp;
-    sp.p = sf.p;
-    sp.ng = sf.ng;
-    sp.ns = sf.ns;
-    sp.dpdu = sf.dpdu;
-    sp.uv = sf.uv;
-    sp.front = front;
-    CvBsdf b = cv_bsdf_at(sf.material, sp, u_bc.y);
+    CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
     bool delta = cv_bsdf_is_delta(b);
 
 #ifdef CV_AOVS

@@ -261,6 +261,9 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
         .integrator = integrator,
         .aovs = job->aovs != 0,
         .sampler = CV_SAMPLER_SOBOL,
+        .rl_grid = job->rlpath.has_grid ? job->rlpath.grid : 0,
+        .rl_directions = job->rlpath.has_directions ? job->rlpath.directions : 0,
+        .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : 0.0f,
     };
     struct cv_renderer *r = NULL;
     if (!cv_renderer_create(gpu, &s, &rp, &r, err))

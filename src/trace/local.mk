@@ -9,6 +9,7 @@ GLSL_FILES += \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
 	glsl/trace/geometry.glsl glsl/trace/tracing.glsl glsl/trace/mesh_buffers.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
+	glsl/trace/surface_inputs.glsl \
 	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
 	glsl/trace/resolve.comp glsl/trace/test/sampler_probe.comp
@@ -23,3 +24,10 @@ libcavalry_a_SOURCES += src/trace/envmap_dist.c src/trace/envmap_dist.h
 GLSL_FILES += glsl/shared/envmap.h glsl/trace/light/light.glsl glsl/trace/light/light_buffers.glsl \
 	glsl/trace/light/envmap.glsl
 # ---- end bsdf / light block ----
+
+# --- rlpath (reinforcement-learning path guiding) ---
+libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h
+GLSL_FILES += glsl/shared/rlpath.h \
+	glsl/trace/rlpath/guide.glsl glsl/trace/rlpath/shade.comp \
+	glsl/trace/rlpath/update.comp glsl/trace/rlpath/test_sample.comp
+# --- end of rlpath ---

@@ -1,7 +1,8 @@
 /* render.c: see render.h. The stage order per sample and depth follows
  * pbrt-v4's wavefront integrator: generate camera rays; per depth: reset the
  * queues, intersect (closest), escaped rays, surface hits (emission, NEE,
- * BSDF sampling), shadow rays; the film accumulates in place. Queue counts
+ * BSDF sampling; with rlpath, its own shade stage and then its table
+ * update), shadow rays; the film accumulates in place. Queue counts
  * stay on the GPU: prepare.comp turns them into indirect dispatch
  * arguments. */
 #include <math.h>
@@ -16,6 +17,7 @@
 #include "gpu/program.h"
 #include "trace/filter_table.h"
 #include "trace/render.h"
+#include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 
 enum stage {
@@ -45,6 +47,7 @@ struct cv_renderer {
     GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
+    struct cv_rlpath *rl;          /* CV_RENDER_RLPATH, else NULL */
 };
 
 static const char *const stage_files[ST_COUNT] = {
@@ -137,9 +140,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                         const struct cv_render_params *p, struct cv_renderer **out,
                         struct cv_error *err)
 {
-    if (p->integrator == CV_RENDER_RLPATH)
-        return cv_fail(err, "integrator \"rlpath\" is not implemented yet; use \"path\"");
-    if (p->integrator != CV_RENDER_PATH)
+    if (p->integrator != CV_RENDER_PATH && p->integrator != CV_RENDER_RLPATH)
         return cv_fail(err, "unknown integrator %d", p->integrator);
     if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);
@@ -182,7 +183,11 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     defines[nd] = NULL;
     const char *prep[3][2] = {{"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                               {"PREPARE_MODE=2", NULL}};
+    bool rl = p->integrator == CV_RENDER_RLPATH;
     for (int s = 0; s < ST_COUNT; s++) {
+        /* rlpath's shade stage replaces this one, with the same defines */
+        if (s == ST_SHADE && rl)
+            continue;
         const char *const *d = defines;
         if (s >= ST_PREPARE0 && s <= ST_PREPARE2)
             d = prep[s - ST_PREPARE0];
@@ -193,6 +198,17 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
             cv_renderer_destroy(&r);
             return false;
         }
+    }
+
+    if (rl) {
+        CvRlParams rp;
+        if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
+                              p->rl_mix, &rp, err) ||
+            !cv_rlpath_create(gpu, &rp, r->n_pixels, defines, &r->rl, err)) {
+            cv_renderer_destroy(&r);
+            return false;
+        }
+        r->prog[ST_SHADE] = *cv_rlpath_shade_program(r->rl);
     }
 
     size_t n = r->n_pixels;
@@ -224,6 +240,8 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->film, CV_BIND_FILM);
     cv_buffer_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
+    if (r->rl)
+        cv_rlpath_bind(r->rl);
 }
 
 static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
@@ -269,6 +287,8 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
             if (r->has_env)
                 dispatch_indirect(&r->prog[ST_ESCAPED], CV_ARGS_ESCAPED);
             dispatch_indirect(&r->prog[ST_SHADE], CV_ARGS_HITS);
+            if (r->rl)
+                cv_rlpath_update(r->rl);
             dispatch_one(&r->prog[ST_PREPARE2]);
             dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
         }
@@ -374,6 +394,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_scene_gpu_release(&r->scene);
+    cv_rlpath_destroy(&r->rl);
     free(r);
     *rp = NULL;
 }

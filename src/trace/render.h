@@ -16,7 +16,7 @@
 #include "scene/scene.h"
 
 #define CV_RENDER_PATH 0
-#define CV_RENDER_RLPATH 1   /* not implemented yet: rejected */
+#define CV_RENDER_RLPATH 1   /* guided by a learned Q-table: src/trace/rlpath.h */
 
 struct cv_render_params {
     uint32_t width, height;      /* film resolution [pixels]; 0: the scene's */
@@ -25,6 +25,11 @@ struct cv_render_params {
     int integrator;              /* CV_INTEGRATOR_* */
     bool aovs;                   /* keep albedo, normal and depth per pixel */
     enum { CV_SAMPLER_SOBOL, CV_SAMPLER_INDEPENDENT } sampler;
+    /* rlpath only (0, or a mix <= 0: the default, see trace/rlpath.h):
+     * cells along the scene's longest axis, direction bins per cell, share
+     * of guided sampling in (0, 1]. */
+    uint32_t rl_grid, rl_directions;
+    float rl_mix;
 };
 
 struct cv_renderer;

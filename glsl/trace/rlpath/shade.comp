@@ -1,0 +1,191 @@
+#version 450
+// glsl/trace/rlpath/shade.comp: the surface stage of the rlpath integrator:
+// trace/shade.comp (emission, AOVs, next-event estimation, bounce with
+// Russian roulette) with the bounce direction drawn from the one-sample
+// mixture of the cell's learned distribution (weight m) and the BSDF
+// (1 - m), whose exact density divides the throughput and enters the MIS
+// weights against light sampling, so the estimator is unbiased for any
+// table. It also computes the temporal-difference target for the bounce that
+// led here,
+//   Le(y, -w) + sum over bins b of Q(y, b) f(y, -w, w_b) |cos| 4 pi / bins,
+// and leaves it in the path state for update.comp: the table is only read
+// here, so one dispatch sees one table and the sampling and MIS densities of
+// a vertex agree. Keep in step with trace/shade.comp (both take their
+// per-hit inputs from surface_inputs.glsl).
+#include "shared/trace.h"
+layout(local_size_x = CV_TRACE_GROUP) in;
+#include "../common.glsl"
+#include "../sampler.glsl"
+#include "../geometry.glsl"
+#include "../materials.glsl"
+#include "../lights.glsl"
+#include "../surface_inputs.glsl"
+#include "guide.glsl"
+
+layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
+
+float cv_mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
+
+// Shades hit i; what it queues comes back in the out parameters, so that
+// main() can take queue slots in uniform control flow (as trace/shade.comp).
+void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ray,
+              out CvRayItem nr)
+{
+    push_shadow = false;
+    push_ray = false;
+    CvHitItem h = hits[i];
+    CvRayItem r = cv_ray_in(h.ray);
+    uint pixel = uint(r.o.w);
+    uint flags = uint(r.beta.w);
+    uint depth = cv_depth();
+    vec3 beta = r.beta.rgb;
+    vec3 wo = -r.d.xyz;
+    CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+    bool front = dot(wo, sf.ng) > 0.0;
+
+    // the bounce that led here, if it is to learn from this hit
+    uvec4 st = imageLoad(rl_path, int(pixel));
+    uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
+    uvec4 nst = uvec4(CV_RL_NONE, 0u, CV_RL_NONE, 0u);
+    float target = 0.0;
+
+    int light = cv_tri_light[h.prim];
+    if (light >= 0) {
+        vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
+        target += cv_mean3(Le);
+        if (cv_max3(Le) > 0.0) {
+            float w = 1.0;
+            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+                w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
+            cv_film_add(pixel, beta * Le * w);
+        }
+    }
+
+    vec2 u_bsdf = cv_bounce_2d(pixel, CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(pixel, CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(pixel, CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(pixel, CV_PAIR_LIGHT_UC);
+
+    CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+    bool delta = cv_bsdf_is_delta(b);
+
+    uint cell = cv_rl_cell(sf.p);
+    uint nb = cv_rl_bins(), base = cell * nb;
+    // the cell's sum, and the reflected-radiance estimate for the target
+    float qsum = 0.0, reflected = 0.0;
+    bool need_target = learn != CV_RL_NONE && !delta;
+    for (uint k = 0u; k < nb; k++) {
+        float qk = cv_rl_q(base + k);
+        qsum += qk;
+        if (need_target && qk > 0.0) {
+            vec3 wk = cv_rl_bin_dir(k, vec2(0.5));
+            reflected += qk * cv_mean3(cv_bsdf_f(b, wo, wk)) * abs(dot(wk, sf.ns));
+        }
+    }
+    target += reflected * (4.0 * CV_PI / float(nb));
+    float m = delta ? 0.0 : cv_rl_mix_weight();
+    // the guiding weights use the normal on the side the path came from
+    vec3 gn = dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns;
+    float wsum = m > 0.0 ? cv_rl_total(cell, qsum, gn) : 1.0;
+
+#ifdef CV_AOVS
+    if (depth == 0u) {
+        film[pixel].normal.xyz += sf.ns;
+        film[pixel].albedo.w += h.t;
+    }
+    if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
+        film[pixel].albedo.rgb += cv_bsdf_albedo(b);
+        flags |= CV_RAYF_ALBEDO_DONE;
+    }
+#endif
+    // a delta BSDF learns from its sampled direction below
+    if (learn != CV_RL_NONE && (!delta || depth >= cv_max_depth()))
+        nst.zw = uvec2(learn, floatBitsToUint(target));
+    imageStore(rl_path, int(pixel), nst);
+    if (depth >= cv_max_depth())
+        return;
+
+    if (!delta && u_pass.misc.z > 0u) {
+        CvLightSample ls;
+        if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
+            vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
+            if (cv_max3(f) > 0.0) {
+                float pm = cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, wsum, gn, ls.wi) : 0.0,
+                                         cv_bsdf_pdf(b, wo, ls.wi));
+                float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
+                vec3 Ld = beta * f * ls.L * (w / ls.pdf);
+                if (cv_finite3(Ld)) {
+                    push_shadow = true;
+                    s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
+                               ls.dist * (1.0 - 1e-4));
+                    s.d = vec4(ls.wi, float(pixel));
+                    s.L = vec4(Ld, 0.0);
+                }
+            }
+        }
+    }
+
+    // one-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives it
+    CvBsdfSample bs;
+    float pdf;
+    bool specular;
+    if (m > 0.0 && u_bsdf.x < m) {
+        float pq;
+        cv_rl_sample(cell, qsum, wsum, gn, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
+        bs.f = cv_bsdf_f(b, wo, bs.wi);
+        // re-evaluated, so the density is the one the MIS weights see
+        pdf = cv_rl_mix_pdf(m, cv_rl_pdf(cell, qsum, wsum, gn, bs.wi), cv_bsdf_pdf(b, wo, bs.wi));
+        specular = false;
+    } else {
+        vec2 u = m > 0.0 ? vec2(min((u_bsdf.x - m) / (1.0 - m), 0.99999994), u_bsdf.y) : u_bsdf;
+        if (!cv_bsdf_sample(b, wo, u_bc.x, u, bs) || bs.pdf <= 0.0)
+            return;
+        specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+        // a delta lobe is chosen with probability (1 - m) * bs.pdf
+        pdf = specular ? (1.0 - m) * bs.pdf
+                       : cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, wsum, gn, bs.wi) : 0.0, bs.pdf);
+    }
+    if (!(pdf > 0.0))
+        return;
+    if (delta && learn != CV_RL_NONE) {
+        // one-sample estimate of the reflected radiance through the delta lobe
+        float qd = cv_rl_q(base + cv_rl_bin(bs.wi));
+        float t = target + qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / bs.pdf;
+        nst.zw = uvec2(learn, floatBitsToUint(t));
+        imageStore(rl_path, int(pixel), nst);
+    }
+    beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
+    if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
+        return;
+    if (depth >= 3u) {
+        float mb = cv_max3(beta);
+        if (mb < 1.0) {
+            float qd = max(0.0, 1.0 - mb);
+            if (u_lc.y < qd)
+                return;
+            beta /= 1.0 - qd;
+        }
+    }
+    flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
+    push_ray = true;
+    nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
+    nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
+    nr.beta = vec4(beta, float(flags));
+    nst.xy = uvec2(base + cv_rl_bin(bs.wi), depth);
+    imageStore(rl_path, int(pixel), nst);
+}
+
+void main()
+{
+    uint i = cv_global_index();
+    bool push_shadow = false, push_ray = false;
+    CvShadowItem s;
+    CvRayItem nr;
+    if (i < q.count[CV_Q_HITS])
+        cv_shade(i, push_shadow, s, push_ray, nr);
+    uvec2 slot = cv_queue_slots(push_shadow, CV_Q_SHADOW, push_ray, CV_Q_RAYS_OUT);
+    if (push_shadow)
+        shadows[slot.x] = s;
+    if (push_ray)
+        cv_ray_out(slot.y, nr);
+}

@@ -1,0 +1,38 @@
+// glsl/trace/surface_inputs.glsl: what the shade stages (trace/shade.comp,
+// trace/rlpath/shade.comp) build the same way at a hit: the film pixel that
+// keys the sampler, a bounce's sample values, the shading point the BSDF
+// takes. Shared so the integrators consume the same sample dimensions and
+// stay comparable pixel for pixel. Include after sampler.glsl, geometry.glsl
+// and materials.glsl.
+#ifndef CV_TRACE_SURFACE_INPUTS_GLSL
+#define CV_TRACE_SURFACE_INPUTS_GLSL
+
+// The full film's pixel index of crop pixel i.
+uint cv_film_pixel(uint i)
+{
+    uint cw = u_pass.frame.y;
+    uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
+    return px.y * u_pass.film.x + px.x;
+}
+
+// Dimension pair `which` (CV_PAIR_*) of this depth's bounce for the path of
+// crop pixel `pixel`.
+vec2 cv_bounce_2d(uint pixel, uint which)
+{
+    return cv_sample_2d(cv_film_pixel(pixel), cv_sample_index(),
+                        2u + cv_depth() * CV_PAIRS_PER_BOUNCE + which, u_pass.seed.xy, u_pass.seed.z);
+}
+
+CvShadingPoint cv_shading_point(CvSurface sf, bool front)
+{
+    CvShadingPoint sp;
+    sp.p = sf.p;
+    sp.ng = sf.ng;
+    sp.ns = sf.ns;
+    sp.dpdu = sf.dpdu;
+    sp.uv = sf.uv;
+    sp.front = front;
+    return sp;
+}
+
+#endif

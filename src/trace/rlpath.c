@@ -1,0 +1,215 @@
+/* rlpath.c: see rlpath.h. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <epoxy/gl.h>
+
+#include "base/mem.h"
+#include "glsl/shared/trace.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "trace/rlpath.h"
+
+struct cv_rlpath {
+    CvRlParams params;
+    uint32_t n_pixels;
+    struct cv_program shade, update_hits, update_escaped;  /* copies (see render.c) */
+    GLuint ubo, table, path;
+    GLuint table_tex, path_tex;   /* buffer textures over table and path */
+};
+
+bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
+                      uint32_t directions, float mix, CvRlParams *out, struct cv_error *err)
+{
+    if (grid == 0)
+        grid = CV_RL_DEFAULT_GRID;
+    if (directions == 0)
+        directions = CV_RL_DEFAULT_DIRECTIONS;
+    if (!(mix > 0))
+        mix = CV_RL_DEFAULT_MIX;
+    if (mix > 1 || isnan(mix))
+        return cv_fail(err, "rlpath mix %g is not in (0, 1]", (double)mix);
+    if (grid > 256)
+        return cv_fail(err, "rlpath grid %u is above 256 cells per axis", grid);
+    if (directions > CV_RL_MAX_BINS)
+        return cv_fail(err, "rlpath directions %u is above %u", directions, CV_RL_MAX_BINS);
+    uint32_t nz = (uint32_t)lround(sqrt(directions / 2.0));
+    if (nz < 1)
+        nz = 1;
+    uint32_t np = (uint32_t)lround((double)directions / nz);
+    if (np < 1)
+        np = 1;
+    if (nz * np > CV_RL_MAX_BINS)
+        np = CV_RL_MAX_BINS / nz;
+
+    double lo[3], ext[3], longest = 0;
+    for (int a = 0; a < 3; a++) {
+        double l = bmin[a], h = bmax[a];
+        if (!isfinite(l) || !isfinite(h) || h < l)
+            l = h = 0;                 /* empty scene: one cell does */
+        ext[a] = h - l;
+        lo[a] = l;
+        if (ext[a] > longest)
+            longest = ext[a];
+    }
+    if (longest <= 0)
+        longest = 1;
+    /* pad so that points on the bounds fall inside */
+    double pad = 1e-3 * longest;
+    uint32_t dims[3];
+    float scale[3];
+    for (int a = 0; a < 3; a++) {
+        double e = ext[a] + 2 * pad;
+        lo[a] -= pad;
+        dims[a] = (uint32_t)ceil(grid * ext[a] / longest - 1e-9);
+        if (dims[a] < 1)
+            dims[a] = 1;
+        if (dims[a] > grid)
+            dims[a] = grid;
+        scale[a] = (float)(dims[a] / e);
+    }
+    memset(out, 0, sizeof(*out));
+    out->grid_min = (cv_vec4){(float)lo[0], (float)lo[1], (float)lo[2], mix};
+    out->grid_scale = (cv_vec4){scale[0], scale[1], scale[2], CV_RL_FLOOR};
+    out->dims = (cv_uvec4){dims[0], dims[1], dims[2], dims[0] * dims[1] * dims[2]};
+    out->dirs = (cv_uvec4){nz, np, nz * np, 0};
+    if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30))
+        return cv_fail(err, "rlpath table of %u cells x %u directions is above 1 GiB",
+                       out->dims.w, out->dirs.z);
+    return true;
+}
+
+uint64_t cv_rlpath_table_bytes(const CvRlParams *p)
+{
+    return (uint64_t)p->dims.w * p->dirs.z * 2 * sizeof(uint32_t);
+}
+
+GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
+{
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max);
+    if (max > 0 && texels > (size_t)max) {
+        cv_fail(err, "%zu texels exceed this GPU's buffer texture limit of %d", texels, max);
+        return 0;
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &tex);
+    glTextureBuffer(tex, format, buf);
+    if (!cv_gl_check(err, "buffer texture of %zu texels", texels)) {
+        glDeleteTextures(1, &tex);
+        return 0;
+    }
+    return tex;
+}
+
+bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
+                      const char *const *defines, struct cv_rlpath **out,
+                      struct cv_error *err)
+{
+    struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
+    rl->params = *layout;
+    rl->n_pixels = n_pixels;
+    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
+    if (p)
+        rl->shade = *p;
+    const char *d0[] = {"UPDATE_MODE=0", NULL}, *d1[] = {"UPDATE_MODE=1", NULL};
+    if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d0, err)))
+        rl->update_hits = *p;
+    if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d1, err)))
+        rl->update_escaped = *p;
+    if (!p) {
+        cv_rlpath_destroy(&rl);
+        return false;
+    }
+    /* every path starts with nothing to learn: all state words CV_RL_NONE */
+    size_t path_bytes = (size_t)(n_pixels ? n_pixels : 1) * 4 * sizeof(uint32_t);
+    void *none = cv_xmalloc(path_bytes);
+    memset(none, 0xff, path_bytes);
+    rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);
+    if (rl->ubo)
+        rl->table = cv_buffer_create((size_t)cv_rlpath_table_bytes(layout), NULL,
+                                     "rlpath Q-table", err);
+    if (rl->table)
+        rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
+    free(none);
+    size_t entries = (size_t)layout->dims.w * layout->dirs.z;
+    if (rl->path)
+        rl->table_tex = cv_rlpath_buffer_texture(rl->table, GL_R32UI, 2 * entries, err);
+    if (rl->table_tex)
+        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
+    if (!rl->path_tex) {
+        cv_error_prefix(err, "rlpath table of %u cells x %u directions: ", layout->dims.w,
+                        layout->dirs.z);
+        cv_rlpath_destroy(&rl);
+        return false;
+    }
+    *out = rl;
+    return true;
+}
+
+const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl)
+{
+    return &rl->shade;
+}
+
+void cv_rlpath_bind(const struct cv_rlpath *rl)
+{
+    glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
+    glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32UI);
+}
+
+static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
+{
+    glUseProgram(prog->id);
+    glDispatchComputeIndirect((GLintptr)(CV_ARGS_OFFSET + 16 * slot));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void cv_rlpath_update(const struct cv_rlpath *rl)
+{
+    /* the shade stage's image writes (path state) */
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    dispatch_indirect(&rl->update_hits, CV_ARGS_HITS);
+    dispatch_indirect(&rl->update_escaped, CV_ARGS_ESCAPED);
+}
+
+bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
+                          struct cv_error *err)
+{
+    size_t n = (size_t)rl->params.dims.w * rl->params.dirs.z;
+    uint32_t *raw = cv_xmalloc(n * 2 * sizeof(uint32_t));
+    bool ok = cv_buffer_read(rl->table, 0, n * 2 * sizeof(uint32_t), raw, err);
+    for (size_t i = 0; ok && i < n; i++) {
+        if (q)
+            memcpy(&q[i], &raw[2 * i], sizeof(float));
+        if (visits)
+            visits[i] = raw[2 * i + 1];
+    }
+    free(raw);
+    return ok;
+}
+
+const CvRlParams *cv_rlpath_params(const struct cv_rlpath *rl)
+{
+    return &rl->params;
+}
+
+void cv_rlpath_destroy(struct cv_rlpath **rlp)
+{
+    if (!rlp || !*rlp)
+        return;
+    struct cv_rlpath *rl = *rlp;
+    if (rl->table_tex)
+        glDeleteTextures(1, &rl->table_tex);
+    if (rl->path_tex)
+        glDeleteTextures(1, &rl->path_tex);
+    cv_buffer_destroy(&rl->ubo);
+    cv_buffer_destroy(&rl->table);
+    cv_buffer_destroy(&rl->path);
+    free(rl);
+    *rlp = NULL;
+}

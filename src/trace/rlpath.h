@@ -1,0 +1,72 @@
+/* rlpath.h: the host side of the rlpath integrator (reinforcement-learning
+ * path guiding after Dahm and Keller 2017): the Q-table over a grid of the
+ * scene bounds times equal-area direction bins (layout:
+ * glsl/shared/rlpath.h), its programs (glsl/trace/rlpath: shade.comp
+ * replaces the path tracer's shade stage, update.comp runs after it), and
+ * the table layout from the options. The renderer (render.c) owns one when
+ * cv_render_params.integrator is CV_RENDER_RLPATH. The table lives as
+ * long as the renderer, so every pass keeps learning from the ones before. */
+#ifndef CV_TRACE_RLPATH_H
+#define CV_TRACE_RLPATH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <epoxy/gl.h>
+
+#include "base/error.h"
+#include "glsl/shared/rlpath.h"
+#include "gpu/context.h"
+#include "gpu/program.h"
+
+/* Fills the uniform block for a grid over the box [bmin, bmax] (world
+ * units) with `grid` cells along its longest axis (the other axes get
+ * proportionally many, at least 1), `directions` bins on the sphere (split
+ * into round(sqrt(directions / 2)) z bands of twice as many phi sectors,
+ * so the actual count may differ a little: see dirs.z), guiding weight
+ * `mix`. 0 selects the defaults CV_RL_DEFAULT_*, as does a mix <= 0.
+ * Fails on a mix above 1, more than CV_RL_MAX_BINS bins, a grid above 256
+ * or a table above 1 GiB. */
+bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
+                      uint32_t directions, float mix, CvRlParams *out, struct cv_error *err);
+
+/* A buffer texture over buf (texels of `format`, e.g. GL_R32UI), for binding
+ * the table or path state as an image; 0 with err set when the GPU's buffer
+ * texture limit is too small. Delete with glDeleteTextures. */
+GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err);
+
+/* Bytes of the Q-table of a layout. */
+uint64_t cv_rlpath_table_bytes(const CvRlParams *p);
+
+struct cv_rlpath;
+
+/* Creates the table (zero: every cell uniform until it learns) and the
+ * per-pixel path state for n_pixels, and compiles the programs with the
+ * renderer's `defines` (NULL-terminated, may be NULL). */
+bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
+                      const char *const *defines, struct cv_rlpath **out,
+                      struct cv_error *err);
+
+/* The shade stage to run instead of trace/shade.comp. */
+const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl);
+
+/* Binds the table, path state and uniform block (after the renderer's own
+ * bindings; the renderer's queue buffer must be the bound
+ * GL_DISPATCH_INDIRECT_BUFFER). */
+void cv_rlpath_bind(const struct cv_rlpath *rl);
+
+/* Queues the updates of one depth: run right after the shade stage, while
+ * that depth's rays, hits and escaped queue are still bound. */
+void cv_rlpath_update(const struct cv_rlpath *rl);
+
+/* Copies the table: q and visits hold cells * bins values each (either may
+ * be NULL). For tests and reports; waits for the GPU. */
+bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
+                          struct cv_error *err);
+
+const CvRlParams *cv_rlpath_params(const struct cv_rlpath *rl);
+
+/* Accepts NULL; clears the pointer. */
+void cv_rlpath_destroy(struct cv_rlpath **rl);
+
+#endif

@@ -1,0 +1,307 @@
+/* rlpath_sample_test.c: the learned directional distribution of the rlpath
+ * Q-table (glsl/trace/rlpath/guide.glsl) on the GPU against a host reference:
+ * the table layout from the options; a cell filled with a known random
+ * pattern (some bins 0, so the floor matters): directions drawn from it
+ * follow its pdf (chi-square over a histogram twice as fine as the bins in
+ * each coordinate, so uniformity within a bin is tested too; p >= 0.01), the
+ * pdf reported at sampling equals the one evaluated and the host's, and the
+ * pdf integrates to 1 over the sphere; the same for the one-sample mixture
+ * with a Lambertian lobe, whose density must be m pQ + (1 - m) pBSDF. */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "gpu/program.h"
+#include "tests/gpu/gpu_test_util.h"
+#include "tests/trace/rlpath_stats.h"
+#include "trace/rlpath.h"
+
+#define PI 3.14159265358979323846
+
+static const double normal[3] = {0.3, -0.5, 0.812404};
+
+/* Host reference of the bin map and the learned pdf (guide.glsl). */
+static uint32_t ref_bin(const CvRlParams *p, const double w[3])
+{
+    uint32_t nz = p->dirs.x, np = p->dirs.y;
+    double fz = (w[2] + 1) * 0.5 * nz, u = (atan2(w[1], w[0]) + PI) / (2 * PI);
+    uint32_t iz = fz <= 0 ? 0 : (uint32_t)fz, ip = u <= 0 ? 0 : (uint32_t)(u * np);
+    if (iz >= nz) iz = nz - 1;
+    if (ip >= np) ip = np - 1;
+    return iz * np + ip;
+}
+
+static void bin_centre(const CvRlParams *p, uint32_t bin, double w[3])
+{
+    uint32_t np = p->dirs.y;
+    double z = -1 + 2 * ((bin / np) + 0.5) / p->dirs.x;
+    double phi = -PI + 2 * PI * ((bin % np) + 0.5) / np, r = sqrt(fmax(0, 1 - z * z));
+    w[0] = r * cos(phi), w[1] = r * sin(phi), w[2] = z;
+}
+
+static double ref_weight(const CvRlParams *p, const float *q, uint32_t bin, double e)
+{
+    double c[3];
+    bin_centre(p, bin, c);
+    double cs = c[0] * normal[0] + c[1] * normal[1] + c[2] * normal[2];
+    return (q[bin] + e) * (fmax(cs, 0) + CV_RL_COS_FLOOR);
+}
+
+static double ref_prob(const CvRlParams *p, const float *q, uint32_t bin)
+{
+    double s = 0, n = p->dirs.z;
+    for (uint32_t b = 0; b < p->dirs.z; b++)
+        s += q[b];
+    double e = fmax(p->grid_scale.w * s / n, 1e-20), total = 0;
+    for (uint32_t b = 0; b < p->dirs.z; b++)
+        total += ref_weight(p, q, b, e);
+    return ref_weight(p, q, bin, e) / total;
+}
+
+static double ref_pdf(const CvRlParams *p, const float *q, const double w[3])
+{
+    return ref_prob(p, q, ref_bin(p, w)) * p->dirs.z / (4 * PI);
+}
+
+static double lambert(const double w[3])
+{
+    double c = w[0] * normal[0] + w[1] * normal[1] + w[2] * normal[2];
+    return c > 0 ? c / PI : 0;
+}
+
+/* Histogram cell of w on an equal-area grid of hz x hp cells. */
+static size_t hist_cell(const double w[3], uint32_t hz, uint32_t hp)
+{
+    double fz = (w[2] + 1) * 0.5 * hz, u = (atan2(w[1], w[0]) + PI) / (2 * PI);
+    uint32_t iz = fz <= 0 ? 0 : (uint32_t)fz, ip = u <= 0 ? 0 : (uint32_t)(u * hp);
+    if (iz >= hz) iz = hz - 1;
+    if (ip >= hp) ip = hp - 1;
+    return (size_t)iz * hp + ip;
+}
+
+static void grid_dir(uint32_t iz, uint32_t ip, double fz, double fp, uint32_t hz, uint32_t hp,
+                     double w[3])
+{
+    double z = -1 + 2 * (iz + fz) / hz, phi = -PI + 2 * PI * (ip + fp) / hp;
+    double r = sqrt(fmax(0, 1 - z * z));
+    w[0] = r * cos(phi);
+    w[1] = r * sin(phi);
+    w[2] = z;
+}
+
+struct rig {
+    struct cv_gpu *gpu;
+    CvRlParams params;
+    GLuint ubo, table, out, in, table_tex;
+};
+
+/* Runs TEST_MODE mode over n items; out gets 8 floats per item. */
+static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
+                struct cv_error *err)
+{
+    char def[32];
+    snprintf(def, sizeof(def), "TEST_MODE=%d", mode);
+    const char *defines[] = {def, NULL};
+    struct cv_program *prog = cv_program_get(g->gpu, "trace/rlpath/test_sample.comp", defines, err);
+    if (!prog)
+        return false;
+    glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
+    glBindImageTexture(CV_IMAGE_RL_Q, g->table_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    cv_buffer_bind(g->out, CV_BIND_STAGE0 + 12);
+    cv_buffer_bind(g->in, CV_BIND_STAGE0 + 13);
+    glUseProgram(prog->id);
+    glUniform1ui(0, n);
+    glUniform1ui(1, seed);
+    cv_program_dispatch_1d(prog, n);
+    return cv_buffer_read(g->out, 0, (size_t)n * 8 * sizeof(float), out, err) &&
+           cv_gl_check(err, "test_sample mode %d", mode);
+}
+
+static void set_table(struct rig *g, const float *q, struct cv_error *err)
+{
+    uint32_t n = g->params.dirs.z;
+    uint32_t *raw = calloc(2 * n, sizeof(uint32_t));
+    for (uint32_t b = 0; b < n; b++)
+        memcpy(&raw[2 * b], &q[b], sizeof(float));
+    tap_ok(cv_buffer_upload(g->table, 0, 2 * n * sizeof(uint32_t), raw, err), "table upload");
+    free(raw);
+}
+
+static void test_layout(void)
+{
+    struct cv_error err = {{0}};
+    CvRlParams p;
+    const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 0.5f};
+    tap_ok(cv_rlpath_layout(lo, hi, 0, 0, 0, &p, &err), "layout with defaults: %s", err.msg);
+    const uint32_t g = CV_RL_DEFAULT_GRID;
+    tap_ok(p.dims.x == g && p.dims.y == g / 2 && p.dims.z == g / 4 && p.dims.w == g * g * g / 8,
+           "default grid %u along the longest axis, proportional elsewhere (%u %u %u)", g,
+           p.dims.x, p.dims.y, p.dims.z);
+    tap_ok(p.dirs.x == 8 && p.dirs.y == 16 && p.dirs.z == 128, "128 directions: 8 x 16 (%u x %u)",
+           p.dirs.x, p.dirs.y);
+    tap_ok(p.grid_min.w == CV_RL_DEFAULT_MIX, "default mix %g", p.grid_min.w);
+    tap_ok(p.grid_min.x < 0 && p.grid_min.x + p.dims.x / p.grid_scale.x > 2,
+           "grid covers the bounds with padding");
+    bool ok = cv_rlpath_layout(lo, hi, 4, 32, 0.25f, &p, &err);
+    tap_ok(ok && p.dirs.z == 32 && p.dims.x == 4 && p.grid_min.w == 0.25f,
+           "explicit options (%u x %u bins)", p.dirs.x, p.dirs.y);
+    tap_ok(!cv_rlpath_layout(lo, hi, 4, 32, 1.5f, &p, &err) && strstr(err.msg, "mix"),
+           "mix above 1 is an error: %s", err.msg);
+    tap_ok(!cv_rlpath_layout(lo, hi, 4, 5000, 0.5f, &p, &err) && strstr(err.msg, "directions"),
+           "too many directions is an error: %s", err.msg);
+    const float inf[3] = {INFINITY, INFINITY, INFINITY}, ninf[3] = {-INFINITY, -INFINITY, -INFINITY};
+    tap_ok(cv_rlpath_layout(inf, ninf, 8, 8, 0.5f, &p, &err) && p.dims.w == 1,
+           "empty bounds give one cell");
+}
+
+int main(void)
+{
+    test_layout();
+    struct rig g = {0};
+    g.gpu = test_gpu_open(CV_BACKEND_AUTO);
+    struct cv_error err = {{0}};
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const float m = 0.5f;
+    if (!tap_ok(cv_rlpath_layout(lo, hi, 1, 128, m, &g.params, &err), "layout: %s", err.msg))
+        return tap_done();
+    const uint32_t nb = g.params.dirs.z, N = 1u << 18;
+    const uint32_t HZ = 2 * g.params.dirs.x, HP = 2 * g.params.dirs.y, QZ = 256, QP = 512;
+    g.ubo = cv_buffer_create(sizeof(g.params), &g.params, "test rl params", &err);
+    g.table = cv_buffer_create(cv_rlpath_table_bytes(&g.params), NULL, "test rl table", &err);
+    g.out = cv_buffer_create((size_t)(N > QZ * QP ? N : QZ * QP) * 8 * sizeof(float), NULL,
+                             "test out", &err);
+    float *inq = calloc((size_t)QZ * QP * 4, sizeof(float));
+    for (uint32_t iz = 0; iz < QZ; iz++)
+        for (uint32_t ip = 0; ip < QP; ip++) {
+            double w[3];
+            grid_dir(iz, ip, 0.5, 0.5, QZ, QP, w);
+            float *v = inq + 4 * ((size_t)iz * QP + ip);
+            v[0] = (float)w[0], v[1] = (float)w[1], v[2] = (float)w[2];
+        }
+    g.in = cv_buffer_create((size_t)QZ * QP * 4 * sizeof(float), inq, "test in", &err);
+    if (g.table)
+        g.table_tex = cv_rlpath_buffer_texture(g.table, GL_R32UI, 2 * (size_t)g.params.dims.w * nb,
+                                               &err);
+    if (!tap_ok(g.ubo && g.table && g.out && g.in && g.table_tex, "buffers: %s", err.msg))
+        return tap_done();
+    float *out = malloc((size_t)(N > QZ * QP ? N : QZ * QP) * 8 * sizeof(float));
+
+    /* an empty cell follows the floored cosine alone */
+    float *q = calloc(nb, sizeof(float));
+    set_table(&g, q, &err);
+    if (tap_ok(run(&g, 0, 1024, 1, out, &err), "sample empty cell: %s", err.msg)) {
+        double worst = 0;
+        for (uint32_t i = 0; i < 1024; i++) {
+            double w[3] = {out[8 * i], out[8 * i + 1], out[8 * i + 2]};
+            double r = ref_pdf(&g.params, q, w);
+            worst = fmax(worst, fabs(out[8 * i + 4] - r) / r);
+        }
+        tap_ok(worst < 1e-4, "empty cell: pdf is the floored cosine's (worst relative error %g)",
+               worst);
+    }
+
+    /* a known pattern: a peaked random fill, a quarter of the bins zero */
+    uint32_t state = 2024;
+    for (uint32_t b = 0; b < nb; b++) {
+        state = state * 1664525u + 1013904223u;
+        double u = (state >> 8) / 16777216.0;
+        q[b] = (b % 4 == 1) ? 0.0f : (float)(u * u * u * 10);
+    }
+    q[37] = 40;   /* one bright bin */
+    set_table(&g, q, &err);
+
+    for (int mode = 0; mode <= 1; mode++) {
+        const char *what = mode ? "mixture" : "learned";
+        if (!tap_ok(run(&g, mode, N, 7 + mode, out, &err), "%s: sample %u: %s", what, N, err.msg))
+            continue;
+        double *obs = calloc((size_t)HZ * HP, sizeof(double));
+        double *exp_ = calloc((size_t)HZ * HP, sizeof(double));
+        uint32_t bad_pdf = 0, bad_ref = 0, bad_len = 0;
+        for (uint32_t i = 0; i < N; i++) {
+            const float *o = out + 8 * (size_t)i;
+            double w[3] = {o[0], o[1], o[2]};
+            double len = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+            if (fabs(len - 1) > 1e-4)
+                bad_len++;
+            obs[hist_cell(w, HZ, HP)] += 1;
+            double pq = ref_pdf(&g.params, q, w), pb = lambert(w);
+            if (mode == 0) {
+                /* sampling and evaluation agree except on a bin edge */
+                if (fabs(o[3] - o[4]) > 1e-4 * o[3])
+                    bad_pdf++;
+                if (fabs(o[4] - pq) > 1e-4 * pq)
+                    bad_ref++;
+            } else {
+                double mix = m * o[4] + (1 - m) * o[5];
+                if (fabs(o[3] - mix) > 1e-5 * mix)
+                    bad_pdf++;
+                if (fabs(o[4] - pq) > 1e-4 * pq || fabs(o[5] - pb) > 1e-4 * pb + 1e-6)
+                    bad_ref++;
+            }
+        }
+        tap_ok(bad_len == 0, "%s: directions are unit vectors (%u not)", what, bad_len);
+        if (mode == 0)
+            tap_ok(bad_pdf <= N / 1000, "learned: pdf at sampling equals pdf evaluated at w "
+                   "(%u of %u differ, edge cases allowed: %u)", bad_pdf, N, N / 1000);
+        else
+            tap_ok(bad_pdf == 0, "mixture: pdf equals m pQ + (1-m) pBSDF for every sample "
+                   "(%u differ)", bad_pdf);
+        tap_ok(bad_ref <= N / 1000, "%s: GPU pdfs equal the host reference (%u of %u differ)",
+               what, bad_ref, N);
+        /* expected counts: exact for the piecewise-constant part, 8x8
+         * midpoint quadrature per cell for the Lambertian lobe */
+        for (uint32_t iz = 0; iz < HZ; iz++)
+            for (uint32_t ip = 0; ip < HP; ip++) {
+                double acc = 0;
+                for (int a = 0; a < 8; a++)
+                    for (int b = 0; b < 8; b++) {
+                        double w[3];
+                        grid_dir(iz, ip, (a + 0.5) / 8, (b + 0.5) / 8, HZ, HP, w);
+                        double p = ref_pdf(&g.params, q, w);
+                        if (mode)
+                            p = m * p + (1 - m) * lambert(w);
+                        acc += p;
+                    }
+                exp_[(size_t)iz * HP + ip] = N * acc / 64 * (4 * PI / (HZ * HP));
+            }
+        int dof = 0;
+        double pv = rl_chi2_pvalue(obs, exp_, (size_t)HZ * HP, &dof);
+        tap_ok(pv >= 0.01, "%s: chi-square over %ux%u cells: p = %.4f (dof %d) >= 0.01", what, HZ,
+               HP, pv, dof);
+        free(obs);
+        free(exp_);
+    }
+
+    /* the pdfs integrate to 1: midpoint rule on a fine equal-area grid */
+    if (tap_ok(run(&g, 2, QZ * QP, 0, out, &err), "evaluate on %ux%u directions: %s", QZ, QP,
+               err.msg)) {
+        double sq = 0, sm = 0, sq_ref = 0;
+        for (uint32_t i = 0; i < QZ * QP; i++) {
+            const float *v = inq + 4 * (size_t)i;
+            double w[3] = {v[0], v[1], v[2]};
+            sq += out[8 * (size_t)i];
+            sm += out[8 * (size_t)i + 1];
+            sq_ref += ref_pdf(&g.params, q, w);
+        }
+        double dw = 4 * PI / (QZ * QP);
+        tap_ok(fabs(sq * dw - 1) < 1e-3, "learned pdf integrates to %.6f (1 within 1e-3)", sq * dw);
+        tap_ok(fabs(sq_ref * dw - 1) < 1e-3, "host reference integrates to %.6f", sq_ref * dw);
+        tap_ok(fabs(sm * dw - 1) < 2e-3, "mixture pdf integrates to %.6f (1 within 2e-3)", sm * dw);
+    }
+
+    free(q);
+    free(out);
+    free(inq);
+    glDeleteTextures(1, &g.table_tex);
+    cv_buffer_destroy(&g.ubo);
+    cv_buffer_destroy(&g.table);
+    cv_buffer_destroy(&g.out);
+    cv_buffer_destroy(&g.in);
+    cv_gpu_destroy(&g.gpu);
+    return tap_done();
+}
