@@ -37,7 +37,8 @@ uniform uint u_gamma;
 
 // Per subset of treelet leaves (bit k = leaf k; singletons are the leaves).
 shared vec3 s_lo[N_SUBSETS], s_hi[N_SUBSETS];
-shared float s_area[N_SUBSETS], s_copt[N_SUBSETS];
+shared float s_copt[N_SUBSETS];
+shared float s_larea[TREELET_SIZE];  // leaf areas, to pick the leaf to open
 shared int s_count[N_SUBSETS];
 shared uint s_popt[N_SUBSETS];  // best left part, | POPT_COLLAPSE
 // The subsets ordered by size, then colexicographically within a size.
@@ -51,24 +52,14 @@ shared uint s_red_p[GROUP];
 shared int s_todo[GROUP];
 shared uint s_ntodo;
 
-int binom(int n, int k)
-{
-    if (k < 0 || k > n)
-        return 0;
-    int r = 1;
-    for (int i = 0; i < k; i++)
-        r = r * (n - i) / (i + 1);
-    return r;
-}
+// C(n, k) for n, k <= 8, at [n * 9 + k].
+const int BINOM[81] = int[](
+    1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 1, 2, 1, 0, 0, 0, 0, 0, 0,
+    1, 3, 3, 1, 0, 0, 0, 0, 0, 1, 4, 6, 4, 1, 0, 0, 0, 0, 1, 5, 10, 10, 5, 1, 0, 0, 0,
+    1, 6, 15, 20, 15, 6, 1, 0, 0, 1, 7, 21, 35, 35, 21, 7, 1, 0, 1, 8, 28, 56, 70, 56, 28, 8, 1);
 
-// Where the subsets of size k start in s_order for nl leaves.
-int size_offset(int nl, int k)
-{
-    int o = 0;
-    for (int j = 1; j < k; j++)
-        o += binom(nl, j);
-    return o;
-}
+// The leaf count s_order was built for (0: not yet).
+shared int s_order_nl;
 
 // The bits of m placed, in order, on the set bits of mask.
 uint deposit(uint m, uint mask)
@@ -84,6 +75,21 @@ uint deposit(uint m, uint mask)
     return r;
 }
 
+// SAH cost of a node of the given area and primitive count whose children
+// cost `children` together: split, or one leaf when that is allowed and
+// no dearer (the rule of cv_bvh_update_node).
+float node_cost(float area, int count, float children, bool may_collapse, out bool collapse)
+{
+    float split = float(CV_BVH_COST_INNER) * area + children;
+    float leaf = float(CV_BVH_COST_TRI) * area * float(count);
+#ifdef CV_BVH_NO_COLLAPSE
+    collapse = false;
+#else
+    collapse = may_collapse && count <= CV_BVH_MAX_LEAF && leaf <= split;
+#endif
+    return collapse ? leaf : split;
+}
+
 void load_leaf(int k, int c)
 {
     vec4 a = nodes[c].bmin, b = nodes[c].bmax;
@@ -94,27 +100,34 @@ void load_leaf(int k, int c)
     s_lo[bit] = a.xyz;
     s_hi[bit] = b.xyz;
     s_copt[bit] = a.w;
-    s_area[bit] = cv_half_area(a.xyz, b.xyz);
+    s_larea[k] = cv_half_area(a.xyz, b.xyz);
     s_count[bit] = l.w & CV_BVH_COUNT_MASK;
 }
 
 void form_treelet(int root)
 {
-    // The subtree below was refreshed this round; compare against that.
-    cv_bvh_update_node(root);
-    s_root_cost = nodes[root].bmin.w;
     int n_inner = int(u_n) - 1;
     ivec4 rlink = nodes[root].link;
     s_inner[0] = root;
     load_leaf(0, rlink.x);
     load_leaf(1, rlink.y);
+    // The subtree below was refreshed this round: refresh the root from its
+    // children, and compare the optimum against that.
+    vec3 lo = min(s_lo[1], s_lo[2]), hi = max(s_hi[1], s_hi[2]);
+    int count = s_count[1] + s_count[2];
+    bool collapse;
+    float cost = node_cost(cv_half_area(lo, hi), count, s_copt[1] + s_copt[2], root != 0, collapse);
+    nodes[root].bmin = vec4(lo, cost);
+    nodes[root].bmax = vec4(hi, 0.0);
+    nodes[root].link.w = count | (collapse ? CV_BVH_COLLAPSE : 0);
+    s_root_cost = cost;
     int nl = 2, ni = 1;
     while (nl < TREELET_SIZE) {
         int best = -1;
         float best_area = -1.0;
         for (int k = 0; k < nl; k++) {
-            if (s_leaf[k] < n_inner && s_area[1u << k] > best_area) {
-                best_area = s_area[1u << k];
+            if (s_leaf[k] < n_inner && s_larea[k] > best_area) {
+                best_area = s_larea[k];
                 best = k;
             }
         }
@@ -128,18 +141,19 @@ void form_treelet(int root)
     s_nl = nl;
 }
 
+// Subset s (of two or more leaves) takes its bounds from its lowest leaf
+// and the rest, both final, and its cost from the best split found.
 void finish_subset(uint s, float best, uint bp, uint full, int root)
 {
-    float area = s_area[s];
-    int count = s_count[s];
-    float split = float(CV_BVH_COST_INNER) * area + best;
-    float leaf = float(CV_BVH_COST_TRI) * area * float(count);
-#ifdef CV_BVH_NO_COLLAPSE
-    bool collapse = false;
-#else
-    bool collapse = count <= CV_BVH_MAX_LEAF && leaf <= split && (s != full || root != 0);
-#endif
-    s_copt[s] = collapse ? leaf : split;
+    uint low = s & (~s + 1u), rest = s ^ low;
+    vec3 lo = min(s_lo[low], s_lo[rest]), hi = max(s_hi[low], s_hi[rest]);
+    int count = s_count[low] + s_count[rest];
+    float area = cv_half_area(lo, hi);
+    bool collapse;
+    s_lo[s] = lo;
+    s_hi[s] = hi;
+    s_count[s] = count;
+    s_copt[s] = node_cost(area, count, best, s != full || root != 0, collapse);
     s_popt[s] = bp | (collapse ? POPT_COLLAPSE : 0u);
 }
 
@@ -157,7 +171,8 @@ void rewire(int root, uint full)
         uint s = stack_s[sp];
         int node = stack_node[sp];
         uint pp = s_popt[s];
-        uint part[2] = uint[2](pp & (POPT_COLLAPSE - 1u), s ^ (pp & (POPT_COLLAPSE - 1u)));
+        uint left = pp & (POPT_COLLAPSE - 1u);
+        uint part[2] = uint[2](left, s ^ left);
         int child[2];
         for (int k = 0; k < 2; k++) {
             if (bitCount(part[k]) == 1) {
@@ -186,44 +201,40 @@ void restructure(int root)
     int nl = s_nl;
     uint full = (1u << nl) - 1u;
 
-    // Bounds, counts and areas of all subsets; their order by size.
-    for (uint s = lid + 1u; s <= full; s += uint(GROUP)) {
-        int k = bitCount(s);
-        if (k > 1) {
-            vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
-            int count = 0;
+    // The subsets ordered by size (colexicographic rank within a size);
+    // built once per group, as the leaf count hardly ever changes.
+    if (nl != s_order_nl) {
+        for (uint s = lid + 1u; s <= full; s += uint(GROUP)) {
+            int k = bitCount(s);
+            int pos = 0, j = 0;
+            for (int i = 1; i < k; i++)
+                pos += BINOM[nl * 9 + i];
             for (int b = 0; b < TREELET_SIZE; b++) {
-                if ((s & (1u << b)) != 0u) {
-                    lo = min(lo, s_lo[1u << b]);
-                    hi = max(hi, s_hi[1u << b]);
-                    count += s_count[1u << b];
-                }
+                if ((s & (1u << b)) != 0u)
+                    pos += BINOM[b * 9 + (++j)];
             }
-            s_lo[s] = lo;
-            s_hi[s] = hi;
-            s_count[s] = count;
-            s_area[s] = cv_half_area(lo, hi);
+            s_order[pos] = s;
         }
-        int rank = 0, j = 0;
-        for (int b = 0; b < TREELET_SIZE; b++) {
-            if ((s & (1u << b)) != 0u)
-                rank += binom(b, ++j);
-        }
-        s_order[size_offset(nl, k) + rank] = s;
+        barrier();
+        if (lid == 0u)
+            s_order_nl = nl;
     }
-    barrier();
 
-    // The DP, one subset size at a time. L invocations share a subset's
-    // partitions when there are few subsets of that size.
+    // The DP, one subset size at a time. `lanes` invocations share the
+    // partitions of a subset when there are few subsets of that size: lane
+    // q fixes the lowest log2(lanes) free leaves to the bits of q and
+    // walks the subsets of the others.
+    int base = nl;
     for (int k = 2; k <= nl; k++) {
-        int base = size_offset(nl, k);
-        int n_sub = binom(nl, k);
+        int n_sub = BINOM[nl * 9 + k];
         int n_part = (1 << (k - 1)) - 1;
         int lanes = 1;
-        while (lanes * 2 * n_sub <= GROUP && lanes * 2 <= n_part)
+        // About sqrt(n_part) lanes balance the walk against the reduction.
+        while (lanes * 2 * n_sub <= GROUP && lanes * lanes * 2 <= n_part)
             lanes *= 2;
+        int lane_bits = findLSB(lanes);
         int per_pass = GROUP / lanes;
-        int lane = int(lid) % lanes;
+        int lane = int(lid) & (lanes - 1);
         for (int j0 = 0; j0 < n_sub; j0 += per_pass) {
             int j = j0 + int(lid) / lanes;
             uint s = 0u;
@@ -231,18 +242,27 @@ void restructure(int root)
             uint bp = 0u;
             if (j < n_sub) {
                 s = s_order[base + j];
+                // The lowest leaf always goes left, so each split is seen once.
                 uint low = s & (~s + 1u);
-                uint rest = s ^ low;
-                // m == n_part would be s itself; each split is seen once
-                // because the lowest leaf always goes left.
-                for (int m = lane; m < n_part; m += lanes) {
-                    uint p = low | deposit(uint(m), rest);
-                    float c = s_copt[p] + s_copt[s ^ p];
-                    if (c < best) {
-                        best = c;
-                        bp = p;
-                    }
+                uint upper = s ^ low, fixed_mask = 0u;
+                for (int b = 0; b < lane_bits; b++) {
+                    uint bit = upper & (~upper + 1u);
+                    fixed_mask |= bit;
+                    upper ^= bit;
                 }
+                uint head = low | deposit(uint(lane), fixed_mask);
+                uint q = 0u;
+                do {
+                    uint p = head | q;
+                    if (p != s) {
+                        float c = s_copt[p] + s_copt[s ^ p];
+                        if (c < best) {
+                            best = c;
+                            bp = p;
+                        }
+                    }
+                    q = (q - upper) & upper;
+                } while (q != 0u);
             }
             if (lanes == 1) {
                 if (j < n_sub)
@@ -263,6 +283,7 @@ void restructure(int root)
                 barrier();
             }
         }
+        base += n_sub;
         barrier();
     }
 
@@ -279,8 +300,10 @@ void main()
     uint i = cv_global_index();
     // Invocations past the end take part in the group's work only.
     int p = i < u_n ? nodes[int(u_n) - 1 + int(i)].link.z : -1;
-    if (lid == 0u)
+    if (lid == 0u) {
         s_ntodo = 0u;
+        s_order_nl = 0;
+    }
     barrier();
     for (;;) {
         bool pending = false;
