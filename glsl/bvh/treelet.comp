@@ -1,13 +1,18 @@
 #version 450
 // glsl/bvh/treelet.comp: one round of treelet restructuring (Karras & Aila
-// 2013). Invocations climb from the leaves like refit.comp; the second
-// arrival at an inner node whose subtree holds at least u_gamma primitives
-// grows a treelet of up to TREELET_SIZE leaves below it (always opening the
-// leaf of largest area), finds the SAH-optimal binary tree over those leaves
-// by dynamic programming over all subsets, and rewires the treelet's inner
-// nodes when that is cheaper. Smaller nodes only have their cost refreshed.
-// One invocation handles one treelet; the DP tables live in its registers /
-// local memory (3 * 2^TREELET_SIZE words).
+// 2013). Invocations climb from the leaves like refit.comp (the second
+// arrival at an inner node carries on); nodes whose subtree holds fewer than
+// u_gamma primitives only have their cost refreshed on the way. An
+// invocation that reaches a larger node stops there, and its workgroup of
+// GROUP invocations then restructures the pending roots of all its members
+// together, one after another: invocation 0 grows a treelet of up to
+// TREELET_SIZE leaves (always opening the leaf of largest area), the group
+// finds the SAH-optimal binary tree over those leaves by dynamic programming
+// over all subsets in parallel (all subsets of one size at once, the
+// partitions of large subsets split over several invocations), and
+// invocation 0 rewires the treelet when that is cheaper. The group then
+// climbs on. Nothing waits on another workgroup: the counters only decide
+// who carries on, as in refit.
 #include "shared/bvh.h"
 #include "shared/bindings.h"
 
@@ -15,8 +20,11 @@
 #define TREELET_SIZE 7
 #endif
 #define N_SUBSETS (1 << TREELET_SIZE)
+// One subgroup on NVIDIA, so the barriers are cheap.
+#define GROUP 32
+#define POPT_COLLAPSE 0x100u
 
-layout(local_size_x = 64) in;
+layout(local_size_x = GROUP) in;
 #include "../lib/index.glsl"
 
 layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
@@ -27,149 +35,307 @@ uniform uint u_gamma;
 
 #include "sah.glsl"
 
-void restructure(int root)
+// Per subset of treelet leaves (bit k = leaf k; singletons are the leaves).
+shared vec3 s_lo[N_SUBSETS], s_hi[N_SUBSETS];
+shared float s_copt[N_SUBSETS];
+shared float s_larea[TREELET_SIZE];  // leaf areas, to pick the leaf to open
+shared int s_count[N_SUBSETS];
+shared uint s_popt[N_SUBSETS];  // best left part, | POPT_COLLAPSE
+// The subsets ordered by size, then colexicographically within a size.
+shared uint s_order[N_SUBSETS];
+shared int s_leaf[TREELET_SIZE], s_inner[TREELET_SIZE];
+shared ivec2 s_kids[TREELET_SIZE];
+shared int s_nl;
+shared float s_root_cost;
+shared float s_red_c[GROUP];
+shared uint s_red_p[GROUP];
+shared int s_todo[GROUP];
+shared uint s_ntodo;
+
+// C(n, k) for n, k <= 8, at [n * 9 + k].
+const int BINOM[81] = int[](
+    1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 1, 2, 1, 0, 0, 0, 0, 0, 0,
+    1, 3, 3, 1, 0, 0, 0, 0, 0, 1, 4, 6, 4, 1, 0, 0, 0, 0, 1, 5, 10, 10, 5, 1, 0, 0, 0,
+    1, 6, 15, 20, 15, 6, 1, 0, 0, 1, 7, 21, 35, 35, 21, 7, 1, 0, 1, 8, 28, 56, 70, 56, 28, 8, 1);
+
+// The leaf count s_order was built for (0: not yet).
+shared int s_order_nl;
+
+// The bits of m placed, in order, on the set bits of mask.
+uint deposit(uint m, uint mask)
 {
-    // The subtree below was refreshed this round; compare against that.
-    cv_bvh_update_node(root);
-    int n_inner = int(u_n) - 1;
-    // Each treelet leaf is loaded once (the buffer is coherent, so every
-    // load goes to L2: this is the latency that the climb serialises).
-    int leaves[TREELET_SIZE];
-    int inner[TREELET_SIZE - 1];
-    vec3 llo[TREELET_SIZE], lhi[TREELET_SIZE];
-    float lcost[TREELET_SIZE], larea[TREELET_SIZE];
-    int lcount[TREELET_SIZE];
-    int nl = 0, ni = 1;
-    inner[0] = root;
-    ivec4 rlink = nodes[root].link;
-    for (int side = 0; side < 2; side++) {
-        int c = side == 0 ? rlink.x : rlink.y;
-        vec4 a = nodes[c].bmin, b = nodes[c].bmax;
-        leaves[nl] = c;
-        llo[nl] = a.xyz;
-        lcost[nl] = a.w;
-        lhi[nl] = b.xyz;
-        larea[nl] = cv_half_area(a.xyz, b.xyz);
-        lcount[nl++] = nodes[c].link.w & CV_BVH_COUNT_MASK;
+    uint r = 0u;
+    while (mask != 0u) {
+        uint b = mask & (~mask + 1u);
+        if ((m & 1u) != 0u)
+            r |= b;
+        m >>= 1;
+        mask ^= b;
     }
+    return r;
+}
+
+// SAH cost of a node of the given area and primitive count whose children
+// cost `children` together: split, or one leaf when that is allowed and
+// no dearer (the rule of cv_bvh_update_node).
+float node_cost(float area, int count, float children, bool may_collapse, out bool collapse)
+{
+    float split = float(CV_BVH_COST_INNER) * area + children;
+    float leaf = float(CV_BVH_COST_TRI) * area * float(count);
+#ifdef CV_BVH_NO_COLLAPSE
+    collapse = false;
+#else
+    collapse = may_collapse && count <= CV_BVH_MAX_LEAF && leaf <= split;
+#endif
+    return collapse ? leaf : split;
+}
+
+void load_leaf(int k, int c)
+{
+    vec4 a = nodes[c].bmin, b = nodes[c].bmax;
+    ivec4 l = nodes[c].link;
+    uint bit = 1u << k;
+    s_leaf[k] = c;
+    s_kids[k] = l.xy;
+    s_lo[bit] = a.xyz;
+    s_hi[bit] = b.xyz;
+    s_copt[bit] = a.w;
+    s_larea[k] = cv_half_area(a.xyz, b.xyz);
+    s_count[bit] = l.w & CV_BVH_COUNT_MASK;
+}
+
+void form_treelet(int root)
+{
+    int n_inner = int(u_n) - 1;
+    ivec4 rlink = nodes[root].link;
+    s_inner[0] = root;
+    load_leaf(0, rlink.x);
+    load_leaf(1, rlink.y);
+    // The subtree below was refreshed this round: refresh the root from its
+    // children, and compare the optimum against that.
+    vec3 lo = min(s_lo[1], s_lo[2]), hi = max(s_hi[1], s_hi[2]);
+    int count = s_count[1] + s_count[2];
+    bool collapse;
+    float cost = node_cost(cv_half_area(lo, hi), count, s_copt[1] + s_copt[2], root != 0, collapse);
+    nodes[root].bmin = vec4(lo, cost);
+    nodes[root].bmax = vec4(hi, 0.0);
+    nodes[root].link.w = count | (collapse ? CV_BVH_COLLAPSE : 0);
+    s_root_cost = cost;
+    int nl = 2, ni = 1;
     while (nl < TREELET_SIZE) {
         int best = -1;
         float best_area = -1.0;
         for (int k = 0; k < nl; k++) {
-            if (leaves[k] < n_inner && larea[k] > best_area) {
-                best_area = larea[k];
+            if (s_leaf[k] < n_inner && s_larea[k] > best_area) {
+                best_area = s_larea[k];
                 best = k;
             }
         }
         if (best < 0)
             break;
-        int c = leaves[best];
-        inner[ni++] = c;
-        ivec4 clink = nodes[c].link;
-        for (int side = 0; side < 2; side++) {
-            int g = side == 0 ? clink.x : clink.y;
-            int k = side == 0 ? best : nl++;
-            vec4 a = nodes[g].bmin, b = nodes[g].bmax;
-            leaves[k] = g;
-            llo[k] = a.xyz;
-            lcost[k] = a.w;
-            lhi[k] = b.xyz;
-            larea[k] = cv_half_area(a.xyz, b.xyz);
-            lcount[k] = nodes[g].link.w & CV_BVH_COUNT_MASK;
-        }
+        s_inner[ni++] = s_leaf[best];
+        ivec2 kids = s_kids[best];
+        load_leaf(best, kids.x);
+        load_leaf(nl++, kids.y);
     }
+    s_nl = nl;
+}
 
-    float copt[N_SUBSETS];
-    uint popt[N_SUBSETS];
-    uint full = (1u << nl) - 1u;
-    for (uint s = 1u; s <= full; s++) {
-        if (bitCount(s) == 1) {
-            copt[s] = lcost[findLSB(s)];
-            continue;
-        }
-        vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
-        int count = 0;
-        // A constant bound lets the compiler unroll (bits >= nl are 0 in s).
-        for (int k = 0; k < TREELET_SIZE; k++) {
-            if ((s & (1u << k)) != 0u) {
-                lo = min(lo, llo[k]);
-                hi = max(hi, lhi[k]);
-                count += lcount[k];
-            }
-        }
-        float area = cv_half_area(lo, hi);
-        uint delta = (s - 1u) & s;
-        uint p = (~delta + 1u) & s;
-        float best = 3.0e38;
-        uint bp = p;
-        do {
-            float c = copt[p] + copt[s ^ p];
-            if (c < best) {
-                best = c;
-                bp = p;
-            }
-            p = (p - delta) & s;
-        } while (p != 0u);
-        float split = float(CV_BVH_COST_INNER) * area + best;
-        float leaf = float(CV_BVH_COST_TRI) * area * float(count);
-#ifdef CV_BVH_NO_COLLAPSE
-        bool collapse = false;
-#else
-        bool collapse = count <= CV_BVH_MAX_LEAF && leaf <= split && (s != full || root != 0);
-#endif
-        copt[s] = collapse ? leaf : split;
-        popt[s] = bp;
-    }
-    // Keep the treelet unless the optimum is strictly cheaper.
-    if (!(copt[full] < nodes[root].bmin.w * 0.99999))
-        return;
+// Subset s (of two or more leaves) takes its bounds from its lowest leaf
+// and the rest, both final, and its cost from the best split found.
+void finish_subset(uint s, float best, uint bp, uint full, int root)
+{
+    uint low = s & (~s + 1u), rest = s ^ low;
+    vec3 lo = min(s_lo[low], s_lo[rest]), hi = max(s_hi[low], s_hi[rest]);
+    int count = s_count[low] + s_count[rest];
+    float area = cv_half_area(lo, hi);
+    bool collapse;
+    s_lo[s] = lo;
+    s_hi[s] = hi;
+    s_count[s] = count;
+    s_copt[s] = node_cost(area, count, best, s != full || root != 0, collapse);
+    s_popt[s] = bp | (collapse ? POPT_COLLAPSE : 0u);
+}
+
+// Writes the optimal tree of the treelet, top down; every node's bounds,
+// count and cost come from the subset tables, so nothing is read back.
+void rewire(int root, uint full)
+{
     uint stack_s[TREELET_SIZE];
     int stack_node[TREELET_SIZE];
-    int order[TREELET_SIZE - 1];
     int sp = 0, used = 1;
-    order[0] = root;
     stack_s[sp] = full;
     stack_node[sp++] = root;
     while (sp > 0) {
         sp--;
         uint s = stack_s[sp];
         int node = stack_node[sp];
-        uint part[2] = uint[2](popt[s], s ^ popt[s]);
+        uint pp = s_popt[s];
+        uint left = pp & (POPT_COLLAPSE - 1u);
+        uint part[2] = uint[2](left, s ^ left);
         int child[2];
         for (int k = 0; k < 2; k++) {
             if (bitCount(part[k]) == 1) {
-                child[k] = leaves[findLSB(part[k])];
+                child[k] = s_leaf[findLSB(part[k])];
             } else {
-                child[k] = inner[used];
-                order[used++] = child[k];
+                child[k] = s_inner[used++];
                 stack_s[sp] = part[k];
                 stack_node[sp++] = child[k];
             }
             nodes[child[k]].link.z = node;
         }
+        nodes[node].bmin = vec4(s_lo[s], s_copt[s]);
+        nodes[node].bmax = vec4(s_hi[s], 0.0);
         nodes[node].link.xy = ivec2(child[0], child[1]);
+        nodes[node].link.w = s_count[s] | ((pp & POPT_COLLAPSE) != 0u ? CV_BVH_COLLAPSE : 0);
     }
-    for (int k = used - 1; k >= 0; k--)
-        cv_bvh_update_node(order[k]);
+}
+
+// Called by the whole workgroup (uniform control flow).
+void restructure(int root)
+{
+    uint lid = gl_LocalInvocationID.x;
+    if (lid == 0u)
+        form_treelet(root);
+    barrier();
+    int nl = s_nl;
+    uint full = (1u << nl) - 1u;
+
+    // The subsets ordered by size (colexicographic rank within a size);
+    // built once per group, as the leaf count hardly ever changes.
+    if (nl != s_order_nl) {
+        for (uint s = lid + 1u; s <= full; s += uint(GROUP)) {
+            int k = bitCount(s);
+            int pos = 0, j = 0;
+            for (int i = 1; i < k; i++)
+                pos += BINOM[nl * 9 + i];
+            for (int b = 0; b < TREELET_SIZE; b++) {
+                if ((s & (1u << b)) != 0u)
+                    pos += BINOM[b * 9 + (++j)];
+            }
+            s_order[pos] = s;
+        }
+        barrier();
+        if (lid == 0u)
+            s_order_nl = nl;
+    }
+
+    // The DP, one subset size at a time. `lanes` invocations share the
+    // partitions of a subset when there are few subsets of that size: lane
+    // q fixes the lowest log2(lanes) free leaves to the bits of q and
+    // walks the subsets of the others.
+    int base = nl;
+    for (int k = 2; k <= nl; k++) {
+        int n_sub = BINOM[nl * 9 + k];
+        int n_part = (1 << (k - 1)) - 1;
+        int lanes = 1;
+        // About sqrt(n_part) lanes balance the walk against the reduction.
+        while (lanes * 2 * n_sub <= GROUP && lanes * lanes * 2 <= n_part)
+            lanes *= 2;
+        int lane_bits = findLSB(lanes);
+        int per_pass = GROUP / lanes;
+        int lane = int(lid) & (lanes - 1);
+        for (int j0 = 0; j0 < n_sub; j0 += per_pass) {
+            int j = j0 + int(lid) / lanes;
+            uint s = 0u;
+            float best = 3.0e38;
+            uint bp = 0u;
+            if (j < n_sub) {
+                s = s_order[base + j];
+                // The lowest leaf always goes left, so each split is seen once.
+                uint low = s & (~s + 1u);
+                uint upper = s ^ low, fixed_mask = 0u;
+                for (int b = 0; b < lane_bits; b++) {
+                    uint bit = upper & (~upper + 1u);
+                    fixed_mask |= bit;
+                    upper ^= bit;
+                }
+                uint head = low | deposit(uint(lane), fixed_mask);
+                uint q = 0u;
+                do {
+                    uint p = head | q;
+                    if (p != s) {
+                        float c = s_copt[p] + s_copt[s ^ p];
+                        if (c < best) {
+                            best = c;
+                            bp = p;
+                        }
+                    }
+                    q = (q - upper) & upper;
+                } while (q != 0u);
+            }
+            if (lanes == 1) {
+                if (j < n_sub)
+                    finish_subset(s, best, bp, full, root);
+            } else {
+                s_red_c[lid] = best;
+                s_red_p[lid] = bp;
+                barrier();
+                if (j < n_sub && lane == 0) {
+                    for (int q = 1; q < lanes; q++) {
+                        if (s_red_c[lid + uint(q)] < best) {
+                            best = s_red_c[lid + uint(q)];
+                            bp = s_red_p[lid + uint(q)];
+                        }
+                    }
+                    finish_subset(s, best, bp, full, root);
+                }
+                barrier();
+            }
+        }
+        base += n_sub;
+        barrier();
+    }
+
+    // Keep the treelet unless the optimum is strictly cheaper.
+    if (lid == 0u && s_copt[full] < s_root_cost * 0.99999)
+        rewire(root, full);
+    memoryBarrierBuffer();
+    barrier();
 }
 
 void main()
 {
+    uint lid = gl_LocalInvocationID.x;
     uint i = cv_global_index();
-    if (i >= u_n)
-        return;
-    int p = nodes[int(u_n) - 1 + int(i)].link.z;
-    while (p >= 0) {
-        if (atomicAdd(counters[p], 1u) == 0u)
-            return;
-        memoryBarrierBuffer();
-        int count = (nodes[nodes[p].link.x].link.w & CV_BVH_COUNT_MASK) +
-                    (nodes[nodes[p].link.y].link.w & CV_BVH_COUNT_MASK);
-        if (uint(count) >= u_gamma)
-            restructure(p);
-        else
+    // Invocations past the end take part in the group's work only.
+    int p = i < u_n ? nodes[int(u_n) - 1 + int(i)].link.z : -1;
+    if (lid == 0u) {
+        s_ntodo = 0u;
+        s_order_nl = 0;
+    }
+    barrier();
+    for (;;) {
+        bool pending = false;
+        while (p >= 0) {
+            if (atomicAdd(counters[p], 1u) == 0u) {
+                p = -1;
+                break;
+            }
+            memoryBarrierBuffer();
+            int count = (nodes[nodes[p].link.x].link.w & CV_BVH_COUNT_MASK) +
+                        (nodes[nodes[p].link.y].link.w & CV_BVH_COUNT_MASK);
+            if (uint(count) >= u_gamma) {
+                pending = true;
+                break;
+            }
             cv_bvh_update_node(p);
-        memoryBarrierBuffer();
-        p = nodes[p].link.z;
+            memoryBarrierBuffer();
+            p = nodes[p].link.z;
+        }
+        if (pending)
+            s_todo[atomicAdd(s_ntodo, 1u)] = p;
+        barrier();
+        // Every member either waits on a root here or has stopped for good.
+        uint n_todo = s_ntodo;
+        if (n_todo == 0u)
+            break;
+        for (uint t = 0u; t < n_todo; t++)
+            restructure(s_todo[t]);
+        if (lid == 0u)
+            s_ntodo = 0u;
+        if (pending)
+            p = nodes[p].link.z;
+        barrier();
     }
 }
