@@ -10,7 +10,6 @@
 
 #include "base/mem.h"
 #include "bvh/bvh.h"
-#include "bvh/program_copy.h"
 #include "bvh/radix_sort.h"
 #include "bvh/scan.h"
 #include "glsl/shared/bindings.h"
@@ -140,18 +139,15 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     const char *refit_defs[] = {nc, NULL};
     const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
     const char *treelet_defs[] = {tdef, nc, NULL};
-    struct cv_program progs[8];
-    struct cv_program *bounds_tri = &progs[0], *bounds = &progs[1], *morton = &progs[2],
-                      *hier = &progs[3], *refit = &progs[4], *treelet = &progs[5],
-                      *layout = &progs[6], *emit = &progs[7];
-    if (!cv_bvh_program(b->gpu, "bvh/bounds.comp", bounds_defs, bounds_tri, err) ||
-        !cv_bvh_program(b->gpu, "bvh/bounds.comp", NULL, bounds, err) ||
-        !cv_bvh_program(b->gpu, "bvh/morton.comp", key_defs, morton, err) ||
-        !cv_bvh_program(b->gpu, "bvh/hierarchy.comp", key_defs, hier, err) ||
-        !cv_bvh_program(b->gpu, "bvh/refit.comp", refit_defs, refit, err) ||
-        !cv_bvh_program(b->gpu, "bvh/treelet.comp", treelet_defs, treelet, err) ||
-        !cv_bvh_program(b->gpu, "bvh/layout.comp", NULL, layout, err) ||
-        !cv_bvh_program(b->gpu, "bvh/emit.comp", NULL, emit, err))
+    struct cv_program *bounds_tri, *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
+    if (!(bounds_tri = cv_program_get(b->gpu, "bvh/bounds.comp", bounds_defs, err)) ||
+        !(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", NULL, err)) ||
+        !(morton = cv_program_get(b->gpu, "bvh/morton.comp", key_defs, err)) ||
+        !(hier = cv_program_get(b->gpu, "bvh/hierarchy.comp", key_defs, err)) ||
+        !(refit = cv_program_get(b->gpu, "bvh/refit.comp", refit_defs, err)) ||
+        !(treelet = cv_program_get(b->gpu, "bvh/treelet.comp", treelet_defs, err)) ||
+        !(layout = cv_program_get(b->gpu, "bvh/layout.comp", NULL, err)) ||
+        !(emit = cv_program_get(b->gpu, "bvh/emit.comp", NULL, err)))
         return false;
 
     glGenQueries(PH_COUNT, b->queries);

@@ -2,7 +2,7 @@
 libcavalry_a_SOURCES += \
 	src/bvh/bvh.c src/bvh/bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
-	src/bvh/scan.c src/bvh/scan.h src/bvh/program_copy.h
+	src/bvh/scan.c src/bvh/scan.h
 
 GLSL_FILES += \
 	glsl/shared/bvh.h \

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 
 #include "base/mem.h"
-#include "bvh/program_copy.h"
 #include "bvh/radix_sort.h"
 #include "bvh/scan.h"
 #include "glsl/shared/bindings.h"
@@ -61,9 +60,9 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
     size_t words = bits > 32 ? 2 : 1;
     if (n < 2)
         return true;
-    struct cv_program hist_prog, scatter_prog, *hist = &hist_prog, *scatter = &scatter_prog;
-    if (!cv_bvh_program(rs->gpu, "bvh/radix_hist.comp", defs, hist, err) ||
-        !cv_bvh_program(rs->gpu, "bvh/radix_scatter.comp", defs, scatter, err))
+    struct cv_program *hist, *scatter;
+    if (!(hist = cv_program_get(rs->gpu, "bvh/radix_hist.comp", defs, err)) ||
+        !(scatter = cv_program_get(rs->gpu, "bvh/radix_scatter.comp", defs, err)))
         return false;
     int passes = (bits + 3) / 4;
     uint32_t tiles = (n + RADIX_TILE - 1) / RADIX_TILE;

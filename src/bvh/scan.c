@@ -4,7 +4,6 @@
 #include <stdlib.h>
 
 #include "base/mem.h"
-#include "bvh/program_copy.h"
 #include "bvh/scan.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
@@ -48,10 +47,9 @@ struct cv_scan *cv_scan_create(struct cv_gpu *gpu, uint32_t max_n, struct cv_err
 static bool scan_level(struct cv_scan *scan, GLuint buf, uint32_t n, int level,
                        struct cv_error *err)
 {
-    /* Copies: the cache may move its entries when it grows. */
-    struct cv_program block_prog, add_prog, *block = &block_prog, *add = &add_prog;
-    if (!cv_bvh_program(scan->gpu, "bvh/scan_block.comp", NULL, block, err) ||
-        !cv_bvh_program(scan->gpu, "bvh/scan_add.comp", NULL, add, err))
+    struct cv_program *block, *add;
+    if (!(block = cv_program_get(scan->gpu, "bvh/scan_block.comp", NULL, err)) ||
+        !(add = cv_program_get(scan->gpu, "bvh/scan_add.comp", NULL, err)))
         return false;
     if (level >= scan->n_levels)
         return cv_fail(err, "scan: more elements than the scratch was made for");
