@@ -291,7 +291,17 @@ int main(int argc, char **argv)
             fprintf(stderr, "cavalry_bench: sizes differ: %ux%u vs %ux%u\n", aw, ah, bw, bh);
             rc = 1;
         } else {
-            printf("%.6g\n", relmse(a, b, (size_t)aw * ah * 3));
+            /* relMSE, then the mean-brightness ratio of each channel: the two
+             * figures quoted when comparing with a reference renderer. */
+            double sa[3] = {0}, sb[3] = {0};
+            for (size_t i = 0; i < (size_t)aw * ah; i++)
+                for (int c = 0; c < 3; c++) {
+                    sa[c] += a[i * 3 + c];
+                    sb[c] += b[i * 3 + c];
+                }
+            printf("%.6g mean-ratio %.4f %.4f %.4f\n", relmse(a, b, (size_t)aw * ah * 3),
+                   sb[0] > 0 ? sa[0] / sb[0] : 0, sb[1] > 0 ? sa[1] / sb[1] : 0,
+                   sb[2] > 0 ? sa[2] / sb[2] : 0);
         }
         free(a);
         free(b);
