@@ -1,6 +1,7 @@
 /* batch.c: the batch loop. Validate everything first (manifest, then every
  * scene the selected jobs name), then open one GPU context and run the jobs
- * in manifest order; a scene shared by several jobs is loaded once. */
+ * in manifest order; a scene shared by several jobs is loaded, uploaded and
+ * its BVH built once. */
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -13,10 +14,12 @@
 #include "manifest/manifest.h"
 #include "manifest/shard.h"
 #include "scene/scene.h"
+#include "trace/scene_upload.h"
 
 struct loaded_scene {
     const char *path;            /* borrowed from the first job naming it */
     struct cv_scene *scene;
+    struct cv_scene_gpu *gpu_scene; /* uploaded at its first rendered job */
     size_t last_use;             /* index of the last selected job using it */
 };
 
@@ -154,9 +157,16 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         } else {
             cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)plan.n_jobs,
                                     job->has_spp ? job->spp : ls->scene->settings.spp);
-            struct cv_job_result res;
+            struct cv_job_result res = {0};
             struct cv_error jerr = {{0}};
-            if (cv_run_job(gpu, job, ls->scene, opt, progress, &res, &jerr)) {
+            bool uploaded = ls->gpu_scene != NULL;
+            if (!uploaded) {
+                uploaded = cv_scene_gpu_create(gpu, ls->scene, &ls->gpu_scene, &jerr);
+                if (!uploaded)
+                    cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
+            }
+            if (uploaded && cv_run_job(gpu, job, ls->scene, ls->gpu_scene, opt, progress, &res,
+                                       &jerr)) {
                 cv_progress_job_ended(progress, job->name, res.partial ? CV_JOB_PARTIAL : CV_JOB_DONE,
                                       res.spp, res.seconds, res.written);
             } else {
@@ -169,9 +179,14 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
             }
         }
         /* Free a scene after the last job that uses it. */
-        if (ls->last_use == k)
+        if (ls->last_use == k) {
+            cv_scene_gpu_destroy(&ls->gpu_scene);
             cv_scene_destroy(&ls->scene);
+        }
     }
+    /* jobs left undone (--fail-fast, a signal) leave uploads behind */
+    for (size_t i = 0; i < plan.n_scenes; i++)
+        cv_scene_gpu_destroy(&plan.scenes[i].gpu_scene);
     cv_progress_summary(progress);
     cv_progress_destroy(&progress);
     cv_gpu_destroy(&gpu);

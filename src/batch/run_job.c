@@ -246,7 +246,7 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
 }
 
 bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_scene *scene,
-                const struct cv_batch_options *opt, struct cv_progress *progress,
+                const struct cv_scene_gpu *gs, const struct cv_batch_options *opt, struct cv_progress *progress,
                 struct cv_job_result *res, struct cv_error *err)
 {
     double t0 = now_seconds();
@@ -266,7 +266,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
         .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : 0.0f,
     };
     struct cv_renderer *r = NULL;
-    if (!cv_renderer_create(gpu, &s, &rp, &r, err))
+    if (!cv_renderer_create_shared(gpu, gs, &s, &rp, &r, err))
         return false;
 
     uint32_t target = job->has_spp ? job->spp : s.settings.spp ? s.settings.spp : CV_DEFAULT_SPP;

@@ -11,6 +11,7 @@
 #include "gpu/context.h"
 #include "manifest/manifest.h"
 #include "scene/scene.h"
+#include "trace/scene_upload.h"
 
 struct cv_job_result {
     uint32_t spp;                  /* samples per pixel rendered */
@@ -19,8 +20,10 @@ struct cv_job_result {
     char written[1024];            /* the files written, space-separated */
 };
 
+/* gs: the scene uploaded with its BVH (cv_scene_gpu_create), shared by the
+ * scene's jobs; the job's camera and resolution overrides apply on top. */
 bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_scene *scene,
-                const struct cv_batch_options *opt, struct cv_progress *progress,
+                const struct cv_scene_gpu *gs, const struct cv_batch_options *opt, struct cv_progress *progress,
                 struct cv_job_result *result, struct cv_error *err);
 
 /* Whether every output of the job exists, is complete, and was rendered

@@ -35,7 +35,8 @@ enum stage {
 
 struct cv_renderer {
     struct cv_gpu *gpu;
-    struct cv_scene_gpu scene;
+    const struct cv_scene_gpu *scene;  /* borrowed, or owned_scene */
+    struct cv_scene_gpu *owned_scene;  /* cv_renderer_create's own upload */
     /* copies: the cache's entries move as it grows (ids stay valid) */
     struct cv_program prog[ST_COUNT];
     uint32_t n_pixels, crop_w, crop_h;
@@ -136,9 +137,8 @@ static GLuint make(size_t bytes, const char *label, bool *ok, struct cv_error *e
     return b;
 }
 
-bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
-                        const struct cv_render_params *p, struct cv_renderer **out,
-                        struct cv_error *err)
+static bool check_params(const struct cv_scene *scene, const struct cv_render_params *p,
+                         struct cv_error *err)
 {
     if (p->integrator != CV_RENDER_PATH && p->integrator != CV_RENDER_RLPATH)
         return cv_fail(err, "unknown integrator %d", p->integrator);
@@ -146,6 +146,35 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);
     if (scene->camera.film.x == 0 || scene->camera.film.y == 0)
         return cv_fail(err, "scene has no film resolution");
+    return true;
+}
+
+bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
+                        const struct cv_render_params *p, struct cv_renderer **out,
+                        struct cv_error *err)
+{
+    /* bad parameters fail before the upload and BVH build */
+    if (!check_params(scene, p, err))
+        return false;
+    struct cv_scene_gpu *gs = NULL;
+    if (!cv_scene_gpu_create(gpu, scene, &gs, err)) {
+        cv_error_prefix(err, "uploading the scene: ");
+        return false;
+    }
+    if (!cv_renderer_create_shared(gpu, gs, scene, p, out, err)) {
+        cv_scene_gpu_destroy(&gs);
+        return false;
+    }
+    (*out)->owned_scene = gs;
+    return true;
+}
+
+bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs,
+                               const struct cv_scene *scene, const struct cv_render_params *p,
+                               struct cv_renderer **out, struct cv_error *err)
+{
+    if (!check_params(scene, p, err))
+        return false;
 
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
@@ -163,22 +192,18 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                               p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
     r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
 
-    if (!cv_scene_upload(gpu, scene, &r->scene, err)) {
-        cv_error_prefix(err, "uploading the scene: ");
-        free(r);
-        return false;
-    }
-    r->has_env = r->scene.has_env;
+    r->scene = gs;
+    r->has_env = gs->has_env;
 
     const char *defines[5];
     int nd = 0;
-    if (r->scene.empty)
+    if (r->scene->empty)
         defines[nd++] = "CV_EMPTY_SCENE";
     if (r->aovs)
         defines[nd++] = "CV_AOVS";
-    if (r->scene.has_alpha)
+    if (r->scene->has_alpha)
         defines[nd++] = "CV_HAS_ALPHA";
-    if (r->scene.basic_materials)
+    if (r->scene->basic_materials)
         defines[nd++] = "CV_BSDF_BASIC";
     defines[nd] = NULL;
     const char *prep[3][2] = {{"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
@@ -231,7 +256,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
 
 static void bind_all(struct cv_renderer *r)
 {
-    cv_scene_bind(&r->scene);
+    cv_scene_bind(r->scene);
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_PASS, r->ubo);
     cv_buffer_bind(r->queues, CV_BIND_QUEUES);
     cv_buffer_bind(r->rays, CV_BIND_RAYS);
@@ -393,7 +418,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
                       &r->resolved};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
-    cv_scene_gpu_release(&r->scene);
+    cv_scene_gpu_destroy(&r->owned_scene);
     cv_rlpath_destroy(&r->rl);
     free(r);
     *rp = NULL;

@@ -41,6 +41,16 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                         const struct cv_render_params *p, struct cv_renderer **out,
                         struct cv_error *err);
 
+/* The same on a scene already uploaded with its BVH built
+ * (trace/scene_upload.h: cv_scene_gpu_create from this scene, or from one
+ * that differs only in camera and render settings, as a job's overrides
+ * make). The renderer borrows gs, which must outlive it; camera, film,
+ * filter, queues and the rlpath table stay the renderer's own. */
+struct cv_scene_gpu;
+bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs,
+                               const struct cv_scene *scene, const struct cv_render_params *p,
+                               struct cv_renderer **out, struct cv_error *err);
+
 /* Adds spp samples per pixel, continuing the pixel sample sequences where the
  * last pass stopped. Queues GPU work only. */
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err);

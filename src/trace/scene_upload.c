@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/log.h"
 #include "base/mem.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
@@ -145,6 +146,10 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
         return false;
     }
     g.empty = s->n_triangles == 0;
+    /* tests count this line to check that a batch builds each scene's BVH once */
+    if (!g.empty)
+        cv_debug("building BVH for %s (%u triangles)", s->path ? s->path : "scene",
+                 s->n_triangles);
     if (!g.empty && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, NULL, &g.bvh, err)) {
         cv_error_prefix(err, "building the BVH: ");
         cv_scene_gpu_release(&g);
@@ -177,4 +182,25 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
         cv_buffer_destroy(b[i]);
     cv_bvh_destroy(&g->bvh);
     memset(g, 0, sizeof(*g));
+}
+
+bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu **out,
+                         struct cv_error *err)
+{
+    struct cv_scene_gpu *g = cv_xcalloc(1, sizeof(*g));
+    if (!cv_scene_upload(gpu, s, g, err)) {
+        free(g);
+        return false;
+    }
+    *out = g;
+    return true;
+}
+
+void cv_scene_gpu_destroy(struct cv_scene_gpu **g)
+{
+    if (!g || !*g)
+        return;
+    cv_scene_gpu_release(*g);
+    free(*g);
+    *g = NULL;
 }

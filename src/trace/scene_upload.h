@@ -35,4 +35,15 @@ void cv_scene_bind(const struct cv_scene_gpu *g);
 /* Deletes the buffers and the BVH; the struct is zeroed. */
 void cv_scene_gpu_release(struct cv_scene_gpu *g);
 
+/* cv_scene_upload into a new heap copy, for sharing one upload and one BVH
+ * between the renderers of several jobs on one scene
+ * (cv_renderer_create_shared). It holds no pointer to the scene, and nothing
+ * derived from the camera or the render settings, so the jobs' camera and
+ * resolution overrides do not change it. */
+bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu **out,
+                         struct cv_error *err);
+/* Accepts NULL; clears the pointer. The renderers using it must be
+ * destroyed first. */
+void cv_scene_gpu_destroy(struct cv_scene_gpu **g);
+
 #endif

@@ -2,10 +2,13 @@
  * gives the same image, another seed another; progressive passes continue
  * the sample sequence (4 + 4 + 8 spp equals 16 spp in one pass); counters;
  * the AOVs (depth, normal, albedo of a floor under an area light); the
- * resolution override and crop; rejected parameters. */
+ * resolution override and crop; renderers sharing one scene upload
+ * (cv_renderer_create_shared) render what a renderer of its own renders;
+ * rejected parameters. */
 #include "config.h"
 
 #include "tests/trace/trace_test_util.h"
+#include "trace/scene_upload.h"
 
 static bool same(const struct test_image *a, const struct test_image *b, double *max_diff)
 {
@@ -110,6 +113,45 @@ int main(void)
         }
         TAP_EQ_INT(w * 1000 + h, 40 * 1000 + 20, "override 80x40 keeps the crop: 40x20");
         cv_scene_destroy(&sc);
+    }
+
+    /* Shared upload: a renderer with another film and camera and an rlpath
+     * renderer use it first, passes interleaved; the last one must match a
+     * renderer that uploaded the scene itself, bit for bit (same passes, so
+     * that the film sums in the same order on any driver). */
+    {
+        struct cv_render_params ps = {.seed = 1234};
+        struct test_image own = {0};
+        struct cv_scene_gpu *gs = NULL;
+        struct cv_renderer *ra = NULL, *rb = NULL, *rc = NULL;
+        struct cv_scene moved = *s;
+        moved.camera.to_world[0].w += 0.5f;
+        struct cv_render_params pa = {.seed = 99, .width = 12, .height = 8};
+        struct cv_render_params pb = {.seed = 1234, .integrator = CV_RENDER_RLPATH};
+        bool ok = test_render(gpu, s, &ps, one, &own, &err) &&
+                  cv_scene_gpu_create(gpu, s, &gs, &err) &&
+                  cv_renderer_create_shared(gpu, gs, &moved, &pa, &ra, &err) &&
+                  cv_renderer_create_shared(gpu, gs, s, &pb, &rb, &err) &&
+                  cv_renderer_pass(ra, 4, &err) && cv_renderer_pass(rb, 4, &err) &&
+                  cv_renderer_create_shared(gpu, gs, s, &ps, &rc, &err) &&
+                  cv_renderer_pass(ra, 4, &err) && cv_renderer_pass(rc, 16, &err);
+        if (tap_ok(ok, "three renderers on one upload: %s", err.msg)) {
+            uint32_t w, h;
+            cv_renderer_size(ra, &w, &h);
+            TAP_EQ_INT(w * 1000 + h, 12 * 1000 + 8, "the override film is its renderer's own");
+            size_t bytes = (size_t)own.w * own.h * 4 * sizeof(float);
+            float *px = cv_xmalloc(bytes);
+            ok = cv_renderer_read(rc, px, NULL, NULL, NULL, &err);
+            tap_ok(ok && memcmp(px, own.rgba, bytes) == 0,
+                   "shared upload renders the own upload's image bit for bit %s", err.msg);
+            free(px);
+        }
+        cv_renderer_destroy(&ra);
+        cv_renderer_destroy(&rb);
+        cv_renderer_destroy(&rc);
+        cv_scene_gpu_destroy(&gs);
+        tap_ok(gs == NULL, "cv_scene_gpu_destroy clears the pointer");
+        free(own.rgba);
     }
 
     /* rlpath is implemented now (tests/trace/rlpath_*): an unknown one is refused */
