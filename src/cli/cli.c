@@ -41,7 +41,7 @@ static void usage(FILE *out)
           "      --gpu=N             use EGL device N (see --list-gpus)\n"
           "      --backend=NAME      auto, egl or osmesa\n"
           "  -q, --quiet             only errors\n"
-          "  -v, --verbose           more detail (twice: debug)\n"
+          "  -v, --verbose           debugging detail, OpenGL debug messages included\n"
           "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
           "or scene, 4 no usable GPU, 130 interrupted (partial images written).\n",
@@ -219,10 +219,7 @@ int cv_cli_main(int argc, char **argv)
             return CV_EXIT_USAGE;
         }
     }
-    cv_log_set_level(verbosity < 0 ? CV_LOG_ERROR
-                     : verbosity == 0 ? CV_LOG_INFO
-                     : verbosity == 1 ? CV_LOG_INFO
-                                      : CV_LOG_DEBUG);
+    cv_log_set_level(verbosity < 0 ? CV_LOG_ERROR : verbosity == 0 ? CV_LOG_INFO : CV_LOG_DEBUG);
     if (list_gpus) {
         struct cv_error err = {{0}};
         if (!cv_gpu_list(&o.gpu, stdout, &err)) {
