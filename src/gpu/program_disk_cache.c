@@ -182,9 +182,14 @@ GLuint cv_program_disk_cache_load(struct cv_program_disk_cache *dc, const char *
         why = err.msg;
     } else if (!(why = check_entry(dc, source, data, len, &h))) {
         prog = glCreateProgram();
+        /* A driver may report a refused binary through KHR_debug as an
+         * error; here it is an expected miss, so the group mutes it. */
+        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "program cache load");
+        glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, NULL, GL_FALSE);
         glProgramBinary(prog, h.format, data + sizeof(h) + h.key_len, (GLsizei)h.binary_len);
         GLint status = 0;
         glGetProgramiv(prog, GL_LINK_STATUS, &status);
+        glPopDebugGroup();
         /* A refused binary is a miss; its error must not reach the caller's
          * cv_gl_check. */
         GLenum e = glGetError();
