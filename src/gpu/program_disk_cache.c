@@ -236,11 +236,19 @@ static bool write_atomic(const char *path, const void *a, size_t a_len, const vo
                          const char **why)
 {
     static unsigned counter;
+    /* Farm nodes sharing the folder over NFS may have equal pids. */
+    char host[64] = "host";
+    if (gethostname(host, sizeof(host)) != 0)
+        snprintf(host, sizeof(host), "host");
+    host[sizeof(host) - 1] = '\0';
+    for (char *c = host; *c; c++)
+        if (*c == '/')
+            *c = '_';
     char *tmp = NULL;
     int fd = -1;
     for (int attempt = 0; attempt < 16 && fd < 0; attempt++) {
         free(tmp);
-        tmp = cv_xasprintf("%s.tmp.%ld.%u", path, (long)getpid(), counter++);
+        tmp = cv_xasprintf("%s.tmp.%s.%ld.%u", path, host, (long)getpid(), counter++);
         fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd < 0 && errno != EEXIST)
             break;
