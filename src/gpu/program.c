@@ -365,7 +365,12 @@ static bool build(struct cv_program_disk_cache *disk, const char *path,
         adopt(cached, path, out);
         free(src);
         free_names(names);
-        return cv_gl_check(err, "loading glsl/%s from the program cache", path);
+        if (cv_gl_check(err, "loading glsl/%s from the program cache", path))
+            return true;
+        glDeleteProgram(cached);
+        free(out->path);
+        *out = (struct cv_program){0};
+        return false;
     }
     GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
     const GLchar *srcs[1] = {src};
@@ -397,14 +402,17 @@ static bool build(struct cv_program_disk_cache *disk, const char *path,
             glDeleteProgram(prog);
         } else {
             adopt(prog, path, out);
-            cv_program_disk_cache_store(disk, src, prog, path);
         }
     }
     glDeleteShader(sh);
+    ok = ok && cv_gl_check(err, "building glsl/%s", path);
+    /* Only after the check: the store reads glGetError for its own calls. */
+    if (ok)
+        cv_program_disk_cache_store(disk, src, out->id, path);
     free(log);
     free(src);
     free_names(names);
-    return ok && cv_gl_check(err, "building glsl/%s", path);
+    return ok;
 }
 
 struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
