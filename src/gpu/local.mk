@@ -5,7 +5,8 @@ libcavalry_a_SOURCES += \
 	src/gpu/context_egl.c src/gpu/context_osmesa.c \
 	src/gpu/gl_check.c src/gpu/gl_check.h \
 	src/gpu/glsl_source.c src/gpu/glsl_source.h \
-	src/gpu/program.c src/gpu/program.h
+	src/gpu/program.c src/gpu/program.h \
+	src/gpu/program_disk_cache.c src/gpu/program_disk_cache.h
 nodist_libcavalry_a_SOURCES = src/gpu/glsl_embedded.c
 EXTRA_DIST += src/gpu/embed_glsl.sh src/gpu/gl_functions.sh $(GLSL_FILES)
 

@@ -8,6 +8,7 @@
 #include "gpu/gl_check.h"
 #include "gpu/glsl_source.h"
 #include "gpu/program.h"
+#include "gpu/program_disk_cache.h"
 
 #define CV_GLSL_MAX_FILES 256
 /* Mesa reports some errors inside an included file with source-string 0,
@@ -25,6 +26,8 @@ struct cache_entry {
 struct cv_program_cache {
     struct cache_entry *entries;
     size_t n, cap;
+    /* Opened at the first request, when the context is current. */
+    struct cv_program_disk_cache *disk;
 };
 
 struct cv_program_cache *cv_program_cache_create(void)
@@ -45,6 +48,7 @@ void cv_program_cache_destroy(struct cv_program_cache **cache)
         free(e->prog);
     }
     free((*cache)->entries);
+    cv_program_disk_cache_close(&(*cache)->disk);
     free(*cache);
     *cache = NULL;
 }
@@ -338,12 +342,36 @@ static char *program_log(GLuint prog)
     return log;
 }
 
-static bool build(const char *path, const char *const *defines, struct cv_program *out,
-                  struct cv_error *err)
+/* Fills out from a linked program. */
+static void adopt(GLuint prog, const char *path, struct cv_program *out)
+{
+    GLint size[3] = {1, 1, 1};
+    glGetProgramiv(prog, GL_COMPUTE_WORK_GROUP_SIZE, size);
+    out->id = prog;
+    for (int i = 0; i < 3; i++)
+        out->local_size[i] = (uint32_t)size[i];
+    out->path = cv_xstrdup(path);
+    glObjectLabel(GL_PROGRAM, prog, -1, path);
+}
+
+static bool build(struct cv_program_disk_cache *disk, const char *path,
+                  const char *const *defines, struct cv_program *out, struct cv_error *err)
 {
     char *src, **names;
     if (!cv_glsl_assemble(path, defines, &src, &names, err))
         return false;
+    GLuint cached = cv_program_disk_cache_load(disk, src, path);
+    if (cached) {
+        adopt(cached, path, out);
+        free(src);
+        free_names(names);
+        if (cv_gl_check(err, "loading glsl/%s from the program cache", path))
+            return true;
+        glDeleteProgram(cached);
+        free(out->path);
+        *out = (struct cv_program){0};
+        return false;
+    }
     GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
     const GLchar *srcs[1] = {src};
     glShaderSource(sh, 1, srcs, NULL);
@@ -360,6 +388,8 @@ static bool build(const char *path, const char *const *defines, struct cv_progra
         if (log[0])
             cv_debug("glsl/%s compiler log:\n%s", path, log);
         GLuint prog = glCreateProgram();
+        if (cv_program_disk_cache_enabled(disk))
+            glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
         glAttachShader(prog, sh);
         glLinkProgram(prog);
         glGetProgramiv(prog, GL_LINK_STATUS, &status);
@@ -371,20 +401,18 @@ static bool build(const char *path, const char *const *defines, struct cv_progra
             free(mapped);
             glDeleteProgram(prog);
         } else {
-            GLint size[3] = {1, 1, 1};
-            glGetProgramiv(prog, GL_COMPUTE_WORK_GROUP_SIZE, size);
-            out->id = prog;
-            for (int i = 0; i < 3; i++)
-                out->local_size[i] = (uint32_t)size[i];
-            out->path = cv_xstrdup(path);
-            glObjectLabel(GL_PROGRAM, prog, -1, path);
+            adopt(prog, path, out);
         }
     }
     glDeleteShader(sh);
+    ok = ok && cv_gl_check(err, "building glsl/%s", path);
+    /* Only after the check: the store reads glGetError for its own calls. */
+    if (ok)
+        cv_program_disk_cache_store(disk, src, out->id, path);
     free(log);
     free(src);
     free_names(names);
-    return ok && cv_gl_check(err, "building glsl/%s", path);
+    return ok;
 }
 
 struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
@@ -403,8 +431,10 @@ struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
             return c->entries[i].prog;
         }
     }
+    if (!c->disk)
+        c->disk = cv_program_disk_cache_open(&gpu->info);
     struct cv_program prog = {0};
-    if (!build(path, defines, &prog, err)) {
+    if (!build(c->disk, path, defines, &prog, err)) {
         free(key.s);
         return NULL;
     }
@@ -439,4 +469,9 @@ void cv_program_dispatch_1d(const struct cv_program *prog, uint64_t n)
     glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                     GL_COMMAND_BARRIER_BIT);
+}
+
+void cv_program_cache_stats(const struct cv_gpu *gpu, struct cv_program_disk_stats *out)
+{
+    cv_program_disk_cache_stats(gpu && gpu->programs ? gpu->programs->disk : NULL, out);
 }

@@ -2,7 +2,10 @@
  * #include "..." (relative to the including file, then to glsl/), injects
  * #defines after #version, and maps driver logs ("0(42)", "0:42(7)") back to
  * glsl/<file>:<line>. Programs are cached per context by path and defines,
- * so a batch compiles each once. */
+ * so a batch compiles each once, and their linked binaries on disk (see
+ * program_disk_cache.h: $CAVALRY_CACHE_DIR, else $XDG_CACHE_HOME/cavalry,
+ * else ~/.cache/cavalry), so the next process on the machine need not
+ * compile at all. */
 #ifndef CV_GPU_PROGRAM_H
 #define CV_GPU_PROGRAM_H
 
@@ -13,6 +16,7 @@
 
 #include "base/error.h"
 #include "gpu/context.h"
+#include "gpu/program_disk_cache.h"
 
 struct cv_program {
     GLuint id;
@@ -28,6 +32,10 @@ void cv_program_cache_destroy(struct cv_program_cache **cache);
  * The program stays owned by the cache. */
 struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
                                   const char *const *defines, struct cv_error *err);
+
+/* The disk cache's counts for this context (all zero and enabled false
+ * before the first cv_program_get, or when the cache is off). */
+void cv_program_cache_stats(const struct cv_gpu *gpu, struct cv_program_disk_stats *out);
 
 /* The assembled source (includes expanded, defines injected, #line
  * directives naming file numbers); *names receives the file table (index
