@@ -241,9 +241,9 @@ static bool write_atomic(const char *path, const void *a, size_t a_len, const vo
     if (gethostname(host, sizeof(host)) != 0)
         snprintf(host, sizeof(host), "host");
     host[sizeof(host) - 1] = '\0';
-    for (char *c = host; *c; c++)
-        if (*c == '/')
-            *c = '_';
+    for (char *h = host; *h; h++)
+        if (*h == '/')
+            *h = '_';
     char *tmp = NULL;
     int fd = -1;
     for (int attempt = 0; attempt < 16 && fd < 0; attempt++) {
