@@ -60,7 +60,48 @@ struct cv_renderer {
     size_t n_queries, cap_queries;
     double gpu_ms;
     struct cv_rlpath *rl;          /* CV_RENDER_RLPATH, else NULL */
+    /* CAVALRY_STAGE_TIMES: GPU time per stage, from timestamp pairs around
+     * every dispatch (a diagnostic: the queries cost time themselves) */
+    struct {
+        bool on;
+        GLuint *queries;           /* before, after pairs */
+        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath update */
+        size_t n, cap, cap_stage;
+        double ms[ST_COUNT + 1];
+    } prof;
 };
+
+static const char *const stage_names[ST_COUNT + 1] = {
+    "generate", "regenerate", "prepare0", "prepare1", "prepare2", "intersect",
+    "escaped",  "shade",      "shadow",   "resolve",  "rlpath-update",
+};
+
+static void prof_mark(struct cv_renderer *r, int stage)
+{
+    if (!r->prof.on)
+        return;
+    GLuint q;
+    glGenQueries(1, &q);
+    glQueryCounter(q, GL_TIMESTAMP);
+    if (r->prof.n % 2 == 0) {  /* a pair begins: note its stage */
+        size_t k = r->prof.n / 2;
+        CV_PUSH(r->prof.stage, k, r->prof.cap_stage, (uint8_t)stage);
+    }
+    CV_PUSH(r->prof.queries, r->prof.n, r->prof.cap, q);
+}
+
+static void prof_collect(struct cv_renderer *r)
+{
+    for (size_t i = 0; i + 1 < r->prof.n; i += 2) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(r->prof.queries[i], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(r->prof.queries[i + 1], GL_QUERY_RESULT, &t1);
+        r->prof.ms[r->prof.stage[i / 2]] += t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
+    }
+    if (r->prof.n)
+        glDeleteQueries((GLsizei)r->prof.n, r->prof.queries);
+    r->prof.n = 0;
+}
 
 static const char *const stage_files[ST_COUNT] = {
     "trace/generate.comp", "trace/generate.comp", "trace/prepare.comp", "trace/prepare.comp",
@@ -191,6 +232,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
     r->aovs = p->aovs;
+    r->prof.on = getenv("CAVALRY_STAGE_TIMES") != NULL;
     r->max_depth = p->max_depth ? p->max_depth
                                 : (scene->settings.max_depth ? scene->settings.max_depth : 5);
     setup_camera(r, scene, p);
@@ -291,6 +333,23 @@ static void bind_all(struct cv_renderer *r)
         cv_rlpath_bind(r->rl);
 }
 
+static void dispatch_indirect(const struct cv_program *prog, uint32_t slot);
+static void dispatch_one(const struct cv_program *prog);
+
+static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
+{
+    prof_mark(r, s);
+    dispatch_indirect(&r->prog[s], slot);
+    prof_mark(r, s);
+}
+
+static void stage_one(struct cv_renderer *r, int s)
+{
+    prof_mark(r, s);
+    dispatch_one(&r->prog[s]);
+    prof_mark(r, s);
+}
+
 static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
 {
     glUseProgram(prog->id);
@@ -312,16 +371,19 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     r->pass.misc.x = it;
     glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
                          &r->pass.misc);
-    dispatch_one(&r->prog[ST_PREPARE0]);
-    dispatch_indirect(&r->prog[ST_INTERSECT], CV_ARGS_RAYS);
-    dispatch_one(&r->prog[ST_PREPARE1]);
-    dispatch_indirect(&r->prog[ST_ESCAPED], CV_ARGS_ESCAPED);
-    dispatch_indirect(&r->prog[ST_SHADE], CV_ARGS_HITS);
-    if (r->rl)
+    stage_one(r, ST_PREPARE0);
+    stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
+    stage_one(r, ST_PREPARE1);
+    stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
+    stage_indirect(r, ST_SHADE, CV_ARGS_HITS);
+    if (r->rl) {
+        prof_mark(r, ST_COUNT);
         cv_rlpath_update(r->rl);
-    dispatch_one(&r->prog[ST_PREPARE2]);
-    dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
-    dispatch_indirect(&r->prog[ST_REGENERATE], CV_ARGS_DONE);
+        prof_mark(r, ST_COUNT);
+    }
+    stage_one(r, ST_PREPARE2);
+    stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
+    stage_indirect(r, ST_REGENERATE, CV_ARGS_DONE);
 }
 
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
@@ -341,7 +403,9 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     r->pass.misc.x = 0;
     r->pass.misc.w = r->spp_done + spp;
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
+    prof_mark(r, ST_GENERATE);
     cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
+    prof_mark(r, ST_GENERATE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
     /* Every path ends within max_depth + 1 iterations, so this bounds the
@@ -396,6 +460,7 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     }
     glDeleteQueries((GLsizei)r->n_queries, r->queries);
     r->n_queries = 0;
+    prof_collect(r);
     CvTraceQueues q;
     if (!cv_buffer_read(r->queues, 0, sizeof(q), &q, err))
         return false;
@@ -460,6 +525,18 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (!rp || !*rp)
         return;
     struct cv_renderer *r = *rp;
+    if (r->prof.on) {
+        prof_collect(r);
+        double total = 0;
+        for (int s = 0; s <= ST_COUNT; s++)
+            total += r->prof.ms[s];
+        for (int s = 0; s <= ST_COUNT; s++)
+            if (r->prof.ms[s] > 0)
+                cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
+                        total > 0 ? 100 * r->prof.ms[s] / total : 0);
+        free(r->prof.queries);
+        free(r->prof.stage);
+    }
     if (r->n_queries)
         glDeleteQueries((GLsizei)r->n_queries, r->queries);
     free(r->queries);
