@@ -11,6 +11,10 @@ bench_cavalry_bench_SOURCES = bench/cavalry_bench.c bench/bench.h bench/record.c
 	bench/stages.c bench/summarize.c bench/exr_read.c
 bench_cavalry_bench_LDADD = $(CV_LIBS)
 bench_cavalry_bench_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
+# veach-mis: direct light on the plates, computed independently of the GLSL
+noinst_PROGRAMS += bench/mis_direct
+bench_mis_direct_SOURCES = bench/mis_direct.c
+bench_mis_direct_LDADD = $(CV_LIBS) -lm
 
 # `make bench`: the quick set (minutes on llvmpipe) against this build tree.
 # Full sizes, e.g. on the GPU machine: bench/run.sh --binary bench/cavalry_bench

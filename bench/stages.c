@@ -15,6 +15,7 @@
 #include <epoxy/gl.h>
 
 #include "base/mem.h"
+#include "batch/pass_size.h"
 #include "bench/bench.h"
 #include "gpu/buffer.h"
 
@@ -135,13 +136,25 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "render.first_pass_gpu_ms", c1.gpu_ms);
         bench_gpu_memory_sample(gpu);
     }
-    /* The rest one pass of 1 spp at a time, as a progressive render does. */
-    for (unsigned s = 1; s < p->spp && ok; s++)
-        ok = cv_renderer_pass(ren, 1, err);
+    /* The rest in passes sized as cavalry-batch sizes them (each waits for
+     * its counters, as the batch's progress does). */
+    uint32_t n = 1, passes = 1;
+    double tp = p0;
+    while (ok && cv_renderer_spp_done(ren) < p->spp) {
+        double now = bench_now_ms();
+        n = cv_next_pass_spp(n, (now - tp) * 1e-3, 0);
+        tp = now;
+        if (n > p->spp - cv_renderer_spp_done(ren))
+            n = p->spp - cv_renderer_spp_done(ren);
+        ok = cv_renderer_pass(ren, n, err) && cv_renderer_counters(ren, &c, err);
+        passes++;
+    }
     ok = ok && cv_renderer_counters(ren, &c, err);
     if (ok) {
         bench_num(r, "render.time_to_spp_wall_ms", bench_now_ms() - p0);
         bench_num(r, "render.time_to_spp_gpu_ms", c.gpu_ms);
+        bench_num(r, "render.passes", passes);
+        bench_num(r, "render.iterations", (double)c.iterations);
         bench_gpu_memory_sample(gpu);
         /* llvmpipe answers GL_TIME_ELAPSED with near-zero times; there the
          * CPU is the device and the wall clock is the honest measure. */

@@ -3,7 +3,17 @@
  * Every queue is an SSBO array plus a counter in CvTraceQueues; the stage
  * that fills a queue bumps the counter with atomicAdd, and prepare.comp turns
  * the counters into indirect dispatch arguments, so the host never reads a
- * count back between bounces. */
+ * count back between bounces.
+ *
+ * Paths are regenerated: each pixel of the crop owns one path slot, and when
+ * its path ends (escaped, absorbed, roulette, maximum depth) the pixel goes
+ * to the done queue, from which generate.comp starts the pixel's next sample
+ * of the pass in the same iteration. The wave stays full until pixels run
+ * out of samples, so an iteration is one bounce of paths of mixed depths,
+ * and a pass of k samples takes about k times the mean path length in
+ * iterations instead of k times the maximum depth. Each pixel has one path
+ * in flight, so film updates need no atomics and a pixel's samples add up
+ * in the same order however a render is split into passes. */
 #ifndef CV_SHARED_TRACE_H
 #define CV_SHARED_TRACE_H
 
@@ -19,11 +29,12 @@
  * - CV_BIND_RAYS: the ray queue, double-buffered by depth parity: with
  *   capacity n (pixels of the crop), rays of depth d sit at
  *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
- * - CV_BIND_HITS: hits at [0, n), escaped rays at [n, 2n) (their .ray only).
- * Items refer to rays by their index within the depth's half. */
+ * - CV_BIND_HITS: hits at [0, n), escaped rays at [n, 2n), done pixels at
+ *   [2n, 3n) (their .ray only: a ray index, a pixel for done).
+ * Items refer to rays by their index within the iteration's half. */
 #define CV_BIND_QUEUES (CV_BIND_STAGE0 + 0)    /* CvTraceQueues */
 #define CV_BIND_RAYS (CV_BIND_STAGE0 + 1)      /* CvRayItem[2n] */
-#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[2n] */
+#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[3n] */
 #define CV_BIND_SHADOW (CV_BIND_STAGE0 + 3)    /* CvShadowItem[n] */
 #define CV_BIND_FILM (CV_BIND_STAGE0 + 4)      /* CvFilmPixel[n] */
 /* CV_BIND_STAGE0 + 5 (15) is CV_BIND_ENV_DIST, the environment map
@@ -36,6 +47,7 @@
 #define CV_Q_HITS 2u
 #define CV_Q_ESCAPED 3u
 #define CV_Q_SHADOW 4u
+#define CV_Q_DONE 5u       /* pixels whose path ended this iteration */
 
 /* Indirect dispatch slots (args[slot] = groups x, y, z, unused); the byte
  * offset of slot s in the buffer is CV_ARGS_OFFSET + 16 * s. */
@@ -43,31 +55,36 @@
 #define CV_ARGS_HITS 1u
 #define CV_ARGS_ESCAPED 2u
 #define CV_ARGS_SHADOW 3u
+#define CV_ARGS_DONE 4u
 #define CV_ARGS_OFFSET 32
 
 /* Statistic slots: 64-bit totals kept as (lo, hi) pairs by the single
- * prepare invocation, reset by the host at the start of a pass. */
-#define CV_STAT_PRIMARY 0u
-#define CV_STAT_SECONDARY 1u
-#define CV_STAT_SHADOW 2u
+ * prepare invocation. An iteration mixes camera and bounce rays, so the
+ * closest-hit rays are counted together; the host knows the camera rays
+ * (one per pixel sample). */
+#define CV_STAT_EXTEND 0u      /* every closest-hit ray, camera rays included */
+#define CV_STAT_SHADOW 1u
 
 CV_STRUCT(CvTraceQueues) {
     CV_UINT count[8];      /* CV_Q_*; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
-    CV_UVEC4 args[4];      /* indirect dispatch arguments, CV_ARGS_* */
-    CV_UVEC4 stats[3];     /* CV_STAT_*: x lo, y hi */
+    CV_UVEC4 args[5];      /* indirect dispatch arguments, CV_ARGS_* */
+    CV_UVEC4 stats[2];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
 CV_CHECK_SIZE(CvTraceQueues, 144);
 
-/* Ray flags (CvRayItem.beta.w, as a float holding the integer). */
+/* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
+ * and the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT. */
 #define CV_RAYF_SPECULAR 1u        /* the last bounce was specular (no MIS on emission) */
 #define CV_RAYF_ALBEDO_DONE 2u     /* the albedo AOV has been written for this sample */
+#define CV_RAYF_MASK 255u
+#define CV_RAYF_DEPTH_SHIFT 8u
 
 /* A path's next ray. o.w: pixel index of the crop (a float holding the
  * integer: exact below 2^24, which the host enforces; integer bit patterns
  * would be denormals that some GPUs flush); d.w: the BSDF pdf of d at the
  * previous vertex (solid angle), 0 for camera rays and after specular
- * bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits. */
+ * bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits and depth. */
 CV_STRUCT(CvRayItem) {
     CV_VEC4 o;
     CV_VEC4 d;
@@ -103,7 +120,9 @@ CV_CHECK_SIZE(CvShadowItem, 48);
  * sample: filter importance sampling). AOVs (divide by L.w), written only
  * when the renderer keeps them: albedo.rgb: albedo at the first
  * non-specular hit; albedo.w: camera distance to the first hit (0 when the
- * ray escaped); normal.xyz: shading normal at the first hit. */
+ * ray escaped); normal.xyz: shading normal at the first hit. normal.w: the
+ * sample index of the pixel's path in flight (a float holding the integer,
+ * as CvRayItem.o.w; the host keeps sample counts below 2^24). */
 CV_STRUCT(CvFilmPixel) {
     CV_VEC4 L;
     CV_VEC4 albedo;
@@ -115,10 +134,11 @@ CV_CHECK_SIZE(CvFilmPixel, 48);
 #define CV_UBO_PASS 0
 #define CV_FILTER_TABLE 64
 CV_STRUCT(CvPassParams) {
-    CV_UVEC4 frame;        /* x: pixels in the crop, y: crop width, z: crop height, w: sample index */
+    CV_UVEC4 frame;        /* x: pixels in the crop, y: crop width, z: crop height, w: the pass's first sample */
     CV_UVEC4 seed;         /* x, y: job seed lo/hi; z: sampler (0 sobol, 1 independent); w: max depth */
     CV_UVEC4 film;         /* x, y: full film resolution; z, w: crop origin */
-    CV_UVEC4 misc;         /* x: depth; y: filter type; z: light count; w: flags */
+    CV_UVEC4 misc;         /* x: iteration (its parity picks the ray queue halves); y: filter
+                            * type; z: light count; w: the pass's end sample (exclusive) */
     CV_VEC4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
     CV_VEC4 cam_to_world[3];
     CV_VEC4 screen;

@@ -17,18 +17,28 @@ layout(std430, binding = CV_BIND_HITS) buffer CvHits { CvHitItem hits[]; };
 layout(std430, binding = CV_BIND_SHADOW) buffer CvShadow { CvShadowItem shadows[]; };
 layout(std430, binding = CV_BIND_FILM) buffer CvFilm { CvFilmPixel film[]; };
 
-uint cv_depth() { return u_pass.misc.x; }
+uint cv_iteration() { return u_pass.misc.x; }
 uint cv_max_depth() { return u_pass.seed.w; }
-uint cv_sample_index() { return u_pass.frame.w; }
 uint cv_capacity() { return u_pass.frame.x; }
 
-// The depth's input rays and the bounce rays it writes (see trace.h).
-CvRayItem cv_ray_in(uint i) { return rays[((cv_depth() + 1u) & 1u) * cv_capacity() + i]; }
-void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_depth() & 1u) * cv_capacity() + slot] = r; }
+// A ray's bits (CV_RAYF_*) and depth, both kept in beta.w (see trace.h).
+uint cv_ray_flags(CvRayItem r) { return uint(r.beta.w) & CV_RAYF_MASK; }
+uint cv_ray_depth(CvRayItem r) { return uint(r.beta.w) >> CV_RAYF_DEPTH_SHIFT; }
+float cv_ray_meta(uint flags, uint depth) { return float(flags | (depth << CV_RAYF_DEPTH_SHIFT)); }
+
+// The sample index of the path that crop pixel `pixel` has in flight.
+uint cv_pixel_sample(uint pixel) { return uint(film[pixel].normal.w); }
+
+// The iteration's input rays and the rays it writes (see trace.h).
+CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }
+void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_iteration() & 1u) * cv_capacity() + slot] = r; }
 uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
 void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray; }
+uint cv_done_pixel(uint i) { return hits[2u * cv_capacity() + i].ray; }
+void cv_done_push(uint slot, uint pixel) { hits[2u * cv_capacity() + slot].ray = pixel; }
 
 // Dimension pairs: 0 filter, 1 lens, then CV_PAIRS_PER_BOUNCE per depth.
+// (Shade stages get theirs through cv_bounce_2d in surface_inputs.glsl.)
 #define CV_PAIRS_PER_BOUNCE 4u
 #define CV_PAIR_BSDF_U2 0u    // BSDF direction
 #define CV_PAIR_BSDF_UC 1u    // x: BSDF lobe, y: material mix
@@ -51,34 +61,48 @@ vec3 cv_offset_ray(vec3 p, vec3 n)
 }
 
 // Queue slots for a whole group: every invocation says whether it pushes to
-// each of two queues; invocation 0 takes the group's range of each queue
-// with one atomic and hands out slots in invocation order. Call from uniform
+// each of up to three queues; the group takes its range of each queue with
+// one atomic and hands out slots in invocation order. Call from uniform
 // control flow (no invocation may have returned). Besides saving atomics,
 // this avoids llvmpipe (Mesa 22.3) losing per-invocation atomicAdd results
 // in partially active SIMD vectors, which dropped and duplicated items.
-shared uint cv_q_flags[2 * CV_TRACE_GROUP];
-shared uint cv_q_base[2];
+// The three flags travel packed in 10-bit fields (a group of 64 counts to
+// 64 at most) through an inclusive Hillis-Steele scan in shared memory:
+// log2(group) steps for every invocation rather than a serial loop in one.
+shared uint cv_q_scan[2][CV_TRACE_GROUP];
+shared uint cv_q_base[3];
+
+uvec3 cv_queue_slots3(bvec3 push, uvec3 queue)
+{
+    uint li = gl_LocalInvocationIndex;
+    uint mine = (push.x ? 1u : 0u) | (push.y ? 1u << 10 : 0u) | (push.z ? 1u << 20 : 0u);
+    cv_q_scan[0][li] = mine;
+    barrier();
+    uint src = 0u;
+    for (uint off = 1u; off < uint(CV_TRACE_GROUP); off <<= 1) {
+        uint v = cv_q_scan[src][li];
+        if (li >= off)
+            v += cv_q_scan[src][li - off];
+        cv_q_scan[src ^ 1u][li] = v;
+        src ^= 1u;
+        barrier();
+    }
+    uint incl = cv_q_scan[src][li];
+    if (li == uint(CV_TRACE_GROUP) - 1u) {
+        uvec3 total = uvec3(incl & 1023u, (incl >> 10) & 1023u, incl >> 20);
+        cv_q_base[0] = total.x > 0u ? atomicAdd(q.count[queue.x], total.x) : 0u;
+        cv_q_base[1] = total.y > 0u ? atomicAdd(q.count[queue.y], total.y) : 0u;
+        cv_q_base[2] = total.z > 0u ? atomicAdd(q.count[queue.z], total.z) : 0u;
+    }
+    barrier();
+    uint excl = incl - mine;
+    return uvec3(cv_q_base[0] + (excl & 1023u), cv_q_base[1] + ((excl >> 10) & 1023u),
+                 cv_q_base[2] + (excl >> 20));
+}
 
 uvec2 cv_queue_slots(bool push0, uint queue0, bool push1, uint queue1)
 {
-    uint li = gl_LocalInvocationIndex;
-    cv_q_flags[li] = push0 ? 1u : 0u;
-    cv_q_flags[CV_TRACE_GROUP + li] = push1 ? 1u : 0u;
-    barrier();
-    if (li == 0u) {
-        uint a = 0u, b = 0u;
-        for (uint k = 0u; k < uint(CV_TRACE_GROUP); k++) {
-            uint fa = cv_q_flags[k], fb = cv_q_flags[CV_TRACE_GROUP + k];
-            cv_q_flags[k] = a;
-            cv_q_flags[CV_TRACE_GROUP + k] = b;
-            a += fa;
-            b += fb;
-        }
-        cv_q_base[0] = a > 0u ? atomicAdd(q.count[queue0], a) : 0u;
-        cv_q_base[1] = b > 0u ? atomicAdd(q.count[queue1], b) : 0u;
-    }
-    barrier();
-    return uvec2(cv_q_base[0] + cv_q_flags[li], cv_q_base[1] + cv_q_flags[CV_TRACE_GROUP + li]);
+    return cv_queue_slots3(bvec3(push0, push1, false), uvec3(queue0, queue1, queue1)).xy;
 }
 
 bool cv_finite3(vec3 v)
@@ -86,8 +110,8 @@ bool cv_finite3(vec3 v)
     return !(any(isnan(v)) || any(isinf(v)));
 }
 
-// Adds radiance to a pixel. Each pixel has one path in flight per wave and
-// each stage touches a path once, so the stages need no atomics here.
+// Adds radiance to a pixel. Each pixel has one path in flight and each
+// stage touches a path once, so the stages need no atomics here.
 void cv_film_add(uint pixel, vec3 L)
 {
     if (cv_finite3(L) && cv_max3(L) > 0.0)

@@ -1,7 +1,9 @@
 #version 450
 // glsl/trace/escaped.comp: rays that left the scene pick up environment
 // light, MIS-weighted against the light sampling that could have found the
-// same direction (not for camera rays or after specular bounces).
+// same direction (not for camera rays or after specular bounces); their
+// paths end, so their pixels go to the done queue. Runs every iteration;
+// the host defines CV_HAS_ENV when the scene has an environment light.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -11,16 +13,22 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 void main()
 {
     uint i = cv_global_index();
-    if (i >= q.count[CV_Q_ESCAPED])
-        return;
-    CvRayItem r = cv_ray_in(cv_escaped_ray(i));
-    uint pixel = uint(r.o.w);
-    uint flags = uint(r.beta.w);
-    vec3 Le = cv_env_Le(r.d.xyz);
-    if (cv_max3(Le) <= 0.0)
-        return;
-    float w = 1.0;
-    if (cv_depth() > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
-        w = cv_power_heuristic(r.d.w, cv_env_pdf(r.d.xyz));
-    cv_film_add(pixel, r.beta.rgb * Le * w);
+    bool valid = i < q.count[CV_Q_ESCAPED];
+    uint pixel = 0u;
+    if (valid) {
+        CvRayItem r = cv_ray_in(cv_escaped_ray(i));
+        pixel = uint(r.o.w);
+#ifdef CV_HAS_ENV
+        vec3 Le = cv_env_Le(r.d.xyz);
+        if (cv_max3(Le) > 0.0) {
+            float w = 1.0;
+            if (cv_ray_depth(r) > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u)
+                w = cv_power_heuristic(r.d.w, cv_env_pdf(r.d.xyz));
+            cv_film_add(pixel, r.beta.rgb * Le * w);
+        }
+#endif
+    }
+    uint slot = cv_queue_slots(valid, CV_Q_DONE, false, CV_Q_DONE).x;
+    if (valid)
+        cv_done_push(slot, pixel);
 }

@@ -1,6 +1,6 @@
 #version 450
-// glsl/trace/intersect.comp: closest hit for every ray of this depth; hits go
-// to the hit queue, misses to the escaped queue. Alpha cut-outs are handled
+// glsl/trace/intersect.comp: closest hit for every ray of this iteration;
+// hits go to the hit queue, misses to the escaped queue. Alpha cut-outs are handled
 // here by continuing the ray past a surface whose alpha test lets it through,
 // so the depth does not change.
 #include "shared/trace.h"
@@ -31,8 +31,8 @@ void main()
         for (uint k = 0u; hit && k < 64u; k++) {
             uint word = cv_triangles[h.prim].idx.w;
             CvSurface s = cv_surface(h.prim, h.b1, h.b2);
-            float u = cv_u32_to_unit(cv_hash4(uint(r.o.w), cv_sample_index(), h.prim,
-                                              cv_depth() * 64u + k));
+            float u = cv_u32_to_unit(cv_hash4(uint(r.o.w), cv_pixel_sample(uint(r.o.w)), h.prim,
+                                              cv_ray_depth(r) * 64u + k));
             if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))
                 break;
             tmin = h.t * (1.0 + 1e-5) + 1e-6;

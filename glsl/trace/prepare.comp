@@ -1,9 +1,9 @@
 #version 450
 // glsl/trace/prepare.comp: one invocation that turns queue counters into
 // indirect dispatch arguments between stages, so the host never reads a
-// count back. PREPARE_MODE 0 starts a depth (the rays written last become
-// this depth's input; the other queues empty), 1 follows intersection (hits,
-// escaped), 2 follows shading (shadow rays).
+// count back. PREPARE_MODE 0 starts an iteration (the rays written last
+// become its input; the other queues empty), 1 follows intersection (hits,
+// escaped), 2 follows shading (shadow rays, done pixels).
 #include "shared/trace.h"
 layout(local_size_x = 1) in;
 #include "common.glsl"
@@ -36,13 +36,15 @@ void main()
     q.count[CV_Q_HITS] = 0u;
     q.count[CV_Q_ESCAPED] = 0u;
     q.count[CV_Q_SHADOW] = 0u;
+    q.count[CV_Q_DONE] = 0u;
     q.args[CV_ARGS_RAYS] = cv_groups(n);
-    cv_stat_add(cv_depth() == 0u ? CV_STAT_PRIMARY : CV_STAT_SECONDARY, n);
+    cv_stat_add(CV_STAT_EXTEND, n);
 #elif PREPARE_MODE == 1
     q.args[CV_ARGS_HITS] = cv_groups(q.count[CV_Q_HITS]);
     q.args[CV_ARGS_ESCAPED] = cv_groups(q.count[CV_Q_ESCAPED]);
 #else
     q.args[CV_ARGS_SHADOW] = cv_groups(q.count[CV_Q_SHADOW]);
+    q.args[CV_ARGS_DONE] = cv_groups(q.count[CV_Q_DONE]);
     cv_stat_add(CV_STAT_SHADOW, q.count[CV_Q_SHADOW]);
 #endif
 }

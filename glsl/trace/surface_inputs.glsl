@@ -15,12 +15,12 @@ uint cv_film_pixel(uint i)
     return px.y * u_pass.film.x + px.x;
 }
 
-// Dimension pair `which` (CV_PAIR_*) of this depth's bounce for the path of
-// crop pixel `pixel`.
-vec2 cv_bounce_2d(uint pixel, uint which)
+// Dimension pair `which` (CV_PAIR_*) of the bounce at `depth` of the path
+// that crop pixel `pixel` has in flight.
+vec2 cv_bounce_2d(uint pixel, uint depth, uint which)
 {
-    return cv_sample_2d(cv_film_pixel(pixel), cv_sample_index(),
-                        2u + cv_depth() * CV_PAIRS_PER_BOUNCE + which, u_pass.seed.xy, u_pass.seed.z);
+    return cv_sample_2d(cv_film_pixel(pixel), cv_pixel_sample(pixel),
+                        2u + depth * CV_PAIRS_PER_BOUNCE + which, u_pass.seed.xy, u_pass.seed.z);
 }
 
 CvShadingPoint cv_shading_point(CvSurface sf, bool front)

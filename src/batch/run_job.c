@@ -12,6 +12,7 @@
 #include "base/file.h"
 #include "base/log.h"
 #include "base/mem.h"
+#include "batch/pass_size.h"
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "color/color.h"
@@ -26,7 +27,6 @@
 /* Passes aim at this much wall time: short enough for a responsive
  * progress line and a quick stop on SIGTERM, long enough that the readback
  * per pass costs nothing measurable. */
-#define CV_PASS_TARGET_SECONDS 0.5
 #define CV_DEFAULT_SPP 16
 
 static double now_seconds(void)
@@ -302,12 +302,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
             cv_info("job \"%s\": time limit %.1fs reached at %u spp", job->name, limit, done);
             break;
         }
-        /* Size the next pass to the target time, growing at most 4x. */
-        double per_spp = dt / n;
-        double want = per_spp > 0 ? CV_PASS_TARGET_SECONDS / per_spp : 4.0 * n;
-        if (limit > 0 && per_spp > 0)
-            want = fmin(want, fmax(1.0, (limit - (now - t0)) / per_spp));
-        pass_spp = (uint32_t)fmax(1.0, fmin(want, 4.0 * n));
+        pass_spp = cv_next_pass_spp(n, dt, limit > 0 ? fmax(limit - (now - t0), 1e-9) : 0);
     }
     res->spp = cv_renderer_spp_done(r);
     uint32_t w, h;

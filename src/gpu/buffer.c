@@ -33,7 +33,13 @@ void cv_buffer_destroy(GLuint *buf)
 bool cv_buffer_upload(GLuint buf, size_t offset, size_t bytes, const void *data,
                       struct cv_error *err)
 {
-    glNamedBufferSubData(buf, (GLintptr)offset, (GLsizeiptr)bytes, data);
+    if (bytes == 0)
+        return true;
+    GLuint staging = 0;
+    glCreateBuffers(1, &staging);
+    glNamedBufferStorage(staging, (GLsizeiptr)bytes, data, 0);
+    glCopyNamedBufferSubData(staging, buf, 0, (GLintptr)offset, (GLsizeiptr)bytes);
+    glDeleteBuffers(1, &staging);
     return cv_gl_check(err, "uploading %zu bytes", bytes);
 }
 

@@ -14,6 +14,10 @@
 GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struct cv_error *err);
 /* Accepts a pointer to 0; clears it. */
 void cv_buffer_destroy(GLuint *buf);
+/* Copies data into buf through a staging buffer and a GPU copy, so that the
+ * upload is ordered after every GPU command already queued on buf. (NVIDIA
+ * 580 let a glNamedBufferSubData of a few MB land before the clear that
+ * cv_buffer_create had queued on a new buffer, which then wiped it.) */
 bool cv_buffer_upload(GLuint buf, size_t offset, size_t bytes, const void *data,
                       struct cv_error *err);
 /* Waits for the GPU; use outside hot loops only. */

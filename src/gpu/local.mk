@@ -16,7 +16,8 @@ GLSL_FILES += \
 	glsl/lib/index.glsl \
 	glsl/gpu/selftest.comp
 
-src/gpu/glsl_embedded.c: $(GLSL_FILES) $(srcdir)/src/gpu/embed_glsl.sh
+# Makefile too: adding a file to GLSL_FILES must regenerate the list.
+src/gpu/glsl_embedded.c: $(GLSL_FILES) $(srcdir)/src/gpu/embed_glsl.sh Makefile
 	$(AM_V_GEN)$(MKDIR_P) src/gpu && \
 	$(SHELL) $(srcdir)/src/gpu/embed_glsl.sh $(srcdir) $(GLSL_FILES) >$@.tmp && mv $@.tmp $@
 

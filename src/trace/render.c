@@ -1,10 +1,12 @@
-/* render.c: see render.h. The stage order per sample and depth follows
- * pbrt-v4's wavefront integrator: generate camera rays; per depth: reset the
- * queues, intersect (closest), escaped rays, surface hits (emission, NEE,
- * BSDF sampling; with rlpath, its own shade stage and then its table
- * update), shadow rays; the film accumulates in place. Queue counts
- * stay on the GPU: prepare.comp turns them into indirect dispatch
- * arguments. */
+/* render.c: see render.h. The stages follow pbrt-v4's wavefront
+ * integrator: generate camera rays; per iteration: reset the queues,
+ * intersect (closest), escaped rays, surface hits (emission, NEE, BSDF
+ * sampling; with rlpath, its own shade stage and then its table update),
+ * shadow rays, and the next samples of the pixels whose paths ended (path
+ * regeneration, glsl/shared/trace.h); the film accumulates in place. Queue
+ * counts stay on the GPU: prepare.comp turns them into indirect dispatch
+ * arguments. The host reads one count back per CV_CHUNK iterations, a
+ * chunk behind the GPU, only to learn when the pass is over. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +22,15 @@
 #include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 
+/* Iterations queued between looks at whether the pass is over. Small, so
+ * that a pass ends soon after its last path (every queued iteration after
+ * that is a few empty dispatches); large enough that the look, a chunk
+ * behind, never leaves the GPU idle. */
+#define CV_CHUNK 4
+
 enum stage {
     ST_GENERATE,
+    ST_REGENERATE,
     ST_PREPARE0,
     ST_PREPARE1,
     ST_PREPARE2,
@@ -43,16 +52,60 @@ struct cv_renderer {
     uint32_t max_depth;
     bool aovs, has_env;
     uint32_t spp_done;
+    uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
     GLuint ubo, queues, rays, hits, shadow, film, resolved;
+    GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
     struct cv_rlpath *rl;          /* CV_RENDER_RLPATH, else NULL */
+    /* CAVALRY_STAGE_TIMES: GPU time per stage, from timestamp pairs around
+     * every dispatch (a diagnostic: the queries cost time themselves) */
+    struct {
+        bool on;
+        GLuint *queries;           /* before, after pairs */
+        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath update */
+        size_t n, cap, cap_stage;
+        double ms[ST_COUNT + 1];
+    } prof;
 };
 
+static const char *const stage_names[ST_COUNT + 1] = {
+    "generate", "regenerate", "prepare0", "prepare1", "prepare2", "intersect",
+    "escaped",  "shade",      "shadow",   "resolve",  "rlpath-update",
+};
+
+static void prof_mark(struct cv_renderer *r, int stage)
+{
+    if (!r->prof.on)
+        return;
+    GLuint q;
+    glGenQueries(1, &q);
+    glQueryCounter(q, GL_TIMESTAMP);
+    if (r->prof.n % 2 == 0) {  /* a pair begins: note its stage */
+        size_t k = r->prof.n / 2;
+        CV_PUSH(r->prof.stage, k, r->prof.cap_stage, (uint8_t)stage);
+    }
+    CV_PUSH(r->prof.queries, r->prof.n, r->prof.cap, q);
+}
+
+static void prof_collect(struct cv_renderer *r)
+{
+    for (size_t i = 0; i + 1 < r->prof.n; i += 2) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(r->prof.queries[i], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(r->prof.queries[i + 1], GL_QUERY_RESULT, &t1);
+        r->prof.ms[r->prof.stage[i / 2]] += t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
+    }
+    if (r->prof.n)
+        glDeleteQueries((GLsizei)r->prof.n, r->prof.queries);
+    r->prof.n = 0;
+}
+
 static const char *const stage_files[ST_COUNT] = {
-    "trace/generate.comp", "trace/prepare.comp", "trace/prepare.comp", "trace/prepare.comp",
+    "trace/generate.comp", "trace/generate.comp", "trace/prepare.comp", "trace/prepare.comp",
+    "trace/prepare.comp",
     "trace/intersect.comp", "trace/escaped.comp", "trace/shade.comp", "trace/shadow.comp",
     "trace/resolve.comp",
 };
@@ -179,6 +232,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
     r->aovs = p->aovs;
+    r->prof.on = getenv("CAVALRY_STAGE_TIMES") != NULL;
     r->max_depth = p->max_depth ? p->max_depth
                                 : (scene->settings.max_depth ? scene->settings.max_depth : 5);
     setup_camera(r, scene, p);
@@ -195,7 +249,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->scene = gs;
     r->has_env = gs->has_env;
 
-    const char *defines[5];
+    const char *defines[6];
     int nd = 0;
     if (r->scene->empty)
         defines[nd++] = "CV_EMPTY_SCENE";
@@ -206,16 +260,24 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (r->scene->basic_materials)
         defines[nd++] = "CV_BSDF_BASIC";
     defines[nd] = NULL;
-    const char *prep[3][2] = {{"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
-                              {"PREPARE_MODE=2", NULL}};
+    /* the escaped stage alone depends on the environment */
+    const char *escaped[7];
+    memcpy(escaped, defines, sizeof(defines));
+    if (r->has_env)
+        escaped[nd] = "CV_HAS_ENV", escaped[nd + 1] = NULL;
+    const char *modes[5][2] = {{"GENERATE_MODE=0", NULL}, {"GENERATE_MODE=1", NULL},
+                               {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
+                               {"PREPARE_MODE=2", NULL}};
     bool rl = p->integrator == CV_RENDER_RLPATH;
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces this one, with the same defines */
         if (s == ST_SHADE && rl)
             continue;
         const char *const *d = defines;
-        if (s >= ST_PREPARE0 && s <= ST_PREPARE2)
-            d = prep[s - ST_PREPARE0];
+        if (s <= ST_PREPARE2)
+            d = modes[s - ST_GENERATE];
+        else if (s == ST_ESCAPED)
+            d = escaped;
         struct cv_program *pr = cv_program_get(gpu, stage_files[s], d, err);
         if (pr)
             r->prog[s] = *pr;
@@ -241,10 +303,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->ubo = make(sizeof(CvPassParams), "trace pass params", &ok, err);
     r->queues = make(sizeof(CvTraceQueues), "trace queues", &ok, err);
     r->rays = make(2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
-    r->hits = make(2 * n * sizeof(CvHitItem), "trace hits and escaped", &ok, err);
+    r->hits = make(3 * n * sizeof(CvHitItem), "trace hits, escaped and done", &ok, err);
     r->shadow = make(n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(n * sizeof(CvFilmPixel), "trace film", &ok, err);
     r->resolved = make(n * 4 * sizeof(float), "trace resolved", &ok, err);
+    r->alive[0] = make(sizeof(uint32_t), "trace pass end check 0", &ok, err);
+    r->alive[1] = make(sizeof(uint32_t), "trace pass end check 1", &ok, err);
     if (!ok) {
         cv_error_prefix(err, "allocating the film and queues for %ux%u: ", r->crop_w, r->crop_h);
         cv_renderer_destroy(&r);
@@ -269,6 +333,23 @@ static void bind_all(struct cv_renderer *r)
         cv_rlpath_bind(r->rl);
 }
 
+static void dispatch_indirect(const struct cv_program *prog, uint32_t slot);
+static void dispatch_one(const struct cv_program *prog);
+
+static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
+{
+    prof_mark(r, s);
+    dispatch_indirect(&r->prog[s], slot);
+    prof_mark(r, s);
+}
+
+static void stage_one(struct cv_renderer *r, int s)
+{
+    prof_mark(r, s);
+    dispatch_one(&r->prog[s]);
+    prof_mark(r, s);
+}
+
 static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
 {
     glUseProgram(prog->id);
@@ -283,39 +364,68 @@ static void dispatch_one(const struct cv_program *prog)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
+/* One iteration: a bounce of every path in flight, then the next samples of
+ * the pixels whose paths ended. */
+static void iterate(struct cv_renderer *r, uint32_t it)
+{
+    r->pass.misc.x = it;
+    glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
+                         &r->pass.misc);
+    stage_one(r, ST_PREPARE0);
+    stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
+    stage_one(r, ST_PREPARE1);
+    stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
+    stage_indirect(r, ST_SHADE, CV_ARGS_HITS);
+    if (r->rl) {
+        prof_mark(r, ST_COUNT);
+        cv_rlpath_update(r->rl);
+        prof_mark(r, ST_COUNT);
+    }
+    stage_one(r, ST_PREPARE2);
+    stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
+    stage_indirect(r, ST_REGENERATE, CV_ARGS_DONE);
+}
+
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
 {
     if (spp == 0)
         return true;
-    if ((uint64_t)r->spp_done + spp > UINT32_MAX)
-        return cv_fail(err, "more than 2^32 samples per pixel");
+    /* sample indices travel as floats (film normal.w) */
+    if ((uint64_t)r->spp_done + spp > (1u << 24))
+        return cv_fail(err, "more than 2^24 samples per pixel");
     /* timestamps rather than GL_TIME_ELAPSED: llvmpipe reports 0 elapsed
      * time for compute work */
     GLuint query[2] = {0, 0};
     glGenQueries(2, query);
     glQueryCounter(query[0], GL_TIMESTAMP);
     bind_all(r);
-    const size_t depth_at = offsetof(CvPassParams, misc);
-    for (uint32_t s = 0; s < spp; s++) {
-        r->pass.frame.w = r->spp_done + s;
-        r->pass.misc.x = 0;
-        glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
-        cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
-        for (uint32_t d = 0; d <= r->max_depth; d++) {
-            if (d > 0) {
-                r->pass.misc.x = d;
-                glNamedBufferSubData(r->ubo, (GLintptr)depth_at, sizeof(cv_uvec4), &r->pass.misc);
-            }
-            dispatch_one(&r->prog[ST_PREPARE0]);
-            dispatch_indirect(&r->prog[ST_INTERSECT], CV_ARGS_RAYS);
-            dispatch_one(&r->prog[ST_PREPARE1]);
-            if (r->has_env)
-                dispatch_indirect(&r->prog[ST_ESCAPED], CV_ARGS_ESCAPED);
-            dispatch_indirect(&r->prog[ST_SHADE], CV_ARGS_HITS);
-            if (r->rl)
-                cv_rlpath_update(r->rl);
-            dispatch_one(&r->prog[ST_PREPARE2]);
-            dispatch_indirect(&r->prog[ST_SHADOW], CV_ARGS_SHADOW);
+    r->pass.frame.w = r->spp_done;
+    r->pass.misc.x = 0;
+    r->pass.misc.w = r->spp_done + spp;
+    glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
+    prof_mark(r, ST_GENERATE);
+    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
+    prof_mark(r, ST_GENERATE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    /* Every path ends within max_depth + 1 iterations, so this bounds the
+     * pass even if a count were never read back as 0. */
+    uint64_t limit = (uint64_t)spp * (r->max_depth + 1) + CV_CHUNK;
+    uint64_t it = 0;
+    uint32_t alive = 1;
+    for (uint32_t chunk = 0; it < limit; chunk++) {
+        for (int k = 0; k < CV_CHUNK && it < limit; k++, it++)
+            iterate(r, (uint32_t)it);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(r->queues, r->alive[chunk & 1],
+                                 (GLintptr)(sizeof(uint32_t) * CV_Q_RAYS_OUT), 0,
+                                 sizeof(uint32_t));
+        /* the previous chunk's count: waits for that chunk while this one runs */
+        if (chunk > 0) {
+            if (!cv_buffer_read(r->alive[(chunk - 1) & 1], 0, sizeof(alive), &alive, err))
+                return false;
+            if (alive == 0)
+                break;
         }
     }
     glQueryCounter(query[1], GL_TIMESTAMP);
@@ -323,6 +433,7 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[1]);
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
         return false;
+    r->iterations += it;
     r->spp_done += spp;
     return true;
 }
@@ -349,11 +460,14 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     }
     glDeleteQueries((GLsizei)r->n_queries, r->queries);
     r->n_queries = 0;
+    prof_collect(r);
     CvTraceQueues q;
     if (!cv_buffer_read(r->queues, 0, sizeof(q), &q, err))
         return false;
-    c->primary_rays = (uint64_t)q.stats[CV_STAT_PRIMARY].y << 32 | q.stats[CV_STAT_PRIMARY].x;
-    c->secondary_rays = (uint64_t)q.stats[CV_STAT_SECONDARY].y << 32 | q.stats[CV_STAT_SECONDARY].x;
+    uint64_t extend = (uint64_t)q.stats[CV_STAT_EXTEND].y << 32 | q.stats[CV_STAT_EXTEND].x;
+    c->primary_rays = (uint64_t)r->n_pixels * r->spp_done;
+    c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
+    c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
     c->gpu_ms = r->gpu_ms;
     return cv_gl_check(err, "reading render counters");
@@ -411,11 +525,23 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (!rp || !*rp)
         return;
     struct cv_renderer *r = *rp;
+    if (r->prof.on) {
+        prof_collect(r);
+        double total = 0;
+        for (int s = 0; s <= ST_COUNT; s++)
+            total += r->prof.ms[s];
+        for (int s = 0; s <= ST_COUNT; s++)
+            if (r->prof.ms[s] > 0)
+                cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
+                        total > 0 ? 100 * r->prof.ms[s] / total : 0);
+        free(r->prof.queries);
+        free(r->prof.stage);
+    }
     if (r->n_queries)
         glDeleteQueries((GLsizei)r->n_queries, r->queries);
     free(r->queries);
-    GLuint *bufs[] = {&r->ubo, &r->queues, &r->rays, &r->hits, &r->shadow, &r->film,
-                      &r->resolved};
+    GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
+                      &r->film, &r->resolved, &r->alive[0], &r->alive[1]};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_scene_gpu_destroy(&r->owned_scene);

@@ -65,6 +65,7 @@ void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *he
  * reads 0 for compute on llvmpipe). Reading waits for the GPU. */
 struct cv_render_counters {
     uint64_t primary_rays, secondary_rays, shadow_rays;
+    uint64_t iterations;     /* bounce iterations of the wave (paths are regenerated) */
     double gpu_ms;
 };
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,

@@ -100,8 +100,9 @@ static bool probe_run(struct probe *p, unsigned mode, unsigned material, const f
                       const float *dirs, size_t n, float *out, struct cv_error *err)
 {
     size_t out_bytes = n * (mode == 0 ? 12 : (mode == 1 ? 4 : 8)) * sizeof(float);
+    size_t in_bytes = mode >= 1 ? n * 4 * sizeof(float) : 16;
     if (!probe_reserve(&p->out, &p->cap_out, out_bytes, err) ||
-        !probe_reserve(&p->in, &p->cap_in, mode >= 1 ? n * 4 * sizeof(float) : 16, err))
+        !probe_reserve(&p->in, &p->cap_in, in_bytes, err))
         return false;
     if (mode >= 1 && !cv_buffer_upload(p->in, 0, n * 4 * sizeof(float), dirs, err))
         return false;

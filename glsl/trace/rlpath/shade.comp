@@ -36,8 +36,8 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
     uint pixel = uint(r.o.w);
-    uint flags = uint(r.beta.w);
-    uint depth = cv_depth();
+    uint flags = cv_ray_flags(r);
+    uint depth = cv_ray_depth(r);
     vec3 beta = r.beta.rgb;
     vec3 wo = -r.d.xyz;
     CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
@@ -61,10 +61,10 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         }
     }
 
-    vec2 u_bsdf = cv_bounce_2d(pixel, CV_PAIR_BSDF_U2);
-    vec2 u_bc = cv_bounce_2d(pixel, CV_PAIR_BSDF_UC);
-    vec2 u_light = cv_bounce_2d(pixel, CV_PAIR_LIGHT_U2);
-    vec2 u_lc = cv_bounce_2d(pixel, CV_PAIR_LIGHT_UC);
+    vec2 u_bsdf = cv_bounce_2d(pixel, depth, CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(pixel, depth, CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(pixel, depth, CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(pixel, depth, CV_PAIR_LIGHT_UC);
 
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
     bool delta = cv_bsdf_is_delta(b);
@@ -170,22 +170,9 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     push_ray = true;
     nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
-    nr.beta = vec4(beta, float(flags));
+    nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
     nst.xy = uvec2(base + cv_rl_bin(bs.wi), depth);
     imageStore(rl_path, int(pixel), nst);
 }
 
-void main()
-{
-    uint i = cv_global_index();
-    bool push_shadow = false, push_ray = false;
-    CvShadowItem s;
-    CvRayItem nr;
-    if (i < q.count[CV_Q_HITS])
-        cv_shade(i, push_shadow, s, push_ray, nr);
-    uvec2 slot = cv_queue_slots(push_shadow, CV_Q_SHADOW, push_ray, CV_Q_RAYS_OUT);
-    if (push_shadow)
-        shadows[slot.x] = s;
-    if (push_ray)
-        cv_ray_out(slot.y, nr);
-}
+#include "../shade_queue.glsl"

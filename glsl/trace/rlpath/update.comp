@@ -34,7 +34,7 @@ void main()
     CvRayItem r = cv_ray_in(cv_escaped_ray(i));
     uint pixel = uint(r.o.w);
     uvec4 st = imageLoad(rl_path, int(pixel));
-    uint depth = cv_depth();
+    uint depth = cv_ray_depth(r);
     if (depth == 0u || st.x == CV_RL_NONE || st.y + 1u != depth)
         return;
     vec3 Le = cv_env_Le(r.d.xyz);
