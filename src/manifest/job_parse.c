@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/limits.h"
 #include "base/mem.h"
 #include "manifest/job_parse.h"
 #include "manifest/yaml_view.h"
@@ -430,7 +431,7 @@ void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
         } else if (!strcmp(k, "resolution")) {
             j->has_resolution = read_resolution(doc, v, d, &j->width, &j->height);
         } else if (!strcmp(k, "spp")) {
-            j->has_spp = read_u32(v, d, "spp", 1, UINT32_MAX, &j->spp);
+            j->has_spp = read_u32(v, d, "spp", 1, CV_MAX_SPP, &j->spp);
         } else if (!strcmp(k, "time_limit")) {
             j->has_time_limit = cv_yread_duration(v, d, "time_limit", &j->time_limit);
         } else if (!strcmp(k, "integrator")) {

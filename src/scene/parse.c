@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "base/file.h"
+#include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "scene/parse.h"
@@ -560,6 +561,12 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         int spp = cv_params_int(&ps, "pixelsamples", 16);
+        if ((unsigned)spp > CV_MAX_SPP && spp > 0) {
+            if (!cv_b_warn(b, err, &loc, "pixelsamples %d is above the most Cavalry renders, %u",
+                           spp, CV_MAX_SPP))
+                goto fail;
+            spp = (int)CV_MAX_SPP;
+        }
         b->s->settings.spp = spp > 0 ? (uint32_t)spp : 1;
         free(b->s->settings.sampler);
         b->s->settings.sampler = type;

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "glsl/shared/trace.h"
@@ -390,9 +391,8 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
 {
     if (spp == 0)
         return true;
-    /* sample indices travel as floats (film normal.w) */
-    if ((uint64_t)r->spp_done + spp > (1u << 24))
-        return cv_fail(err, "more than 2^24 samples per pixel");
+    if ((uint64_t)r->spp_done + spp > CV_MAX_SPP)
+        return cv_fail(err, "more than %u samples per pixel", CV_MAX_SPP);
     /* timestamps rather than GL_TIME_ELAPSED: llvmpipe reports 0 elapsed
      * time for compute work */
     GLuint query[2] = {0, 0};

@@ -118,9 +118,11 @@ int main(void)
     fails("output naming a folder", HEAD "  - {name: a, scene: s.pbrt, output: out/}\n",
           "output: \"out/\" names a folder");
     fails("quoted number", HEAD "  - {name: a, scene: s.pbrt, spp: \"64\"}\n",
-          "m.yaml:3:35: spp: expected an integer from 1 to 4294967295, got \"64\"");
+          "m.yaml:3:35: spp: expected an integer from 1 to 16777216, got \"64\"");
     fails("null value", HEAD "  - name: a\n    scene: s.pbrt\n    spp:\n",
-          "spp: expected an integer from 1 to 4294967295, got null");
+          "spp: expected an integer from 1 to 16777216, got null");
+    fails("spp past the renderer's limit", HEAD "  - {name: a, scene: s.pbrt, spp: 16777217}\n",
+          "m.yaml:3:35: spp: expected an integer from 1 to 16777216, got \"16777217\"");
     fails("duration without a known unit", HEAD "  - {name: a, scene: s.pbrt, time_limit: 5min}\n",
           "time_limit: expected a duration > 0");
     fails("zero duration", HEAD "  - {name: a, scene: s.pbrt, time_limit: 0}\n",

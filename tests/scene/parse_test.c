@@ -195,6 +195,10 @@ static void test_shapes(void)
     s = ok_load("WorldBegin\nShape \"curves\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n", "curves");
     tap_ok(s && s->n_triangles == 0 && s->warnings == 1, "curves: warning, nothing added");
     cv_scene_destroy(&s);
+    s = ok_load("Sampler \"sobol\" \"integer pixelsamples\" 20000000\nWorldBegin\n", "huge pixelsamples");
+    tap_ok(s && s->settings.spp == 16777216 && s->warnings == 1,
+           "pixelsamples past the renderer's limit: warning, capped (%u)", s ? s->settings.spp : 0);
+    cv_scene_destroy(&s);
     th_write_str("quad.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                              "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
