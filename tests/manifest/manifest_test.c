@@ -179,12 +179,12 @@ int main(void)
     CHECK_ERROR("err_unknown_key.yaml",
                 "5:5: unknown key \"sp\" in job; valid keys: " JOB_KEYS " (did you mean \"spp\"?)");
     CHECK_ERROR("err_wrong_type.yaml",
-                "5:10: spp: expected an integer from 1 to 4294967295, got \"lots\"",
+                "5:10: spp: expected an integer from 1 to 16777216, got \"lots\"",
                 "6:17: resolution: expected [width, height] or \"WIDTHxHEIGHT\" with sides "
                 "from 1 to 65536, got a list of 1",
                 "8:13: exr.half: expected true or false, got \"maybe\"");
     CHECK_ERROR("err_negative_spp.yaml",
-                "5:10: spp: expected an integer from 1 to 4294967295, got \"-4\"");
+                "5:10: spp: expected an integer from 1 to 16777216, got \"-4\"");
     CHECK_ERROR("err_missing_scene.yaml",
                 "6:12: job \"b\" (line 5): scene file \"scenes/missing.pbrt\" not found "
                 "(@@/scenes/missing.pbrt: No such file or directory)");
