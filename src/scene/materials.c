@@ -207,6 +207,8 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         m.roughness = (cv_vec4){au, av, 0.01f, 0};
         m.eta.x = 1.5f;
         m.roughness2 = (cv_vec4){0, 0, 10, 1};
+        if (!cv_b_warn(b, err, loc, "substrate: rendered as coated diffuse (Ks tints the coat)"))
+            return false;
     } else if (strcmp(type, "coateddiffuse") == 0) {
         m.type = CV_MAT_COATED_DIFFUSE;
         if (!color(b, ps, "reflectance", 0.5, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err) ||

@@ -257,7 +257,9 @@ static void test_materials(void)
         tap_ok(m[8].type == CV_MAT_COATED_CONDUCTOR && near(m[8].roughness2.x, 0.1, 1e-6) && near(m[8].eta.w, 1.4, 1e-6),
                "coatedconductor");
         tap_ok(m[9].type == CV_MAT_MIRROR && near(m[9].reflectance.x, 0.9, 1e-6), "mirror");
-        tap_ok(m[10].type == CV_MAT_COATED_DIFFUSE, "substrate");
+        tap_ok(m[10].type == CV_MAT_COATED_DIFFUSE &&
+                   strstr(th_log_text(), "substrate: rendered as coated diffuse") != NULL,
+               "substrate: coated diffuse, with a warning");
         tap_ok(m[11].type == CV_MAT_PLASTIC, "uber");
         tap_ok(m[12].type == CV_MAT_DIFFUSE_TRANSMISSION && near(m[12].specular.x, 0.25, 1e-6), "diffusetransmission");
         tap_ok(m[13].type == CV_MAT_INTERFACE, "interface");
