@@ -2,7 +2,10 @@
 // glsl/bvh/morton.comp: Morton code of each triangle's centroid inside the
 // centroid bounds: 30 bits (1024 cells per axis), or with KEY64 60 bits
 // (2^20 cells per axis) stored as two words, low first. Writes the key and
-// the triangle index as the value for the radix sort.
+// the triangle index as the value for the radix sort, and the triangle's
+// box for refit.comp: written here in input order, one coalesced pass,
+// because gathering triangles and vertices in sorted order from refit ran
+// into a cliff on NVIDIA (H100: 3.6 ms at 4 M triangles, 370 ms at 16 M).
 #include "shared/scene.h"
 #include "shared/bindings.h"
 
@@ -14,6 +17,7 @@ layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriang
 layout(std430, binding = CV_BIND_STAGE0) readonly buffer Bounds { vec4 bounds[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer Keys { uint keys[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Vals { uint vals[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 3) writeonly buffer LeafBoxes { vec4 leaf_boxes[]; };
 
 uniform uint u_n;
 
@@ -33,7 +37,10 @@ void main()
     if (i >= u_n)
         return;
     uvec4 t = tris[i].idx;
-    vec3 c = (verts[t.x].pos_u.xyz + verts[t.y].pos_u.xyz + verts[t.z].pos_u.xyz) * (1.0 / 3.0);
+    vec3 a = verts[t.x].pos_u.xyz, b = verts[t.y].pos_u.xyz, c3 = verts[t.z].pos_u.xyz;
+    leaf_boxes[2u * i] = vec4(min(a, min(b, c3)), 0.0);
+    leaf_boxes[2u * i + 1u] = vec4(max(a, max(b, c3)), 0.0);
+    vec3 c = (a + b + c3) * (1.0 / 3.0);
     vec3 lo = bounds[0].xyz, ext = bounds[1].xyz - lo;
     // A flat axis (all centroids equal there) maps to cell 0.
     vec3 inv = vec3(ext.x > 0.0 ? 1.0 / ext.x : 0.0, ext.y > 0.0 ? 1.0 / ext.y : 0.0,

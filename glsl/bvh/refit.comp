@@ -10,9 +10,9 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
 layout(std430, binding = CV_BIND_STAGE0) readonly buffer Vals { uint vals[]; };
+// each triangle's box in input order, from morton.comp
+layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer LeafBoxes { vec4 leaf_boxes[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
 
@@ -26,9 +26,8 @@ void main()
     if (i >= u_n)
         return;
     int node = int(u_n) - 1 + int(i);
-    uvec4 t = tris[vals[i]].idx;
-    vec3 a = verts[t.x].pos_u.xyz, b = verts[t.y].pos_u.xyz, c = verts[t.z].pos_u.xyz;
-    vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
+    uint tri = vals[i];
+    vec3 lo = leaf_boxes[2u * tri].xyz, hi = leaf_boxes[2u * tri + 1u].xyz;
     nodes[node].bmin = vec4(lo, float(CV_BVH_COST_TRI) * cv_half_area(lo, hi));
     nodes[node].bmax = vec4(hi, 0.0);
     nodes[node].link.w = 1;

@@ -171,10 +171,13 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     }
     phase_end(b, PH_BOUNDS);
 
+    /* The triangles' boxes, from morton to refit, borrow out_nodes, which
+     * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. */
     phase_begin(b, PH_MORTON);
     cv_buffer_bind(src, CV_BIND_STAGE0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
     set_uint(morton, "u_n", n);
     cv_program_dispatch_1d(morton, n);
     phase_end(b, PH_MORTON);
@@ -195,6 +198,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
 
     phase_begin(b, PH_REFIT);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
+    cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
     set_uint(refit, "u_n", n);
     cv_program_dispatch_1d(refit, n);
     phase_end(b, PH_REFIT);
