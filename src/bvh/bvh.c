@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "base/log.h"
 #include "base/mem.h"
 #include "bvh/bvh.h"
 #include "bvh/radix_sort.h"
@@ -72,7 +73,17 @@ static void phase_end(struct build *b, int phase)
 
 struct cv_bvh_params cv_bvh_default_params(void)
 {
-    return (struct cv_bvh_params){.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true};
+    struct cv_bvh_params p = {.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true};
+    const char *v = getenv("CAVALRY_BVH_ROUNDS");
+    if (v && *v) {
+        char *end;
+        long r = strtol(v, &end, 10);
+        if (*end == '\0' && r >= 0 && r <= 32)
+            p.treelet_rounds = (int)r;
+        else
+            cv_warn("CAVALRY_BVH_ROUNDS=\"%s\" is not a number from 0 to 32; ignored", v);
+    }
+    return p;
 }
 
 static void set_uint(const struct cv_program *prog, const char *name, uint32_t v)

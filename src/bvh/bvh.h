@@ -23,7 +23,7 @@ struct cv_bvh_params {
     bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
 };
 
-/* Defaults as above. */
+/* Defaults as above; CAVALRY_BVH_ROUNDS (0 to 32) sets treelet_rounds. */
 struct cv_bvh_params cv_bvh_default_params(void);
 
 struct cv_bvh_stats {

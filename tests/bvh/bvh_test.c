@@ -278,8 +278,25 @@ static void check_corrupt(struct cv_gpu *gpu)
     mesh_free(&m);
 }
 
+/* CAVALRY_BVH_ROUNDS sets the default treelet rounds; a bad value is
+ * ignored (with a warning). */
+static void check_rounds_env(void)
+{
+    setenv("CAVALRY_BVH_ROUNDS", "1", 1);
+    int one = cv_bvh_default_params().treelet_rounds;
+    setenv("CAVALRY_BVH_ROUNDS", "33", 1);
+    int past = cv_bvh_default_params().treelet_rounds;
+    setenv("CAVALRY_BVH_ROUNDS", "2x", 1);
+    int junk = cv_bvh_default_params().treelet_rounds;
+    unsetenv("CAVALRY_BVH_ROUNDS");
+    int dflt = cv_bvh_default_params().treelet_rounds;
+    tap_ok(one == 1 && past == 3 && junk == 3 && dflt == 3,
+           "CAVALRY_BVH_ROUNDS: 1 -> %d, 33 -> %d, 2x -> %d, unset -> %d", one, past, junk, dflt);
+}
+
 int main(void)
 {
+    check_rounds_env();
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct mesh m;
     mesh_soup(&m, 4000);
