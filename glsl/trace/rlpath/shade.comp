@@ -6,9 +6,12 @@
 // (1 - m), whose exact density divides the throughput and enters the MIS
 // weights against light sampling, so the estimator is unbiased for any
 // table. It also computes the temporal-difference target for the bounce that
-// led here,
-//   Le(y, -w) + sum over bins b of Q(y, b) f(y, -w, w_b) |cos| 4 pi / bins,
-// and leaves it in the path state for update.comp: the table is only read
+// led here, Le(y, -w) plus the reflected radiance estimated from the one
+// direction w' this vertex samples: Q(y, bin(w')) f(y, -w, w') |cos| / p(w')
+// (0 when the path ends here). Integrating Q against the BSDF over every
+// bin instead (the expected target) took a BSDF evaluation per bin at every
+// hit and made rlpath 5 to 6 times as slow per sample as path on an H100.
+// The target goes to the path state for update.comp: the table is only read
 // here, so one dispatch sees one table and the sampling and MIS densities of
 // a vertex agree. Keep in step with trace/shade.comp (both take their
 // per-hit inputs from surface_inputs.glsl).
@@ -71,18 +74,9 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 
     uint cell = cv_rl_cell(sf.p);
     uint nb = cv_rl_bins(), base = cell * nb;
-    // the cell's sum, and the reflected-radiance estimate for the target
-    float qsum = 0.0, reflected = 0.0;
-    bool need_target = learn != CV_RL_NONE && !delta;
-    for (uint k = 0u; k < nb; k++) {
-        float qk = cv_rl_q(base + k);
-        qsum += qk;
-        if (need_target && qk > 0.0) {
-            vec3 wk = cv_rl_bin_dir(k, vec2(0.5));
-            reflected += qk * cv_mean3(cv_bsdf_f(b, wo, wk)) * abs(dot(wk, sf.ns));
-        }
-    }
-    target += reflected * (4.0 * CV_PI / float(nb));
+    float qsum = 0.0;
+    for (uint k = 0u; k < nb; k++)
+        qsum += cv_rl_q(base + k);
     float m = delta ? 0.0 : cv_rl_mix_weight();
     // the guiding weights use the normal on the side the path came from
     vec3 gn = dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns;
@@ -98,8 +92,8 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         flags |= CV_RAYF_ALBEDO_DONE;
     }
 #endif
-    // a delta BSDF learns from its sampled direction below
-    if (learn != CV_RL_NONE && (!delta || depth >= cv_max_depth()))
+    // emission only, for now: the sampled bounce below adds its estimate
+    if (learn != CV_RL_NONE)
         nst.zw = uvec2(learn, floatBitsToUint(target));
     imageStore(rl_path, int(pixel), nst);
     if (depth >= cv_max_depth())
@@ -147,10 +141,11 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     }
     if (!(pdf > 0.0))
         return;
-    if (delta && learn != CV_RL_NONE) {
-        // one-sample estimate of the reflected radiance through the delta lobe
+    if (learn != CV_RL_NONE) {
+        // one-sample estimate of the reflected radiance (pdf: the density
+        // the direction was drawn with; for a delta lobe its probability)
         float qd = cv_rl_q(base + cv_rl_bin(bs.wi));
-        float t = target + qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / bs.pdf;
+        float t = target + qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / pdf;
         nst.zw = uvec2(learn, floatBitsToUint(t));
         imageStore(rl_path, int(pixel), nst);
     }
