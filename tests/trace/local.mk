@@ -10,7 +10,7 @@ tests_trace_passes_test_LDADD = $(CV_LIBS)
 tests_trace_cornell_test_LDADD = $(CV_LIBS)
 tests_trace_sampler_test_LDADD = $(CV_LIBS)
 tests_trace_filter_table_test_LDADD = $(CV_LIBS)
-EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h \
+EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h tests/trace/rlpath_room.h \
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
 # --- end of pipeline tests ---

@@ -17,30 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tests/trace/rlpath_room.h"
 #include "tests/trace/trace_test_util.h"
-
-extern const char rlpath_room[];
-const char rlpath_room[] =
-    "LookAt 0.9 -0.3 0.9  0.4 -0.4 -1  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" [ 60 ]\n"
-    "Sampler \"independent\" \"integer pixelsamples\" [ 16 ]\n"
-    "Integrator \"path\" \"integer maxdepth\" [ 5 ]\n"
-    "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
-    "  \"string filename\" \"room.exr\"\n"
-    "PixelFilter \"box\"\n"
-    "WorldBegin\n"
-    "AttributeBegin\n"
-    "  AreaLightSource \"diffuse\" \"rgb L\" [ 20 20 20 ]\n"
-    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
-    "    \"point3 P\" [ -0.8 0.9 -0.3  -0.2 0.9 -0.3  -0.2 0.9 0.3  -0.8 0.9 0.3 ]\n"
-    "AttributeEnd\n"
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 3 7 0 7 4\n"
-    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
-    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n"
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.3 0.2 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
-    "  \"point3 P\" [ 0 -1 -1  0 -1 1  0 0.5 1  0 0.5 -1 ]\n";
 
 #define MAX_POINTS 64
 
