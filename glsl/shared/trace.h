@@ -50,13 +50,14 @@
 #define CV_Q_DONE 5u       /* pixels whose path ended this iteration */
 
 /* Indirect dispatch slots (args[slot] = groups x, y, z, unused); the byte
- * offset of slot s in the buffer is CV_ARGS_OFFSET + 16 * s. */
+ * offset of slot s in the buffer is CV_ARGS_BYTES(s). */
 #define CV_ARGS_RAYS 0u
 #define CV_ARGS_HITS 1u
 #define CV_ARGS_ESCAPED 2u
 #define CV_ARGS_SHADOW 3u
 #define CV_ARGS_DONE 4u
 #define CV_ARGS_OFFSET 32
+#define CV_ARGS_BYTES(s) (CV_ARGS_OFFSET + 16 * (s))
 
 /* Statistic slots: 64-bit totals kept as (lo, hi) pairs by the single
  * prepare invocation. An iteration mixes camera and bounce rays, so the

@@ -471,6 +471,14 @@ void cv_program_dispatch_1d(const struct cv_program *prog, uint64_t n)
                     GL_COMMAND_BARRIER_BIT);
 }
 
+void cv_program_dispatch_indirect(const struct cv_program *prog, GLintptr offset,
+                                  GLbitfield barriers)
+{
+    glUseProgram(prog->id);
+    glDispatchComputeIndirect(offset);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | barriers);
+}
+
 void cv_program_cache_stats(const struct cv_gpu *gpu, struct cv_program_disk_stats *out)
 {
     cv_program_disk_cache_stats(gpu && gpu->programs ? gpu->programs->disk : NULL, out);

@@ -55,4 +55,11 @@ void cv_program_dispatch(const struct cv_program *prog, uint32_t n_x, uint32_t n
  * the y dimension when n exceeds the driver's group-count limit. */
 void cv_program_dispatch_1d(const struct cv_program *prog, uint64_t n);
 
+/* glDispatchComputeIndirect with the groups at `offset` in the bound
+ * GL_DISPATCH_INDIRECT_BUFFER, then a memory barrier for shader storage and
+ * indirect commands (the next stage's arguments are written by shaders) plus
+ * `barriers`. */
+void cv_program_dispatch_indirect(const struct cv_program *prog, GLintptr offset,
+                                  GLbitfield barriers);
+
 #endif

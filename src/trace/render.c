@@ -334,35 +334,21 @@ static void bind_all(struct cv_renderer *r)
         cv_rlpath_bind(r->rl);
 }
 
-static void dispatch_indirect(const struct cv_program *prog, uint32_t slot);
-static void dispatch_one(const struct cv_program *prog);
-
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
 {
     prof_mark(r, s);
-    dispatch_indirect(&r->prog[s], slot);
+    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
     prof_mark(r, s);
 }
 
+/* One invocation (prepare.comp). */
 static void stage_one(struct cv_renderer *r, int s)
 {
     prof_mark(r, s);
-    dispatch_one(&r->prog[s]);
-    prof_mark(r, s);
-}
-
-static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
-{
-    glUseProgram(prog->id);
-    glDispatchComputeIndirect((GLintptr)(CV_ARGS_OFFSET + 16 * slot));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-}
-
-static void dispatch_one(const struct cv_program *prog)
-{
-    glUseProgram(prog->id);
+    glUseProgram(r->prog[s].id);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    prof_mark(r, s);
 }
 
 /* One iteration: a bounce of every path in flight, then the next samples of

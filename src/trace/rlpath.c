@@ -161,20 +161,15 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
                        GL_RGBA32UI);
 }
 
-static void dispatch_indirect(const struct cv_program *prog, uint32_t slot)
-{
-    glUseProgram(prog->id);
-    glDispatchComputeIndirect((GLintptr)(CV_ARGS_OFFSET + 16 * slot));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
 void cv_rlpath_update(const struct cv_rlpath *rl)
 {
     /* the shade stage's image writes (path state) */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    dispatch_indirect(&rl->update_hits, CV_ARGS_HITS);
-    dispatch_indirect(&rl->update_escaped, CV_ARGS_ESCAPED);
+    /* the table and path state are images */
+    cv_program_dispatch_indirect(&rl->update_hits, CV_ARGS_BYTES(CV_ARGS_HITS),
+                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    cv_program_dispatch_indirect(&rl->update_escaped, CV_ARGS_BYTES(CV_ARGS_ESCAPED),
+                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
