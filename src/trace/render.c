@@ -91,14 +91,19 @@ static void prof_mark(struct cv_renderer *r, int stage)
     CV_PUSH(r->prof.queries, r->prof.n, r->prof.cap, q);
 }
 
+/* Milliseconds between two GL_TIMESTAMP queries (waits for both). */
+static double timestamps_ms(GLuint begin, GLuint end)
+{
+    GLuint64 t0 = 0, t1 = 0;
+    glGetQueryObjectui64v(begin, GL_QUERY_RESULT, &t0);
+    glGetQueryObjectui64v(end, GL_QUERY_RESULT, &t1);
+    return t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
+}
+
 static void prof_collect(struct cv_renderer *r)
 {
-    for (size_t i = 0; i + 1 < r->prof.n; i += 2) {
-        GLuint64 t0 = 0, t1 = 0;
-        glGetQueryObjectui64v(r->prof.queries[i], GL_QUERY_RESULT, &t0);
-        glGetQueryObjectui64v(r->prof.queries[i + 1], GL_QUERY_RESULT, &t1);
-        r->prof.ms[r->prof.stage[i / 2]] += t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
-    }
+    for (size_t i = 0; i + 1 < r->prof.n; i += 2)
+        r->prof.ms[r->prof.stage[i / 2]] += timestamps_ms(r->prof.queries[i], r->prof.queries[i + 1]);
     if (r->prof.n)
         glDeleteQueries((GLsizei)r->prof.n, r->prof.queries);
     r->prof.n = 0;
@@ -438,12 +443,8 @@ void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *he
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err)
 {
-    for (size_t i = 0; i + 1 < r->n_queries; i += 2) {
-        GLuint64 t0 = 0, t1 = 0;
-        glGetQueryObjectui64v(r->queries[i], GL_QUERY_RESULT, &t0);
-        glGetQueryObjectui64v(r->queries[i + 1], GL_QUERY_RESULT, &t1);
-        r->gpu_ms += t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
-    }
+    for (size_t i = 0; i + 1 < r->n_queries; i += 2)
+        r->gpu_ms += timestamps_ms(r->queries[i], r->queries[i + 1]);
     glDeleteQueries((GLsizei)r->n_queries, r->queries);
     r->n_queries = 0;
     prof_collect(r);
