@@ -76,10 +76,6 @@ bool bench_converge(struct cv_gpu *gpu, struct cv_scene *scene,
                     unsigned ref_w, unsigned ref_h, unsigned ref_spp, FILE *csv,
                     struct cv_error *err);
 
-/* Reads an OpenEXR image as linear RGB floats (caller frees). */
-bool bench_read_exr(const char *path, float **rgb, unsigned *w, unsigned *h,
-                    struct cv_error *err);
-
 /* Reads the per-repeat lines in `files` and prints the summary document
  * (median, min, max, spread per numeric key and scene) and a table. */
 bool bench_summarize(char **files, int n_files, FILE *json, FILE *table,

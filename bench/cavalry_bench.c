@@ -25,6 +25,7 @@
 #include "base/mem.h"
 #include "bench/bench.h"
 #include "gpu/context.h"
+#include "output/exr_read.h"
 #include "scene/scene.h"
 
 /* The loader's implementation arrives with src/scene/parse.h; scene.h alone
@@ -279,12 +280,12 @@ int main(int argc, char **argv)
     }
     case M_RELMSE: {
         float *a = NULL, *b = NULL;
-        unsigned aw, ah, bw, bh;
+        uint32_t aw, ah, bw, bh;
         if (n_files != 2) {
             usage(stderr);
             rc = 2;
-        } else if (!bench_read_exr(files[0], &a, &aw, &ah, &err) ||
-                   !bench_read_exr(files[1], &b, &bw, &bh, &err)) {
+        } else if (!cv_exr_read_rgb_any(files[0], &a, &aw, &ah, &err) ||
+                   !cv_exr_read_rgb_any(files[1], &b, &bw, &bh, &err)) {
             fprintf(stderr, "cavalry_bench: %s\n", err.msg);
             rc = 1;
         } else if (aw != bw || ah != bh) {
@@ -309,9 +310,9 @@ int main(int argc, char **argv)
     }
     case M_CONVERGE: {
         float *ref = NULL;
-        unsigned rw = 0, rh = 0;
+        uint32_t rw = 0, rh = 0;
         FILE *csv = stdout;
-        if (o.reference && !bench_read_exr(o.reference, &ref, &rw, &rh, &err)) {
+        if (o.reference && !cv_exr_read_rgb_any(o.reference, &ref, &rw, &rh, &err)) {
             fprintf(stderr, "cavalry_bench: %s\n", err.msg);
             rc = 1;
             break;

@@ -8,7 +8,7 @@ bench_plot_SOURCES = bench/plot.c
 bench_plot_LDADD = $(PNG_LIBS) $(ZLIB_LIBS) -lm
 noinst_PROGRAMS += bench/cavalry_bench
 bench_cavalry_bench_SOURCES = bench/cavalry_bench.c bench/bench.h bench/record.c \
-	bench/stages.c bench/summarize.c bench/exr_read.c
+	bench/stages.c bench/summarize.c
 bench_cavalry_bench_LDADD = $(CV_LIBS)
 bench_cavalry_bench_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
 # veach-mis: direct light on the plates, computed independently of the GLSL

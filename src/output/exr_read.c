@@ -1,5 +1,7 @@
 /* exr_read.c: see exr_read.h. */
+#include <stdio.h>
 #include <stdlib.h>
+#include <strings.h>
 #include <string.h>
 
 #include <openexr.h>
@@ -173,4 +175,82 @@ bool cv_exr_read_rgba(const char *path, float **rgba, uint32_t *width, uint32_t 
     static const char *const names[4] = { "R", "G", "B", "A" };
     static const float fill[4] = { 0.0f, 0.0f, 0.0f, 1.0f };
     return read_interleaved(path, names, 4, 3, fill, rgba, width, height, err);
+}
+
+/* How well channel `name` serves slot (0 R, 1 G, 2 B): lower is better, -1
+ * not at all. A layer prefix ranks below the plain name, Y below R. */
+static int channel_rank(const char *name, int slot)
+{
+    static const char *const letters[3] = { "R", "G", "B" };
+    const char *dot = strrchr(name, '.');
+    const char *base = dot ? dot + 1 : name;
+    int prefixed = dot ? 1 : 0;
+    if (!strcasecmp(base, letters[slot]))
+        return prefixed;
+    if (slot == 0 && !strcmp(base, "Y"))
+        return 2 + prefixed;
+    return -1;
+}
+
+bool cv_exr_read_rgb_any(const char *path, float **rgb, uint32_t *width, uint32_t *height,
+                         struct cv_error *err)
+{
+    exr_context_t ctxt = NULL;
+    exr_attr_box2i_t dw;
+    if (!open_image(path, &ctxt, &dw, err))
+        return false;
+    const exr_attr_chlist_t *chl = NULL;
+    exr_result_t rv = exr_get_channels(ctxt, 0, &chl);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_finish(&ctxt);
+        return cv_fail(err, "%s: %s", path, exr_get_default_error_message(rv));
+    }
+    /* The names die with the context, so each chosen one is copied. */
+    char chosen[3][256] = { "", "", "" };
+    int best[3] = { -1, -1, -1 };
+    bool too_long = false;
+    for (int i = 0; i < chl->num_channels; i++) {
+        const char *name = chl->entries[i].name.str;
+        for (int slot = 0; slot < 3; slot++) {
+            int r = channel_rank(name, slot);
+            if (r < 0 || (best[slot] >= 0 && r >= best[slot]))
+                continue;
+            if (strlen(name) >= sizeof chosen[slot]) {
+                too_long = true;
+                continue;
+            }
+            best[slot] = r;
+            snprintf(chosen[slot], sizeof chosen[slot], "%s", name);
+        }
+    }
+    exr_finish(&ctxt);
+    if (best[0] < 0)
+        return cv_fail(err, "%s: no R or Y channel%s", path,
+                       too_long ? " (some channel names are too long)" : "");
+    const char *names[3];
+    int slot_of[3], n = 0;
+    for (int slot = 0; slot < 3; slot++)
+        if (best[slot] >= 0) {
+            names[n] = chosen[slot];
+            slot_of[n++] = slot;
+        }
+    static const float zero[3] = { 0.0f, 0.0f, 0.0f };
+    float *tmp = NULL;
+    uint32_t w = 0, h = 0;
+    if (!read_interleaved(path, names, n, n, zero, &tmp, &w, &h, err))
+        return false;
+    size_t npix = (size_t)w * h;
+    float *out = cv_xmalloc(npix * 3 * sizeof(float));
+    for (size_t i = 0; i < npix; i++) {
+        float px[3];
+        px[0] = px[1] = px[2] = tmp[i * (size_t)n];
+        for (int k = 0; k < n; k++)
+            px[slot_of[k]] = tmp[i * (size_t)n + (size_t)k];
+        memcpy(out + i * 3, px, sizeof px);
+    }
+    free(tmp);
+    *rgb = out;
+    *width = w;
+    *height = h;
+    return true;
 }

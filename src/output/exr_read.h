@@ -26,4 +26,12 @@ bool cv_exr_read_channel(const char *path, const char *channel, float **data,
 bool cv_exr_read_rgba(const char *path, float **rgba, uint32_t *width, uint32_t *height,
                       struct cv_error *err);
 
+/* Linear RGB for comparisons with images from other renderers: width*height*3
+ * floats (free()). Channels are matched by the name after the last '.',
+ * in either case ("R", "r", "beauty.R"), unprefixed names first; a
+ * luminance-only image ("Y") and a missing G or B read as copies of the
+ * first channel. Fails when there is neither R nor Y. */
+bool cv_exr_read_rgb_any(const char *path, float **rgb, uint32_t *width, uint32_t *height,
+                         struct cv_error *err);
+
 #endif

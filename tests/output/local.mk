@@ -11,3 +11,6 @@ tests_output_png_write_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/output/png_read_test
 TESTS += tests/output/png_read_test
 tests_output_png_read_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/output/exr_read_test
+TESTS += tests/output/exr_read_test
+tests_output_exr_read_test_LDADD = $(CV_LIBS)
