@@ -465,6 +465,8 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
     c->gpu_ms = r->gpu_ms;
+    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] : 0;
+    c->shadow_ms = r->prof.on ? r->prof.ms[ST_SHADOW] : 0;
     return cv_gl_check(err, "reading render counters");
 }
 
