@@ -173,6 +173,16 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
                       (double)(c.primary_rays + c.secondary_rays + c.shadow_rays) / secs);
             bench_num(r, "render.samples_per_s", (double)w * h * p->spp / secs);
         }
+        /* Traversal alone (CAVALRY_STAGE_TIMES): the intersect stage traces
+         * camera and bounce rays together, so its rate counts both. */
+        if (!gpu->info.software && c.intersect_ms > 0 && c.shadow_ms > 0) {
+            bench_num(r, "render.stage.intersect_ms", c.intersect_ms);
+            bench_num(r, "render.stage.shadow_ms", c.shadow_ms);
+            bench_num(r, "render.traversal.closest_rays_per_s",
+                      (double)(c.primary_rays + c.secondary_rays) / (c.intersect_ms * 1e-3));
+            bench_num(r, "render.traversal.shadow_rays_per_s",
+                      (double)c.shadow_rays / (c.shadow_ms * 1e-3));
+        }
         bench_num(r, "render.primary_rays", (double)c.primary_rays);
         bench_num(r, "render.secondary_rays", (double)c.secondary_rays);
         bench_num(r, "render.shadow_rays", (double)c.shadow_rays);

@@ -16,7 +16,10 @@
 #define CV_BIND_LIGHT_CDF 7    /* float[]: light selection CDF by power */
 #define CV_BIND_BVH_NODES 8    /* src/bvh node layout (glsl/bvh/layout.h) */
 #define CV_BIND_BVH_PRIMS 9    /* src/bvh leaf primitive order */
-/* 10 and above: stage-private (bvh build scratch, trace queues, film). */
+/* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
+ * the stage-private range so no stage's own buffers displace it. */
+#define CV_BIND_BVH_TRIS 26
+/* 10 and above (but 26): stage-private (bvh build scratch, trace queues, film). */
 #define CV_BIND_STAGE0 10
 
 #endif

@@ -11,7 +11,13 @@
  * A leaf's primitives are cv_bvh_prims[first .. first+count-1] (triangle
  * indices, bound at CV_BIND_BVH_PRIMS). An empty child has count 0 and an
  * inverted box (min > max) that no ray enters, and node index 0; traversal
- * rejects it by its box. A tree over 0 or 1 triangles is one node. */
+ * rejects it by its box. A tree over 0 or 1 triangles is one node.
+ *
+ * Beside cv_bvh_prims, the same leaf slots hold CvBvhTri records (bound at
+ * CV_BIND_BVH_TRIS, written by glsl/bvh/leaf_tris.comp): the triangle's
+ * three positions copied in leaf order, so a triangle test reads 48
+ * contiguous bytes instead of prims -> triangles -> three vertex loads, each
+ * waiting on the one before. */
 #ifndef CV_SHARED_BVH_H
 #define CV_SHARED_BVH_H
 
@@ -25,6 +31,16 @@ CV_STRUCT(CvBvhNode) {
     CV_VEC4 rmax;
 } CV_END(CvBvhNode)
 CV_CHECK_SIZE(CvBvhNode, 64);
+
+/* v0.w holds the triangle index (floatBitsToUint); v1.w, v2.w are 0. A slot
+ * whose primitive is not a triangle holds zeros (a degenerate triangle that
+ * no ray hits). */
+CV_STRUCT(CvBvhTri) {
+    CV_VEC4 v0;
+    CV_VEC4 v1;
+    CV_VEC4 v2;
+} CV_END(CvBvhTri)
+CV_CHECK_SIZE(CvBvhTri, 48);
 
 /* Build-time node (scratch only). Nodes 0..n-2 are inner nodes (0 is the
  * root), n-1..2n-2 the leaves in Morton order.

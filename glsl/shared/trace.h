@@ -29,8 +29,9 @@
  * - CV_BIND_RAYS: the ray queue, double-buffered by depth parity: with
  *   capacity n (pixels of the crop), rays of depth d sit at
  *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
- * - CV_BIND_HITS: hits at [0, n), escaped rays at [n, 2n), done pixels at
- *   [2n, 3n) (their .ray only: a ray index, a pixel for done).
+ * - CV_BIND_HITS: hits at [0, n) (two bins, from both ends: CV_Q_HITS_B),
+ *   escaped rays at [n, 2n), done pixels at [2n, 3n) (their .ray only: a
+ *   ray index, a pixel for done).
  * Items refer to rays by their index within the iteration's half. */
 #define CV_BIND_QUEUES (CV_BIND_STAGE0 + 0)    /* CvTraceQueues */
 #define CV_BIND_RAYS (CV_BIND_STAGE0 + 1)      /* CvRayItem[2n] */
@@ -48,6 +49,11 @@
 #define CV_Q_ESCAPED 3u
 #define CV_Q_SHADOW 4u
 #define CV_Q_DONE 5u       /* pixels whose path ended this iteration */
+/* Hits of the second bin (CV_HIT_BINS in intersect.comp): they fill the hit
+ * queue from its end, hits[n - 1 - k], so the shade stage meets first the
+ * CV_Q_HITS hits and then these, each bin as one run of whole work groups
+ * but one (cv_hit_slot in common.glsl). 0 without binning. */
+#define CV_Q_HITS_B 6u
 
 /* Indirect dispatch slots (args[slot] = groups x, y, z, unused); the byte
  * offset of slot s in the buffer is CV_ARGS_BYTES(s). */

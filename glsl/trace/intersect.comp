@@ -40,7 +40,19 @@ void main()
         }
 #endif
     }
+#ifdef CV_HIT_BINS
+    // Two bins by material, so that the shade stage's work groups mostly
+    // run one BSDF's code: diffuse surfaces (most of a typical scene), and
+    // everything else, written from the queue's end.
+    bool bin_b = false;
+    if (valid && hit)
+        bin_b = materials[cv_triangles[h.prim].idx.w & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
+    uvec3 s3 = cv_queue_slots3(bvec3(valid && hit && !bin_b, valid && hit && bin_b, valid && !hit),
+                               uvec3(CV_Q_HITS, CV_Q_HITS_B, CV_Q_ESCAPED));
+    uvec2 slot = uvec2(bin_b ? cv_capacity() - 1u - s3.y : s3.x, s3.z);
+#else
     uvec2 slot = cv_queue_slots(valid && hit, CV_Q_HITS, valid && !hit, CV_Q_ESCAPED);
+#endif
     if (valid && hit) {
         CvHitItem it;
         it.ray = i;

@@ -34,13 +34,14 @@ void main()
     q.count[CV_Q_RAYS_IN] = n;
     q.count[CV_Q_RAYS_OUT] = 0u;
     q.count[CV_Q_HITS] = 0u;
+    q.count[CV_Q_HITS_B] = 0u;
     q.count[CV_Q_ESCAPED] = 0u;
     q.count[CV_Q_SHADOW] = 0u;
     q.count[CV_Q_DONE] = 0u;
     q.args[CV_ARGS_RAYS] = cv_groups(n);
     cv_stat_add(CV_STAT_EXTEND, n);
 #elif PREPARE_MODE == 1
-    q.args[CV_ARGS_HITS] = cv_groups(q.count[CV_Q_HITS]);
+    q.args[CV_ARGS_HITS] = cv_groups(q.count[CV_Q_HITS] + q.count[CV_Q_HITS_B]);
     q.args[CV_ARGS_ESCAPED] = cv_groups(q.count[CV_Q_ESCAPED]);
 #else
     q.args[CV_ARGS_SHADOW] = cv_groups(q.count[CV_Q_SHADOW]);

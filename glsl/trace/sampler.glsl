@@ -41,13 +41,21 @@ uint cv_nested_scramble(uint x, uint seed)
     return bitfieldReverse(cv_lk_permute(bitfieldReverse(x), seed));
 }
 
+// Second dimension of the Sobol sequence: r = sum of i's bits k times the
+// direction numbers v_k (Pascal's triangle mod 2, most significant bit
+// first). Bit 31-m of r is the parity of i's bits k that contain m as a bit
+// subset (Lucas: C(k, m) is odd iff m & k == m), which five shift-xor steps
+// compute for all m at once (a superset transform over GF(2)). Same bits as
+// the 32-step loop over i's bits that it replaces, without the loop that a
+// scrambled (random) index runs in full.
 uint cv_sobol1(uint i)
 {
-    uint r = 0u;
-    for (uint v = 1u << 31; i != 0u; i >>= 1, v ^= v >> 1)
-        if ((i & 1u) != 0u)
-            r ^= v;
-    return r;
+    i ^= (i >> 1) & 0x55555555u;
+    i ^= (i >> 2) & 0x33333333u;
+    i ^= (i >> 4) & 0x0f0f0f0fu;
+    i ^= (i >> 8) & 0x00ff00ffu;
+    i ^= (i >> 16) & 0x0000ffffu;
+    return bitfieldReverse(i);
 }
 
 float cv_u32_to_unit(uint x)

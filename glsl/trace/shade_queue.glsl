@@ -8,12 +8,13 @@
 void main()
 {
     uint i = cv_global_index();
-    bool valid = i < q.count[CV_Q_HITS];
+    bool valid = i < cv_hit_count();
     bool push_shadow = false, push_ray = false;
     CvShadowItem s;
     CvRayItem nr;
+    uint slot_in = valid ? cv_hit_slot(i) : 0u;
     if (valid)
-        cv_shade(i, push_shadow, s, push_ray, nr);
+        cv_shade(slot_in, push_shadow, s, push_ray, nr);
     bool done = valid && !push_ray;
     uvec3 slot = cv_queue_slots3(bvec3(push_shadow, push_ray, done),
                                  uvec3(CV_Q_SHADOW, CV_Q_RAYS_OUT, CV_Q_DONE));
@@ -22,7 +23,7 @@ void main()
     if (push_ray)
         cv_ray_out(slot.y, nr);
     if (done)
-        cv_done_push(slot.z, uint(cv_ray_in(hits[i].ray).o.w));
+        cv_done_push(slot.z, uint(cv_ray_in(hits[slot_in].ray).o.w));
 }
 
 #endif

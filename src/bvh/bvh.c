@@ -27,7 +27,7 @@
 enum { PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE, PH_COUNT };
 
 struct cv_bvh {
-    GLuint nodes, prims;
+    GLuint nodes, prims, tris;
     struct cv_bvh_stats stats;
 };
 
@@ -133,10 +133,36 @@ static bool build_trivial(struct cv_bvh *bvh, uint32_t n, struct cv_error *err)
     uint32_t prim = 0;
     bvh->nodes = cv_buffer_create(sizeof(node), node, "bvh nodes", err);
     bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
-    bvh->stats.bytes = sizeof(node) + 4;
+    bvh->stats.bytes = sizeof(node) + 4 + sizeof(CvBvhTri);
     bvh->stats.n_nodes = 1;
     bvh->stats.sah_cost = n;
     return bvh->prims != 0;
+}
+
+GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint triangles,
+                               GLuint prims, uint32_t n, struct cv_error *err)
+{
+    struct cv_program *prog = cv_program_get(gpu, "bvh/leaf_tris.comp", NULL, err);
+    GLuint tris = prog ? cv_buffer_create((size_t)(n ? n : 1) * sizeof(CvBvhTri), NULL,
+                                          "bvh leaf triangles", err)
+                       : 0;
+    if (!tris)
+        return 0;
+    if (n == 0) {
+        /* No triangle to read: the all-zero record hits nothing. */
+        cv_buffer_zero(tris);
+    } else {
+        cv_buffer_bind(vertices, CV_BIND_VERTICES);
+        cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
+        cv_buffer_bind(prims, CV_BIND_BVH_PRIMS);
+        cv_buffer_bind(tris, CV_BIND_BVH_TRIS);
+        set_uint(prog, "u_n", n);
+        cv_program_dispatch_1d(prog, n);
+    }
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    if (!cv_gl_check(err, "writing %u leaf triangles", n))
+        cv_buffer_destroy(&tris);
+    return tris;
 }
 
 static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint vertices,
@@ -313,7 +339,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     double a = half_area(lo, hi);
     s->sah_cost = a > 0 ? root.bmin.w / a : 0.0;
     s->n_nodes = n_nodes;
-    s->bytes = (uint64_t)n_nodes * sizeof(CvBvhNode) + n * 4;
+    s->bytes = (uint64_t)n_nodes * sizeof(CvBvhNode) + n * (4 + sizeof(CvBvhTri));
     s->scratch_bytes = b->scratch;
     return cv_gl_check(err, "finishing the BVH");
 }
@@ -340,6 +366,8 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);
     }
+    ok = ok && (bvh->tris = cv_bvh_leaf_tris_create(gpu, vertices, triangles, bvh->prims,
+                                                    n_triangles, err)) != 0;
     if (!ok) {
         cv_error_prefix(err, "building the BVH");
         cv_bvh_destroy(&bvh);
@@ -353,6 +381,7 @@ void cv_bvh_bind(const struct cv_bvh *bvh)
 {
     cv_buffer_bind(bvh->nodes, CV_BIND_BVH_NODES);
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
+    cv_buffer_bind(bvh->tris, CV_BIND_BVH_TRIS);
 }
 
 const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh)
@@ -376,6 +405,7 @@ void cv_bvh_destroy(struct cv_bvh **bvh)
         return;
     cv_buffer_destroy(&(*bvh)->nodes);
     cv_buffer_destroy(&(*bvh)->prims);
+    cv_buffer_destroy(&(*bvh)->tris);
     free(*bvh);
     *bvh = NULL;
 }

@@ -35,7 +35,7 @@ struct cv_bvh_stats {
     /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
      * over leaves of 1.0 * A(leaf) * triangles, divided by A(root). */
     double sah_cost;
-    uint64_t bytes;        /* GPU bytes the finished BVH keeps (nodes + prims) */
+    uint64_t bytes;        /* GPU bytes the finished BVH keeps (nodes, prims, leaf triangles) */
     uint64_t scratch_bytes;/* peak GPU scratch during the build, freed after */
     uint32_t n_nodes;      /* final CvBvhNode count */
 };
@@ -60,6 +60,14 @@ const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh);
 /* The GL buffers (owned by the BVH), for tests and tools. */
 GLuint cv_bvh_nodes_buffer(const struct cv_bvh *bvh);
 GLuint cv_bvh_prims_buffer(const struct cv_bvh *bvh);
+
+/* A new buffer of n (at least 1) CvBvhTri records in leaf order: slot i
+ * holds the positions of triangle prims[i] (glsl/bvh/leaf_tris.comp; a
+ * triangle index or vertex index out of range gives an all-zero record).
+ * cv_bvh_build makes the tree's own; tests make them for trees of their
+ * own. Returns 0 with err set on failure; the caller owns the buffer. */
+GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint triangles,
+                               GLuint prims, uint32_t n, struct cv_error *err);
 /* Accepts NULL; clears the pointer. */
 void cv_bvh_destroy(struct cv_bvh **bvh);
 

@@ -10,6 +10,6 @@ GLSL_FILES += \
 	glsl/bvh/radix_hist.comp glsl/bvh/radix_scatter.comp \
 	glsl/bvh/scan_block.comp glsl/bvh/scan_add.comp \
 	glsl/bvh/hierarchy.comp glsl/bvh/refit.comp glsl/bvh/sah.glsl glsl/bvh/treelet.comp \
-	glsl/bvh/layout.comp glsl/bvh/emit.comp \
+	glsl/bvh/layout.comp glsl/bvh/emit.comp glsl/bvh/leaf_tris.comp \
 	glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
 	glsl/bvh/rays_test.comp

@@ -275,6 +275,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
                                {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                                {"PREPARE_MODE=2", NULL}};
     bool rl = p->integrator == CV_RENDER_RLPATH;
+    /* path bins hits by material for its shade stage (intersect.comp);
+     * rlpath's update stage reads the hit queue as one bin */
+    const char *intersect[7];
+    memcpy(intersect, defines, sizeof(defines));
+    if (!rl)
+        intersect[nd] = "CV_HIT_BINS", intersect[nd + 1] = NULL;
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces this one, with the same defines */
         if (s == ST_SHADE && rl)
@@ -284,6 +290,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             d = modes[s - ST_GENERATE];
         else if (s == ST_ESCAPED)
             d = escaped;
+        else if (s == ST_INTERSECT)
+            d = intersect;
         struct cv_program *pr = cv_program_get(gpu, stage_files[s], d, err);
         if (pr)
             r->prog[s] = *pr;
@@ -457,6 +465,8 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
     c->gpu_ms = r->gpu_ms;
+    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] : 0;
+    c->shadow_ms = r->prof.on ? r->prof.ms[ST_SHADOW] : 0;
     return cv_gl_check(err, "reading render counters");
 }
 

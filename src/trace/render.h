@@ -67,6 +67,9 @@ struct cv_render_counters {
     uint64_t primary_rays, secondary_rays, shadow_rays;
     uint64_t iterations;     /* bounce iterations of the wave (paths are regenerated) */
     double gpu_ms;
+    /* With CAVALRY_STAGE_TIMES set: GPU time of the closest-hit (intersect)
+     * and any-hit (shadow) stages over the same passes; else 0. */
+    double intersect_ms, shadow_ms;
 };
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err);

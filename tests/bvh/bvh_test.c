@@ -244,17 +244,19 @@ static void check_corrupt(struct cv_gpu *gpu)
     float *rays = malloc((size_t)n_rays * 32);
     uint32_t *got = malloc((size_t)n_rays * 16);
     make_rays(&m, rays, n_rays);
-    GLuint vb = 0, tb = 0;
+    GLuint vb = 0, tb = 0, lt = 0;
     GLuint nb = cv_buffer_create(sizeof(nodes), nodes, "corrupt nodes", &err);
     GLuint pb = nb ? cv_buffer_create(sizeof(prims), prims, "corrupt prims", &err) : 0;
     GLuint rb = pb ? cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err) : 0;
     GLuint res = rb ? cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", &err) : 0;
-    bool ok = res && mesh_upload(&m, &vb, &tb, &err);
+    bool ok = res && mesh_upload(&m, &vb, &tb, &err) &&
+              (lt = cv_bvh_leaf_tris_create(gpu, vb, tb, pb, 2, &err)) != 0;
     if (ok) {
         cv_buffer_bind(vb, CV_BIND_VERTICES);
         cv_buffer_bind(tb, CV_BIND_TRIANGLES);
         cv_buffer_bind(nb, CV_BIND_BVH_NODES);
         cv_buffer_bind(pb, CV_BIND_BVH_PRIMS);
+        cv_buffer_bind(lt, CV_BIND_BVH_TRIS);
         ok = trace(gpu, false, rb, res, n_rays, m.nt, got, &err);
     }
     tap_ok(ok, "corrupt tree: %u rays traced and ended: %s", n_rays, ok ? "yes" : err.msg);
@@ -271,6 +273,7 @@ static void check_corrupt(struct cv_gpu *gpu)
     cv_buffer_destroy(&tb);
     cv_buffer_destroy(&nb);
     cv_buffer_destroy(&pb);
+    cv_buffer_destroy(&lt);
     cv_buffer_destroy(&rb);
     cv_buffer_destroy(&res);
     free(rays);
