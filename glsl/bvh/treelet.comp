@@ -13,6 +13,11 @@
 // invocation 0 rewires the treelet when that is cheaper. The group then
 // climbs on. Nothing waits on another workgroup: the counters only decide
 // who carries on, as in refit.
+// Rounds after the first skip treelets whose subtree changed neither in the
+// previous round nor so far in this one: their optimisation would see the
+// very same input and keep it, so the tree is the same as without skipping.
+// stamps[p] is the last round (1-based) in which inner node p or anything
+// below it changed (0: never); a rewired treelet stamps all its inner nodes.
 #include "shared/bvh.h"
 #include "shared/bindings.h"
 
@@ -29,9 +34,11 @@ layout(local_size_x = GROUP) in;
 
 layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 3) coherent buffer Stamps { uint stamps[]; };
 
 uniform uint u_n;
 uniform uint u_gamma;
+uniform uint u_round;  // 1-based
 
 #include "sah.glsl"
 
@@ -164,6 +171,8 @@ void rewire(int root, uint full)
     uint stack_s[TREELET_SIZE];
     int stack_node[TREELET_SIZE];
     int sp = 0, used = 1;
+    for (int k = 0; k < s_nl - 1; k++)
+        stamps[s_inner[k]] = u_round;
     stack_s[sp] = full;
     stack_node[sp++] = root;
     while (sp > 0) {
@@ -313,9 +322,16 @@ void main()
                 break;
             }
             memoryBarrierBuffer();
-            int count = (nodes[nodes[p].link.x].link.w & CV_BVH_COUNT_MASK) +
-                        (nodes[nodes[p].link.y].link.w & CV_BVH_COUNT_MASK);
-            if (uint(count) >= u_gamma) {
+            ivec2 kids = nodes[p].link.xy;
+            int count = (nodes[kids.x].link.w & CV_BVH_COUNT_MASK) +
+                        (nodes[kids.y].link.w & CV_BVH_COUNT_MASK);
+            int n_inner = int(u_n) - 1;
+            bool below = (kids.x < n_inner && stamps[kids.x] == u_round) ||
+                         (kids.y < n_inner && stamps[kids.y] == u_round);
+            uint last = stamps[p];
+            if (below)
+                stamps[p] = u_round;
+            if (uint(count) >= u_gamma && (below || last + 1u >= u_round)) {
                 pending = true;
                 break;
             }
