@@ -8,11 +8,16 @@
 // together, one after another: invocation 0 grows a treelet of up to
 // TREELET_SIZE leaves (always opening the leaf of largest area), the group
 // finds the SAH-optimal binary tree over those leaves by dynamic programming
-// over all subsets in parallel (all subsets of one size at once, the
-// partitions of large subsets split over several invocations), and
+// over all subsets in parallel (all subsets of one size at once, their
+// partitions spread evenly over the group), and
 // invocation 0 rewires the treelet when that is cheaper. The group then
 // climbs on. Nothing waits on another workgroup: the counters only decide
 // who carries on, as in refit.
+// Rounds after the first skip treelets whose subtree changed neither in the
+// previous round nor so far in this one: their optimisation would see the
+// very same input and keep it, so the tree is the same as without skipping.
+// stamps[p] is the last round (1-based) in which inner node p or anything
+// below it changed (0: never); a rewired treelet stamps all its inner nodes.
 #include "shared/bvh.h"
 #include "shared/bindings.h"
 
@@ -20,8 +25,11 @@
 #define TREELET_SIZE 7
 #endif
 #define N_SUBSETS (1 << TREELET_SIZE)
-// One subgroup on NVIDIA, so the barriers are cheap.
-#define GROUP 32
+// Four subgroups on NVIDIA: with the DP's pairs spread over the whole
+// group, 128 invocations beat 32 and 64 (H100, 1 M triangles: treelet
+// 14.6 ms against 19.5 and 15.3; not profiled: presumably more climbs
+// share a group's latency and each treelet's DP chain is shorter).
+#define GROUP 128
 #define POPT_COLLAPSE 0x100u
 
 layout(local_size_x = GROUP) in;
@@ -29,9 +37,11 @@ layout(local_size_x = GROUP) in;
 
 layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 3) coherent buffer Stamps { uint stamps[]; };
 
 uniform uint u_n;
 uniform uint u_gamma;
+uniform uint u_round;  // 1-based
 
 #include "sah.glsl"
 
@@ -47,8 +57,8 @@ shared int s_leaf[TREELET_SIZE], s_inner[TREELET_SIZE];
 shared ivec2 s_kids[TREELET_SIZE];
 shared int s_nl;
 shared float s_root_cost;
-shared float s_red_c[GROUP];
-shared uint s_red_p[GROUP];
+// Per subset of the current size: best cost bits | partition number.
+shared uint s_best[70];
 shared int s_todo[GROUP];
 shared uint s_ntodo;
 
@@ -164,6 +174,8 @@ void rewire(int root, uint full)
     uint stack_s[TREELET_SIZE];
     int stack_node[TREELET_SIZE];
     int sp = 0, used = 1;
+    for (int k = 0; k < s_nl - 1; k++)
+        stamps[s_inner[k]] = u_round;
     stack_s[sp] = full;
     stack_node[sp++] = root;
     while (sp > 0) {
@@ -220,68 +232,40 @@ void restructure(int root)
             s_order_nl = nl;
     }
 
-    // The DP, one subset size at a time. `lanes` invocations share the
-    // partitions of a subset when there are few subsets of that size: lane
-    // q fixes the lowest log2(lanes) free leaves to the bits of q and
-    // walks the subsets of the others.
+    // The DP, one subset size at a time. All (subset, partition) pairs of
+    // a size are spread evenly over the group, so no invocation walks a
+    // long run of partitions while others wait (the longest chain is 10
+    // pairs for 7 leaves, against 60 when each subset had its own lanes,
+    // and the time per treelet follows that chain).
+    // Per subset, a shared atomicMin of the cost's bits with the partition
+    // number in the low 7 bits (up to 127 partitions for 8 leaves) picks the
+    // best split: costs are positive, so their bits order like the floats;
+    // costs within 2^-16 of each other count as equal and go to the lower
+    // partition. The chosen split's exact cost is then recomputed.
     int base = nl;
     for (int k = 2; k <= nl; k++) {
         int n_sub = BINOM[nl * 9 + k];
-        int n_part = (1 << (k - 1)) - 1;
-        int lanes = 1;
-        // About sqrt(n_part) lanes balance the walk against the reduction.
-        while (lanes * 2 * n_sub <= GROUP && lanes * lanes * 2 <= n_part)
-            lanes *= 2;
-        int lane_bits = findLSB(lanes);
-        int per_pass = GROUP / lanes;
-        int lane = int(lid) & (lanes - 1);
-        for (int j0 = 0; j0 < n_sub; j0 += per_pass) {
-            int j = j0 + int(lid) / lanes;
-            uint s = 0u;
-            float best = 3.0e38;
-            uint bp = 0u;
-            if (j < n_sub) {
-                s = s_order[base + j];
-                // The lowest leaf always goes left, so each split is seen once.
-                uint low = s & (~s + 1u);
-                uint upper = s ^ low, fixed_mask = 0u;
-                for (int b = 0; b < lane_bits; b++) {
-                    uint bit = upper & (~upper + 1u);
-                    fixed_mask |= bit;
-                    upper ^= bit;
-                }
-                uint head = low | deposit(uint(lane), fixed_mask);
-                uint q = 0u;
-                do {
-                    uint p = head | q;
-                    if (p != s) {
-                        float c = s_copt[p] + s_copt[s ^ p];
-                        if (c < best) {
-                            best = c;
-                            bp = p;
-                        }
-                    }
-                    q = (q - upper) & upper;
-                } while (q != 0u);
-            }
-            if (lanes == 1) {
-                if (j < n_sub)
-                    finish_subset(s, best, bp, full, root);
-            } else {
-                s_red_c[lid] = best;
-                s_red_p[lid] = bp;
-                barrier();
-                if (j < n_sub && lane == 0) {
-                    for (int q = 1; q < lanes; q++) {
-                        if (s_red_c[lid + uint(q)] < best) {
-                            best = s_red_c[lid + uint(q)];
-                            bp = s_red_p[lid + uint(q)];
-                        }
-                    }
-                    finish_subset(s, best, bp, full, root);
-                }
-                barrier();
-            }
+        uint n_part = (1u << (k - 1)) - 1u;
+        uint items = uint(n_sub) * n_part;
+        for (uint j = lid; j < uint(n_sub); j += uint(GROUP))
+            s_best[j] = 0xffffffffu;
+        barrier();
+        for (uint t = lid; t < items; t += uint(GROUP)) {
+            uint j = t / n_part, m = t - j * n_part;
+            uint s = s_order[base + int(j)];
+            // The lowest leaf always goes left, so each split is seen once;
+            // m < n_part never puts every other leaf left too.
+            uint low = s & (~s + 1u);
+            uint p = low | deposit(m, s ^ low);
+            float c = s_copt[p] + s_copt[s ^ p];
+            atomicMin(s_best[j], (floatBitsToUint(c) & ~0x7fu) | m);
+        }
+        barrier();
+        for (uint j = lid; j < uint(n_sub); j += uint(GROUP)) {
+            uint s = s_order[base + int(j)];
+            uint low = s & (~s + 1u);
+            uint p = low | deposit(s_best[j] & 0x7fu, s ^ low);
+            finish_subset(s, s_copt[p] + s_copt[s ^ p], p, full, root);
         }
         base += n_sub;
         barrier();
@@ -313,9 +297,16 @@ void main()
                 break;
             }
             memoryBarrierBuffer();
-            int count = (nodes[nodes[p].link.x].link.w & CV_BVH_COUNT_MASK) +
-                        (nodes[nodes[p].link.y].link.w & CV_BVH_COUNT_MASK);
-            if (uint(count) >= u_gamma) {
+            ivec2 kids = nodes[p].link.xy;
+            int count = (nodes[kids.x].link.w & CV_BVH_COUNT_MASK) +
+                        (nodes[kids.y].link.w & CV_BVH_COUNT_MASK);
+            int n_inner = int(u_n) - 1;
+            bool below = (kids.x < n_inner && stamps[kids.x] == u_round) ||
+                         (kids.y < n_inner && stamps[kids.y] == u_round);
+            uint last = stamps[p];
+            if (below)
+                stamps[p] = u_round;
+            if (uint(count) >= u_gamma && (below || last + 1u >= u_round)) {
                 pending = true;
                 break;
             }

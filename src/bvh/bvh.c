@@ -242,9 +242,14 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
 
     phase_begin(b, PH_TREELET);
     set_uint(treelet, "u_n", n);
+    /* The rounds' change stamps borrow `live`, which layout fills later;
+     * the leaf boxes at STAGE0 + 3 are not needed after refit. */
+    cv_buffer_zero(b->live);
+    cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
     for (int r = 0; r < p->treelet_rounds; r++) {
         cv_buffer_zero(b->counters);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        set_uint(treelet, "u_round", (uint32_t)r + 1);
         /* Every round restructures every subtree of at least treelet_size
          * triangles: doubling that bound per round (as Karras & Aila
          * suggest for speed) cost 4-5 % SAH on our test meshes. */

@@ -1,8 +1,9 @@
 /* radix_sort_test.c: the GPU radix sort equals a stable CPU sort of the same
  * keys with their indices, for random and adversarial key sets (all equal,
- * sorted, reversed, few distinct, full 32-bit, an odd pass count, 60- and
- * 64-bit keys of two words), and the
- * GPU prefix sum equals a CPU one across several scan levels. */
+ * sorted, reversed, few distinct, full 32-bit, odd pass counts, a narrower
+ * last digit, every digit value in every tile, all bits set in a partial
+ * tile, 60- and 64-bit keys of two words), and the GPU prefix sum equals a
+ * CPU one across several scan levels. */
 #include "config.h"
 
 #include <stdint.h>
@@ -126,6 +127,21 @@ int main(void)
     for (uint32_t i = 0; i < n; i++)
         keys[i] = next_rand();
     check_sort(rs, "12 bits (odd pass count)", keys, n, 12);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = next_rand();
+    check_sort(rs, "20 bits (5 passes)", keys, n, 20);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = next_rand();
+    check_sort(rs, "5 bits (one narrow digit)", keys, n, 5);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = (uint64_t)((i * 37u) & 255u) << 8 | (255u - (i & 255u));
+    check_sort(rs, "every digit value in every tile", keys, n, 16);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = ~0ull;
+    check_sort(rs, "all bits set (64-bit, partial last tile)", keys, n, 64);
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = (uint64_t)(next_rand() % 7u) << 32 | 0xffffffffu;
+    check_sort(rs, "60-bit, equal low words", keys, n, 60);
     for (uint32_t i = 0; i < 1000; i++)
         keys[i] = next_rand();
     check_sort(rs, "one partial tile", keys, 1000, 30);
@@ -146,6 +162,8 @@ int main(void)
 
     check_scan(gpu, 1);
     check_scan(gpu, 1025);
+    check_scan(gpu, 65536);
+    check_scan(gpu, 65537);
     check_scan(gpu, 1100000);
     free(keys);
     cv_gpu_destroy(&gpu);
