@@ -1,16 +1,21 @@
 // glsl/trace/rlpath/guide.glsl: the Q-table of the rlpath integrator (layout
-// in shared/rlpath.h): cell and bin lookup, sampling a direction from a
-// cell's learned distribution and its pdf, the mixture with the BSDF, and the
-// temporal-difference update.
+// in shared/rlpath.h): key and bin lookup, sampling a direction from a key's
+// learned distribution and its pdf, the mixture with the BSDF, the
+// temporal-difference update and the distribution's construction.
 //
-// The learned distribution of a cell at a point with normal n: bin b has
-// probability P_b = w_b / W with
-//   w_b = (Q_b + e) * (max(cos(centre_b, n), 0) + CV_RL_COS_FLOOR),
+// The learned distribution of key k (cell, normal class with axis a): bin b
+// has probability P_b = w_b / W with
+//   w_b = (Q_b + e) * (max(cos(centre_b, a), 0) + CV_RL_COS_FLOOR),
 //   e = floor * S / bins (S = sum of Q_b; a tiny absolute floor makes an
-//   unvisited cell follow the floored cosine), W = sum of w_b,
+//   unvisited key follow the floored cosine), W = sum of w_b,
 // (Q times the cosine, the part of the reflected radiance the table knows,
 // as Dahm and Keller's product with the BSDF for a diffuse surface), and is
 // uniform in solid angle within the bin: pdf(w) = P_b * bins / (4 pi).
+// rebuild.comp stores its CDF once per change of the key, so a hit samples
+// by a binary search (log2(bins) reads) and evaluates the pdf with two reads
+// instead of three passes over every bin. The cosine is the class axis's,
+// not the hit's own normal: any fixed distribution keeps the estimator
+// unbiased, as long as sampling and the pdf read the same CDF.
 // Include after the local_size layout line.
 #ifndef CV_RLPATH_GUIDE_GLSL
 #define CV_RLPATH_GUIDE_GLSL
@@ -27,6 +32,7 @@ layout(r32ui, binding = CV_IMAGE_RL_Q) uniform readonly uimageBuffer rl_q;
 const float CV_RL_PI = 3.14159265358979323846;
 
 uint cv_rl_bins() { return u_rl.dirs.z; }
+uint cv_rl_keys() { return u_rl.dirs.w; }
 float cv_rl_mix_weight() { return u_rl.grid_min.w; }
 
 uint cv_rl_cell(vec3 p)
@@ -34,6 +40,35 @@ uint cv_rl_cell(vec3 p)
     ivec3 c = ivec3(floor((p - u_rl.grid_min.xyz) * u_rl.grid_scale.xyz));
     c = clamp(c, ivec3(0), ivec3(u_rl.dims.xyz) - 1);
     return (uint(c.z) * u_rl.dims.y + uint(c.y)) * u_rl.dims.x + uint(c.x);
+}
+
+// The normal class of n: 2 * axis of its largest component, + 1 if negative.
+uint cv_rl_orient(vec3 n)
+{
+    vec3 a = abs(n);
+    uint ax = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+    return 2u * ax + (n[ax] < 0.0 ? 1u : 0u);
+}
+
+vec3 cv_rl_orient_axis(uint o)
+{
+    vec3 a = vec3(0.0);
+    a[o >> 1] = (o & 1u) != 0u ? -1.0 : 1.0;
+    return a;
+}
+
+// The key of a point p whose normal (on the side the path came from) is n.
+uint cv_rl_key(vec3 p, vec3 n) { return cv_rl_cell(p) * CV_RL_ORIENTS + cv_rl_orient(n); }
+
+uint cv_rl_entry(uint key, uint bin) { return key * cv_rl_bins() + bin; }
+
+int cv_rl_key_texel(uint key) { return int(key * CV_RL_KEY_TEXELS(cv_rl_bins())); }
+
+// The texel of an entry's Q (its visits follow it).
+int cv_rl_entry_texel(uint entry)
+{
+    uint nb = cv_rl_bins();
+    return cv_rl_key_texel(entry / nb) + int(2u * (entry % nb));
 }
 
 uint cv_rl_bin(vec3 w)
@@ -56,71 +91,53 @@ vec3 cv_rl_bin_dir(uint b, vec2 u)
     return vec3(r * cos(phi), r * sin(phi), clamp(z, -1.0, 1.0));
 }
 
-float cv_rl_q(uint entry) { return uintBitsToFloat(imageLoad(rl_q, int(2u * entry)).x); }
+float cv_rl_texel_f(int t) { return uintBitsToFloat(imageLoad(rl_q, t).x); }
 
-// The floor e of a cell whose bins sum to s.
-float cv_rl_floor(float s)
+float cv_rl_q(uint entry) { return cv_rl_texel_f(cv_rl_entry_texel(entry)); }
+
+// The guiding weight of a key: 0 until it has learned something.
+float cv_rl_key_mix(uint key)
 {
-    return max(u_rl.grid_scale.w * s / float(cv_rl_bins()), 1e-20);
+    return cv_rl_texel_f(cv_rl_key_texel(key) + int(3u * cv_rl_bins()));
 }
 
-float cv_rl_cell_sum(uint cell)
+// The CDF of a key after bin b (b = -1: 0).
+float cv_rl_cdf(int kt, int b)
 {
-    uint base = cell * cv_rl_bins();
-    float s = 0.0;
-    for (uint b = 0u; b < cv_rl_bins(); b++)
-        s += cv_rl_q(base + b);
-    return s;
+    return b < 0 ? 0.0 : cv_rl_texel_f(kt + int(2u * cv_rl_bins()) + b);
 }
 
-// The sampling weight of bin b of a cell (first entry base, floor e) at a
-// point with normal n (facing the side that reflects): the learned radiance
-// times the cosine at the bin's centre, both floored so that no bin is 0.
-float cv_rl_weight(uint base, uint b, float e, vec3 n)
+// Solid-angle pdf of w under the distribution of a key (whose mixture
+// weight is above 0, so that its CDF has been built).
+float cv_rl_pdf(uint key, vec3 w)
 {
-    float c = dot(cv_rl_bin_dir(b, vec2(0.5)), n);
-    return (cv_rl_q(base + b) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
+    int kt = cv_rl_key_texel(key), b = int(cv_rl_bin(w));
+    float p = cv_rl_cdf(kt, b) - cv_rl_cdf(kt, b - 1);
+    return p * float(cv_rl_bins()) / (4.0 * CV_RL_PI);
 }
 
-// The sum W of the weights of a cell (bins summing to s) at normal n.
-float cv_rl_total(uint cell, float s, vec3 n)
+// Samples a direction from the key with u in [0,1)^2: u.x picks the bin,
+// the first whose CDF is above it (binary search), and, rescaled within the
+// bin's interval, the z position in the bin; u.y the phi position. Returns
+// the bin; pdf is the solid-angle density of the direction. A bin is drawn
+// with probability CDF(b) - CDF(b - 1), as the floats are: the difference
+// cv_rl_pdf reads.
+uint cv_rl_sample(uint key, vec2 u, out vec3 w, out float pdf)
 {
-    uint base = cell * cv_rl_bins();
-    float e = cv_rl_floor(s), t = 0.0;
-    for (uint b = 0u; b < cv_rl_bins(); b++)
-        t += cv_rl_weight(base, b, e, n);
-    return t;
-}
-
-// Solid-angle pdf of w under the distribution of a cell (bins summing to
-// s, weights to W at normal n).
-float cv_rl_pdf(uint cell, float s, float W, vec3 n, vec3 w)
-{
-    uint nb = cv_rl_bins();
-    float wb = cv_rl_weight(cell * nb, cv_rl_bin(w), cv_rl_floor(s), n);
-    return (wb / W) * float(nb) / (4.0 * CV_RL_PI);
-}
-
-// Samples a direction from the cell with u in [0,1)^2: u.x picks the bin by
-// the CDF of the weights and, rescaled within the bin's interval, the z
-// position in the bin; u.y the phi position. Returns the bin; pdf is the
-// solid-angle density of the direction.
-uint cv_rl_sample(uint cell, float s, float W, vec3 n, vec2 u, out vec3 w, out float pdf)
-{
-    uint nb = cv_rl_bins(), base = cell * nb;
-    float e = cv_rl_floor(s);
-    float target = u.x * W, c = 0.0, p = 0.0;
-    uint b = 0u;
-    for (; b < nb; b++) {
-        p = cv_rl_weight(base, b, e, n);
-        if (target < c + p || b == nb - 1u)
-            break;
-        c += p;
+    int kt = cv_rl_key_texel(key);
+    int lo = 0, hi = int(cv_rl_bins()) - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) >> 1;
+        if (u.x < cv_rl_cdf(kt, mid))
+            hi = mid;
+        else
+            lo = mid + 1;
     }
-    float ux = clamp((target - c) / p, 0.0, 0.99999994);
-    w = cv_rl_bin_dir(b, vec2(ux, u.y));
-    pdf = (p / W) * float(nb) / (4.0 * CV_RL_PI);
-    return b;
+    float c0 = cv_rl_cdf(kt, lo - 1), p = cv_rl_cdf(kt, lo) - c0;
+    float ux = p > 0.0 ? clamp((u.x - c0) / p, 0.0, 0.99999994) : 0.5;
+    w = cv_rl_bin_dir(uint(lo), vec2(ux, u.y));
+    pdf = p * float(cv_rl_bins()) / (4.0 * CV_RL_PI);
+    return uint(lo);
 }
 
 // The one-sample mixture of guiding (weight m) and the BSDF: the density the
@@ -131,17 +148,18 @@ float cv_rl_mix_pdf(float m, float pdf_guide, float pdf_bsdf)
 }
 
 #ifdef CV_RL_TABLE_WRITE
-// Q(entry) <- (1 - a) Q + a target with a = 1 / (1 + visits). The visit
-// count is bumped first, so concurrent updates of one entry each get their
-// own learning rate; the float is then replaced by compare-and-swap on its
-// bits, retried while another thread changed it in between (bounded: an
-// update lost under extreme contention only slows learning, never biases
-// the image, whose estimator is unbiased for any table).
+// Q(entry) <- (1 - a) Q + a target with a = 1 / (1 + visits), and marks the
+// key for rebuild.comp. The visit count is bumped first, so concurrent
+// updates of one entry each get their own learning rate; the float is then
+// replaced by compare-and-swap on its bits, retried while another thread
+// changed it in between (bounded: an update lost under extreme contention
+// only slows learning, never biases the image, whose estimator is unbiased
+// for any table).
 void cv_rl_update(uint entry, float target)
 {
     if (entry == CV_RL_NONE || !(target >= 0.0) || isinf(target))
         return;
-    int at = int(2u * entry);
+    int at = cv_rl_entry_texel(entry);
     uint visits = imageAtomicAdd(rl_q, at + 1, 1u);
     float a = 1.0 / (1.0 + float(visits));
     uint old = imageLoad(rl_q, at).x;
@@ -153,6 +171,9 @@ void cv_rl_update(uint entry, float target)
             break;
         old = seen;
     }
+    int dirty = cv_rl_key_texel(entry / cv_rl_bins()) + int(3u * cv_rl_bins()) + 1;
+    if (imageLoad(rl_q, dirty).x == 0u)
+        imageStore(rl_q, dirty, uvec4(1u));
 }
 #endif
 
