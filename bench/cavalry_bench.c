@@ -43,7 +43,8 @@ static void usage(FILE *f)
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
-          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M] [--csv OUT.csv]\n"
+          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M] [--seed S]\n"
+          "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
 
@@ -92,7 +93,7 @@ static void record_gpu(struct bench_record *r, const struct cv_gpu *gpu)
 
 struct opts {
     const char *scene, *reference, *csv, *out, *integrator;
-    unsigned spp, repeat, width, height, ref_spp, rl_grid, rl_directions;
+    unsigned spp, repeat, width, height, ref_spp, rl_grid, rl_directions, seed;
     float rl_mix;
     int gpu_index;
     bool no_gpu;
@@ -216,6 +217,8 @@ int main(int argc, char **argv)
             o.rl_grid = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--rl-directions") && has) {
             o.rl_directions = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--seed") && has) {
+            o.seed = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--rl-mix") && has) {
             o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--csv") && has) {
@@ -338,7 +341,8 @@ int main(int argc, char **argv)
                                                               .integrator = o.integrator,
                                                               .rl_grid = o.rl_grid,
                                                               .rl_directions = o.rl_directions,
-                                                              .rl_mix = o.rl_mix},
+                                                              .rl_mix = o.rl_mix,
+                                                              .seed = o.seed},
                                    ref, rw, rh, o.ref_spp, csv, &err)) {
             fprintf(stderr, "cavalry_bench: %s: %s\n", o.scene, err.msg);
             rc = 1;

@@ -23,17 +23,24 @@
  *
  * Table (image unit CV_IMAGE_RL_Q, r32ui texels), CV_RL_KEY_TEXELS(bins)
  * texels per key k from t = k * CV_RL_KEY_TEXELS(bins):
- *   t + 2b:          Q of bin b as float bits (learned incident radiance,
- *                    scalar: the channel mean), written by update.comp;
- *   t + 2b + 1:      visits of bin b;
+ *   t + 2b:          the sum of the temporal-difference targets of bin b
+ *                    as float bits, written by update.comp;
+ *   t + 2b + 1:      visits of bin b (targets summed); Q, the learned
+ *                    incident radiance (scalar: the channel mean), is the
+ *                    sum over the visits: the running mean that Dahm and
+ *                    Keller's learning rate 1 / (1 + visits) gives, without
+ *                    a compare-and-swap loop that threads of a bright bin
+ *                    would contend in;
  *   t + 2 bins + b:  the sampling CDF after bin b as float bits (the last
  *                    is exactly 1), written by rebuild.comp from the Q;
  *   t + 3 bins:      the key's guiding weight (mixture weight) as float bits:
  *                    the option's, less for a key with few visits, 0 before
  *                    its first rebuild;
  *   t + 3 bins + 1:  1 when a Q changed since the last rebuild.
- * An entry e = k * bins + b names one (key, bin). Floats are updated by a
- * compare-and-swap loop on the bits (GLSL has no float atomics in core 4.5).
+ * An entry e = k * bins + b names one (key, bin). The sums are added by
+ * imageAtomicAdd through a second, r32f image over the same buffer
+ * (CV_IMAGE_RL_QF) where GL_NV_shader_atomic_float is there (NVIDIA, Mesa),
+ * else by compare-and-swap on the bits (GLSL 4.5 core has no float atomics).
  *
  * Path state (image unit CV_IMAGE_RL_PATH, one rgba32ui texel per pixel of
  * the crop; each pixel has one path in flight): x: entry of the last bounce whose value the next hit
@@ -47,6 +54,7 @@
 
 #define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: Q bits and visits */
 #define CV_IMAGE_RL_PATH 1     /* uimageBuffer rgba32ui: path state per pixel */
+#define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the table again, for float atomics */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */
 
 #define CV_RL_NONE 0xffffffffu

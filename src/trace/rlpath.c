@@ -16,7 +16,8 @@ struct cv_rlpath {
     uint32_t n_pixels;
     struct cv_program shade, update_hits, update_escaped, rebuild;  /* copies (see render.c) */
     GLuint ubo, table, path;
-    GLuint table_tex, path_tex;   /* buffer textures over table and path */
+    GLuint table_tex, table_ftex, path_tex;   /* buffer textures over table (r32ui,
+                                                 r32f) and path */
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -139,6 +140,9 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         rl->table_tex = cv_rlpath_buffer_texture(rl->table, GL_R32UI,
                                                  cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_tex)
+        rl->table_ftex = cv_rlpath_buffer_texture(rl->table, GL_R32F,
+                                                  cv_rlpath_table_bytes(layout) / 4, err);
+    if (rl->table_ftex)
         rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
     if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
@@ -161,6 +165,7 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
                        GL_RGBA32UI);
+    glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
 }
 
 void cv_rlpath_update(const struct cv_rlpath *rl)
@@ -196,8 +201,11 @@ bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits
     bool ok = cv_buffer_read(rl->table, 0, bytes, raw, err);
     for (size_t k = 0; ok && k < keys; k++)
         for (size_t b = 0; b < nb; b++) {
+            float sum;
+            memcpy(&sum, &raw[k * stride + 2 * b], sizeof(float));
+            uint32_t n = raw[k * stride + 2 * b + 1];
             if (q)
-                memcpy(&q[k * nb + b], &raw[k * stride + 2 * b], sizeof(float));
+                q[k * nb + b] = n ? sum / (float)n : sum;
             if (visits)
                 visits[k * nb + b] = raw[k * stride + 2 * b + 1];
         }
@@ -217,6 +225,8 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
     struct cv_rlpath *rl = *rlp;
     if (rl->table_tex)
         glDeleteTextures(1, &rl->table_tex);
+    if (rl->table_ftex)
+        glDeleteTextures(1, &rl->table_ftex);
     if (rl->path_tex)
         glDeleteTextures(1, &rl->path_tex);
     cv_buffer_destroy(&rl->ubo);

@@ -136,7 +136,8 @@ static void set_table(struct rig *g, const float *q, uint32_t visits, struct cv_
     uint32_t *raw = calloc(bytes / 4, sizeof(uint32_t));
     uint32_t *k = raw + (size_t)g->key * stride;
     for (uint32_t b = 0; b < n; b++) {
-        memcpy(&k[2 * b], &q[b], sizeof(float));
+        float sum = q[b] * (float)visits;   /* Q is the target sum over the visits */
+        memcpy(&k[2 * b], &sum, sizeof(float));
         k[2 * b + 1] = visits;
     }
     k[3 * n + 1] = 1;

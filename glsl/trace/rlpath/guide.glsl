@@ -3,6 +3,7 @@
 // learned distribution and its pdf, the mixture with the BSDF, the
 // temporal-difference update and the distribution's construction.
 //
+// Q_b below is the bin's target sum over its visits (shared/rlpath.h).
 // The learned distribution of key k (cell, normal class with axis a): bin b
 // has probability P_b = w_b / W with
 //   w_b = (Q_b + e) * (max(cos(centre_b, a), 0) + CV_RL_COS_FLOOR),
@@ -25,6 +26,9 @@
 layout(std140, binding = CV_UBO_RLPATH) uniform CvRlBlock { CvRlParams u_rl; };
 #ifdef CV_RL_TABLE_WRITE
 layout(r32ui, binding = CV_IMAGE_RL_Q) uniform coherent uimageBuffer rl_q;
+#if defined(CV_RL_TABLE_UPDATE) && defined(GL_NV_shader_atomic_float)
+layout(r32f, binding = CV_IMAGE_RL_QF) uniform coherent imageBuffer rl_qf;
+#endif
 #else
 layout(r32ui, binding = CV_IMAGE_RL_Q) uniform readonly uimageBuffer rl_q;
 #endif
@@ -93,7 +97,13 @@ vec3 cv_rl_bin_dir(uint b, vec2 u)
 
 float cv_rl_texel_f(int t) { return uintBitsToFloat(imageLoad(rl_q, t).x); }
 
-float cv_rl_q(uint entry) { return cv_rl_texel_f(cv_rl_entry_texel(entry)); }
+// Q of a bin from its texel pair (target sum, visits).
+float cv_rl_q_at(int t)
+{
+    return cv_rl_texel_f(t) / float(max(imageLoad(rl_q, t + 1).x, 1u));
+}
+
+float cv_rl_q(uint entry) { return cv_rl_q_at(cv_rl_entry_texel(entry)); }
 
 // The guiding weight of a key: 0 until it has learned something.
 float cv_rl_key_mix(uint key)
@@ -147,30 +157,30 @@ float cv_rl_mix_pdf(float m, float pdf_guide, float pdf_bsdf)
     return m * pdf_guide + (1.0 - m) * pdf_bsdf;
 }
 
-#ifdef CV_RL_TABLE_WRITE
-// Q(entry) <- (1 - a) Q + a target with a = 1 / (1 + visits), and marks the
-// key for rebuild.comp. The visit count is bumped first, so concurrent
-// updates of one entry each get their own learning rate; the float is then
-// replaced by compare-and-swap on its bits, retried while another thread
-// changed it in between (bounded: an update lost under extreme contention
-// only slows learning, never biases the image, whose estimator is unbiased
-// for any table).
+#ifdef CV_RL_TABLE_UPDATE
+// Adds a target to the entry's sum and a visit (Q becomes the mean of its
+// targets, as Q <- (1 - a) Q + a target with a = 1 / (1 + visits)), and
+// marks the key for rebuild.comp. Without float atomics: compare-and-swap
+// on the bits, retried while another thread changed it in between (bounded:
+// an update lost under extreme contention only skews learning, never biases
+// the image, whose estimator is unbiased for any table).
 void cv_rl_update(uint entry, float target)
 {
     if (entry == CV_RL_NONE || !(target >= 0.0) || isinf(target))
         return;
     int at = cv_rl_entry_texel(entry);
-    uint visits = imageAtomicAdd(rl_q, at + 1, 1u);
-    float a = 1.0 / (1.0 + float(visits));
+#ifdef GL_NV_shader_atomic_float
+    imageAtomicAdd(rl_qf, at, target);
+#else
     uint old = imageLoad(rl_q, at).x;
     for (int i = 0; i < 64; i++) {
-        float q = uintBitsToFloat(old);
-        uint nv = floatBitsToUint(q + a * (target - q));
-        uint seen = imageAtomicCompSwap(rl_q, at, old, nv);
+        uint seen = imageAtomicCompSwap(rl_q, at, old, floatBitsToUint(uintBitsToFloat(old) + target));
         if (seen == old)
             break;
         old = seen;
     }
+#endif
+    imageAtomicAdd(rl_q, at + 1, 1u);
     int dirty = cv_rl_key_texel(entry / cv_rl_bins()) + int(3u * cv_rl_bins()) + 1;
     if (imageLoad(rl_q, dirty).x == 0u)
         imageStore(rl_q, dirty, uvec4(1u));

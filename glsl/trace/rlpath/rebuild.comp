@@ -36,7 +36,7 @@ void main()
     uint b0 = min(t * per, nb), b1 = min(b0 + per, nb);
     float qs = 0.0, vs = 0.0;
     for (uint b = b0; b < b1; b++) {
-        qs += cv_rl_texel_f(kt + int(2u * b));
+        qs += cv_rl_q_at(kt + int(2u * b));
         vs += float(imageLoad(rl_q, kt + int(2u * b) + 1).x);
     }
     s_part[t] = qs;
@@ -55,7 +55,7 @@ void main()
     precise float ws = 0.0;
     for (uint b = b0; b < b1; b++) {
         float c = dot(cv_rl_bin_dir(b, vec2(0.5)), axis);
-        precise float w = (cv_rl_texel_f(kt + int(2u * b)) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
+        precise float w = (cv_rl_q_at(kt + int(2u * b)) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
         ws += w;
     }
     s_part[t] = ws;
@@ -71,7 +71,7 @@ void main()
     precise float acc = 0.0;
     for (uint b = b0; b < b1; b++) {
         float c = dot(cv_rl_bin_dir(b, vec2(0.5)), axis);
-        precise float w = (cv_rl_texel_f(kt + int(2u * b)) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
+        precise float w = (cv_rl_q_at(kt + int(2u * b)) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
         acc += w;
         precise float sum = off + acc;
         float cdf = b == nb - 1u ? 1.0 : min(sum / W, 1.0);
