@@ -8,8 +8,7 @@
  * in each cell CV_RL_ORIENTS keys, one per orientation class of the
  * surface normal (the axis of its largest component and that component's
  * sign): the two sides of a wall, or a floor and the wall beside it in one
- * cell, learn apart, and each key's distribution can be built once for its
- * class's axis instead of per hit.
+ * cell, learn apart.
  * Direction: the whole sphere of world directions in a cylindrical
  * equal-area map: z = cos(theta) in [-1, 1] split into dirs.x equal bands,
  * phi in [-pi, pi) into dirs.y equal sectors; every bin has the solid angle
@@ -61,15 +60,12 @@
 #define CV_RL_MAX_BINS 1024u
 
 /* Defaults for options given as 0 (or a mix <= 0). */
-#define CV_RL_DEFAULT_GRID 8u
+#define CV_RL_DEFAULT_GRID 4u
 #define CV_RL_DEFAULT_DIRECTIONS 128u
 #define CV_RL_DEFAULT_MIX 0.3f
 /* Every bin gets at least this share of the mean bin value, so the learned
  * distribution never has zero density anywhere on the sphere. */
 #define CV_RL_FLOOR 0.02f
-/* Added to the clamped cosine of the bin weights: bins below the surface
- * keep some probability (for transmission and the support). */
-#define CV_RL_COS_FLOOR 0.1
 /* Normal classes per cell: +x, -x, +y, -y, +z, -z. */
 #define CV_RL_ORIENTS 6u
 /* Texels per key: Q and visits per bin, the CDF, mixture weight, dirty flag. */
@@ -79,6 +75,9 @@
  * a young key's Q is one or two noisy samples, and sampling by it alone
  * adds variance that the BSDF would not. */
 #define CV_RL_TRUST_VISITS 4.0f
+/* Microfacet roughness (alpha) below which a conductor or dielectric is
+ * sampled by its BSDF alone (rlpath/shade.comp: cv_rl_guides). */
+#define CV_RL_GLOSSY_ALPHA 0.5
 
 CV_STRUCT(CvRlParams) {
     CV_VEC4 grid_min;      /* xyz: grid origin (world); w: mixture weight of guiding */

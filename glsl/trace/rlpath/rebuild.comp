@@ -51,11 +51,9 @@ void main()
     barrier();
 
     float e = max(u_rl.grid_scale.w * S / float(nb), 1e-20);
-    vec3 axis = cv_rl_orient_axis(key % CV_RL_ORIENTS);
     precise float ws = 0.0;
     for (uint b = b0; b < b1; b++) {
-        float c = dot(cv_rl_bin_dir(b, vec2(0.5)), axis);
-        precise float w = (cv_rl_q_at(kt + int(2u * b)) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
+        precise float w = cv_rl_q_at(kt + int(2u * b)) + e;
         ws += w;
     }
     s_part[t] = ws;
@@ -70,8 +68,7 @@ void main()
     }
     precise float acc = 0.0;
     for (uint b = b0; b < b1; b++) {
-        float c = dot(cv_rl_bin_dir(b, vec2(0.5)), axis);
-        precise float w = (cv_rl_q_at(kt + int(2u * b)) + e) * (max(c, 0.0) + CV_RL_COS_FLOOR);
+        precise float w = cv_rl_q_at(kt + int(2u * b)) + e;
         acc += w;
         precise float sum = off + acc;
         float cdf = b == nb - 1u ? 1.0 : min(sum / W, 1.0);
