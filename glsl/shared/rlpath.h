@@ -75,6 +75,11 @@
  * a young key's Q is one or two noisy samples, and sampling by it alone
  * adds variance that the BSDF would not. */
 #define CV_RL_TRUST_VISITS 4.0f
+/* Above this many visits, rebuild.comp halves a bin's visits and scales its
+ * sum to keep Q: a float sum of 2^24 targets would stop taking in small
+ * ones, and the learning rate 1 / (1 + visits) keeps a floor of about 2^-20,
+ * so the table still follows a changing estimate in a long render. */
+#define CV_RL_MAX_VISITS 1048576u
 /* Microfacet roughness (alpha) below which a conductor or dielectric is
  * sampled by its BSDF alone (rlpath/shade.comp: cv_rl_guides). */
 #define CV_RL_GLOSSY_ALPHA 0.5

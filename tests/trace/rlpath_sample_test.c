@@ -232,6 +232,27 @@ int main(void)
         q[b] = (b % 4 == 1) ? 0.0f : (float)(u * u * u * 10);
     }
     q[37] = 40;   /* one bright bin */
+
+    /* a bin past CV_RL_MAX_VISITS: the rebuild halves visits, keeps Q */
+    const uint32_t many = 3 * CV_RL_MAX_VISITS;
+    set_table(&g, q, many, &err);
+    {
+        uint32_t stride = CV_RL_KEY_TEXELS(nb);
+        uint32_t *raw = malloc((size_t)stride * 4);
+        bool ok = cv_buffer_read(g.table, (size_t)g.key * stride * 4, (size_t)stride * 4, raw, &err);
+        uint32_t bad_n = 0, bad_q = 0;
+        for (uint32_t b = 0; ok && b < nb; b++) {
+            float sum;
+            memcpy(&sum, &raw[2 * b], sizeof(float));
+            if (raw[2 * b + 1] != many / 2)
+                bad_n++;
+            if (fabs(sum / raw[2 * b + 1] - q[b]) > 1e-5 * q[b] + 1e-30)
+                bad_q++;
+        }
+        tap_ok(ok && bad_n == 0 && bad_q == 0, "%u visits halved to %u with Q kept "
+               "(%u visit counts, %u Q differ): %s", many, many / 2, bad_n, bad_q, err.msg);
+        free(raw);
+    }
     set_table(&g, q, trusted, &err);
 
     for (int mode = 0; mode <= 1; mode++) {

@@ -36,6 +36,13 @@ void main()
     uint b0 = min(t * per, nb), b1 = min(b0 + per, nb);
     float qs = 0.0, vs = 0.0;
     for (uint b = b0; b < b1; b++) {
+        int tb = kt + int(2u * b);
+        uint n = imageLoad(rl_q, tb + 1).x;
+        if (n > CV_RL_MAX_VISITS) {
+            // update.comp is not running: no add is lost between these
+            imageStore(rl_q, tb, uvec4(floatBitsToUint(cv_rl_texel_f(tb) * (float(n / 2u) / float(n)))));
+            imageStore(rl_q, tb + 1, uvec4(n / 2u));
+        }
         qs += cv_rl_q_at(kt + int(2u * b));
         vs += float(imageLoad(rl_q, kt + int(2u * b) + 1).x);
     }
