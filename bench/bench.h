@@ -57,6 +57,9 @@ struct bench_run_params {
     unsigned spp;               /* passes of one sample per pixel */
     unsigned width, height;     /* 0: as the scene file says */
     const char *integrator;     /* "path" (NULL) or "rlpath" */
+    unsigned rl_grid, rl_directions;   /* rlpath options; 0: defaults */
+    float rl_mix;                      /* rlpath guiding weight; 0: default */
+    unsigned seed;                     /* sampler seed; 0: 1 */
 };
 
 /* BVH build and rendering through the bvh and trace stages; each records

@@ -44,6 +44,7 @@ static void usage(FILE *f)
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
+          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M] [--seed S]\n"
           "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
@@ -93,7 +94,8 @@ static void record_gpu(struct bench_record *r, const struct cv_gpu *gpu)
 
 struct opts {
     const char *scene, *reference, *csv, *out, *integrator;
-    unsigned spp, repeat, width, height, ref_spp;
+    unsigned spp, repeat, width, height, ref_spp, rl_grid, rl_directions, seed;
+    float rl_mix;
     int gpu_index;
     bool no_gpu;
 };
@@ -156,7 +158,8 @@ static bool bench_once(const struct opts *o, unsigned rep, struct cv_gpu **gpu,
     ok = load_scene(o->scene, &r, &scene, err);
     if (ok && *gpu) {
         struct bench_run_params p = {.spp = o->spp, .width = o->width, .height = o->height,
-                                     .integrator = o->integrator};
+                                     .integrator = o->integrator, .rl_grid = o->rl_grid,
+                                     .rl_directions = o->rl_directions, .rl_mix = o->rl_mix};
         ok = bench_gpu_stages(*gpu, scene, &p, &r, err);
     }
     cv_scene_destroy(&scene);
@@ -211,6 +214,14 @@ int main(int argc, char **argv)
             o.reference = argv[++i];
         } else if (!strcmp(a, "--integrator") && has) {
             o.integrator = argv[++i];
+        } else if (!strcmp(a, "--rl-grid") && has) {
+            o.rl_grid = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--rl-directions") && has) {
+            o.rl_directions = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--seed") && has) {
+            o.seed = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--rl-mix") && has) {
+            o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
         } else if (!strcmp(a, "--out") && has) {
@@ -328,7 +339,11 @@ int main(int argc, char **argv)
                    !bench_converge(gpu, scene,
                                    &(struct bench_run_params){.spp = o.spp, .width = o.width,
                                                               .height = o.height,
-                                                              .integrator = o.integrator},
+                                                              .integrator = o.integrator,
+                                                              .rl_grid = o.rl_grid,
+                                                              .rl_directions = o.rl_directions,
+                                                              .rl_mix = o.rl_mix,
+                                                              .seed = o.seed},
                                    ref, rw, rh, o.ref_spp, csv, &err)) {
             fprintf(stderr, "cavalry_bench: %s: %s\n", o.scene, err.msg);
             rc = 1;

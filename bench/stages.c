@@ -101,8 +101,11 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     memset(&rp, 0, sizeof rp);
     rp.width = w;
     rp.height = h;
-    rp.seed = 1;
+    rp.seed = p->seed ? p->seed : 1;
     rp.integrator = integrator_id(p->integrator);
+    rp.rl_grid = p->rl_grid;
+    rp.rl_directions = p->rl_directions;
+    rp.rl_mix = p->rl_mix;
     if (rp.integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
     return cv_renderer_create(gpu, scene, &rp, out, err);

@@ -14,9 +14,10 @@
 struct cv_rlpath {
     CvRlParams params;
     uint32_t n_pixels;
-    struct cv_program shade, update_hits, update_escaped;  /* copies (see render.c) */
+    struct cv_program shade, update_hits, update_escaped, rebuild;  /* copies (see render.c) */
     GLuint ubo, table, path;
-    GLuint table_tex, path_tex;   /* buffer textures over table and path */
+    GLuint table_tex, table_ftex, path_tex;   /* buffer textures over table (r32ui,
+                                                 r32f) and path */
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -73,16 +74,16 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
     out->grid_min = (cv_vec4){(float)lo[0], (float)lo[1], (float)lo[2], mix};
     out->grid_scale = (cv_vec4){scale[0], scale[1], scale[2], CV_RL_FLOOR};
     out->dims = (cv_uvec4){dims[0], dims[1], dims[2], dims[0] * dims[1] * dims[2]};
-    out->dirs = (cv_uvec4){nz, np, nz * np, 0};
+    out->dirs = (cv_uvec4){nz, np, nz * np, out->dims.w * CV_RL_ORIENTS};
     if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30))
-        return cv_fail(err, "rlpath table of %u cells x %u directions is above 1 GiB",
-                       out->dims.w, out->dirs.z);
+        return cv_fail(err, "rlpath table of %u cells x %u normal classes x %u directions is "
+                       "above 1 GiB", out->dims.w, CV_RL_ORIENTS, out->dirs.z);
     return true;
 }
 
 uint64_t cv_rlpath_table_bytes(const CvRlParams *p)
 {
-    return (uint64_t)p->dims.w * p->dirs.z * 2 * sizeof(uint32_t);
+    return (uint64_t)p->dirs.w * CV_RL_KEY_TEXELS(p->dirs.z) * sizeof(uint32_t);
 }
 
 GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
@@ -118,6 +119,8 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         rl->update_hits = *p;
     if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d1, err)))
         rl->update_escaped = *p;
+    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", NULL, err)))
+        rl->rebuild = *p;
     if (!p) {
         cv_rlpath_destroy(&rl);
         return false;
@@ -133,13 +136,16 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     if (rl->table)
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);
-    size_t entries = (size_t)layout->dims.w * layout->dirs.z;
     if (rl->path)
-        rl->table_tex = cv_rlpath_buffer_texture(rl->table, GL_R32UI, 2 * entries, err);
+        rl->table_tex = cv_rlpath_buffer_texture(rl->table, GL_R32UI,
+                                                 cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_tex)
+        rl->table_ftex = cv_rlpath_buffer_texture(rl->table, GL_R32F,
+                                                  cv_rlpath_table_bytes(layout) / 4, err);
+    if (rl->table_ftex)
         rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
     if (!rl->path_tex) {
-        cv_error_prefix(err, "rlpath table of %u cells x %u directions: ", layout->dims.w,
+        cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);
         cv_rlpath_destroy(&rl);
         return false;
@@ -159,6 +165,7 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
                        GL_RGBA32UI);
+    glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
 }
 
 void cv_rlpath_update(const struct cv_rlpath *rl)
@@ -170,20 +177,38 @@ void cv_rlpath_update(const struct cv_rlpath *rl)
                                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     cv_program_dispatch_indirect(&rl->update_escaped, CV_ARGS_BYTES(CV_ARGS_ESCAPED),
                                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    cv_rlpath_dispatch_rebuild(&rl->rebuild, &rl->params);
+}
+
+void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlParams *p)
+{
+    /* one workgroup per key; keys past one dimension's 65535 go to y */
+    uint32_t keys = p->dirs.w, gx = keys < 4096 ? keys : 4096, gy = (keys + gx - 1) / gx;
+    if (keys == 0)
+        return;
+    glUseProgram(rebuild->id);
+    glDispatchCompute(gx, gy, 1);
+    /* the shade stage reads the CDFs and weights through the image */
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
                           struct cv_error *err)
 {
-    size_t n = (size_t)rl->params.dims.w * rl->params.dirs.z;
-    uint32_t *raw = cv_xmalloc(n * 2 * sizeof(uint32_t));
-    bool ok = cv_buffer_read(rl->table, 0, n * 2 * sizeof(uint32_t), raw, err);
-    for (size_t i = 0; ok && i < n; i++) {
-        if (q)
-            memcpy(&q[i], &raw[2 * i], sizeof(float));
-        if (visits)
-            visits[i] = raw[2 * i + 1];
-    }
+    size_t keys = rl->params.dirs.w, nb = rl->params.dirs.z, stride = CV_RL_KEY_TEXELS(nb);
+    size_t bytes = (size_t)cv_rlpath_table_bytes(&rl->params);
+    uint32_t *raw = cv_xmalloc(bytes);
+    bool ok = cv_buffer_read(rl->table, 0, bytes, raw, err);
+    for (size_t k = 0; ok && k < keys; k++)
+        for (size_t b = 0; b < nb; b++) {
+            float sum;
+            memcpy(&sum, &raw[k * stride + 2 * b], sizeof(float));
+            uint32_t n = raw[k * stride + 2 * b + 1];
+            if (q)
+                q[k * nb + b] = n ? sum / (float)n : sum;
+            if (visits)
+                visits[k * nb + b] = raw[k * stride + 2 * b + 1];
+        }
     free(raw);
     return ok;
 }
@@ -200,6 +225,8 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
     struct cv_rlpath *rl = *rlp;
     if (rl->table_tex)
         glDeleteTextures(1, &rl->table_tex);
+    if (rl->table_ftex)
+        glDeleteTextures(1, &rl->table_ftex);
     if (rl->path_tex)
         glDeleteTextures(1, &rl->path_tex);
     cv_buffer_destroy(&rl->ubo);

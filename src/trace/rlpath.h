@@ -1,6 +1,6 @@
 /* rlpath.h: the host side of the rlpath integrator (reinforcement-learning
  * path guiding after Dahm and Keller 2017): the Q-table over a grid of the
- * scene bounds times equal-area direction bins (layout:
+ * scene bounds and normal classes times equal-area direction bins (layout:
  * glsl/shared/rlpath.h), its programs (glsl/trace/rlpath: shade.comp
  * replaces the path tracer's shade stage, update.comp runs after it), and
  * the table layout from the options. The renderer (render.c) owns one when
@@ -55,12 +55,20 @@ const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl);
  * GL_DISPATCH_INDIRECT_BUFFER). */
 void cv_rlpath_bind(const struct cv_rlpath *rl);
 
-/* Queues the updates of one depth: run right after the shade stage, while
- * that depth's rays, hits and escaped queue are still bound. */
+/* Queues the updates of one depth and the rebuild of the keys they
+ * changed: run right after the shade stage, while that depth's rays, hits
+ * and escaped queue are still bound. */
 void cv_rlpath_update(const struct cv_rlpath *rl);
 
-/* Copies the table: q and visits hold cells * bins values each (either may
- * be NULL). For tests and reports; waits for the GPU. */
+/* Runs rebuild.comp (a program of trace/rlpath/rebuild.comp) over the keys
+ * of layout p: rebuilds the CDF and guiding weight of every key marked
+ * changed in the bound table, then a barrier for image reads. Called by
+ * cv_rlpath_update; tests call it on a table they filled. */
+void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlParams *p);
+
+/* Copies the table: q and visits hold keys * bins values each, entry
+ * key * bins + bin (either may be NULL). For tests and reports; waits for
+ * the GPU. */
 bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
                           struct cv_error *err);
 

@@ -1,12 +1,14 @@
 /* rlpath_sample_test.c: the learned directional distribution of the rlpath
- * Q-table (glsl/trace/rlpath/guide.glsl) on the GPU against a host reference:
- * the table layout from the options; a cell filled with a known random
- * pattern (some bins 0, so the floor matters): directions drawn from it
+ * Q-table (glsl/trace/rlpath/guide.glsl, its CDF built by rebuild.comp) on
+ * the GPU against a host reference: the table layout from the options; a
+ * key filled with a known random pattern (some bins 0, so the floor
+ * matters): directions drawn from it
  * follow its pdf (chi-square over a histogram twice as fine as the bins in
  * each coordinate, so uniformity within a bin is tested too; p >= 0.01), the
  * pdf reported at sampling equals the one evaluated and the host's, and the
  * pdf integrates to 1 over the sphere; the same for the one-sample mixture
- * with a Lambertian lobe, whose density must be m pQ + (1 - m) pBSDF. */
+ * with a Lambertian lobe, whose density must be m pQ + (1 - m) pBSDF; the
+ * key's guiding weight m, reduced while it has few visits. */
 #include "config.h"
 
 #include <math.h>
@@ -36,20 +38,9 @@ static uint32_t ref_bin(const CvRlParams *p, const double w[3])
     return iz * np + ip;
 }
 
-static void bin_centre(const CvRlParams *p, uint32_t bin, double w[3])
+static double ref_weight(const float *q, uint32_t bin, double e)
 {
-    uint32_t np = p->dirs.y;
-    double z = -1 + 2 * ((bin / np) + 0.5) / p->dirs.x;
-    double phi = -PI + 2 * PI * ((bin % np) + 0.5) / np, r = sqrt(fmax(0, 1 - z * z));
-    w[0] = r * cos(phi), w[1] = r * sin(phi), w[2] = z;
-}
-
-static double ref_weight(const CvRlParams *p, const float *q, uint32_t bin, double e)
-{
-    double c[3];
-    bin_centre(p, bin, c);
-    double cs = c[0] * normal[0] + c[1] * normal[1] + c[2] * normal[2];
-    return (q[bin] + e) * (fmax(cs, 0) + CV_RL_COS_FLOOR);
+    return q[bin] + e;
 }
 
 static double ref_prob(const CvRlParams *p, const float *q, uint32_t bin)
@@ -59,8 +50,8 @@ static double ref_prob(const CvRlParams *p, const float *q, uint32_t bin)
         s += q[b];
     double e = fmax(p->grid_scale.w * s / n, 1e-20), total = 0;
     for (uint32_t b = 0; b < p->dirs.z; b++)
-        total += ref_weight(p, q, b, e);
-    return ref_weight(p, q, bin, e) / total;
+        total += ref_weight(q, b, e);
+    return ref_weight(q, bin, e) / total;
 }
 
 static double ref_pdf(const CvRlParams *p, const float *q, const double w[3])
@@ -98,6 +89,7 @@ struct rig {
     struct cv_gpu *gpu;
     CvRlParams params;
     GLuint ubo, table, out, in, table_tex;
+    uint32_t key;   /* cell 0, the class of `normal` */
 };
 
 /* Runs TEST_MODE mode over n items; out gets 8 floats per item. */
@@ -122,14 +114,28 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
            cv_gl_check(err, "test_sample mode %d", mode);
 }
 
-static void set_table(struct rig *g, const float *q, struct cv_error *err)
+/* Fills the test key with q and `visits` per bin, marks it changed and
+ * builds its distribution with rebuild.comp, as the renderer does. */
+static void set_table(struct rig *g, const float *q, uint32_t visits, struct cv_error *err)
 {
-    uint32_t n = g->params.dirs.z;
-    uint32_t *raw = calloc(2 * n, sizeof(uint32_t));
-    for (uint32_t b = 0; b < n; b++)
-        memcpy(&raw[2 * b], &q[b], sizeof(float));
-    tap_ok(cv_buffer_upload(g->table, 0, 2 * n * sizeof(uint32_t), raw, err), "table upload");
+    uint32_t n = g->params.dirs.z, stride = CV_RL_KEY_TEXELS(n);
+    size_t bytes = (size_t)cv_rlpath_table_bytes(&g->params);
+    uint32_t *raw = calloc(bytes / 4, sizeof(uint32_t));
+    uint32_t *k = raw + (size_t)g->key * stride;
+    for (uint32_t b = 0; b < n; b++) {
+        float sum = q[b] * (float)visits;   /* Q is the target sum over the visits */
+        memcpy(&k[2 * b], &sum, sizeof(float));
+        k[2 * b + 1] = visits;
+    }
+    k[3 * n + 1] = 1;
+    tap_ok(cv_buffer_upload(g->table, 0, bytes, raw, err), "table upload");
     free(raw);
+    struct cv_program *rebuild = cv_program_get(g->gpu, "trace/rlpath/rebuild.comp", NULL, err);
+    if (!tap_ok(rebuild != NULL, "rebuild program: %s", err->msg))
+        return;
+    glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
+    glBindImageTexture(CV_IMAGE_RL_Q, g->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    cv_rlpath_dispatch_rebuild(rebuild, &g->params);
 }
 
 static void test_layout(void)
@@ -144,6 +150,7 @@ static void test_layout(void)
            p.dims.x, p.dims.y, p.dims.z);
     tap_ok(p.dirs.x == 8 && p.dirs.y == 16 && p.dirs.z == 128, "128 directions: 8 x 16 (%u x %u)",
            p.dirs.x, p.dirs.y);
+    tap_ok(p.dirs.w == p.dims.w * CV_RL_ORIENTS, "%u keys: 6 normal classes per cell", p.dirs.w);
     tap_ok(p.grid_min.w == CV_RL_DEFAULT_MIX, "default mix %g", p.grid_min.w);
     tap_ok(p.grid_min.x < 0 && p.grid_min.x + p.dims.x / p.grid_scale.x > 2,
            "grid covers the bounds with padding");
@@ -170,6 +177,7 @@ int main(void)
     if (!tap_ok(cv_rlpath_layout(lo, hi, 1, 128, m, &g.params, &err), "layout: %s", err.msg))
         return tap_done();
     const uint32_t nb = g.params.dirs.z, N = 1u << 18;
+    g.key = 4;   /* cell 0, +z */
     const uint32_t HZ = 2 * g.params.dirs.x, HP = 2 * g.params.dirs.y, QZ = 256, QP = 512;
     g.ubo = cv_buffer_create(sizeof(g.params), &g.params, "test rl params", &err);
     g.table = cv_buffer_create(cv_rlpath_table_bytes(&g.params), NULL, "test rl table", &err);
@@ -185,15 +193,16 @@ int main(void)
         }
     g.in = cv_buffer_create((size_t)QZ * QP * 4 * sizeof(float), inq, "test in", &err);
     if (g.table)
-        g.table_tex = cv_rlpath_buffer_texture(g.table, GL_R32UI, 2 * (size_t)g.params.dims.w * nb,
-                                               &err);
+        g.table_tex = cv_rlpath_buffer_texture(g.table, GL_R32UI,
+                                               cv_rlpath_table_bytes(&g.params) / 4, &err);
     if (!tap_ok(g.ubo && g.table && g.out && g.in && g.table_tex, "buffers: %s", err.msg))
         return tap_done();
     float *out = malloc((size_t)(N > QZ * QP ? N : QZ * QP) * 8 * sizeof(float));
 
-    /* an empty cell follows the floored cosine alone */
+    /* an empty key is uniform */
     float *q = calloc(nb, sizeof(float));
-    set_table(&g, q, &err);
+    const uint32_t trusted = 100;   /* visits per bin: the full weight */
+    set_table(&g, q, trusted, &err);
     if (tap_ok(run(&g, 0, 1024, 1, out, &err), "sample empty cell: %s", err.msg)) {
         double worst = 0;
         for (uint32_t i = 0; i < 1024; i++) {
@@ -201,8 +210,18 @@ int main(void)
             double r = ref_pdf(&g.params, q, w);
             worst = fmax(worst, fabs(out[8 * i + 4] - r) / r);
         }
-        tap_ok(worst < 1e-4, "empty cell: pdf is the floored cosine's (worst relative error %g)",
+        tap_ok(worst < 1e-4, "empty key: pdf is uniform (worst relative error %g)",
                worst);
+        tap_ok(out[6] == m, "a key with %u visits per bin guides with the full weight (%g)",
+               trusted, out[6]);
+    }
+
+    /* a young key guides less: m times its mean visits per bin over the trust */
+    set_table(&g, q, 1, &err);
+    if (tap_ok(run(&g, 0, 64, 1, out, &err), "sample a young key: %s", err.msg)) {
+        double want = m * (1.0 / CV_RL_TRUST_VISITS);
+        tap_ok(fabs(out[6] - want) < 1e-6, "a key with 1 visit per bin guides with weight %g "
+               "(%g)", want, out[6]);
     }
 
     /* a known pattern: a peaked random fill, a quarter of the bins zero */
@@ -213,7 +232,28 @@ int main(void)
         q[b] = (b % 4 == 1) ? 0.0f : (float)(u * u * u * 10);
     }
     q[37] = 40;   /* one bright bin */
-    set_table(&g, q, &err);
+
+    /* a bin past CV_RL_MAX_VISITS: the rebuild halves visits, keeps Q */
+    const uint32_t many = 3 * CV_RL_MAX_VISITS;
+    set_table(&g, q, many, &err);
+    {
+        uint32_t stride = CV_RL_KEY_TEXELS(nb);
+        uint32_t *raw = malloc((size_t)stride * 4);
+        bool ok = cv_buffer_read(g.table, (size_t)g.key * stride * 4, (size_t)stride * 4, raw, &err);
+        uint32_t bad_n = 0, bad_q = 0;
+        for (uint32_t b = 0; ok && b < nb; b++) {
+            float sum;
+            memcpy(&sum, &raw[2 * b], sizeof(float));
+            if (raw[2 * b + 1] != many / 2)
+                bad_n++;
+            if (fabs(sum / raw[2 * b + 1] - q[b]) > 1e-5 * q[b] + 1e-30)
+                bad_q++;
+        }
+        tap_ok(ok && bad_n == 0 && bad_q == 0, "%u visits halved to %u with Q kept "
+               "(%u visit counts, %u Q differ): %s", many, many / 2, bad_n, bad_q, err.msg);
+        free(raw);
+    }
+    set_table(&g, q, trusted, &err);
 
     for (int mode = 0; mode <= 1; mode++) {
         const char *what = mode ? "mixture" : "learned";
@@ -222,6 +262,9 @@ int main(void)
         double *obs = calloc((size_t)HZ * HP, sizeof(double));
         double *exp_ = calloc((size_t)HZ * HP, sizeof(double));
         uint32_t bad_pdf = 0, bad_ref = 0, bad_len = 0;
+        /* the GPU's bin probability is a difference of two float CDF values
+         * (the way it samples): a few ulps of 1 off in absolute terms */
+        const double cdf_ulps = 4 * 0x1p-24 * nb / (4 * PI);
         for (uint32_t i = 0; i < N; i++) {
             const float *o = out + 8 * (size_t)i;
             double w[3] = {o[0], o[1], o[2]};
@@ -234,13 +277,13 @@ int main(void)
                 /* sampling and evaluation agree except on a bin edge */
                 if (fabs(o[3] - o[4]) > 1e-4 * o[3])
                     bad_pdf++;
-                if (fabs(o[4] - pq) > 1e-4 * pq)
+                if (fabs(o[4] - pq) > 1e-4 * pq + cdf_ulps)
                     bad_ref++;
             } else {
                 double mix = m * o[4] + (1 - m) * o[5];
                 if (fabs(o[3] - mix) > 1e-5 * mix)
                     bad_pdf++;
-                if (fabs(o[4] - pq) > 1e-4 * pq || fabs(o[5] - pb) > 1e-4 * pb + 1e-6)
+                if (fabs(o[4] - pq) > 1e-4 * pq + cdf_ulps || fabs(o[5] - pb) > 1e-4 * pb + 1e-6)
                     bad_ref++;
             }
         }

@@ -2,8 +2,8 @@
 // glsl/trace/rlpath/shade.comp: the surface stage of the rlpath integrator:
 // trace/shade.comp (emission, AOVs, next-event estimation, bounce with
 // Russian roulette) with the bounce direction drawn from the one-sample
-// mixture of the cell's learned distribution (weight m) and the BSDF
-// (1 - m), whose exact density divides the throughput and enters the MIS
+// mixture of the learned distribution of the hit's key (weight m) and the
+// BSDF (1 - m), whose exact density divides the throughput and enters the MIS
 // weights against light sampling, so the estimator is unbiased for any
 // table. It also computes the temporal-difference target for the bounce that
 // led here, Le(y, -w) plus the reflected radiance estimated from the one
@@ -28,6 +28,28 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
 
 float cv_mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
+
+// Whether the learned distribution (incident radiance) suits
+// this BSDF: it stands for the reflected integrand of a diffuse lobe, and
+// glossy lobes (conductors, dielectrics below CV_RL_GLOSSY_ALPHA) put their
+// value where it does not look, so guided directions there mostly carry
+// nothing. Their guiding weight is 0: BSDF sampling alone, as at a delta
+// lobe. The weight is a function of the hit, so the mixture pdf stays exact.
+bool cv_rl_guides(CvBsdf b)
+{
+#ifdef CV_BSDF_BASIC
+    return true;   // diffuse, or a mirror (delta: not guided anyway)
+#else
+    if (b.type == CV_MAT_DIFFUSE || b.type == CV_MAT_COATED_DIFFUSE ||
+        b.type == CV_MAT_DIFFUSE_TRANSMISSION || b.type == CV_MAT_PLASTIC)
+        return true;
+    if (b.type == CV_MAT_CONDUCTOR || b.type == CV_MAT_DIELECTRIC)
+        return min(b.alpha.x, b.alpha.y) >= CV_RL_GLOSSY_ALPHA;
+    if (b.type == CV_MAT_COATED_CONDUCTOR)
+        return min(min(b.alpha.x, b.alpha.y), min(b.alpha.z, b.alpha.w)) >= CV_RL_GLOSSY_ALPHA;
+    return false;
+#endif
+}
 
 // Shades hit i; what it queues comes back in the out parameters, so that
 // main() can take queue slots in uniform control flow (as trace/shade.comp).
@@ -72,15 +94,11 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
     bool delta = cv_bsdf_is_delta(b);
 
-    uint cell = cv_rl_cell(sf.p);
-    uint nb = cv_rl_bins(), base = cell * nb;
-    float qsum = 0.0;
-    for (uint k = 0u; k < nb; k++)
-        qsum += cv_rl_q(base + k);
-    float m = delta ? 0.0 : cv_rl_mix_weight();
-    // the guiding weights use the normal on the side the path came from
+    // the key takes the normal on the side the path came from
     vec3 gn = dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns;
-    float wsum = m > 0.0 ? cv_rl_total(cell, qsum, gn) : 1.0;
+    uint key = cv_rl_key(sf.p, gn);
+    // the key's weight: 0 (BSDF sampling alone) until it has learned
+    float m = (delta || !cv_rl_guides(b)) ? 0.0 : cv_rl_key_mix(key);
 
 #ifdef CV_AOVS
     if (depth == 0u) {
@@ -104,7 +122,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
             vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
             if (cv_max3(f) > 0.0) {
-                float pm = cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, wsum, gn, ls.wi) : 0.0,
+                float pm = cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(key, ls.wi) : 0.0,
                                          cv_bsdf_pdf(b, wo, ls.wi));
                 float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
                 vec3 Ld = beta * f * ls.L * (w / ls.pdf);
@@ -122,29 +140,33 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     // one-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives it
     CvBsdfSample bs;
     float pdf;
+    uint wbin;   // the table bin of bs.wi
     bool specular;
     if (m > 0.0 && u_bsdf.x < m) {
         float pq;
-        cv_rl_sample(cell, qsum, wsum, gn, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
+        cv_rl_sample(key, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
         bs.f = cv_bsdf_f(b, wo, bs.wi);
-        // re-evaluated, so the density is the one the MIS weights see
-        pdf = cv_rl_mix_pdf(m, cv_rl_pdf(cell, qsum, wsum, gn, bs.wi), cv_bsdf_pdf(b, wo, bs.wi));
+        // re-evaluated from the direction's bin (rounding may put it across
+        // a bin edge), so the density is the one the MIS weights see
+        wbin = cv_rl_bin(bs.wi);
+        pdf = cv_rl_mix_pdf(m, cv_rl_pdf_bin(key, wbin), cv_bsdf_pdf(b, wo, bs.wi));
         specular = false;
     } else {
         vec2 u = m > 0.0 ? vec2(min((u_bsdf.x - m) / (1.0 - m), 0.99999994), u_bsdf.y) : u_bsdf;
         if (!cv_bsdf_sample(b, wo, u_bc.x, u, bs) || bs.pdf <= 0.0)
             return;
         specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+        wbin = cv_rl_bin(bs.wi);
         // a delta lobe is chosen with probability (1 - m) * bs.pdf
         pdf = specular ? (1.0 - m) * bs.pdf
-                       : cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(cell, qsum, wsum, gn, bs.wi) : 0.0, bs.pdf);
+                       : cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf_bin(key, wbin) : 0.0, bs.pdf);
     }
     if (!(pdf > 0.0))
         return;
     if (learn != CV_RL_NONE) {
         // one-sample estimate of the reflected radiance (pdf: the density
         // the direction was drawn with; for a delta lobe its probability)
-        float qd = cv_rl_q(base + cv_rl_bin(bs.wi));
+        float qd = cv_rl_q(cv_rl_entry(key, wbin));
         float t = target + qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / pdf;
         nst.zw = uvec2(learn, floatBitsToUint(t));
         imageStore(rl_path, int(pixel), nst);
@@ -166,7 +188,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
     nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
-    nst.xy = uvec2(base + cv_rl_bin(bs.wi), depth);
+    nst.xy = uvec2(cv_rl_entry(key, wbin), depth);
     imageStore(rl_path, int(pixel), nst);
 }
 

@@ -1,12 +1,13 @@
 #version 450
 // glsl/trace/rlpath/test_sample.comp: exercises guide.glsl for
-// tests/trace/rlpath_sample_test.c on cell 0 of a table the test filled.
-// The guiding normal is TEST_NORMAL throughout.
+// tests/trace/rlpath_sample_test.c on the key of cell 0 and TEST_NORMAL's
+// class, in a table the test filled and built with rebuild.comp.
 // TEST_MODE 0: draw directions from the learned distribution (w, pdf at
 // sampling; pdf evaluated again at w). TEST_MODE 1: draw from the mixture of
 // guiding (weight m) and a Lambertian lobe about TEST_NORMAL, the way
-// rlpath/shade.comp does (w, mixture pdf; pdf of each part). TEST_MODE 2:
-// evaluate the learned and mixture pdfs at the directions of the input.
+// rlpath/shade.comp does, with the key's guiding weight m (w, mixture pdf;
+// pdf of each part, m). TEST_MODE 2: evaluate the learned and mixture pdfs
+// at the directions of the input.
 layout(local_size_x = 64) in;
 #include "../../lib/index.glsl"
 #include "guide.glsl"
@@ -46,12 +47,11 @@ void main()
     uint i = cv_global_index();
     if (i >= u_n)
         return;
-    float s = cv_rl_cell_sum(0u);
-    float W = cv_rl_total(0u, s, TEST_NORMAL);
-    float m = cv_rl_mix_weight();
+    uint key = cv_rl_orient(TEST_NORMAL);   // cell 0
+    float m = cv_rl_key_mix(key);
 #if TEST_MODE == 2
     vec3 w = inv[i].xyz;
-    float pq = cv_rl_pdf(0u, s, W, TEST_NORMAL, w);
+    float pq = cv_rl_pdf(key, w);
     outv[2u * i] = vec4(pq, cv_rl_mix_pdf(m, pq, lambert_pdf(w)), 0.0, 0.0);
     outv[2u * i + 1u] = vec4(0.0);
 #else
@@ -60,17 +60,17 @@ void main()
     vec3 w;
     float pdf;
 #if TEST_MODE == 0
-    cv_rl_sample(0u, s, W, TEST_NORMAL, u, w, pdf);
+    cv_rl_sample(key, u, w, pdf);
     outv[2u * i] = vec4(w, pdf);
-    outv[2u * i + 1u] = vec4(cv_rl_pdf(0u, s, W, TEST_NORMAL, w), 0.0, 0.0, 0.0);
+    outv[2u * i + 1u] = vec4(cv_rl_pdf(key, w), 0.0, m, 0.0);
 #else
     if (u.x < m)
-        cv_rl_sample(0u, s, W, TEST_NORMAL, vec2(min(u.x / m, 0.99999994), u.y), w, pdf);
+        cv_rl_sample(key, vec2(min(u.x / m, 0.99999994), u.y), w, pdf);
     else
         w = lambert_sample(vec2(min((u.x - m) / (1.0 - m), 0.99999994), u.y));
-    float pq = cv_rl_pdf(0u, s, W, TEST_NORMAL, w), pb = lambert_pdf(w);
+    float pq = cv_rl_pdf(key, w), pb = lambert_pdf(w);
     outv[2u * i] = vec4(w, cv_rl_mix_pdf(m, pq, pb));
-    outv[2u * i + 1u] = vec4(pq, pb, 0.0, 0.0);
+    outv[2u * i + 1u] = vec4(pq, pb, m, 0.0);
 #endif
 #endif
 }

@@ -1,4 +1,5 @@
 #version 450
+#extension GL_NV_shader_atomic_float : enable
 // glsl/trace/rlpath/update.comp: applies the temporal-difference updates of
 // one depth to the Q-table, after the shade stage (which only reads the
 // table). UPDATE_MODE 0 runs over the hit queue and applies the targets the
@@ -11,6 +12,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../geometry.glsl"
 #include "../lights.glsl"
 #define CV_RL_TABLE_WRITE
+#define CV_RL_TABLE_UPDATE
 #include "guide.glsl"
 
 layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
