@@ -192,7 +192,7 @@ void cv_gpu_destroy(struct cv_gpu **gpu)
 
 bool cv_gpu_list(const struct cv_gpu_params *params, FILE *out, struct cv_error *err)
 {
-    struct cv_gpu_candidate cands[CV_MAX_CANDIDATES];
+    struct cv_gpu_candidate cands[CV_MAX_CANDIDATES] = {{0}}; /* n may be 0 */
     int n = params->backend == CV_BACKEND_OSMESA ? 0 : cv_egl_candidates(cands, CV_MAX_CANDIDATES);
     int want = wanted_candidate(params, cands, n);
     int listed = 0;
