@@ -4,18 +4,23 @@
 // display-referred RGBA of the same layout. The colour maths is the function
 // OpenColorIO generates for the job's processor: src/color/color_pass.c puts
 // its text where the marker line below stands (with #line directives, so
-// compiler messages inside it name "color/ocio-generated").
+// compiler messages inside it name "color/ocio-generated"). Inside that
+// text texture() means cv_lut_texture (lut_filter.glsl): LUTs interpolate in
+// float on every GPU.
 layout(local_size_x = 64) in;
 
 #include "../lib/index.glsl"
 #include "shared/bindings.h"
+#include "lut_filter.glsl"
 
 layout(std430, binding = CV_BIND_STAGE0) readonly buffer ColorIn { vec4 color_in[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer ColorOut { vec4 color_out[]; };
 
 uniform uint u_count;   // pixels
 
+#define texture cv_lut_texture
 //@cavalry-ocio-function
+#undef texture
 
 void main()
 {

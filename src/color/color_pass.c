@@ -139,14 +139,12 @@ static bool build_program(struct cv_color_pass *pass, struct cv_error *err)
     return ok && cv_gl_check(err, "building glsl/%s", PASS_PATH);
 }
 
-/* OpenColorIO's GLSL samples 1D and trilinear 3D LUTs with texture(), so
- * GL_LINEAR filtering does the interpolation. llvmpipe filters float
- * textures in float and matches the CPU to ~1e-6 (tests/color). Hardware
- * texture units blend with fixed-point weights (8 fractional bits on NVIDIA),
- * which for a coarse 3D LUT can stray past 1e-4; tetrahedral LUTs
- * ("interpolation: tetrahedral") are computed from exact texel fetches in
- * shader arithmetic and are not affected. The shipped config has no LUTs:
- * its ACES and display transforms are analytic GLSL. */
+/* LUTs are uploaded for GL_LINEAR / GL_CLAMP_TO_EDGE lookups, as OCIO's
+ * GLSL expects, but display.comp interpolates them itself from texel
+ * fetches (glsl/color/lut_filter.glsl): hardware texture units blend with
+ * fixed-point weights (8 fractional bits on NVIDIA), which put a coarse 3D
+ * LUT ~1e-3 off OCIO's CPU result. The filter settings still serve any
+ * lookup OCIO makes outside texture(). */
 static bool upload_textures(struct cv_color_pass *pass, struct cv_error *err)
 {
     unsigned n = cv_ocio_gpu_texture_count(pass->ocio);

@@ -4,7 +4,7 @@ libcavalry_a_SOURCES += \
 	src/color/ocio.h src/color/ocio_shim.cpp
 nodist_libcavalry_a_SOURCES += src/color/ocio_config_embedded.c
 EXTRA_DIST += src/color/embed_config.sh
-GLSL_FILES += glsl/color/display.comp
+GLSL_FILES += glsl/color/display.comp glsl/color/lut_filter.glsl
 
 src/color/ocio_config_embedded.c: $(srcdir)/configs/cavalry.ocio $(srcdir)/src/color/embed_config.sh
 	$(AM_V_GEN)$(MKDIR_P) src/color && \
