@@ -96,6 +96,12 @@ static void check_scan(struct cv_gpu *gpu, uint32_t n)
     free(got);
 }
 
+static void random_keys(uint64_t *keys, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        keys[i] = next_rand();
+}
+
 int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
@@ -106,11 +112,9 @@ int main(void)
         return tap_done();
     uint64_t *keys = malloc(n * 8);
 
-    for (uint32_t i = 0; i < n; i++)
-        keys[i] = next_rand();
+    random_keys(keys, n);
     check_sort(rs, "random 30-bit", keys, n, 30);
-    for (uint32_t i = 0; i < n; i++)
-        keys[i] = next_rand();
+    random_keys(keys, n);
     check_sort(rs, "random 32-bit", keys, n, 32);
     for (uint32_t i = 0; i < n; i++)
         keys[i] = 0x2aaaaaaa;
@@ -124,14 +128,11 @@ int main(void)
     for (uint32_t i = 0; i < n; i++)
         keys[i] = (next_rand() % 3u) << 27;
     check_sort(rs, "three distinct keys", keys, n, 30);
-    for (uint32_t i = 0; i < n; i++)
-        keys[i] = next_rand();
+    random_keys(keys, n);
     check_sort(rs, "12 bits (odd pass count)", keys, n, 12);
-    for (uint32_t i = 0; i < n; i++)
-        keys[i] = next_rand();
+    random_keys(keys, n);
     check_sort(rs, "20 bits (5 passes)", keys, n, 20);
-    for (uint32_t i = 0; i < n; i++)
-        keys[i] = next_rand();
+    random_keys(keys, n);
     check_sort(rs, "5 bits (one narrow digit)", keys, n, 5);
     for (uint32_t i = 0; i < n; i++)
         keys[i] = (uint64_t)((i * 37u) & 255u) << 8 | (255u - (i & 255u));
