@@ -8,4 +8,10 @@
  * float (glsl/shared/trace.h, CvFilmPixel.normal.w), exact up to 2^24. */
 #define CV_MAX_SPP (1u << 24)
 
+/* rlpath's table (src/trace/rlpath.c): cells along the scene's longest axis,
+ * and direction bins per key (CV_RL_MAX_BINS in glsl/shared/rlpath.h, which
+ * rlpath.c checks against this one). */
+#define CV_RL_MAX_GRID 256u
+#define CV_RL_MAX_DIRECTIONS 1024u
+
 #endif

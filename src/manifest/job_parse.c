@@ -332,10 +332,11 @@ static void parse_rlpath(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d
         yaml_node_t *v = pairs[i].value;
         double f;
         if (!strcmp(k, "grid")) {
-            r->has_grid = read_u32(v, d, "rlpath.grid", 1, 1024, &r->grid) || r->has_grid;
+            r->has_grid = read_u32(v, d, "rlpath.grid", 1, CV_RL_MAX_GRID, &r->grid) || r->has_grid;
         } else if (!strcmp(k, "directions")) {
             r->has_directions =
-                read_u32(v, d, "rlpath.directions", 1, 4096, &r->directions) || r->has_directions;
+                read_u32(v, d, "rlpath.directions", 1, CV_RL_MAX_DIRECTIONS,
+                         &r->directions) || r->has_directions;
         } else if (!strcmp(k, "mix")) {
             if (cv_yread_float(v, d, "rlpath.mix", 0, 1, &f)) {
                 r->mix = (float)f;

@@ -5,11 +5,15 @@
 
 #include <epoxy/gl.h>
 
+#include "base/limits.h"
 #include "base/mem.h"
 #include "glsl/shared/trace.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "trace/rlpath.h"
+
+_Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
+               "the manifest's direction limit is the table's bin limit");
 
 struct cv_rlpath {
     CvRlParams params;
@@ -31,8 +35,8 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
         mix = CV_RL_DEFAULT_MIX;
     if (mix > 1 || isnan(mix))
         return cv_fail(err, "rlpath mix %g is not in (0, 1]", (double)mix);
-    if (grid > 256)
-        return cv_fail(err, "rlpath grid %u is above 256 cells per axis", grid);
+    if (grid > CV_RL_MAX_GRID)
+        return cv_fail(err, "rlpath grid %u is above %u cells per axis", grid, CV_RL_MAX_GRID);
     if (directions > CV_RL_MAX_BINS)
         return cv_fail(err, "rlpath directions %u is above %u", directions, CV_RL_MAX_BINS);
     uint32_t nz = (uint32_t)lround(sqrt(directions / 2.0));

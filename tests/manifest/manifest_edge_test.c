@@ -123,6 +123,12 @@ int main(void)
           "spp: expected an integer from 1 to 16777216, got null");
     fails("spp past the renderer's limit", HEAD "  - {name: a, scene: s.pbrt, spp: 16777217}\n",
           "m.yaml:3:35: spp: expected an integer from 1 to 16777216, got \"16777217\"");
+    fails("rlpath grid past the table's limit",
+          HEAD "  - {name: a, scene: s.pbrt, rlpath: {grid: 257}}\n",
+          "m.yaml:3:45: rlpath.grid: expected an integer from 1 to 256, got \"257\"");
+    fails("rlpath directions past the table's limit",
+          HEAD "  - {name: a, scene: s.pbrt, rlpath: {directions: 1025}}\n",
+          "m.yaml:3:51: rlpath.directions: expected an integer from 1 to 1024, got \"1025\"");
     fails("duration without a known unit", HEAD "  - {name: a, scene: s.pbrt, time_limit: 5min}\n",
           "time_limit: expected a duration > 0");
     fails("zero duration", HEAD "  - {name: a, scene: s.pbrt, time_limit: 0}\n",
