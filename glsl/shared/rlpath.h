@@ -55,20 +55,6 @@
 #define CV_IMAGE_RL_PATH 1     /* uimageBuffer rgba32ui: path state per pixel */
 #define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the table again, for float atomics */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */
-/* Hit grouping by key (Dahm and Keller group threads by cell to keep the
- * table reads of a work group on a few keys): intersect.comp, compiled with
- * CV_HIT_KEYS, counts each hit's sort bin (its key, or a run of adjacent
- * keys where there are more than CV_RL_SORT_BINS) and keeps the bin and its
- * rank within the bin in the hit's pad0 and pad1; rlpath/sort.comp scans the
- * counts into bin offsets and scatters the hit indices into key order; the
- * shade and update stages, compiled with CV_HIT_ORDER, take their i-th hit
- * from that order. Only the order of work changes: each pixel still has one
- * path in flight, so nothing a pixel adds up changes order. */
-#define CV_IMAGE_RL_ORDER 3    /* uimageBuffer r32ui: hit queue slots in key order */
-#define CV_BIND_RL_SORT (CV_BIND_STAGE0 + 7)   /* uint[2 * CV_RL_SORT_BINS]: counts, offsets */
-#define CV_BIND_RL_ORDER (CV_BIND_STAGE0 + 8)  /* uint[n]: hit slots in key order */
-#define CV_RL_SORT_BINS 4096u
-#define CV_RL_SORT_GROUP 256   /* sort.comp's scan: one group, 16 bins per invocation */
 
 #define CV_RL_NONE 0xffffffffu
 #define CV_RL_MAX_BINS 1024u

@@ -5,8 +5,6 @@
 #define CV_TRACE_COMMON_GLSL
 
 #include "shared/trace.h"
-// (unconditionally: includes are expanded once each, before #ifdef is seen)
-#include "shared/rlpath.h"
 #include "../lib/index.glsl"
 #include "../lib/constants.glsl"
 #include "../lib/sampling.glsl"
@@ -37,17 +35,11 @@ void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_iteration() & 1u) * cv_capaci
 // The shade stage's i-th hit: the first bin from the front of the hit
 // queue, then the second from its end (CV_Q_HITS_B in trace.h).
 uint cv_hit_count() { return q.count[CV_Q_HITS] + q.count[CV_Q_HITS_B]; }
-#ifdef CV_HIT_ORDER
-// rlpath: the hits in the order of their table keys (rlpath/sort.comp)
-layout(r32ui, binding = CV_IMAGE_RL_ORDER) uniform readonly uimageBuffer cv_hit_order;
-uint cv_hit_slot(uint i) { return imageLoad(cv_hit_order, int(i)).x; }
-#else
 uint cv_hit_slot(uint i)
 {
     uint a = q.count[CV_Q_HITS];
     return i < a ? i : cv_capacity() - 1u - (i - a);
 }
-#endif
 uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
 void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray; }
 uint cv_done_pixel(uint i) { return hits[2u * cv_capacity() + i].ray; }

@@ -10,12 +10,6 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "tracing.glsl"
 #include "geometry.glsl"
 #include "materials.glsl"
-#ifdef CV_HIT_KEYS
-// rlpath: each hit's table key, counted for rlpath/sort.comp (see
-// CV_IMAGE_RL_ORDER in shared/rlpath.h)
-#include "rlpath/guide.glsl"
-layout(std430, binding = CV_BIND_RL_SORT) coherent buffer CvRlSort { uint rl_sort[]; };
-#endif
 
 void main()
 {
@@ -27,10 +21,8 @@ void main()
     h.prim = 0u;
     h.b1 = 0.0;
     h.b2 = 0.0;
-    vec3 dir = vec3(0.0);
     if (valid) {
         CvRayItem r = cv_ray_in(i);
-        dir = r.d.xyz;
         float tmin = 0.0;
 #ifndef CV_EMPTY_SCENE
         hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
@@ -71,16 +63,6 @@ void main()
         it.pad0 = 0u;
         it.pad1 = 0u;
         it.pad2 = 0u;
-#ifdef CV_HIT_KEYS
-        // the key as rlpath/shade.comp computes it; its sort bin takes a run
-        // of adjacent keys (neighbouring cells) when keys outnumber the bins
-        CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
-        vec3 gn = dot(dir, sf.ns) > 0.0 ? -sf.ns : sf.ns;
-        uint keys = cv_rl_keys();
-        uint per = (keys + CV_RL_SORT_BINS - 1u) / CV_RL_SORT_BINS;
-        it.pad0 = min(cv_rl_key(sf.p, gn) / max(per, 1u), CV_RL_SORT_BINS - 1u);
-        it.pad1 = atomicAdd(rl_sort[it.pad0], 1u);
-#endif
         hits[slot.x] = it;
     } else if (valid) {
         cv_escaped_push(slot.y, i);

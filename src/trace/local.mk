@@ -30,5 +30,5 @@ libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h
 GLSL_FILES += glsl/shared/rlpath.h \
 	glsl/trace/rlpath/guide.glsl glsl/trace/rlpath/shade.comp \
 	glsl/trace/rlpath/update.comp glsl/trace/rlpath/test_sample.comp \
-	glsl/trace/rlpath/rebuild.comp glsl/trace/rlpath/sort.comp
+	glsl/trace/rlpath/rebuild.comp
 # --- end of rlpath ---

@@ -66,16 +66,15 @@ struct cv_renderer {
     struct {
         bool on;
         GLuint *queries;           /* before, after pairs */
-        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath update,
-                                      ST_COUNT + 1: its hit sort */
+        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath update */
         size_t n, cap, cap_stage;
-        double ms[ST_COUNT + 2];
+        double ms[ST_COUNT + 1];
     } prof;
 };
 
-static const char *const stage_names[ST_COUNT + 2] = {
+static const char *const stage_names[ST_COUNT + 1] = {
     "generate", "regenerate", "prepare0", "prepare1", "prepare2", "intersect",
-    "escaped",  "shade",      "shadow",   "resolve",  "rlpath-update", "rlpath-sort",
+    "escaped",  "shade",      "shadow",   "resolve",  "rlpath-update",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -282,8 +281,6 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     memcpy(intersect, defines, sizeof(defines));
     if (!rl)
         intersect[nd] = "CV_HIT_BINS", intersect[nd + 1] = NULL;
-    else if (cv_rlpath_groups_hits())
-        intersect[nd] = "CV_HIT_KEYS", intersect[nd + 1] = NULL;
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces this one, with the same defines */
         if (s == ST_SHADE && rl)
@@ -378,11 +375,6 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     stage_one(r, ST_PREPARE1);
     stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
-    if (r->rl) {
-        prof_mark(r, ST_COUNT + 1);
-        cv_rlpath_sort(r->rl);
-        prof_mark(r, ST_COUNT + 1);
-    }
     stage_indirect(r, ST_SHADE, CV_ARGS_HITS);
     if (r->rl) {
         prof_mark(r, ST_COUNT);
@@ -533,9 +525,9 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (r->prof.on) {
         prof_collect(r);
         double total = 0;
-        for (int s = 0; s <= ST_COUNT + 1; s++)
+        for (int s = 0; s <= ST_COUNT; s++)
             total += r->prof.ms[s];
-        for (int s = 0; s <= ST_COUNT + 1; s++)
+        for (int s = 0; s <= ST_COUNT; s++)
             if (r->prof.ms[s] > 0)
                 cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
                         total > 0 ? 100 * r->prof.ms[s] / total : 0);

@@ -15,20 +15,10 @@ struct cv_rlpath {
     CvRlParams params;
     uint32_t n_pixels;
     struct cv_program shade, update_hits, update_escaped, rebuild;  /* copies (see render.c) */
-    struct cv_program sort_scan, sort_scatter;  /* when grouping hits by key */
-    bool group;
     GLuint ubo, table, path;
     GLuint table_tex, table_ftex, path_tex;   /* buffer textures over table (r32ui,
                                                  r32f) and path */
-    GLuint sort, order, order_tex;            /* counts and offsets; hit order (and
-                                                 its r32ui buffer texture) */
 };
-
-bool cv_rlpath_groups_hits(void)
-{
-    const char *v = getenv("CAVALRY_RL_NO_GROUPING");
-    return !(v && *v && strcmp(v, "0") != 0);
-}
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
                       uint32_t directions, float mix, CvRlParams *out, struct cv_error *err)
@@ -121,30 +111,16 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
     rl->n_pixels = n_pixels;
-    rl->group = cv_rlpath_groups_hits();
-    /* the shade and update stages take their hits in key order */
-    const char *sd[16];
-    size_t nd = 0;
-    for (; defines && defines[nd] && nd < 14; nd++)
-        sd[nd] = defines[nd];
-    sd[nd] = rl->group ? "CV_HIT_ORDER" : NULL;
-    sd[nd + 1] = NULL;
-    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", sd, err);
+    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
     if (p)
         rl->shade = *p;
-    const char *d0[] = {"UPDATE_MODE=0", rl->group ? "CV_HIT_ORDER" : NULL, NULL},
-               *d1[] = {"UPDATE_MODE=1", NULL};
+    const char *d0[] = {"UPDATE_MODE=0", NULL}, *d1[] = {"UPDATE_MODE=1", NULL};
     if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d0, err)))
         rl->update_hits = *p;
     if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d1, err)))
         rl->update_escaped = *p;
     if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", NULL, err)))
         rl->rebuild = *p;
-    const char *s0[] = {"SORT_MODE=0", NULL}, *s1[] = {"SORT_MODE=1", NULL};
-    if (p && rl->group && (p = cv_program_get(gpu, "trace/rlpath/sort.comp", s0, err)))
-        rl->sort_scan = *p;
-    if (p && rl->group && (p = cv_program_get(gpu, "trace/rlpath/sort.comp", s1, err)))
-        rl->sort_scatter = *p;
     if (!p) {
         cv_rlpath_destroy(&rl);
         return false;
@@ -168,19 +144,6 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
                                                   cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_ftex)
         rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
-    if (rl->path_tex && rl->group) {
-        /* the counts start at 0; sort.comp clears them after every scan */
-        rl->sort = cv_buffer_create(2 * CV_RL_SORT_BINS * sizeof(uint32_t), NULL,
-                                    "rlpath hit sort counts", err);
-        if (rl->sort)
-            rl->order = cv_buffer_create((size_t)(n_pixels ? n_pixels : 1) * sizeof(uint32_t),
-                                         NULL, "rlpath hit order", err);
-        if (rl->order)
-            rl->order_tex = cv_rlpath_buffer_texture(rl->order, GL_R32UI,
-                                                     n_pixels ? n_pixels : 1, err);
-        if (!rl->order_tex)
-            glDeleteTextures(1, &rl->path_tex), rl->path_tex = 0;
-    }
     if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);
@@ -203,25 +166,6 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
                        GL_RGBA32UI);
     glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    if (rl->group) {
-        cv_buffer_bind(rl->sort, CV_BIND_RL_SORT);
-        cv_buffer_bind(rl->order, CV_BIND_RL_ORDER);
-        glBindImageTexture(CV_IMAGE_RL_ORDER, rl->order_tex, 0, GL_FALSE, 0, GL_READ_ONLY,
-                           GL_R32UI);
-    }
-}
-
-void cv_rlpath_sort(const struct cv_rlpath *rl)
-{
-    if (!rl->group)
-        return;
-    /* the counts of intersect.comp are in (prepare1's barrier) */
-    glUseProgram(rl->sort_scan.id);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    /* the shade and update stages read the order through an image */
-    cv_program_dispatch_indirect(&rl->sort_scatter, CV_ARGS_BYTES(CV_ARGS_HITS),
-                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 void cv_rlpath_update(const struct cv_rlpath *rl)
@@ -285,10 +229,6 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
         glDeleteTextures(1, &rl->table_ftex);
     if (rl->path_tex)
         glDeleteTextures(1, &rl->path_tex);
-    if (rl->order_tex)
-        glDeleteTextures(1, &rl->order_tex);
-    cv_buffer_destroy(&rl->sort);
-    cv_buffer_destroy(&rl->order);
     cv_buffer_destroy(&rl->ubo);
     cv_buffer_destroy(&rl->table);
     cv_buffer_destroy(&rl->path);

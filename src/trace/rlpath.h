@@ -55,15 +55,6 @@ const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl);
  * GL_DISPATCH_INDIRECT_BUFFER). */
 void cv_rlpath_bind(const struct cv_rlpath *rl);
 
-/* Whether the rlpath stages group hits by table key (Dahm and Keller's
- * grouping of threads by cell): the default; CAVALRY_RL_NO_GROUPING=1 turns
- * it off, for comparing. The renderer then compiles intersect.comp with
- * CV_HIT_KEYS, and calls cv_rlpath_sort between intersection (and prepare1)
- * and the shade stage: it orders the hit queue by key on the GPU
- * (trace/rlpath/sort.comp), with the hit count's indirect arguments. */
-bool cv_rlpath_groups_hits(void);
-void cv_rlpath_sort(const struct cv_rlpath *rl);
-
 /* Queues the updates of one depth and the rebuild of the keys they
  * changed: run right after the shade stage, while that depth's rays, hits
  * and escaped queue are still bound. */

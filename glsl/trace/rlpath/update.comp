@@ -21,11 +21,9 @@ void main()
 {
     uint i = cv_global_index();
 #if UPDATE_MODE == 0
-    if (i >= cv_hit_count())
+    if (i >= q.count[CV_Q_HITS])
         return;
-    // in the shade stage's order (by key, with CV_HIT_ORDER): a group's
-    // table updates then fall on a few keys
-    uint pixel = uint(cv_ray_in(hits[cv_hit_slot(i)].ray).o.w);
+    uint pixel = uint(cv_ray_in(hits[i].ray).o.w);
     uvec4 st = imageLoad(rl_path, int(pixel));
     if (st.z == CV_RL_NONE)
         return;
