@@ -1,8 +1,10 @@
 #version 450
 // glsl/bvh/emit.comp: writes the final CvBvhNode of every live inner node
-// at its scanned index; children that are leaves or collapsed subtrees
-// become leaf references into the primitive order. The invocation of the
-// last inner node also stores the final node count in info[0].
+// at its depth-first index (layout.comp says how that index is formed);
+// children that are leaves or collapsed subtrees become leaf references
+// into the primitive order. The parent of the last leaf (whose range ends
+// at slot n) stores the final node count, one fewer than the final leaves,
+// in info[0].
 #include "shared/bvh.h"
 #include "shared/bindings.h"
 
@@ -11,8 +13,10 @@ layout(local_size_x = 256) in;
 
 layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Nodes { CvBvhBuildNode nodes[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Offsets { uint offsets[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Index { uint index[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Lefts { uint lefts[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer Info { uint info[]; };
+// Exclusive prefix sum of layout.comp's final-leaf starts, per leaf slot.
+layout(std430, binding = CV_BIND_STAGE0 + 5) readonly buffer Leaves { uint leaves_before[]; };
 // Written as raw words: the .w fields are integers, and small ones are
 // float denormals that no float path should get a chance to flush.
 layout(std430, binding = CV_BIND_BVH_NODES) writeonly buffer Out { uvec4 out_words[]; };
@@ -25,10 +29,15 @@ bool is_live(int node)
            (nodes[node].link.w & CV_BVH_COLLAPSE) == 0;
 }
 
+uint final_index(int node)
+{
+    return leaves_before[offsets[node] & 0x7fffffffu] + lefts[node];
+}
+
 void child_words(int c, out int word, out int count)
 {
     if (is_live(c)) {
-        word = int(index[c]);
+        word = int(final_index(c));
         count = 0;
     } else {
         word = int(offsets[c] & 0x7fffffffu);
@@ -42,16 +51,15 @@ void main()
     if (i + 1u >= u_n)
         return;
     int node = int(i);
-    bool live = is_live(node);
-    if (i + 2u == u_n)
-        info[0] = index[node] + (live ? 1u : 0u);
-    if (!live)
+    if (!is_live(node))
         return;
     ivec4 link = nodes[node].link;
     int lw, lc, rw, rc;
     child_words(link.x, lw, lc);
     child_words(link.y, rw, rc);
-    uint o = 4u * index[node];
+    if (rc > 0 && uint(rw + rc) == u_n)
+        info[0] = leaves_before[rw];
+    uint o = 4u * final_index(node);
     out_words[o] = uvec4(floatBitsToUint(nodes[link.x].bmin.xyz), uint(lw));
     out_words[o + 1u] = uvec4(floatBitsToUint(nodes[link.x].bmax.xyz), uint(lc));
     out_words[o + 2u] = uvec4(floatBitsToUint(nodes[link.y].bmin.xyz), uint(rw));

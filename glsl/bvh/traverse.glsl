@@ -130,9 +130,8 @@ bool cv_bvh_leaf_any(CvRayTri r, int first, int count, float tmin, float tmax)
 {
     count = cv_bvh_leaf_count(first, count);
     for (int k = 0; k < count; k++) {
-        uint prim;
-        float t, b1, b2;
-        if (cv_bvh_leaf_tri(r, first + k, prim, t, b1, b2) && t > tmin && t < tmax)
+        CvBvhTri tri = cv_bvh_tris[first + k];
+        if (cv_ray_tri_any(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax))
             return true;
     }
     return false;
@@ -191,6 +190,9 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
     return hit.prim != 0xffffffffu;
 }
 
+// Nearer child first here too: visiting the child with the larger box first
+// (likelier to hold an occluder) was slower on an H100 (veach-bidir, 256
+// spp: shadow stage 918 -> 977 ms).
 bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
 {
     CvRayTri r = cv_ray_tri_setup(o, d);

@@ -35,7 +35,7 @@ struct cv_bvh {
 struct build {
     struct cv_gpu *gpu;
     uint32_t n;
-    GLuint bounds_a, bounds_b, keys, vals, nodes, counters, offsets, live, info, out_nodes;
+    GLuint bounds_a, bounds_b, keys, vals, nodes, counters, offsets, live, starts, info, out_nodes;
     struct cv_radix_sort *sort;
     struct cv_scan *scan;
     GLuint queries[PH_COUNT];
@@ -107,7 +107,7 @@ static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct
 static void build_free(struct build *b)
 {
     GLuint *bufs[] = {&b->bounds_a, &b->bounds_b, &b->keys, &b->vals, &b->nodes,
-                      &b->counters, &b->offsets, &b->live, &b->info, &b->out_nodes};
+                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         cv_buffer_destroy(bufs[i]);
     cv_radix_sort_destroy(&b->sort);
@@ -262,15 +262,23 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
     cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
+    /* `live` now holds each node's count of left turns (layout.comp), and
+     * the prefix sum of `starts` counts final leaves per slot: emit.comp
+     * adds them into depth-first node indices. */
     cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
+    cv_buffer_zero(b->starts);
+    cv_buffer_bind(b->starts, CV_BIND_STAGE0 + 4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     set_uint(layout, "u_n", n);
     cv_program_dispatch_1d(layout, 2 * (uint64_t)n - 1);
-    ok = cv_scan_exclusive(b->scan, b->live, n - 1, err);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    ok = cv_scan_exclusive(b->scan, b->starts, n, err);
     if (ok) {
         cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
         cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
         cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
         cv_buffer_bind(b->info, CV_BIND_STAGE0 + 4);
+        cv_buffer_bind(b->starts, CV_BIND_STAGE0 + 5);
         cv_buffer_bind(b->out_nodes, CV_BIND_BVH_NODES);
         set_uint(emit, "u_n", n);
         cv_program_dispatch_1d(emit, n);
@@ -301,7 +309,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->nodes = scratch(b, (2 * n - 1) * sizeof(CvBvhBuildNode), "bvh build nodes", err)) ||
         !(b->counters = scratch(b, (n - 1) * 4, "bvh counters", err)) ||
         !(b->offsets = scratch(b, (2 * n - 1) * 4, "bvh offsets", err)) ||
-        !(b->live = scratch(b, (n - 1) * 4, "bvh live nodes", err)) ||
+        !(b->live = scratch(b, (n - 1) * 4, "bvh left turns", err)) ||
+        !(b->starts = scratch(b, n * 4, "bvh leaf starts", err)) ||
         !(b->info = scratch(b, 16, "bvh info", err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
         !(bvh->prims = cv_buffer_create(n * 4, NULL, "bvh prims", err)))

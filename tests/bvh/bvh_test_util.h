@@ -306,8 +306,11 @@ static inline bool box_in(const float *lo, const float *hi, const float *plo, co
 
 /* Reads the finished tree back and checks: every triangle in exactly one
  * leaf slot, every node reached exactly once from the root, every child box
- * inside its parent's (a triangle's box inside its leaf's). Also returns the
- * depth and the SAH cost of what was read. */
+ * inside its parent's (a triangle's box inside its leaf's), and the nodes in
+ * left-first depth-first order (an inner left child right after its parent,
+ * an inner right child right after the parent's left subtree: what
+ * glsl/bvh/layout.comp promises traversal). Also returns the depth and the
+ * SAH cost of what was read. */
 static inline struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bvh)
 {
     struct tree_info ti = {.ok = true};
@@ -328,10 +331,19 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
     stack[sp] = 0;
     depth_of[sp++] = 1;
     visits[0] = 1;
+    /* Children are pushed right first, so nodes pop in preorder: each
+     * popped node must be the next index. */
+    uint32_t next_pre = 0;
     double sum = 0, root_area = 0;
     while (sp > 0 && ti.ok) {
         sp--;
         uint32_t ni = stack[sp], d = depth_of[sp];
+        if (ni != next_pre++) {
+            snprintf(ti.why, sizeof(ti.why), "node %u is not in depth-first order (expected %u)",
+                     ni, next_pre - 1);
+            ti.ok = false;
+            break;
+        }
         if ((int)d > ti.depth)
             ti.depth = (int)d;
         const CvBvhNode *nd = &nodes[ni];
@@ -348,7 +360,7 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
         if (ni == 0)
             root_area = half_area3(ulo, uhi);
         sum += CV_BVH_COST_INNER * half_area3(ulo, uhi);
-        for (int c = 0; c < 2 && ti.ok; c++) {
+        for (int c = 1; c >= 0 && ti.ok; c--) {
             const float *lo = cbox[c][0], *hi = cbox[c][1];
             int32_t word, count;
             memcpy(&word, &cb[c][0]->w, 4);
