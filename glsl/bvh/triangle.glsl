@@ -71,10 +71,17 @@ CvRayTri cv_ray_tri_setup(vec3 o, vec3 d)
     return r;
 }
 
-// True when the ray's line crosses the triangle (any t; the caller checks
-// the range). b1, b2 weight v1, v2.
-bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1, out float b2)
+// The watertight test proper: false when the ray's line misses the
+// triangle; otherwise the edge functions v, w (weights of v1, v2 times det)
+// and the hit distance as a fraction, t = tz / det. Closest and any-hit
+// queries share it, so they agree on which triangles a ray crosses.
+bool cv_ray_tri_edges(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float v_out, out float w_out,
+                      out float det_out, out float tz_out)
 {
+    v_out = 0.0;
+    w_out = 0.0;
+    det_out = 0.0;
+    tz_out = 0.0;
     precise vec3 a = v0 - r.o, b = v1 - r.o, c = v2 - r.o;
     precise float az = a[r.k.z], bz = b[r.k.z], cz = c[r.k.z];
     precise float ax = a[r.k.x] - r.s.x * az, ay = a[r.k.y] - r.s.y * az;
@@ -91,15 +98,29 @@ bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1
         precise double bxay = double(bx) * double(ay), byax = double(by) * double(ax);
         w = float(bxay - byax);
     }
-    t = 0.0;
-    b1 = 0.0;
-    b2 = 0.0;
     if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0))
         return false;
     precise float det = u + v + w;
     if (det == 0.0)
         return false;
     precise float tz = r.s.z * az * u + r.s.z * bz * v + r.s.z * cz * w;
+    v_out = v;
+    w_out = w;
+    det_out = det;
+    tz_out = tz;
+    return true;
+}
+
+// True when the ray's line crosses the triangle (any t; the caller checks
+// the range). b1, b2 weight v1, v2.
+bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1, out float b2)
+{
+    t = 0.0;
+    b1 = 0.0;
+    b2 = 0.0;
+    float v, w, det, tz;
+    if (!cv_ray_tri_edges(r, v0, v1, v2, v, w, det, tz))
+        return false;
     t = cv_div_rn(tz, det);
     // The barycentrics shade but decide nothing: plain division is enough.
     b1 = v / det;
@@ -121,28 +142,9 @@ bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1
 bool cv_ray_tri_any(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, float tmin, float tmax)
 {
 #ifdef CV_BVH_FAST_DIV
-    precise vec3 a = v0 - r.o, b = v1 - r.o, c = v2 - r.o;
-    precise float az = a[r.k.z], bz = b[r.k.z], cz = c[r.k.z];
-    precise float ax = a[r.k.x] - r.s.x * az, ay = a[r.k.y] - r.s.y * az;
-    precise float bx = b[r.k.x] - r.s.x * bz, by = b[r.k.y] - r.s.y * bz;
-    precise float cx = c[r.k.x] - r.s.x * cz, cy = c[r.k.y] - r.s.y * cz;
-    precise float u = cx * by - cy * bx;
-    precise float v = ax * cy - ay * cx;
-    precise float w = bx * ay - by * ax;
-    if (u == 0.0 || v == 0.0 || w == 0.0) {
-        precise double cxby = double(cx) * double(by), cybx = double(cy) * double(bx);
-        u = float(cxby - cybx);
-        precise double axcy = double(ax) * double(cy), aycx = double(ay) * double(cx);
-        v = float(axcy - aycx);
-        precise double bxay = double(bx) * double(ay), byax = double(by) * double(ax);
-        w = float(bxay - byax);
-    }
-    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0))
+    float v, w, det, tz;
+    if (!cv_ray_tri_edges(r, v0, v1, v2, v, w, det, tz))
         return false;
-    precise float det = u + v + w;
-    if (det == 0.0)
-        return false;
-    precise float tz = r.s.z * az * u + r.s.z * bz * v + r.s.z * cz * w;
     // Sign-fold so that det > 0; an infinite or NaN product fails a test.
     float sd = det < 0.0 ? -1.0 : 1.0;
     float n = tz * sd, m = det * sd;
