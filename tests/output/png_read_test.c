@@ -2,6 +2,7 @@
  * (what --resume relies on); missing keys and non-PNG files fail cleanly. */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/mem.h"
 #include "output/metadata.h"
