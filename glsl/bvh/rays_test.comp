@@ -4,7 +4,10 @@
 // against every triangle with the same watertight routine and the same
 // tie rule (lowest t, then lowest index). Rays: (origin, tmin), (dir, tmax).
 // Result: (t bits, prim, any-hit, nodes visited by both traversals, 0 for
-// the brute force); prim = 0xffffffff on a miss.
+// the brute force); prim = 0xffffffff on a miss. The brute force's any-hit
+// uses the any-hit triangle test, so with CV_BVH_FAST_DIV defined (the
+// renderer's form, glsl/trace/tracing.glsl) both sides still run the same
+// arithmetic and must agree exactly.
 #define CV_BVH_COUNT_STEPS
 #include "scene_buffers.glsl"
 #include "traverse.glsl"
@@ -32,11 +35,12 @@ void main()
     any = false;
     for (uint p = 0; p < u_n_tris; p++) {
         float t, b1, b2;
-        if (cv_bvh_tri(r, p, t, b1, b2) && t > a.w && t < b.w) {
-            any = true;
-            if (t < hit.t || (t == hit.t && p < hit.prim))
-                hit = CvHit(t, p, b1, b2);
-        }
+        if (cv_bvh_tri(r, p, t, b1, b2) && t > a.w && t < b.w &&
+            (t < hit.t || (t == hit.t && p < hit.prim)))
+            hit = CvHit(t, p, b1, b2);
+        uvec4 idx = cv_triangles[p].idx;
+        any = any || cv_ray_tri_any(r, cv_vertices[idx.x].pos_u.xyz, cv_vertices[idx.y].pos_u.xyz,
+                                    cv_vertices[idx.z].pos_u.xyz, a.w, b.w);
     }
 #else
     cv_trace_closest(a.xyz, b.xyz, a.w, b.w, hit);

@@ -63,11 +63,17 @@ static bool cpu_ray_tri(const float o[3], const float dir[3], const float *v0, c
     return isfinite(t);
 }
 
-static bool trace(struct cv_gpu *gpu, bool brute, GLuint rays, GLuint results, uint32_t n_rays,
-                  uint32_t n_tris, uint32_t *out, struct cv_error *err)
+/* fast: the renderer's form of the triangle tests (CV_BVH_FAST_DIV). */
+static bool trace(struct cv_gpu *gpu, bool brute, bool fast, GLuint rays, GLuint results,
+                  uint32_t n_rays, uint32_t n_tris, uint32_t *out, struct cv_error *err)
 {
-    const char *defs[] = {"BRUTE_FORCE", NULL};
-    struct cv_program *p = cv_program_get(gpu, "bvh/rays_test.comp", brute ? defs : NULL, err);
+    const char *defs[3] = {NULL, NULL, NULL};
+    int n_defs = 0;
+    if (brute)
+        defs[n_defs++] = "BRUTE_FORCE";
+    if (fast)
+        defs[n_defs++] = "CV_BVH_FAST_DIV";
+    struct cv_program *p = cv_program_get(gpu, "bvh/rays_test.comp", n_defs ? defs : NULL, err);
     if (!p)
         return false;
     cv_buffer_bind(rays, CV_BIND_STAGE0);
@@ -90,8 +96,8 @@ static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *
     cv_buffer_bind(vb, CV_BIND_VERTICES);
     cv_buffer_bind(tb, CV_BIND_TRIANGLES);
     cv_bvh_bind(bvh);
-    bool ok = rb && res && trace(gpu, false, rb, res, n_rays, m->nt, got, &err) &&
-              trace(gpu, true, rb, res, n_rays, m->nt, want, &err);
+    bool ok = rb && res && trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err) &&
+              trace(gpu, true, false, rb, res, n_rays, m->nt, want, &err);
     if (!tap_ok(ok, "%s: %u rays traced: %s", name, n_rays, ok ? "yes" : err.msg))
         goto out;
     uint32_t bad_hit = 0, bad_any = 0, hits = 0, first = 0, steps = 0;
@@ -148,6 +154,20 @@ static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *
     }
     tap_ok(agree == n_cpu, "%s: GLSL brute force agrees with the CPU bit for bit on %u of %u rays",
            name, agree, n_cpu);
+
+    /* The renderer traces with the driver's division and a division-free
+     * any-hit test: traversal must still find what brute force finds with
+     * the same tests. */
+    ok = trace(gpu, false, true, rb, res, n_rays, m->nt, got, &err) &&
+         trace(gpu, true, true, rb, res, n_rays, m->nt, want, &err);
+    uint32_t bad_fast = 0;
+    for (uint32_t i = 0; ok && i < n_rays; i++) {
+        const uint32_t *g = &got[4 * i], *w = &want[4 * i];
+        bad_fast += g[1] != w[1] || (w[1] != 0xffffffffu && g[0] != w[0]) || g[2] != w[2];
+    }
+    tap_ok(ok && bad_fast == 0,
+           "%s: renderer's triangle tests: closest and any-hit equal brute force (%u of %u "
+           "rays differ)%s%s", name, bad_fast, n_rays, ok ? "" : ": ", ok ? "" : err.msg);
 out:
     cv_buffer_destroy(&rb);
     cv_buffer_destroy(&res);
@@ -257,7 +277,7 @@ static void check_corrupt(struct cv_gpu *gpu)
         cv_buffer_bind(nb, CV_BIND_BVH_NODES);
         cv_buffer_bind(pb, CV_BIND_BVH_PRIMS);
         cv_buffer_bind(lt, CV_BIND_BVH_TRIS);
-        ok = trace(gpu, false, rb, res, n_rays, m.nt, got, &err);
+        ok = trace(gpu, false, false, rb, res, n_rays, m.nt, got, &err);
     }
     tap_ok(ok, "corrupt tree: %u rays traced and ended: %s", n_rays, ok ? "yes" : err.msg);
     uint32_t bad = 0, steps = 0;
