@@ -1,5 +1,4 @@
 /* exr_read.c: see exr_read.h. */
-#include <stdio.h>
 #include <stdlib.h>
 #include <strings.h>
 #include <string.h>
@@ -124,15 +123,14 @@ static bool open_image(const char *path, exr_context_t *ctxt, exr_attr_box2i_t *
     return true;
 }
 
-static bool read_interleaved(const char *path, const char *const *names, int n, int required,
-                             const float *fill, float **data, uint32_t *width, uint32_t *height,
-                             struct cv_error *err)
+/* Decodes the named channels of the open image (data window dw) into a new
+ * array of n floats per pixel; the first `required` names must exist, the
+ * others read as fill. */
+static bool read_open(exr_context_t ctxt, const exr_attr_box2i_t *dw, const char *path,
+                      const char *const *names, int n, int required, const float *fill,
+                      float **data, uint32_t *width, uint32_t *height, struct cv_error *err)
 {
-    exr_context_t ctxt = NULL;
-    exr_attr_box2i_t dw;
-    if (!open_image(path, &ctxt, &dw, err))
-        return false;
-    uint32_t w = (uint32_t)(dw.max.x - dw.min.x + 1), h = (uint32_t)(dw.max.y - dw.min.y + 1);
+    uint32_t w = (uint32_t)(dw->max.x - dw->min.x + 1), h = (uint32_t)(dw->max.y - dw->min.y + 1);
     /* One spare float per pixel: OpenEXRCore 3.1 picks "fast" half-to-float
      * routines for tightly interleaved or planar output that write wrong
      * values or crash when some channels are skipped; a padded stride
@@ -143,12 +141,11 @@ static bool read_interleaved(const char *path, const char *const *names, int n, 
         for (int k = 0; k < n; k++)
             tmp[i * pad + (size_t)k] = fill[k];
     unsigned missing = 0;
-    bool ok = decode(ctxt, path, names, n, tmp, (uint32_t)pad, &dw, &missing, err);
+    bool ok = decode(ctxt, path, names, n, tmp, (uint32_t)pad, dw, &missing, err);
     float *out = cv_xmalloc(npix * (size_t)n * sizeof(float));
     for (size_t i = 0; i < npix; i++)
         memcpy(out + i * (size_t)n, tmp + i * pad, (size_t)n * sizeof(float));
     free(tmp);
-    exr_finish(&ctxt);
     for (int k = 0; ok && k < required; k++)
         if (missing & (1u << k))
             ok = cv_fail(err, "%s: no channel \"%s\"", path, names[k]);
@@ -160,6 +157,19 @@ static bool read_interleaved(const char *path, const char *const *names, int n, 
     *width = w;
     *height = h;
     return true;
+}
+
+static bool read_interleaved(const char *path, const char *const *names, int n, int required,
+                             const float *fill, float **data, uint32_t *width, uint32_t *height,
+                             struct cv_error *err)
+{
+    exr_context_t ctxt = NULL;
+    exr_attr_box2i_t dw;
+    if (!open_image(path, &ctxt, &dw, err))
+        return false;
+    bool ok = read_open(ctxt, &dw, path, names, n, required, fill, data, width, height, err);
+    exr_finish(&ctxt);
+    return ok;
 }
 
 bool cv_exr_read_channel(const char *path, const char *channel, float **data,
@@ -205,28 +215,22 @@ bool cv_exr_read_rgb_any(const char *path, float **rgb, uint32_t *width, uint32_
         exr_finish(&ctxt);
         return cv_fail(err, "%s: %s", path, exr_get_default_error_message(rv));
     }
-    /* The names die with the context, so each chosen one is copied. */
-    char chosen[3][256] = { "", "", "" };
+    const char *chosen[3] = { NULL, NULL, NULL };
     int best[3] = { -1, -1, -1 };
-    bool too_long = false;
     for (int i = 0; i < chl->num_channels; i++) {
         const char *name = chl->entries[i].name.str;
         for (int slot = 0; slot < 3; slot++) {
             int r = channel_rank(name, slot);
-            if (r < 0 || (best[slot] >= 0 && r >= best[slot]))
-                continue;
-            if (strlen(name) >= sizeof chosen[slot]) {
-                too_long = true;
-                continue;
+            if (r >= 0 && (best[slot] < 0 || r < best[slot])) {
+                best[slot] = r;
+                chosen[slot] = name;
             }
-            best[slot] = r;
-            snprintf(chosen[slot], sizeof chosen[slot], "%s", name);
         }
     }
-    exr_finish(&ctxt);
-    if (best[0] < 0)
-        return cv_fail(err, "%s: no R or Y channel%s", path,
-                       too_long ? " (some channel names are too long)" : "");
+    if (best[0] < 0) {
+        exr_finish(&ctxt);
+        return cv_fail(err, "%s: no R or Y channel", path);
+    }
     const char *names[3];
     int slot_of[3], n = 0;
     for (int slot = 0; slot < 3; slot++)
@@ -237,7 +241,10 @@ bool cv_exr_read_rgb_any(const char *path, float **rgb, uint32_t *width, uint32_
     static const float zero[3] = { 0.0f, 0.0f, 0.0f };
     float *tmp = NULL;
     uint32_t w = 0, h = 0;
-    if (!read_interleaved(path, names, n, n, zero, &tmp, &w, &h, err))
+    /* The names belong to the context: decode before closing it. */
+    bool ok = read_open(ctxt, &dw, path, names, n, n, zero, &tmp, &w, &h, err);
+    exr_finish(&ctxt);
+    if (!ok)
         return false;
     size_t npix = (size_t)w * h;
     float *out = cv_xmalloc(npix * 3 * sizeof(float));
