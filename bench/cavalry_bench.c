@@ -40,6 +40,7 @@ static void usage(FILE *f)
 {
     fputs("usage: cavalry_bench --bench SCENE.pbrt [--spp N] [--repeat K] [--width W]\n"
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
+          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M] [--seed S]\n"
           "                     [--no-gpu]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
@@ -100,6 +101,15 @@ struct opts {
     bool no_gpu;
 };
 
+/* What --bench and --converge render: the same options for both. */
+static struct bench_run_params run_params(const struct opts *o)
+{
+    return (struct bench_run_params){.spp = o->spp, .width = o->width, .height = o->height,
+                                     .integrator = o->integrator, .rl_grid = o->rl_grid,
+                                     .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
+                                     .seed = o->seed};
+}
+
 #ifdef BENCH_HAVE_LOADER
 static bool load_scene(const char *path, struct bench_record *r, struct cv_scene **scene,
                        struct cv_error *err)
@@ -157,9 +167,7 @@ static bool bench_once(const struct opts *o, unsigned rep, struct cv_gpu **gpu,
     struct cv_scene *scene = NULL;
     ok = load_scene(o->scene, &r, &scene, err);
     if (ok && *gpu) {
-        struct bench_run_params p = {.spp = o->spp, .width = o->width, .height = o->height,
-                                     .integrator = o->integrator, .rl_grid = o->rl_grid,
-                                     .rl_directions = o->rl_directions, .rl_mix = o->rl_mix};
+        struct bench_run_params p = run_params(o);
         ok = bench_gpu_stages(*gpu, scene, &p, &r, err);
     }
     cv_scene_destroy(&scene);
@@ -331,20 +339,13 @@ int main(int argc, char **argv)
 #ifdef BENCH_HAVE_LOADER
         struct cv_scene *scene = NULL;
         struct cv_gpu_params gp = {.gpu_index = o.gpu_index, .backend = CV_BACKEND_AUTO};
+        struct bench_run_params rp = run_params(&o);
         if (o.csv && !(csv = fopen(o.csv, "w"))) {
             fprintf(stderr, "cavalry_bench: cannot write %s\n", o.csv);
             rc = 1;
         } else if (!cv_scene_load(o.scene, &(struct cv_scene_load_params){0}, &scene, &err) ||
                    !cv_gpu_create(&gp, &gpu, &err) ||
-                   !bench_converge(gpu, scene,
-                                   &(struct bench_run_params){.spp = o.spp, .width = o.width,
-                                                              .height = o.height,
-                                                              .integrator = o.integrator,
-                                                              .rl_grid = o.rl_grid,
-                                                              .rl_directions = o.rl_directions,
-                                                              .rl_mix = o.rl_mix,
-                                                              .seed = o.seed},
-                                   ref, rw, rh, o.ref_spp, csv, &err)) {
+                   !bench_converge(gpu, scene, &rp, ref, rw, rh, o.ref_spp, csv, &err)) {
             fprintf(stderr, "cavalry_bench: %s: %s\n", o.scene, err.msg);
             rc = 1;
         }
