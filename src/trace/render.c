@@ -228,6 +228,15 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     return true;
 }
 
+/* out = the nd defines (NULL-terminated) plus `extra` when not NULL; out
+ * has room for nd + 2 entries. */
+static void defines_plus(const char **out, const char *const *defines, int nd, const char *extra)
+{
+    memcpy(out, defines, (size_t)nd * sizeof(*out));
+    out[nd] = extra;
+    out[nd + 1] = NULL;
+}
+
 bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs,
                                const struct cv_scene *scene, const struct cv_render_params *p,
                                struct cv_renderer **out, struct cv_error *err)
@@ -268,9 +277,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     defines[nd] = NULL;
     /* the escaped stage alone depends on the environment */
     const char *escaped[7];
-    memcpy(escaped, defines, sizeof(defines));
-    if (r->has_env)
-        escaped[nd] = "CV_HAS_ENV", escaped[nd + 1] = NULL;
+    defines_plus(escaped, defines, nd, r->has_env ? "CV_HAS_ENV" : NULL);
     const char *modes[5][2] = {{"GENERATE_MODE=0", NULL}, {"GENERATE_MODE=1", NULL},
                                {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                                {"PREPARE_MODE=2", NULL}};
@@ -278,9 +285,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     /* path bins hits by material for its shade stage (intersect.comp);
      * rlpath's update stage reads the hit queue as one bin */
     const char *intersect[7];
-    memcpy(intersect, defines, sizeof(defines));
-    if (!rl)
-        intersect[nd] = "CV_HIT_BINS", intersect[nd + 1] = NULL;
+    defines_plus(intersect, defines, nd, rl ? NULL : "CV_HIT_BINS");
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces this one, with the same defines */
         if (s == ST_SHADE && rl)
