@@ -177,7 +177,6 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
             node = hl ? lw : rw;
             continue;
         }
-        // Pop the next subtree still entered before the current hit.
         // The next subtree. Its entry distance is not kept: one more node
         // fetch (whose slab tests fail beyond the hit) for a subtree entered
         // beyond the current hit costs less than a second stack word per

@@ -57,8 +57,11 @@ shared int s_leaf[TREELET_SIZE], s_inner[TREELET_SIZE];
 shared ivec2 s_kids[TREELET_SIZE];
 shared int s_nl;
 shared float s_root_cost;
+// Most subsets of one size: C(8, 4), for the largest treelet (8 leaves,
+// src/bvh/bvh.c checks the size).
+#define MAX_SUBSETS_OF_A_SIZE 70
 // Per subset of the current size: best cost bits | partition number.
-shared uint s_best[70];
+shared uint s_best[MAX_SUBSETS_OF_A_SIZE];
 shared int s_todo[GROUP];
 shared uint s_ntodo;
 

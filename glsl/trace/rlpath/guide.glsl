@@ -69,6 +69,12 @@ int cv_rl_entry_texel(uint entry)
     return cv_rl_key_texel(entry / nb) + int(2u * (entry % nb));
 }
 
+// The texels of a key's CDF after bin b, guiding weight and dirty flag,
+// from the key's first texel kt (layout in shared/rlpath.h).
+int cv_rl_cdf_texel(int kt, int b) { return kt + int(2u * cv_rl_bins()) + b; }
+int cv_rl_mix_texel(int kt) { return kt + int(3u * cv_rl_bins()); }
+int cv_rl_dirty_texel(int kt) { return cv_rl_mix_texel(kt) + 1; }
+
 uint cv_rl_bin(vec3 w)
 {
     uint nz = u_rl.dirs.x, np = u_rl.dirs.y;
@@ -102,13 +108,13 @@ float cv_rl_q(uint entry) { return cv_rl_q_at(cv_rl_entry_texel(entry)); }
 // The guiding weight of a key: 0 until it has learned something.
 float cv_rl_key_mix(uint key)
 {
-    return cv_rl_texel_f(cv_rl_key_texel(key) + int(3u * cv_rl_bins()));
+    return cv_rl_texel_f(cv_rl_mix_texel(cv_rl_key_texel(key)));
 }
 
 // The CDF of a key after bin b (b = -1: 0).
 float cv_rl_cdf(int kt, int b)
 {
-    return b < 0 ? 0.0 : cv_rl_texel_f(kt + int(2u * cv_rl_bins()) + b);
+    return b < 0 ? 0.0 : cv_rl_texel_f(cv_rl_cdf_texel(kt, b));
 }
 
 // Solid-angle pdf of the directions of bin `bin` under the distribution of
@@ -177,7 +183,7 @@ void cv_rl_update(uint entry, float target)
     }
 #endif
     imageAtomicAdd(rl_q, at + 1, 1u);
-    int dirty = cv_rl_key_texel(entry / cv_rl_bins()) + int(3u * cv_rl_bins()) + 1;
+    int dirty = cv_rl_dirty_texel(cv_rl_key_texel(entry / cv_rl_bins()));
     if (imageLoad(rl_q, dirty).x == 0u)
         imageStore(rl_q, dirty, uvec4(1u));
 }

@@ -13,8 +13,6 @@ layout(local_size_x = CV_RL_REBUILD_GROUP) in;
 #include "guide.glsl"
 
 shared float s_part[CV_RL_REBUILD_GROUP];
-// precise: both passes over a run must round its weights and sums alike
-// (no contraction into fused multiply-adds in one and not the other)
 shared float s_visits[CV_RL_REBUILD_GROUP];
 
 void main()
@@ -26,7 +24,7 @@ void main()
         return;
     uint nb = cv_rl_bins();
     int kt = cv_rl_key_texel(key);
-    int dirty = kt + int(3u * nb) + 1;
+    int dirty = cv_rl_dirty_texel(kt);
     if (imageLoad(rl_q, dirty).x == 0u)
         return;
 
@@ -43,8 +41,8 @@ void main()
             imageStore(rl_q, tb, uvec4(floatBitsToUint(cv_rl_texel_f(tb) * (float(n / 2u) / float(n)))));
             imageStore(rl_q, tb + 1, uvec4(n / 2u));
         }
-        qs += cv_rl_q_at(kt + int(2u * b));
-        vs += float(imageLoad(rl_q, kt + int(2u * b) + 1).x);
+        qs += cv_rl_q_at(tb);
+        vs += float(imageLoad(rl_q, tb + 1).x);
     }
     s_part[t] = qs;
     s_visits[t] = vs;
@@ -58,6 +56,8 @@ void main()
     barrier();
 
     float e = max(u_rl.grid_scale.w * S / float(nb), 1e-20);
+    // precise: both passes over a run must round its weights and sums alike
+    // (no contraction into fused multiply-adds in one and not the other)
     precise float ws = 0.0;
     for (uint b = b0; b < b1; b++) {
         precise float w = cv_rl_q_at(kt + int(2u * b)) + e;
@@ -79,11 +79,11 @@ void main()
         acc += w;
         precise float sum = off + acc;
         float cdf = b == nb - 1u ? 1.0 : min(sum / W, 1.0);
-        imageStore(rl_q, kt + int(2u * nb + b), uvec4(floatBitsToUint(cdf)));
+        imageStore(rl_q, cv_rl_cdf_texel(kt, int(b)), uvec4(floatBitsToUint(cdf)));
     }
     if (t == 0u) {
         float trust = min(1.0, V / (CV_RL_TRUST_VISITS * float(nb)));
-        imageStore(rl_q, kt + int(3u * nb), uvec4(floatBitsToUint(cv_rl_mix_weight() * trust)));
+        imageStore(rl_q, cv_rl_mix_texel(kt), uvec4(floatBitsToUint(cv_rl_mix_weight() * trust)));
         imageStore(rl_q, dirty, uvec4(0u));
     }
 }
