@@ -211,7 +211,7 @@ bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits
             if (q)
                 q[k * nb + b] = n ? sum / (float)n : sum;
             if (visits)
-                visits[k * nb + b] = raw[k * stride + 2 * b + 1];
+                visits[k * nb + b] = n;
         }
     free(raw);
     return ok;
