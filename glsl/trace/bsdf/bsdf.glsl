@@ -179,6 +179,9 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
                         m.normal_tex, m.displacement_tex, m.displacement_tex, m.displacement_tex);
     vec4 vals[9] = vec4[9](m.reflectance, m.specular, vec4(m.eta.x), vec4(m.roughness.x), vec4(m.roughness.y),
                            vec4(0.5, 0.5, 1.0, 1.0), vec4(0.0), vec4(0.0), vec4(0.0));
+#ifndef CV_NO_TEXTURES
+    // (without textures every value is the constant: no loop, whose
+    // dynamic indexing puts vals[] in local memory)
     int n_tex = m.displacement_tex >= 0 ? 9 : 6;
     for (int k = 0; k < n_tex; k++) {
 #ifdef CV_BSDF_DIFFUSE_ONLY
@@ -188,6 +191,7 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         vec2 tuv = uv + (k == 7 ? vec2(CV_BUMP_DELTA, 0.0) : (k == 8 ? vec2(0.0, CV_BUMP_DELTA) : vec2(0.0)));
         vals[k] = cv_tex_eval(ids[k], vals[k], tuv, lod);
     }
+#endif
     vec3 refl = vals[0].rgb, spec = vals[1].rgb;
     float eta = vals[2].x;
 
@@ -197,10 +201,12 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     ns = normalize(ns);
     if (dot(ns, sp.ng) < 0.0)
         ns = -ns;
+#ifndef CV_NO_TEXTURES
     if (m.normal_tex >= 0)
         ns = cv_normal_map(vals[5].rgb, ns, sp.dpdu);
     else if (m.displacement_tex >= 0)
         ns = cv_bump_normal(vals[6].x, vals[7].x, vals[8].x, ns, sp.dpdu);
+#endif
     b.frame = cv_frame_from_xz(sp.dpdu, ns);
 #ifdef CV_BSDF_DIFFUSE_ONLY
     b.c0 = clamp(refl, 0.0, 1.0);
