@@ -112,29 +112,17 @@ bool cv_bvh_inner_ok(int node)
     return node > 0 && node < cv_bvh_nodes.length();
 }
 
-// Updates hit when leaf slots first..first+count-1 hold a better one.
-void cv_bvh_leaf_closest(CvRayTri r, int first, int count, float tmin, inout CvHit hit)
+// The leaf children a node's slab tests let in, as one run of triangles:
+// n0 slots from lw (left), then n1 from rw (right). One loop over both
+// rather than a loop per child: a lane with one leaf child and a lane with
+// two run in step, and the triangle test is compiled once. Measured on an
+// H100 (veach-bidir, 256 spp, with the shear rows of triangle.glsl): closest
+// 588 -> 560 ms, any-hit 669 -> 618 ms. The order of the tests decides no
+// result (ties go to the lower triangle index).
+void cv_bvh_leaf_runs(bool hl, bool hr, int lw, int lc, int rw, int rc, out int n0, out int n1)
 {
-    count = cv_bvh_leaf_count(first, count);
-    for (int k = 0; k < count; k++) {
-        uint prim;
-        float t, b1, b2;
-        if (cv_bvh_leaf_tri(r, first + k, prim, t, b1, b2) && t > tmin &&
-            (t < hit.t || (t == hit.t && prim < hit.prim && hit.prim != 0xffffffffu))) {
-            hit = CvHit(t, prim, b1, b2);
-        }
-    }
-}
-
-bool cv_bvh_leaf_any(CvRayTri r, int first, int count, float tmin, float tmax)
-{
-    count = cv_bvh_leaf_count(first, count);
-    for (int k = 0; k < count; k++) {
-        CvBvhTri tri = cv_bvh_tris[first + k];
-        if (cv_ray_tri_any(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax))
-            return true;
-    }
-    return false;
+    n0 = hl && lc > 0 ? cv_bvh_leaf_count(lw, lc) : 0;
+    n1 = hr && rc > 0 ? cv_bvh_leaf_count(rw, rc) : 0;
 }
 
 bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
@@ -156,13 +144,14 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
         float tl, tr;
         bool hl = cv_bvh_slab(o, inv, pad, nd.lmin.xyz, nd.lmax.xyz, tmin, hit.t, tl);
         bool hr = cv_bvh_slab(o, inv, pad, nd.rmin.xyz, nd.rmax.xyz, tmin, hit.t, tr);
-        if (hl && lc > 0) {
-            cv_bvh_leaf_closest(r, lw, lc, tmin, hit);
-            hl = false;
-        }
-        if (hr && rc > 0) {
-            cv_bvh_leaf_closest(r, rw, rc, tmin, hit);
-            hr = false;
+        int n0, n1;
+        cv_bvh_leaf_runs(hl, hr, lw, lc, rw, rc, n0, n1);
+        for (int k = 0; k < n0 + n1; k++) {
+            uint prim;
+            float t, b1, b2;
+            if (cv_bvh_leaf_tri(r, k < n0 ? lw + k : rw + (k - n0), prim, t, b1, b2) && t > tmin &&
+                (t < hit.t || (t == hit.t && prim < hit.prim && hit.prim != 0xffffffffu)))
+                hit = CvHit(t, prim, b1, b2);
         }
         hl = hl && lc == 0 && cv_bvh_inner_ok(lw);
         hr = hr && rc == 0 && cv_bvh_inner_ok(rw);
@@ -210,15 +199,12 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
         float tl, tr;
         bool hl = cv_bvh_slab(o, inv, pad, nd.lmin.xyz, nd.lmax.xyz, tmin, tmax, tl);
         bool hr = cv_bvh_slab(o, inv, pad, nd.rmin.xyz, nd.rmax.xyz, tmin, tmax, tr);
-        if (hl && lc > 0) {
-            if (cv_bvh_leaf_any(r, lw, lc, tmin, tmax))
+        int n0, n1;
+        cv_bvh_leaf_runs(hl, hr, lw, lc, rw, rc, n0, n1);
+        for (int k = 0; k < n0 + n1; k++) {
+            CvBvhTri tri = cv_bvh_tris[k < n0 ? lw + k : rw + (k - n0)];
+            if (cv_ray_tri_any(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax))
                 return true;
-            hl = false;
-        }
-        if (hr && rc > 0) {
-            if (cv_bvh_leaf_any(r, rw, rc, tmin, tmax))
-                return true;
-            hr = false;
         }
         hl = hl && lc == 0 && cv_bvh_inner_ok(lw);
         hr = hr && rc == 0 && cv_bvh_inner_ok(rw);

@@ -49,19 +49,25 @@
 #define CV_Q_ESCAPED 3u
 #define CV_Q_SHADOW 4u
 #define CV_Q_DONE 5u       /* pixels whose path ended this iteration */
-/* Hits of the second bin (CV_HIT_BINS in intersect.comp): they fill the hit
- * queue from its end, hits[n - 1 - k], so the shade stage meets first the
- * CV_Q_HITS hits and then these, each bin as one run of whole work groups
- * but one (cv_hit_slot in common.glsl). 0 without binning. */
+/* Hits of the second bin (CV_HIT_BINS in intersect.comp: materials other
+ * than diffuse): they fill the hit queue from its end, hits[n - 1 - k].
+ * The path integrator shades the two bins with two programs (CV_SHADE_BIN
+ * in trace/shade.comp), the first one's code cut down to diffuse surfaces;
+ * a shade stage built without CV_SHADE_BIN (rlpath's) meets first the
+ * CV_Q_HITS hits and then these (cv_hit_slot in common.glsl). 0 without
+ * binning. */
 #define CV_Q_HITS_B 6u
 
 /* Indirect dispatch slots (args[slot] = groups x, y, z, unused); the byte
- * offset of slot s in the buffer is CV_ARGS_BYTES(s). */
+ * offset of slot s in the buffer is CV_ARGS_BYTES(s). CV_ARGS_HITS covers
+ * the CV_Q_HITS hits, CV_ARGS_HITS_B the CV_Q_HITS_B ones: the path
+ * integrator shades each bin with its own program (trace/shade.comp). */
 #define CV_ARGS_RAYS 0u
 #define CV_ARGS_HITS 1u
 #define CV_ARGS_ESCAPED 2u
 #define CV_ARGS_SHADOW 3u
 #define CV_ARGS_DONE 4u
+#define CV_ARGS_HITS_B 5u
 #define CV_ARGS_OFFSET 32
 #define CV_ARGS_BYTES(s) (CV_ARGS_OFFSET + 16 * (s))
 
@@ -75,10 +81,10 @@
 CV_STRUCT(CvTraceQueues) {
     CV_UINT count[8];      /* CV_Q_*; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
-    CV_UVEC4 args[5];      /* indirect dispatch arguments, CV_ARGS_* */
+    CV_UVEC4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
     CV_UVEC4 stats[2];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 144);
+CV_CHECK_SIZE(CvTraceQueues, 160);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
  * and the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT. */

@@ -40,7 +40,11 @@ CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
     CvBsdf b;
     b.n = sp.ns;
     b.r = m.reflectance.rgb;
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    b.mirror = false;  // the diffuse bin's stage (bsdf/bsdf.glsl)
+#else
     b.mirror = m.type == CV_MAT_MIRROR;
+#endif
     return b;
 }
 

@@ -32,14 +32,23 @@ uint cv_pixel_sample(uint pixel) { return uint(film[pixel].normal.w); }
 // The iteration's input rays and the rays it writes (see trace.h).
 CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }
 void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_iteration() & 1u) * cv_capacity() + slot] = r; }
-// The shade stage's i-th hit: the first bin from the front of the hit
-// queue, then the second from its end (CV_Q_HITS_B in trace.h).
+// The shade stage's i-th hit: with CV_SHADE_BIN 0 or 1, of that bin alone;
+// else the first bin from the front of the hit queue, then the second from
+// its end (CV_Q_HITS_B in trace.h).
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
+uint cv_hit_count() { return q.count[CV_Q_HITS]; }
+uint cv_hit_slot(uint i) { return i; }
+#elif defined(CV_SHADE_BIN)
+uint cv_hit_count() { return q.count[CV_Q_HITS_B]; }
+uint cv_hit_slot(uint i) { return cv_capacity() - 1u - i; }
+#else
 uint cv_hit_count() { return q.count[CV_Q_HITS] + q.count[CV_Q_HITS_B]; }
 uint cv_hit_slot(uint i)
 {
     uint a = q.count[CV_Q_HITS];
     return i < a ? i : cv_capacity() - 1u - (i - a);
 }
+#endif
 uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
 void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray; }
 uint cv_done_pixel(uint i) { return hits[2u * cv_capacity() + i].ray; }

@@ -5,8 +5,16 @@
 // MIS-weighted contribution; skipped for delta BSDFs) and BSDF sampling of
 // the bounce ray with Russian roulette. A path that does not go on sends its
 // pixel to the done queue.
+// The host builds it twice over the two bins of the hit queue (trace.h):
+// CV_SHADE_BIN=0 shades diffuse surfaces with the BSDF code cut down to
+// diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 every other material. The
+// full BSDF library sizes the whole kernel for its largest material, so
+// the lean copy runs most hits of a typical scene.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
+#define CV_BSDF_DIFFUSE_ONLY
+#endif
 #include "common.glsl"
 #include "sampler.glsl"
 #include "geometry.glsl"

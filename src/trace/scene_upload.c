@@ -106,6 +106,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g.has_env = true;
+    g.has_textures = s->n_textures > 0;
     g.basic_materials = true;
     for (uint32_t i = 0; i < s->n_materials; i++) {
         const CvMaterial *m = &s->materials[i];

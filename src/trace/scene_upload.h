@@ -1,7 +1,7 @@
 /* scene_upload.h: the flat scene's arrays as GPU buffers at their fixed
  * bindings (glsl/shared/bindings.h), the light-selection CDF by power, the
  * acceleration structure, and what the stage programs must be compiled
- * for (environment light, alpha cut-outs). */
+ * for (environment light, alpha cut-outs, textures). */
 #ifndef CV_TRACE_SCENE_UPLOAD_H
 #define CV_TRACE_SCENE_UPLOAD_H
 
@@ -19,6 +19,7 @@ struct cv_scene_gpu {
     GLuint env_dist;  /* environment-map distributions (glsl/shared/envmap.h) */
     bool has_env;     /* an infinite light exists */
     bool has_alpha;   /* some material has an alpha cut-out */
+    bool has_textures; /* the texture table is not empty */
     bool empty;       /* no triangles: no BVH, nothing to hit */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     struct cv_bvh *bvh;

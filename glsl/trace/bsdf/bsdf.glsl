@@ -13,6 +13,12 @@
 // from below. Transmission through a dielectric divides radiance by eta^2.
 // CV_MAT_INTERFACE is no surface: cv_material_alpha_pass reports it as
 // passed-through, and a CvBsdf of that type reflects nothing.
+//
+// CV_BSDF_DIFFUSE_ONLY (defined by the includer) compiles the diffuse
+// material alone, textures and bump and normal maps included: every
+// material passed in must be CV_MAT_DIFFUSE (the shade stage of the
+// diffuse bin, trace/shade.comp). Type switches then fold to one case, so
+// the other lobes' code and registers drop out of the kernel.
 #ifndef CV_BSDF_BSDF_GLSL
 #define CV_BSDF_BSDF_GLSL
 
@@ -39,7 +45,7 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 //  COATED_CONDUCTOR eta (coat), alpha.xy (coat), alpha.zw (base), c0/c1 = base eta/k over coat eta, thickness
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
 struct CvBsdf {
-    uint type;
+    uint type;  // read through CV_BSDF_TYPE
     uint material;
     CvFrame frame;
     vec3 ng;
@@ -49,6 +55,12 @@ struct CvBsdf {
     float eta;
     float thickness;
 };
+
+#ifdef CV_BSDF_DIFFUSE_ONLY
+#define CV_BSDF_TYPE(b) CV_MAT_DIFFUSE
+#else
+#define CV_BSDF_TYPE(b) ((b).type)
+#endif
 
 float cv_roughness_v3_to_alpha(float r)
 {
@@ -142,10 +154,16 @@ uint cv_material_resolve(uint material, vec2 uv, float u_mix, float lod)
 CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
 {
     vec2 uv = sp.uv;
+#ifndef CV_BSDF_DIFFUSE_ONLY
     material = cv_material_resolve(material, uv, u_mix, lod);
+#endif
     CvMaterial m = materials[material];
     CvBsdf b;
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    b.type = CV_MAT_DIFFUSE;
+#else
     b.type = m.type == CV_MAT_MIX ? CV_MAT_INTERFACE : m.type;
+#endif
     b.material = material;
     b.ng = sp.ng;
     b.c0 = vec3(0.0);
@@ -161,11 +179,19 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
                         m.normal_tex, m.displacement_tex, m.displacement_tex, m.displacement_tex);
     vec4 vals[9] = vec4[9](m.reflectance, m.specular, vec4(m.eta.x), vec4(m.roughness.x), vec4(m.roughness.y),
                            vec4(0.5, 0.5, 1.0, 1.0), vec4(0.0), vec4(0.0), vec4(0.0));
+#ifndef CV_NO_TEXTURES
+    // (without textures every value is the constant: no loop, whose
+    // dynamic indexing puts vals[] in local memory)
     int n_tex = m.displacement_tex >= 0 ? 9 : 6;
     for (int k = 0; k < n_tex; k++) {
+#ifdef CV_BSDF_DIFFUSE_ONLY
+        if (k >= 1 && k <= 4)
+            continue;  // specular, eta, roughness: not diffuse's
+#endif
         vec2 tuv = uv + (k == 7 ? vec2(CV_BUMP_DELTA, 0.0) : (k == 8 ? vec2(0.0, CV_BUMP_DELTA) : vec2(0.0)));
         vals[k] = cv_tex_eval(ids[k], vals[k], tuv, lod);
     }
+#endif
     vec3 refl = vals[0].rgb, spec = vals[1].rgb;
     float eta = vals[2].x;
 
@@ -175,11 +201,16 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     ns = normalize(ns);
     if (dot(ns, sp.ng) < 0.0)
         ns = -ns;
+#ifndef CV_NO_TEXTURES
     if (m.normal_tex >= 0)
         ns = cv_normal_map(vals[5].rgb, ns, sp.dpdu);
     else if (m.displacement_tex >= 0)
         ns = cv_bump_normal(vals[6].x, vals[7].x, vals[8].x, ns, sp.dpdu);
+#endif
     b.frame = cv_frame_from_xz(sp.dpdu, ns);
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    b.c0 = clamp(refl, 0.0, 1.0);
+#else
     vec2 alpha = cv_material_alpha(m, vals[3].x, vals[4].x);
     vec3 ceta, ck;
     cv_material_conductor(m, refl, ceta, ck);
@@ -221,6 +252,7 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.c1 = clamp(spec, 0.0, 1.0);
         b.alpha.xy = alpha;
     }
+#endif
     return b;
 }
 
@@ -232,7 +264,8 @@ CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
 // Two-sided layered lobes work with wo on +z.
 bool cv_bsdf_mirrored(CvBsdf b)
 {
-    return b.type == CV_MAT_COATED_DIFFUSE || b.type == CV_MAT_COATED_CONDUCTOR || b.type == CV_MAT_PLASTIC;
+    uint type = CV_BSDF_TYPE(b);
+    return type == CV_MAT_COATED_DIFFUSE || type == CV_MAT_COATED_CONDUCTOR || type == CV_MAT_PLASTIC;
 }
 
 vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
@@ -241,7 +274,7 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
         wo.z = -wo.z;
         wi.z = -wi.z;
     }
-    switch (b.type) {
+    switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
         return cv_diffuse_f(b.c0, wo, wi);
     case CV_MAT_CONDUCTOR:
@@ -267,7 +300,7 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
         wo.z = -wo.z;
         wi.z = -wi.z;
     }
-    switch (b.type) {
+    switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
         return cv_diffuse_pdf(wo, wi);
     case CV_MAT_CONDUCTOR:
@@ -306,7 +339,7 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         wo.z = -wo.z;
     bool ok = false;
     s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
-    switch (b.type) {
+    switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
         ok = cv_diffuse_sample(b.c0, wo, u, s);
         break;
@@ -351,6 +384,9 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
 
 bool cv_bsdf_is_delta(CvBsdf b)
 {
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    return false;
+#else
     if (b.type == CV_MAT_MIRROR || b.type == CV_MAT_THIN_DIELECTRIC)
         return true;
     if (b.type == CV_MAT_CONDUCTOR)
@@ -360,12 +396,13 @@ bool cv_bsdf_is_delta(CvBsdf b)
     if (b.type == CV_MAT_COATED_CONDUCTOR)
         return cv_mf_smooth(b.alpha.xy) && cv_mf_smooth(b.alpha.zw);
     return false;
+#endif
 }
 
 // Surface colour for the albedo AOV.
 vec3 cv_bsdf_albedo(CvBsdf b)
 {
-    switch (b.type) {
+    switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
     case CV_MAT_COATED_DIFFUSE:
         return b.c0;

@@ -102,17 +102,19 @@ vec4 cv_tex_combine(CvTexture tx, vec4 a, vec4 b, float amount, vec2 uv)
 }
 
 // Evaluates texture `id` at uv; `fallback` (the material's constant) when
-// id < 0. Float textures return their value in every channel.
+// id < 0. Float textures return their value in every channel. The host
+// defines CV_NO_TEXTURES for a scene without textures, so that the stage
+// kernels carry none of this code (every id is -1 there).
 // The tree (root, its operands a/b/amount, their operands) is flattened into
 // 13 slots and evaluated bottom-up in one loop, so the image lookup is
 // compiled once: llvmpipe's compile time grows fast with inlined copies.
 vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
 {
+#ifdef CV_NO_TEXTURES
+    return fallback;
+#else
     if (id < 0)
         return fallback;
-#ifdef CV_TEX_DISABLE
-    return fallback;
-#endif
     int ids[13];
     vec4 vals[13];
     ids[0] = id;
@@ -160,6 +162,7 @@ vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
         }
     }
     return vals[0];
+#endif
 }
 
 #endif

@@ -124,6 +124,8 @@ float cv_env_pdf(vec3 dir)
 
 // u3.x picks the light, u3.yz sample it. p: the shading point; n: its normal
 // (unused by these strategies, kept for spherical-triangle sampling).
+// The host defines CV_NO_ENV for a scene without infinite lights: the
+// environment branches then drop out of the stage kernels.
 bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
 {
     s = CvLightSample(vec3(0.0, 0.0, 1.0), 0.0, vec3(0.0), 0.0, false);
@@ -171,6 +173,7 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
             return false;
         vec3 L = cv_light_Le_area(i, -wi, uv, c > 0.0);
         s = CvLightSample(wi, dist, L, pmf * d2 / (abs(c) * l.L.w), false);
+#ifndef CV_NO_ENV
     } else if (l.type == CV_LIGHT_INFINITE) {
         vec3 wi = cv_sample_uniform_sphere(u);
         s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, l.L.rgb, pmf * CV_INV_4PI, false);
@@ -178,6 +181,7 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         float pdf;
         vec3 wi = cv_env_map_sample(l, u, pdf);
         s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, cv_env_map_Le(l, wi), pmf * pdf, false);
+#endif
     } else {
         return false;
     }
