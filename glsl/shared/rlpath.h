@@ -23,7 +23,7 @@
  * Table (image unit CV_IMAGE_RL_Q, r32ui texels), CV_RL_KEY_TEXELS(bins)
  * texels per key k from t = k * CV_RL_KEY_TEXELS(bins):
  *   t + 2b:          the sum of the temporal-difference targets of bin b
- *                    as float bits, written by update.comp;
+ *                    as float bits, added by the shade and escaped stages;
  *   t + 2b + 1:      visits of bin b (targets summed); Q, the learned
  *                    incident radiance (scalar: the channel mean), is the
  *                    sum over the visits: the running mean that Dahm and
@@ -32,19 +32,29 @@
  *                    would contend in;
  *   t + 2 bins + b:  the sampling CDF after bin b as float bits (the last
  *                    is exactly 1), written by rebuild.comp from the Q;
- *   t + 3 bins:      the key's guiding weight (mixture weight) as float bits:
+ *   t + 3 bins + b:  the part of bin b's target sum that is emission found
+ *                    at the next vertex (float bits): light that
+ *                    next-event estimation already samples there, which
+ *                    rebuild.comp leaves out of the sampling distribution
+ *                    (Q itself keeps it: the targets of the bounces before
+ *                    are built from Q);
+ *   t + 4 bins:      the key's guiding weight (mixture weight) as float bits:
  *                    the option's, less for a key with few visits, 0 before
  *                    its first rebuild;
- *   t + 3 bins + 1:  1 when a Q changed since the last rebuild.
+ *   t + 4 bins + 1:  1 when a Q changed since the last rebuild.
  * An entry e = k * bins + b names one (key, bin). The sums are added by
  * imageAtomicAdd through a second, r32f image over the same buffer
  * (CV_IMAGE_RL_QF) where GL_NV_shader_atomic_float is there (NVIDIA, Mesa),
  * else by compare-and-swap on the bits (GLSL 4.5 core has no float atomics).
+ * A stage that adds to the table reads Q for its targets meanwhile: a
+ * target may see a sum without its visit, which skews learning a little
+ * and never the image (the CDFs and weights that sampling and the mixture
+ * density read change only in rebuild.comp, a dispatch of its own).
  *
- * Path state (image unit CV_IMAGE_RL_PATH, one rgba32ui texel per pixel of
- * the crop; each pixel has one path in flight): x: entry of the last bounce whose value the next hit
- * will update (CV_RL_NONE: none), y: the depth that bounce left from,
- * z: entry of a pending update, w: its target as float bits. */
+ * Path state (image unit CV_IMAGE_RL_PATH, one rg32ui texel per pixel of
+ * the crop; each pixel has one path in flight): x: entry of the last bounce
+ * whose value the next vertex (a hit, or the environment) learns from
+ * (CV_RL_NONE: none), y: the depth that bounce left from. */
 #ifndef CV_SHARED_RLPATH_H
 #define CV_SHARED_RLPATH_H
 
@@ -52,7 +62,7 @@
 #include "shared/bindings.h"
 
 #define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: Q bits and visits */
-#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rgba32ui: path state per pixel */
+#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rg32ui: path state per pixel */
 #define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the table again, for float atomics */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */
 
@@ -68,8 +78,9 @@
 #define CV_RL_FLOOR 0.02f
 /* Normal classes per cell: +x, -x, +y, -y, +z, -z. */
 #define CV_RL_ORIENTS 6u
-/* Texels per key: Q and visits per bin, the CDF, mixture weight, dirty flag. */
-#define CV_RL_KEY_TEXELS(bins) (3u * (bins) + 2u)
+/* Texels per key: Q and visits per bin, the CDF, the emitted part per bin,
+ * mixture weight, dirty flag. */
+#define CV_RL_KEY_TEXELS(bins) (4u * (bins) + 2u)
 /* A key guides with the full mixture weight once its bins have this many
  * visits on average; before, with the weight times visits / (this * bins):
  * a young key's Q is one or two noisy samples, and sampling by it alone

@@ -74,7 +74,7 @@ struct cv_renderer {
 
 static const char *const stage_names[ST_COUNT + 1] = {
     "generate", "regenerate", "prepare0", "prepare1", "prepare2", "intersect",
-    "escaped",  "shade",      "shadow",   "resolve",  "rlpath-update",
+    "escaped",  "shade",      "shadow",   "resolve",  "rlpath-rebuild",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -275,17 +275,23 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (r->scene->basic_materials)
         defines[nd++] = "CV_BSDF_BASIC";
     defines[nd] = NULL;
-    /* the escaped stage alone depends on the environment */
-    const char *escaped[7];
-    defines_plus(escaped, defines, nd, r->has_env ? "CV_HAS_ENV" : NULL);
+    bool rl = p->integrator == CV_RENDER_RLPATH;
+    /* the escaped stage alone depends on the environment; with rlpath it
+     * learns too */
+    const char *escaped[8];
+    int ne = nd;
+    memcpy(escaped, defines, (size_t)nd * sizeof(*escaped));
+    if (r->has_env)
+        escaped[ne++] = "CV_HAS_ENV";
+    if (rl)
+        escaped[ne++] = "CV_RLPATH";
+    escaped[ne] = NULL;
     const char *modes[5][2] = {{"GENERATE_MODE=0", NULL}, {"GENERATE_MODE=1", NULL},
                                {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                                {"PREPARE_MODE=2", NULL}};
-    bool rl = p->integrator == CV_RENDER_RLPATH;
-    /* path bins hits by material for its shade stage (intersect.comp);
-     * rlpath's update stage reads the hit queue as one bin */
+    /* hits binned by material for the shade stage (intersect.comp) */
     const char *intersect[7];
-    defines_plus(intersect, defines, nd, rl ? NULL : "CV_HIT_BINS");
+    defines_plus(intersect, defines, nd, "CV_HIT_BINS");
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces this one, with the same defines */
         if (s == ST_SHADE && rl)
@@ -383,7 +389,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_SHADE, CV_ARGS_HITS);
     if (r->rl) {
         prof_mark(r, ST_COUNT);
-        cv_rlpath_update(r->rl);
+        cv_rlpath_update(r->rl, it);
         prof_mark(r, ST_COUNT);
     }
     stage_one(r, ST_PREPARE2);

@@ -18,7 +18,8 @@ _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
 struct cv_rlpath {
     CvRlParams params;
     uint32_t n_pixels;
-    struct cv_program shade, update_hits, update_escaped, rebuild;  /* copies (see render.c) */
+    struct cv_program shade, rebuild;   /* copies (see render.c) */
+    uint32_t rebuild_every;             /* iterations between rebuilds */
     GLuint ubo, table, path;
     GLuint table_tex, table_ftex, path_tex;   /* buffer textures over table (r32ui,
                                                  r32f) and path */
@@ -115,14 +116,22 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
     rl->n_pixels = n_pixels;
-    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
+    /* experiment switches (not for keeps) */
+    const char *sd[8];
+    int nsd = 0;
+    for (; defines && defines[nsd] && nsd < 6; nsd++)
+        sd[nsd] = defines[nsd];
+    const char *e = getenv("CAVALRY_RL_KEEP_EMITTED");
+    if (e && *e == '1')
+        sd[nsd++] = "CV_RL_KEEP_EMITTED";
+    sd[nsd] = NULL;
+    e = getenv("CAVALRY_RL_REBUILD_EVERY");
+    rl->rebuild_every = e ? (uint32_t)strtoul(e, NULL, 10) : 1;
+    if (rl->rebuild_every < 1)
+        rl->rebuild_every = 1;
+    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", sd, err);
     if (p)
         rl->shade = *p;
-    const char *d0[] = {"UPDATE_MODE=0", NULL}, *d1[] = {"UPDATE_MODE=1", NULL};
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d0, err)))
-        rl->update_hits = *p;
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d1, err)))
-        rl->update_escaped = *p;
     if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", NULL, err)))
         rl->rebuild = *p;
     if (!p) {
@@ -130,7 +139,7 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         return false;
     }
     /* every path starts with nothing to learn: all state words CV_RL_NONE */
-    size_t path_bytes = (size_t)(n_pixels ? n_pixels : 1) * 4 * sizeof(uint32_t);
+    size_t path_bytes = (size_t)(n_pixels ? n_pixels : 1) * 2 * sizeof(uint32_t);
     void *none = cv_xmalloc(path_bytes);
     memset(none, 0xff, path_bytes);
     rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);
@@ -147,7 +156,7 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         rl->table_ftex = cv_rlpath_buffer_texture(rl->table, GL_R32F,
                                                   cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_ftex)
-        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
+        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RG32UI, path_bytes / 8, err);
     if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);
@@ -168,20 +177,18 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
     glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
-                       GL_RGBA32UI);
+                       GL_RG32UI);
     glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
 }
 
-void cv_rlpath_update(const struct cv_rlpath *rl)
+bool cv_rlpath_update(const struct cv_rlpath *rl, uint32_t iteration)
 {
-    /* the shade stage's image writes (path state) */
+    if (iteration % rl->rebuild_every != 0)
+        return false;
+    /* the escaped and shade stages' adds to the table */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    /* the table and path state are images */
-    cv_program_dispatch_indirect(&rl->update_hits, CV_ARGS_BYTES(CV_ARGS_HITS),
-                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    cv_program_dispatch_indirect(&rl->update_escaped, CV_ARGS_BYTES(CV_ARGS_ESCAPED),
-                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     cv_rlpath_dispatch_rebuild(&rl->rebuild, &rl->params);
+    return true;
 }
 
 void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlParams *p)

@@ -2,7 +2,8 @@
  * path guiding after Dahm and Keller 2017): the Q-table over a grid of the
  * scene bounds and normal classes times equal-area direction bins (layout:
  * glsl/shared/rlpath.h), its programs (glsl/trace/rlpath: shade.comp
- * replaces the path tracer's shade stage, update.comp runs after it), and
+ * replaces the path tracer's shade stage and learns there, rebuild.comp
+ * runs after it; the escaped stage learns too, built with CV_RLPATH), and
  * the table layout from the options. The renderer (render.c) owns one when
  * cv_render_params.integrator is CV_RENDER_RLPATH. The table lives as
  * long as the renderer, so every pass keeps learning from the ones before. */
@@ -55,10 +56,11 @@ const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl);
  * GL_DISPATCH_INDIRECT_BUFFER). */
 void cv_rlpath_bind(const struct cv_rlpath *rl);
 
-/* Queues the updates of one depth and the rebuild of the keys they
- * changed: run right after the shade stage, while that depth's rays, hits
- * and escaped queue are still bound. */
-void cv_rlpath_update(const struct cv_rlpath *rl);
+/* Queues the rebuild of the keys that the escaped and shade stages of
+ * iteration `iteration` (and those before it since the last rebuild)
+ * changed, when it is due; false when it was not. Run right after the shade
+ * stage. */
+bool cv_rlpath_update(const struct cv_rlpath *rl, uint32_t iteration);
 
 /* Runs rebuild.comp (a program of trace/rlpath/rebuild.comp) over the keys
  * of layout p: rebuilds the CDF and guiding weight of every key marked

@@ -127,7 +127,7 @@ static void set_table(struct rig *g, const float *q, uint32_t visits, struct cv_
         memcpy(&k[2 * b], &sum, sizeof(float));
         k[2 * b + 1] = visits;
     }
-    k[3 * n + 1] = 1;
+    k[CV_RL_KEY_TEXELS(n) - 1] = 1;   /* the dirty flag: the key's last texel */
     tap_ok(cv_buffer_upload(g->table, 0, bytes, raw, err), "table upload");
     free(raw);
     struct cv_program *rebuild = cv_program_get(g->gpu, "trace/rlpath/rebuild.comp", NULL, err);

@@ -3,13 +3,19 @@
 // learned distribution and its pdf, the mixture with the BSDF, the
 // temporal-difference update and the distribution's construction.
 //
-// Q_b below is the bin's target sum over its visits (shared/rlpath.h).
+// Q_b below is the bin's target sum over its visits (shared/rlpath.h), E_b
+// its emitted part over the visits: radiance of a light seen directly in
+// those directions, which next-event estimation samples already.
 // The learned distribution of key k (cell, normal class): bin b has
 // probability P_b = w_b / W with
-//   w_b = Q_b + e, e = floor * S / bins (S = sum of Q_b; a tiny absolute
-//   floor makes an unvisited key uniform), W = sum of w_b,
-// the learned incident radiance itself, as Dahm and Keller sample it, and
-// is uniform in solid angle within the bin: pdf(w) = P_b * bins / (4 pi).
+//   w_b = I_b + e, I_b = max(Q_b - E_b, 0), e = floor * S / bins (S = sum
+//   of I_b; a tiny absolute floor makes an unvisited key uniform),
+//   W = sum of w_b,
+// the learned incident radiance, as Dahm and Keller sample it, less what
+// light sampling covers (guided directions that find a lamp add little
+// that the shadow ray and MIS do not, and are missing where the indirect
+// light is), and is uniform in solid angle within the bin:
+// pdf(w) = P_b * bins / (4 pi).
 // Bins below a key's surfaces keep about the floor: paths sent there end
 // without teaching them anything. Weighting Q by the cosine to the class
 // axis (once per key) was tried: on the generated room it raised relMSE at
@@ -69,10 +75,12 @@ int cv_rl_entry_texel(uint entry)
     return cv_rl_key_texel(entry / nb) + int(2u * (entry % nb));
 }
 
-// The texels of a key's CDF after bin b, guiding weight and dirty flag,
-// from the key's first texel kt (layout in shared/rlpath.h).
+// The texels of a key's CDF after bin b, emitted sum of bin b, guiding
+// weight and dirty flag, from the key's first texel kt (layout in
+// shared/rlpath.h).
 int cv_rl_cdf_texel(int kt, int b) { return kt + int(2u * cv_rl_bins()) + b; }
-int cv_rl_mix_texel(int kt) { return kt + int(3u * cv_rl_bins()); }
+int cv_rl_emitted_texel(int kt, int b) { return kt + int(3u * cv_rl_bins()) + b; }
+int cv_rl_mix_texel(int kt) { return kt + int(4u * cv_rl_bins()); }
 int cv_rl_dirty_texel(int kt) { return cv_rl_mix_texel(kt) + 1; }
 
 uint cv_rl_bin(vec3 w)
@@ -160,30 +168,42 @@ float cv_rl_mix_pdf(float m, float pdf_guide, float pdf_bsdf)
 }
 
 #ifdef CV_RL_TABLE_UPDATE
-// Adds a target to the entry's sum and a visit (Q becomes the mean of its
-// targets, as Q <- (1 - a) Q + a target with a = 1 / (1 + visits)), and
-// marks the key for rebuild.comp. Without float atomics: compare-and-swap
-// on the bits, retried while another thread changed it in between (bounded:
-// an update lost under extreme contention only skews learning, never biases
-// the image, whose estimator is unbiased for any table).
-void cv_rl_update(uint entry, float target)
+// Adds the float v to texel t of the table.
+void cv_rl_add(int t, float v)
 {
-    if (entry == CV_RL_NONE || !(target >= 0.0) || isinf(target))
-        return;
-    int at = cv_rl_entry_texel(entry);
 #ifdef GL_NV_shader_atomic_float
-    imageAtomicAdd(rl_qf, at, target);
+    imageAtomicAdd(rl_qf, t, v);
 #else
-    uint old = imageLoad(rl_q, at).x;
+    // compare-and-swap on the bits, retried while another thread changed it
+    // in between (bounded: an add lost under extreme contention only skews
+    // learning, never biases the image, whose estimator is unbiased for any
+    // table)
+    uint old = imageLoad(rl_q, t).x;
     for (int i = 0; i < 64; i++) {
-        uint seen = imageAtomicCompSwap(rl_q, at, old, floatBitsToUint(uintBitsToFloat(old) + target));
+        uint seen = imageAtomicCompSwap(rl_q, t, old, floatBitsToUint(uintBitsToFloat(old) + v));
         if (seen == old)
             break;
         old = seen;
     }
 #endif
+}
+
+// Adds a target to the entry's sum and a visit (Q becomes the mean of its
+// targets, as Q <- (1 - a) Q + a target with a = 1 / (1 + visits)), its
+// emitted part (in target) to the emitted sum, and marks the key for
+// rebuild.comp.
+void cv_rl_update(uint entry, float target, float emitted)
+{
+    if (entry == CV_RL_NONE || !(target >= 0.0) || isinf(target))
+        return;
+    int kt = cv_rl_key_texel(entry / cv_rl_bins());
+    int b = int(entry % cv_rl_bins());
+    int at = kt + 2 * b;
+    cv_rl_add(at, target);
     imageAtomicAdd(rl_q, at + 1, 1u);
-    int dirty = cv_rl_dirty_texel(cv_rl_key_texel(entry / cv_rl_bins()));
+    if (emitted > 0.0)
+        cv_rl_add(cv_rl_emitted_texel(kt, b), min(emitted, target));
+    int dirty = cv_rl_dirty_texel(kt);
     if (imageLoad(rl_q, dirty).x == 0u)
         imageStore(rl_q, dirty, uvec4(1u));
 }

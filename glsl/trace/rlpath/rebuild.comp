@@ -2,7 +2,7 @@
 // glsl/trace/rlpath/rebuild.comp: builds the sampling CDF and the guiding
 // weight of every key whose Q changed since its last build (layout in
 // shared/rlpath.h, distribution in guide.glsl), one workgroup per key, after
-// update.comp. The shade stage then samples a key by a binary search and
+// the stages that add to the table. The shade stage then samples a key by a binary search and
 // reads its pdf from two CDF values, instead of summing all bins per hit.
 // Dispatched as a 2D grid of workgroups (keys may exceed the 65535 limit of
 // one dimension): key = y * groups in x + x.
@@ -14,6 +14,15 @@ layout(local_size_x = CV_RL_REBUILD_GROUP) in;
 
 shared float s_part[CV_RL_REBUILD_GROUP];
 shared float s_visits[CV_RL_REBUILD_GROUP];
+
+// The part of bin b's Q that guiding samples (guide.glsl: I_b): Q less its
+// emitted part, both means over the same visits.
+float cv_rl_guided_q(int kt, int b)
+{
+    int tb = kt + 2 * b;
+    float n = float(max(imageLoad(rl_q, tb + 1).x, 1u));
+    return max(cv_rl_texel_f(tb) - cv_rl_texel_f(cv_rl_emitted_texel(kt, b)), 0.0) / n;
+}
 
 void main()
 {
@@ -37,11 +46,15 @@ void main()
         int tb = kt + int(2u * b);
         uint n = imageLoad(rl_q, tb + 1).x;
         if (n > CV_RL_MAX_VISITS) {
-            // update.comp is not running: no add is lost between these
-            imageStore(rl_q, tb, uvec4(floatBitsToUint(cv_rl_texel_f(tb) * (float(n / 2u) / float(n)))));
+            // no stage that adds to the table is running: no add is lost
+            // between these
+            float k = float(n / 2u) / float(n);
+            int te = cv_rl_emitted_texel(kt, int(b));
+            imageStore(rl_q, tb, uvec4(floatBitsToUint(cv_rl_texel_f(tb) * k)));
+            imageStore(rl_q, te, uvec4(floatBitsToUint(cv_rl_texel_f(te) * k)));
             imageStore(rl_q, tb + 1, uvec4(n / 2u));
         }
-        qs += cv_rl_q_at(tb);
+        qs += cv_rl_guided_q(kt, int(b));
         vs += float(imageLoad(rl_q, tb + 1).x);
     }
     s_part[t] = qs;
@@ -60,7 +73,7 @@ void main()
     // (no contraction into fused multiply-adds in one and not the other)
     precise float ws = 0.0;
     for (uint b = b0; b < b1; b++) {
-        precise float w = cv_rl_q_at(kt + int(2u * b)) + e;
+        precise float w = cv_rl_guided_q(kt, int(b)) + e;
         ws += w;
     }
     s_part[t] = ws;
@@ -75,7 +88,7 @@ void main()
     }
     precise float acc = 0.0;
     for (uint b = b0; b < b1; b++) {
-        precise float w = cv_rl_q_at(kt + int(2u * b)) + e;
+        precise float w = cv_rl_guided_q(kt, int(b)) + e;
         acc += w;
         precise float sum = off + acc;
         float cdf = b == nb - 1u ? 1.0 : min(sum / W, 1.0);

@@ -1,4 +1,5 @@
 #version 450
+#extension GL_NV_shader_atomic_float : enable
 // glsl/trace/rlpath/shade.comp: the surface stage of the rlpath integrator:
 // trace/shade.comp (emission, AOVs, next-event estimation, bounce with
 // Russian roulette) with the bounce direction drawn from the one-sample
@@ -11,10 +12,14 @@
 // (0 when the path ends here). Integrating Q against the BSDF over every
 // bin instead (the expected target) took a BSDF evaluation per bin at every
 // hit and made rlpath 5 to 6 times as slow per sample as path on an H100.
-// The target goes to the path state for update.comp: the table is only read
-// here, so one dispatch sees one table and the sampling and MIS densities of
-// a vertex agree. Keep in step with trace/shade.comp (both take their
-// per-hit inputs from surface_inputs.glsl).
+// The target is added to the table here, with atomics: sampling and the
+// mixture density read only the CDFs and weights, which rebuild.comp alone
+// writes, so one dispatch still sees one distribution per key and the
+// sampling and MIS densities of a vertex agree (a separate update stage
+// that read the path state back was a dispatch and a pass over the hits
+// per depth).
+// Keep in step with trace/shade.comp (both take their per-hit inputs from
+// surface_inputs.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../common.glsl"
@@ -23,9 +28,11 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../materials.glsl"
 #include "../lights.glsl"
 #include "../surface_inputs.glsl"
+#define CV_RL_TABLE_WRITE
+#define CV_RL_TABLE_UPDATE
 #include "guide.glsl"
 
-layout(rgba32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
+layout(rg32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
 
 float cv_mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
 
@@ -51,15 +58,22 @@ bool cv_rl_guides(CvBsdf b)
 #endif
 }
 
-// Shades hit i; what it queues comes back in the out parameters, so that
-// main() can take queue slots in uniform control flow (as trace/shade.comp).
-void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ray,
-              out CvRayItem nr)
+// Shades hit h of ray r; what it queues comes back in the out parameters,
+// so that main() can take queue slots in uniform control flow (as
+// trace/shade.comp). learning: whether the bounce that led here learns from
+// this hit; target and emitted then return its temporal-difference target
+// and the emitted part of it (light found here that next-event estimation
+// at the vertex before sampled too). entry returns the table entry of the
+// bounce leaving here (CV_RL_NONE if the path ends).
+void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
+                  out float emitted, out uint entry, out bool push_shadow,
+                  out CvShadowItem s, out bool push_ray, out CvRayItem nr)
 {
     push_shadow = false;
     push_ray = false;
-    CvHitItem h = hits[i];
-    CvRayItem r = cv_ray_in(h.ray);
+    target = 0.0;
+    emitted = 0.0;
+    entry = CV_RL_NONE;
     uint pixel = uint(r.o.w);
     uint flags = cv_ray_flags(r);
     uint depth = cv_ray_depth(r);
@@ -68,16 +82,16 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
     bool front = dot(wo, sf.ng) > 0.0;
 
-    // the bounce that led here, if it is to learn from this hit
-    uvec4 st = imageLoad(rl_path, int(pixel));
-    uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
-    uvec4 nst = uvec4(CV_RL_NONE, 0u, CV_RL_NONE, 0u);
-    float target = 0.0;
-
     int light = cv_tri_light[h.prim];
     if (light >= 0) {
         vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
-        target += cv_mean3(Le);
+        target = cv_mean3(Le);
+#ifndef CV_RL_KEEP_EMITTED
+        // next-event estimation at the vertex before sampled this light
+        // unless that bounce was specular (no light sampling there)
+        if (u_pass.misc.z > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+            emitted = target;
+#endif
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
             if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
@@ -110,10 +124,6 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         flags |= CV_RAYF_ALBEDO_DONE;
     }
 #endif
-    // emission only, for now: the sampled bounce below adds its estimate
-    if (learn != CV_RL_NONE)
-        nst.zw = uvec2(learn, floatBitsToUint(target));
-    imageStore(rl_path, int(pixel), nst);
     if (depth >= cv_max_depth())
         return;
 
@@ -163,13 +173,11 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     }
     if (!(pdf > 0.0))
         return;
-    if (learn != CV_RL_NONE) {
+    if (learning) {
         // one-sample estimate of the reflected radiance (pdf: the density
         // the direction was drawn with; for a delta lobe its probability)
         float qd = cv_rl_q(cv_rl_entry(key, wbin));
-        float t = target + qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / pdf;
-        nst.zw = uvec2(learn, floatBitsToUint(t));
-        imageStore(rl_path, int(pixel), nst);
+        target += qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / pdf;
     }
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
     if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
@@ -188,8 +196,25 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
     nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
-    nst.xy = uvec2(cv_rl_entry(key, wbin), depth);
-    imageStore(rl_path, int(pixel), nst);
+    entry = cv_rl_entry(key, wbin);
+}
+
+// Shades hit i (cv_shade_hit), then the bounce that led here learns its
+// target and the path state takes the bounce leaving here.
+void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ray,
+              out CvRayItem nr)
+{
+    CvHitItem h = hits[i];
+    CvRayItem r = cv_ray_in(h.ray);
+    uint pixel = uint(r.o.w);
+    uint depth = cv_ray_depth(r);
+    uvec2 st = imageLoad(rl_path, int(pixel)).xy;
+    uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
+    float target, emitted;
+    uint entry;
+    cv_shade_hit(h, r, learn != CV_RL_NONE, target, emitted, entry, push_shadow, s, push_ray, nr);
+    cv_rl_update(learn, target, emitted);
+    imageStore(rl_path, int(pixel), uvec4(entry, depth, 0u, 0u));
 }
 
 #include "../shade_queue.glsl"
