@@ -20,9 +20,9 @@ struct cv_rlpath {
     uint32_t n_pixels;
     struct cv_program shade, rebuild;   /* copies (see render.c) */
     uint32_t rebuild_every;             /* iterations between rebuilds */
-    GLuint ubo, table, path;
-    GLuint table_tex, table_ftex, path_tex;   /* buffer textures over table (r32ui,
-                                                 r32f) and path */
+    GLuint ubo, table, guide, path;
+    GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
+                                                            (r32ui, r32f), guide and path */
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -80,7 +80,8 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
     out->grid_scale = (cv_vec4){scale[0], scale[1], scale[2], CV_RL_FLOOR};
     out->dims = (cv_uvec4){dims[0], dims[1], dims[2], dims[0] * dims[1] * dims[2]};
     out->dirs = (cv_uvec4){nz, np, nz * np, out->dims.w * CV_RL_ORIENTS};
-    if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30))
+    if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30) ||
+        cv_rlpath_guide_bytes(out) > ((uint64_t)1 << 30))
         return cv_fail(err, "rlpath table of %u cells x %u normal classes x %u directions is "
                        "above 1 GiB", out->dims.w, CV_RL_ORIENTS, out->dirs.z);
     return true;
@@ -88,7 +89,12 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
 
 uint64_t cv_rlpath_table_bytes(const CvRlParams *p)
 {
-    return (uint64_t)p->dirs.w * CV_RL_KEY_TEXELS(p->dirs.z) * sizeof(uint32_t);
+    return (uint64_t)p->dirs.w * CV_RL_LEARN_TEXELS(p->dirs.z) * sizeof(uint32_t);
+}
+
+uint64_t cv_rlpath_guide_bytes(const CvRlParams *p)
+{
+    return (uint64_t)p->dirs.w * CV_RL_GUIDE_TEXELS(p->dirs.z) * 4 * sizeof(float);
 }
 
 GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
@@ -117,13 +123,16 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     rl->params = *layout;
     rl->n_pixels = n_pixels;
     /* experiment switches (not for keeps) */
-    const char *sd[8];
+    const char *sd[9];
     int nsd = 0;
     for (; defines && defines[nsd] && nsd < 6; nsd++)
         sd[nsd] = defines[nsd];
     const char *e = getenv("CAVALRY_RL_KEEP_EMITTED");
     if (e && *e == '1')
         sd[nsd++] = "CV_RL_KEEP_EMITTED";
+    e = getenv("CAVALRY_RL_ONE_SAMPLE");
+    if (e && *e == '1')
+        sd[nsd++] = "CV_RL_ONE_SAMPLE_TARGET";
     sd[nsd] = NULL;
     e = getenv("CAVALRY_RL_REBUILD_EVERY");
     rl->rebuild_every = e ? (uint32_t)strtoul(e, NULL, 10) : 1;
@@ -145,8 +154,12 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);
     if (rl->ubo)
         rl->table = cv_buffer_create((size_t)cv_rlpath_table_bytes(layout), NULL,
-                                     "rlpath Q-table", err);
+                                     "rlpath learning table", err);
+    /* zero: every key's guiding weight 0 until its first rebuild */
     if (rl->table)
+        rl->guide = cv_buffer_create((size_t)cv_rlpath_guide_bytes(layout), NULL,
+                                     "rlpath guide table", err);
+    if (rl->guide)
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);
     if (rl->path)
@@ -156,6 +169,9 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         rl->table_ftex = cv_rlpath_buffer_texture(rl->table, GL_R32F,
                                                   cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_ftex)
+        rl->guide_tex = cv_rlpath_buffer_texture(rl->guide, GL_RGBA32F,
+                                                 cv_rlpath_guide_bytes(layout) / 16, err);
+    if (rl->guide_tex)
         rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RG32UI, path_bytes / 8, err);
     if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
@@ -179,6 +195,8 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
                        GL_RG32UI);
     glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+    glBindImageTexture(CV_IMAGE_RL_GUIDE, rl->guide_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32F);
 }
 
 bool cv_rlpath_update(const struct cv_rlpath *rl, uint32_t iteration)
@@ -206,15 +224,17 @@ void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlPara
 bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
                           struct cv_error *err)
 {
-    size_t keys = rl->params.dirs.w, nb = rl->params.dirs.z, stride = CV_RL_KEY_TEXELS(nb);
+    size_t keys = rl->params.dirs.w, nb = rl->params.dirs.z, stride = CV_RL_LEARN_TEXELS(nb);
     size_t bytes = (size_t)cv_rlpath_table_bytes(&rl->params);
     uint32_t *raw = cv_xmalloc(bytes);
     bool ok = cv_buffer_read(rl->table, 0, bytes, raw, err);
     for (size_t k = 0; ok && k < keys; k++)
         for (size_t b = 0; b < nb; b++) {
-            float sum;
-            memcpy(&sum, &raw[k * stride + 2 * b], sizeof(float));
-            uint32_t n = raw[k * stride + 2 * b + 1];
+            float s_i, s_e;
+            memcpy(&s_i, &raw[k * stride + 3 * b], sizeof(float));
+            memcpy(&s_e, &raw[k * stride + 3 * b + 2], sizeof(float));
+            uint32_t n = raw[k * stride + 3 * b + 1];
+            float sum = s_i + s_e;
             if (q)
                 q[k * nb + b] = n ? sum / (float)n : sum;
             if (visits)
@@ -238,10 +258,13 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
         glDeleteTextures(1, &rl->table_tex);
     if (rl->table_ftex)
         glDeleteTextures(1, &rl->table_ftex);
+    if (rl->guide_tex)
+        glDeleteTextures(1, &rl->guide_tex);
     if (rl->path_tex)
         glDeleteTextures(1, &rl->path_tex);
     cv_buffer_destroy(&rl->ubo);
     cv_buffer_destroy(&rl->table);
+    cv_buffer_destroy(&rl->guide);
     cv_buffer_destroy(&rl->path);
     free(rl);
     *rlp = NULL;

@@ -36,12 +36,14 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
  * texture limit is too small. Delete with glDeleteTextures. */
 GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err);
 
-/* Bytes of the Q-table of a layout. */
+/* Bytes of the learning table and of the guide table of a layout
+ * (glsl/shared/rlpath.h). */
 uint64_t cv_rlpath_table_bytes(const CvRlParams *p);
+uint64_t cv_rlpath_guide_bytes(const CvRlParams *p);
 
 struct cv_rlpath;
 
-/* Creates the table (zero: every cell uniform until it learns) and the
+/* Creates the tables (zero: every key unguided until it learns) and the
  * per-pixel path state for n_pixels, and compiles the programs with the
  * renderer's `defines` (NULL-terminated, may be NULL). */
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
@@ -51,7 +53,7 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
 /* The shade stage to run instead of trace/shade.comp. */
 const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl);
 
-/* Binds the table, path state and uniform block (after the renderer's own
+/* Binds the tables, path state and uniform block (after the renderer's own
  * bindings; the renderer's queue buffer must be the bound
  * GL_DISPATCH_INDIRECT_BUFFER). */
 void cv_rlpath_bind(const struct cv_rlpath *rl);
@@ -63,8 +65,8 @@ void cv_rlpath_bind(const struct cv_rlpath *rl);
 bool cv_rlpath_update(const struct cv_rlpath *rl, uint32_t iteration);
 
 /* Runs rebuild.comp (a program of trace/rlpath/rebuild.comp) over the keys
- * of layout p: rebuilds the CDF and guiding weight of every key marked
- * changed in the bound table, then a barrier for image reads. Called by
+ * of layout p: rebuilds the guide texels of every key marked changed in the
+ * bound learning table, then a barrier for image reads. Called by
  * cv_rlpath_update; tests call it on a table they filled. */
 void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlParams *p);
 

@@ -111,8 +111,27 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     // the key takes the normal on the side the path came from
     vec3 gn = dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns;
     uint key = cv_rl_key(sf.p, gn);
-    // the key's weight: 0 (BSDF sampling alone) until it has learned
-    float m = (delta || !cv_rl_guides(b)) ? 0.0 : cv_rl_key_mix(key);
+    // the key's weight and first CDF texels, in one round of loads; weight
+    // 0 (BSDF sampling alone) until the key has learned, or where it does
+    // not guide
+    CvRlKey kk = CvRlKey(0, 0.0, 0.0, vec4(0.0), vec4(0.0));
+    bool guides = !delta && cv_rl_guides(b);
+    if (guides)
+        kk = cv_rl_key_load(key);
+    float m = kk.m;
+#ifndef CV_RL_ONE_SAMPLE_TARGET
+    // The reflected part of the target where the key guides (a diffuse-like
+    // lobe): the expected value of the one-sample estimate below, the
+    // integral of Q f cos that Dahm and Keller's update takes, with f
+    // Lambertian of the surface's albedo and the cosine about the key's
+    // class axis (rebuild.comp sums Q cos over the bins once per change of
+    // the key). Learning only: the image never sees it.
+    bool expected = learning && guides;
+    if (expected)
+        target += cv_mean3(cv_bsdf_albedo(b)) * kk.irr * (1.0 / CV_RL_PI);
+#else
+    bool expected = false;
+#endif
 
 #ifdef CV_AOVS
     if (depth == 0u) {
@@ -127,58 +146,92 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     if (depth >= cv_max_depth())
         return;
 
-    if (!delta && u_pass.misc.z > 0u) {
-        CvLightSample ls;
-        if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
-            vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
-            if (cv_max3(f) > 0.0) {
-                float pm = cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf(key, ls.wi) : 0.0,
-                                         cv_bsdf_pdf(b, wo, ls.wi));
-                float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
-                vec3 Ld = beta * f * ls.L * (w / ls.pdf);
-                if (cv_finite3(Ld)) {
-                    push_shadow = true;
-                    s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
-                               ls.dist * (1.0 - 1e-4));
-                    s.d = vec4(ls.wi, float(pixel));
-                    s.L = vec4(Ld, 0.0);
-                }
-            }
-        }
+    // The table's loads are issued in as few rounds as can be, each thread
+    // waiting once per round: the next-event estimate's guided density (for
+    // its MIS weight), and either the guided pick's four CDF texels or the
+    // guided density of the direction the BSDF drew, issued in the branches
+    // and used after them (the warps run both branches one after the other
+    // when u_bsdf.x puts threads on both sides of m).
+
+    // next-event estimation: the light sample now, its MIS weight below
+    CvLightSample ls;
+    vec3 f_light = vec3(0.0);
+    float pb_light = 0.0;
+    bool nee = false;
+    if (!delta && u_pass.misc.z > 0u &&
+        cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
+        f_light = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
+        nee = cv_max3(f_light) > 0.0;
+        if (nee)
+            pb_light = cv_bsdf_pdf(b, wo, ls.wi);
+    }
+    uint lbin = 0u;
+    vec4 lprob = vec4(0.0);
+    if (nee && m > 0.0) {
+        lbin = cv_rl_bin(ls.wi);
+        lprob = imageLoad(rl_guide, cv_rl_prob_texel(kk.gt, int(lbin / 4u)));
     }
 
     // one-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives it
     CvBsdfSample bs;
-    float pdf;
-    uint wbin;   // the table bin of bs.wi
-    bool specular;
-    if (m > 0.0 && u_bsdf.x < m) {
-        float pq;
-        cv_rl_sample(key, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
-        bs.f = cv_bsdf_f(b, wo, bs.wi);
-        // re-evaluated from the direction's bin (rounding may put it across
-        // a bin edge), so the density is the one the MIS weights see
-        wbin = cv_rl_bin(bs.wi);
-        pdf = cv_rl_mix_pdf(m, cv_rl_pdf_bin(key, wbin), cv_bsdf_pdf(b, wo, bs.wi));
-        specular = false;
+    uint wbin = 0u;   // the table bin of bs.wi
+    bool specular = false, sampled = true;
+    bool guided = m > 0.0 && u_bsdf.x < m;
+    vec2 ug = vec2(min(u_bsdf.x / max(m, 1e-30), 0.99999994), u_bsdf.y);
+    CvRlPick pk;
+    vec4 f0 = vec4(0.0), f1 = vec4(0.0), f2 = vec4(0.0), f3 = vec4(0.0), bprob = vec4(0.0);
+    if (guided) {
+        pk = cv_rl_pick_group(kk, ug.x);
+        f0 = imageLoad(rl_guide, pk.f);
+        f1 = imageLoad(rl_guide, pk.f + 1);
+        f2 = imageLoad(rl_guide, pk.f + 2);
+        f3 = imageLoad(rl_guide, pk.f + 3);
     } else {
         vec2 u = m > 0.0 ? vec2(min((u_bsdf.x - m) / (1.0 - m), 0.99999994), u_bsdf.y) : u_bsdf;
-        if (!cv_bsdf_sample(b, wo, u_bc.x, u, bs) || bs.pdf <= 0.0)
-            return;
-        specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
-        wbin = cv_rl_bin(bs.wi);
-        // a delta lobe is chosen with probability (1 - m) * bs.pdf
-        pdf = specular ? (1.0 - m) * bs.pdf
-                       : cv_rl_mix_pdf(m, m > 0.0 ? cv_rl_pdf_bin(key, wbin) : 0.0, bs.pdf);
+        sampled = cv_bsdf_sample(b, wo, u_bc.x, u, bs) && bs.pdf > 0.0;
+        if (sampled) {
+            specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+            wbin = cv_rl_bin(bs.wi);
+            if (m > 0.0 && !specular)
+                bprob = imageLoad(rl_guide, cv_rl_prob_texel(kk.gt, int(wbin / 4u)));
+        }
     }
+
+    if (nee) {
+        float pq_light = lprob[lbin % 4u] * float(cv_rl_bins()) / (4.0 * CV_RL_PI);
+        float pm = cv_rl_mix_pdf(m, pq_light, pb_light);
+        float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
+        vec3 Ld = beta * f_light * ls.L * (w / ls.pdf);
+        if (cv_finite3(Ld)) {
+            push_shadow = true;
+            s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
+                       ls.dist * (1.0 - 1e-4));
+            s.d = vec4(ls.wi, float(pixel));
+            s.L = vec4(Ld, 0.0);
+        }
+    }
+    if (!sampled)
+        return;
+    float pq = 0.0;   // the guided density of bs.wi
+    if (guided) {
+        // the bin drawn, not the bin of bs.wi looked up again: rounding may
+        // put a direction on a bin's edge across it, a set of measure zero
+        // where either density serves (and a round of loads less)
+        wbin = cv_rl_pick_bin(kk, pk, f0, f1, f2, f3, ug, bs.wi, pq);
+        bs.f = cv_bsdf_f(b, wo, bs.wi);
+        bs.pdf = cv_bsdf_pdf(b, wo, bs.wi);
+    } else if (m > 0.0 && !specular) {
+        pq = bprob[wbin % 4u] * float(cv_rl_bins()) / (4.0 * CV_RL_PI);
+    }
+    float qd = learning && !expected ? cv_rl_q(key, wbin) : 0.0;
+    // a delta lobe is chosen with probability (1 - m) * bs.pdf
+    float pdf = specular ? (1.0 - m) * bs.pdf : cv_rl_mix_pdf(m, pq, bs.pdf);
     if (!(pdf > 0.0))
         return;
-    if (learning) {
-        // one-sample estimate of the reflected radiance (pdf: the density
-        // the direction was drawn with; for a delta lobe its probability)
-        float qd = cv_rl_q(cv_rl_entry(key, wbin));
+    // one-sample estimate of the reflected radiance (pdf: the density the
+    // direction was drawn with; for a delta lobe its probability)
+    if (learning && !expected)
         target += qd * cv_mean3(bs.f) * abs(dot(bs.wi, sf.ns)) / pdf;
-    }
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
     if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
         return;
