@@ -389,7 +389,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_SHADE, CV_ARGS_HITS);
     if (r->rl) {
         prof_mark(r, ST_COUNT);
-        cv_rlpath_update(r->rl, it);
+        cv_rlpath_update(r->rl);
         prof_mark(r, ST_COUNT);
     }
     stage_one(r, ST_PREPARE2);

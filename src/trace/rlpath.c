@@ -19,7 +19,6 @@ struct cv_rlpath {
     CvRlParams params;
     uint32_t n_pixels;
     struct cv_program shade, rebuild;   /* copies (see render.c) */
-    uint32_t rebuild_every;             /* iterations between rebuilds */
     GLuint ubo, table, guide, path;
     GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
                                                             (r32ui, r32f), guide and path */
@@ -122,23 +121,7 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
     rl->n_pixels = n_pixels;
-    /* experiment switches (not for keeps) */
-    const char *sd[9];
-    int nsd = 0;
-    for (; defines && defines[nsd] && nsd < 6; nsd++)
-        sd[nsd] = defines[nsd];
-    const char *e = getenv("CAVALRY_RL_KEEP_EMITTED");
-    if (e && *e == '1')
-        sd[nsd++] = "CV_RL_KEEP_EMITTED";
-    e = getenv("CAVALRY_RL_ONE_SAMPLE");
-    if (e && *e == '1')
-        sd[nsd++] = "CV_RL_ONE_SAMPLE_TARGET";
-    sd[nsd] = NULL;
-    e = getenv("CAVALRY_RL_REBUILD_EVERY");
-    rl->rebuild_every = e ? (uint32_t)strtoul(e, NULL, 10) : 1;
-    if (rl->rebuild_every < 1)
-        rl->rebuild_every = 1;
-    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", sd, err);
+    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
     if (p)
         rl->shade = *p;
     if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", NULL, err)))
@@ -199,14 +182,11 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
                        GL_RGBA32F);
 }
 
-bool cv_rlpath_update(const struct cv_rlpath *rl, uint32_t iteration)
+void cv_rlpath_update(const struct cv_rlpath *rl)
 {
-    if (iteration % rl->rebuild_every != 0)
-        return false;
     /* the escaped and shade stages' adds to the table */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     cv_rlpath_dispatch_rebuild(&rl->rebuild, &rl->params);
-    return true;
 }
 
 void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlParams *p)

@@ -10,7 +10,9 @@
  * pdf reported at sampling equals the one evaluated and the host's, and the
  * pdf integrates to 1 over the sphere; the same for the one-sample mixture
  * with a Lambertian lobe, whose density must be m pQ + (1 - m) pBSDF; the
- * key's guiding weight m, reduced while it has few visits. */
+ * key's guiding weight m, reduced while it has few visits; the key's
+ * irradiance (Q, emitted light included, times the cosine about the
+ * class axis, summed over the bins) against the host's. */
 #include "config.h"
 
 #include <math.h>
@@ -59,6 +61,27 @@ static double ref_prob(const CvRlParams *p, const float *q, uint32_t bin)
 static double ref_pdf(const CvRlParams *p, const float *q, const double w[3])
 {
     return ref_prob(p, q, ref_bin(p, w)) * p->dirs.z / (4 * PI);
+}
+
+/* The key's irradiance as rebuild.comp sums it: Q (both parts) times
+ * max(cos, 0) to `axis` at 2 x 2 points per bin, times the bin's solid
+ * angle. */
+static double ref_irradiance(const CvRlParams *p, const float *q, const float *emitted,
+                             const double axis[3])
+{
+    uint32_t nz = p->dirs.x, np = p->dirs.y;
+    double irr = 0;
+    for (uint32_t b = 0; b < p->dirs.z; b++) {
+        double c = 0;
+        for (int i = 0; i < 4; i++) {
+            double z = -1 + 2 * (b / np + 0.25 + 0.5 * (i & 1)) / nz;
+            double phi = -PI + 2 * PI * (b % np + 0.25 + 0.5 * (i >> 1)) / np;
+            double r = sqrt(fmax(0, 1 - z * z));
+            c += fmax(0, r * cos(phi) * axis[0] + r * sin(phi) * axis[1] + z * axis[2]);
+        }
+        irr += (q[b] + (emitted ? emitted[b] : 0)) * c * PI / p->dirs.z;
+    }
+    return irr;
 }
 
 static double lambert(const double w[3])
@@ -281,6 +304,12 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions)
         free(raw);
     }
     set_table(&g, q, emitted, trusted, &err);
+    if (tap_ok(run(&g, 0, 64, 3, out, &err), "read the key's irradiance: %s", err.msg)) {
+        const double axis[3] = {0, 0, 1};   /* the class of `normal`: +z */
+        double want = ref_irradiance(&g.params, q, emitted, axis);
+        tap_ok(fabs(out[7] - want) < 1e-4 * want, "irradiance about the class axis %.5g, "
+               "emitted light included (host %.5g)", out[7], want);
+    }
 
     for (int mode = 0; mode <= 1; mode++) {
         const char *what = mode ? "mixture" : "learned";
