@@ -15,45 +15,73 @@
  * 4 pi / (dirs.x * dirs.y), so sampling uniformly in (z, phi) within a bin
  * is uniform in solid angle.
  *
- * The table and the path state are buffers read through buffer textures
- * bound as images (r32ui and rgba32ui), not as storage blocks: the shade
- * stage already declares 14 of the 16 storage blocks Mesa allows per shader
- * (more as the pipeline grows), and image atomics serve as well.
+ * The tables and the path state are buffers read through buffer textures
+ * bound as images, not as storage blocks: the shade stage already declares
+ * 14 of the 16 storage blocks Mesa allows per shader (more as the pipeline
+ * grows), and image atomics serve as well.
  *
- * Table (image unit CV_IMAGE_RL_Q, r32ui texels), CV_RL_KEY_TEXELS(bins)
- * texels per key k from t = k * CV_RL_KEY_TEXELS(bins):
- *   t + 2b:          the sum of the temporal-difference targets of bin b
- *                    as float bits, written by update.comp;
- *   t + 2b + 1:      visits of bin b (targets summed); Q, the learned
- *                    incident radiance (scalar: the channel mean), is the
- *                    sum over the visits: the running mean that Dahm and
- *                    Keller's learning rate 1 / (1 + visits) gives, without
- *                    a compare-and-swap loop that threads of a bright bin
- *                    would contend in;
- *   t + 2 bins + b:  the sampling CDF after bin b as float bits (the last
- *                    is exactly 1), written by rebuild.comp from the Q;
- *   t + 3 bins:      the key's guiding weight (mixture weight) as float bits:
- *                    the option's, less for a key with few visits, 0 before
- *                    its first rebuild;
- *   t + 3 bins + 1:  1 when a Q changed since the last rebuild.
+ * Learning table (image unit CV_IMAGE_RL_Q, r32ui texels),
+ * CV_RL_LEARN_TEXELS(bins) texels per key k from t = k * CV_RL_LEARN_TEXELS:
+ *   t + 3b:      the sum of the temporal-difference targets of bin b less
+ *                their emitted part (below), as float bits;
+ *   t + 3b + 1:  visits of bin b (targets summed);
+ *   t + 3b + 2:  the sum of the emitted parts of those targets: radiance of
+ *                a light that the bounce found at the next vertex, which
+ *                next-event estimation at this vertex samples already;
+ *   t + 3 bins:  1 when the key changed since its last rebuild.
+ * Q, the learned incident radiance (scalar: the channel mean), is the two
+ * sums over the visits: the running mean that Dahm and Keller's learning
+ * rate 1 / (1 + visits) gives, without a compare-and-swap loop that threads
+ * of a bright bin would contend in. Q builds the targets of the bounces
+ * before; the first sum alone over the visits (I, Q less the light that
+ * light sampling covers) is what the distribution guides by. Two sums, not
+ * Q and its emitted part: the difference of two float sums of a million
+ * lamp-sized targets loses the small indirect part to rounding.
  * An entry e = k * bins + b names one (key, bin). The sums are added by
  * imageAtomicAdd through a second, r32f image over the same buffer
  * (CV_IMAGE_RL_QF) where GL_NV_shader_atomic_float is there (NVIDIA, Mesa),
  * else by compare-and-swap on the bits (GLSL 4.5 core has no float atomics).
+ * A stage that adds to the table reads Q for its targets meanwhile: a
+ * target may see a sum without its visit, which skews learning a little
+ * and never the image (sampling and the mixture density read only the
+ * guide table, which rebuild.comp alone writes, in a dispatch of its own).
  *
- * Path state (image unit CV_IMAGE_RL_PATH, one rgba32ui texel per pixel of
- * the crop; each pixel has one path in flight): x: entry of the last bounce whose value the next hit
- * will update (CV_RL_NONE: none), y: the depth that bounce left from,
- * z: entry of a pending update, w: its target as float bits. */
+ * Guide table (image unit CV_IMAGE_RL_GUIDE, rgba32f texels),
+ * CV_RL_GUIDE_TEXELS(bins) texels per key from g = k * CV_RL_GUIDE_TEXELS,
+ * built by rebuild.comp from the learning table; with G =
+ * CV_RL_GROUPS(bins) groups of 16 bins:
+ *   g:                         x: the key's guiding weight (mixture
+ *                              weight): the option's, less for a key with
+ *                              few visits, 0 before its first rebuild;
+ *                              y: the irradiance that Q gives a surface
+ *                              facing the key's class axis, the integral
+ *                              of Q cos over the hemisphere about it;
+ *   g + 1 + i:                 the CDF at the end of groups 4i .. 4i + 3
+ *                              (1 past the last group), i < CV_RL_COARSE(bins);
+ *   g + 1 + coarse + 4j + i:   the CDF after bins 16j + 4i .. 16j + 4i + 3
+ *                              (1 past the last bin);
+ *   g + 1 + coarse + 4G + i:   the probabilities of bins 4i .. 4i + 3 (0
+ *                              past the last), each the difference of its
+ *                              CDF value and the one before, as sampling
+ *                              draws it.
+ * Sampling finds its group in the coarse texels and its bin in the group's
+ * four: two rounds of loads at 128 bins, where a binary search over the CDF
+ * takes seven one after the other (the shade stage waits on each).
+ *
+ * Path state (image unit CV_IMAGE_RL_PATH, one rg32ui texel per pixel of
+ * the crop; each pixel has one path in flight): x: entry of the last bounce
+ * whose value the next vertex (a hit, or the environment) learns from
+ * (CV_RL_NONE: none), y: the depth that bounce left from. */
 #ifndef CV_SHARED_RLPATH_H
 #define CV_SHARED_RLPATH_H
 
 #include "shared/common.h"
 #include "shared/bindings.h"
 
-#define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: Q bits and visits */
-#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rgba32ui: path state per pixel */
-#define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the table again, for float atomics */
+#define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: learning table */
+#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rg32ui: path state per pixel */
+#define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the learning table again, for float atomics */
+#define CV_IMAGE_RL_GUIDE 3    /* imageBuffer rgba32f: guide table */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */
 
 #define CV_RL_NONE 0xffffffffu
@@ -68,8 +96,14 @@
 #define CV_RL_FLOOR 0.02f
 /* Normal classes per cell: +x, -x, +y, -y, +z, -z. */
 #define CV_RL_ORIENTS 6u
-/* Texels per key: Q and visits per bin, the CDF, mixture weight, dirty flag. */
-#define CV_RL_KEY_TEXELS(bins) (3u * (bins) + 2u)
+/* Texels per key of the learning table: two sums and visits per bin, the
+ * dirty flag. */
+#define CV_RL_LEARN_TEXELS(bins) (3u * (bins) + 1u)
+/* The guide table's groups of 16 bins, coarse CDF texels, and texels per
+ * key: weight, coarse CDF, fine CDF, probabilities. */
+#define CV_RL_GROUPS(bins) (((bins) + 15u) / 16u)
+#define CV_RL_COARSE(bins) ((CV_RL_GROUPS(bins) + 3u) / 4u)
+#define CV_RL_GUIDE_TEXELS(bins) (1u + CV_RL_COARSE(bins) + 4u * CV_RL_GROUPS(bins) + ((bins) + 3u) / 4u)
 /* A key guides with the full mixture weight once its bins have this many
  * visits on average; before, with the weight times visits / (this * bins):
  * a young key's Q is one or two noisy samples, and sampling by it alone

@@ -61,13 +61,16 @@
 /* Indirect dispatch slots (args[slot] = groups x, y, z, unused); the byte
  * offset of slot s in the buffer is CV_ARGS_BYTES(s). CV_ARGS_HITS covers
  * the CV_Q_HITS hits, CV_ARGS_HITS_B the CV_Q_HITS_B ones: the path
- * integrator shades each bin with its own program (trace/shade.comp). */
+ * integrator shades each bin with its own program (trace/shade.comp).
+ * CV_ARGS_HITS_ALL covers both bins, for a shade stage built without
+ * CV_SHADE_BIN (rlpath's). */
 #define CV_ARGS_RAYS 0u
 #define CV_ARGS_HITS 1u
 #define CV_ARGS_ESCAPED 2u
 #define CV_ARGS_SHADOW 3u
 #define CV_ARGS_DONE 4u
 #define CV_ARGS_HITS_B 5u
+#define CV_ARGS_HITS_ALL 6u
 #define CV_ARGS_OFFSET 32
 #define CV_ARGS_BYTES(s) (CV_ARGS_OFFSET + 16 * (s))
 
@@ -81,10 +84,10 @@
 CV_STRUCT(CvTraceQueues) {
     CV_UINT count[8];      /* CV_Q_*; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
-    CV_UVEC4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
+    CV_UVEC4 args[7];      /* indirect dispatch arguments, CV_ARGS_* */
     CV_UVEC4 stats[2];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 160);
+CV_CHECK_SIZE(CvTraceQueues, 176);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
  * and the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT. */

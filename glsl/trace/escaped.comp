@@ -1,14 +1,37 @@
 #version 450
+#extension GL_NV_shader_atomic_float : enable
 // glsl/trace/escaped.comp: rays that left the scene pick up environment
 // light, MIS-weighted against the light sampling that could have found the
 // same direction (not for camera rays or after specular bounces); their
 // paths end, so their pixels go to the done queue. Runs every iteration;
-// the host defines CV_HAS_ENV when the scene has an environment light.
+// the host defines CV_HAS_ENV when the scene has an environment light, and
+// CV_RLPATH for the rlpath integrator, whose bounce that escaped learns the
+// environment radiance it found (0 without an environment) in the Q-table
+// (rlpath/guide.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "geometry.glsl"
 #include "lights.glsl"
+#ifdef CV_RLPATH
+#define CV_RL_TABLE_WRITE
+#define CV_RL_TABLE_UPDATE
+#include "rlpath/guide.glsl"
+layout(rg32ui, binding = CV_IMAGE_RL_PATH) uniform readonly uimageBuffer rl_path;
+
+// The environment's part of the target is not left out of guiding as a
+// lamp's is (shade.comp): light sampling covers it, but an environment
+// seen through openings is what guiding is for.
+void cv_rl_learn_escaped(CvRayItem r)
+{
+    uvec2 st = imageLoad(rl_path, int(r.o.w)).xy;
+    uint depth = cv_ray_depth(r);
+    if (depth == 0u || st.x == CV_RL_NONE || st.y + 1u != depth)
+        return;
+    vec3 Le = cv_env_Le(r.d.xyz);
+    cv_rl_update(st.x, (Le.x + Le.y + Le.z) * (1.0 / 3.0), 0.0);
+}
+#endif
 
 void main()
 {
@@ -18,6 +41,9 @@ void main()
     if (valid) {
         CvRayItem r = cv_ray_in(cv_escaped_ray(i));
         pixel = uint(r.o.w);
+#ifdef CV_RLPATH
+        cv_rl_learn_escaped(r);
+#endif
 #ifdef CV_HAS_ENV
         vec3 Le = cv_env_Le(r.d.xyz);
         if (cv_max3(Le) > 0.0) {

@@ -41,9 +41,9 @@ void main()
     q.args[CV_ARGS_RAYS] = cv_groups(n);
     cv_stat_add(CV_STAT_EXTEND, n);
 #elif PREPARE_MODE == 1
-    // rlpath, which does not bin, shades CV_ARGS_HITS alone
     q.args[CV_ARGS_HITS] = cv_groups(q.count[CV_Q_HITS]);
     q.args[CV_ARGS_HITS_B] = cv_groups(q.count[CV_Q_HITS_B]);
+    q.args[CV_ARGS_HITS_ALL] = cv_groups(q.count[CV_Q_HITS] + q.count[CV_Q_HITS_B]);
     q.args[CV_ARGS_ESCAPED] = cv_groups(q.count[CV_Q_ESCAPED]);
 #else
     q.args[CV_ARGS_SHADOW] = cv_groups(q.count[CV_Q_SHADOW]);

@@ -29,6 +29,6 @@ GLSL_FILES += glsl/shared/envmap.h glsl/trace/light/light.glsl glsl/trace/light/
 libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h
 GLSL_FILES += glsl/shared/rlpath.h \
 	glsl/trace/rlpath/guide.glsl glsl/trace/rlpath/shade.comp \
-	glsl/trace/rlpath/update.comp glsl/trace/rlpath/test_sample.comp \
+	glsl/trace/rlpath/test_sample.comp \
 	glsl/trace/rlpath/rebuild.comp
 # --- end of rlpath ---

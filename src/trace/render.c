@@ -68,7 +68,7 @@ struct cv_renderer {
     struct {
         bool on;
         GLuint *queries;           /* before, after pairs */
-        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath update */
+        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath rebuild */
         size_t n, cap, cap_stage;
         double ms[ST_COUNT + 1];
     } prof;
@@ -76,7 +76,7 @@ struct cv_renderer {
 
 static const char *const stage_names[ST_COUNT + 1] = {
     "generate", "regenerate", "prepare0", "prepare1", "prepare2", "intersect",
-    "escaped",  "shade",      "shade-b",  "shadow",   "resolve",  "rlpath-update",
+    "escaped",  "shade",      "shade-b",  "shadow",   "resolve",  "rlpath-rebuild",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -286,18 +286,25 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (!r->scene->has_textures)
         defines[nd++] = "CV_NO_TEXTURES";
     defines[nd] = NULL;
-    /* the escaped stage alone depends on the environment */
-    const char *escaped[9];
-    defines_plus(escaped, defines, nd, r->has_env ? "CV_HAS_ENV" : NULL);
+    bool rl = p->integrator == CV_RENDER_RLPATH;
+    /* the escaped stage alone depends on the environment; with rlpath it
+     * learns too */
+    const char *escaped[10];
+    int ne = nd;
+    memcpy(escaped, defines, (size_t)nd * sizeof(*escaped));
+    if (r->has_env)
+        escaped[ne++] = "CV_HAS_ENV";
+    if (rl)
+        escaped[ne++] = "CV_RLPATH";
+    escaped[ne] = NULL;
     const char *modes[5][2] = {{"GENERATE_MODE=0", NULL}, {"GENERATE_MODE=1", NULL},
                                {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                                {"PREPARE_MODE=2", NULL}};
-    bool rl = p->integrator == CV_RENDER_RLPATH;
-    /* path bins hits by material for its shade stage (intersect.comp);
-     * rlpath's update stage reads the hit queue as one bin */
+    /* hits binned by material for the shade stages (intersect.comp) */
     const char *intersect[9];
-    defines_plus(intersect, defines, nd, rl ? NULL : "CV_HIT_BINS");
-    /* path shades each bin with its own program (shade.comp) */
+    defines_plus(intersect, defines, nd, "CV_HIT_BINS");
+    /* path shades each bin with its own program (shade.comp); rlpath's one
+     * shade program takes both bins in one dispatch */
     const char *shade_a[9], *shade_b[9];
     defines_plus(shade_a, defines, nd, "CV_SHADE_BIN=0");
     defines_plus(shade_b, defines, nd, "CV_SHADE_BIN=1");
@@ -400,7 +407,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_one(r, ST_PREPARE1);
     stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
     if (r->rl) {
-        stage_indirect(r, ST_SHADE, CV_ARGS_HITS);
+        stage_indirect(r, ST_SHADE, CV_ARGS_HITS_ALL);
     } else {
         /* The bins' programs share no data (each pixel's hit is in one
          * bin; queue slots come from atomics), so the first needs no

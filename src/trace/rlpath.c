@@ -18,10 +18,10 @@ _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
 struct cv_rlpath {
     CvRlParams params;
     uint32_t n_pixels;
-    struct cv_program shade, update_hits, update_escaped, rebuild;  /* copies (see render.c) */
-    GLuint ubo, table, path;
-    GLuint table_tex, table_ftex, path_tex;   /* buffer textures over table (r32ui,
-                                                 r32f) and path */
+    struct cv_program shade, rebuild;   /* copies (see render.c) */
+    GLuint ubo, table, guide, path;
+    GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
+                                                            (r32ui, r32f), guide and path */
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -79,7 +79,8 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
     out->grid_scale = (cv_vec4){scale[0], scale[1], scale[2], CV_RL_FLOOR};
     out->dims = (cv_uvec4){dims[0], dims[1], dims[2], dims[0] * dims[1] * dims[2]};
     out->dirs = (cv_uvec4){nz, np, nz * np, out->dims.w * CV_RL_ORIENTS};
-    if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30))
+    if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30) ||
+        cv_rlpath_guide_bytes(out) > ((uint64_t)1 << 30))
         return cv_fail(err, "rlpath table of %u cells x %u normal classes x %u directions is "
                        "above 1 GiB", out->dims.w, CV_RL_ORIENTS, out->dirs.z);
     return true;
@@ -87,7 +88,12 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
 
 uint64_t cv_rlpath_table_bytes(const CvRlParams *p)
 {
-    return (uint64_t)p->dirs.w * CV_RL_KEY_TEXELS(p->dirs.z) * sizeof(uint32_t);
+    return (uint64_t)p->dirs.w * CV_RL_LEARN_TEXELS(p->dirs.z) * sizeof(uint32_t);
+}
+
+uint64_t cv_rlpath_guide_bytes(const CvRlParams *p)
+{
+    return (uint64_t)p->dirs.w * CV_RL_GUIDE_TEXELS(p->dirs.z) * 4 * sizeof(float);
 }
 
 GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
@@ -118,11 +124,6 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
     if (p)
         rl->shade = *p;
-    const char *d0[] = {"UPDATE_MODE=0", NULL}, *d1[] = {"UPDATE_MODE=1", NULL};
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d0, err)))
-        rl->update_hits = *p;
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/update.comp", d1, err)))
-        rl->update_escaped = *p;
     if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", NULL, err)))
         rl->rebuild = *p;
     if (!p) {
@@ -130,14 +131,18 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         return false;
     }
     /* every path starts with nothing to learn: all state words CV_RL_NONE */
-    size_t path_bytes = (size_t)(n_pixels ? n_pixels : 1) * 4 * sizeof(uint32_t);
+    size_t path_bytes = (size_t)(n_pixels ? n_pixels : 1) * 2 * sizeof(uint32_t);
     void *none = cv_xmalloc(path_bytes);
     memset(none, 0xff, path_bytes);
     rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);
     if (rl->ubo)
         rl->table = cv_buffer_create((size_t)cv_rlpath_table_bytes(layout), NULL,
-                                     "rlpath Q-table", err);
+                                     "rlpath learning table", err);
+    /* zero: every key's guiding weight 0 until its first rebuild */
     if (rl->table)
+        rl->guide = cv_buffer_create((size_t)cv_rlpath_guide_bytes(layout), NULL,
+                                     "rlpath guide table", err);
+    if (rl->guide)
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);
     if (rl->path)
@@ -147,7 +152,10 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         rl->table_ftex = cv_rlpath_buffer_texture(rl->table, GL_R32F,
                                                   cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_ftex)
-        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RGBA32UI, path_bytes / 16, err);
+        rl->guide_tex = cv_rlpath_buffer_texture(rl->guide, GL_RGBA32F,
+                                                 cv_rlpath_guide_bytes(layout) / 16, err);
+    if (rl->guide_tex)
+        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RG32UI, path_bytes / 8, err);
     if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);
@@ -168,19 +176,16 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
     glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
-                       GL_RGBA32UI);
+                       GL_RG32UI);
     glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+    glBindImageTexture(CV_IMAGE_RL_GUIDE, rl->guide_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32F);
 }
 
 void cv_rlpath_update(const struct cv_rlpath *rl)
 {
-    /* the shade stage's image writes (path state) */
+    /* the escaped and shade stages' adds to the table */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    /* the table and path state are images */
-    cv_program_dispatch_indirect(&rl->update_hits, CV_ARGS_BYTES(CV_ARGS_HITS),
-                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    cv_program_dispatch_indirect(&rl->update_escaped, CV_ARGS_BYTES(CV_ARGS_ESCAPED),
-                                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     cv_rlpath_dispatch_rebuild(&rl->rebuild, &rl->params);
 }
 
@@ -199,15 +204,17 @@ void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlPara
 bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
                           struct cv_error *err)
 {
-    size_t keys = rl->params.dirs.w, nb = rl->params.dirs.z, stride = CV_RL_KEY_TEXELS(nb);
+    size_t keys = rl->params.dirs.w, nb = rl->params.dirs.z, stride = CV_RL_LEARN_TEXELS(nb);
     size_t bytes = (size_t)cv_rlpath_table_bytes(&rl->params);
     uint32_t *raw = cv_xmalloc(bytes);
     bool ok = cv_buffer_read(rl->table, 0, bytes, raw, err);
     for (size_t k = 0; ok && k < keys; k++)
         for (size_t b = 0; b < nb; b++) {
-            float sum;
-            memcpy(&sum, &raw[k * stride + 2 * b], sizeof(float));
-            uint32_t n = raw[k * stride + 2 * b + 1];
+            float s_i, s_e;
+            memcpy(&s_i, &raw[k * stride + 3 * b], sizeof(float));
+            memcpy(&s_e, &raw[k * stride + 3 * b + 2], sizeof(float));
+            uint32_t n = raw[k * stride + 3 * b + 1];
+            float sum = s_i + s_e;
             if (q)
                 q[k * nb + b] = n ? sum / (float)n : sum;
             if (visits)
@@ -231,10 +238,13 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
         glDeleteTextures(1, &rl->table_tex);
     if (rl->table_ftex)
         glDeleteTextures(1, &rl->table_ftex);
+    if (rl->guide_tex)
+        glDeleteTextures(1, &rl->guide_tex);
     if (rl->path_tex)
         glDeleteTextures(1, &rl->path_tex);
     cv_buffer_destroy(&rl->ubo);
     cv_buffer_destroy(&rl->table);
+    cv_buffer_destroy(&rl->guide);
     cv_buffer_destroy(&rl->path);
     free(rl);
     *rlp = NULL;

@@ -1,6 +1,9 @@
-/* rlpath_room.h: the test room of the rlpath tests and benchmark: a closed
+/* rlpath_room.h: the test rooms of the rlpath tests and benchmark: a closed
  * room split by a partition that stops short of the ceiling, the lamp on
- * one side, so that most of the other side is lit indirectly. */
+ * one side, so that most of the other side is lit indirectly; and the same
+ * room with a black-backed lamp, a rough metal panel (not guided: sampled by
+ * its BSDF and learning from one-sample targets) and coated panels (guided,
+ * with a glossy coat). */
 #ifndef CV_TESTS_TRACE_RLPATH_ROOM_H
 #define CV_TESTS_TRACE_RLPATH_ROOM_H
 
@@ -25,5 +28,37 @@ static const char rlpath_room[] =
     "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.3 0.2 ]\n"
     "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
     "  \"point3 P\" [ 0 -1 -1  0 -1 1  0 0.5 1  0 0.5 -1 ]\n";
+
+static const char rlpath_room_glossy[] =
+    "LookAt 0.9 -0.3 0.9  0.4 -0.4 -1  0 1 0\n"
+    "Camera \"perspective\" \"float fov\" [ 60 ]\n"
+    "Sampler \"independent\" \"integer pixelsamples\" [ 16 ]\n"
+    "Integrator \"path\" \"integer maxdepth\" [ 5 ]\n"
+    "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
+    "  \"string filename\" \"room.exr\"\n"
+    "PixelFilter \"box\"\n"
+    "WorldBegin\n"
+    "AttributeBegin\n"
+    "  AreaLightSource \"diffuse\" \"rgb L\" [ 20 20 20 ]\n"
+    "  Material \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\n"
+    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "    \"point3 P\" [ -0.8 0.9 -0.3  -0.2 0.9 -0.3  -0.2 0.9 0.3  -0.8 0.9 0.3 ]\n"
+    "AttributeEnd\n"
+    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 3 7 0 7 4\n"
+    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
+    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n"
+    "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.3 0.2 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ 0 -1 -1  0 -1 1  0 0.5 1  0 0.5 -1 ]\n"
+    "Material \"conductor\" \"float roughness\" [ 0.2 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ -0.9 -1 0.2  -0.3 -1 0.6  -0.3 0.2 0.6  -0.9 0.2 0.2 ]\n"
+    "Material \"coateddiffuse\" \"rgb reflectance\" [ 0.8 0.75 0.62 ] \"float roughness\" [ 0.05 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ 0.99 -1 -0.8  0.99 -1 0.8  0.99 0.4 0.8  0.99 0.4 -0.8 ]\n"
+    "Material \"coateddiffuse\" \"rgb reflectance\" [ 0.08 0.15 0.55 ] \"float roughness\" [ 0.2 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ -0.9 -0.99 -0.9  0.9 -0.99 -0.9  0.9 -0.99 0.9  -0.9 -0.99 0.9 ]\n";
 
 #endif

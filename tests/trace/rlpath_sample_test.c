@@ -1,14 +1,18 @@
 /* rlpath_sample_test.c: the learned directional distribution of the rlpath
- * Q-table (glsl/trace/rlpath/guide.glsl, its CDF built by rebuild.comp) on
- * the GPU against a host reference: the table layout from the options; a
- * key filled with a known random pattern (some bins 0, so the floor
- * matters): directions drawn from it
+ * tables (glsl/trace/rlpath/guide.glsl, its guide texels built by
+ * rebuild.comp) on the GPU against a host reference: the table layout from
+ * the options; a key filled with a known random pattern (some bins 0, so
+ * the floor matters, and some with emitted light, which guiding leaves to
+ * light sampling), at 128 bins (two coarse CDF texels) and at 990 (a
+ * binary search over sixteen): directions drawn from it
  * follow its pdf (chi-square over a histogram twice as fine as the bins in
  * each coordinate, so uniformity within a bin is tested too; p >= 0.01), the
  * pdf reported at sampling equals the one evaluated and the host's, and the
  * pdf integrates to 1 over the sphere; the same for the one-sample mixture
  * with a Lambertian lobe, whose density must be m pQ + (1 - m) pBSDF; the
- * key's guiding weight m, reduced while it has few visits. */
+ * key's guiding weight m, reduced while it has few visits; the key's
+ * irradiance (Q, emitted light included, times the cosine about the
+ * class axis, summed over the bins) against the host's. */
 #include "config.h"
 
 #include <math.h>
@@ -59,6 +63,27 @@ static double ref_pdf(const CvRlParams *p, const float *q, const double w[3])
     return ref_prob(p, q, ref_bin(p, w)) * p->dirs.z / (4 * PI);
 }
 
+/* The key's irradiance as rebuild.comp sums it: Q (both parts) times
+ * max(cos, 0) to `axis` at 2 x 2 points per bin, times the bin's solid
+ * angle. */
+static double ref_irradiance(const CvRlParams *p, const float *q, const float *emitted,
+                             const double axis[3])
+{
+    uint32_t nz = p->dirs.x, np = p->dirs.y;
+    double irr = 0;
+    for (uint32_t b = 0; b < p->dirs.z; b++) {
+        double c = 0;
+        for (int i = 0; i < 4; i++) {
+            double z = -1 + 2 * (b / np + 0.25 + 0.5 * (i & 1)) / nz;
+            double phi = -PI + 2 * PI * (b % np + 0.25 + 0.5 * (i >> 1)) / np;
+            double r = sqrt(fmax(0, 1 - z * z));
+            c += fmax(0, r * cos(phi) * axis[0] + r * sin(phi) * axis[1] + z * axis[2]);
+        }
+        irr += (q[b] + (emitted ? emitted[b] : 0)) * c * PI / p->dirs.z;
+    }
+    return irr;
+}
+
 static double lambert(const double w[3])
 {
     double c = w[0] * normal[0] + w[1] * normal[1] + w[2] * normal[2];
@@ -88,7 +113,7 @@ static void grid_dir(uint32_t iz, uint32_t ip, double fz, double fp, uint32_t hz
 struct rig {
     struct cv_gpu *gpu;
     CvRlParams params;
-    GLuint ubo, table, out, in, table_tex;
+    GLuint ubo, table, guide, out, in, table_tex, guide_tex;
     uint32_t key;   /* cell 0, the class of `normal` */
 };
 
@@ -104,6 +129,7 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
         return false;
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
     glBindImageTexture(CV_IMAGE_RL_Q, g->table_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(CV_IMAGE_RL_GUIDE, g->guide_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     cv_buffer_bind(g->out, CV_BIND_STAGE0 + 12);
     cv_buffer_bind(g->in, CV_BIND_STAGE0 + 13);
     glUseProgram(prog->id);
@@ -114,20 +140,25 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
            cv_gl_check(err, "test_sample mode %d", mode);
 }
 
-/* Fills the test key with q and `visits` per bin, marks it changed and
- * builds its distribution with rebuild.comp, as the renderer does. */
-static void set_table(struct rig *g, const float *q, uint32_t visits, struct cv_error *err)
+/* Fills the test key with `visits` per bin whose targets' means are q
+ * without and `emitted` (NULL: none) in their emitted part, marks it
+ * changed and builds its distribution with rebuild.comp, as the renderer
+ * does. */
+static void set_table(struct rig *g, const float *q, const float *emitted, uint32_t visits,
+                      struct cv_error *err)
 {
-    uint32_t n = g->params.dirs.z, stride = CV_RL_KEY_TEXELS(n);
+    uint32_t n = g->params.dirs.z, stride = CV_RL_LEARN_TEXELS(n);
     size_t bytes = (size_t)cv_rlpath_table_bytes(&g->params);
     uint32_t *raw = calloc(bytes / 4, sizeof(uint32_t));
     uint32_t *k = raw + (size_t)g->key * stride;
     for (uint32_t b = 0; b < n; b++) {
-        float sum = q[b] * (float)visits;   /* Q is the target sum over the visits */
-        memcpy(&k[2 * b], &sum, sizeof(float));
-        k[2 * b + 1] = visits;
+        /* the sums over the visits are the means */
+        float sum = q[b] * (float)visits, sum_e = emitted ? emitted[b] * (float)visits : 0;
+        memcpy(&k[3 * b], &sum, sizeof(float));
+        k[3 * b + 1] = visits;
+        memcpy(&k[3 * b + 2], &sum_e, sizeof(float));
     }
-    k[3 * n + 1] = 1;
+    k[3 * n] = 1;   /* the dirty flag */
     tap_ok(cv_buffer_upload(g->table, 0, bytes, raw, err), "table upload");
     free(raw);
     struct cv_program *rebuild = cv_program_get(g->gpu, "trace/rlpath/rebuild.comp", NULL, err);
@@ -135,6 +166,8 @@ static void set_table(struct rig *g, const float *q, uint32_t visits, struct cv_
         return;
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
     glBindImageTexture(CV_IMAGE_RL_Q, g->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(CV_IMAGE_RL_GUIDE, g->guide_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32F);
     cv_rlpath_dispatch_rebuild(rebuild, &g->params);
 }
 
@@ -166,21 +199,28 @@ static void test_layout(void)
            "empty bounds give one cell");
 }
 
-int main(void)
+/* Everything on the GPU for a key of about `directions` bins. */
+static void test_bins(struct cv_gpu *gpu, uint32_t directions)
 {
-    test_layout();
     struct rig g = {0};
-    g.gpu = test_gpu_open(CV_BACKEND_AUTO);
+    g.gpu = gpu;
     struct cv_error err = {{0}};
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     const float m = 0.5f;
-    if (!tap_ok(cv_rlpath_layout(lo, hi, 1, 128, m, &g.params, &err), "layout: %s", err.msg))
-        return tap_done();
+    bool laid = cv_rlpath_layout(lo, hi, 1, directions, m, &g.params, &err);
+    if (!tap_ok(laid, "layout of %u directions: %u x %u bins: %s", directions, g.params.dirs.x,
+                g.params.dirs.y, err.msg))
+        return;
     const uint32_t nb = g.params.dirs.z, N = 1u << 18;
     g.key = 4;   /* cell 0, +z */
-    const uint32_t HZ = 2 * g.params.dirs.x, HP = 2 * g.params.dirs.y, QZ = 256, QP = 512;
+    const uint32_t HZ = 2 * g.params.dirs.x, HP = 2 * g.params.dirs.y;
+    /* the quadrature grid (QZ x QP, at least 256 x 512) splits every bin
+     * alike, so the midpoint rule integrates the learned pdf exactly */
+    const uint32_t QZ = g.params.dirs.x * ((255 + g.params.dirs.x) / g.params.dirs.x),
+                   QP = g.params.dirs.y * ((511 + g.params.dirs.y) / g.params.dirs.y);
     g.ubo = cv_buffer_create(sizeof(g.params), &g.params, "test rl params", &err);
     g.table = cv_buffer_create(cv_rlpath_table_bytes(&g.params), NULL, "test rl table", &err);
+    g.guide = cv_buffer_create(cv_rlpath_guide_bytes(&g.params), NULL, "test rl guide", &err);
     g.out = cv_buffer_create((size_t)(N > QZ * QP ? N : QZ * QP) * 8 * sizeof(float), NULL,
                              "test out", &err);
     float *inq = calloc((size_t)QZ * QP * 4, sizeof(float));
@@ -195,14 +235,18 @@ int main(void)
     if (g.table)
         g.table_tex = cv_rlpath_buffer_texture(g.table, GL_R32UI,
                                                cv_rlpath_table_bytes(&g.params) / 4, &err);
-    if (!tap_ok(g.ubo && g.table && g.out && g.in && g.table_tex, "buffers: %s", err.msg))
-        return tap_done();
+    if (g.guide)
+        g.guide_tex = cv_rlpath_buffer_texture(g.guide, GL_RGBA32F,
+                                               cv_rlpath_guide_bytes(&g.params) / 16, &err);
+    if (!tap_ok(g.ubo && g.table && g.guide && g.out && g.in && g.table_tex && g.guide_tex,
+                "buffers: %s", err.msg))
+        return;
     float *out = malloc((size_t)(N > QZ * QP ? N : QZ * QP) * 8 * sizeof(float));
 
     /* an empty key is uniform */
     float *q = calloc(nb, sizeof(float));
     const uint32_t trusted = 100;   /* visits per bin: the full weight */
-    set_table(&g, q, trusted, &err);
+    set_table(&g, q, NULL, trusted, &err);
     if (tap_ok(run(&g, 0, 1024, 1, out, &err), "sample empty cell: %s", err.msg)) {
         double worst = 0;
         for (uint32_t i = 0; i < 1024; i++) {
@@ -217,7 +261,7 @@ int main(void)
     }
 
     /* a young key guides less: m times its mean visits per bin over the trust */
-    set_table(&g, q, 1, &err);
+    set_table(&g, q, NULL, 1, &err);
     if (tap_ok(run(&g, 0, 64, 1, out, &err), "sample a young key: %s", err.msg)) {
         double want = m * (1.0 / CV_RL_TRUST_VISITS);
         tap_ok(fabs(out[6] - want) < 1e-6, "a key with 1 visit per bin guides with weight %g "
@@ -232,28 +276,40 @@ int main(void)
         q[b] = (b % 4 == 1) ? 0.0f : (float)(u * u * u * 10);
     }
     q[37] = 40;   /* one bright bin */
+    /* lamps seen directly in some bins: bright, and no weight in guiding */
+    float *emitted = calloc(nb, sizeof(float));
+    for (uint32_t b = 3; b < nb; b += 11)
+        emitted[b] = 500;
 
     /* a bin past CV_RL_MAX_VISITS: the rebuild halves visits, keeps Q */
     const uint32_t many = 3 * CV_RL_MAX_VISITS;
-    set_table(&g, q, many, &err);
+    set_table(&g, q, emitted, many, &err);
     {
-        uint32_t stride = CV_RL_KEY_TEXELS(nb);
+        uint32_t stride = CV_RL_LEARN_TEXELS(nb);
         uint32_t *raw = malloc((size_t)stride * 4);
         bool ok = cv_buffer_read(g.table, (size_t)g.key * stride * 4, (size_t)stride * 4, raw, &err);
         uint32_t bad_n = 0, bad_q = 0;
         for (uint32_t b = 0; ok && b < nb; b++) {
-            float sum;
-            memcpy(&sum, &raw[2 * b], sizeof(float));
-            if (raw[2 * b + 1] != many / 2)
+            float sum, sum_e;
+            memcpy(&sum, &raw[3 * b], sizeof(float));
+            memcpy(&sum_e, &raw[3 * b + 2], sizeof(float));
+            if (raw[3 * b + 1] != many / 2)
                 bad_n++;
-            if (fabs(sum / raw[2 * b + 1] - q[b]) > 1e-5 * q[b] + 1e-30)
+            if (fabs(sum / raw[3 * b + 1] - q[b]) > 1e-5 * q[b] + 1e-30 ||
+                fabs(sum_e / raw[3 * b + 1] - emitted[b]) > 1e-5 * emitted[b] + 1e-30)
                 bad_q++;
         }
         tap_ok(ok && bad_n == 0 && bad_q == 0, "%u visits halved to %u with Q kept "
                "(%u visit counts, %u Q differ): %s", many, many / 2, bad_n, bad_q, err.msg);
         free(raw);
     }
-    set_table(&g, q, trusted, &err);
+    set_table(&g, q, emitted, trusted, &err);
+    if (tap_ok(run(&g, 0, 64, 3, out, &err), "read the key's irradiance: %s", err.msg)) {
+        const double axis[3] = {0, 0, 1};   /* the class of `normal`: +z */
+        double want = ref_irradiance(&g.params, q, emitted, axis);
+        tap_ok(fabs(out[7] - want) < 1e-4 * want, "irradiance about the class axis %.5g, "
+               "emitted light included (host %.5g)", out[7], want);
+    }
 
     for (int mode = 0; mode <= 1; mode++) {
         const char *what = mode ? "mixture" : "learned";
@@ -338,13 +394,24 @@ int main(void)
     }
 
     free(q);
+    free(emitted);
     free(out);
     free(inq);
     glDeleteTextures(1, &g.table_tex);
+    glDeleteTextures(1, &g.guide_tex);
     cv_buffer_destroy(&g.ubo);
     cv_buffer_destroy(&g.table);
+    cv_buffer_destroy(&g.guide);
     cv_buffer_destroy(&g.out);
     cv_buffer_destroy(&g.in);
-    cv_gpu_destroy(&g.gpu);
+}
+
+int main(void)
+{
+    test_layout();
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    test_bins(gpu, 128);
+    test_bins(gpu, 1000);
+    cv_gpu_destroy(&gpu);
     return tap_done();
 }

@@ -3,7 +3,7 @@
 // tests/trace/rlpath_sample_test.c on the key of cell 0 and TEST_NORMAL's
 // class, in a table the test filled and built with rebuild.comp.
 // TEST_MODE 0: draw directions from the learned distribution (w, pdf at
-// sampling; pdf evaluated again at w). TEST_MODE 1: draw from the mixture of
+// sampling; pdf evaluated again at w, the key's weight and irradiance). TEST_MODE 1: draw from the mixture of
 // guiding (weight m) and a Lambertian lobe about TEST_NORMAL, the way
 // rlpath/shade.comp does, with the key's guiding weight m (w, mixture pdf;
 // pdf of each part, m). TEST_MODE 2: evaluate the learned and mixture pdfs
@@ -49,6 +49,7 @@ void main()
         return;
     uint key = cv_rl_orient(TEST_NORMAL);   // cell 0
     float m = cv_rl_key_mix(key);
+    float irr = cv_rl_key_load(key).irr;
 #if TEST_MODE == 2
     vec3 w = inv[i].xyz;
     float pq = cv_rl_pdf(key, w);
@@ -62,7 +63,7 @@ void main()
 #if TEST_MODE == 0
     cv_rl_sample(key, u, w, pdf);
     outv[2u * i] = vec4(w, pdf);
-    outv[2u * i + 1u] = vec4(cv_rl_pdf(key, w), 0.0, m, 0.0);
+    outv[2u * i + 1u] = vec4(cv_rl_pdf(key, w), 0.0, m, irr);
 #else
     if (u.x < m)
         cv_rl_sample(key, vec2(min(u.x / m, 0.99999994), u.y), w, pdf);
