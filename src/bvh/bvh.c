@@ -13,6 +13,7 @@
 #include "bvh/bvh.h"
 #include "bvh/radix_sort.h"
 #include "bvh/scan.h"
+#include "bvh/treelet_schedule.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bvh.h"
 #include "gpu/buffer.h"
@@ -35,7 +36,8 @@ struct cv_bvh {
 struct build {
     struct cv_gpu *gpu;
     uint32_t n;
-    GLuint bounds_a, bounds_b, keys, vals, nodes, counters, offsets, live, starts, info, out_nodes;
+    GLuint bounds_a, bounds_b, keys, vals, nodes, counters, offsets, live, starts, info, out_nodes,
+        schedule;
     struct cv_radix_sort *sort;
     struct cv_scan *scan;
     GLuint queries[PH_COUNT];
@@ -104,10 +106,20 @@ static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct
     return cv_buffer_create((size_t)bytes, NULL, label, err);
 }
 
+/* The treelet shader's work lists (src/bvh/treelet_schedule.h). */
+static GLuint treelet_schedule(struct build *b, int leaves, struct cv_error *err)
+{
+    uint32_t sched[CV_TREELET_SCHEDULE_MAX];
+    size_t n = cv_treelet_schedule(leaves, sched);
+    b->scratch += n * 4;
+    return cv_buffer_create(n * 4, sched, "bvh treelet schedule", err);
+}
+
 static void build_free(struct build *b)
 {
     GLuint *bufs[] = {&b->bounds_a, &b->bounds_b, &b->keys, &b->vals, &b->nodes,
-                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes};
+                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes,
+                      &b->schedule};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         cv_buffer_destroy(bufs[i]);
     cv_radix_sort_destroy(&b->sort);
@@ -246,6 +258,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
      * the leaf boxes at STAGE0 + 3 are not needed after refit. */
     cv_buffer_zero(b->live);
     cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
+    cv_buffer_bind(b->schedule, CV_BIND_STAGE0 + 4);
     for (int r = 0; r < p->treelet_rounds; r++) {
         cv_buffer_zero(b->counters);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -312,6 +325,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->live = scratch(b, (n - 1) * 4, "bvh left turns", err)) ||
         !(b->starts = scratch(b, n * 4, "bvh leaf starts", err)) ||
         !(b->info = scratch(b, 16, "bvh info", err)) ||
+        !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
         !(bvh->prims = cv_buffer_create(n * 4, NULL, "bvh prims", err)))
         return false;

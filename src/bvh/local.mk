@@ -2,7 +2,8 @@
 libcavalry_a_SOURCES += \
 	src/bvh/bvh.c src/bvh/bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
-	src/bvh/scan.c src/bvh/scan.h
+	src/bvh/scan.c src/bvh/scan.h \
+	src/bvh/treelet_schedule.c src/bvh/treelet_schedule.h
 
 GLSL_FILES += \
 	glsl/shared/bvh.h \
