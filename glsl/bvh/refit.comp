@@ -2,7 +2,9 @@
 // glsl/bvh/refit.comp: bottom-up bounds, primitive counts and SAH costs.
 // One invocation per leaf climbs towards the root; at each inner node the
 // first arrival stops (atomic counter) and the second, which knows both
-// children are final, computes the node and climbs on.
+// children are final, computes the node and climbs on. The host may run it
+// in several passes, each for the leaves of one window of triangle indices
+// (REFIT_WINDOW in src/bvh/bvh.c); the counters carry over between them.
 #include "shared/scene.h"
 #include "shared/bvh.h"
 #include "shared/bindings.h"
@@ -17,6 +19,9 @@ layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildN
 layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
 
 uniform uint u_n;
+// This pass's window of triangle indices, [u_tri_lo, u_tri_hi).
+uniform uint u_tri_lo;
+uniform uint u_tri_hi;
 
 #include "sah.glsl"
 
@@ -27,6 +32,8 @@ void main()
         return;
     int node = int(u_n) - 1 + int(i);
     uint tri = vals[i];
+    if (tri < u_tri_lo || tri >= u_tri_hi)
+        return;
     vec3 lo = leaf_boxes[2u * tri].xyz, hi = leaf_boxes[2u * tri + 1u].xyz;
     nodes[node].bmin = vec4(lo, float(CV_BVH_COST_TRI) * cv_half_area(lo, hi));
     nodes[node].bmax = vec4(hi, 0.0);

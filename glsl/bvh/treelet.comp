@@ -3,16 +3,27 @@
 // 2013). Invocations climb from the leaves like refit.comp (the second
 // arrival at an inner node carries on); nodes whose subtree holds fewer than
 // u_gamma primitives only have their cost refreshed on the way. An
-// invocation that reaches a larger node stops there, and its workgroup of
-// GROUP invocations then restructures the pending roots of all its members
-// together, one after another: invocation 0 grows a treelet of up to
-// TREELET_SIZE leaves (always opening the leaf of largest area), the group
-// finds the SAH-optimal binary tree over those leaves by dynamic programming
-// over all subsets in parallel (all subsets of one size at once, their
-// partitions spread evenly over the group), and
-// invocation 0 rewires the treelet when that is cheaper. The group then
-// climbs on. Nothing waits on another workgroup: the counters only decide
-// who carries on, as in refit.
+// invocation that reaches a larger node stops there, and its workgroup then
+// restructures the pending roots of all its members, TEAMS at a time: the
+// group is split into teams of TEAM invocations (slices of the group, not
+// subgroups, so any subgroup size works), and each team takes one root, as
+// Karras & Aila give each treelet one warp. In a team, invocation 0 grows a
+// treelet of TREELET_SIZE leaves (always opening the leaf of largest area),
+// the team finds the SAH-optimal binary tree over those leaves by dynamic
+// programming over all subsets (all subsets of one size at once, their
+// (subset, partition) pairs spread evenly over the team), and invocation 0
+// rewires the treelet when that is cheaper. The group then climbs on.
+// Nothing waits on another workgroup: the counters only decide who carries
+// on, as in refit.
+// Shared memory bounds the treelets in flight. On an H100 the groups' own
+// clock counts showed about 32 KiB of it per multiprocessor in use: groups
+// of 7 KiB averaged 3.95 resident per multiprocessor, of 23 KiB 0.77 (one
+// team of 128 lanes per group: 14.6 ms for 1 M triangles; four teams with
+// per-subset bounds in shared memory: 27.8 ms). So a team keeps per subset
+// only its cost and best split (768 bytes for 7 leaves, 1.2 KiB per team
+// in all); a subset's bounds are the union of its leaves' and are formed
+// where needed, and the work lists come from a read-only buffer
+// (src/bvh/treelet_schedule.c): 5.2 ms.
 // Rounds after the first skip treelets whose subtree changed neither in the
 // previous round nor so far in this one: their optimisation would see the
 // very same input and keep it, so the tree is the same as without skipping.
@@ -24,12 +35,14 @@
 #ifndef TREELET_SIZE
 #define TREELET_SIZE 7
 #endif
-#define N_SUBSETS (1 << TREELET_SIZE)
-// Four subgroups on NVIDIA: with the DP's pairs spread over the whole
-// group, 128 invocations beat 32 and 64 (H100, 1 M triangles: treelet
-// 14.6 ms against 19.5 and 15.3; not profiled: presumably more climbs
-// share a group's latency and each treelet's DP chain is shorter).
+#define N_LEAVES TREELET_SIZE
+#define N_SUBSETS (1 << N_LEAVES)
+#define FULL uint(N_SUBSETS - 1)
 #define GROUP 128
+// Lanes per treelet. H100, 1 M triangles, 3 rounds: 32 lanes 5.2 ms, 64
+// lanes 5.4 ms, 128 lanes 6.5 ms, groups of 64 with two teams of 32 5.7 ms.
+#define TEAM 32
+#define TEAMS (GROUP / TEAM)
 #define POPT_COLLAPSE 0x100u
 
 layout(local_size_x = GROUP) in;
@@ -38,55 +51,52 @@ layout(local_size_x = GROUP) in;
 layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 3) coherent buffer Stamps { uint stamps[]; };
+// The subsets of 2..N_LEAVES leaves by size, then the pairs of sizes 3 and
+// up as subset | left part << 8 (src/bvh/treelet_schedule.h).
+layout(std430, binding = CV_BIND_STAGE0 + 4) readonly restrict buffer Schedule { uint sched[]; };
 
 uniform uint u_n;
-uniform uint u_gamma;
+uniform uint u_gamma;  // at least TREELET_SIZE (src/bvh/bvh.c)
 uniform uint u_round;  // 1-based
 
 #include "sah.glsl"
 
-// Per subset of treelet leaves (bit k = leaf k; singletons are the leaves).
-shared vec3 s_lo[N_SUBSETS], s_hi[N_SUBSETS];
-shared float s_copt[N_SUBSETS];
-shared float s_larea[TREELET_SIZE];  // leaf areas, to pick the leaf to open
-shared int s_count[N_SUBSETS];
-shared uint s_popt[N_SUBSETS];  // best left part, | POPT_COLLAPSE
-// The subsets ordered by size, then colexicographically within a size.
-shared uint s_order[N_SUBSETS];
-shared int s_leaf[TREELET_SIZE], s_inner[TREELET_SIZE];
-shared ivec2 s_kids[TREELET_SIZE];
-shared int s_nl;
-shared float s_root_cost;
-// Most subsets of one size: C(8, 4), for the largest treelet (8 leaves,
-// src/bvh/bvh.c checks the size).
-#define MAX_SUBSETS_OF_A_SIZE 70
-// Per subset of the current size: best cost bits | partition number.
-shared uint s_best[MAX_SUBSETS_OF_A_SIZE];
+// C(N_LEAVES, k).
+const int BINOM[9] = int[](
+#if N_LEAVES == 3
+    1, 3, 3, 1, 0, 0, 0, 0, 0
+#elif N_LEAVES == 4
+    1, 4, 6, 4, 1, 0, 0, 0, 0
+#elif N_LEAVES == 5
+    1, 5, 10, 10, 5, 1, 0, 0, 0
+#elif N_LEAVES == 6
+    1, 6, 15, 20, 15, 6, 1, 0, 0
+#elif N_LEAVES == 7
+    1, 7, 21, 35, 35, 21, 7, 1, 0
+#else
+    1, 8, 28, 56, 70, 56, 28, 8, 1
+#endif
+);
+
+// Per team t, at [t * N_SUBSETS + subset] (bit k = leaf k): the bits of the
+// subset's optimal cost; while its size is searched, the least (cost bits
+// with the low 8 bits cleared | left part). Costs are positive, so their
+// bits order like the floats.
+shared uint s_cost[TEAMS * N_SUBSETS];
+// Per team and subset, 16 bits, two to a word: the best left part |
+// POPT_COLLAPSE when the subset is cheaper as one leaf.
+shared uint s_popt[TEAMS * N_SUBSETS / 2];
+// Per team, at [t * N_LEAVES + k]: leaf k's box (its cost in lo.w), count,
+// node, children and area; and the treelet's inner nodes.
+shared vec4 s_llo[TEAMS * N_LEAVES], s_lhi[TEAMS * N_LEAVES];
+shared int s_lcount[TEAMS * N_LEAVES], s_lnode[TEAMS * N_LEAVES];
+shared ivec2 s_lkids[TEAMS * N_LEAVES];
+shared float s_larea[TEAMS * N_LEAVES];
+shared int s_inner[TEAMS * N_LEAVES];
+shared int s_nl[TEAMS];
+shared float s_root_cost[TEAMS];
 shared int s_todo[GROUP];
 shared uint s_ntodo;
-
-// C(n, k) for n, k <= 8, at [n * 9 + k].
-const int BINOM[81] = int[](
-    1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 1, 2, 1, 0, 0, 0, 0, 0, 0,
-    1, 3, 3, 1, 0, 0, 0, 0, 0, 1, 4, 6, 4, 1, 0, 0, 0, 0, 1, 5, 10, 10, 5, 1, 0, 0, 0,
-    1, 6, 15, 20, 15, 6, 1, 0, 0, 1, 7, 21, 35, 35, 21, 7, 1, 0, 1, 8, 28, 56, 70, 56, 28, 8, 1);
-
-// The leaf count s_order was built for (0: not yet).
-shared int s_order_nl;
-
-// The bits of m placed, in order, on the set bits of mask.
-uint deposit(uint m, uint mask)
-{
-    uint r = 0u;
-    while (mask != 0u) {
-        uint b = mask & (~mask + 1u);
-        if ((m & 1u) != 0u)
-            r |= b;
-        m >>= 1;
-        mask ^= b;
-    }
-    return r;
-}
 
 // SAH cost of a node of the given area and primitive count whose children
 // cost `children` together: split, or one leaf when that is allowed and
@@ -103,180 +113,207 @@ float node_cost(float area, int count, float children, bool may_collapse, out bo
     return collapse ? leaf : split;
 }
 
-void load_leaf(int k, int c)
+void load_leaf(uint tb, uint lb, int k, int c)
 {
     vec4 a = nodes[c].bmin, b = nodes[c].bmax;
     ivec4 l = nodes[c].link;
-    uint bit = 1u << k;
-    s_leaf[k] = c;
-    s_kids[k] = l.xy;
-    s_lo[bit] = a.xyz;
-    s_hi[bit] = b.xyz;
-    s_copt[bit] = a.w;
-    s_larea[k] = cv_half_area(a.xyz, b.xyz);
-    s_count[bit] = l.w & CV_BVH_COUNT_MASK;
+    s_lnode[lb + k] = c;
+    s_lkids[lb + k] = l.xy;
+    s_llo[lb + k] = a;
+    s_lhi[lb + k] = b;
+    s_lcount[lb + k] = l.w & CV_BVH_COUNT_MASK;
+    s_larea[lb + k] = cv_half_area(a.xyz, b.xyz);
+    s_cost[tb + (1u << k)] = floatBitsToUint(a.w);
 }
 
-void form_treelet(int root)
+// Invocation 0 of team `team`: grows the treelet below root.
+void form_treelet(uint team, int root)
 {
+    uint tb = team * uint(N_SUBSETS), lb = team * uint(N_LEAVES);
     int n_inner = int(u_n) - 1;
     ivec4 rlink = nodes[root].link;
-    s_inner[0] = root;
-    load_leaf(0, rlink.x);
-    load_leaf(1, rlink.y);
+    s_inner[lb] = root;
+    load_leaf(tb, lb, 0, rlink.x);
+    load_leaf(tb, lb, 1, rlink.y);
     // The subtree below was refreshed this round: refresh the root from its
     // children, and compare the optimum against that.
-    vec3 lo = min(s_lo[1], s_lo[2]), hi = max(s_hi[1], s_hi[2]);
-    int count = s_count[1] + s_count[2];
+    vec4 l0 = s_llo[lb], l1 = s_llo[lb + 1u];
+    vec3 lo = min(l0.xyz, l1.xyz), hi = max(s_lhi[lb].xyz, s_lhi[lb + 1u].xyz);
+    int count = s_lcount[lb] + s_lcount[lb + 1u];
     bool collapse;
-    float cost = node_cost(cv_half_area(lo, hi), count, s_copt[1] + s_copt[2], root != 0, collapse);
+    float cost = node_cost(cv_half_area(lo, hi), count, l0.w + l1.w, root != 0, collapse);
     nodes[root].bmin = vec4(lo, cost);
     nodes[root].bmax = vec4(hi, 0.0);
     nodes[root].link.w = count | (collapse ? CV_BVH_COLLAPSE : 0);
-    s_root_cost = cost;
+    s_root_cost[team] = cost;
     int nl = 2, ni = 1;
-    while (nl < TREELET_SIZE) {
+    while (nl < N_LEAVES) {
         int best = -1;
         float best_area = -1.0;
         for (int k = 0; k < nl; k++) {
-            if (s_leaf[k] < n_inner && s_larea[k] > best_area) {
-                best_area = s_larea[k];
+            if (s_lnode[lb + k] < n_inner && s_larea[lb + k] > best_area) {
+                best_area = s_larea[lb + k];
                 best = k;
             }
         }
         if (best < 0)
             break;
-        s_inner[ni++] = s_leaf[best];
-        ivec2 kids = s_kids[best];
-        load_leaf(best, kids.x);
-        load_leaf(nl++, kids.y);
+        s_inner[lb + ni++] = s_lnode[lb + best];
+        ivec2 kids = s_lkids[lb + best];
+        load_leaf(tb, lb, best, kids.x);
+        load_leaf(tb, lb, nl++, kids.y);
     }
-    s_nl = nl;
+    s_nl[team] = nl;
 }
 
-// Subset s (of two or more leaves) takes its bounds from its lowest leaf
-// and the rest, both final, and its cost from the best split found.
-void finish_subset(uint s, float best, uint bp, uint full, int root)
+// Bounds and primitive count of subset s: the union of its leaves'.
+void subset_box(uint lb, uint s, out vec3 lo, out vec3 hi, out int count)
 {
-    uint low = s & (~s + 1u), rest = s ^ low;
-    vec3 lo = min(s_lo[low], s_lo[rest]), hi = max(s_hi[low], s_hi[rest]);
-    int count = s_count[low] + s_count[rest];
-    float area = cv_half_area(lo, hi);
+    lo = vec3(3.0e38);
+    hi = vec3(-3.0e38);
+    count = 0;
+    for (int k = 0; k < N_LEAVES; k++) {
+        if ((s & (1u << k)) != 0u) {
+            lo = min(lo, s_llo[lb + k].xyz);
+            hi = max(hi, s_lhi[lb + k].xyz);
+            count += s_lcount[lb + k];
+        }
+    }
+}
+
+float cost_of(uint tb, uint s)
+{
+    return uintBitsToFloat(s_cost[tb + s]);
+}
+
+uint popt_of(uint tb, uint s)
+{
+    return (s_popt[(tb + s) >> 1] >> ((s & 1u) << 4)) & 0xffffu;
+}
+
+// Subset s (of two or more leaves) takes its cost from split p, the best
+// found; s_cost[s] held the search's minimum until now.
+void finish_subset(uint tb, uint lb, uint s, uint p, int root)
+{
+    vec3 lo, hi;
+    int count;
+    subset_box(lb, s, lo, hi, count);
     bool collapse;
-    s_lo[s] = lo;
-    s_hi[s] = hi;
-    s_count[s] = count;
-    s_copt[s] = node_cost(area, count, best, s != full || root != 0, collapse);
-    s_popt[s] = bp | (collapse ? POPT_COLLAPSE : 0u);
+    float cost = node_cost(cv_half_area(lo, hi), count, cost_of(tb, p) + cost_of(tb, s ^ p),
+                           s != FULL || root != 0, collapse);
+    s_cost[tb + s] = floatBitsToUint(cost);
+    atomicOr(s_popt[(tb + s) >> 1], (p | (collapse ? POPT_COLLAPSE : 0u)) << ((s & 1u) << 4));
 }
 
-// Writes the optimal tree of the treelet, top down; every node's bounds,
-// count and cost come from the subset tables, so nothing is read back.
-void rewire(int root, uint full)
+// Invocation 0 of team `team`: writes the optimal tree of the treelet, top
+// down; every node's bounds, count and cost come from the leaves and the
+// subset tables, so nothing is read back.
+void rewire(uint team, int root)
 {
-    uint stack_s[TREELET_SIZE];
-    int stack_node[TREELET_SIZE];
+    uint tb = team * uint(N_SUBSETS), lb = team * uint(N_LEAVES);
+    uint stack_s[N_LEAVES];
+    int stack_node[N_LEAVES];
     int sp = 0, used = 1;
-    for (int k = 0; k < s_nl - 1; k++)
-        stamps[s_inner[k]] = u_round;
-    stack_s[sp] = full;
+    for (int k = 0; k < N_LEAVES - 1; k++)
+        stamps[s_inner[lb + k]] = u_round;
+    stack_s[sp] = FULL;
     stack_node[sp++] = root;
     while (sp > 0) {
         sp--;
         uint s = stack_s[sp];
         int node = stack_node[sp];
-        uint pp = s_popt[s];
+        uint pp = popt_of(tb, s);
         uint left = pp & (POPT_COLLAPSE - 1u);
         uint part[2] = uint[2](left, s ^ left);
         int child[2];
         for (int k = 0; k < 2; k++) {
             if (bitCount(part[k]) == 1) {
-                child[k] = s_leaf[findLSB(part[k])];
+                child[k] = s_lnode[lb + findLSB(part[k])];
             } else {
-                child[k] = s_inner[used++];
+                child[k] = s_inner[lb + used++];
                 stack_s[sp] = part[k];
                 stack_node[sp++] = child[k];
             }
             nodes[child[k]].link.z = node;
         }
-        nodes[node].bmin = vec4(s_lo[s], s_copt[s]);
-        nodes[node].bmax = vec4(s_hi[s], 0.0);
+        vec3 lo, hi;
+        int count;
+        subset_box(lb, s, lo, hi, count);
+        nodes[node].bmin = vec4(lo, cost_of(tb, s));
+        nodes[node].bmax = vec4(hi, 0.0);
         nodes[node].link.xy = ivec2(child[0], child[1]);
-        nodes[node].link.w = s_count[s] | ((pp & POPT_COLLAPSE) != 0u ? CV_BVH_COLLAPSE : 0);
+        nodes[node].link.w = count | ((pp & POPT_COLLAPSE) != 0u ? CV_BVH_COLLAPSE : 0);
     }
 }
 
-// Called by the whole workgroup (uniform control flow).
+// Called by the whole workgroup (uniform control flow); root is this
+// invocation's team's treelet root, the same across the team, or -1 for a
+// team without one.
 void restructure(int root)
 {
     uint lid = gl_LocalInvocationID.x;
-    if (lid == 0u)
-        form_treelet(root);
-    barrier();
-    int nl = s_nl;
-    uint full = (1u << nl) - 1u;
-
-    // The subsets ordered by size (colexicographic rank within a size);
-    // built once per group, as the leaf count hardly ever changes.
-    if (nl != s_order_nl) {
-        for (uint s = lid + 1u; s <= full; s += uint(GROUP)) {
-            int k = bitCount(s);
-            int pos = 0, j = 0;
-            for (int i = 1; i < k; i++)
-                pos += BINOM[nl * 9 + i];
-            for (int b = 0; b < TREELET_SIZE; b++) {
-                if ((s & (1u << b)) != 0u)
-                    pos += BINOM[b * 9 + (++j)];
-            }
-            s_order[pos] = s;
+    uint team = lid / uint(TEAM), lane = lid % uint(TEAM);
+    uint tb = team * uint(N_SUBSETS), lb = team * uint(N_LEAVES);
+    if (root >= 0) {
+        // Leaves' entries are formation's (no race: it writes only those).
+        for (uint s = lane; s < uint(N_SUBSETS); s += uint(TEAM)) {
+            if ((s & (s - 1u)) != 0u)
+                s_cost[tb + s] = 0xffffffffu;
         }
-        barrier();
-        if (lid == 0u)
-            s_order_nl = nl;
+        for (uint w = lane; w < uint(N_SUBSETS / 2); w += uint(TEAM))
+            s_popt[(tb >> 1) + w] = 0u;
+        if (lane == 0u)
+            form_treelet(team, root);
     }
+    barrier();
+    // A subtree of u_gamma >= N_LEAVES primitives always yields a full
+    // treelet; the schedule is made for that size only.
+    bool busy = root >= 0 && s_nl[team] == N_LEAVES;
 
-    // The DP, one subset size at a time. All (subset, partition) pairs of
-    // a size are spread evenly over the group, so no invocation walks a
-    // long run of partitions while others wait (the longest chain is 10
-    // pairs for 7 leaves, against 60 when each subset had its own lanes,
-    // and the time per treelet follows that chain).
-    // Per subset, a shared atomicMin of the cost's bits with the partition
-    // number in the low 7 bits (up to 127 partitions for 8 leaves) picks the
-    // best split: costs are positive, so their bits order like the floats;
-    // costs within 2^-16 of each other count as equal and go to the lower
-    // partition. The chosen split's exact cost is then recomputed.
-    int base = nl;
-    for (int k = 2; k <= nl; k++) {
-        int n_sub = BINOM[nl * 9 + k];
-        uint n_part = (1u << (k - 1)) - 1u;
-        uint items = uint(n_sub) * n_part;
-        for (uint j = lid; j < uint(n_sub); j += uint(GROUP))
-            s_best[j] = 0xffffffffu;
-        barrier();
-        for (uint t = lid; t < items; t += uint(GROUP)) {
-            uint j = t / n_part, m = t - j * n_part;
-            uint s = s_order[base + int(j)];
-            // The lowest leaf always goes left, so each split is seen once;
-            // m < n_part never puts every other leaf left too.
-            uint low = s & (~s + 1u);
-            uint p = low | deposit(m, s ^ low);
-            float c = s_copt[p] + s_copt[s ^ p];
-            atomicMin(s_best[j], (floatBitsToUint(c) & ~0x7fu) | m);
+    // The DP, one subset size at a time; pairs of size k spread evenly
+    // over the team, so no lane walks a long run of partitions while others
+    // wait (the longest chain is 10 pairs for 7 leaves and 32 lanes). Per
+    // subset, a shared atomicMin of the cost's bits with the left part in
+    // the low 8 bits picks the best split: costs within 2^-15 of each other
+    // count as equal and go to the lower left part. finish_subset then
+    // recomputes the chosen split's exact cost. Pairs of two leaves have one
+    // split.
+    if (busy) {
+        for (uint j = lane; j < uint(BINOM[2]); j += uint(TEAM)) {
+            uint s = sched[j];
+            finish_subset(tb, lb, s, s & (~s + 1u), root);
+        }
+    }
+    barrier();
+    uint sub = uint(BINOM[2]);  // subsets of the size at hand, in sched
+    uint pair = 0u;             // its pairs, after all the subsets
+    for (int k = 2; k <= N_LEAVES; k++)
+        pair += uint(BINOM[k]);
+    for (int k = 3; k <= N_LEAVES; k++) {
+        uint n_sub = uint(BINOM[k]), items = n_sub * ((1u << (k - 1)) - 1u);
+        if (busy) {
+            for (uint t = pair + lane; t < pair + items; t += uint(TEAM)) {
+                uint e = sched[t];
+                uint s = e & 0xffu, p = e >> 8;
+                float c = cost_of(tb, p) + cost_of(tb, s ^ p);
+                atomicMin(s_cost[tb + s], (floatBitsToUint(c) & ~0xffu) | p);
+            }
         }
         barrier();
-        for (uint j = lid; j < uint(n_sub); j += uint(GROUP)) {
-            uint s = s_order[base + int(j)];
-            uint low = s & (~s + 1u);
-            uint p = low | deposit(s_best[j] & 0x7fu, s ^ low);
-            finish_subset(s, s_copt[p] + s_copt[s ^ p], p, full, root);
+        if (busy) {
+            for (uint j = sub + lane; j < sub + n_sub; j += uint(TEAM)) {
+                uint s = sched[j];
+                finish_subset(tb, lb, s, s_cost[tb + s] & 0xffu, root);
+            }
         }
-        base += n_sub;
         barrier();
+        sub += n_sub;
+        pair += items;
     }
 
     // Keep the treelet unless the optimum is strictly cheaper.
-    if (lid == 0u && s_copt[full] < s_root_cost * 0.99999)
-        rewire(root, full);
+    if (busy && lane == 0u && cost_of(tb, FULL) < s_root_cost[team] * 0.99999)
+        rewire(team, root);
     memoryBarrierBuffer();
     barrier();
 }
@@ -287,10 +324,8 @@ void main()
     uint i = cv_global_index();
     // Invocations past the end take part in the group's work only.
     int p = i < u_n ? nodes[int(u_n) - 1 + int(i)].link.z : -1;
-    if (lid == 0u) {
+    if (lid == 0u)
         s_ntodo = 0u;
-        s_order_nl = 0;
-    }
     barrier();
     for (;;) {
         bool pending = false;
@@ -324,8 +359,10 @@ void main()
         uint n_todo = s_ntodo;
         if (n_todo == 0u)
             break;
-        for (uint t = 0u; t < n_todo; t++)
-            restructure(s_todo[t]);
+        for (uint t = 0u; t < n_todo; t += uint(TEAMS)) {
+            uint mine = t + lid / uint(TEAM);
+            restructure(mine < n_todo ? s_todo[mine] : -1);
+        }
         if (lid == 0u)
             s_ntodo = 0u;
         if (pending)

@@ -1,5 +1,5 @@
 /* bvh.h: the GPU BVH over a scene's triangles, built entirely in compute
- * shaders (glsl/bvh): centroid bounds, 60-bit Morton codes, radix sort,
+ * shaders (glsl/bvh): centroid bounds, 30-bit Morton codes, radix sort,
  * Karras 2012 hierarchy, bottom-up refit, treelet restructuring (Karras &
  * Aila 2013), SAH leaf collapsing and the final layout of
  * glsl/shared/bvh.h. Nothing of the tree is read back to the CPU (only the

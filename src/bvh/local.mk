@@ -2,12 +2,14 @@
 libcavalry_a_SOURCES += \
 	src/bvh/bvh.c src/bvh/bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
-	src/bvh/scan.c src/bvh/scan.h
+	src/bvh/scan.c src/bvh/scan.h \
+	src/bvh/treelet_schedule.c src/bvh/treelet_schedule.h
 
 GLSL_FILES += \
 	glsl/shared/bvh.h \
 	glsl/bvh/bounds.comp glsl/bvh/morton.comp \
-	glsl/bvh/radix_hist.comp glsl/bvh/radix_scatter.comp \
+	glsl/bvh/radix_digits.glsl glsl/bvh/radix_count.comp glsl/bvh/radix_spine.comp \
+	glsl/bvh/radix_scatter.comp \
 	glsl/bvh/scan_block.comp glsl/bvh/scan_add.comp \
 	glsl/bvh/hierarchy.comp glsl/bvh/refit.comp glsl/bvh/sah.glsl glsl/bvh/treelet.comp \
 	glsl/bvh/layout.comp glsl/bvh/emit.comp glsl/bvh/leaf_tris.comp \

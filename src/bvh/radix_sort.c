@@ -1,27 +1,49 @@
-/* radix_sort.c: see radix_sort.h. Each pass counts digits per tile of 1024
- * keys, scans the digit-major counts and scatters; passes ping-pong between
- * the caller's buffers and ours; after an odd count the result is copied
- * back. */
+/* radix_sort.c: see radix_sort.h. Each pass counts digits per block of
+ * tiles (radix_count.comp), scans the digit-major counts in one workgroup
+ * (radix_spine.comp) and scatters (radix_scatter.comp): three dispatches.
+ * Passes ping-pong between the caller's buffers and ours; after an odd
+ * count the result is copied back. */
 #include <stdlib.h>
 
 #include "base/mem.h"
 #include "bvh/radix_sort.h"
-#include "bvh/scan.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
 #define RADIX_TILE 1024u
+/* Blocks per pass, at most: more give more workgroups to small sorts, fewer
+ * a shorter single-workgroup scan (16 counts per block; radix_spine.comp
+ * takes up to 32 per invocation). */
+#define RADIX_MAX_BLOCKS 2048u
+/* radix_count.comp keeps a block's counts in 16 bits. */
+#define RADIX_MAX_BLOCK_TILES 63u
 
 struct cv_radix_sort {
     struct cv_gpu *gpu;
     uint32_t max_n;
     int max_bits;
-    GLuint keys, vals, hist;
-    struct cv_scan *scan;
+    GLuint keys, vals, counts;
     uint64_t bytes;
 };
+
+/* Tiles per block for n keys: one, until there would be more than
+ * RADIX_MAX_BLOCKS blocks. */
+static uint32_t block_tiles(uint32_t n)
+{
+    uint32_t tiles = (n + RADIX_TILE - 1) / RADIX_TILE;
+    uint32_t t = (tiles + RADIX_MAX_BLOCKS - 1) / RADIX_MAX_BLOCKS;
+    if (t < 1)
+        t = 1;
+    return t > RADIX_MAX_BLOCK_TILES ? RADIX_MAX_BLOCK_TILES : t;
+}
+
+static uint32_t n_blocks(uint32_t n)
+{
+    uint32_t keys_per_block = block_tiles(n) * RADIX_TILE;
+    return (uint32_t)(((uint64_t)n + keys_per_block - 1) / keys_per_block);
+}
 
 struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, int max_bits,
                                            struct cv_error *err)
@@ -35,17 +57,28 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
     rs->gpu = gpu;
     rs->max_n = max_n < 1 ? 1 : max_n;
     rs->max_bits = max_bits;
-    uint32_t tiles = (rs->max_n + RADIX_TILE - 1) / RADIX_TILE;
+    /* Fewer keys never make more blocks. */
+    uint32_t blocks = n_blocks(rs->max_n);
+    if (blocks > RADIX_MAX_BLOCKS) {
+        cv_fail(err, "radix sort of %u keys: at most %u fit", max_n,
+                RADIX_MAX_BLOCKS * RADIX_MAX_BLOCK_TILES * RADIX_TILE);
+        free(rs);
+        return NULL;
+    }
     rs->keys = cv_buffer_create((size_t)rs->max_n * 4 * words, NULL, "radix keys", err);
     rs->vals = rs->keys ? cv_buffer_create((size_t)rs->max_n * 4, NULL, "radix vals", err) : 0;
-    rs->hist = rs->vals ? cv_buffer_create((size_t)tiles * 16 * 4, NULL, "radix hist", err) : 0;
-    rs->scan = rs->hist ? cv_scan_create(gpu, tiles * 16, err) : NULL;
-    if (!rs->scan) {
+    rs->counts = rs->vals ? cv_buffer_create((size_t)blocks * 16 * 4, NULL, "radix counts", err) : 0;
+    if (!rs->counts) {
         cv_radix_sort_destroy(&rs);
         return NULL;
     }
-    rs->bytes = (uint64_t)rs->max_n * 4 * (words + 1) + (uint64_t)tiles * 64 + cv_scan_bytes(rs->scan);
+    rs->bytes = (uint64_t)rs->max_n * 4 * (words + 1) + (uint64_t)blocks * 64;
     return rs;
+}
+
+static void set_uint(const struct cv_program *prog, const char *name, uint32_t v)
+{
+    glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, name), v);
 }
 
 bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint32_t n,
@@ -60,30 +93,31 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
     size_t words = bits > 32 ? 2 : 1;
     if (n < 2)
         return true;
-    struct cv_program *hist, *scatter;
-    if (!(hist = cv_program_get(rs->gpu, "bvh/radix_hist.comp", defs, err)) ||
+    struct cv_program *count, *spine, *scatter;
+    if (!(count = cv_program_get(rs->gpu, "bvh/radix_count.comp", defs, err)) ||
+        !(spine = cv_program_get(rs->gpu, "bvh/radix_spine.comp", NULL, err)) ||
         !(scatter = cv_program_get(rs->gpu, "bvh/radix_scatter.comp", defs, err)))
         return false;
     int passes = (bits + 3) / 4;
-    uint32_t tiles = (n + RADIX_TILE - 1) / RADIX_TILE;
+    uint32_t tiles = block_tiles(n), blocks = n_blocks(n);
+    set_uint(count, "u_n", n);
+    set_uint(count, "u_block_tiles", tiles);
+    set_uint(spine, "u_count", blocks * 16);
+    set_uint(scatter, "u_n", n);
+    set_uint(scatter, "u_block_tiles", tiles);
+    cv_buffer_bind(rs->counts, CV_BIND_STAGE0 + 2);
     GLuint src_k = keys, src_v = vals, dst_k = rs->keys, dst_v = rs->vals;
     for (int pass = 0; pass < passes; pass++) {
         uint32_t shift = (uint32_t)pass * 4;
         cv_buffer_bind(src_k, CV_BIND_STAGE0);
-        cv_buffer_bind(rs->hist, CV_BIND_STAGE0 + 2);
-        glProgramUniform1ui(hist->id, glGetUniformLocation(hist->id, "u_n"), n);
-        glProgramUniform1ui(hist->id, glGetUniformLocation(hist->id, "u_shift"), shift);
-        cv_program_dispatch_1d(hist, (uint64_t)tiles * hist->local_size[0]);
-        if (!cv_scan_exclusive(rs->scan, rs->hist, tiles * 16, err))
-            return false;
-        cv_buffer_bind(src_k, CV_BIND_STAGE0);
+        set_uint(count, "u_shift", shift);
+        cv_program_dispatch_1d(count, (uint64_t)blocks * count->local_size[0]);
+        cv_program_dispatch_1d(spine, spine->local_size[0]);
         cv_buffer_bind(src_v, CV_BIND_STAGE0 + 1);
-        cv_buffer_bind(rs->hist, CV_BIND_STAGE0 + 2);
         cv_buffer_bind(dst_k, CV_BIND_STAGE0 + 3);
         cv_buffer_bind(dst_v, CV_BIND_STAGE0 + 4);
-        glProgramUniform1ui(scatter->id, glGetUniformLocation(scatter->id, "u_n"), n);
-        glProgramUniform1ui(scatter->id, glGetUniformLocation(scatter->id, "u_shift"), shift);
-        cv_program_dispatch_1d(scatter, (uint64_t)tiles * scatter->local_size[0]);
+        set_uint(scatter, "u_shift", shift);
+        cv_program_dispatch_1d(scatter, (uint64_t)blocks * scatter->local_size[0]);
         GLuint tk = src_k, tv = src_v;
         src_k = dst_k;
         src_v = dst_v;
@@ -109,8 +143,7 @@ void cv_radix_sort_destroy(struct cv_radix_sort **rs)
         return;
     cv_buffer_destroy(&(*rs)->keys);
     cv_buffer_destroy(&(*rs)->vals);
-    cv_buffer_destroy(&(*rs)->hist);
-    cv_scan_destroy(&(*rs)->scan);
+    cv_buffer_destroy(&(*rs)->counts);
     free(*rs);
     *rs = NULL;
 }

@@ -1,6 +1,6 @@
 /* scan.h: multi-level exclusive prefix sum of a GPU buffer of uint32, in
- * place (glsl/bvh/scan_block.comp, scan_add.comp). Used by the radix sort
- * and the final node layout; exposed for tests. */
+ * place (glsl/bvh/scan_block.comp, scan_add.comp). Used by the final node
+ * layout; exposed for tests. */
 #ifndef CV_BVH_SCAN_H
 #define CV_BVH_SCAN_H
 

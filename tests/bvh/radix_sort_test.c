@@ -2,7 +2,8 @@
  * keys with their indices, for random and adversarial key sets (all equal,
  * sorted, reversed, few distinct, full 32-bit, odd pass counts, a narrower
  * last digit, every digit value in every tile, all bits set in a partial
- * tile, 60- and 64-bit keys of two words), and the GPU prefix sum equals a
+ * tile, 60- and 64-bit keys of two words, enough keys for blocks of several
+ * tiles with a short last block), and the GPU prefix sum equals a
  * CPU one across several scan levels. */
 #include "config.h"
 
@@ -160,6 +161,22 @@ int main(void)
     check_sort(rs, "64-bit reversed (high word only)", keys, n, 64);
     cv_radix_sort_destroy(&rs);
     tap_ok(rs == NULL, "destroy clears the pointer");
+
+    /* Past 2048 tiles a block walks several (src/bvh/radix_sort.c); 2149
+     * tiles make blocks of two and a last block of one. */
+    const uint32_t big = 2200001;
+    rs = cv_radix_sort_create(gpu, big, 64, &err);
+    uint64_t *big_keys = malloc(big * 8);
+    if (tap_ok(rs != NULL && big_keys, "large sort scratch created: %s", rs ? "yes" : err.msg)) {
+        random_keys(big_keys, big);
+        for (uint32_t i = 0; i < big; i++)
+            big_keys[i] %= 5000u;
+        check_sort(rs, "blocks of several tiles, many equal keys", big_keys, big, 30);
+        random_keys(big_keys, big);
+        check_sort(rs, "blocks of several tiles, random 64-bit", big_keys, big, 64);
+    }
+    free(big_keys);
+    cv_radix_sort_destroy(&rs);
 
     check_scan(gpu, 1);
     check_scan(gpu, 1025);
