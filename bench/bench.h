@@ -59,6 +59,7 @@ struct bench_run_params {
     const char *integrator;     /* "path" (NULL) or "rlpath" */
     unsigned rl_grid, rl_directions;   /* rlpath options; 0: defaults */
     float rl_mix;                      /* rlpath guiding weight; 0: default */
+    bool rl_guide_indirect;            /* --rl-guide indirect */
     unsigned seed;                     /* sampler seed; 0: 1 */
 };
 

@@ -40,12 +40,14 @@ static void usage(FILE *f)
 {
     fputs("usage: cavalry_bench --bench SCENE.pbrt [--spp N] [--repeat K] [--width W]\n"
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
-          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M] [--seed S]\n"
+          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
+          "                     [--rl-guide all|indirect] [--seed S]\n"
           "                     [--no-gpu]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
-          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M] [--seed S]\n"
+          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
+          "                     [--rl-guide all|indirect] [--seed S]\n"
           "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
@@ -97,6 +99,7 @@ struct opts {
     const char *scene, *reference, *csv, *out, *integrator;
     unsigned spp, repeat, width, height, ref_spp, rl_grid, rl_directions, seed;
     float rl_mix;
+    bool rl_guide_indirect;
     int gpu_index;
     bool no_gpu;
 };
@@ -107,7 +110,7 @@ static struct bench_run_params run_params(const struct opts *o)
     return (struct bench_run_params){.spp = o->spp, .width = o->width, .height = o->height,
                                      .integrator = o->integrator, .rl_grid = o->rl_grid,
                                      .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
-                                     .seed = o->seed};
+                                     .rl_guide_indirect = o->rl_guide_indirect, .seed = o->seed};
 }
 
 #ifdef BENCH_HAVE_LOADER
@@ -230,6 +233,13 @@ int main(int argc, char **argv)
             o.seed = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--rl-mix") && has) {
             o.rl_mix = strtof(argv[++i], NULL);
+        } else if (!strcmp(a, "--rl-guide") && has) {
+            const char *g = argv[++i];
+            if (strcmp(g, "all") && strcmp(g, "indirect")) {
+                fprintf(stderr, "cavalry_bench: --rl-guide takes all or indirect, not %s\n", g);
+                return 2;
+            }
+            o.rl_guide_indirect = !strcmp(g, "indirect");
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
         } else if (!strcmp(a, "--out") && has) {

@@ -106,6 +106,7 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_grid = p->rl_grid;
     rp.rl_directions = p->rl_directions;
     rp.rl_mix = p->rl_mix;
+    rp.rl_guide_indirect = p->rl_guide_indirect;
     if (rp.integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
     return cv_renderer_create(gpu, scene, &rp, out, err);

@@ -110,6 +110,10 @@ char *cv_job_settings_text(const struct cv_job *job, long long scene_size,
     add_u32(&t, "rlpath.grid", job->rlpath.has_grid, job->rlpath.grid);
     add_u32(&t, "rlpath.directions", job->rlpath.has_directions, job->rlpath.directions);
     add_float(&t, "rlpath.mix", job->rlpath.has_mix, job->rlpath.mix);
+    /* only when set off its default, so that the hashes of jobs written
+     * before the key existed stay the same (resume keeps their images) */
+    if (job->rlpath.guide_indirect)
+        add(&t, "rlpath.guide=indirect\n");
     return t.s;
 }
 

@@ -17,7 +17,7 @@ static const char *const color_keys[] = {"config", "display", "view", "look", "e
 static const char *const exr_keys[] = {"half", "compression"};
 static const char *const png_keys[] = {"bits"};
 static const char *const camera_keys[] = {"fov", "lookat"};
-static const char *const rlpath_keys[] = {"grid", "directions", "mix"};
+static const char *const rlpath_keys[] = {"grid", "directions", "mix", "guide"};
 
 static const char *const format_names[] = {"exr", "png"};
 static const char *const aov_names[] = {"albedo", "normal", "depth"};
@@ -342,6 +342,17 @@ static void parse_rlpath(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d
                 r->mix = (float)f;
                 r->has_mix = true;
             }
+        } else if (!strcmp(k, "guide")) {
+            const char *s;
+            if (!cv_yread_string(v, d, "rlpath.guide", &s))
+                continue;
+            if (strcmp(s, "all") && strcmp(s, "indirect")) {
+                cv_diag_add(d, cv_yline(v), cv_ycol(v),
+                            "rlpath.guide: expected one of all, indirect, got \"%s\"", s);
+                continue;
+            }
+            r->guide_indirect = !strcmp(s, "indirect");
+            r->has_guide = true;
         } else {
             cv_yunknown_key(&pairs[i], d, "rlpath", rlpath_keys, CV_ARRAY_SIZE(rlpath_keys));
         }
@@ -528,6 +539,7 @@ void cv_job_merge(struct cv_job_draft *job, const struct cv_job_draft *defaults)
     TAKE(rlpath.has_grid, rlpath.grid);
     TAKE(rlpath.has_directions, rlpath.directions);
     TAKE(rlpath.has_mix, rlpath.mix);
+    TAKE(rlpath.has_guide, rlpath.guide_indirect);
 }
 
 void cv_job_free(struct cv_job *job)

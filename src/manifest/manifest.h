@@ -72,10 +72,11 @@ struct cv_job_camera {
 };
 
 struct cv_job_rlpath {
-    bool has_grid, has_directions, has_mix;
+    bool has_grid, has_directions, has_mix, has_guide;
     uint32_t grid;             /* spatial cells per axis, >= 1 */
     uint32_t directions;       /* directional bins per cell, >= 1 */
     float mix;                 /* [0,1]: share of guided vs. BSDF sampling */
+    bool guide_indirect;       /* guide: indirect (else all, the default) */
 };
 
 struct cv_job {

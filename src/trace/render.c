@@ -336,7 +336,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         CvRlParams rp;
         if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
                               p->rl_mix, &rp, err) ||
-            !cv_rlpath_create(gpu, &rp, r->n_pixels, defines, &r->rl, err)) {
+            !cv_rlpath_create(gpu, &rp, r->n_pixels, defines, p->rl_guide_indirect, &r->rl,
+                              err)) {
             cv_renderer_destroy(&r);
             return false;
         }

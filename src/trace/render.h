@@ -30,6 +30,9 @@ struct cv_render_params {
      * of guided sampling in (0, 1]. */
     uint32_t rl_grid, rl_directions;
     float rl_mix;
+    /* rlpath: guide by the learned radiance less lamps seen directly
+     * (rlpath.guide: indirect) instead of all of it */
+    bool rl_guide_indirect;
 };
 
 struct cv_renderer;

@@ -115,7 +115,7 @@ GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct
 }
 
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
-                      const char *const *defines, struct cv_rlpath **out,
+                      const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
                       struct cv_error *err)
 {
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
@@ -124,7 +124,8 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
     if (p)
         rl->shade = *p;
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", NULL, err)))
+    const char *rebuild_defs[2] = {guide_indirect ? "CV_RL_GUIDE_INDIRECT" : NULL, NULL};
+    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", rebuild_defs, err)))
         rl->rebuild = *p;
     if (!p) {
         cv_rlpath_destroy(&rl);

@@ -45,9 +45,10 @@ struct cv_rlpath;
 
 /* Creates the tables (zero: every key unguided until it learns) and the
  * per-pixel path state for n_pixels, and compiles the programs with the
- * renderer's `defines` (NULL-terminated, may be NULL). */
+ * renderer's `defines` (NULL-terminated, may be NULL). guide_indirect:
+ * guide by the learned radiance less lamps seen directly (guide.glsl). */
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
-                      const char *const *defines, struct cv_rlpath **out,
+                      const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
                       struct cv_error *err);
 
 /* The shade stage to run instead of trace/shade.comp. */

@@ -90,8 +90,9 @@ static void check_good(void)
                g->color.exposure == 0.5f,
            "guided color: look merged from an anchor, the rest from defaults");
     tap_ok(g->rlpath.has_grid && g->rlpath.grid == 8 && g->rlpath.directions == 16 &&
-               g->rlpath.mix == 0.5f,
+               g->rlpath.mix == 0.5f && g->rlpath.has_guide && g->rlpath.guide_indirect,
            "guided rlpath");
+    tap_ok(!p->rlpath.has_guide && !p->rlpath.guide_indirect, "rlpath guide: all by default");
     tap_ok(str_is(g->scene, other), "guided own scene");
     want = data_path("renders/guided_final");
     tap_ok(str_is(g->output, want), "guided output template: %s", g->output);
@@ -206,6 +207,7 @@ int main(void)
                 "and '-'",
                 "11:17: time_limit: expected a duration > 0 in seconds, or with a unit s, m or "
                 "h (\"90\", \"1.5m\", \"2h\"), got \"-3\"",
-                "12:19: rlpath.mix: expected a number from 0 to 1, got \"1.5\"");
+                "12:19: rlpath.mix: expected a number from 0 to 1, got \"1.5\"",
+                "12:31: rlpath.guide: expected one of all, indirect, got \"most\"");
     return tap_done();
 }

@@ -8,10 +8,11 @@
  * within 4 standard errors of their difference, and no more than 1 % of
  * pixels differ by more than 4.5 standard errors (Student t with B - 1
  * degrees of freedom puts about 0.05 % there). A table option sweep checks
- * that other layouts stay unbiased in the image mean too; the room with
- * glossy panels and a black-backed lamp (rlpath_room_glossy: lobes that do
- * not guide, a glossy coat over a guided base, emission left out of the
- * guided distribution) checks the image mean again. */
+ * that other layouts (one with rlpath.guide: indirect) stay unbiased in the
+ * image mean too; the room with glossy panels and a black-backed lamp
+ * (rlpath_room_glossy: lobes that do not guide, a glossy coat over a guided
+ * base, emitted light in the guided distribution) checks the image mean
+ * again. */
 #include "config.h"
 
 #include "tests/trace/rlpath_room.h"
@@ -108,15 +109,18 @@ int main(void)
     free(sp.sum), free(sp.sum2), free(sr.sum), free(sr.sum2);
 
     /* other layouts: unbiased in the image mean as well */
-    const struct { uint32_t grid, dirs; float mix; } opt[] = {{1, 32, 0.7f}, {8, 200, 0.2f}};
+    const struct { uint32_t grid, dirs; float mix; bool indirect; } opt[] = {
+        {1, 32, 0.7f, false}, {8, 200, 0.2f, true}};
     for (size_t k = 0; k < sizeof(opt) / sizeof(opt[0]); k++) {
         struct cv_render_params po = pr;
         po.rl_grid = opt[k].grid;
         po.rl_directions = opt[k].dirs;
         po.rl_mix = opt[k].mix;
+        po.rl_guide_indirect = opt[k].indirect;
         struct stats so = {0};
-        if (!tap_ok(batches(gpu, s, po, &so, &err), "rlpath grid %u, %u directions, mix %.1f: %s",
-                    opt[k].grid, opt[k].dirs, opt[k].mix, err.msg))
+        if (!tap_ok(batches(gpu, s, po, &so, &err),
+                    "rlpath grid %u, %u directions, mix %.1f, guide %s: %s", opt[k].grid,
+                    opt[k].dirs, opt[k].mix, opt[k].indirect ? "indirect" : "all", err.msg))
             continue;
         double mo, seo;
         mean_se2(so.img_sum, so.img_sum2, &mo, &seo);

@@ -2,8 +2,9 @@
  * tables (glsl/trace/rlpath/guide.glsl, its guide texels built by
  * rebuild.comp) on the GPU against a host reference: the table layout from
  * the options; a key filled with a known random pattern (some bins 0, so
- * the floor matters, and some with emitted light, which guiding leaves to
- * light sampling), at 128 bins (two coarse CDF texels) and at 990 (a
+ * the floor matters, and some with emitted light, which guiding follows by
+ * default and leaves to light sampling with rlpath.guide: indirect, both
+ * tested), at 128 bins (two coarse CDF texels) and at 990 (a
  * binary search over sixteen): directions drawn from it
  * follow its pdf (chi-square over a histogram twice as fine as the bins in
  * each coordinate, so uniformity within a bin is tested too; p >= 0.01), the
@@ -115,6 +116,7 @@ struct rig {
     CvRlParams params;
     GLuint ubo, table, guide, out, in, table_tex, guide_tex;
     uint32_t key;   /* cell 0, the class of `normal` */
+    bool indirect;  /* rebuild with CV_RL_GUIDE_INDIRECT */
 };
 
 /* Runs TEST_MODE mode over n items; out gets 8 floats per item. */
@@ -161,7 +163,8 @@ static void set_table(struct rig *g, const float *q, const float *emitted, uint3
     k[3 * n] = 1;   /* the dirty flag */
     tap_ok(cv_buffer_upload(g->table, 0, bytes, raw, err), "table upload");
     free(raw);
-    struct cv_program *rebuild = cv_program_get(g->gpu, "trace/rlpath/rebuild.comp", NULL, err);
+    const char *defines[] = {g->indirect ? "CV_RL_GUIDE_INDIRECT" : NULL, NULL};
+    struct cv_program *rebuild = cv_program_get(g->gpu, "trace/rlpath/rebuild.comp", defines, err);
     if (!tap_ok(rebuild != NULL, "rebuild program: %s", err->msg))
         return;
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
@@ -200,16 +203,17 @@ static void test_layout(void)
 }
 
 /* Everything on the GPU for a key of about `directions` bins. */
-static void test_bins(struct cv_gpu *gpu, uint32_t directions)
+static void test_bins(struct cv_gpu *gpu, uint32_t directions, bool indirect)
 {
     struct rig g = {0};
     g.gpu = gpu;
+    g.indirect = indirect;
     struct cv_error err = {{0}};
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     const float m = 0.5f;
     bool laid = cv_rlpath_layout(lo, hi, 1, directions, m, &g.params, &err);
-    if (!tap_ok(laid, "layout of %u directions: %u x %u bins: %s", directions, g.params.dirs.x,
-                g.params.dirs.y, err.msg))
+    if (!tap_ok(laid, "layout of %u directions: %u x %u bins, guide %s: %s", directions,
+                g.params.dirs.x, g.params.dirs.y, indirect ? "indirect" : "all", err.msg))
         return;
     const uint32_t nb = g.params.dirs.z, N = 1u << 18;
     g.key = 4;   /* cell 0, +z */
@@ -276,10 +280,13 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions)
         q[b] = (b % 4 == 1) ? 0.0f : (float)(u * u * u * 10);
     }
     q[37] = 40;   /* one bright bin */
-    /* lamps seen directly in some bins: bright, and no weight in guiding */
-    float *emitted = calloc(nb, sizeof(float));
+    /* lamps seen directly in some bins: bright; guided by (qg) unless the
+     * guide is indirect */
+    float *emitted = calloc(nb, sizeof(float)), *qg = calloc(nb, sizeof(float));
     for (uint32_t b = 3; b < nb; b += 11)
         emitted[b] = 500;
+    for (uint32_t b = 0; b < nb; b++)
+        qg[b] = q[b] + (indirect ? 0 : emitted[b]);
 
     /* a bin past CV_RL_MAX_VISITS: the rebuild halves visits, keeps Q */
     const uint32_t many = 3 * CV_RL_MAX_VISITS;
@@ -328,7 +335,7 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions)
             if (fabs(len - 1) > 1e-4)
                 bad_len++;
             obs[hist_cell(w, HZ, HP)] += 1;
-            double pq = ref_pdf(&g.params, q, w), pb = lambert(w);
+            double pq = ref_pdf(&g.params, qg, w), pb = lambert(w);
             if (mode == 0) {
                 /* sampling and evaluation agree except on a bin edge */
                 if (fabs(o[3] - o[4]) > 1e-4 * o[3])
@@ -361,7 +368,7 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions)
                     for (int b = 0; b < 8; b++) {
                         double w[3];
                         grid_dir(iz, ip, (a + 0.5) / 8, (b + 0.5) / 8, HZ, HP, w);
-                        double p = ref_pdf(&g.params, q, w);
+                        double p = ref_pdf(&g.params, qg, w);
                         if (mode)
                             p = m * p + (1 - m) * lambert(w);
                         acc += p;
@@ -385,7 +392,7 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions)
             double w[3] = {v[0], v[1], v[2]};
             sq += out[8 * (size_t)i];
             sm += out[8 * (size_t)i + 1];
-            sq_ref += ref_pdf(&g.params, q, w);
+            sq_ref += ref_pdf(&g.params, qg, w);
         }
         double dw = 4 * PI / (QZ * QP);
         tap_ok(fabs(sq * dw - 1) < 1e-3, "learned pdf integrates to %.6f (1 within 1e-3)", sq * dw);
@@ -394,6 +401,7 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions)
     }
 
     free(q);
+    free(qg);
     free(emitted);
     free(out);
     free(inq);
@@ -410,8 +418,9 @@ int main(void)
 {
     test_layout();
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
-    test_bins(gpu, 128);
-    test_bins(gpu, 1000);
+    test_bins(gpu, 128, false);
+    test_bins(gpu, 128, true);
+    test_bins(gpu, 1000, false);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

@@ -8,14 +8,18 @@
 // light's emission seen directly in those directions (which next-event
 // estimation samples already). The learned distribution: bin b has
 // probability P_b = w_b / W with
-//   w_b = I_b + e, e = floor * S / bins (S = sum of I_b; a tiny absolute
+//   w_b = G_b + e, e = floor * S / bins (S = sum of G_b; a tiny absolute
 //   floor makes an unvisited key uniform), W = sum of w_b,
-// the learned incident radiance, as Dahm and Keller sample it, less what
-// light sampling covers: guided directions that find a lamp add little
-// that the shadow ray and MIS do not, and are missing where the indirect
-// light is (H100, generated room, relMSE x spp from 1 to 128 spp: 22.6
-// with the lamp's light in, 17.7 without). The distribution is uniform in
-// solid angle within a bin: pdf(w) = P_b * bins / (4 pi).
+// where G_b is Q_b, the learned incident radiance as Dahm and Keller
+// sample it, or I_b with CV_RL_GUIDE_INDIRECT (rlpath.guide: indirect):
+// guided directions that find a lamp add little that the shadow ray and
+// MIS do not. On the H100 (512x512, 1024 spp, medians of seeds; relMSE at
+// 1 / 2 / 4 s GPU against path) I_b wins earlier on the generated rooms
+// (-37 / -32 / -21 % against Q_b's -24 / -25 / -21 %) but loses on
+// veach-bidir (-1 / -1 / +14 % against -48 / -31 / -4 %), where the lamp
+// is seen through its shade: Q_b is the default.
+// The distribution is uniform in solid angle within a bin:
+// pdf(w) = P_b * bins / (4 pi).
 // Bins below a key's surfaces keep about the floor: paths sent there end
 // without teaching them anything. Weighting Q by the cosine to the class
 // axis (once per key) was tried: on the generated room it raised relMSE at

@@ -20,12 +20,18 @@ shared float s_irr[CV_RL_REBUILD_GROUP];
 shared float s_cdf[CV_RL_MAX_BINS];
 shared float s_prob[CV_RL_MAX_BINS];
 
-// I of bin b of the key at kt (guide.glsl): the sum without the emitted
-// part over the visits.
+// What bin b of the key at kt guides by (guide.glsl): Q, or with
+// CV_RL_GUIDE_INDIRECT (rlpath.guide: indirect) I, the sum without the
+// emitted part, over the visits.
 float cv_rl_guided_q(int kt, uint b)
 {
     int t = cv_rl_bin_texel(kt, int(b));
-    return cv_rl_texel_f(t) / float(max(imageLoad(rl_q, t + 1).x, 1u));
+#ifdef CV_RL_GUIDE_INDIRECT
+    float s = cv_rl_texel_f(t);
+#else
+    float s = cv_rl_texel_f(t) + cv_rl_texel_f(t + 2);
+#endif
+    return s / float(max(imageLoad(rl_q, t + 1).x, 1u));
 }
 
 // The integral of max(cos, 0) to the unit axis `a` over bin b, from the
