@@ -7,50 +7,40 @@
 #ifndef CV_TESTS_TRACE_RLPATH_ROOM_H
 #define CV_TESTS_TRACE_RLPATH_ROOM_H
 
-static const char rlpath_room[] =
-    "LookAt 0.9 -0.3 0.9  0.4 -0.4 -1  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" [ 60 ]\n"
-    "Sampler \"independent\" \"integer pixelsamples\" [ 16 ]\n"
-    "Integrator \"path\" \"integer maxdepth\" [ 5 ]\n"
-    "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
-    "  \"string filename\" \"room.exr\"\n"
-    "PixelFilter \"box\"\n"
+/* The pieces both rooms share: camera and film, the lamp (its light
+ * and its shape), the walls and the partition. */
+#define RLPATH_ROOM_VIEW \
+    "LookAt 0.9 -0.3 0.9  0.4 -0.4 -1  0 1 0\n" \
+    "Camera \"perspective\" \"float fov\" [ 60 ]\n" \
+    "Sampler \"independent\" \"integer pixelsamples\" [ 16 ]\n" \
+    "Integrator \"path\" \"integer maxdepth\" [ 5 ]\n" \
+    "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n" \
+    "  \"string filename\" \"room.exr\"\n" \
+    "PixelFilter \"box\"\n" \
     "WorldBegin\n"
-    "AttributeBegin\n"
+#define RLPATH_ROOM_LIGHT \
+    "AttributeBegin\n" \
     "  AreaLightSource \"diffuse\" \"rgb L\" [ 20 20 20 ]\n"
-    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
-    "    \"point3 P\" [ -0.8 0.9 -0.3  -0.2 0.9 -0.3  -0.2 0.9 0.3  -0.8 0.9 0.3 ]\n"
+#define RLPATH_ROOM_LAMP \
+    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n" \
+    "    \"point3 P\" [ -0.8 0.9 -0.3  -0.2 0.9 -0.3  -0.2 0.9 0.3  -0.8 0.9 0.3 ]\n" \
     "AttributeEnd\n"
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 3 7 0 7 4\n"
-    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
-    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n"
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.3 0.2 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
-    "  \"point3 P\" [ 0 -1 -1  0 -1 1  0 0.5 1  0 0.5 -1 ]\n";
+#define RLPATH_ROOM_WALLS \
+    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n" \
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 3 7 0 7 4\n" \
+    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n" \
+    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n" \
+    "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.3 0.2 ]\n" \
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n" \
+    "  \"point3 P\" [ 0 -1 -1  0 -1 1  0 0.5 1  0 0.5 -1 ]\n"
+
+static const char rlpath_room[] = RLPATH_ROOM_VIEW RLPATH_ROOM_LIGHT RLPATH_ROOM_LAMP
+    RLPATH_ROOM_WALLS;
 
 static const char rlpath_room_glossy[] =
-    "LookAt 0.9 -0.3 0.9  0.4 -0.4 -1  0 1 0\n"
-    "Camera \"perspective\" \"float fov\" [ 60 ]\n"
-    "Sampler \"independent\" \"integer pixelsamples\" [ 16 ]\n"
-    "Integrator \"path\" \"integer maxdepth\" [ 5 ]\n"
-    "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
-    "  \"string filename\" \"room.exr\"\n"
-    "PixelFilter \"box\"\n"
-    "WorldBegin\n"
-    "AttributeBegin\n"
-    "  AreaLightSource \"diffuse\" \"rgb L\" [ 20 20 20 ]\n"
+    RLPATH_ROOM_VIEW RLPATH_ROOM_LIGHT
     "  Material \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\n"
-    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
-    "    \"point3 P\" [ -0.8 0.9 -0.3  -0.2 0.9 -0.3  -0.2 0.9 0.3  -0.8 0.9 0.3 ]\n"
-    "AttributeEnd\n"
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 3 7 0 7 4\n"
-    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
-    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n"
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.3 0.2 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
-    "  \"point3 P\" [ 0 -1 -1  0 -1 1  0 0.5 1  0 0.5 -1 ]\n"
+    RLPATH_ROOM_LAMP RLPATH_ROOM_WALLS
     "Material \"conductor\" \"float roughness\" [ 0.2 ]\n"
     "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
     "  \"point3 P\" [ -0.9 -1 0.2  -0.3 -1 0.6  -0.3 0.2 0.6  -0.9 0.2 0.2 ]\n"
