@@ -98,11 +98,6 @@ struct cv_bvh_params cv_bvh_default_params(void)
     return p;
 }
 
-static void set_uint(const struct cv_program *prog, const char *name, uint32_t v)
-{
-    glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, name), v);
-}
-
 static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct cv_error *err)
 {
     if (bytes == 0)
@@ -178,7 +173,7 @@ GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint trian
         cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
         cv_buffer_bind(prims, CV_BIND_BVH_PRIMS);
         cv_buffer_bind(tris, CV_BIND_BVH_TRIS);
-        set_uint(prog, "u_n", n);
+        cv_program_set_uint(prog, "u_n", n);
         cv_program_dispatch_1d(prog, n);
     }
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -216,13 +211,13 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     /* Centroid bounds: one reduction level per factor of 256. */
     phase_begin(b, PH_BOUNDS);
     cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0 + 1);
-    set_uint(bounds_tri, "u_n", n);
+    cv_program_set_uint(bounds_tri, "u_n", n);
     cv_program_dispatch_1d(bounds_tri, n);
     GLuint src = b->bounds_a, dst = b->bounds_b;
     for (uint32_t m = (n + 255) / 256; m > 1; m = (m + 255) / 256) {
         cv_buffer_bind(src, CV_BIND_STAGE0);
         cv_buffer_bind(dst, CV_BIND_STAGE0 + 1);
-        set_uint(bounds, "u_n", m);
+        cv_program_set_uint(bounds, "u_n", m);
         cv_program_dispatch_1d(bounds, m);
         GLuint t = src;
         src = dst;
@@ -237,7 +232,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
-    set_uint(morton, "u_n", n);
+    cv_program_set_uint(morton, "u_n", n);
     cv_program_dispatch_1d(morton, n);
     phase_end(b, PH_MORTON);
 
@@ -251,23 +246,23 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     cv_buffer_bind(b->keys, CV_BIND_STAGE0);
     cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->counters, CV_BIND_STAGE0 + 2);
-    set_uint(hier, "u_n", n);
+    cv_program_set_uint(hier, "u_n", n);
     cv_program_dispatch_1d(hier, n);
     phase_end(b, PH_HIERARCHY);
 
     phase_begin(b, PH_REFIT);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
-    set_uint(refit, "u_n", n);
+    cv_program_set_uint(refit, "u_n", n);
     for (uint32_t lo = 0; lo < n; lo += REFIT_WINDOW) {
-        set_uint(refit, "u_tri_lo", lo);
-        set_uint(refit, "u_tri_hi", n - lo > REFIT_WINDOW ? lo + REFIT_WINDOW : n);
+        cv_program_set_uint(refit, "u_tri_lo", lo);
+        cv_program_set_uint(refit, "u_tri_hi", n - lo > REFIT_WINDOW ? lo + REFIT_WINDOW : n);
         cv_program_dispatch_1d(refit, n);
     }
     phase_end(b, PH_REFIT);
 
     phase_begin(b, PH_TREELET);
-    set_uint(treelet, "u_n", n);
+    cv_program_set_uint(treelet, "u_n", n);
     /* The rounds' change stamps borrow `live`, which layout fills later;
      * the leaf boxes at STAGE0 + 3 are not needed after refit. */
     cv_buffer_zero(b->live);
@@ -276,11 +271,11 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     for (int r = 0; r < p->treelet_rounds; r++) {
         cv_buffer_zero(b->counters);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        set_uint(treelet, "u_round", (uint32_t)r + 1);
+        cv_program_set_uint(treelet, "u_round", (uint32_t)r + 1);
         /* Every round restructures every subtree of at least treelet_size
          * triangles: doubling that bound per round (as Karras & Aila
          * suggest for speed) cost 4-5 % SAH on our test meshes. */
-        set_uint(treelet, "u_gamma", (uint32_t)p->treelet_size);
+        cv_program_set_uint(treelet, "u_gamma", (uint32_t)p->treelet_size);
         cv_program_dispatch_1d(treelet, n);
     }
     phase_end(b, PH_TREELET);
@@ -296,7 +291,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     cv_buffer_zero(b->starts);
     cv_buffer_bind(b->starts, CV_BIND_STAGE0 + 4);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    set_uint(layout, "u_n", n);
+    cv_program_set_uint(layout, "u_n", n);
     cv_program_dispatch_1d(layout, 2 * (uint64_t)n - 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     ok = cv_scan_exclusive(b->scan, b->starts, n, err);
@@ -307,7 +302,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         cv_buffer_bind(b->info, CV_BIND_STAGE0 + 4);
         cv_buffer_bind(b->starts, CV_BIND_STAGE0 + 5);
         cv_buffer_bind(b->out_nodes, CV_BIND_BVH_NODES);
-        set_uint(emit, "u_n", n);
+        cv_program_set_uint(emit, "u_n", n);
         cv_program_dispatch_1d(emit, n);
     }
     phase_end(b, PH_COLLAPSE);

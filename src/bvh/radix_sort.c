@@ -76,11 +76,6 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
     return rs;
 }
 
-static void set_uint(const struct cv_program *prog, const char *name, uint32_t v)
-{
-    glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, name), v);
-}
-
 bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint32_t n,
                        int bits, struct cv_error *err)
 {
@@ -100,23 +95,23 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
         return false;
     int passes = (bits + 3) / 4;
     uint32_t tiles = block_tiles(n), blocks = n_blocks(n);
-    set_uint(count, "u_n", n);
-    set_uint(count, "u_block_tiles", tiles);
-    set_uint(spine, "u_count", blocks * 16);
-    set_uint(scatter, "u_n", n);
-    set_uint(scatter, "u_block_tiles", tiles);
+    cv_program_set_uint(count, "u_n", n);
+    cv_program_set_uint(count, "u_block_tiles", tiles);
+    cv_program_set_uint(spine, "u_count", blocks * 16);
+    cv_program_set_uint(scatter, "u_n", n);
+    cv_program_set_uint(scatter, "u_block_tiles", tiles);
     cv_buffer_bind(rs->counts, CV_BIND_STAGE0 + 2);
     GLuint src_k = keys, src_v = vals, dst_k = rs->keys, dst_v = rs->vals;
     for (int pass = 0; pass < passes; pass++) {
         uint32_t shift = (uint32_t)pass * 4;
         cv_buffer_bind(src_k, CV_BIND_STAGE0);
-        set_uint(count, "u_shift", shift);
+        cv_program_set_uint(count, "u_shift", shift);
         cv_program_dispatch_1d(count, (uint64_t)blocks * count->local_size[0]);
         cv_program_dispatch_1d(spine, spine->local_size[0]);
         cv_buffer_bind(src_v, CV_BIND_STAGE0 + 1);
         cv_buffer_bind(dst_k, CV_BIND_STAGE0 + 3);
         cv_buffer_bind(dst_v, CV_BIND_STAGE0 + 4);
-        set_uint(scatter, "u_shift", shift);
+        cv_program_set_uint(scatter, "u_shift", shift);
         cv_program_dispatch_1d(scatter, (uint64_t)blocks * scatter->local_size[0]);
         GLuint tk = src_k, tv = src_v;
         src_k = dst_k;

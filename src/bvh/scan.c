@@ -56,14 +56,14 @@ static bool scan_level(struct cv_scan *scan, GLuint buf, uint32_t n, int level,
     uint32_t tiles = (n + SCAN_TILE - 1) / SCAN_TILE;
     cv_buffer_bind(buf, CV_BIND_STAGE0);
     cv_buffer_bind(scan->sums[level], CV_BIND_STAGE0 + 1);
-    glProgramUniform1ui(block->id, glGetUniformLocation(block->id, "u_n"), n);
+    cv_program_set_uint(block, "u_n", n);
     cv_program_dispatch_1d(block, (uint64_t)tiles * block->local_size[0]);
     if (tiles > 1) {
         if (!scan_level(scan, scan->sums[level], tiles, level + 1, err))
             return false;
         cv_buffer_bind(buf, CV_BIND_STAGE0);
         cv_buffer_bind(scan->sums[level], CV_BIND_STAGE0 + 1);
-        glProgramUniform1ui(add->id, glGetUniformLocation(add->id, "u_n"), n);
+        cv_program_set_uint(add, "u_n", n);
         cv_program_dispatch_1d(add, n);
     }
     return true;

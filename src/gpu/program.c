@@ -471,6 +471,11 @@ void cv_program_dispatch_1d(const struct cv_program *prog, uint64_t n)
                     GL_COMMAND_BARRIER_BIT);
 }
 
+void cv_program_set_uint(const struct cv_program *prog, const char *name, uint32_t v)
+{
+    glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, name), v);
+}
+
 void cv_program_dispatch_indirect(const struct cv_program *prog, GLintptr offset,
                                   GLbitfield barriers)
 {

@@ -62,4 +62,8 @@ void cv_program_dispatch_1d(const struct cv_program *prog, uint64_t n);
 void cv_program_dispatch_indirect(const struct cv_program *prog, GLintptr offset,
                                   GLbitfield barriers);
 
+/* Sets the program's uint uniform `name` (no binding needed; a name the
+ * compiler dropped is ignored, as GL ignores location -1). */
+void cv_program_set_uint(const struct cv_program *prog, const char *name, uint32_t v);
+
 #endif

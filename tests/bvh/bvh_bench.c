@@ -174,8 +174,8 @@ int main(int argc, char **argv)
             cv_bvh_bind(bvh);
             cv_buffer_bind(rb, CV_BIND_STAGE0);
             cv_buffer_bind(res, CV_BIND_STAGE0 + 1);
-            glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, "u_n_rays"), n_rays);
-            glProgramUniform1ui(prog->id, glGetUniformLocation(prog->id, "u_n_tris"), n);
+            cv_program_set_uint(prog, "u_n_rays", n_rays);
+            cv_program_set_uint(prog, "u_n_tris", n);
             cv_program_dispatch_1d(prog, n_rays); /* warm-up */
             glFinish();
             double t0 = bench_ms();
