@@ -4,10 +4,10 @@
 // light, MIS-weighted against the light sampling that could have found the
 // same direction (not for camera rays or after specular bounces); their
 // paths end, so their pixels go to the done queue. Runs every iteration;
-// the host defines CV_HAS_ENV when the scene has an environment light, and
-// CV_RLPATH for the rlpath integrator, whose bounce that escaped learns the
-// environment radiance it found (0 without an environment) in the Q-table
-// (rlpath/guide.glsl).
+// the host defines CV_NO_ENV, as for every stage, when the scene has no
+// environment light, and CV_RLPATH for the rlpath integrator, whose bounce
+// that escaped learns the environment radiance it found (0 without an
+// environment) in the Q-table (rlpath/guide.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -44,7 +44,7 @@ void main()
 #ifdef CV_RLPATH
         cv_rl_learn_escaped(r);
 #endif
-#ifdef CV_HAS_ENV
+#ifndef CV_NO_ENV
         vec3 Le = cv_env_Le(r.d.xyz);
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;

@@ -53,7 +53,7 @@ struct cv_renderer {
     struct cv_program prog[ST_COUNT];
     uint32_t n_pixels, crop_w, crop_h;
     uint32_t max_depth;
-    bool aovs, has_env;
+    bool aovs;
     uint32_t spp_done;
     uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
@@ -231,13 +231,17 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     return true;
 }
 
-/* out = the nd defines (NULL-terminated) plus `extra` when not NULL; out
- * has room for nd + 2 entries. */
-static void defines_plus(const char **out, const char *const *defines, int nd, const char *extra)
+/* out = the nd defines plus `a` and `b` where not NULL, NULL-terminated;
+ * out has room for nd + 3 entries. */
+static void defines_plus(const char **out, const char *const *defines, int nd, const char *a,
+                         const char *b)
 {
     memcpy(out, defines, (size_t)nd * sizeof(*out));
-    out[nd] = extra;
-    out[nd + 1] = NULL;
+    if (a)
+        out[nd++] = a;
+    if (b)
+        out[nd++] = b;
+    out[nd] = NULL;
 }
 
 bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs,
@@ -265,7 +269,6 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
 
     r->scene = gs;
-    r->has_env = gs->has_env;
 
     const char *defines[8];
     int nd = 0;
@@ -287,27 +290,20 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         defines[nd++] = "CV_NO_TEXTURES";
     defines[nd] = NULL;
     bool rl = p->integrator == CV_RENDER_RLPATH;
-    /* the escaped stage alone depends on the environment; with rlpath it
-     * learns too */
-    const char *escaped[10];
-    int ne = nd;
-    memcpy(escaped, defines, (size_t)nd * sizeof(*escaped));
-    if (r->has_env)
-        escaped[ne++] = "CV_HAS_ENV";
-    if (rl)
-        escaped[ne++] = "CV_RLPATH";
-    escaped[ne] = NULL;
+    /* with rlpath the escaped stage learns too */
+    const char *escaped[9];
+    defines_plus(escaped, defines, nd, rl ? "CV_RLPATH" : NULL, NULL);
     const char *modes[5][2] = {{"GENERATE_MODE=0", NULL}, {"GENERATE_MODE=1", NULL},
                                {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
                                {"PREPARE_MODE=2", NULL}};
     /* hits binned by material for the shade stages (intersect.comp) */
     const char *intersect[9];
-    defines_plus(intersect, defines, nd, "CV_HIT_BINS");
+    defines_plus(intersect, defines, nd, "CV_HIT_BINS", NULL);
     /* path shades each bin with its own program (shade.comp); rlpath's one
      * shade program takes both bins in one dispatch */
     const char *shade_a[9], *shade_b[9];
-    defines_plus(shade_a, defines, nd, "CV_SHADE_BIN=0");
-    defines_plus(shade_b, defines, nd, "CV_SHADE_BIN=1");
+    defines_plus(shade_a, defines, nd, "CV_SHADE_BIN=0", NULL);
+    defines_plus(shade_b, defines, nd, "CV_SHADE_BIN=1", NULL);
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces these, with the same defines */
         if ((s == ST_SHADE || s == ST_SHADE_B) && rl)
