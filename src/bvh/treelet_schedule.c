@@ -24,24 +24,19 @@ size_t cv_treelet_schedule(int leaves, uint32_t *out)
     if (leaves < 3 || leaves > 8)
         return 0;
     uint32_t full = (1u << leaves) - 1;
-    size_t n = 0;
-    for (int k = 2; k <= leaves; k++)
+    size_t n = 0, start[10];   /* start[k]: the first subset of k leaves */
+    for (int k = 2; k <= leaves; k++) {
+        start[k] = n;
         for (uint32_t s = 1; s <= full; s++)
             if (popcount(s) == k)
                 out[n++] = s;
-    for (int k = 3; k <= leaves; k++) {
-        size_t first = 0;
-        for (int j = 2; j < k; j++)
-            for (uint32_t s = 1; s <= full; s++)
-                first += popcount(s) == j;
-        size_t count = 0;
-        for (uint32_t s = 1; s <= full; s++)
-            count += popcount(s) == k;
+    }
+    start[leaves + 1] = n;
+    for (int k = 3; k <= leaves; k++)
         for (uint32_t m = 0; m + 1 < (1u << (k - 1)); m++)
-            for (size_t j = 0; j < count; j++) {
-                uint32_t s = out[first + j], low = s & (~s + 1);
+            for (size_t j = start[k]; j < start[k + 1]; j++) {
+                uint32_t s = out[j], low = s & (~s + 1);
                 out[n++] = s | (low | deposit(m, s ^ low)) << 8;
             }
-    }
     return n;
 }
