@@ -117,12 +117,18 @@ vec3 cv_rl_bin_dir(uint b, vec2 u)
 
 float cv_rl_texel_f(int t) { return uintBitsToFloat(imageLoad(rl_q, t).x); }
 
+// The mean over the visits of a bin's sum at learning texel t (its own,
+// or with the emitted part at t + 2 added).
+float cv_rl_bin_mean(int t, bool with_emitted)
+{
+    float s = cv_rl_texel_f(t) + (with_emitted ? cv_rl_texel_f(t + 2) : 0.0);
+    return s / float(max(imageLoad(rl_q, t + 1).x, 1u));
+}
+
 // Q of bin `bin` of a key: both sums over the visits.
 float cv_rl_q(uint key, uint bin)
 {
-    int t = cv_rl_bin_texel(cv_rl_key_texel(key), int(bin));
-    float s = cv_rl_texel_f(t) + cv_rl_texel_f(t + 2);
-    return s / float(max(imageLoad(rl_q, t + 1).x, 1u));
+    return cv_rl_bin_mean(cv_rl_bin_texel(cv_rl_key_texel(key), int(bin)), true);
 }
 
 #ifndef CV_RL_GUIDE_WRITE

@@ -25,13 +25,11 @@ shared float s_prob[CV_RL_MAX_BINS];
 // emitted part, over the visits.
 float cv_rl_guided_q(int kt, uint b)
 {
-    int t = cv_rl_bin_texel(kt, int(b));
 #ifdef CV_RL_GUIDE_INDIRECT
-    float s = cv_rl_texel_f(t);
+    return cv_rl_bin_mean(cv_rl_bin_texel(kt, int(b)), false);
 #else
-    float s = cv_rl_texel_f(t) + cv_rl_texel_f(t + 2);
+    return cv_rl_bin_mean(cv_rl_bin_texel(kt, int(b)), true);
 #endif
-    return s / float(max(imageLoad(rl_q, t + 1).x, 1u));
 }
 
 // The integral of max(cos, 0) to the unit axis `a` over bin b, from the
