@@ -17,6 +17,7 @@
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bvh.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
@@ -42,7 +43,9 @@ struct cv_bvh {
     struct cv_bvh_stats stats;
 };
 
-/* Scratch of one build; everything here is freed when it ends. */
+/* Scratch of one build, from the GPU's buffer pool (gpu/buffer_pool.h);
+ * everything here goes back to it when the build ends, so the next build
+ * touches no fresh memory. */
 struct build {
     struct cv_gpu *gpu;
     uint32_t n;
@@ -108,7 +111,10 @@ static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct
         return 0;
     }
     b->scratch += bytes;
-    return cv_buffer_create((size_t)bytes, NULL, label, err);
+    /* Every pass writes its scratch before reading it, or clears it itself
+     * (live, starts, the treelet counters and info; hierarchy.comp resets
+     * the refit counters). */
+    return cv_buffer_pool_get(b->gpu->scratch, (size_t)bytes, label, err);
 }
 
 /* The treelet shader's work lists (src/bvh/treelet_schedule.h). */
@@ -123,10 +129,10 @@ static GLuint treelet_schedule(struct build *b, int leaves, struct cv_error *err
 static void build_free(struct build *b)
 {
     GLuint *bufs[] = {&b->bounds_a, &b->bounds_b, &b->keys, &b->vals, &b->nodes,
-                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes,
-                      &b->schedule};
+                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
-        cv_buffer_destroy(bufs[i]);
+        cv_buffer_pool_put(b->gpu->scratch, bufs[i]);
+    cv_buffer_destroy(&b->schedule);
     cv_radix_sort_destroy(&b->sort);
     cv_scan_destroy(&b->scan);
     if (b->queries[0])
@@ -160,8 +166,10 @@ GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint trian
                                GLuint prims, uint32_t n, struct cv_error *err)
 {
     struct cv_program *prog = cv_program_get(gpu, "bvh/leaf_tris.comp", NULL, err);
-    GLuint tris = prog ? cv_buffer_create((size_t)(n ? n : 1) * sizeof(CvBvhTri), NULL,
-                                          "bvh leaf triangles", err)
+    /* leaf_tris.comp writes every slot: no zero-fill (fresh memory is dear,
+     * see gpu/buffer_pool.h). */
+    GLuint tris = prog ? cv_buffer_create_uninit((size_t)(n ? n : 1) * sizeof(CvBvhTri),
+                                                 "bvh leaf triangles", err)
                        : 0;
     if (!tris)
         return 0;
@@ -205,6 +213,8 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         return false;
 
     glGenQueries(PH_COUNT, b->queries);
+    /* Pooled buffers hold whatever their last user left. */
+    cv_buffer_zero(b->info);
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
 
@@ -336,7 +346,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->info = scratch(b, 16, "bvh info", err)) ||
         !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
-        !(bvh->prims = cv_buffer_create(n * 4, NULL, "bvh prims", err)))
+        /* layout.comp writes every slot. */
+        !(bvh->prims = cv_buffer_create_uninit(n * 4, "bvh prims", err)))
         return false;
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
     if (!(b->sort = cv_radix_sort_create(b->gpu, b->n, MORTON_BITS, err)) ||
@@ -355,7 +366,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         return cv_fail(err, "BVH build produced %u nodes for %llu triangles", n_nodes,
                        (unsigned long long)n);
     /* Keep only the live prefix of the node array. */
-    if (!(bvh->nodes = cv_buffer_create((size_t)n_nodes * sizeof(CvBvhNode), NULL, "bvh nodes", err)))
+    if (!(bvh->nodes = cv_buffer_create_uninit((size_t)n_nodes * sizeof(CvBvhNode), "bvh nodes",
+                                               err)))
         return false;
     glCopyNamedBufferSubData(b->out_nodes, bvh->nodes, 0, 0, (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
