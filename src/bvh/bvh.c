@@ -36,6 +36,16 @@
  * (128 MiB of boxes), each gathering from its window only: 7.5 ms at 16 M. */
 #define REFIT_WINDOW (4u << 20)
 
+/* Workgroups of bounds.comp: 1024 triangles each, at most BOUNDS_GROUPS
+ * (each invocation then strides over several). */
+#define BOUNDS_GROUPS 4096u
+
+static uint32_t bounds_groups(uint32_t n)
+{
+    uint32_t g = (n + 1023) / 1024;
+    return g < 1 ? 1 : g > BOUNDS_GROUPS ? BOUNDS_GROUPS : g;
+}
+
 enum { PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE, PH_COUNT };
 
 struct cv_bvh {
@@ -112,8 +122,8 @@ static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct
     }
     b->scratch += bytes;
     /* Every pass writes its scratch before reading it, or clears it itself
-     * (live, starts, the treelet counters and info; hierarchy.comp resets
-     * the refit counters). */
+     * (live, starts, the treelet counters, the bounds counter and info;
+     * hierarchy.comp resets the refit counters). */
     return cv_buffer_pool_get(b->gpu->scratch, (size_t)bytes, label, err);
 }
 
@@ -196,14 +206,12 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     uint32_t n = b->n;
     char tdef[32];
     snprintf(tdef, sizeof(tdef), "TREELET_SIZE=%d", p->treelet_size);
-    const char *bounds_defs[] = {"FROM_TRIANGLES", NULL};
     const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
     const char *refit_defs[] = {nc, NULL};
     const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
     const char *treelet_defs[] = {tdef, nc, NULL};
-    struct cv_program *bounds_tri, *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
-    if (!(bounds_tri = cv_program_get(b->gpu, "bvh/bounds.comp", bounds_defs, err)) ||
-        !(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", NULL, err)) ||
+    struct cv_program *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
+    if (!(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", NULL, err)) ||
         !(morton = cv_program_get(b->gpu, "bvh/morton.comp", key_defs, err)) ||
         !(hier = cv_program_get(b->gpu, "bvh/hierarchy.comp", key_defs, err)) ||
         !(refit = cv_program_get(b->gpu, "bvh/refit.comp", refit_defs, err)) ||
@@ -214,31 +222,24 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
 
     glGenQueries(PH_COUNT, b->queries);
     /* Pooled buffers hold whatever their last user left. */
+    cv_buffer_zero(b->bounds_b);
     cv_buffer_zero(b->info);
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
 
-    /* Centroid bounds: one reduction level per factor of 256. */
+    /* Centroid bounds: one dispatch, whose last group reduces the groups'
+     * pairs (bounds.comp); bounds_b holds its counter. */
     phase_begin(b, PH_BOUNDS);
     cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0 + 1);
-    cv_program_set_uint(bounds_tri, "u_n", n);
-    cv_program_dispatch_1d(bounds_tri, n);
-    GLuint src = b->bounds_a, dst = b->bounds_b;
-    for (uint32_t m = (n + 255) / 256; m > 1; m = (m + 255) / 256) {
-        cv_buffer_bind(src, CV_BIND_STAGE0);
-        cv_buffer_bind(dst, CV_BIND_STAGE0 + 1);
-        cv_program_set_uint(bounds, "u_n", m);
-        cv_program_dispatch_1d(bounds, m);
-        GLuint t = src;
-        src = dst;
-        dst = t;
-    }
+    cv_buffer_bind(b->bounds_b, CV_BIND_STAGE0 + 2);
+    cv_program_set_uint(bounds, "u_n", n);
+    cv_program_dispatch_1d(bounds, (uint64_t)bounds_groups(n) * bounds->local_size[0]);
     phase_end(b, PH_BOUNDS);
 
     /* The triangles' boxes, from morton to refit, borrow out_nodes, which
      * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. */
     phase_begin(b, PH_MORTON);
-    cv_buffer_bind(src, CV_BIND_STAGE0);
+    cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
@@ -333,9 +334,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
                        GLuint vertices, GLuint triangles, struct cv_error *err)
 {
     uint64_t n = b->n;
-    uint64_t g0 = (n + 255) / 256, g1 = (g0 + 255) / 256;
-    if (!(b->bounds_a = scratch(b, g0 * 32, "bvh bounds", err)) ||
-        !(b->bounds_b = scratch(b, g1 * 32, "bvh bounds", err)) ||
+    if (!(b->bounds_a = scratch(b, (1 + (uint64_t)bounds_groups(b->n)) * 32, "bvh bounds",
+                                err)) ||
+        !(b->bounds_b = scratch(b, 16, "bvh bounds counter", err)) ||
         !(b->keys = scratch(b, n * (MORTON_BITS > 32 ? 8 : 4), "bvh keys", err)) ||
         !(b->vals = scratch(b, n * 4, "bvh ids", err)) ||
         !(b->nodes = scratch(b, (2 * n - 1) * sizeof(CvBvhBuildNode), "bvh build nodes", err)) ||
