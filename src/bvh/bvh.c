@@ -17,6 +17,7 @@
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bvh.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
@@ -35,6 +36,16 @@
  * (128 MiB of boxes), each gathering from its window only: 7.5 ms at 16 M. */
 #define REFIT_WINDOW (4u << 20)
 
+/* Workgroups of bounds.comp: 1024 triangles each, at most BOUNDS_GROUPS
+ * (each invocation then strides over several). */
+#define BOUNDS_GROUPS 4096u
+
+static uint32_t bounds_groups(uint32_t n)
+{
+    uint32_t g = (n + 1023) / 1024;
+    return g < 1 ? 1 : g > BOUNDS_GROUPS ? BOUNDS_GROUPS : g;
+}
+
 enum { PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE, PH_COUNT };
 
 struct cv_bvh {
@@ -42,7 +53,9 @@ struct cv_bvh {
     struct cv_bvh_stats stats;
 };
 
-/* Scratch of one build; everything here is freed when it ends. */
+/* Scratch of one build, from the GPU's buffer pool (gpu/buffer_pool.h);
+ * everything here goes back to it when the build ends, so the next build
+ * touches no fresh memory. */
 struct build {
     struct cv_gpu *gpu;
     uint32_t n;
@@ -108,7 +121,10 @@ static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct
         return 0;
     }
     b->scratch += bytes;
-    return cv_buffer_create((size_t)bytes, NULL, label, err);
+    /* Every pass writes its scratch before reading it, or clears it itself
+     * (live, starts, the treelet counters, the bounds counter and info;
+     * hierarchy.comp resets the refit counters). */
+    return cv_buffer_pool_get(b->gpu->scratch, (size_t)bytes, label, err);
 }
 
 /* The treelet shader's work lists (src/bvh/treelet_schedule.h). */
@@ -123,10 +139,10 @@ static GLuint treelet_schedule(struct build *b, int leaves, struct cv_error *err
 static void build_free(struct build *b)
 {
     GLuint *bufs[] = {&b->bounds_a, &b->bounds_b, &b->keys, &b->vals, &b->nodes,
-                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes,
-                      &b->schedule};
+                      &b->counters, &b->offsets, &b->live, &b->starts, &b->info, &b->out_nodes};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
-        cv_buffer_destroy(bufs[i]);
+        cv_buffer_pool_put(b->gpu->scratch, bufs[i]);
+    cv_buffer_destroy(&b->schedule);
     cv_radix_sort_destroy(&b->sort);
     cv_scan_destroy(&b->scan);
     if (b->queries[0])
@@ -160,8 +176,10 @@ GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint trian
                                GLuint prims, uint32_t n, struct cv_error *err)
 {
     struct cv_program *prog = cv_program_get(gpu, "bvh/leaf_tris.comp", NULL, err);
-    GLuint tris = prog ? cv_buffer_create((size_t)(n ? n : 1) * sizeof(CvBvhTri), NULL,
-                                          "bvh leaf triangles", err)
+    /* leaf_tris.comp writes every slot: no zero-fill (fresh memory is dear,
+     * see gpu/buffer_pool.h). */
+    GLuint tris = prog ? cv_buffer_create_uninit((size_t)(n ? n : 1) * sizeof(CvBvhTri),
+                                                 "bvh leaf triangles", err)
                        : 0;
     if (!tris)
         return 0;
@@ -188,14 +206,12 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     uint32_t n = b->n;
     char tdef[32];
     snprintf(tdef, sizeof(tdef), "TREELET_SIZE=%d", p->treelet_size);
-    const char *bounds_defs[] = {"FROM_TRIANGLES", NULL};
     const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
     const char *refit_defs[] = {nc, NULL};
     const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
     const char *treelet_defs[] = {tdef, nc, NULL};
-    struct cv_program *bounds_tri, *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
-    if (!(bounds_tri = cv_program_get(b->gpu, "bvh/bounds.comp", bounds_defs, err)) ||
-        !(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", NULL, err)) ||
+    struct cv_program *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
+    if (!(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", NULL, err)) ||
         !(morton = cv_program_get(b->gpu, "bvh/morton.comp", key_defs, err)) ||
         !(hier = cv_program_get(b->gpu, "bvh/hierarchy.comp", key_defs, err)) ||
         !(refit = cv_program_get(b->gpu, "bvh/refit.comp", refit_defs, err)) ||
@@ -205,30 +221,25 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         return false;
 
     glGenQueries(PH_COUNT, b->queries);
+    /* Pooled buffers hold whatever their last user left. */
+    cv_buffer_zero(b->bounds_b);
+    cv_buffer_zero(b->info);
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
 
-    /* Centroid bounds: one reduction level per factor of 256. */
+    /* Centroid bounds: one dispatch, whose last group reduces the groups'
+     * pairs (bounds.comp); bounds_b holds its counter. */
     phase_begin(b, PH_BOUNDS);
     cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0 + 1);
-    cv_program_set_uint(bounds_tri, "u_n", n);
-    cv_program_dispatch_1d(bounds_tri, n);
-    GLuint src = b->bounds_a, dst = b->bounds_b;
-    for (uint32_t m = (n + 255) / 256; m > 1; m = (m + 255) / 256) {
-        cv_buffer_bind(src, CV_BIND_STAGE0);
-        cv_buffer_bind(dst, CV_BIND_STAGE0 + 1);
-        cv_program_set_uint(bounds, "u_n", m);
-        cv_program_dispatch_1d(bounds, m);
-        GLuint t = src;
-        src = dst;
-        dst = t;
-    }
+    cv_buffer_bind(b->bounds_b, CV_BIND_STAGE0 + 2);
+    cv_program_set_uint(bounds, "u_n", n);
+    cv_program_dispatch_1d(bounds, (uint64_t)bounds_groups(n) * bounds->local_size[0]);
     phase_end(b, PH_BOUNDS);
 
     /* The triangles' boxes, from morton to refit, borrow out_nodes, which
      * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. */
     phase_begin(b, PH_MORTON);
-    cv_buffer_bind(src, CV_BIND_STAGE0);
+    cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
@@ -323,9 +334,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
                        GLuint vertices, GLuint triangles, struct cv_error *err)
 {
     uint64_t n = b->n;
-    uint64_t g0 = (n + 255) / 256, g1 = (g0 + 255) / 256;
-    if (!(b->bounds_a = scratch(b, g0 * 32, "bvh bounds", err)) ||
-        !(b->bounds_b = scratch(b, g1 * 32, "bvh bounds", err)) ||
+    if (!(b->bounds_a = scratch(b, (1 + (uint64_t)bounds_groups(b->n)) * 32, "bvh bounds",
+                                err)) ||
+        !(b->bounds_b = scratch(b, 16, "bvh bounds counter", err)) ||
         !(b->keys = scratch(b, n * (MORTON_BITS > 32 ? 8 : 4), "bvh keys", err)) ||
         !(b->vals = scratch(b, n * 4, "bvh ids", err)) ||
         !(b->nodes = scratch(b, (2 * n - 1) * sizeof(CvBvhBuildNode), "bvh build nodes", err)) ||
@@ -336,7 +347,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->info = scratch(b, 16, "bvh info", err)) ||
         !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
-        !(bvh->prims = cv_buffer_create(n * 4, NULL, "bvh prims", err)))
+        /* layout.comp writes every slot. */
+        !(bvh->prims = cv_buffer_create_uninit(n * 4, "bvh prims", err)))
         return false;
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
     if (!(b->sort = cv_radix_sort_create(b->gpu, b->n, MORTON_BITS, err)) ||
@@ -355,7 +367,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         return cv_fail(err, "BVH build produced %u nodes for %llu triangles", n_nodes,
                        (unsigned long long)n);
     /* Keep only the live prefix of the node array. */
-    if (!(bvh->nodes = cv_buffer_create((size_t)n_nodes * sizeof(CvBvhNode), NULL, "bvh nodes", err)))
+    if (!(bvh->nodes = cv_buffer_create_uninit((size_t)n_nodes * sizeof(CvBvhNode), "bvh nodes",
+                                               err)))
         return false;
     glCopyNamedBufferSubData(b->out_nodes, bvh->nodes, 0, 0, (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);

@@ -9,6 +9,7 @@
 #include "bvh/radix_sort.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
@@ -65,9 +66,13 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
         free(rs);
         return NULL;
     }
-    rs->keys = cv_buffer_create((size_t)rs->max_n * 4 * words, NULL, "radix keys", err);
-    rs->vals = rs->keys ? cv_buffer_create((size_t)rs->max_n * 4, NULL, "radix vals", err) : 0;
-    rs->counts = rs->vals ? cv_buffer_create((size_t)blocks * 16 * 4, NULL, "radix counts", err) : 0;
+    /* From the GPU's pool (gpu/buffer_pool.h): every pass writes them
+     * before reading them. */
+    struct cv_buffer_pool *pool = gpu->scratch;
+    rs->keys = cv_buffer_pool_get(pool, (size_t)rs->max_n * 4 * words, "radix keys", err);
+    rs->vals = rs->keys ? cv_buffer_pool_get(pool, (size_t)rs->max_n * 4, "radix vals", err) : 0;
+    rs->counts =
+        rs->vals ? cv_buffer_pool_get(pool, (size_t)blocks * 16 * 4, "radix counts", err) : 0;
     if (!rs->counts) {
         cv_radix_sort_destroy(&rs);
         return NULL;
@@ -136,9 +141,10 @@ void cv_radix_sort_destroy(struct cv_radix_sort **rs)
 {
     if (!rs || !*rs)
         return;
-    cv_buffer_destroy(&(*rs)->keys);
-    cv_buffer_destroy(&(*rs)->vals);
-    cv_buffer_destroy(&(*rs)->counts);
+    struct cv_buffer_pool *pool = (*rs)->gpu->scratch;
+    cv_buffer_pool_put(pool, &(*rs)->keys);
+    cv_buffer_pool_put(pool, &(*rs)->vals);
+    cv_buffer_pool_put(pool, &(*rs)->counts);
     free(*rs);
     *rs = NULL;
 }

@@ -7,6 +7,7 @@
 #include "bvh/scan.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
@@ -34,7 +35,9 @@ struct cv_scan *cv_scan_create(struct cv_gpu *gpu, uint32_t max_n, struct cv_err
             return NULL;
         }
         scan->sums_n[scan->n_levels] = n;
-        scan->sums[scan->n_levels] = cv_buffer_create((size_t)n * 4, NULL, "bvh scan sums", err);
+        /* From the GPU's pool: scan_block.comp writes them. */
+        scan->sums[scan->n_levels] =
+            cv_buffer_pool_get(gpu->scratch, (size_t)n * 4, "bvh scan sums", err);
         scan->bytes += (uint64_t)n * 4;
         if (!scan->sums[scan->n_levels++]) {
             cv_scan_destroy(&scan);
@@ -88,7 +91,7 @@ void cv_scan_destroy(struct cv_scan **scan)
     if (!scan || !*scan)
         return;
     for (int i = 0; i < SCAN_MAX_LEVELS; i++)
-        cv_buffer_destroy(&(*scan)->sums[i]);
+        cv_buffer_pool_put((*scan)->gpu->scratch, &(*scan)->sums[i]);
     free(*scan);
     *scan = NULL;
 }

@@ -22,6 +22,20 @@ GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struc
     return buf;
 }
 
+GLuint cv_buffer_create_uninit(size_t bytes, const char *label, struct cv_error *err)
+{
+    GLuint buf = 0;
+    glCreateBuffers(1, &buf);
+    glNamedBufferStorage(buf, (GLsizeiptr)(bytes ? bytes : 4), NULL, GL_DYNAMIC_STORAGE_BIT);
+    if (label)
+        glObjectLabel(GL_BUFFER, buf, -1, label);
+    if (!cv_gl_check(err, "creating buffer %s (%zu bytes)", label ? label : "", bytes)) {
+        glDeleteBuffers(1, &buf);
+        return 0;
+    }
+    return buf;
+}
+
 void cv_buffer_destroy(GLuint *buf)
 {
     if (buf && *buf) {

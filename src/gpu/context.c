@@ -13,6 +13,7 @@
 
 #include "base/log.h"
 #include "base/mem.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/context_platform.h"
 #include "gpu/program.h"
 
@@ -165,6 +166,7 @@ static bool finish(struct cv_gpu *gpu, struct cv_gpu **out, struct cv_error *err
     }
     enable_debug_output();
     gpu->programs = cv_program_cache_create();
+    gpu->scratch = cv_buffer_pool_create();
     cv_info("GPU: %s (%s, OpenGL %s, %s)", gpu->info.renderer, gpu->info.vendor,
             gpu->info.version, gpu->info.backend);
     *out = gpu;
@@ -214,6 +216,7 @@ void cv_gpu_destroy(struct cv_gpu **gpu)
 {
     if (!gpu || !*gpu)
         return;
+    cv_buffer_pool_destroy(&(*gpu)->scratch);
     cv_program_cache_destroy(&(*gpu)->programs);
     if ((*gpu)->platform_destroy)
         (*gpu)->platform_destroy((*gpu)->platform);

@@ -42,10 +42,12 @@ struct cv_gpu_info {
 };
 
 struct cv_program_cache;
+struct cv_buffer_pool;
 
 struct cv_gpu {
     struct cv_gpu_info info;
     struct cv_program_cache *programs;  /* owned: see program.h */
+    struct cv_buffer_pool *scratch;     /* owned: see buffer_pool.h */
     void *platform;                     /* owned by the backend file */
     void (*platform_destroy)(void *platform);
 };

@@ -1,6 +1,7 @@
 # src/gpu: headless context, GLSL loader, buffers.
 libcavalry_a_SOURCES += \
 	src/gpu/buffer.c src/gpu/buffer.h \
+	src/gpu/buffer_pool.c src/gpu/buffer_pool.h \
 	src/gpu/context.c src/gpu/context.h src/gpu/context_platform.h \
 	src/gpu/context_egl.c src/gpu/context_osmesa.c \
 	src/gpu/gl_check.c src/gpu/gl_check.h \

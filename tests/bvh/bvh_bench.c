@@ -3,12 +3,16 @@
  * seed), builds the BVH several times and prints the median time of each
  * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
  *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--check] [--ref] [--rays R]
+ *             [--all] [--gl-debug]
  * --ref also builds a CPU binned-SAH tree over the same triangles and prints
  * its SAH cost for comparison.
  * --rays R traces R rays (closest hit + any hit, glsl/bvh/rays_test.comp)
  * through the default tree and a plain LBVH and prints rays per second.
  * --check reads the last tree back and verifies its invariants (as the
  * tests do) and prints its depth; the exit status is 1 when they fail.
+ * --all prints every rep's phases and the wall time of the build and of
+ * its destruction; --gl-debug logs the driver's notifications (buffer
+ * placement and the like).
  * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
 #include "config.h"
 
@@ -17,6 +21,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "base/log.h"
 #include "bvh/bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/program.h"
@@ -51,6 +56,7 @@ int main(int argc, char **argv)
     struct cv_bvh_params params = cv_bvh_default_params();
     bool check = false, ref = false;
     uint32_t n_rays = 0;
+    bool all = false, gl_debug = false;
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
             reps = atoi(argv[++i]);
@@ -66,6 +72,10 @@ int main(int argc, char **argv)
             check = true;
         else if (strcmp(argv[i], "--no-collapse") == 0)
             params.collapse_leaves = false;
+        else if (strcmp(argv[i], "--all") == 0)
+            all = true;
+        else if (strcmp(argv[i], "--gl-debug") == 0)
+            gl_debug = true;
         else {
             fprintf(stderr, "unknown argument %s\n", argv[i]);
             return 2;
@@ -76,6 +86,8 @@ int main(int argc, char **argv)
     struct cv_error err = {{0}};
     int status = 0;
     struct cv_gpu *gpu = NULL;
+    if (gl_debug)
+        cv_log_set_level(CV_LOG_DEBUG);
     if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
         fprintf(stderr, "bvh_bench: %s\n", err.msg);
         return 1;
@@ -108,11 +120,14 @@ int main(int argc, char **argv)
     for (int p = 0; p < N_PHASES; p++)
         t[p] = calloc((size_t)reps, sizeof(double));
     struct cv_bvh_stats last = {0};
+    double *walls = calloc((size_t)reps, sizeof(double));
     for (int r = 0; r < reps; r++) {
+        double w0 = bench_ms();
         if (!cv_bvh_build(gpu, vb, tb, n, &params, &bvh, &err)) {
             fprintf(stderr, "bvh_bench: %s\n", err.msg);
             return 1;
         }
+        double wall = bench_ms() - w0;
         last = *cv_bvh_stats(bvh);
         if (check && r == reps - 1) {
             struct tree_info ti = check_tree(&m, bvh);
@@ -125,7 +140,16 @@ int main(int argc, char **argv)
                               last.ms_refit,  last.ms_treelet, last.ms_collapse, last.ms_total};
         for (int p = 0; p < N_PHASES; p++)
             t[p][r] = v[p];
+        walls[r] = wall;
+        w0 = bench_ms();
         cv_bvh_destroy(&bvh);
+        if (all) {
+            glFinish();
+            printf("  rep %d:", r);
+            for (int p = 0; p < N_PHASES; p++)
+                printf(" %.3f", v[p]);
+            printf(" | wall: build %.1f ms, destroy %.1f ms\n", wall, bench_ms() - w0);
+        }
     }
     const char *names[N_PHASES] = {"bounds", "morton", "sort", "hierarchy",
                                    "refit",  "treelet", "collapse", "total"};
@@ -135,12 +159,16 @@ int main(int argc, char **argv)
         med[p] = t[p][reps / 2];
     }
     double lbvh = med[0] + med[1] + med[2] + med[3] + med[4];
+    qsort(walls, (size_t)reps, sizeof(double), cmp_double);
+    double wall_med = walls[reps / 2];
+    free(walls);
     printf("BVH build of %u triangles on %s (median of %d; rounds %d, treelet %d, collapse %s)\n",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
            params.collapse_leaves ? "on" : "off");
     for (int p = 0; p < N_PHASES; p++)
         printf("  %-10s %10.3f ms\n", names[p], med[p]);
     printf("  LBVH part  %10.3f ms (bounds..refit)\n", lbvh);
+    printf("  wall       %10.3f ms (the cv_bvh_build call, host clock)\n", wall_med);
     printf("  ms per million triangles: %.3f\n", med[7] * 1e6 / (n ? n : 1));
     printf("  nodes %u, %.2f bytes/triangle (+ %.2f bytes/triangle scratch while building)\n",
            last.n_nodes, (double)last.bytes / (n ? n : 1), (double)last.scratch_bytes / (n ? n : 1));
@@ -154,9 +182,10 @@ int main(int argc, char **argv)
            params.collapse_leaves ? "true" : "false");
     for (int p = 0; p < N_PHASES; p++)
         printf(", \"ms_%s\": %.4f", names[p], med[p]);
-    printf(", \"ms_lbvh\": %.4f, \"nodes\": %u, \"bytes\": %llu, \"bytes_per_triangle\": %.3f, "
+    printf(", \"ms_lbvh\": %.4f, \"ms_wall\": %.4f", lbvh, wall_med);
+    printf(", \"nodes\": %u, \"bytes\": %llu, \"bytes_per_triangle\": %.3f, "
            "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f}\n",
-           lbvh, last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
+           last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
            (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost);
     double mrays[2] = {0, 0};
     if (n_rays) {

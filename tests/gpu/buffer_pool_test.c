@@ -1,0 +1,68 @@
+/* buffer_pool_test.c: the GPU context's scratch pool hands a buffer back
+ * out after put (the smallest idle one that holds the request), never hands
+ * out one that is out already, makes a new one when none fits, and trim
+ * deletes only the idle ones. */
+#include "config.h"
+
+#include <stdint.h>
+
+#include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
+#include "tests/gpu/gpu_test_util.h"
+
+static GLint64 size_of(GLuint buf)
+{
+    GLint64 s = 0;
+    glGetNamedBufferParameteri64v(buf, GL_BUFFER_SIZE, &s);
+    return s;
+}
+
+int main(void)
+{
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    struct cv_error err = {{0}};
+    struct cv_buffer_pool *pool = cv_buffer_pool_create();
+
+    GLuint big = cv_buffer_pool_get(pool, 1 << 20, "big", &err);
+    GLuint small = cv_buffer_pool_get(pool, 4096, "small", &err);
+    tap_ok(big && small && big != small, "two buffers handed out (%u, %u)", big, small);
+    tap_ok(size_of(big) >= (1 << 20) && size_of(small) >= 4096, "each holds its request");
+    GLuint third = cv_buffer_pool_get(pool, 100, "third", &err);
+    tap_ok(third && third != big && third != small, "a busy buffer is not handed out again");
+
+    GLuint b = big, s = small;
+    cv_buffer_pool_put(pool, &b);
+    cv_buffer_pool_put(pool, &s);
+    tap_ok(b == 0 && s == 0, "put clears the caller's name");
+    GLuint again = cv_buffer_pool_get(pool, 1000, "again", &err);
+    tap_ok(again == small, "the smallest idle buffer that holds the request comes back");
+    GLuint again_big = cv_buffer_pool_get(pool, 5000, "again big", &err);
+    tap_ok(again_big == big, "a larger request takes the larger idle buffer");
+    GLuint fresh = cv_buffer_pool_get(pool, 2 << 20, "fresh", &err);
+    tap_ok(fresh && fresh != big && fresh != small && fresh != third,
+           "a request no idle buffer holds makes a new one");
+
+    cv_buffer_pool_put(pool, &again_big);
+    cv_buffer_pool_trim(pool);
+    tap_ok(!glIsBuffer(big), "trim deletes the idle buffer");
+    tap_ok(glIsBuffer(small) && glIsBuffer(third) && glIsBuffer(fresh),
+           "trim keeps the buffers handed out");
+    GLuint after = cv_buffer_pool_get(pool, 1 << 20, "after", &err);
+    tap_ok(after && after != small && after != third && after != fresh,
+           "after trim a request makes a new buffer");
+
+    /* Without a pool: plain buffers that put deletes. */
+    GLuint plain = cv_buffer_pool_get(NULL, 64, "plain", &err);
+    tap_ok(plain && glIsBuffer(plain), "no pool: a new buffer");
+    cv_buffer_pool_put(NULL, &plain);
+    tap_ok(plain == 0, "no pool: put deletes it");
+
+    /* The context's own pool exists and is destroyed with it. */
+    tap_ok(gpu->scratch != NULL, "the GPU context has a scratch pool");
+    cv_buffer_pool_destroy(&pool);
+    tap_ok(pool == NULL, "destroy clears the pointer");
+    cv_buffer_pool_destroy(&pool);
+    tap_ok(!glGetError(), "no GL error");
+    cv_gpu_destroy(&gpu);
+    return tap_done();
+}
