@@ -6,6 +6,7 @@
 #include "base/mem.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "glsl/shared/envmap.h"
 #include "trace/envmap_dist.h"
 #include "trace/scene_upload.h"
@@ -156,6 +157,11 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
         cv_scene_gpu_release(&g);
         return false;
     }
+    /* The build's scratch (about 200 bytes per triangle) would otherwise
+     * stay pooled through the render; the next scene's build pays for fresh
+     * memory again, which costs less than a large scene's render running
+     * short of it. */
+    cv_buffer_pool_trim(gpu->scratch);
     *out = g;
     return true;
 }
