@@ -1,7 +1,8 @@
 #version 450
 // glsl/bvh/bounds.comp: one level of the parallel reduction of the scene's
 // centroid bounds. With FROM_TRIANGLES each invocation takes one triangle's
-// centroid; otherwise it takes one (min, max) pair that the previous level
+// centroid, with FROM_BOXES the centre of one box (split references,
+// src/bvh/split.h); otherwise it takes one (min, max) pair that the previous level
 // wrote. Each workgroup writes one pair to u_out; the host repeats until one
 // pair is left. Empty inputs reduce to (+big, -big).
 #include "shared/scene.h"
@@ -13,6 +14,8 @@ layout(local_size_x = 256) in;
 #ifdef FROM_TRIANGLES
 layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
 layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
+#elif defined(FROM_BOXES)
+layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Boxes { vec4 boxes[]; };
 #else
 layout(std430, binding = CV_BIND_STAGE0) readonly buffer InBounds { vec4 in_b[]; };
 #endif
@@ -33,6 +36,9 @@ void main()
         vec3 c = (verts[t.x].pos_u.xyz + verts[t.y].pos_u.xyz + verts[t.z].pos_u.xyz) * (1.0 / 3.0);
         lo = c;
         hi = c;
+#elif defined(FROM_BOXES)
+        lo = (boxes[2 * i].xyz + boxes[2 * i + 1].xyz) * 0.5;
+        hi = lo;
 #else
         lo = in_b[2 * i].xyz;
         hi = in_b[2 * i + 1].xyz;

@@ -21,9 +21,14 @@ struct cv_bvh_params {
     int treelet_rounds;    /* default 3; 0 = plain LBVH */
     int treelet_size;      /* leaves per treelet, 3..8; default 7 (0 also means 7) */
     bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
+    /* Triangle splitting before the build (src/bvh/split.h): at most this
+     * many extra references per triangle, shared by priority; 0 = off,
+     * up to 4. */
+    float split_budget;
 };
 
-/* Defaults as above; CAVALRY_BVH_ROUNDS (0 to 32) sets treelet_rounds. */
+/* Defaults as above; CAVALRY_BVH_ROUNDS (0 to 32) sets treelet_rounds,
+ * CAVALRY_BVH_SPLIT (0 to 4) split_budget. */
 struct cv_bvh_params cv_bvh_default_params(void);
 
 struct cv_bvh_stats {
@@ -32,12 +37,14 @@ struct cv_bvh_stats {
      * calls. ms_total is their sum. ms_collapse covers collapse + layout. */
     double ms_bounds, ms_morton, ms_sort, ms_hierarchy, ms_refit, ms_treelet, ms_collapse,
         ms_total;
+    double ms_split;       /* triangle splitting, its read-back and remap (in ms_total) */
     /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
      * over leaves of 1.0 * A(leaf) * triangles, divided by A(root). */
     double sah_cost;
     uint64_t bytes;        /* GPU bytes the finished BVH keeps (nodes, prims, leaf triangles) */
     uint64_t scratch_bytes;/* peak GPU scratch during the build, freed after */
     uint32_t n_nodes;      /* final CvBvhNode count */
+    uint32_t n_refs;       /* leaf slots: the triangles plus split's extra references */
 };
 
 struct cv_bvh;

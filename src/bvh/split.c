@@ -1,0 +1,193 @@
+/* split.c: see split.h. The host only allocates, binds and dispatches;
+ * the one read-back is the total of the shares, which sizes the build.
+ * Everything is allocated up front (for the budget's most references), so
+ * that the build's timer queries measure GPU work only. */
+#include <stdlib.h>
+
+#include "base/mem.h"
+#include "bvh/scan.h"
+#include "bvh/split.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "gpu/program.h"
+
+struct cv_bvh_split {
+    struct cv_gpu *gpu;
+    uint32_t n, max_extra, n_refs;
+    uint32_t shift;            /* fraction bits of the shares (split_count.comp) */
+    GLuint bounds_a, bounds_b; /* reduction levels; the scene box ends in `bounds` */
+    GLuint bounds;
+    GLuint sums_a, sums_b;     /* reduction levels of the priorities' sum */
+    GLuint counts;             /* priorities, then shares, then their prefix sum (n + 1) */
+    GLuint ref_tris;           /* n + max_extra (n_refs used) */
+    struct cv_scan *scan;
+    uint64_t bytes;
+};
+
+static GLuint split_buffer(struct cv_bvh_split *s, uint64_t bytes, const char *label,
+                           struct cv_error *err)
+{
+    if (s->gpu->info.max_ssbo_bytes > 0 && bytes > (uint64_t)s->gpu->info.max_ssbo_bytes) {
+        cv_fail(err, "%s needs %llu bytes, more than one storage buffer may hold (%lld)", label,
+                (unsigned long long)bytes, s->gpu->info.max_ssbo_bytes);
+        return 0;
+    }
+    s->bytes += bytes;
+    return cv_buffer_create((size_t)bytes, NULL, label, err);
+}
+
+/* Reduces the level-0 pairs in s->bounds_a (m of them) to one with
+ * bounds.comp; leaves the buffer holding it in s->bounds. */
+static void reduce_bounds(struct cv_bvh_split *s, struct cv_program *bounds, uint32_t m)
+{
+    GLuint src = s->bounds_a, dst = s->bounds_b;
+    for (; m > 1; m = (m + 255) / 256) {
+        cv_buffer_bind(src, CV_BIND_STAGE0);
+        cv_buffer_bind(dst, CV_BIND_STAGE0 + 1);
+        cv_program_set_uint(bounds, "u_n", m);
+        cv_program_dispatch_1d(bounds, m);
+        GLuint t = src;
+        src = dst;
+        dst = t;
+    }
+    s->bounds = src;
+}
+
+/* Sums the per-workgroup priority sums (m of them, in `a`) down to one, in
+ * place of a level buffer; returns the buffer holding it. */
+static GLuint reduce_sums(struct cv_program *sum, GLuint a, GLuint b, uint32_t m)
+{
+    for (; m > 1; m = (m + 255) / 256) {
+        cv_buffer_bind(a, CV_BIND_STAGE0);
+        cv_buffer_bind(b, CV_BIND_STAGE0 + 1);
+        cv_program_set_uint(sum, "u_n", m);
+        cv_program_dispatch_1d(sum, m);
+        GLuint t = a;
+        a = b;
+        b = t;
+    }
+    return a;
+}
+
+struct cv_bvh_split *cv_bvh_split_create(struct cv_gpu *gpu, uint32_t n, uint32_t max_extra,
+                                         struct cv_error *err)
+{
+    struct cv_bvh_split *s = cv_xcalloc(1, sizeof(*s));
+    s->gpu = gpu;
+    s->n = n;
+    s->max_extra = max_extra;
+    /* As many fraction bits as keep the prefix sum within 31 bits. */
+    while (s->shift < 16 && ((uint64_t)max_extra + 1) << (s->shift + 1) <= (1ull << 31))
+        s->shift++;
+    uint64_t g0 = (n + 255) / 256, g1 = (g0 + 255) / 256;
+    if (!(s->bounds_a = split_buffer(s, g0 * 32, "bvh split bounds", err)) ||
+        !(s->bounds_b = split_buffer(s, g1 * 32, "bvh split bounds", err)) ||
+        !(s->sums_a = split_buffer(s, g0 * 4, "bvh split sums", err)) ||
+        !(s->sums_b = split_buffer(s, g1 * 4, "bvh split sums", err)) ||
+        !(s->counts = split_buffer(s, ((uint64_t)n + 1) * 4, "bvh split counts", err)) ||
+        !(s->ref_tris = split_buffer(s, ((uint64_t)n + max_extra) * 4, "bvh split refs", err)) ||
+        !(s->scan = cv_scan_create(gpu, n + 1, err))) {
+        cv_bvh_split_destroy(&s);
+        return NULL;
+    }
+    s->bytes += cv_scan_bytes(s->scan);
+    return s;
+}
+
+bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangles,
+                        uint32_t *n_refs, struct cv_error *err)
+{
+    struct cv_program *box, *bounds, *prio, *sum, *count;
+    if (!(box = cv_program_get(s->gpu, "bvh/split_bounds.comp", NULL, err)) ||
+        !(bounds = cv_program_get(s->gpu, "bvh/bounds.comp", NULL, err)) ||
+        !(prio = cv_program_get(s->gpu, "bvh/split_priority.comp", NULL, err)) ||
+        !(sum = cv_program_get(s->gpu, "bvh/split_sum.comp", NULL, err)) ||
+        !(count = cv_program_get(s->gpu, "bvh/split_count.comp", NULL, err)))
+        return false;
+    uint32_t n = s->n, g0 = (n + 255) / 256;
+    cv_buffer_bind(vertices, CV_BIND_VERTICES);
+    cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
+    /* The scene box, which the Morton grid divides. */
+    cv_buffer_bind(s->bounds_a, CV_BIND_STAGE0 + 1);
+    cv_program_set_uint(box, "u_n", n);
+    cv_program_dispatch_1d(box, n);
+    reduce_bounds(s, bounds, g0);
+
+    cv_buffer_bind(s->bounds, CV_BIND_STAGE0);
+    cv_buffer_bind(s->counts, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(s->sums_a, CV_BIND_STAGE0 + 2);
+    cv_program_set_uint(prio, "u_n", n);
+    cv_program_dispatch_1d(prio, n);
+    GLuint total = reduce_sums(sum, s->sums_a, s->sums_b, g0);
+
+    cv_buffer_bind(s->counts, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(total, CV_BIND_STAGE0 + 2);
+    cv_program_set_uint(count, "u_n", n);
+    cv_program_set_uint(count, "u_shift", s->shift);
+    glProgramUniform1f(count->id, glGetUniformLocation(count->id, "u_budget"),
+                       (float)s->max_extra);
+    cv_program_dispatch_1d(count, (uint64_t)n + 1);
+    uint32_t fixed_total = 0;
+    if (!cv_scan_exclusive(s->scan, s->counts, n + 1, err) ||
+        !cv_buffer_read(s->counts, (size_t)n * 4, 4, &fixed_total, err))
+        return false;
+    uint32_t extra = fixed_total >> s->shift;
+    if (extra > s->max_extra)
+        return cv_fail(err, "%u extra references for a budget of %u", extra, s->max_extra);
+    s->n_refs = n + extra;
+    *n_refs = s->n_refs;
+    return cv_gl_check(err, "splitting %u triangles", n);
+}
+
+bool cv_bvh_split_emit(struct cv_bvh_split *s, GLuint boxes, struct cv_error *err)
+{
+    struct cv_program *emit = cv_program_get(s->gpu, "bvh/split_emit.comp", NULL, err);
+    if (!emit)
+        return false;
+    cv_buffer_bind(s->bounds, CV_BIND_STAGE0);
+    cv_buffer_bind(s->counts, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(s->ref_tris, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(boxes, CV_BIND_STAGE0 + 3);
+    cv_program_set_uint(emit, "u_n", s->n);
+    cv_program_set_uint(emit, "u_shift", s->shift);
+    cv_program_dispatch_1d(emit, s->n);
+    return cv_gl_check(err, "writing %u references of %u triangles", s->n_refs, s->n);
+}
+
+bool cv_bvh_split_remap(struct cv_bvh_split *s, GLuint prims, struct cv_error *err)
+{
+    struct cv_program *remap = cv_program_get(s->gpu, "bvh/split_remap.comp", NULL, err);
+    if (!remap)
+        return false;
+    cv_buffer_bind(s->ref_tris, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(prims, CV_BIND_BVH_PRIMS);
+    cv_program_set_uint(remap, "u_n", s->n_refs);
+    cv_program_dispatch_1d(remap, s->n_refs);
+    return cv_gl_check(err, "mapping %u references to triangles", s->n_refs);
+}
+
+GLuint cv_bvh_split_ref_tris(const struct cv_bvh_split *s)
+{
+    return s->ref_tris;
+}
+
+uint64_t cv_bvh_split_bytes(const struct cv_bvh_split *s)
+{
+    return s->bytes;
+}
+
+void cv_bvh_split_destroy(struct cv_bvh_split **s)
+{
+    if (!s || !*s)
+        return;
+    cv_buffer_destroy(&(*s)->bounds_a);
+    cv_buffer_destroy(&(*s)->bounds_b);
+    cv_buffer_destroy(&(*s)->sums_a);
+    cv_buffer_destroy(&(*s)->sums_b);
+    cv_buffer_destroy(&(*s)->counts);
+    cv_buffer_destroy(&(*s)->ref_tris);
+    cv_scan_destroy(&(*s)->scan);
+    free(*s);
+    *s = NULL;
+}
