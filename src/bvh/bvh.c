@@ -93,7 +93,7 @@ static void phase_end(struct build *b, int phase)
 struct cv_bvh_params cv_bvh_default_params(void)
 {
     struct cv_bvh_params p = {.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true,
-                              .split_budget = 0.0f};
+                              .split_budget = 0.3f};
     const char *sv = getenv("CAVALRY_BVH_SPLIT");
     if (sv && *sv) {
         char *end;

@@ -1,9 +1,10 @@
 /* bvh.h: the GPU BVH over a scene's triangles, built entirely in compute
- * shaders (glsl/bvh): centroid bounds, 30-bit Morton codes, radix sort,
- * Karras 2012 hierarchy, bottom-up refit, treelet restructuring (Karras &
- * Aila 2013), SAH leaf collapsing and the final layout of
- * glsl/shared/bvh.h. Nothing of the tree is read back to the CPU (only the
- * final node count and the root's cost, for the stats).
+ * shaders (glsl/bvh): triangle splitting (Karras & Aila 2013, split.h),
+ * centroid bounds, 30-bit Morton codes, radix sort, Karras 2012 hierarchy,
+ * bottom-up refit, treelet restructuring (Karras & Aila 2013), SAH leaf
+ * collapsing and the final layout of glsl/shared/bvh.h. Nothing of the tree
+ * is read back to the CPU (only the split's reference count, which sizes
+ * the build, and the final node count and the root's cost, for the stats).
  * Shaders trace against it with glsl/bvh/scene_buffers.glsl and
  * glsl/bvh/traverse.glsl after cv_bvh_bind(). */
 #ifndef CV_BVH_BVH_H
@@ -23,7 +24,10 @@ struct cv_bvh_params {
     bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
     /* Triangle splitting before the build (src/bvh/split.h): at most this
      * many extra references per triangle, shared by priority; 0 = off,
-     * up to 4. */
+     * up to 4; default 0.3. H100, 1024 spp: veach-bidir 6.66 -> 5.31 s
+     * (1.0: 5.23 s), cornell-box unchanged (nothing split); a generated 4 M
+     * triangle scene renders as fast (256 spp: 1.61 s) and builds in 43
+     * instead of 22 ms. */
     float split_budget;
 };
 
@@ -57,7 +61,8 @@ struct cv_bvh;
  * so call cv_bvh_bind() before tracing. Waits for the GPU at the end (it
  * reads the node count and the root's cost). A single SSBO must hold 48
  * bytes per node of the build tree (2n - 1 nodes): on llvmpipe (128 MiB
- * blocks) that caps n near 1.39 M; NVIDIA allows 2 GiB, about 22 M. */
+ * blocks) that caps n near 1.39 M; NVIDIA allows 2 GiB, about 22 M.
+ * Splitting makes no more references than that cap allows. */
 bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
                   const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err);
 /* Binds the nodes at CV_BIND_BVH_NODES and the primitive order at
