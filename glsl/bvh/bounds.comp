@@ -7,16 +7,23 @@
 // counter. One dispatch instead of one level per factor of 256 (H100:
 // 0.166 ms at 4 M triangles and 0.775 ms at 16 M, against 0.219 and ~1.08
 // for the levels; at 1 M about the same, 0.057-0.073 against 0.070).
-// Empty inputs reduce to (+big, -big).
+// With FROM_BOXES the centroids are the centres of split references' boxes
+// (src/bvh/split.h) instead of the triangles'; with SCENE_BOX the result is
+// the union of the triangles' boxes, in which splitting lays its grid.
+// src/bvh/bounds.h dispatches it. Empty inputs reduce to (+big, -big).
 #include "shared/scene.h"
 #include "shared/bindings.h"
 
 #define THREADS 256
-#define K 4  // bounds_groups in src/bvh/bvh.c counts on THREADS * K = 1024
+#define K 4  // src/bvh/bounds.c counts on THREADS * K = 1024
 layout(local_size_x = THREADS) in;
 
+#ifdef FROM_BOXES
+layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Boxes { vec4 boxes[]; };
+#else
 layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
 layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
+#endif
 // The result at [0..1], each group's pair after it; read by morton.comp.
 layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Bounds { vec4 bounds[]; };
 // [0]: groups finished; zero between dispatches.
@@ -49,6 +56,16 @@ void main()
     vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
     uint stride = groups * uint(THREADS * K);
     for (uint base = g * uint(THREADS * K) + l; base < u_n; base += stride) {
+#ifdef FROM_BOXES
+        for (uint k = 0u; k < uint(K); k++) {
+            uint i = base + k * uint(THREADS);
+            if (i < u_n) {
+                vec3 c = (boxes[2u * i].xyz + boxes[2u * i + 1u].xyz) * 0.5;
+                lo = min(lo, c);
+                hi = max(hi, c);
+            }
+        }
+#else
         uvec4 t[K];
         for (uint k = 0u; k < uint(K); k++) {
             uint i = base + k * uint(THREADS);
@@ -56,12 +73,19 @@ void main()
         }
         for (uint k = 0u; k < uint(K); k++) {
             if (base + k * uint(THREADS) < u_n) {
-                vec3 c = (verts[t[k].x].pos_u.xyz + verts[t[k].y].pos_u.xyz +
-                          verts[t[k].z].pos_u.xyz) * (1.0 / 3.0);
-                lo = min(lo, c);
-                hi = max(hi, c);
+                vec3 a = verts[t[k].x].pos_u.xyz, b = verts[t[k].y].pos_u.xyz,
+                     c = verts[t[k].z].pos_u.xyz;
+#ifdef SCENE_BOX
+                lo = min(lo, min(a, min(b, c)));
+                hi = max(hi, max(a, max(b, c)));
+#else
+                vec3 m = (a + b + c) * (1.0 / 3.0);
+                lo = min(lo, m);
+                hi = max(hi, m);
+#endif
             }
         }
+#endif
     }
     group_reduce(l, lo, hi);
     if (l == 0u) {

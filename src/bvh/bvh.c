@@ -10,9 +10,11 @@
 
 #include "base/log.h"
 #include "base/mem.h"
+#include "bvh/bounds.h"
 #include "bvh/bvh.h"
 #include "bvh/radix_sort.h"
 #include "bvh/scan.h"
+#include "bvh/split.h"
 #include "bvh/treelet_schedule.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bvh.h"
@@ -36,17 +38,10 @@
  * (128 MiB of boxes), each gathering from its window only: 7.5 ms at 16 M. */
 #define REFIT_WINDOW (4u << 20)
 
-/* Workgroups of bounds.comp: 1024 triangles each, at most BOUNDS_GROUPS
- * (each invocation then strides over several). */
-#define BOUNDS_GROUPS 4096u
-
-static uint32_t bounds_groups(uint32_t n)
-{
-    uint32_t g = (n + 1023) / 1024;
-    return g < 1 ? 1 : g > BOUNDS_GROUPS ? BOUNDS_GROUPS : g;
-}
-
-enum { PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE, PH_COUNT };
+enum {
+    PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE,
+    PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_COUNT
+};
 
 struct cv_bvh {
     GLuint nodes, prims, tris;
@@ -63,7 +58,9 @@ struct build {
         schedule;
     struct cv_radix_sort *sort;
     struct cv_scan *scan;
+    struct cv_bvh_split *split; /* NULL: one reference per triangle */
     GLuint queries[PH_COUNT];
+    bool ran[PH_COUNT];         /* phases begun (the split ones run only when asked) */
     bool cpu_timing;
     double cpu_ms[PH_COUNT], cpu_start;
     uint64_t scratch;
@@ -78,6 +75,7 @@ static double now_ms(void)
 
 static void phase_begin(struct build *b, int phase)
 {
+    b->ran[phase] = true;
     if (b->cpu_timing) {
         glFinish();
         b->cpu_start = now_ms();
@@ -98,7 +96,17 @@ static void phase_end(struct build *b, int phase)
 
 struct cv_bvh_params cv_bvh_default_params(void)
 {
-    struct cv_bvh_params p = {.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true};
+    struct cv_bvh_params p = {.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true,
+                              .split_budget = 0.3f};
+    const char *sv = getenv("CAVALRY_BVH_SPLIT");
+    if (sv && *sv) {
+        char *end;
+        double f = strtod(sv, &end);
+        if (*end == '\0' && f >= 0 && f <= 4)
+            p.split_budget = (float)f;
+        else
+            cv_warn("CAVALRY_BVH_SPLIT=\"%s\" is not a number from 0 to 4; ignored", sv);
+    }
     const char *v = getenv("CAVALRY_BVH_ROUNDS");
     if (v && *v) {
         char *end;
@@ -145,6 +153,7 @@ static void build_free(struct build *b)
     cv_buffer_destroy(&b->schedule);
     cv_radix_sort_destroy(&b->sort);
     cv_scan_destroy(&b->scan);
+    cv_bvh_split_destroy(&b->split);
     if (b->queries[0])
         glDeleteQueries(PH_COUNT, b->queries);
 }
@@ -168,6 +177,7 @@ static bool build_trivial(struct cv_bvh *bvh, uint32_t n, struct cv_error *err)
     bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
     bvh->stats.bytes = sizeof(node) + 4 + sizeof(CvBvhTri);
     bvh->stats.n_nodes = 1;
+    bvh->stats.n_refs = n;
     bvh->stats.sah_cost = n;
     return bvh->prims != 0;
 }
@@ -206,13 +216,17 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     uint32_t n = b->n;
     char tdef[32];
     snprintf(tdef, sizeof(tdef), "TREELET_SIZE=%d", p->treelet_size);
+    /* Over split references, bounds and keys come from their boxes. */
+    const char *from = b->split ? "FROM_BOXES" : NULL;
+    const char *bounds_defs[] = {from, NULL};
     const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
     const char *refit_defs[] = {nc, NULL};
     const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
+    const char *morton_defs[] = {from, MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
     const char *treelet_defs[] = {tdef, nc, NULL};
     struct cv_program *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
-    if (!(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", NULL, err)) ||
-        !(morton = cv_program_get(b->gpu, "bvh/morton.comp", key_defs, err)) ||
+    if (!(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", bounds_defs, err)) ||
+        !(morton = cv_program_get(b->gpu, "bvh/morton.comp", morton_defs, err)) ||
         !(hier = cv_program_get(b->gpu, "bvh/hierarchy.comp", key_defs, err)) ||
         !(refit = cv_program_get(b->gpu, "bvh/refit.comp", refit_defs, err)) ||
         !(treelet = cv_program_get(b->gpu, "bvh/treelet.comp", treelet_defs, err)) ||
@@ -220,7 +234,6 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         !(emit = cv_program_get(b->gpu, "bvh/emit.comp", NULL, err)))
         return false;
 
-    glGenQueries(PH_COUNT, b->queries);
     /* Pooled buffers hold whatever their last user left. */
     cv_buffer_zero(b->bounds_b);
     cv_buffer_zero(b->info);
@@ -230,14 +243,13 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     /* Centroid bounds: one dispatch, whose last group reduces the groups'
      * pairs (bounds.comp); bounds_b holds its counter. */
     phase_begin(b, PH_BOUNDS);
-    cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(b->bounds_b, CV_BIND_STAGE0 + 2);
-    cv_program_set_uint(bounds, "u_n", n);
-    cv_program_dispatch_1d(bounds, (uint64_t)bounds_groups(n) * bounds->local_size[0]);
+    cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
+    cv_bvh_bounds_dispatch(bounds, n, b->bounds_a, b->bounds_b);
     phase_end(b, PH_BOUNDS);
 
     /* The triangles' boxes, from morton to refit, borrow out_nodes, which
-     * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. */
+     * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. Split
+     * references' boxes are there already (cv_bvh_split_emit). */
     phase_begin(b, PH_MORTON);
     cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
@@ -330,12 +342,44 @@ static double half_area(const float lo[3], const float hi[3])
     return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
 }
 
+/* Triangle splitting (split.h), before the build's buffers are sized: the
+ * build then runs over the references, as many as the budget and the
+ * build's largest buffer (2 n - 1 build nodes) allow. When no extra
+ * reference comes of it, the plain build runs, as without splitting. */
+static bool split_first(struct build *b, const struct cv_bvh_params *p, GLuint vertices,
+                        GLuint triangles, struct cv_error *err)
+{
+    uint64_t most = (uint64_t)((double)p->split_budget * b->n);
+    if (b->gpu->info.max_ssbo_bytes > 0) {
+        uint64_t fit = ((uint64_t)b->gpu->info.max_ssbo_bytes / sizeof(CvBvhBuildNode) + 1) / 2;
+        most = fit > b->n ? (most < fit - b->n ? most : fit - b->n) : 0;
+    }
+    most = most < CV_BVH_COUNT_MASK - b->n ? most : CV_BVH_COUNT_MASK - b->n;
+    if (most == 0)
+        return true;
+    uint32_t n_refs = 0;
+    if (!(b->split = cv_bvh_split_create(b->gpu, b->n, (uint32_t)most, err)))
+        return false;
+    phase_begin(b, PH_SPLIT);
+    bool ok = cv_bvh_split_count(b->split, vertices, triangles, &n_refs, err);
+    phase_end(b, PH_SPLIT);
+    if (ok && n_refs == b->n) {
+        cv_bvh_split_destroy(&b->split);
+    } else if (ok) {
+        b->scratch += cv_bvh_split_bytes(b->split);
+        b->n = n_refs;
+    }
+    return ok;
+}
+
 static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_params *p,
                        GLuint vertices, GLuint triangles, struct cv_error *err)
 {
+    glGenQueries(PH_COUNT, b->queries);
+    if (!split_first(b, p, vertices, triangles, err))
+        return false;
     uint64_t n = b->n;
-    if (!(b->bounds_a = scratch(b, (1 + (uint64_t)bounds_groups(b->n)) * 32, "bvh bounds",
-                                err)) ||
+    if (!(b->bounds_a = scratch(b, cv_bvh_bounds_bytes(b->n), "bvh bounds", err)) ||
         !(b->bounds_b = scratch(b, 16, "bvh bounds counter", err)) ||
         !(b->keys = scratch(b, n * (MORTON_BITS > 32 ? 8 : 4), "bvh keys", err)) ||
         !(b->vals = scratch(b, n * 4, "bvh ids", err)) ||
@@ -355,8 +399,22 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->scan = cv_scan_create(b->gpu, b->n, err)))
         return false;
     b->scratch += cv_radix_sort_bytes(b->sort) + cv_scan_bytes(b->scan);
+    if (b->split) {
+        phase_begin(b, PH_SPLIT_EMIT);
+        bool ok = cv_bvh_split_emit(b->split, b->out_nodes, err);
+        phase_end(b, PH_SPLIT_EMIT);
+        if (!ok)
+            return false;
+    }
     if (!run_phases(b, p, vertices, triangles, err))
         return false;
+    if (b->split) {
+        phase_begin(b, PH_SPLIT_REMAP);
+        bool ok = cv_bvh_split_remap(b->split, bvh->prims, err);
+        phase_end(b, PH_SPLIT_REMAP);
+        if (!ok)
+            return false;
+    }
 
     uint32_t n_nodes = 0;
     CvBvhBuildNode root;
@@ -375,20 +433,25 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
 
     struct cv_bvh_stats *s = &bvh->stats;
     double *ms[PH_COUNT] = {&s->ms_bounds, &s->ms_morton, &s->ms_sort, &s->ms_hierarchy,
-                            &s->ms_refit, &s->ms_treelet, &s->ms_collapse};
+                            &s->ms_refit, &s->ms_treelet, &s->ms_collapse,
+                            &s->ms_split, &s->ms_split, &s->ms_split};
     s->ms_total = 0;
     for (int i = 0; i < PH_COUNT; i++) {
+        if (!b->ran[i])
+            continue;
         GLuint64 ns = 0;
         if (!b->cpu_timing)
             glGetQueryObjectui64v(b->queries[i], GL_QUERY_RESULT, &ns);
-        *ms[i] = b->cpu_timing ? b->cpu_ms[i] : ns * 1e-6;
-        s->ms_total += *ms[i];
+        double t = b->cpu_timing ? b->cpu_ms[i] : ns * 1e-6;
+        *ms[i] += t;
+        s->ms_total += t;
     }
     float lo[3] = {root.bmin.x, root.bmin.y, root.bmin.z};
     float hi[3] = {root.bmax.x, root.bmax.y, root.bmax.z};
     double a = half_area(lo, hi);
     s->sah_cost = a > 0 ? root.bmin.w / a : 0.0;
     s->n_nodes = n_nodes;
+    s->n_refs = (uint32_t)n;
     s->bytes = (uint64_t)n_nodes * sizeof(CvBvhNode) + n * (4 + sizeof(CvBvhTri));
     s->scratch_bytes = b->scratch;
     return cv_gl_check(err, "finishing the BVH");
@@ -405,6 +468,8 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
         return cv_fail(err, "BVH treelet size %d is outside 3..8", p.treelet_size);
     if (p.treelet_rounds < 0 || p.treelet_rounds > 32)
         return cv_fail(err, "BVH treelet rounds %d is outside 0..32", p.treelet_rounds);
+    if (!(p.split_budget >= 0 && p.split_budget <= 4))
+        return cv_fail(err, "BVH split budget %g is outside 0..4", p.split_budget);
     if (n_triangles > CV_BVH_COUNT_MASK)
         return cv_fail(err, "%u triangles are more than the BVH can hold", n_triangles);
     struct cv_bvh *bvh = cv_xcalloc(1, sizeof(*bvh));
@@ -417,7 +482,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
         build_free(&b);
     }
     ok = ok && (bvh->tris = cv_bvh_leaf_tris_create(gpu, vertices, triangles, bvh->prims,
-                                                    n_triangles, err)) != 0;
+                                                    bvh->stats.n_refs, err)) != 0;
     if (!ok) {
         cv_error_prefix(err, "building the BVH");
         cv_bvh_destroy(&bvh);

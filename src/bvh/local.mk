@@ -1,8 +1,10 @@
 # src/bvh: GPU BVH build (LBVH + treelet restructuring) and traversal GLSL.
 libcavalry_a_SOURCES += \
+	src/bvh/bounds.c src/bvh/bounds.h \
 	src/bvh/bvh.c src/bvh/bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
 	src/bvh/scan.c src/bvh/scan.h \
+	src/bvh/split.c src/bvh/split.h \
 	src/bvh/treelet_schedule.c src/bvh/treelet_schedule.h
 
 GLSL_FILES += \
@@ -13,5 +15,8 @@ GLSL_FILES += \
 	glsl/bvh/scan_block.comp glsl/bvh/scan_add.comp \
 	glsl/bvh/hierarchy.comp glsl/bvh/refit.comp glsl/bvh/sah.glsl glsl/bvh/treelet.comp \
 	glsl/bvh/layout.comp glsl/bvh/emit.comp glsl/bvh/leaf_tris.comp \
+	glsl/bvh/split.glsl glsl/bvh/split_priority.comp \
+	glsl/bvh/split_sum.comp glsl/bvh/split_count.comp glsl/bvh/split_emit.comp \
+	glsl/bvh/split_remap.comp \
 	glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
 	glsl/bvh/rays_test.comp

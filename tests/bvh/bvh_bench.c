@@ -2,8 +2,11 @@
  * triangles (half uniform with varied sizes, half in dense clusters; fixed
  * seed), builds the BVH several times and prints the median time of each
  * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
- *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--check] [--ref] [--rays R]
+ *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--split F] [--check]
+ *             [--ref] [--rays R]
  *             [--all] [--gl-debug]
+ * --split F sets the triangle splitting budget (extra references per
+ * triangle, 0 = off; default: CAVALRY_BVH_SPLIT or the built-in default).
  * --ref also builds a CPU binned-SAH tree over the same triangles and prints
  * its SAH cost for comparison.
  * --rays R traces R rays (closest hit + any hit, glsl/bvh/rays_test.comp)
@@ -42,7 +45,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-#define N_PHASES 8
+#define N_PHASES 9
 
 int main(int argc, char **argv)
 {
@@ -62,6 +65,8 @@ int main(int argc, char **argv)
             reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--rounds") == 0 && i + 1 < argc)
             params.treelet_rounds = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--split") == 0 && i + 1 < argc)
+            params.split_budget = (float)atof(argv[++i]);
         else if (strcmp(argv[i], "--treelet") == 0 && i + 1 < argc)
             params.treelet_size = atoi(argv[++i]);
         else if (strcmp(argv[i], "--rays") == 0 && i + 1 < argc)
@@ -136,8 +141,9 @@ int main(int argc, char **argv)
             if (!ti.ok)
                 status = 1;
         }
-        double v[N_PHASES] = {last.ms_bounds, last.ms_morton, last.ms_sort,  last.ms_hierarchy,
-                              last.ms_refit,  last.ms_treelet, last.ms_collapse, last.ms_total};
+        double v[N_PHASES] = {last.ms_split, last.ms_bounds, last.ms_morton,
+                              last.ms_sort,  last.ms_hierarchy, last.ms_refit,
+                              last.ms_treelet, last.ms_collapse, last.ms_total};
         for (int p = 0; p < N_PHASES; p++)
             t[p][r] = v[p];
         walls[r] = wall;
@@ -151,25 +157,27 @@ int main(int argc, char **argv)
             printf(" | wall: build %.1f ms, destroy %.1f ms\n", wall, bench_ms() - w0);
         }
     }
-    const char *names[N_PHASES] = {"bounds", "morton", "sort", "hierarchy",
-                                   "refit",  "treelet", "collapse", "total"};
+    const char *names[N_PHASES] = {"split", "bounds",  "morton",   "sort", "hierarchy",
+                                   "refit", "treelet", "collapse", "total"};
     double med[N_PHASES];
     for (int p = 0; p < N_PHASES; p++) {
         qsort(t[p], (size_t)reps, sizeof(double), cmp_double);
         med[p] = t[p][reps / 2];
     }
-    double lbvh = med[0] + med[1] + med[2] + med[3] + med[4];
+    double lbvh = med[1] + med[2] + med[3] + med[4] + med[5];
     qsort(walls, (size_t)reps, sizeof(double), cmp_double);
     double wall_med = walls[reps / 2];
     free(walls);
-    printf("BVH build of %u triangles on %s (median of %d; rounds %d, treelet %d, collapse %s)\n",
+    printf("BVH build of %u triangles on %s (median of %d; rounds %d, treelet %d, collapse %s, "
+           "split %g)\n",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
-           params.collapse_leaves ? "on" : "off");
+           params.collapse_leaves ? "on" : "off", params.split_budget);
     for (int p = 0; p < N_PHASES; p++)
         printf("  %-10s %10.3f ms\n", names[p], med[p]);
     printf("  LBVH part  %10.3f ms (bounds..refit)\n", lbvh);
     printf("  wall       %10.3f ms (the cv_bvh_build call, host clock)\n", wall_med);
-    printf("  ms per million triangles: %.3f\n", med[7] * 1e6 / (n ? n : 1));
+    printf("  ms per million triangles: %.3f\n", med[8] * 1e6 / (n ? n : 1));
+    printf("  references %u (%.3f per triangle)\n", last.n_refs, (double)last.n_refs / (n ? n : 1));
     printf("  nodes %u, %.2f bytes/triangle (+ %.2f bytes/triangle scratch while building)\n",
            last.n_nodes, (double)last.bytes / (n ? n : 1), (double)last.scratch_bytes / (n ? n : 1));
     printf("  SAH cost %.4f", last.sah_cost);
@@ -177,9 +185,9 @@ int main(int argc, char **argv)
         printf(" (CPU binned SAH %.4f: %+.1f%%)", ref_cost, 100.0 * (last.sah_cost / ref_cost - 1));
     printf("\n");
     printf("{\"triangles\": %u, \"renderer\": \"%s\", \"reps\": %d, \"treelet_rounds\": %d, "
-           "\"treelet_size\": %d, \"collapse_leaves\": %s",
+           "\"treelet_size\": %d, \"collapse_leaves\": %s, \"split_budget\": %g, \"refs\": %u",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
-           params.collapse_leaves ? "true" : "false");
+           params.collapse_leaves ? "true" : "false", params.split_budget, last.n_refs);
     for (int p = 0; p < N_PHASES; p++)
         printf(", \"ms_%s\": %.4f", names[p], med[p]);
     printf(", \"ms_lbvh\": %.4f, \"ms_wall\": %.4f", lbvh, wall_med);

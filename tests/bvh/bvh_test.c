@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "bvh/bvh.h"
+#include "bvh/split.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/program.h"
@@ -183,10 +184,14 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
     GLuint vb = 0, tb = 0;
     if (!tap_ok(mesh_upload(m, &vb, &tb, &err), "%s: uploaded %u triangles", name, m->nt))
         return;
-    struct cv_bvh_params lbvh_params = cv_bvh_default_params();
+    /* Without splitting: every triangle exactly once (check_split covers
+     * splitting, whatever the default). */
+    struct cv_bvh_params params = cv_bvh_default_params();
+    params.split_budget = 0;
+    struct cv_bvh_params lbvh_params = params;
     lbvh_params.treelet_rounds = 0;
     struct cv_bvh *bvh = NULL, *lbvh = NULL;
-    bool built = cv_bvh_build(gpu, vb, tb, m->nt, NULL, &bvh, &err) &&
+    bool built = cv_bvh_build(gpu, vb, tb, m->nt, &params, &bvh, &err) &&
                  cv_bvh_build(gpu, vb, tb, m->nt, &lbvh_params, &lbvh, &err);
     if (tap_ok(built, "%s: built (restructured and plain LBVH): %s", name, built ? "yes" : err.msg)) {
         const struct cv_bvh_stats *s = cv_bvh_stats(bvh), *sl = cv_bvh_stats(lbvh);
@@ -211,7 +216,7 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
         check_rays(gpu, name, m, bvh, vb, tb, n_rays);
     }
     /* Without collapsing every leaf holds one triangle: n - 1 nodes. */
-    struct cv_bvh_params flat = cv_bvh_default_params();
+    struct cv_bvh_params flat = params;
     flat.collapse_leaves = false;
     struct cv_bvh *fb = NULL;
     if (m->nt >= 2 && tap_ok(cv_bvh_build(gpu, vb, tb, m->nt, &flat, &fb, &err),
@@ -225,6 +230,111 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
     cv_bvh_destroy(&bvh);
     cv_bvh_destroy(&lbvh);
     tap_ok(bvh == NULL, "%s: destroy clears the pointer", name);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+}
+
+/* Triangle splitting (src/bvh/split.h) with `budget`: first the references
+ * themselves (every triangle referenced, no more extra references than the
+ * budget, every box inside its triangle's box, the boxes of a triangle's
+ * references covering it), then a tree over them, read back and traced
+ * against brute force. */
+static void check_split(struct cv_gpu *gpu, const char *name, struct mesh *m, float budget,
+                        uint32_t n_rays)
+{
+    struct cv_error err = {{0}};
+    GLuint vb = 0, tb = 0, boxes = 0;
+    uint32_t nt = m->nt, n_refs = 0;
+    if (!tap_ok(mesh_upload(m, &vb, &tb, &err), "%s: uploaded %u triangles", name, nt))
+        return;
+    uint32_t allowed = (uint32_t)((double)budget * nt);
+    struct cv_bvh_split *sp = cv_bvh_split_create(gpu, nt, allowed, &err);
+    bool ok = sp && cv_bvh_split_count(sp, vb, tb, &n_refs, &err) &&
+              (boxes = cv_buffer_create((size_t)n_refs * 32, NULL, "ref boxes", &err)) &&
+              cv_bvh_split_emit(sp, boxes, &err);
+    float (*rb)[8] = malloc((n_refs ? n_refs : 1) * sizeof(*rb));
+    uint32_t *rt = malloc((n_refs ? n_refs : 1) * 4);
+    ok = ok && cv_buffer_read(boxes, 0, (size_t)n_refs * 32, rb, &err) &&
+         cv_buffer_read(cv_bvh_split_ref_tris(sp), 0, (size_t)n_refs * 4, rt, &err);
+    if (tap_ok(ok, "%s: split with budget %g: %s", name, budget, ok ? "yes" : err.msg)) {
+        tap_ok(n_refs >= nt && n_refs - nt <= allowed,
+               "%s: %u extra references, at most the budget's %u", name, n_refs - nt, allowed);
+        /* Each triangle's references, gathered; the first n are in order. */
+        uint32_t bad_tri = 0, bad_box = 0, bad_cover = 0, *count = calloc(nt + 1, 4);
+        double ref_area = 0, tri_area = 0, miss[3] = {0, 0, 0};
+        for (uint32_t r = 0; r < n_refs; r++) {
+            if (rt[r] >= nt || (r < nt && rt[r] != r)) {
+                bad_tri++;
+                continue;
+            }
+            count[rt[r] + 1]++;
+            float tlo[3], thi[3];
+            tri_box(m, rt[r], tlo, thi);
+            bad_box += !(rb[r][0] <= rb[r][4] && rb[r][1] <= rb[r][5] && rb[r][2] <= rb[r][6]) ||
+                       !box_in(&rb[r][0], &rb[r][4], tlo, thi);
+        }
+        for (uint32_t t = 0; t < nt; t++)
+            count[t + 1] += count[t];
+        float (*by_tri)[6] = malloc((n_refs ? n_refs : 1) * sizeof(*by_tri));
+        uint32_t *fill = calloc(nt + 1, 4);
+        for (uint32_t r = 0; bad_tri == 0 && r < n_refs; r++) {
+            float *dst = by_tri[count[rt[r]] + fill[rt[r]]++];
+            memcpy(dst, &rb[r][0], 12);
+            memcpy(dst + 3, &rb[r][4], 12);
+        }
+        for (uint32_t t = 0; bad_tri == 0 && t < nt; t++) {
+            uint32_t k = count[t + 1] - count[t];
+            if (k < 2)
+                continue;
+            float tlo[3], thi[3];
+            tri_box(m, t, tlo, thi);
+            tri_area += half_area3(tlo, thi);
+            for (uint32_t j = 0; j < k; j++)
+                ref_area += half_area3(by_tri[count[t] + j], by_tri[count[t] + j] + 3);
+            if (!tri_covered(m, t, by_tri + count[t], k, 24, miss) && bad_cover++ == 0)
+                tap_diag("triangle %u: point (%.9g %.9g %.9g) outside its %u references' boxes", t,
+                         miss[0], miss[1], miss[2], k);
+        }
+        tap_ok(bad_tri == 0, "%s: every triangle referenced, reference r < n is triangle r "
+               "(%u wrong)", name, bad_tri);
+        tap_ok(bad_box == 0, "%s: every reference's box lies inside its triangle's (%u outside)",
+               name, bad_box);
+        tap_ok(bad_cover == 0, "%s: the references' boxes cover their triangle (%u not)", name,
+               bad_cover);
+        tap_ok(n_refs == nt || ref_area < tri_area,
+               "%s: split triangles' reference boxes are smaller: area %.4g of %.4g", name,
+               ref_area, tri_area);
+        free(count);
+        free(fill);
+        free(by_tri);
+    }
+    cv_bvh_split_destroy(&sp);
+    tap_ok(sp == NULL, "%s: split destroy clears the pointer", name);
+    cv_buffer_destroy(&boxes);
+    free(rb);
+    free(rt);
+
+    struct cv_bvh_params params = cv_bvh_default_params(), off = params;
+    params.split_budget = budget;
+    off.split_budget = 0;
+    struct cv_bvh *bvh = NULL, *plain = NULL;
+    bool built = cv_bvh_build(gpu, vb, tb, nt, &params, &bvh, &err) &&
+                 cv_bvh_build(gpu, vb, tb, nt, &off, &plain, &err);
+    if (tap_ok(built, "%s: built with splitting %g: %s", name, budget, built ? "yes" : err.msg)) {
+        const struct cv_bvh_stats *s = cv_bvh_stats(bvh);
+        struct tree_info ti = check_tree(m, bvh);
+        tap_ok(ti.ok && s->n_refs == n_refs,
+               "%s: split tree invariants hold (%u references, %u nodes, depth %d) %s", name,
+               s->n_refs, s->n_nodes, ti.depth, ti.why);
+        tap_ok(ti.depth < 64, "%s: depth %d fits the traversal stack", name, ti.depth);
+        tap_ok(fabs(ti.sah - s->sah_cost) <= 1e-3 * ti.sah + 1e-6,
+               "%s: GPU SAH %.4f equals the read-back tree's %.4f", name, s->sah_cost, ti.sah);
+        tap_diag("%s: SAH %.4f split, %.4f not; %.1f bytes/triangle", name, s->sah_cost,
+                 cv_bvh_stats(plain)->sah_cost, (double)s->bytes / nt);
+        check_rays(gpu, name, m, bvh, vb, tb, n_rays);
+    }
+    cv_bvh_destroy(&bvh);
+    cv_bvh_destroy(&plain);
     cv_buffer_destroy(&vb);
     cv_buffer_destroy(&tb);
 }
@@ -317,9 +427,29 @@ static void check_rounds_env(void)
            "CAVALRY_BVH_ROUNDS: 1 -> %d, 33 -> %d, 2x -> %d, unset -> %d", one, past, junk, dflt);
 }
 
+/* CAVALRY_BVH_SPLIT sets the default split budget, 0 to 4; a bad value is
+ * ignored (with a warning). */
+static void check_split_env(void)
+{
+    float dflt = cv_bvh_default_params().split_budget;
+    setenv("CAVALRY_BVH_SPLIT", "0.5", 1);
+    float half = cv_bvh_default_params().split_budget;
+    setenv("CAVALRY_BVH_SPLIT", "0", 1);
+    float zero = cv_bvh_default_params().split_budget;
+    setenv("CAVALRY_BVH_SPLIT", "5", 1);
+    float past = cv_bvh_default_params().split_budget;
+    setenv("CAVALRY_BVH_SPLIT", "0.3x", 1);
+    float junk = cv_bvh_default_params().split_budget;
+    unsetenv("CAVALRY_BVH_SPLIT");
+    tap_ok(half == 0.5f && zero == 0.0f && past == dflt && junk == dflt && dflt >= 0 && dflt <= 4,
+           "CAVALRY_BVH_SPLIT: 0.5 -> %g, 0 -> %g, 5 -> %g, 0.3x -> %g, unset -> %g", half, zero,
+           past, junk, dflt);
+}
+
 int main(void)
 {
     check_rounds_env();
+    check_split_env();
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct mesh m;
     mesh_soup(&m, 4000);
@@ -331,6 +461,27 @@ int main(void)
     mesh_planar(&m, 3000);
     check_mesh(gpu, "planar duplicates", &m, 32000, true);
     mesh_free(&m);
+    mesh_cones(&m, 60, 48);
+    check_mesh(gpu, "cones", &m, 16000, false);
+    check_split(gpu, "cones, split 0.3", &m, 0.3f, 16000);
+    check_split(gpu, "cones, split 2", &m, 2.0f, 16000);
+    mesh_free(&m);
+    mesh_planar(&m, 3000);
+    check_split(gpu, "planar duplicates, split 0.3", &m, 0.3f, 16000);
+    mesh_free(&m);
+    mesh_fans(&m, 60, 40);
+    check_split(gpu, "planar fans, split 0.5", &m, 0.5f, 16000);
+    mesh_free(&m);
+    mesh_soup(&m, 4000);
+    check_split(gpu, "clustered soup, split 0.3", &m, 0.3f, 16000);
+    mesh_free(&m);
+    for (uint32_t n = 2; n <= 3; n++) {
+        char name[48];
+        snprintf(name, sizeof(name), "%u triangles, split 4", n);
+        mesh_soup(&m, n);
+        check_split(gpu, name, &m, 4.0f, 1000);
+        mesh_free(&m);
+    }
     for (uint32_t n = 0; n <= 3; n++) {
         char name[32];
         snprintf(name, sizeof(name), "%u triangle(s)", n);

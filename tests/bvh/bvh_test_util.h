@@ -118,6 +118,58 @@ static inline void mesh_planar(struct mesh *m, uint32_t n)
     }
 }
 
+/* Long thin triangles, as lamp shades are made of: open cones of `seg`
+ * slivers from apex to rim, of random size, some upright (axis y), some
+ * tilted; their boxes overlap the cone's inside, which splitting is for. */
+static inline void mesh_cones(struct mesh *m, uint32_t cones, uint32_t seg)
+{
+    mesh_alloc(m, cones * (seg + 1), cones * seg);
+    for (uint32_t c = 0; c < cones; c++) {
+        double ctr[3] = {mesh_rand() * 20.0, mesh_rand() * 20.0, mesh_rand() * 20.0};
+        double r = 0.5 + mesh_rand() * 3.0, h = 2.0 + mesh_rand() * 6.0;
+        double tilt = c % 3 == 0 ? mesh_rand() * 1.2 : 0.0, turn = mesh_rand() * 6.283185307;
+        /* axis (sin tilt cos turn, cos tilt, sin tilt sin turn) and two
+         * unit vectors across it */
+        double ax[3] = {sin(tilt) * cos(turn), cos(tilt), sin(tilt) * sin(turn)};
+        double u[3] = {cos(tilt) * cos(turn), -sin(tilt), cos(tilt) * sin(turn)};
+        double w[3] = {ax[1] * u[2] - ax[2] * u[1], ax[2] * u[0] - ax[0] * u[2],
+                       ax[0] * u[1] - ax[1] * u[0]};
+        uint32_t v0 = c * (seg + 1);
+        set_v(m, v0, ctr[0] + h * ax[0], ctr[1] + h * ax[1], ctr[2] + h * ax[2]);
+        for (uint32_t i = 0; i < seg; i++) {
+            double a = 6.283185307 * i / seg, ca = r * cos(a), sa = r * sin(a);
+            set_v(m, v0 + 1 + i, ctr[0] + ca * u[0] + sa * w[0], ctr[1] + ca * u[1] + sa * w[1],
+                  ctr[2] + ca * u[2] + sa * w[2]);
+        }
+        for (uint32_t i = 0; i < seg; i++)
+            m->t[c * seg + i].idx =
+                (cv_uvec4){v0, v0 + 1 + i, v0 + 1 + (i + 1) % seg, 0};
+    }
+}
+
+/* Degenerate and thin at once: flat fans of `seg` slivers around a centre,
+ * all in the plane z = 0, every other one an exact copy of the one before
+ * (equal centroids and Morton codes). */
+static inline void mesh_fans(struct mesh *m, uint32_t fans, uint32_t seg)
+{
+    mesh_alloc(m, fans * (seg + 1), fans * seg);
+    double cx = 0, cy = 0, r = 1;
+    for (uint32_t f = 0; f < fans; f++) {
+        if (f % 2 == 0) {
+            cx = mesh_rand() * 20.0;
+            cy = mesh_rand() * 20.0;
+            r = 0.5 + mesh_rand() * 4.0;
+        }
+        uint32_t v0 = f * (seg + 1);
+        set_v(m, v0, cx, cy, 0);
+        for (uint32_t i = 0; i < seg; i++)
+            set_v(m, v0 + 1 + i, cx + r * cos(6.283185307 * i / seg),
+                  cy + r * sin(6.283185307 * i / seg), 0);
+        for (uint32_t i = 0; i < seg; i++)
+            m->t[f * seg + i].idx = (cv_uvec4){v0, v0 + 1 + i, v0 + 1 + (i + 1) % seg, 0};
+    }
+}
+
 static inline bool mesh_upload(const struct mesh *m, GLuint *vb, GLuint *tb, struct cv_error *err)
 {
     /* An empty mesh still binds: one zeroed element each. */
@@ -304,9 +356,41 @@ static inline bool box_in(const float *lo, const float *hi, const float *plo, co
     return true;
 }
 
-/* Reads the finished tree back and checks: every triangle in exactly one
- * leaf slot, every node reached exactly once from the root, every child box
- * inside its parent's (a triangle's box inside its leaf's), and the nodes in
+/* Whether boxes[0..nb) (min xyz, max xyz) together cover triangle t:
+ * every point of a barycentric grid of `grid` steps per edge (vertices and
+ * edge points included) lies in one of them. Points are taken in double
+ * precision and clamped to the triangle's box, where exact ones lie. */
+static inline bool tri_covered(const struct mesh *m, uint32_t t, const float (*boxes)[6],
+                               uint32_t nb, int grid, double *miss)
+{
+    float tlo[3], thi[3];
+    tri_box(m, t, tlo, thi);
+    const uint32_t *ix = &m->t[t].idx.x;
+    for (int i = 0; i <= grid; i++)
+        for (int j = 0; i + j <= grid; j++) {
+            double b1 = (double)i / grid, b2 = (double)j / grid, p[3];
+            for (int k = 0; k < 3; k++) {
+                p[k] = (1 - b1 - b2) * (&m->v[ix[0]].pos_u.x)[k] + b1 * (&m->v[ix[1]].pos_u.x)[k] +
+                       b2 * (&m->v[ix[2]].pos_u.x)[k];
+                p[k] = p[k] < tlo[k] ? tlo[k] : p[k] > thi[k] ? thi[k] : p[k];
+            }
+            bool in = false;
+            for (uint32_t b = 0; b < nb && !in; b++)
+                in = p[0] >= boxes[b][0] && p[1] >= boxes[b][1] && p[2] >= boxes[b][2] &&
+                     p[0] <= boxes[b][3] && p[1] <= boxes[b][4] && p[2] <= boxes[b][5];
+            if (!in) {
+                memcpy(miss, p, sizeof(p));
+                return false;
+            }
+        }
+    return true;
+}
+
+/* Reads the finished tree back and checks: every leaf slot used once and
+ * every triangle in exactly one slot (with triangle splitting, in at least
+ * one, and the boxes of its leaves covering it), every node reached exactly
+ * once from the root, every child box inside its parent's (a triangle's box
+ * inside its leaf's, unless split), and the nodes in
  * left-first depth-first order (an inner left child right after its parent,
  * an inner right child right after the parent's left subtree: what
  * glsl/bvh/layout.comp promises traversal). Also returns the depth and the
@@ -316,13 +400,20 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
     struct tree_info ti = {.ok = true};
     struct cv_error err = {{0}};
     const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
-    uint32_t nn = st->n_nodes, n = m->nt;
+    uint32_t nn = st->n_nodes, n = m->nt, ns = st->n_refs;
+    bool split = ns != n;
     CvBvhNode *nodes = malloc((size_t)nn * sizeof(*nodes));
-    uint32_t *prims = malloc((n ? n : 1) * 4);
+    uint32_t *prims = malloc((ns ? ns : 1) * 4);
     uint32_t *stack = malloc(256 * 4), *depth_of = malloc(256 * 4);
-    uint32_t *visits = calloc(nn, 4), *slot_seen = calloc(n + 1, 4), *prim_seen = calloc(n + 1, 4);
+    uint32_t *visits = calloc(nn, 4), *slot_seen = calloc(ns + 1, 4), *prim_seen = calloc(n + 1, 4);
+    float (*slot_box)[6] = calloc(ns + 1, sizeof(*slot_box));
+    if (ns < n) {
+        snprintf(ti.why, sizeof(ti.why), "%u leaf slots for %u triangles", ns, n);
+        ti.ok = false;
+        goto out;
+    }
     if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes, &err) ||
-        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (n ? n : 1) * 4, prims, &err)) {
+        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (ns ? ns : 1) * 4, prims, &err)) {
         snprintf(ti.why, sizeof(ti.why), "read back: %.200s", err.msg);
         ti.ok = false;
         goto out;
@@ -366,9 +457,9 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
             memcpy(&word, &cb[c][0]->w, 4);
             memcpy(&count, &cb[c][1]->w, 4);
             if (count > 0) {
-                if (word < 0 || (uint32_t)word + (uint32_t)count > n) {
+                if (word < 0 || (uint32_t)word + (uint32_t)count > ns) {
                     snprintf(ti.why, sizeof(ti.why), "node %u: leaf range %d+%d out of %u", ni,
-                             word, count, n);
+                             word, count, ns);
                     ti.ok = false;
                     break;
                 }
@@ -376,6 +467,8 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
                     sum += CV_BVH_COST_TRI * half_area3(lo, hi) * count;
                 for (int32_t s = word; s < word + count; s++) {
                     slot_seen[s]++;
+                    memcpy(slot_box[s], lo, 12);
+                    memcpy(slot_box[s] + 3, hi, 12);
                     uint32_t p = prims[s];
                     if (p >= n) {
                         snprintf(ti.why, sizeof(ti.why), "slot %d holds %u", s, p);
@@ -385,7 +478,7 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
                     prim_seen[p]++;
                     float tlo[3], thi[3];
                     tri_box(m, p, tlo, thi);
-                    if (!box_in(tlo, thi, lo, hi)) {
+                    if (!split && !box_in(tlo, thi, lo, hi)) {
                         snprintf(ti.why, sizeof(ti.why), "triangle %u outside its leaf box", p);
                         ti.ok = false;
                     }
@@ -429,12 +522,36 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
             snprintf(ti.why, sizeof(ti.why), "node %u reached %u times", i, visits[i]);
             ti.ok = false;
         }
-    for (uint32_t i = 0; ti.ok && i < n; i++)
-        if (prim_seen[i] != 1 || slot_seen[i] != 1) {
-            snprintf(ti.why, sizeof(ti.why), "triangle %u in %u leaves, slot %u used %u times", i,
-                     prim_seen[i], i, slot_seen[i]);
+    for (uint32_t i = 0; ti.ok && i < ns; i++)
+        if (slot_seen[i] != 1) {
+            snprintf(ti.why, sizeof(ti.why), "slot %u used %u times", i, slot_seen[i]);
             ti.ok = false;
         }
+    for (uint32_t i = 0; ti.ok && i < n; i++)
+        if (split ? prim_seen[i] == 0 : prim_seen[i] != 1) {
+            snprintf(ti.why, sizeof(ti.why), "triangle %u in %u leaf slots", i, prim_seen[i]);
+            ti.ok = false;
+        }
+    if (ti.ok && split) {
+        /* Each triangle's leaf boxes, gathered by triangle, must cover it. */
+        uint32_t *first = calloc(n + 1, 4);
+        float (*by_tri)[6] = malloc((ns ? ns : 1) * sizeof(*by_tri));
+        for (uint32_t t = 0; t < n; t++)
+            first[t + 1] = first[t] + prim_seen[t];
+        for (uint32_t s = 0; s < ns; s++)
+            memcpy(by_tri[first[prims[s]] + --prim_seen[prims[s]]], slot_box[s], sizeof(*by_tri));
+        for (uint32_t t = 0; ti.ok && t < n; t++) {
+            double p[3];
+            if (!tri_covered(m, t, by_tri + first[t], first[t + 1] - first[t], 8, p)) {
+                snprintf(ti.why, sizeof(ti.why),
+                         "triangle %u: point (%g %g %g) outside its %u leaves' boxes", t, p[0],
+                         p[1], p[2], first[t + 1] - first[t]);
+                ti.ok = false;
+            }
+        }
+        free(first);
+        free(by_tri);
+    }
     ti.sah = root_area > 0 ? sum / root_area : 0;
 out:
     free(stack);
@@ -444,6 +561,7 @@ out:
     free(visits);
     free(slot_seen);
     free(prim_seen);
+    free(slot_box);
     return ti;
 }
 
