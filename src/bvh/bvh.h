@@ -24,10 +24,10 @@ struct cv_bvh_params {
     bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
     /* Triangle splitting before the build (src/bvh/split.h): at most this
      * many extra references per triangle, shared by priority; 0 = off,
-     * up to 4; default 0.3. H100, 1024 spp: veach-bidir 6.68 -> 5.34 s
-     * (1.0: 5.28 s), cornell-box unchanged (nothing split), a generated 4 M
-     * triangle scene as fast (256 spp: 1.61 s); bvh_bench builds 1 M
-     * triangles in 9.0 instead of 6.6 ms, 16 M in 200 instead of 187 ms. */
+     * up to 4; default 0.3. H100, 1024 spp: veach-bidir 6.62 -> 5.21 s
+     * (1.0 about the same), cornell-box unchanged (nothing split), a
+     * generated 4 M triangle scene as fast; bvh_bench builds 1 M triangles
+     * in 9.06 instead of 6.55 ms (bench/results/..._split-pool). */
     float split_budget;
 };
 

@@ -3,7 +3,9 @@
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 
-GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struct cv_error *err)
+/* data NULL: contents zeroed when `zero`, else undefined. */
+static GLuint create(size_t bytes, const void *data, bool zero, const char *label,
+                     struct cv_error *err)
 {
     GLuint buf = 0;
     glCreateBuffers(1, &buf);
@@ -11,7 +13,7 @@ GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struc
      * arrays still bind. */
     glNamedBufferStorage(buf, (GLsizeiptr)(bytes ? bytes : 4), bytes ? data : NULL,
                          GL_DYNAMIC_STORAGE_BIT);
-    if (!data || !bytes)
+    if (zero && (!data || !bytes))
         cv_buffer_zero(buf);
     if (label)
         glObjectLabel(GL_BUFFER, buf, -1, label);
@@ -22,18 +24,14 @@ GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struc
     return buf;
 }
 
+GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struct cv_error *err)
+{
+    return create(bytes, data, true, label, err);
+}
+
 GLuint cv_buffer_create_uninit(size_t bytes, const char *label, struct cv_error *err)
 {
-    GLuint buf = 0;
-    glCreateBuffers(1, &buf);
-    glNamedBufferStorage(buf, (GLsizeiptr)(bytes ? bytes : 4), NULL, GL_DYNAMIC_STORAGE_BIT);
-    if (label)
-        glObjectLabel(GL_BUFFER, buf, -1, label);
-    if (!cv_gl_check(err, "creating buffer %s (%zu bytes)", label ? label : "", bytes)) {
-        glDeleteBuffers(1, &buf);
-        return 0;
-    }
-    return buf;
+    return create(bytes, NULL, false, label, err);
 }
 
 void cv_buffer_destroy(GLuint *buf)
