@@ -14,6 +14,7 @@
 #include "bvh/bvh.h"
 #include "bvh/radix_sort.h"
 #include "bvh/scan.h"
+#include "bvh/scratch.h"
 #include "bvh/split.h"
 #include "bvh/treelet_schedule.h"
 #include "glsl/shared/bindings.h"
@@ -94,45 +95,36 @@ static void phase_end(struct build *b, int phase)
     }
 }
 
-struct cv_bvh_params cv_bvh_default_params(void)
+/* Sets *out from environment variable `name` when it holds a number in
+ * lo..hi (a whole one when `whole`); warns and leaves *out otherwise. */
+static void env_number(const char *name, bool whole, double lo, double hi, double *out)
 {
-    struct cv_bvh_params p = {.treelet_rounds = 3, .treelet_size = 7, .collapse_leaves = true,
-                              .split_budget = 0.3f};
-    const char *sv = getenv("CAVALRY_BVH_SPLIT");
-    if (sv && *sv) {
-        char *end;
-        double f = strtod(sv, &end);
-        if (*end == '\0' && f >= 0 && f <= 4)
-            p.split_budget = (float)f;
-        else
-            cv_warn("CAVALRY_BVH_SPLIT=\"%s\" is not a number from 0 to 4; ignored", sv);
-    }
-    const char *v = getenv("CAVALRY_BVH_ROUNDS");
-    if (v && *v) {
-        char *end;
-        long r = strtol(v, &end, 10);
-        if (*end == '\0' && r >= 0 && r <= 32)
-            p.treelet_rounds = (int)r;
-        else
-            cv_warn("CAVALRY_BVH_ROUNDS=\"%s\" is not a number from 0 to 32; ignored", v);
-    }
-    return p;
+    const char *v = getenv(name);
+    if (!v || !*v)
+        return;
+    char *end;
+    double f = whole ? (double)strtol(v, &end, 10) : strtod(v, &end);
+    if (*end == '\0' && f >= lo && f <= hi)
+        *out = f;
+    else
+        cv_warn("%s=\"%s\" is not a number from %g to %g; ignored", name, v, lo, hi);
 }
 
+struct cv_bvh_params cv_bvh_default_params(void)
+{
+    double split = 0.3, rounds = 3;
+    env_number("CAVALRY_BVH_SPLIT", false, 0, 4, &split);
+    env_number("CAVALRY_BVH_ROUNDS", true, 0, 32, &rounds);
+    return (struct cv_bvh_params){.treelet_rounds = (int)rounds, .treelet_size = 7,
+                                  .collapse_leaves = true, .split_budget = (float)split};
+}
+
+/* Every pass writes its scratch before reading it, or clears it itself
+ * (live, starts, the treelet counters, the bounds counter and info;
+ * hierarchy.comp resets the refit counters). */
 static GLuint scratch(struct build *b, uint64_t bytes, const char *label, struct cv_error *err)
 {
-    if (bytes == 0)
-        bytes = 16;
-    if (b->gpu->info.max_ssbo_bytes > 0 && bytes > (uint64_t)b->gpu->info.max_ssbo_bytes) {
-        cv_fail(err, "%s needs %llu bytes, more than one storage buffer may hold (%lld)", label,
-                (unsigned long long)bytes, b->gpu->info.max_ssbo_bytes);
-        return 0;
-    }
-    b->scratch += bytes;
-    /* Every pass writes its scratch before reading it, or clears it itself
-     * (live, starts, the treelet counters, the bounds counter and info;
-     * hierarchy.comp resets the refit counters). */
-    return cv_buffer_pool_get(b->gpu->scratch, (size_t)bytes, label, err);
+    return cv_bvh_scratch(b->gpu, bytes, label, &b->scratch, err);
 }
 
 /* The treelet shader's work lists (src/bvh/treelet_schedule.h). */

@@ -4,6 +4,7 @@ libcavalry_a_SOURCES += \
 	src/bvh/bvh.c src/bvh/bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
 	src/bvh/scan.c src/bvh/scan.h \
+	src/bvh/scratch.c src/bvh/scratch.h \
 	src/bvh/split.c src/bvh/split.h \
 	src/bvh/treelet_schedule.c src/bvh/treelet_schedule.h
 

@@ -7,6 +7,7 @@
 #include "base/mem.h"
 #include "bvh/bounds.h"
 #include "bvh/scan.h"
+#include "bvh/scratch.h"
 #include "bvh/split.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
@@ -28,19 +29,12 @@ struct cv_bvh_split {
     uint64_t bytes;
 };
 
+/* Every pass writes its buffer before reading it (the bounds counter is
+ * cleared in cv_bvh_split_count), so the build's pool serves. */
 static GLuint split_buffer(struct cv_bvh_split *s, uint64_t bytes, const char *label,
                            struct cv_error *err)
 {
-    if (s->gpu->info.max_ssbo_bytes > 0 && bytes > (uint64_t)s->gpu->info.max_ssbo_bytes) {
-        cv_fail(err, "%s needs %llu bytes, more than one storage buffer may hold (%lld)", label,
-                (unsigned long long)bytes, s->gpu->info.max_ssbo_bytes);
-        return 0;
-    }
-    s->bytes += bytes;
-    /* Every pass writes its buffer before reading it (the bounds counter is
-     * cleared below), so the build's pool serves: no fresh memory per build
-     * (gpu/buffer_pool.h). */
-    return cv_buffer_pool_get(s->gpu->scratch, (size_t)bytes, label, err);
+    return cv_bvh_scratch(s->gpu, bytes, label, &s->bytes, err);
 }
 
 /* Sums the per-workgroup priority sums (m of them, in `a`) down to one, in
