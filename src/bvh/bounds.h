@@ -14,10 +14,10 @@
  * then one pair per workgroup. */
 uint64_t cv_bvh_bounds_bytes(uint32_t n);
 
-/* Reduces n elements into out[0..1] (two vec4). counter holds one word that
- * must be zero before the first dispatch; each dispatch leaves it zero. The
- * program's inputs (vertices and triangles, or boxes) are bound by the
- * caller. */
+/* Reduces n elements into out[0..1] (two vec4). counter: one word of
+ * scratch, any contents (cleared here), where bounds.comp counts its
+ * finished groups. The program's inputs (vertices and triangles, or boxes)
+ * are bound by the caller. */
 void cv_bvh_bounds_dispatch(struct cv_program *bounds, uint32_t n, GLuint out, GLuint counter);
 
 #endif

@@ -227,7 +227,6 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         return false;
 
     /* Pooled buffers hold whatever their last user left. */
-    cv_buffer_zero(b->bounds_b);
     cv_buffer_zero(b->info);
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);

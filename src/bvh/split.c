@@ -29,8 +29,8 @@ struct cv_bvh_split {
     uint64_t bytes;
 };
 
-/* Every pass writes its buffer before reading it (the bounds counter is
- * cleared in cv_bvh_split_count), so the build's pool serves. */
+/* Every pass writes its buffer before reading it (bounds.c clears the
+ * bounds counter), so the build's pool serves. */
 static GLuint split_buffer(struct cv_bvh_split *s, uint64_t bytes, const char *label,
                            struct cv_error *err)
 {
@@ -93,7 +93,6 @@ bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangle
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
     /* The scene box, which the Morton grid divides. */
-    cv_buffer_zero(s->bounds_counter);
     cv_bvh_bounds_dispatch(box, n, s->bounds, s->bounds_counter);
 
     cv_buffer_bind(s->bounds, CV_BIND_STAGE0);
