@@ -10,6 +10,7 @@
 
 #include "base/mem.h"
 #include "bench/bench.h"
+#include "gpu/memory.h"
 
 static struct bench_field *add(struct bench_record *r, const char *key)
 {
@@ -200,26 +201,16 @@ void bench_reset_epoch(void)
     epoch_ms = monotonic_ms();
 }
 
-/* GL_NVX_gpu_memory_info tokens (values in KiB). */
-#define NVX_TOTAL_AVAILABLE_MEMORY 0x9048
-#define NVX_CURRENT_AVAILABLE_VIDMEM 0x9049
-
 static double mem_peak_kib = -1, mem_total_kib = -1;
 
 void bench_gpu_memory_sample(const struct cv_gpu *gpu)
 {
-    if (!gpu || !gpu->info.has_nvx_memory_info)
+    uint64_t total = 0, avail = 0;
+    if (!cv_gpu_memory(gpu, &total, &avail))
         return;
-    GLint total = 0, avail = 0;
-    glGetIntegerv(NVX_TOTAL_AVAILABLE_MEMORY, &total);
-    glGetIntegerv(NVX_CURRENT_AVAILABLE_VIDMEM, &avail);
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    if (total <= 0)
-        return;
-    mem_total_kib = total;
-    if (total - avail > mem_peak_kib)
-        mem_peak_kib = total - avail;
+    mem_total_kib = total / 1024.0;
+    if ((total - avail) / 1024.0 > mem_peak_kib)
+        mem_peak_kib = (total - avail) / 1024.0;
 }
 
 bool bench_gpu_memory_peak(double *used_mib, double *total_mib)

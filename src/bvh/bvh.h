@@ -59,9 +59,10 @@ struct cv_bvh;
  * bindings: the two scene buffers end bound at CV_BIND_VERTICES/TRIANGLES,
  * stage-private slots (CV_BIND_STAGE0..+4) and the BVH slots hold scratch,
  * so call cv_bvh_bind() before tracing. Waits for the GPU at the end (it
- * reads the node count and the root's cost). The scratch (~196 bytes per
- * triangle) is taken from gpu->scratch and left there for the next build;
- * cv_buffer_pool_trim(gpu->scratch) frees it. A single SSBO must hold 48
+ * reads the node count and the root's cost). The scratch (~264 bytes per
+ * triangle with the default splitting) is taken from gpu->scratch and left
+ * there for the next build; cv_buffer_pool_trim(gpu->scratch) frees it
+ * (scene upload keeps it or not, trace/scene_upload.c). A single SSBO must hold 48
  * bytes per node of the build tree (2n - 1 nodes): on llvmpipe (128 MiB
  * blocks) that caps n near 1.39 M; NVIDIA allows 2 GiB, about 22 M.
  * Splitting makes no more references than that cap allows. */

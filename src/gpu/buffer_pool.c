@@ -10,6 +10,7 @@ struct entry {
     GLuint buf;
     size_t bytes;
     bool busy;
+    bool used;  /* handed out since the last settle */
 };
 
 struct cv_buffer_pool {
@@ -36,7 +37,7 @@ GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char 
             best = e;
     }
     if (best) {
-        best->busy = true;
+        best->busy = best->used = true;
         return best->buf;
     }
     GLuint buf = cv_buffer_create_uninit(bytes, label, err);
@@ -46,7 +47,7 @@ GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char 
         pool->cap = pool->cap ? 2 * pool->cap : 16;
         pool->e = cv_xrealloc(pool->e, pool->cap * sizeof(*pool->e));
     }
-    pool->e[pool->n++] = (struct entry){.buf = buf, .bytes = bytes, .busy = true};
+    pool->e[pool->n++] = (struct entry){.buf = buf, .bytes = bytes, .busy = true, .used = true};
     return buf;
 }
 
@@ -75,6 +76,25 @@ void cv_buffer_pool_trim(struct cv_buffer_pool *pool)
             cv_buffer_destroy(&pool->e[i].buf);
     }
     pool->n = k;
+}
+
+size_t cv_buffer_pool_settle(struct cv_buffer_pool *pool)
+{
+    size_t k = 0, idle = 0;
+    for (size_t i = 0; pool && i < pool->n; i++) {
+        struct entry e = pool->e[i];
+        if (!e.busy && !e.used) {
+            cv_buffer_destroy(&e.buf);
+            continue;
+        }
+        if (!e.busy)
+            idle += e.bytes;
+        e.used = false;
+        pool->e[k++] = e;
+    }
+    if (pool)
+        pool->n = k;
+    return idle;
 }
 
 void cv_buffer_pool_destroy(struct cv_buffer_pool **pool)

@@ -30,6 +30,11 @@ GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char 
 void cv_buffer_pool_put(struct cv_buffer_pool *pool, GLuint *buf);
 /* Deletes the idle buffers (those handed out stay handed out). */
 void cv_buffer_pool_trim(struct cv_buffer_pool *pool);
+/* Ends a round of use (one BVH build): deletes the idle buffers that were
+ * not handed out since the last settle, so that a pool kept from job to job
+ * holds one round's working set, not every size it ever made. Returns the
+ * bytes of the idle buffers it keeps. Accepts NULL (returns 0). */
+size_t cv_buffer_pool_settle(struct cv_buffer_pool *pool);
 /* Deletes every buffer; needs the context current. Accepts NULL; clears the
  * pointer. */
 void cv_buffer_pool_destroy(struct cv_buffer_pool **pool);

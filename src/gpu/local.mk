@@ -5,6 +5,7 @@ libcavalry_a_SOURCES += \
 	src/gpu/context.c src/gpu/context.h src/gpu/context_platform.h \
 	src/gpu/context_egl.c src/gpu/context_osmesa.c \
 	src/gpu/gl_check.c src/gpu/gl_check.h \
+	src/gpu/memory.c src/gpu/memory.h \
 	src/gpu/glsl_source.c src/gpu/glsl_source.h \
 	src/gpu/program.c src/gpu/program.h \
 	src/gpu/program_disk_cache.c src/gpu/program_disk_cache.h

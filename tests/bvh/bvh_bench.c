@@ -4,7 +4,7 @@
  * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
  *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--split F] [--check]
  *             [--ref] [--rays R]
- *             [--all] [--gl-debug]
+ *             [--all] [--gl-debug] [--fresh]
  * --split F sets the triangle splitting budget (extra references per
  * triangle, 0 = off; default: CAVALRY_BVH_SPLIT or the built-in default).
  * --ref also builds a CPU binned-SAH tree over the same triangles and prints
@@ -15,7 +15,9 @@
  * tests do) and prints its depth; the exit status is 1 when they fail.
  * --all prints every rep's phases and the wall time of the build and of
  * its destruction; --gl-debug logs the driver's notifications (buffer
- * placement and the like).
+ * placement and the like). --fresh frees the context's pooled scratch
+ * before each build, so that every build pays for fresh memory as the
+ * first build of a process (or of a scene too large to keep it) does.
  * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
 #include "config.h"
 
@@ -29,6 +31,7 @@
 #include "glsl/shared/bindings.h"
 #include "gpu/program.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/context.h"
 #include "tests/bvh/bvh_test_util.h"
 
@@ -59,7 +62,7 @@ int main(int argc, char **argv)
     struct cv_bvh_params params = cv_bvh_default_params();
     bool check = false, ref = false;
     uint32_t n_rays = 0;
-    bool all = false, gl_debug = false;
+    bool all = false, gl_debug = false, fresh = false;
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
             reps = atoi(argv[++i]);
@@ -81,6 +84,8 @@ int main(int argc, char **argv)
             all = true;
         else if (strcmp(argv[i], "--gl-debug") == 0)
             gl_debug = true;
+        else if (strcmp(argv[i], "--fresh") == 0)
+            fresh = true;
         else {
             fprintf(stderr, "unknown argument %s\n", argv[i]);
             return 2;
@@ -127,6 +132,10 @@ int main(int argc, char **argv)
     struct cv_bvh_stats last = {0};
     double *walls = calloc((size_t)reps, sizeof(double));
     for (int r = 0; r < reps; r++) {
+        if (fresh) {
+            cv_buffer_pool_trim(gpu->scratch);
+            glFinish();
+        }
         double w0 = bench_ms();
         if (!cv_bvh_build(gpu, vb, tb, n, &params, &bvh, &err)) {
             fprintf(stderr, "bvh_bench: %s\n", err.msg);
@@ -169,9 +178,10 @@ int main(int argc, char **argv)
     double wall_med = walls[reps / 2];
     free(walls);
     printf("BVH build of %u triangles on %s (median of %d; rounds %d, treelet %d, collapse %s, "
-           "split %g)\n",
+           "split %g%s)\n",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
-           params.collapse_leaves ? "on" : "off", params.split_budget);
+           params.collapse_leaves ? "on" : "off", params.split_budget,
+           fresh ? ", fresh scratch" : "");
     for (int p = 0; p < N_PHASES; p++)
         printf("  %-10s %10.3f ms\n", names[p], med[p]);
     printf("  LBVH part  %10.3f ms (bounds..refit)\n", lbvh);
@@ -185,9 +195,11 @@ int main(int argc, char **argv)
         printf(" (CPU binned SAH %.4f: %+.1f%%)", ref_cost, 100.0 * (last.sah_cost / ref_cost - 1));
     printf("\n");
     printf("{\"triangles\": %u, \"renderer\": \"%s\", \"reps\": %d, \"treelet_rounds\": %d, "
-           "\"treelet_size\": %d, \"collapse_leaves\": %s, \"split_budget\": %g, \"refs\": %u",
+           "\"treelet_size\": %d, \"collapse_leaves\": %s, \"split_budget\": %g, \"fresh\": %s, "
+           "\"refs\": %u",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
-           params.collapse_leaves ? "true" : "false", params.split_budget, last.n_refs);
+           params.collapse_leaves ? "true" : "false", params.split_budget,
+           fresh ? "true" : "false", last.n_refs);
     for (int p = 0; p < N_PHASES; p++)
         printf(", \"ms_%s\": %.4f", names[p], med[p]);
     printf(", \"ms_lbvh\": %.4f, \"ms_wall\": %.4f", lbvh, wall_med);

@@ -1,7 +1,8 @@
 /* buffer_pool_test.c: the GPU context's scratch pool hands a buffer back
  * out after put (the smallest idle one that holds the request), never hands
- * out one that is out already, makes a new one when none fits, and trim
- * deletes only the idle ones. */
+ * out one that is out already, makes a new one when none fits, trim
+ * deletes only the idle ones, and settle deletes only the idle ones not
+ * handed out since the last settle. */
 #include "config.h"
 
 #include <stdint.h>
@@ -50,6 +51,28 @@ int main(void)
     GLuint after = cv_buffer_pool_get(pool, 1 << 20, "after", &err);
     tap_ok(after && after != small && after != third && after != fresh,
            "after trim a request makes a new buffer");
+
+    /* settle: `after` and `fresh` stay out; `again` (the small one) and
+     * `third` go back. All were handed out since the pool began, so the
+     * first settle keeps the idle two; the second, with only the small one
+     * taken in between, deletes `third`. */
+    GLuint kept_small = again, kept_third = third;
+    cv_buffer_pool_put(pool, &again);
+    cv_buffer_pool_put(pool, &third);
+    size_t idle = cv_buffer_pool_settle(pool);
+    tap_ok(glIsBuffer(kept_small) && glIsBuffer(kept_third),
+           "settle keeps idle buffers handed out since the pool began");
+    tap_ok(idle == (size_t)(size_of(kept_small) + size_of(kept_third)),
+           "settle returns the idle bytes it keeps (%zu)", idle);
+    GLuint retake = cv_buffer_pool_get(pool, 1000, "retake", &err);
+    tap_ok(retake == kept_small, "the idle small buffer comes back after settle");
+    cv_buffer_pool_put(pool, &retake);
+    idle = cv_buffer_pool_settle(pool);
+    tap_ok(glIsBuffer(kept_small) && !glIsBuffer(kept_third),
+           "settle deletes the idle buffer not handed out since the last settle");
+    tap_ok(glIsBuffer(after) && glIsBuffer(fresh), "settle keeps the buffers handed out");
+    tap_ok(idle == (size_t)size_of(kept_small), "settle counts only what it keeps (%zu)", idle);
+    tap_ok(cv_buffer_pool_settle(NULL) == 0, "settle accepts no pool");
 
     /* Without a pool: plain buffers that put deletes. */
     GLuint plain = cv_buffer_pool_get(NULL, 64, "plain", &err);
