@@ -128,8 +128,9 @@ CV_CHECK_SIZE(CvHitItem, 32);
 
 /* A next-event shadow ray: o.w: tmax; d.w: pixel (as in CvRayItem); L.rgb: the
  * contribution (MIS-weighted, divided by the light pdf) added to the pixel
- * when unoccluded; L.w: the sample index of the path that sent it (as
- * CvFilmPixel.normal.w, which has moved on when that path ended). */
+ * when unoccluded; L.w: in a scene with alpha cut-outs, the sample index
+ * of the path that sent it, for the alpha tests (CvFilmPixel.normal.w has
+ * moved on when that path ended). */
 CV_STRUCT(CvShadowItem) {
     CV_VEC4 o;
     CV_VEC4 d;

@@ -33,9 +33,12 @@ void main()
         uint slot_in = cv_hit_slot(i);
         cv_shade(slot_in, push_shadow, s, push_ray, nr);
         uint pixel = uint(cv_ray_in(hits[slot_in].ray).o.w);
-        // the shadow ray's sample, before the pixel moves on to its next
+#ifdef CV_HAS_ALPHA
+        // the shadow ray's sample for its alpha tests (shadow.comp), read
+        // before the pixel moves on to its next
         if (push_shadow)
             s.L.w = float(cv_pixel_sample(pixel));
+#endif
         if (!push_ray)
             push_ray = cv_regenerate(pixel, nr);
     }
