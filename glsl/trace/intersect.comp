@@ -5,11 +5,12 @@
 // host leaves it out for the path integrator in a scene without an
 // environment light, where a miss adds nothing and its pixel starts its
 // next sample (regenerate.glsl) right here: an escaped stage less per
-// iteration (36 us each on an H100, veach-bidir). With the environment's
-// code, intersect.comp would use more storage blocks than Mesa allows. Alpha cut-outs are
-// handled here by continuing the ray past a surface whose alpha test lets
-// it through, so the depth does not change. The last group to finish
-// prepares the shade stage's dispatch (queue_args.glsl).
+// iteration (36 us each on an H100, veach-bidir). The environment's code
+// stays out of this kernel: with it, the kernel would use more storage
+// blocks than Mesa allows (17 of 16). Alpha cut-outs are handled here by
+// continuing the ray past a surface whose alpha test lets it through, so
+// the depth does not change. The last group to finish prepares the shade
+// stage's dispatch (queue_args.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -32,7 +33,7 @@ void main()
     h.prim = 0u;
     h.b1 = 0.0;
     h.b2 = 0.0;
-    bool camera = false;   // a miss's next sample
+    bool regen = false;    // a miss's pixel starts its next sample: nr
     CvRayItem nr;
     if (valid) {
         CvRayItem r = cv_ray_in(i);
@@ -54,14 +55,14 @@ void main()
 #endif
 #ifndef CV_ESCAPED_QUEUE
         if (!hit)
-            camera = cv_regenerate(uint(r.o.w), nr);
+            regen = cv_regenerate(uint(r.o.w), nr);
 #endif
     }
 #ifdef CV_ESCAPED_QUEUE
     bool miss_push = valid && !hit;
     const uint miss_queue = CV_Q_ESCAPED;
 #else
-    bool miss_push = camera;
+    bool miss_push = regen;
     const uint miss_queue = CV_Q_RAYS_OUT;
 #endif
 #ifdef CV_HIT_BINS
