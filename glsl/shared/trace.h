@@ -1,14 +1,15 @@
 /* glsl/shared/trace.h: the wavefront path tracer's work items and queue
  * block, shared by the host (src/trace) and the stage shaders (glsl/trace).
  * Every queue is an SSBO array plus a counter in CvTraceQueues; the stage
- * that fills a queue bumps the counter with atomicAdd, and prepare.comp turns
- * the counters into indirect dispatch arguments, so the host never reads a
- * count back between bounces.
+ * that fills a queue bumps the counter with atomicAdd, and the last work
+ * group to finish that stage turns the counters into the next stages'
+ * indirect dispatch arguments (queue_args.glsl), so the host never reads a
+ * count back between bounces and no dispatch of its own does that work.
  *
  * Paths are regenerated: each pixel of the crop owns one path slot, and when
- * its path ends (escaped, absorbed, roulette, maximum depth) the pixel goes
- * to the done queue, from which generate.comp starts the pixel's next sample
- * of the pass in the same iteration. The wave stays full until pixels run
+ * its path ends (escaped, absorbed, roulette, maximum depth) the stage that
+ * ends it starts the pixel's next sample of the pass (regenerate.glsl) among
+ * the rays of the next iteration. The wave stays full until pixels run
  * out of samples, so an iteration is one bounce of paths of mixed depths,
  * and a pass of k samples takes about k times the mean path length in
  * iterations instead of k times the maximum depth. Each pixel has one path
@@ -30,12 +31,12 @@
  *   capacity n (pixels of the crop), rays of depth d sit at
  *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
  * - CV_BIND_HITS: hits at [0, n) (two bins, from both ends: CV_Q_HITS_B),
- *   escaped rays at [n, 2n), done pixels at [2n, 3n) (their .ray only: a
- *   ray index, a pixel for done).
+ *   escaped rays at [n, 2n) (their .ray only: a ray index; rlpath alone
+ *   queues them, the path integrator's intersect stage handles misses).
  * Items refer to rays by their index within the iteration's half. */
 #define CV_BIND_QUEUES (CV_BIND_STAGE0 + 0)    /* CvTraceQueues */
 #define CV_BIND_RAYS (CV_BIND_STAGE0 + 1)      /* CvRayItem[2n] */
-#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[3n] */
+#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[2n] */
 #define CV_BIND_SHADOW (CV_BIND_STAGE0 + 3)    /* CvShadowItem[n] */
 #define CV_BIND_FILM (CV_BIND_STAGE0 + 4)      /* CvFilmPixel[n] */
 /* CV_BIND_STAGE0 + 5 (15) is CV_BIND_ENV_DIST, the environment map
@@ -48,7 +49,11 @@
 #define CV_Q_HITS 2u
 #define CV_Q_ESCAPED 3u
 #define CV_Q_SHADOW 4u
-#define CV_Q_DONE 5u       /* pixels whose path ended this iteration */
+/* Tickets: how many work groups of the intersect and of the shade stage
+ * have finished; the last one prepares the next stages (queue_args.glsl)
+ * and sets its ticket back to 0. */
+#define CV_Q_TICKET_INTERSECT 5u
+#define CV_Q_TICKET_SHADE 7u
 /* Hits of the second bin (CV_HIT_BINS in intersect.comp: materials other
  * than diffuse): they fill the hit queue from its end, hits[n - 1 - k].
  * The path integrator shades the two bins with two programs (CV_SHADE_BIN
@@ -68,26 +73,25 @@
 #define CV_ARGS_HITS 1u
 #define CV_ARGS_ESCAPED 2u
 #define CV_ARGS_SHADOW 3u
-#define CV_ARGS_DONE 4u
-#define CV_ARGS_HITS_B 5u
-#define CV_ARGS_HITS_ALL 6u
+#define CV_ARGS_HITS_B 4u
+#define CV_ARGS_HITS_ALL 5u
 #define CV_ARGS_OFFSET 32
 #define CV_ARGS_BYTES(s) (CV_ARGS_OFFSET + 16 * (s))
 
-/* Statistic slots: 64-bit totals kept as (lo, hi) pairs by the single
- * prepare invocation. An iteration mixes camera and bounce rays, so the
+/* Statistic slots: 64-bit totals kept as (lo, hi) pairs by the last work
+ * group of a stage (queue_args.glsl). An iteration mixes camera and bounce rays, so the
  * closest-hit rays are counted together; the host knows the camera rays
  * (one per pixel sample). */
 #define CV_STAT_EXTEND 0u      /* every closest-hit ray, camera rays included */
 #define CV_STAT_SHADOW 1u
 
 CV_STRUCT(CvTraceQueues) {
-    CV_UINT count[8];      /* CV_Q_*; a scalar array because llvmpipe's atomics on
+    CV_UINT count[8];      /* CV_Q_* counters and tickets; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
-    CV_UVEC4 args[7];      /* indirect dispatch arguments, CV_ARGS_* */
+    CV_UVEC4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
     CV_UVEC4 stats[2];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 176);
+CV_CHECK_SIZE(CvTraceQueues, 160);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
  * and the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT. */
@@ -124,7 +128,9 @@ CV_CHECK_SIZE(CvHitItem, 32);
 
 /* A next-event shadow ray: o.w: tmax; d.w: pixel (as in CvRayItem); L.rgb: the
  * contribution (MIS-weighted, divided by the light pdf) added to the pixel
- * when unoccluded. */
+ * when unoccluded; L.w: in a scene with alpha cut-outs, the sample index
+ * of the path that sent it, for the alpha tests (CvFilmPixel.normal.w has
+ * moved on when that path ended). */
 CV_STRUCT(CvShadowItem) {
     CV_VEC4 o;
     CV_VEC4 d;

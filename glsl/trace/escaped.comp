@@ -3,16 +3,20 @@
 // glsl/trace/escaped.comp: rays that left the scene pick up environment
 // light, MIS-weighted against the light sampling that could have found the
 // same direction (not for camera rays or after specular bounces); their
-// paths end, so their pixels go to the done queue. Runs every iteration;
-// the host defines CV_NO_ENV, as for every stage, when the scene has no
-// environment light, and CV_RLPATH for the rlpath integrator, whose bounce
-// that escaped learns the environment radiance it found (0 without an
-// environment) in the Q-table (rlpath/guide.glsl).
+// paths end, so their pixels start their next samples (regenerate.glsl).
+// Runs every iteration where the scene has an environment light or the
+// integrator is rlpath (CV_RLPATH), whose bounce that escaped learns the
+// environment radiance it found (0 without an environment) in the Q-table
+// (rlpath/guide.glsl); otherwise a miss has nothing to add and the
+// intersect stage regenerates its pixel itself. The host defines
+// CV_NO_ENV, as for every stage, when the scene has no environment light.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "geometry.glsl"
 #include "lights.glsl"
+#include "sampler.glsl"
+#include "regenerate.glsl"
 #ifdef CV_RLPATH
 #define CV_RL_TABLE_WRITE
 #define CV_RL_TABLE_UPDATE
@@ -36,11 +40,10 @@ void cv_rl_learn_escaped(CvRayItem r)
 void main()
 {
     uint i = cv_global_index();
-    bool valid = i < q.count[CV_Q_ESCAPED];
-    uint pixel = 0u;
-    if (valid) {
+    bool push = false;
+    CvRayItem nr;
+    if (i < q.count[CV_Q_ESCAPED]) {
         CvRayItem r = cv_ray_in(cv_escaped_ray(i));
-        pixel = uint(r.o.w);
 #ifdef CV_RLPATH
         cv_rl_learn_escaped(r);
 #endif
@@ -50,11 +53,12 @@ void main()
             float w = 1.0;
             if (cv_ray_depth(r) > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u)
                 w = cv_power_heuristic(r.d.w, cv_env_pdf(r.d.xyz));
-            cv_film_add(pixel, r.beta.rgb * Le * w);
+            cv_film_add(uint(r.o.w), r.beta.rgb * Le * w);
         }
 #endif
+        push = cv_regenerate(uint(r.o.w), nr);
     }
-    uint slot = cv_queue_slots(valid, CV_Q_DONE, false, CV_Q_DONE).x;
-    if (valid)
-        cv_done_push(slot, pixel);
+    uint slot = cv_queue_slots(push, CV_Q_RAYS_OUT, false, CV_Q_RAYS_OUT).x;
+    if (push)
+        cv_ray_out(slot, nr);
 }

@@ -1,9 +1,26 @@
 // glsl/trace/shade_queue.glsl: main() of the shade stages (trace/shade.comp,
 // trace/rlpath/shade.comp): shades hit i with the stage's cv_shade and
-// queues what it produced (a shadow ray; the bounce ray, or else the pixel
-// to the done queue) with slots taken in uniform control flow. Include last.
+// queues what it produced (a shadow ray; the bounce ray, or else, the path
+// having ended, the camera ray of its pixel's next sample: regenerate.glsl)
+// with slots taken in uniform control flow. The last group to finish (of
+// both bins' programs, which the path integrator runs side by side)
+// prepares the shadow stage and the next iteration (queue_args.glsl).
+// Include last.
 #ifndef CV_TRACE_SHADE_QUEUE_GLSL
 #define CV_TRACE_SHADE_QUEUE_GLSL
+
+#include "queue_args.glsl"
+#include "regenerate.glsl"
+
+// Work groups of the shade stage, over both bins' dispatches.
+uint cv_shade_groups()
+{
+#ifdef CV_SHADE_BIN
+    return cv_groups_in(q.args[CV_ARGS_HITS]) + cv_groups_in(q.args[CV_ARGS_HITS_B]);
+#else
+    return cv_groups_in(q.args[CV_ARGS_HITS_ALL]);
+#endif
+}
 
 void main()
 {
@@ -12,18 +29,28 @@ void main()
     bool push_shadow = false, push_ray = false;
     CvShadowItem s;
     CvRayItem nr;
-    uint slot_in = valid ? cv_hit_slot(i) : 0u;
-    if (valid)
+    if (valid) {
+        uint slot_in = cv_hit_slot(i);
         cv_shade(slot_in, push_shadow, s, push_ray, nr);
-    bool done = valid && !push_ray;
-    uvec3 slot = cv_queue_slots3(bvec3(push_shadow, push_ray, done),
-                                 uvec3(CV_Q_SHADOW, CV_Q_RAYS_OUT, CV_Q_DONE));
+        uint pixel = uint(cv_ray_in(hits[slot_in].ray).o.w);
+#ifdef CV_HAS_ALPHA
+        // the shadow ray's sample for its alpha tests (shadow.comp), read
+        // before the pixel moves on to its next
+        if (push_shadow)
+            s.L.w = float(cv_pixel_sample(pixel));
+#endif
+        if (!push_ray)
+            push_ray = cv_regenerate(pixel, nr);
+    }
+    uvec2 slot = cv_queue_slots(push_shadow, CV_Q_SHADOW, push_ray, CV_Q_RAYS_OUT);
     if (push_shadow)
         shadows[slot.x] = s;
     if (push_ray)
         cv_ray_out(slot.y, nr);
-    if (done)
-        cv_done_push(slot.z, uint(cv_ray_in(hits[slot_in].ray).o.w));
+    // the invocation that took the group's queue slots
+    if (gl_LocalInvocationIndex == uint(CV_TRACE_GROUP) - 1u &&
+        cv_last_group(CV_Q_TICKET_SHADE, cv_shade_groups()))
+        cv_prepare_shadow();
 }
 
 #endif

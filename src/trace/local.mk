@@ -10,7 +10,8 @@ GLSL_FILES += \
 	glsl/trace/geometry.glsl glsl/trace/tracing.glsl glsl/trace/mesh_buffers.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
 	glsl/trace/surface_inputs.glsl glsl/trace/shade_queue.glsl \
-	glsl/trace/generate.comp glsl/trace/prepare.comp glsl/trace/intersect.comp \
+	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
+	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
 	glsl/trace/resolve.comp glsl/trace/test/sampler_probe.comp
 # ---- bsdf / light sampling (branch bsdf) ----

@@ -3,11 +3,13 @@
  * intersect (closest), escaped rays, surface hits (emission, NEE, BSDF
  * sampling; path shades diffuse hits and the others with two programs,
  * rlpath has its own shade stage and then its table update),
- * shadow rays, and the next samples of the pixels whose paths ended (path
- * regeneration, glsl/shared/trace.h); the film accumulates in place. Queue
- * counts stay on the GPU: prepare.comp turns them into indirect dispatch
- * arguments. The host reads one count back per CV_CHUNK iterations, a
- * chunk behind the GPU, only to learn when the pass is over. */
+ * shadow rays; a path that ends starts its pixel's next sample in the stage
+ * that ends it (path regeneration, glsl/shared/trace.h); the film
+ * accumulates in place. Queue counts stay on the GPU: the last work group
+ * of the intersect and shade stages turns them into the next stages'
+ * indirect dispatch arguments (glsl/trace/queue_args.glsl). The host reads
+ * one count back per CV_CHUNK iterations, a chunk behind the GPU, only to
+ * learn when the pass is over. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,10 +34,6 @@
 
 enum stage {
     ST_GENERATE,
-    ST_REGENERATE,
-    ST_PREPARE0,
-    ST_PREPARE1,
-    ST_PREPARE2,
     ST_INTERSECT,
     ST_ESCAPED,
     ST_SHADE,
@@ -54,6 +52,7 @@ struct cv_renderer {
     uint32_t n_pixels, crop_w, crop_h;
     uint32_t max_depth;
     bool aovs;
+    bool escaped_stage;            /* misses go through escaped.comp */
     uint32_t spp_done;
     uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
@@ -75,8 +74,7 @@ struct cv_renderer {
 };
 
 static const char *const stage_names[ST_COUNT + 1] = {
-    "generate", "regenerate", "prepare0", "prepare1", "prepare2", "intersect",
-    "escaped",  "shade",      "shade-b",  "shadow",   "resolve",  "rlpath-rebuild",
+    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve", "rlpath-rebuild",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -112,11 +110,8 @@ static void prof_collect(struct cv_renderer *r)
 }
 
 static const char *const stage_files[ST_COUNT] = {
-    "trace/generate.comp", "trace/generate.comp", "trace/prepare.comp", "trace/prepare.comp",
-    "trace/prepare.comp",
-    "trace/intersect.comp", "trace/escaped.comp", "trace/shade.comp", "trace/shade.comp",
-    "trace/shadow.comp",
-    "trace/resolve.comp",
+    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", "trace/shade.comp",
+    "trace/shade.comp",    "trace/shadow.comp",    "trace/resolve.comp",
 };
 
 /* The film: the scene's, or the override with the scene's crop window. */
@@ -290,27 +285,31 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         defines[nd++] = "CV_NO_TEXTURES";
     defines[nd] = NULL;
     bool rl = p->integrator == CV_RENDER_RLPATH;
-    /* with rlpath the escaped stage learns too */
+    /* Misses need an escaped stage for an environment light or for
+     * rlpath's learning; otherwise the intersect stage starts their pixels'
+     * next samples itself (intersect.comp). */
+    r->escaped_stage = rl || r->scene->has_env;
     const char *escaped[9];
     defines_plus(escaped, defines, nd, rl ? "CV_RLPATH" : NULL, NULL);
-    const char *modes[5][2] = {{"GENERATE_MODE=0", NULL}, {"GENERATE_MODE=1", NULL},
-                               {"PREPARE_MODE=0", NULL}, {"PREPARE_MODE=1", NULL},
-                               {"PREPARE_MODE=2", NULL}};
     /* hits binned by material for the shade stages (intersect.comp) */
-    const char *intersect[9];
-    defines_plus(intersect, defines, nd, "CV_HIT_BINS", NULL);
+    const char *intersect[10];
+    defines_plus(intersect, defines, nd, "CV_HIT_BINS",
+                 r->escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
     /* path shades each bin with its own program (shade.comp); rlpath's one
      * shade program takes both bins in one dispatch */
     const char *shade_a[9], *shade_b[9];
     defines_plus(shade_a, defines, nd, "CV_SHADE_BIN=0", NULL);
     defines_plus(shade_b, defines, nd, "CV_SHADE_BIN=1", NULL);
+    const char *const no_defines[1] = {NULL};
     for (int s = 0; s < ST_COUNT; s++) {
         /* rlpath's shade stage replaces these, with the same defines */
         if ((s == ST_SHADE || s == ST_SHADE_B) && rl)
             continue;
+        if (s == ST_ESCAPED && !r->escaped_stage)
+            continue;
         const char *const *d = defines;
-        if (s <= ST_PREPARE2)
-            d = modes[s - ST_GENERATE];
+        if (s == ST_GENERATE)
+            d = no_defines;
         else if (s == ST_ESCAPED)
             d = escaped;
         else if (s == ST_INTERSECT)
@@ -345,7 +344,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->ubo = make(sizeof(CvPassParams), "trace pass params", &ok, err);
     r->queues = make(sizeof(CvTraceQueues), "trace queues", &ok, err);
     r->rays = make(2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
-    r->hits = make(3 * n * sizeof(CvHitItem), "trace hits, escaped and done", &ok, err);
+    r->hits = make(2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
     r->shadow = make(n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(n * sizeof(CvFilmPixel), "trace film", &ok, err);
     r->resolved = make(n * 4 * sizeof(float), "trace resolved", &ok, err);
@@ -382,27 +381,16 @@ static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
     prof_mark(r, s);
 }
 
-/* One invocation (prepare.comp). */
-static void stage_one(struct cv_renderer *r, int s)
-{
-    prof_mark(r, s);
-    glUseProgram(r->prog[s].id);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    prof_mark(r, s);
-}
-
-/* One iteration: a bounce of every path in flight, then the next samples of
- * the pixels whose paths ended. */
+/* One iteration: a bounce of every path in flight; the pixels whose paths
+ * end start their next samples on the way. */
 static void iterate(struct cv_renderer *r, uint32_t it)
 {
     r->pass.misc.x = it;
     glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
                          &r->pass.misc);
-    stage_one(r, ST_PREPARE0);
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
-    stage_one(r, ST_PREPARE1);
-    stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
+    if (r->escaped_stage)
+        stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
     if (r->rl) {
         stage_indirect(r, ST_SHADE, CV_ARGS_HITS_ALL);
     } else {
@@ -420,9 +408,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
         cv_rlpath_update(r->rl);
         prof_mark(r, ST_COUNT);
     }
-    stage_one(r, ST_PREPARE2);
     stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
-    stage_indirect(r, ST_REGENERATE, CV_ARGS_DONE);
 }
 
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
@@ -455,8 +441,9 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         for (int k = 0; k < CV_CHUNK && it < limit; k++, it++)
             iterate(r, (uint32_t)it);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        /* the rays the next iteration would trace (queue_args.glsl) */
         glCopyNamedBufferSubData(r->queues, r->alive[chunk & 1],
-                                 (GLintptr)(sizeof(uint32_t) * CV_Q_RAYS_OUT), 0,
+                                 (GLintptr)(sizeof(uint32_t) * CV_Q_RAYS_IN), 0,
                                  sizeof(uint32_t));
         /* the previous chunk's count: waits for that chunk while this one runs */
         if (chunk > 0) {
