@@ -249,7 +249,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
     r->aovs = p->aovs;
-    r->prof.on = getenv("CAVALRY_STAGE_TIMES") != NULL;
+    const char *times = getenv("CAVALRY_STAGE_TIMES");
+    r->prof.on = times && *times && strcmp(times, "0") != 0;
     r->max_depth = p->max_depth ? p->max_depth
                                 : (scene->settings.max_depth ? scene->settings.max_depth : 5);
     setup_camera(r, scene, p);

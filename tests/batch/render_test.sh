@@ -1,7 +1,8 @@
 #!/bin/sh
 # render_test.sh: a small batch renders every job in both formats with the
 # metadata --resume relies on; --resume skips finished jobs and redoes a
-# changed one; --only and --dry-run do what they say.
+# changed one; --only and --dry-run do what they say; CAVALRY_STAGE_TIMES
+# logs the stages' GPU times when set to anything but 0.
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
@@ -30,6 +31,11 @@ check "only the changed job renders" sh -c 'grep "\"event\":\"job_finished\"" ru
 
 check_out "--force renders again" run4.jsonl "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run4.err
 check "--only renders one job" test "$(grep -c '"event":"job_finished"' run4.jsonl)" -eq 1
+
+check_out "stage times on" run5.jsonl env CAVALRY_STAGE_TIMES=1 "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run5.err
+check "CAVALRY_STAGE_TIMES=1 logs the stages" grep -q "stage intersect" run5.err
+check_out "stage times off" run6.jsonl env CAVALRY_STAGE_TIMES=0 "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run6.err
+check "CAVALRY_STAGE_TIMES=0 logs none" sh -c '! grep -q "stage intersect" run6.err'
 
 check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
 check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3
