@@ -1,18 +1,16 @@
 #version 450
-// glsl/bvh/radix_count.comp: first step of one 4-bit radix sort pass. Each
-// workgroup counts the digits of its block (u_block_tiles tiles of 1024
-// keys) and writes the 16 counts digit-major (counts[digit * n_blocks +
-// block]), so that one exclusive scan of the whole array (radix_spine.comp)
-// yields every block's first slot per digit, stably. Counts are kept per
-// invocation, 16 bits per digit, and summed over the group in shared memory:
-// shared atomics on 16 counters serialise when a tile's keys share a digit,
-// as the high digits of Morton codes mostly do. 128 invocations keep that
-// sum to 4 KiB of shared memory, which bounds the groups per
-// multiprocessor (see treelet.comp).
-// With KEY64 a key is two words (low, high) and u_shift runs over 0..63.
+// glsl/bvh/radix_count.comp: first step of one radix sort pass. Each
+// workgroup counts the digits (RADIX_BITS wide) of its block (u_block_tiles
+// tiles of 1024 keys) in a shared histogram and writes it digit-major
+// (counts[digit * n_blocks + block]), so that a scan of each digit's row
+// (radix_spine.comp) and of the digits' totals yields every block's first
+// slot per digit, stably. Shared atomics on one counter serialise when many
+// keys share a digit, as the high digits of Morton codes do, so each
+// invocation adds runs of equal digits among its own keys in one atomic: a
+// histogram does not care which keys a run gathers.
 #include "shared/bindings.h"
 
-#define THREADS 128
+#define THREADS 256
 layout(local_size_x = THREADS) in;
 
 layout(std430, binding = CV_BIND_STAGE0) readonly buffer Keys { uint keys[]; };
@@ -20,11 +18,11 @@ layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Counts { uint coun
 
 uniform uint u_n;
 uniform uint u_shift;
-uniform uint u_block_tiles;  // at most 63, so a block's counts fit 16 bits
-
-shared uvec4 s_lo[THREADS], s_hi[THREADS];
+uniform uint u_block_tiles;
 
 #include "radix_digits.glsl"
+
+shared uint s_hist[RADIX_BINS];
 
 void main()
 {
@@ -34,26 +32,27 @@ void main()
     if (block >= n_blocks)
         return;
     uint l = gl_LocalInvocationID.x;
+    for (uint d = l; d < RADIX_BINS; d += uint(THREADS))
+        s_hist[d] = 0u;
+    barrier();
     uint end = min((block + 1u) * block_keys, u_n);
-    uvec4 lo = uvec4(0u), hi = uvec4(0u);
+    uint run_d = 0u, run = 0u;
     for (uint i = block * block_keys + l; i < end; i += uint(THREADS)) {
 #ifdef KEY64
-        uint w = keys[2u * i + (u_shift >> 5)];
+        uint d = cv_radix_digit(uvec2(keys[2u * i], keys[2u * i + 1u]), u_shift);
 #else
-        uint w = keys[i];
+        uint d = cv_radix_digit(keys[i], u_shift);
 #endif
-        cv_radix_count((w >> (u_shift & 31u)) & 15u, lo, hi);
-    }
-    s_lo[l] = lo;
-    s_hi[l] = hi;
-    barrier();
-    for (uint half_n = uint(THREADS) / 2u; half_n > 0u; half_n >>= 1) {
-        if (l < half_n) {
-            s_lo[l] += s_lo[l + half_n];
-            s_hi[l] += s_hi[l + half_n];
+        if (d != run_d && run > 0u) {
+            atomicAdd(s_hist[run_d], run);
+            run = 0u;
         }
-        barrier();
+        run_d = d;
+        run++;
     }
-    if (l < 16u)
-        counts[l * n_blocks + block] = cv_radix_field(l < 8u ? s_lo[0] : s_hi[0], l);
+    if (run > 0u)
+        atomicAdd(s_hist[run_d], run);
+    barrier();
+    for (uint d = l; d < RADIX_BINS; d += uint(THREADS))
+        counts[d * n_blocks + block] = s_hist[d];
 }

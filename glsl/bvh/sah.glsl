@@ -11,14 +11,15 @@ float cv_half_area(vec3 lo, vec3 hi)
     return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
-// Recomputes bounds, count and cost of inner node p from its children.
-void cv_bvh_update_node(int p)
+// Inner node p from its children's bmin (box low, cost), bmax.xyz and
+// link.w (count, flags): writes its bounds, count and cost, returns its
+// bmin and sets hi and w to its bmax.xyz and link.w.
+vec4 cv_bvh_combine(int p, vec4 lmin, vec3 lmax, int lw, vec4 rmin, vec3 rmax, int rw,
+                    out vec3 hi, out int w)
 {
-    ivec4 link = nodes[p].link;
-    vec4 lmin = nodes[link.x].bmin, lmax = nodes[link.x].bmax;
-    vec4 rmin = nodes[link.y].bmin, rmax = nodes[link.y].bmax;
-    int count = (nodes[link.x].link.w & CV_BVH_COUNT_MASK) + (nodes[link.y].link.w & CV_BVH_COUNT_MASK);
-    vec3 lo = min(lmin.xyz, rmin.xyz), hi = max(lmax.xyz, rmax.xyz);
+    int count = (lw & CV_BVH_COUNT_MASK) + (rw & CV_BVH_COUNT_MASK);
+    vec3 lo = min(lmin.xyz, rmin.xyz);
+    hi = max(lmax, rmax);
     float area = cv_half_area(lo, hi);
     float split = float(CV_BVH_COST_INNER) * area + lmin.w + rmin.w;
     float leaf = float(CV_BVH_COST_TRI) * area * float(count);
@@ -27,9 +28,22 @@ void cv_bvh_update_node(int p)
 #else
     bool collapse = count <= CV_BVH_MAX_LEAF && leaf <= split && p != 0;
 #endif
-    nodes[p].bmin = vec4(lo, collapse ? leaf : split);
+    vec4 bmin = vec4(lo, collapse ? leaf : split);
+    w = count | (collapse ? CV_BVH_COLLAPSE : 0);
+    nodes[p].bmin = bmin;
     nodes[p].bmax = vec4(hi, 0.0);
-    nodes[p].link.w = count | (collapse ? CV_BVH_COLLAPSE : 0);
+    nodes[p].link.w = w;
+    return bmin;
+}
+
+// Recomputes bounds, count and cost of inner node p from its children.
+void cv_bvh_update_node(int p)
+{
+    ivec4 link = nodes[p].link;
+    vec3 hi;
+    int w;
+    cv_bvh_combine(p, nodes[link.x].bmin, nodes[link.x].bmax.xyz, nodes[link.x].link.w,
+                   nodes[link.y].bmin, nodes[link.y].bmax.xyz, nodes[link.y].link.w, hi, w);
 }
 
 #endif

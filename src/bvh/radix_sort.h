@@ -1,5 +1,5 @@
 /* radix_sort.h: stable GPU LSD radix sort of 32- or 64-bit keys with uint32
- * values, 4 bits per pass (glsl/bvh/radix_count.comp, radix_spine.comp,
+ * values, 8 bits per pass (glsl/bvh/radix_count.comp, radix_spine.comp,
  * radix_scatter.comp).
  * Any key distribution; equal keys keep their order. A 64-bit key is two
  * uint32 words, low word first. Exposed for tests. */

@@ -2,9 +2,10 @@
  * keys with their indices, for random and adversarial key sets (all equal,
  * sorted, reversed, few distinct, full 32-bit, odd pass counts, a narrower
  * last digit, every digit value in every tile, all bits set in a partial
- * tile, 60- and 64-bit keys of two words, enough keys for blocks of several
- * tiles with a short last block), and the GPU prefix sum equals a
- * CPU one across several scan levels. */
+ * tile, 60- and 64-bit keys of two words, sizes around a tile, enough keys
+ * for blocks of several tiles with a short last block, and the sizes either
+ * side of the first such), and the GPU prefix sum equals a CPU one across
+ * several scan levels. */
 #include "config.h"
 
 #include <stdint.h>
@@ -147,6 +148,14 @@ int main(void)
     for (uint32_t i = 0; i < 1000; i++)
         keys[i] = next_rand();
     check_sort(rs, "one partial tile", keys, 1000, 30);
+    /* A tile is 1024 keys (src/bvh/radix_sort.c); few distinct keys make
+     * runs that cross the invocations' shares of it. */
+    const uint32_t around_tile[] = {1023, 1024, 1025, 2047, 3073};
+    for (size_t t = 0; t < sizeof(around_tile) / sizeof(around_tile[0]); t++) {
+        for (uint32_t i = 0; i < around_tile[t]; i++)
+            keys[i] = (next_rand() % 3u) * 0x01010101u;
+        check_sort(rs, "sizes around a tile, few distinct keys", keys, around_tile[t], 32);
+    }
     keys[0] = 5;
     keys[1] = 3;
     check_sort(rs, "two keys", keys, 2, 30);
@@ -174,6 +183,12 @@ int main(void)
         check_sort(rs, "blocks of several tiles, many equal keys", big_keys, big, 30);
         random_keys(big_keys, big);
         check_sort(rs, "blocks of several tiles, random 64-bit", big_keys, big, 64);
+        /* 2048 tiles are the most blocks of one tile; one key more makes
+         * blocks of two tiles and a last block of one key. */
+        random_keys(big_keys, big);
+        check_sort(rs, "the most blocks of one tile", big_keys, 2048u * 1024u, 30);
+        random_keys(big_keys, big);
+        check_sort(rs, "blocks of two tiles, last of one key", big_keys, 2048u * 1024u + 1u, 30);
     }
     free(big_keys);
     cv_radix_sort_destroy(&rs);
