@@ -105,7 +105,7 @@ static bool up(GLuint *b, size_t bytes, const void *data, const char *label, str
  * next scene's build, a batch's next job, while it is under a quarter of
  * the GPU's free memory: fresh scratch costs a build ~0.5-0.7 ms of GPU
  * time per MB on its first use (H100: 4 M triangles build in ~32 ms on
- * reused scratch, ~90 ms on fresh). Beyond that, or where the driver does
+ * reused scratch, ~46 ms on fresh; bvh_bench --fresh). Beyond that, or where the driver does
  * not say what is free (Mesa), it is freed, so that a large scene's render
  * never runs short for it. */
 static void keep_or_trim_scratch(struct cv_gpu *gpu)
