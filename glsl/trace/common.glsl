@@ -89,6 +89,10 @@ vec3 cv_offset_ray(vec3 p, vec3 n)
 shared uint cv_q_scan[2][CV_TRACE_GROUP];
 shared uint cv_q_base[3];
 
+// The invocation that takes its group's queue slots: the last, whose
+// inclusive scan holds the group's totals.
+bool cv_queue_slot_taker() { return gl_LocalInvocationIndex == uint(CV_TRACE_GROUP) - 1u; }
+
 uvec3 cv_queue_slots3(bvec3 push, uvec3 queue)
 {
     uint li = gl_LocalInvocationIndex;
@@ -105,7 +109,7 @@ uvec3 cv_queue_slots3(bvec3 push, uvec3 queue)
         barrier();
     }
     uint incl = cv_q_scan[src][li];
-    if (li == uint(CV_TRACE_GROUP) - 1u) {
+    if (cv_queue_slot_taker()) {
         uvec3 total = uvec3(incl & 1023u, (incl >> 10) & 1023u, incl >> 20);
         cv_q_base[0] = total.x > 0u ? atomicAdd(q.count[queue.x], total.x) : 0u;
         cv_q_base[1] = total.y > 0u ? atomicAdd(q.count[queue.y], total.y) : 0u;

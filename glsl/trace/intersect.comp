@@ -96,8 +96,7 @@ void main()
         cv_ray_out(slot.y, nr);
 #endif
     }
-    // the invocation that took the group's queue slots
-    if (gl_LocalInvocationIndex == uint(CV_TRACE_GROUP) - 1u &&
+    if (cv_queue_slot_taker() &&
         cv_last_group(CV_Q_TICKET_INTERSECT, gl_NumWorkGroups.x * gl_NumWorkGroups.y))
         cv_prepare_shade();
 }

@@ -31,9 +31,10 @@ void cv_stat_add(uint slot, uint n)
 }
 
 // Whether the calling group is the last of `groups` to pass this point.
-// Call from one invocation, after that group's last atomic on a queue
-// counter (cv_queue_slots3's), so every group's pushes are counted before
-// its ticket; the last group sets the ticket back to 0 for the next use.
+// Call from the invocation that took the group's queue slots
+// (cv_queue_slot_taker), after that, so every group's pushes are counted
+// before its ticket; the last group sets the ticket back to 0 for the next
+// use.
 bool cv_last_group(uint ticket, uint groups)
 {
     memoryBarrierBuffer();

@@ -47,9 +47,7 @@ void main()
         shadows[slot.x] = s;
     if (push_ray)
         cv_ray_out(slot.y, nr);
-    // the invocation that took the group's queue slots
-    if (gl_LocalInvocationIndex == uint(CV_TRACE_GROUP) - 1u &&
-        cv_last_group(CV_Q_TICKET_SHADE, cv_shade_groups()))
+    if (cv_queue_slot_taker() && cv_last_group(CV_Q_TICKET_SHADE, cv_shade_groups()))
         cv_prepare_shadow();
 }
 
