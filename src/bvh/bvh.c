@@ -23,6 +23,7 @@
 #include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
+#include "gpu/storage.h"
 
 /* 30-bit Morton codes (10 bits per axis): 8 sort passes instead of 15 for
  * 60 bits (two words, KEY64 in the shaders, which support both). Equal
@@ -180,9 +181,10 @@ GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint trian
     struct cv_program *prog = cv_program_get(gpu, "bvh/leaf_tris.comp", NULL, err);
     /* leaf_tris.comp writes every slot: no zero-fill (fresh memory is dear,
      * see gpu/buffer_pool.h). */
-    GLuint tris = prog ? cv_buffer_create_uninit((size_t)(n ? n : 1) * sizeof(CvBvhTri),
-                                                 "bvh leaf triangles", err)
-                       : 0;
+    size_t tri_bytes = (size_t)(n ? n : 1) * sizeof(CvBvhTri);
+    GLuint tris = prog && cv_gpu_storage_fits(gpu, tri_bytes, "bvh leaf triangles", err)
+                      ? cv_buffer_create_uninit(tri_bytes, "bvh leaf triangles", err)
+                      : 0;
     if (!tris)
         return 0;
     if (n == 0) {
@@ -341,8 +343,13 @@ static bool split_first(struct build *b, const struct cv_bvh_params *p, GLuint v
                         GLuint triangles, struct cv_error *err)
 {
     uint64_t most = (uint64_t)((double)p->split_budget * b->n);
-    if (b->gpu->info.max_ssbo_bytes > 0) {
-        uint64_t fit = ((uint64_t)b->gpu->info.max_ssbo_bytes / sizeof(CvBvhBuildNode) + 1) / 2;
+    /* Beyond what the driver is known to address, the whole budget is
+     * probed for (gpu/storage.h); where that fails, the references stop at
+     * what is known to fit. */
+    struct cv_error probe_err;
+    uint64_t need = (2 * (b->n + most) - 1) * sizeof(CvBvhBuildNode);
+    if (most > 0 && !cv_gpu_storage_fits(b->gpu, need, "bvh build nodes", &probe_err)) {
+        uint64_t fit = (cv_gpu_storage_known(b->gpu) / sizeof(CvBvhBuildNode) + 1) / 2;
         most = fit > b->n ? (most < fit - b->n ? most : fit - b->n) : 0;
     }
     most = most < CV_BVH_COUNT_MASK - b->n ? most : CV_BVH_COUNT_MASK - b->n;

@@ -5,6 +5,7 @@
 #define CV_GPU_CONTEXT_H
 
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "base/error.h"
@@ -44,8 +45,17 @@ struct cv_gpu_info {
 struct cv_program_cache;
 struct cv_buffer_pool;
 
+/* What probes found of storage buffers beyond info.max_ssbo_bytes
+ * (gpu/storage.h). */
+struct cv_gpu_storage {
+    uint64_t works;   /* the largest size that passed a probe, 0: none */
+    uint64_t fails;   /* the smallest size that failed one, 0: none */
+    unsigned probes;  /* probes run on this context */
+};
+
 struct cv_gpu {
     struct cv_gpu_info info;
+    struct cv_gpu_storage storage;
     struct cv_program_cache *programs;  /* owned: see program.h */
     struct cv_buffer_pool *scratch;     /* owned: see buffer_pool.h */
     void *platform;                     /* owned by the backend file */

@@ -6,6 +6,7 @@ libcavalry_a_SOURCES += \
 	src/gpu/context_egl.c src/gpu/context_osmesa.c \
 	src/gpu/gl_check.c src/gpu/gl_check.h \
 	src/gpu/memory.c src/gpu/memory.h \
+	src/gpu/storage.c src/gpu/storage.h \
 	src/gpu/glsl_source.c src/gpu/glsl_source.h \
 	src/gpu/program.c src/gpu/program.h \
 	src/gpu/program_disk_cache.c src/gpu/program_disk_cache.h
@@ -16,7 +17,7 @@ EXTRA_DIST += src/gpu/embed_glsl.sh src/gpu/gl_functions.sh $(GLSL_FILES)
 GLSL_FILES += \
 	glsl/shared/common.h glsl/shared/scene.h glsl/shared/bindings.h \
 	glsl/lib/index.glsl \
-	glsl/gpu/selftest.comp
+	glsl/gpu/selftest.comp glsl/gpu/storage_probe.comp
 
 # Makefile too: adding a file to GLSL_FILES must regenerate the list.
 src/gpu/glsl_embedded.c: $(GLSL_FILES) $(srcdir)/src/gpu/embed_glsl.sh Makefile

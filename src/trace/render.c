@@ -21,6 +21,7 @@
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
+#include "gpu/storage.h"
 #include "trace/filter_table.h"
 #include "trace/render.h"
 #include "trace/rlpath.h"
@@ -184,11 +185,14 @@ static void setup_filter(struct cv_renderer *r, const struct cv_render_settings 
     memcpy(u->filter_y, ty, sizeof(u->filter_y));
 }
 
-static GLuint make(size_t bytes, const char *label, bool *ok, struct cv_error *err)
+static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok,
+                   struct cv_error *err)
 {
     if (!*ok)
         return 0;
-    GLuint b = cv_buffer_create(bytes, NULL, label, err);
+    GLuint b = cv_gpu_storage_fits(gpu, bytes, label, err)
+                   ? cv_buffer_create(bytes, NULL, label, err)
+                   : 0;
     if (!b)
         *ok = false;
     return b;
@@ -342,15 +346,15 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     size_t n = r->n_pixels;
     bool ok = true;
-    r->ubo = make(sizeof(CvPassParams), "trace pass params", &ok, err);
-    r->queues = make(sizeof(CvTraceQueues), "trace queues", &ok, err);
-    r->rays = make(2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
-    r->hits = make(2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
-    r->shadow = make(n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
-    r->film = make(n * sizeof(CvFilmPixel), "trace film", &ok, err);
-    r->resolved = make(n * 4 * sizeof(float), "trace resolved", &ok, err);
-    r->alive[0] = make(sizeof(uint32_t), "trace pass end check 0", &ok, err);
-    r->alive[1] = make(sizeof(uint32_t), "trace pass end check 1", &ok, err);
+    r->ubo = make(gpu, sizeof(CvPassParams), "trace pass params", &ok, err);
+    r->queues = make(gpu, sizeof(CvTraceQueues), "trace queues", &ok, err);
+    r->rays = make(gpu, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
+    r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
+    r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
+    r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
+    r->resolved = make(gpu, n * 4 * sizeof(float), "trace resolved", &ok, err);
+    r->alive[0] = make(gpu, sizeof(uint32_t), "trace pass end check 0", &ok, err);
+    r->alive[1] = make(gpu, sizeof(uint32_t), "trace pass end check 1", &ok, err);
     if (!ok) {
         cv_error_prefix(err, "allocating the film and queues for %ux%u: ", r->crop_w, r->crop_h);
         cv_renderer_destroy(&r);

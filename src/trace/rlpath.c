@@ -10,6 +10,7 @@
 #include "glsl/shared/trace.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
+#include "gpu/storage.h"
 #include "trace/rlpath.h"
 
 _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
@@ -136,11 +137,13 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     void *none = cv_xmalloc(path_bytes);
     memset(none, 0xff, path_bytes);
     rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);
-    if (rl->ubo)
+    if (rl->ubo && cv_gpu_storage_fits(gpu, cv_rlpath_table_bytes(layout), "rlpath learning table",
+                                       err))
         rl->table = cv_buffer_create((size_t)cv_rlpath_table_bytes(layout), NULL,
                                      "rlpath learning table", err);
     /* zero: every key's guiding weight 0 until its first rebuild */
-    if (rl->table)
+    if (rl->table && cv_gpu_storage_fits(gpu, cv_rlpath_guide_bytes(layout), "rlpath guide table",
+                                         err))
         rl->guide = cv_buffer_create((size_t)cv_rlpath_guide_bytes(layout), NULL,
                                      "rlpath guide table", err);
     if (rl->guide)

@@ -8,6 +8,7 @@
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
 #include "gpu/memory.h"
+#include "gpu/storage.h"
 #include "glsl/shared/envmap.h"
 #include "trace/envmap_dist.h"
 #include "trace/scene_upload.h"
@@ -95,9 +96,11 @@ static bool build_env_dists(const struct cv_scene *s, CvLight *lights, float **d
     return true;
 }
 
-static bool up(GLuint *b, size_t bytes, const void *data, const char *label, struct cv_error *err)
+static bool up(struct cv_gpu *gpu, GLuint *b, size_t bytes, const void *data, const char *label,
+               struct cv_error *err)
 {
-    *b = cv_buffer_create(bytes, data, label, err);
+    *b = cv_gpu_storage_fits(gpu, bytes, label, err) ? cv_buffer_create(bytes, data, label, err)
+                                                     : 0;
     return *b != 0;
 }
 
@@ -152,15 +155,21 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
         free(lights);
         return false;
     }
-    bool ok = up(&g.vertices, s->n_vertices * sizeof(CvVertex), s->vertices, "scene vertices", err) &&
-              up(&g.triangles, s->n_triangles * sizeof(CvTriangle), s->triangles, "scene triangles", err) &&
-              up(&g.tri_light, s->n_triangles * sizeof(int32_t), s->tri_light, "scene triangle lights", err) &&
-              up(&g.materials, s->n_materials * sizeof(CvMaterial), s->materials, "scene materials", err) &&
-              up(&g.textures, s->n_textures * sizeof(CvTexture), s->textures, "scene textures", err) &&
-              up(&g.texels, (size_t)s->n_texels * 8, s->texels, "scene texels", err) &&
-              up(&g.lights, s->n_lights * sizeof(CvLight), lights, "scene lights", err) &&
-              up(&g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err) &&
-              up(&g.env_dist, n_env * sizeof(float), env, "environment distributions", err);
+    bool ok =
+        up(gpu, &g.vertices, s->n_vertices * sizeof(CvVertex), s->vertices, "scene vertices",
+           err) &&
+        up(gpu, &g.triangles, s->n_triangles * sizeof(CvTriangle), s->triangles,
+           "scene triangles", err) &&
+        up(gpu, &g.tri_light, s->n_triangles * sizeof(int32_t), s->tri_light,
+           "scene triangle lights", err) &&
+        up(gpu, &g.materials, s->n_materials * sizeof(CvMaterial), s->materials,
+           "scene materials", err) &&
+        up(gpu, &g.textures, s->n_textures * sizeof(CvTexture), s->textures, "scene textures",
+           err) &&
+        up(gpu, &g.texels, (size_t)s->n_texels * 8, s->texels, "scene texels", err) &&
+        up(gpu, &g.lights, s->n_lights * sizeof(CvLight), lights, "scene lights", err) &&
+        up(gpu, &g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err) &&
+        up(gpu, &g.env_dist, n_env * sizeof(float), env, "environment distributions", err);
     free(cdf);
     free(lights);
     free(env);
