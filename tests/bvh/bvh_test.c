@@ -111,19 +111,29 @@ static bool trace(struct cv_gpu *gpu, bool brute, bool fast, GLuint rays, GLuint
     return cv_buffer_read(results, 0, (size_t)n_rays * 16, out, err);
 }
 
+/* Makes n_rays rays over the mesh into `rays` (8 floats each) and their
+ * GPU buffer *rb, a result buffer *res, and binds the mesh and tree. */
+static bool rays_setup(const struct mesh *m, const struct cv_bvh *bvh, GLuint vb, GLuint tb,
+                       uint32_t n_rays, float *rays, GLuint *rb, GLuint *res, struct cv_error *err)
+{
+    make_rays(m, rays, n_rays);
+    *rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", err);
+    *res = cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", err);
+    cv_buffer_bind(vb, CV_BIND_VERTICES);
+    cv_buffer_bind(tb, CV_BIND_TRIANGLES);
+    cv_bvh_bind(bvh);
+    return *rb && *res;
+}
+
 static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *m,
                        const struct cv_bvh *bvh, GLuint vb, GLuint tb, uint32_t n_rays)
 {
     struct cv_error err = {{0}};
     float *rays = malloc((size_t)n_rays * 32);
     uint32_t *got = malloc((size_t)n_rays * 16), *want = malloc((size_t)n_rays * 16);
-    make_rays(m, rays, n_rays);
-    GLuint rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err);
-    GLuint res = cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", &err);
-    cv_buffer_bind(vb, CV_BIND_VERTICES);
-    cv_buffer_bind(tb, CV_BIND_TRIANGLES);
-    cv_bvh_bind(bvh);
-    bool ok = rb && res && trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err) &&
+    GLuint rb = 0, res = 0;
+    bool ok = rays_setup(m, bvh, vb, tb, n_rays, rays, &rb, &res, &err) &&
+              trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err) &&
               trace(gpu, true, false, rb, res, n_rays, m->nt, want, &err);
     if (!tap_ok(ok, "%s: %u rays traced: %s", name, n_rays, ok ? "yes" : err.msg))
         goto out;
@@ -423,8 +433,6 @@ static void check_corrupt(struct cv_gpu *gpu)
     mesh_free(&m);
 }
 
-/* CAVALRY_BVH_ROUNDS sets the default treelet rounds; a bad value is
- * ignored (with a warning). */
 /* Traversal against the CPU's brute force: llvmpipe ends a shader loop
  * after 65535 iterations, so the GLSL brute force cannot test a mesh of
  * more triangles than that. */
@@ -434,13 +442,9 @@ static void check_large_rays(struct cv_gpu *gpu, const char *name, const struct 
     struct cv_error err = {{0}};
     float *rays = malloc((size_t)n_rays * 32);
     uint32_t *got = malloc((size_t)n_rays * 16);
-    make_rays(m, rays, n_rays);
-    GLuint rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err);
-    GLuint res = cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", &err);
-    cv_buffer_bind(vb, CV_BIND_VERTICES);
-    cv_buffer_bind(tb, CV_BIND_TRIANGLES);
-    cv_bvh_bind(bvh);
-    bool ok = rb && res && trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err);
+    GLuint rb = 0, res = 0;
+    bool ok = rays_setup(m, bvh, vb, tb, n_rays, rays, &rb, &res, &err) &&
+              trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err);
     uint32_t bad = 0, hits = 0;
     for (uint32_t i = 0; ok && i < n_rays; i++) {
         uint32_t prim, t_bits;
@@ -503,6 +507,8 @@ static void check_large(struct cv_gpu *gpu)
     mesh_free(&m);
 }
 
+/* CAVALRY_BVH_ROUNDS sets the default treelet rounds; a bad value is
+ * ignored (with a warning). */
 static void check_rounds_env(void)
 {
     setenv("CAVALRY_BVH_ROUNDS", "1", 1);
