@@ -76,11 +76,11 @@ static bool run_probe(struct cv_program *p, GLuint large, GLuint probe, const ui
     *works = ok && back[2 * n] == n_words;
     for (uint32_t i = 0; ok && *works && i < n; i++) {
         uint32_t in_memory = 0;
-        glGetNamedBufferSubData(large, (GLintptr)words[i] * 4, 4, &in_memory);
-        *works = back[n + i] == pattern(words[i]) && in_memory == pattern(words[i]);
+        ok = cv_buffer_read(large, (size_t)words[i] * 4, 4, &in_memory, err);
+        *works = ok && back[n + i] == pattern(words[i]) && in_memory == pattern(words[i]);
     }
     free(back);
-    return ok && cv_gl_check(err, "reading back the storage probe");
+    return ok;
 }
 
 bool cv_gpu_storage_probe(struct cv_gpu *gpu, uint64_t bytes, const char *const *defines,
