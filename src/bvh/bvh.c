@@ -432,7 +432,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     struct cv_bvh_stats *s = &bvh->stats;
     double *ms[PH_COUNT] = {&s->ms_bounds, &s->ms_morton, &s->ms_sort, &s->ms_hierarchy,
                             &s->ms_refit, &s->ms_treelet, &s->ms_collapse,
-                            &s->ms_split, &s->ms_split, &s->ms_split};
+                            &s->ms_split_count, &s->ms_split_emit, &s->ms_split_remap};
     s->ms_total = 0;
     for (int i = 0; i < PH_COUNT; i++) {
         if (!b->ran[i])
@@ -444,6 +444,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         *ms[i] += t;
         s->ms_total += t;
     }
+    s->ms_split = s->ms_split_count + s->ms_split_emit + s->ms_split_remap;
     float lo[3] = {root.bmin.x, root.bmin.y, root.bmin.z};
     float hi[3] = {root.bmax.x, root.bmax.y, root.bmax.z};
     double a = half_area(lo, hi);

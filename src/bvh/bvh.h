@@ -42,6 +42,8 @@ struct cv_bvh_stats {
     double ms_bounds, ms_morton, ms_sort, ms_hierarchy, ms_refit, ms_treelet, ms_collapse,
         ms_total;
     double ms_split;       /* triangle splitting, its read-back and remap (in ms_total) */
+    /* ms_split's parts: shares and their read-back, references' boxes, remap. */
+    double ms_split_count, ms_split_emit, ms_split_remap;
     /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
      * over leaves of 1.0 * A(leaf) * triangles, divided by A(root). */
     double sah_cost;

@@ -4,7 +4,11 @@
  * phase, bytes per triangle and the SAH cost, as text and as one JSON line.
  *   bvh_bench N [--reps R] [--rounds R] [--treelet S] [--no-collapse] [--split F] [--check]
  *             [--ref] [--rays R]
- *             [--all] [--gl-debug] [--fresh]
+ *             [--all] [--gl-debug] [--fresh] [--idle S]
+ *   bvh_bench --scene FILE.pbrt [same options]
+ * --scene builds the triangles of a pbrt scene instead of generated ones
+ * (the shared scenes: the same warm repeats as the generated ones, where
+ * cavalry_bench times the one build that follows a scene load).
  * --split F sets the triangle splitting budget (extra references per
  * triangle, 0 = off; default: CAVALRY_BVH_SPLIT or the built-in default).
  * --ref also builds a CPU binned-SAH tree over the same triangles and prints
@@ -18,6 +22,9 @@
  * placement and the like). --fresh frees the context's pooled scratch
  * before each build, so that every build pays for fresh memory as the
  * first build of a process (or of a scene too large to keep it) does.
+ * --idle S waits S seconds before each timed build, long enough for an idle
+ * GPU to lower its clocks, as it has when a batch job's scene has just been
+ * parsed on the CPU (an H100 idles at 345 of 1980 MHz).
  * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
 #include "config.h"
 
@@ -25,6 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "base/log.h"
 #include "bvh/bvh.h"
@@ -33,6 +41,7 @@
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
 #include "gpu/context.h"
+#include "scene/scene.h"
 #include "tests/bvh/bvh_test_util.h"
 
 static double bench_ms(void)
@@ -48,7 +57,8 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-#define N_PHASES 9
+/* The split's parts follow the total, so that the indices above stay. */
+#define N_PHASES 12
 
 int main(int argc, char **argv)
 {
@@ -57,13 +67,19 @@ int main(int argc, char **argv)
                 argv[0]);
         return 2;
     }
-    uint32_t n = (uint32_t)strtoul(argv[1], NULL, 10);
+    const char *scene_path = NULL;
+    uint32_t n = 0;
+    if (strcmp(argv[1], "--scene") == 0 && argc >= 3)
+        scene_path = argv[2];
+    else
+        n = (uint32_t)strtoul(argv[1], NULL, 10);
     int reps = 3;
     struct cv_bvh_params params = cv_bvh_default_params();
     bool check = false, ref = false;
     uint32_t n_rays = 0;
     bool all = false, gl_debug = false, fresh = false;
-    for (int i = 2; i < argc; i++) {
+    double idle_s = 0.0;
+    for (int i = scene_path ? 3 : 2; i < argc; i++) {
         if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
             reps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--rounds") == 0 && i + 1 < argc)
@@ -86,6 +102,8 @@ int main(int argc, char **argv)
             gl_debug = true;
         else if (strcmp(argv[i], "--fresh") == 0)
             fresh = true;
+        else if (strcmp(argv[i], "--idle") == 0 && i + 1 < argc)
+            idle_s = atof(argv[++i]);
         else {
             fprintf(stderr, "unknown argument %s\n", argv[i]);
             return 2;
@@ -104,7 +122,26 @@ int main(int argc, char **argv)
     }
     fprintf(stderr, "GPU: %s | %s\n", gpu->info.renderer, gpu->info.version);
     struct mesh m;
-    mesh_soup(&m, n);
+    if (scene_path) {
+        struct cv_scene *sc = NULL;
+        if (!cv_scene_load(scene_path, &(struct cv_scene_load_params){0}, &sc, &err)) {
+            fprintf(stderr, "bvh_bench: %s\n", err.msg);
+            return 1;
+        }
+        /* The scene's arrays become the mesh's. */
+        m = (struct mesh){.v = sc->vertices, .t = sc->triangles, .nv = sc->n_vertices,
+                          .nt = sc->n_triangles};
+        sc->vertices = NULL;
+        sc->triangles = NULL;
+        cv_scene_destroy(&sc);
+        n = m.nt;
+        if (n == 0) {
+            fprintf(stderr, "bvh_bench: %s has no triangles\n", scene_path);
+            return 1;
+        }
+    } else {
+        mesh_soup(&m, n);
+    }
     GLuint vb = 0, tb = 0;
     if (!mesh_upload(&m, &vb, &tb, &err)) {
         fprintf(stderr, "bvh_bench: %s\n", err.msg);
@@ -136,6 +173,10 @@ int main(int argc, char **argv)
             cv_buffer_pool_trim(gpu->scratch);
             glFinish();
         }
+        if (idle_s > 0) {
+            glFinish();
+            usleep((useconds_t)(idle_s * 1e6));
+        }
         double w0 = bench_ms();
         if (!cv_bvh_build(gpu, vb, tb, n, &params, &bvh, &err)) {
             fprintf(stderr, "bvh_bench: %s\n", err.msg);
@@ -152,7 +193,8 @@ int main(int argc, char **argv)
         }
         double v[N_PHASES] = {last.ms_split, last.ms_bounds, last.ms_morton,
                               last.ms_sort,  last.ms_hierarchy, last.ms_refit,
-                              last.ms_treelet, last.ms_collapse, last.ms_total};
+                              last.ms_treelet, last.ms_collapse, last.ms_total,
+                              last.ms_split_count, last.ms_split_emit, last.ms_split_remap};
         for (int p = 0; p < N_PHASES; p++)
             t[p][r] = v[p];
         walls[r] = wall;
@@ -167,7 +209,8 @@ int main(int argc, char **argv)
         }
     }
     const char *names[N_PHASES] = {"split", "bounds",  "morton",   "sort", "hierarchy",
-                                   "refit", "treelet", "collapse", "total"};
+                                   "refit", "treelet", "collapse", "total", "split_count",
+                                   "split_emit", "split_remap"};
     double med[N_PHASES];
     for (int p = 0; p < N_PHASES; p++) {
         qsort(t[p], (size_t)reps, sizeof(double), cmp_double);
@@ -177,11 +220,13 @@ int main(int argc, char **argv)
     qsort(walls, (size_t)reps, sizeof(double), cmp_double);
     double wall_med = walls[reps / 2];
     free(walls);
+    if (scene_path)
+        printf("%s: ", scene_path);
     printf("BVH build of %u triangles on %s (median of %d; rounds %d, treelet %d, collapse %s, "
-           "split %g%s)\n",
+           "split %g%s%s)\n",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
            params.collapse_leaves ? "on" : "off", params.split_budget,
-           fresh ? ", fresh scratch" : "");
+           fresh ? ", fresh scratch" : "", idle_s > 0 ? ", idle before each" : "");
     for (int p = 0; p < N_PHASES; p++)
         printf("  %-10s %10.3f ms\n", names[p], med[p]);
     printf("  LBVH part  %10.3f ms (bounds..refit)\n", lbvh);
@@ -194,12 +239,15 @@ int main(int argc, char **argv)
     if (ref)
         printf(" (CPU binned SAH %.4f: %+.1f%%)", ref_cost, 100.0 * (last.sah_cost / ref_cost - 1));
     printf("\n");
-    printf("{\"triangles\": %u, \"renderer\": \"%s\", \"reps\": %d, \"treelet_rounds\": %d, "
+    printf("{");
+    if (scene_path)
+        printf("\"scene\": \"%s\", ", scene_path);
+    printf("\"triangles\": %u, \"renderer\": \"%s\", \"reps\": %d, \"treelet_rounds\": %d, "
            "\"treelet_size\": %d, \"collapse_leaves\": %s, \"split_budget\": %g, \"fresh\": %s, "
-           "\"refs\": %u",
+           "\"idle_s\": %g, \"refs\": %u",
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
            params.collapse_leaves ? "true" : "false", params.split_budget,
-           fresh ? "true" : "false", last.n_refs);
+           fresh ? "true" : "false", idle_s, last.n_refs);
     for (int p = 0; p < N_PHASES; p++)
         printf(", \"ms_%s\": %.4f", names[p], med[p]);
     printf(", \"ms_lbvh\": %.4f, \"ms_wall\": %.4f", lbvh, wall_med);
