@@ -8,10 +8,8 @@
 #define CV_BVH_SPLIT_GLSL
 
 #define CV_SPLIT_GRID_BITS 20
-// The most extra references one triangle gets: split_emit.comp's stack
-// holds log2 of it (each pushed piece has at most half its parent's).
+// The most extra references one triangle gets.
 #define CV_SPLIT_MAX_EXTRA 255
-#define CV_SPLIT_STACK 10
 // Morton bit of the finest grid plane of axis 0 is 2, of the coarsest 59.
 #define CV_SPLIT_TOP_BIT (3 * CV_SPLIT_GRID_BITS - 1)
 

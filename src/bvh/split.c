@@ -137,8 +137,9 @@ bool cv_bvh_split_emit(struct cv_bvh_split *s, GLuint boxes, struct cv_error *er
     cv_buffer_bind(s->ref_tris, CV_BIND_STAGE0 + 2);
     cv_buffer_bind(boxes, CV_BIND_STAGE0 + 3);
     cv_program_set_uint(emit, "u_n", s->n);
+    cv_program_set_uint(emit, "u_n_refs", s->n_refs);
     cv_program_set_uint(emit, "u_shift", s->shift);
-    cv_program_dispatch_1d(emit, s->n);
+    cv_program_dispatch_1d(emit, s->n_refs);
     return cv_gl_check(err, "writing %u references of %u triangles", s->n_refs, s->n);
 }
 
