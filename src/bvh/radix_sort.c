@@ -9,6 +9,7 @@
 
 #include "base/mem.h"
 #include "bvh/radix_sort.h"
+#include "bvh/scratch.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
@@ -73,23 +74,22 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
         free(rs);
         return NULL;
     }
-    /* From the GPU's pool (gpu/buffer_pool.h): every pass writes them
-     * before reading them. */
-    struct cv_buffer_pool *pool = gpu->scratch;
-    rs->keys = cv_buffer_pool_get(pool, (size_t)rs->max_n * 4 * words, "radix keys", err);
-    rs->vals = rs->keys ? cv_buffer_pool_get(pool, (size_t)rs->max_n * 4, "radix vals", err) : 0;
+    /* Pooled scratch (bvh/scratch.h): every pass writes them before
+     * reading them. */
+    rs->keys = cv_bvh_scratch(gpu, (uint64_t)rs->max_n * 4 * words, "radix keys", &rs->bytes, err);
+    rs->vals = rs->keys ? cv_bvh_scratch(gpu, (uint64_t)rs->max_n * 4, "radix vals", &rs->bytes, err)
+                        : 0;
     /* A row of block counts per digit, then the digits' totals. Fewer keys
      * can make more blocks (2048 tiles make 2048 blocks, 2049 make 1025),
      * but never more than tiles or RADIX_MAX_BLOCKS. */
     uint32_t most_tiles = (rs->max_n + RADIX_TILE - 1) / RADIX_TILE;
     uint32_t most_blocks = most_tiles < RADIX_MAX_BLOCKS ? most_tiles : RADIX_MAX_BLOCKS;
     size_t counts = ((size_t)most_blocks + 1) * RADIX_BINS;
-    rs->counts = rs->vals ? cv_buffer_pool_get(pool, counts * 4, "radix counts", err) : 0;
+    rs->counts = rs->vals ? cv_bvh_scratch(gpu, counts * 4, "radix counts", &rs->bytes, err) : 0;
     if (!rs->counts) {
         cv_radix_sort_destroy(&rs);
         return NULL;
     }
-    rs->bytes = (uint64_t)rs->max_n * 4 * (words + 1) + (uint64_t)counts * 4;
     return rs;
 }
 

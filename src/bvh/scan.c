@@ -5,6 +5,7 @@
 
 #include "base/mem.h"
 #include "bvh/scan.h"
+#include "bvh/scratch.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
@@ -35,10 +36,9 @@ struct cv_scan *cv_scan_create(struct cv_gpu *gpu, uint32_t max_n, struct cv_err
             return NULL;
         }
         scan->sums_n[scan->n_levels] = n;
-        /* From the GPU's pool: scan_block.comp writes them. */
+        /* Pooled scratch: scan_block.comp writes them. */
         scan->sums[scan->n_levels] =
-            cv_buffer_pool_get(gpu->scratch, (size_t)n * 4, "bvh scan sums", err);
-        scan->bytes += (uint64_t)n * 4;
+            cv_bvh_scratch(gpu, (uint64_t)n * 4, "bvh scan sums", &scan->bytes, err);
         if (!scan->sums[scan->n_levels++]) {
             cv_scan_destroy(&scan);
             return NULL;

@@ -5,7 +5,8 @@
  * tile, 60- and 64-bit keys of two words, sizes around a tile, enough keys
  * for blocks of several tiles with a short last block, and the sizes either
  * side of the first such), and the GPU prefix sum equals a CPU one across
- * several scan levels. */
+ * several scan levels. Sort scratch that the driver cannot address
+ * (gpu/storage.h) is refused with the buffer named. */
 #include "config.h"
 
 #include <stdint.h>
@@ -192,6 +193,26 @@ int main(void)
     }
     free(big_keys);
     cv_radix_sort_destroy(&rs);
+
+    /* As after a failed probe just past the advertised size: keys one
+     * word past it must not be allocated and bound. Where the driver
+     * advertises more than 256 MiB (NVIDIA: 2 GiB), that many keys are
+     * past what one sort takes anyway (132 M), which fails first. */
+    uint64_t limit = gpu->info.max_ssbo_bytes > 0 ? (uint64_t)gpu->info.max_ssbo_bytes : 0;
+    if (limit > 0 && limit <= 256ull << 20) {
+        struct cv_gpu_storage kept = gpu->storage;
+        gpu->storage.fails = limit + 4;
+        err = (struct cv_error){{0}};
+        rs = cv_radix_sort_create(gpu, (uint32_t)(limit / 4) + 1u, 32, &err);
+        tap_ok(rs == NULL && strstr(err.msg, "radix keys"),
+               "sort scratch past what the driver addresses is refused: %s",
+               rs ? "created" : err.msg);
+        cv_radix_sort_destroy(&rs);
+        gpu->storage = kept;
+    } else {
+        tap_ok(true, "# SKIP the driver advertises %llu MiB per storage block",
+               (unsigned long long)(limit >> 20));
+    }
 
     check_scan(gpu, 1);
     check_scan(gpu, 1025);
