@@ -43,6 +43,16 @@ static void usage(FILE *out)
           "  -q, --quiet             only errors\n"
           "  -v, --verbose           debugging detail, OpenGL debug messages included\n"
           "\n"
+          "Environment (man cavalry-batch for more):\n"
+          "  OCIO                    OpenColorIO config for jobs that name none\n"
+          "  SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX\n"
+          "                          shard index in a Slurm array or Kubernetes indexed Job\n"
+          "  CAVALRY_CACHE_DIR       disk cache of linked GPU programs\n"
+          "  CAVALRY_DATA_DIR        read shaders and configs from a source tree\n"
+          "  CAVALRY_BVH_ROUNDS      treelet restructuring rounds, 0 to 32 (default 3)\n"
+          "  CAVALRY_BVH_SPLIT       triangle splitting budget, 0 to 4 (default 0.3)\n"
+          "  CAVALRY_STAGE_TIMES     time every render stage (diagnostic; slower)\n"
+          "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
           "or scene, 4 no usable GPU, 130 interrupted (partial images written).\n",
           out);

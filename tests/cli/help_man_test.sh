@@ -1,6 +1,7 @@
 #!/bin/sh
-# help_man_test.sh: every option --help lists is documented in
-# cavalry-batch(1), and the man pages are clean under mandoc -Tlint.
+# help_man_test.sh: every option and environment variable --help lists is
+# documented in cavalry-batch(1), and the man pages are clean under
+# mandoc -Tlint.
 . "${srcdir:-.}/tests/setup.sh"
 man1="$CAVALRY_DATA_DIR/man/cavalry-batch.1"
 "$CAVALRY_BATCH" --help >"$tmp/help"
@@ -10,6 +11,11 @@ for o in $opts; do
     # mdoc writes --foo as "Fl \-foo"
     name=${o#--}
     check "man page documents $o" grep -q -- "Fl \\\\-$name\\>" "$man1"
+done
+vars=$(grep -o -- '\<[A-Z][A-Z_]*[A-Z]\>' "$tmp/help" | grep '_\|^OCIO$' | sort -u)
+check "--help lists environment variables" test -n "$vars"
+for v in $vars; do
+    check "man page documents $v" grep -q -- "Ev $v\\>" "$man1"
 done
 if command -v mandoc >/dev/null 2>&1; then
     for page in "$CAVALRY_DATA_DIR"/man/*.[15]; do
