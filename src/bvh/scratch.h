@@ -1,7 +1,7 @@
-/* scratch.h: the BVH build's scratch buffers (bvh.c and split.c): taken
- * from the GPU's buffer pool (gpu/buffer_pool.h), each checked against the
- * largest storage block a shader may address, their bytes added up for the
- * build's stats. */
+/* scratch.h: the BVH build's scratch buffers (bvh.c, split.c, radix_sort.c,
+ * scan.c): taken from the GPU's buffer pool (gpu/buffer_pool.h), each
+ * checked against the largest storage block a shader may address, their
+ * bytes added up for the build's stats. */
 #ifndef CV_BVH_SCRATCH_H
 #define CV_BVH_SCRATCH_H
 
