@@ -45,10 +45,29 @@ enum {
     PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_COUNT
 };
 
+/* The tree's own buffers come from the GPU's buffer pool too and go back
+ * to it when the tree is destroyed, so that a batch's next scene, or the
+ * next build of the same one, writes no fresh memory for them either:
+ * they are ~130 bytes per triangle, and fresh they took the H100 more than
+ * the build itself (bvh_bench 16 M triangles: 751 ms of host time per
+ * build for 130 ms of GPU phases). A pooled buffer may be larger than
+ * asked, so each is bound as the range the tree uses (traversal reads the
+ * nodes' and leaf triangles' lengths). */
 struct cv_bvh {
+    struct cv_gpu *gpu;
     GLuint nodes, prims, tris;
+    size_t nodes_bytes, prims_bytes, tris_bytes;
     struct cv_bvh_stats stats;
 };
+
+/* A buffer for the tree, from the pool when one there is no more than a
+ * quarter larger. */
+static GLuint own_buffer(struct cv_bvh *bvh, size_t bytes, size_t *kept, const char *label,
+                         struct cv_error *err)
+{
+    *kept = bytes;
+    return cv_buffer_pool_get_within(bvh->gpu->scratch, bytes, bytes + bytes / 4, label, err);
+}
 
 /* Scratch of one build, from the GPU's buffer pool (gpu/buffer_pool.h);
  * everything here goes back to it when the build ends, so the next build
@@ -168,6 +187,8 @@ static bool build_trivial(struct cv_bvh *bvh, uint32_t n, struct cv_error *err)
     uint32_t prim = 0;
     bvh->nodes = cv_buffer_create(sizeof(node), node, "bvh nodes", err);
     bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
+    bvh->nodes_bytes = sizeof(node);
+    bvh->prims_bytes = 4;
     bvh->stats.bytes = sizeof(node) + 4 + sizeof(CvBvhTri);
     bvh->stats.n_nodes = 1;
     bvh->stats.n_refs = n;
@@ -175,18 +196,13 @@ static bool build_trivial(struct cv_bvh *bvh, uint32_t n, struct cv_error *err)
     return bvh->prims != 0;
 }
 
-GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint triangles,
-                               GLuint prims, uint32_t n, struct cv_error *err)
+/* Writes the n leaf triangle records into `tris` (at least one record). */
+static bool leaf_tris_fill(struct cv_gpu *gpu, GLuint tris, GLuint vertices, GLuint triangles,
+                           GLuint prims, uint32_t n, struct cv_error *err)
 {
     struct cv_program *prog = cv_program_get(gpu, "bvh/leaf_tris.comp", NULL, err);
-    /* leaf_tris.comp writes every slot: no zero-fill (fresh memory is dear,
-     * see gpu/buffer_pool.h). */
-    size_t tri_bytes = (size_t)(n ? n : 1) * sizeof(CvBvhTri);
-    GLuint tris = prog && cv_gpu_storage_fits(gpu, tri_bytes, "bvh leaf triangles", err)
-                      ? cv_buffer_create_uninit(tri_bytes, "bvh leaf triangles", err)
-                      : 0;
-    if (!tris)
-        return 0;
+    if (!prog)
+        return false;
     if (n == 0) {
         /* No triangle to read: the all-zero record hits nothing. */
         cv_buffer_zero(tris);
@@ -199,7 +215,24 @@ GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint trian
         cv_program_dispatch_1d(prog, n);
     }
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    if (!cv_gl_check(err, "writing %u leaf triangles", n))
+    return cv_gl_check(err, "writing %u leaf triangles", n);
+}
+
+static size_t leaf_tris_bytes(uint32_t n)
+{
+    return (size_t)(n ? n : 1) * sizeof(CvBvhTri);
+}
+
+GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint triangles,
+                               GLuint prims, uint32_t n, struct cv_error *err)
+{
+    /* leaf_tris.comp writes every slot: no zero-fill (fresh memory is dear,
+     * see gpu/buffer_pool.h). */
+    size_t bytes = leaf_tris_bytes(n);
+    GLuint tris = cv_gpu_storage_fits(gpu, bytes, "bvh leaf triangles", err)
+                      ? cv_buffer_create_uninit(bytes, "bvh leaf triangles", err)
+                      : 0;
+    if (tris && !leaf_tris_fill(gpu, tris, vertices, triangles, prims, n, err))
         cv_buffer_destroy(&tris);
     return tris;
 }
@@ -390,7 +423,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
         /* layout.comp writes every slot. */
-        !(bvh->prims = cv_buffer_create_uninit(n * 4, "bvh prims", err)))
+        !(bvh->prims = own_buffer(bvh, n * 4, &bvh->prims_bytes, "bvh prims", err)))
         return false;
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
     if (!(b->sort = cv_radix_sort_create(b->gpu, b->n, MORTON_BITS, err)) ||
@@ -423,8 +456,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         return cv_fail(err, "BVH build produced %u nodes for %llu triangles", n_nodes,
                        (unsigned long long)n);
     /* Keep only the live prefix of the node array. */
-    if (!(bvh->nodes = cv_buffer_create_uninit((size_t)n_nodes * sizeof(CvBvhNode), "bvh nodes",
-                                               err)))
+    if (!(bvh->nodes = own_buffer(bvh, (size_t)n_nodes * sizeof(CvBvhNode), &bvh->nodes_bytes,
+                                  "bvh nodes", err)))
         return false;
     glCopyNamedBufferSubData(b->out_nodes, bvh->nodes, 0, 0, (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -472,6 +505,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
     if (n_triangles > CV_BVH_COUNT_MASK)
         return cv_fail(err, "%u triangles are more than the BVH can hold", n_triangles);
     struct cv_bvh *bvh = cv_xcalloc(1, sizeof(*bvh));
+    bvh->gpu = gpu;
     bool ok;
     if (n_triangles < 2) {
         ok = build_trivial(bvh, n_triangles, err);
@@ -480,8 +514,11 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);
     }
-    ok = ok && (bvh->tris = cv_bvh_leaf_tris_create(gpu, vertices, triangles, bvh->prims,
-                                                    bvh->stats.n_refs, err)) != 0;
+    uint32_t n_refs = bvh->stats.n_refs;
+    ok = ok && cv_gpu_storage_fits(gpu, leaf_tris_bytes(n_refs), "bvh leaf triangles", err) &&
+         (bvh->tris = own_buffer(bvh, leaf_tris_bytes(n_refs), &bvh->tris_bytes,
+                                 "bvh leaf triangles", err)) != 0 &&
+         leaf_tris_fill(gpu, bvh->tris, vertices, triangles, bvh->prims, n_refs, err);
     if (!ok) {
         cv_error_prefix(err, "building the BVH");
         cv_bvh_destroy(&bvh);
@@ -493,9 +530,12 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
 
 void cv_bvh_bind(const struct cv_bvh *bvh)
 {
-    cv_buffer_bind(bvh->nodes, CV_BIND_BVH_NODES);
-    cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
-    cv_buffer_bind(bvh->tris, CV_BIND_BVH_TRIS);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CV_BIND_BVH_NODES, bvh->nodes, 0,
+                      (GLsizeiptr)bvh->nodes_bytes);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CV_BIND_BVH_PRIMS, bvh->prims, 0,
+                      (GLsizeiptr)bvh->prims_bytes);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CV_BIND_BVH_TRIS, bvh->tris, 0,
+                      (GLsizeiptr)bvh->tris_bytes);
 }
 
 const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh)
@@ -517,9 +557,11 @@ void cv_bvh_destroy(struct cv_bvh **bvh)
 {
     if (!bvh || !*bvh)
         return;
-    cv_buffer_destroy(&(*bvh)->nodes);
-    cv_buffer_destroy(&(*bvh)->prims);
-    cv_buffer_destroy(&(*bvh)->tris);
+    /* The trivial tree's buffers are not the pool's: put deletes them. */
+    struct cv_buffer_pool *pool = (*bvh)->gpu->scratch;
+    cv_buffer_pool_put(pool, &(*bvh)->nodes);
+    cv_buffer_pool_put(pool, &(*bvh)->prims);
+    cv_buffer_pool_put(pool, &(*bvh)->tris);
     free(*bvh);
     *bvh = NULL;
 }

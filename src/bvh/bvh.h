@@ -64,7 +64,9 @@ struct cv_bvh;
  * reads the node count and the root's cost). The scratch (~264 bytes per
  * triangle with the default splitting) is taken from gpu->scratch and left
  * there for the next build; cv_buffer_pool_trim(gpu->scratch) frees it
- * (scene upload keeps it or not, trace/scene_upload.c). A single SSBO must hold 48
+ * (scene upload keeps it or not, trace/scene_upload.c). The tree's own
+ * buffers (~130 bytes per triangle) come from that pool too and go back to
+ * it when the tree is destroyed, which must happen before the context's. A single SSBO must hold 48
  * bytes per node of the build tree (2n - 1 nodes). Beyond the driver's
  * advertised block size (llvmpipe: 128 MiB, n near 1.39 M) that buffer is
  * used after a probe (gpu/storage.h; llvmpipe passed 1904 MiB for 16 M

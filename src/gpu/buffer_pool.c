@@ -1,5 +1,6 @@
 /* buffer_pool.c: see buffer_pool.h. A small array: a build asks for a
  * dozen buffers at most. */
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "base/mem.h"
@@ -16,6 +17,7 @@ struct entry {
 struct cv_buffer_pool {
     struct entry *e;
     size_t n, cap;
+    size_t created;
 };
 
 struct cv_buffer_pool *cv_buffer_pool_create(void)
@@ -26,6 +28,12 @@ struct cv_buffer_pool *cv_buffer_pool_create(void)
 GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char *label,
                           struct cv_error *err)
 {
+    return cv_buffer_pool_get_within(pool, bytes, SIZE_MAX, label, err);
+}
+
+GLuint cv_buffer_pool_get_within(struct cv_buffer_pool *pool, size_t bytes, size_t most,
+                                 const char *label, struct cv_error *err)
+{
     if (bytes == 0)
         bytes = 4;
     if (!pool)
@@ -33,7 +41,7 @@ GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char 
     struct entry *best = NULL;
     for (size_t i = 0; i < pool->n; i++) {
         struct entry *e = &pool->e[i];
-        if (!e->busy && e->bytes >= bytes && (!best || e->bytes < best->bytes))
+        if (!e->busy && e->bytes >= bytes && e->bytes <= most && (!best || e->bytes < best->bytes))
             best = e;
     }
     if (best) {
@@ -48,7 +56,21 @@ GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char 
         pool->e = cv_xrealloc(pool->e, pool->cap * sizeof(*pool->e));
     }
     pool->e[pool->n++] = (struct entry){.buf = buf, .bytes = bytes, .busy = true, .used = true};
+    pool->created++;
     return buf;
+}
+
+size_t cv_buffer_pool_created(const struct cv_buffer_pool *pool)
+{
+    return pool ? pool->created : 0;
+}
+
+size_t cv_buffer_pool_idle(const struct cv_buffer_pool *pool)
+{
+    size_t idle = 0;
+    for (size_t i = 0; pool && i < pool->n; i++)
+        idle += pool->e[i].busy ? 0 : pool->e[i].bytes;
+    return idle;
 }
 
 void cv_buffer_pool_put(struct cv_buffer_pool *pool, GLuint *buf)

@@ -24,10 +24,19 @@ struct cv_buffer_pool *cv_buffer_pool_create(void);
  * failure with err set. */
 GLuint cv_buffer_pool_get(struct cv_buffer_pool *pool, size_t bytes, const char *label,
                           struct cv_error *err);
+/* The same, reusing only an idle buffer of at most `most` bytes: for
+ * buffers that outlive the round (a BVH's own, bvh/bvh.c), so that a small
+ * scene's tree does not hold on to a large scene's scratch. */
+GLuint cv_buffer_pool_get_within(struct cv_buffer_pool *pool, size_t bytes, size_t most,
+                                 const char *label, struct cv_error *err);
 /* Returns *buf (0 is accepted) to the pool and clears the pointer; the
  * caller must have issued the GPU work that uses it (GL orders later work
  * after it). */
 void cv_buffer_pool_put(struct cv_buffer_pool *pool, GLuint *buf);
+/* How many buffers the pool has created (not reused) so far, for tests. */
+size_t cv_buffer_pool_created(const struct cv_buffer_pool *pool);
+/* Bytes of the idle buffers. Accepts NULL (returns 0). */
+size_t cv_buffer_pool_idle(const struct cv_buffer_pool *pool);
 /* Deletes the idle buffers (those handed out stay handed out). */
 void cv_buffer_pool_trim(struct cv_buffer_pool *pool);
 /* Ends a round of use (one BVH build): deletes the idle buffers that were

@@ -108,26 +108,27 @@ static bool up(struct cv_gpu *gpu, GLuint *b, size_t bytes, const void *data, co
  * next scene's build, a batch's next job, while it is under a quarter of
  * the GPU's free memory: fresh scratch costs a build ~0.5-0.7 ms of GPU
  * time per MB on its first use (H100: 4 M triangles build in ~32 ms on
- * reused scratch, ~46 ms on fresh; bvh_bench --fresh). Beyond that, or where the driver does
- * not say what is free (Mesa), it is freed, so that a large scene's render
- * never runs short for it. */
-static void keep_or_trim_scratch(struct cv_gpu *gpu)
+ * reused scratch, ~46 ms on fresh; bvh_bench --fresh). Beyond that, or
+ * where the driver does not say what is free (Mesa), it is freed, so that a
+ * large scene's render never runs short for it. The same holds when a scene is released and its
+ * BVH's own buffers (~130 bytes per triangle, bvh/bvh.c) join the idle
+ * scratch. */
+static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
 {
-    size_t kept = cv_buffer_pool_settle(gpu->scratch);
     uint64_t total = 0, avail = 0;
-    if (!cv_gpu_memory(gpu, &total, &avail) || kept > avail / 4) {
+    if (!cv_gpu_memory(gpu, &total, &avail) || idle > avail / 4) {
         cv_buffer_pool_trim(gpu->scratch);
-        cv_debug("BVH scratch freed (%zu MB idle)", kept >> 20);
+        cv_debug("%s: BVH buffers freed (%zu MB idle)", what, idle >> 20);
     } else {
-        cv_debug("BVH scratch kept for the next build (%zu MB, %llu MB free)", kept >> 20,
-                 (unsigned long long)(avail >> 20));
+        cv_debug("%s: BVH buffers kept for the next build (%zu MB, %llu MB free)", what,
+                 idle >> 20, (unsigned long long)(avail >> 20));
     }
 }
 
 bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu *out,
                      struct cv_error *err)
 {
-    struct cv_scene_gpu g = {0};
+    struct cv_scene_gpu g = {.gpu = gpu};
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g.has_env = true;
@@ -187,7 +188,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
         cv_scene_gpu_release(&g);
         return false;
     }
-    keep_or_trim_scratch(gpu);
+    keep_or_trim(gpu, cv_buffer_pool_settle(gpu->scratch), "after the build");
     *out = g;
     return true;
 }
@@ -213,7 +214,10 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
+    bool had_bvh = g->bvh != NULL;
     cv_bvh_destroy(&g->bvh);
+    if (had_bvh && g->gpu)
+        keep_or_trim(g->gpu, cv_buffer_pool_idle(g->gpu->scratch), "scene released");
     memset(g, 0, sizeof(*g));
 }
 

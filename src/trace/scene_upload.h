@@ -23,6 +23,7 @@ struct cv_scene_gpu {
     bool empty;       /* no triangles: no BVH, nothing to hit */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     struct cv_bvh *bvh;
+    struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
 };
 
 /* Light selection CDF: cdf[i] = sum of pmf[0..i] with pmf proportional to

@@ -22,6 +22,7 @@
 #include "bvh/split.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
+#include "gpu/buffer_pool.h"
 #include "gpu/program.h"
 #include "gpu/storage.h"
 #include "tests/bvh/bvh_test_util.h"
@@ -523,6 +524,50 @@ static void check_rounds_env(void)
            "CAVALRY_BVH_ROUNDS: 1 -> %d, 33 -> %d, 2x -> %d, unset -> %d", one, past, junk, dflt);
 }
 
+/* The tree's own buffers go back to the GPU's pool when it is destroyed
+ * (bvh/bvh.c): another build of the same mesh makes no new buffer, and a
+ * tree over fewer triangles, built into the larger buffers, still traces
+ * as brute force does (its buffers are bound as the ranges it uses). */
+static void check_reuse(struct cv_gpu *gpu)
+{
+    struct cv_error err = {{0}};
+    struct mesh m;
+    mesh_soup(&m, 4000);
+    GLuint vb = 0, tb = 0, vb2 = 0, tb2 = 0;
+    struct cv_bvh *bvh = NULL;
+    /* From an empty pool, as a process's first build: the earlier checks'
+     * leftovers would be handed out in their place (scene upload settles
+     * the pool after every build, trace/scene_upload.c). */
+    cv_buffer_pool_trim(gpu->scratch);
+    bool ok = mesh_upload(&m, &vb, &tb, &err) && cv_bvh_build(gpu, vb, tb, m.nt, NULL, &bvh, &err);
+    cv_bvh_destroy(&bvh);
+    size_t made = cv_buffer_pool_created(gpu->scratch);
+    ok = ok && cv_bvh_build(gpu, vb, tb, m.nt, NULL, &bvh, &err);
+    size_t again = cv_buffer_pool_created(gpu->scratch);
+    tap_ok(ok && again == made, "reuse: another build of the same mesh makes no new buffer "
+           "(%zu made before it, %zu after)%s%s", made, again, ok ? "" : ": ", ok ? "" : err.msg);
+    cv_bvh_destroy(&bvh);
+
+    m.nt = 3900;
+    ok = mesh_upload(&m, &vb2, &tb2, &err) && cv_bvh_build(gpu, vb2, tb2, m.nt, NULL, &bvh, &err);
+    GLint64 held = 0;
+    if (ok)
+        glGetNamedBufferParameteri64v(cv_bvh_nodes_buffer(bvh), GL_BUFFER_SIZE, &held);
+    uint64_t used = ok ? (uint64_t)cv_bvh_stats(bvh)->n_nodes * sizeof(CvBvhNode) : 0;
+    tap_ok(ok && cv_buffer_pool_created(gpu->scratch) == again && (uint64_t)held > used,
+           "reuse: 3900 triangles' tree built in the 4000's buffers (nodes: %llu of %lld bytes)",
+           (unsigned long long)used, (long long)held);
+    if (ok)
+        check_rays(gpu, "reuse, 3900 of 4000", &m, bvh, vb2, tb2, 8000);
+    m.nt = 4000;
+    cv_bvh_destroy(&bvh);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    cv_buffer_destroy(&vb2);
+    cv_buffer_destroy(&tb2);
+    mesh_free(&m);
+}
+
 /* CAVALRY_BVH_SPLIT sets the default split budget, 0 to 4; a bad value is
  * ignored (with a warning). */
 static void check_split_env(void)
@@ -551,6 +596,7 @@ int main(void)
     mesh_soup(&m, 4000);
     check_mesh(gpu, "clustered soup", &m, 32000, true);
     mesh_free(&m);
+    check_reuse(gpu);
     mesh_grid(&m, 40);
     check_mesh(gpu, "height field", &m, 32000, true);
     mesh_free(&m);

@@ -74,6 +74,18 @@ int main(void)
     tap_ok(idle == (size_t)size_of(kept_small), "settle counts only what it keeps (%zu)", idle);
     tap_ok(cv_buffer_pool_settle(NULL) == 0, "settle accepts no pool");
 
+    /* get_within: an idle buffer larger than `most` stays idle. */
+    size_t made = cv_buffer_pool_created(pool);
+    GLuint over = cv_buffer_pool_get_within(pool, 1000, 2000, "within", &err);
+    tap_ok(over && over != kept_small && cv_buffer_pool_created(pool) == made + 1,
+           "get_within passes over an idle buffer beyond its bound (%lld bytes) and makes one",
+           (long long)size_of(kept_small));
+    GLuint fits = cv_buffer_pool_get_within(pool, 1000, 4096, "within", &err);
+    tap_ok(fits == kept_small && cv_buffer_pool_created(pool) == made + 1,
+           "get_within takes an idle buffer within its bound");
+    cv_buffer_pool_put(pool, &over);
+    cv_buffer_pool_put(pool, &fits);
+
     /* Without a pool: plain buffers that put deletes. */
     GLuint plain = cv_buffer_pool_get(NULL, 64, "plain", &err);
     tap_ok(plain && glIsBuffer(plain), "no pool: a new buffer");
