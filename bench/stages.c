@@ -55,10 +55,11 @@ static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "bvh.build_wall_ms", bench_now_ms() - t0);
         bench_gpu_memory_sample(gpu);
         const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
-        static const char *names[] = {"split", "bounds", "morton", "sort", "hierarchy",
-                                      "refit", "treelet", "collapse"};
-        const double ms[] = {st->ms_split, st->ms_bounds, st->ms_morton, st->ms_sort,
-                             st->ms_hierarchy, st->ms_refit, st->ms_treelet, st->ms_collapse};
+        static const char *names[] = {"split", "bounds",  "morton",   "sort",     "hierarchy",
+                                      "refit", "treelet", "collapse", "leaf_tris"};
+        const double ms[] = {st->ms_split,   st->ms_bounds,  st->ms_morton,
+                             st->ms_sort,    st->ms_hierarchy, st->ms_refit,
+                             st->ms_treelet, st->ms_collapse, st->ms_leaf_tris};
         for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++) {
             char key[96];
             snprintf(key, sizeof key, "bvh.phase.%s_ms", names[i]);

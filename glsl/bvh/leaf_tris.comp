@@ -1,9 +1,24 @@
 #version 450
-// glsl/bvh/leaf_tris.comp: last step of the final layout, one invocation per
-// leaf slot: copies the positions of triangle prims[i] into CvBvhTri slot i
-// (glsl/shared/bvh.h), so that traversal reads a leaf's triangles as one
-// contiguous run instead of through two levels of indices. Written as raw
-// words, like emit.comp: v0.w is an integer that a float path might flush.
+// glsl/bvh/leaf_tris.comp: last step of the final layout: the positions of
+// the triangle in each leaf slot, copied into CvBvhTri slot i (glsl/shared/
+// bvh.h), so that traversal reads a leaf's triangles as one contiguous run
+// instead of through two levels of indices. Written as raw words, like
+// emit.comp: v0.w is an integer that a float path might flush.
+//
+// Two ways round. By default one invocation per slot gathers triangle
+// prims[i] (for trees that tests lay out themselves). With SCATTER, as the
+// build runs it, one invocation per reference r reads its own triangle
+// (triangle r, or ref_tris[r] after splitting) and writes it to slot
+// slot_of[r] (leaf_slots.comp): references come in triangle order, so the
+// vertex reads are as coherent as the scene's own order, and only the
+// writes land at random. Gathering in leaf order read the vertex buffer at
+// random, which on an H100 collapsed once that buffer passed a few hundred
+// MB (address translation, it seems): 2 ms at 4 M triangles (384 MB of
+// vertices), 89 ms at 8 M, 430 ms at 16 M. Scattering into the whole
+// output did the same past 500 MB of it (8 M triangles: 4.9 ms, 16 M:
+// 210 ms), so the host runs the scatter once per window of slots
+// [u_slot_lo, u_slot_hi), each a few hundred MB of output: every pass
+// reads all references' slots in order, and only the window's write.
 #include "shared/bvh.h"
 #include "shared/scene.h"
 #include "shared/bindings.h"
@@ -13,7 +28,14 @@ layout(local_size_x = 256) in;
 
 layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex vertices[]; };
 layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle triangles[]; };
+#ifdef SCATTER
+layout(std430, binding = CV_BIND_STAGE0) readonly buffer SlotOf { uint slot_of[]; };
+layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer RefTris { uint ref_tris[]; };
+uniform bool u_split;  // references are split pieces: ref_tris[] names their triangles
+uniform uint u_slot_lo, u_slot_hi;
+#else
 layout(std430, binding = CV_BIND_BVH_PRIMS) readonly buffer Prims { uint prims[]; };
+#endif
 layout(std430, binding = CV_BIND_BVH_TRIS) writeonly buffer Out { uvec4 out_words[]; };
 
 uniform uint u_n;
@@ -23,7 +45,15 @@ void main()
     uint i = cv_global_index();
     if (i >= u_n)
         return;
+#ifdef SCATTER
+    uint slot = slot_of[i];
+    if (slot < u_slot_lo || slot >= u_slot_hi || slot >= u_n)
+        return;
+    uint prim = u_split ? ref_tris[i] : i;
+#else
     uint prim = prims[i];
+    uint slot = i;
+#endif
     uvec4 a = uvec4(0u), b = uvec4(0u), c = uvec4(0u);
     // Anything out of range stays the all-zero triangle, which no ray hits.
     if (prim < uint(triangles.length())) {
@@ -35,7 +65,7 @@ void main()
             c = uvec4(floatBitsToUint(vertices[idx.z].pos_u.xyz), 0u);
         }
     }
-    out_words[3u * i] = a;
-    out_words[3u * i + 1u] = b;
-    out_words[3u * i + 2u] = c;
+    out_words[3u * slot] = a;
+    out_words[3u * slot + 1u] = b;
+    out_words[3u * slot + 2u] = c;
 }

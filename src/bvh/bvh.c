@@ -42,7 +42,7 @@
 
 enum {
     PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE,
-    PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_COUNT
+    PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_LEAF_TRIS, PH_COUNT
 };
 
 /* The tree's own buffers come from the GPU's buffer pool too and go back
@@ -403,6 +403,50 @@ static bool split_first(struct build *b, const struct cv_bvh_params *p, GLuint v
     return ok;
 }
 
+/* Slots per pass of the leaf triangles' scatter: 256 MB of output
+ * (glsl/bvh/leaf_tris.comp says why). */
+#define LEAF_TRIS_WINDOW ((256u << 20) / (uint32_t)sizeof(CvBvhTri))
+
+/* The tree's leaf triangles, scattered from reference order
+ * (glsl/bvh/leaf_tris.comp says why), while `prims` still holds references.
+ * The Morton keys, dead since the hierarchy, hold each reference's slot. */
+static bool leaf_tris_scatter(struct build *b, struct cv_bvh *bvh, uint32_t window,
+                              GLuint vertices, GLuint triangles, struct cv_error *err)
+{
+    if (window == 0)
+        window = LEAF_TRIS_WINDOW;
+    const char *defs[] = {"SCATTER", NULL};
+    struct cv_program *slots, *scatter;
+    uint32_t n = b->n;
+    if (!(slots = cv_program_get(b->gpu, "bvh/leaf_slots.comp", NULL, err)) ||
+        !(scatter = cv_program_get(b->gpu, "bvh/leaf_tris.comp", defs, err)) ||
+        !cv_gpu_storage_fits(b->gpu, leaf_tris_bytes(n), "bvh leaf triangles", err) ||
+        !(bvh->tris = own_buffer(bvh, leaf_tris_bytes(n), &bvh->tris_bytes, "bvh leaf triangles",
+                                 err)))
+        return false;
+    phase_begin(b, PH_LEAF_TRIS);
+    cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
+    cv_buffer_bind(b->keys, CV_BIND_STAGE0);
+    cv_program_set_uint(slots, "u_n", n);
+    cv_program_dispatch_1d(slots, n);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    cv_buffer_bind(vertices, CV_BIND_VERTICES);
+    cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
+    /* Unsplit, reference r is triangle r and the shader reads no ref_tris. */
+    cv_buffer_bind(b->split ? cv_bvh_split_ref_tris(b->split) : b->keys, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(bvh->tris, CV_BIND_BVH_TRIS);
+    cv_program_set_uint(scatter, "u_n", n);
+    glProgramUniform1i(scatter->id, glGetUniformLocation(scatter->id, "u_split"), b->split != NULL);
+    for (uint32_t lo = 0; lo < n; lo += window) {
+        cv_program_set_uint(scatter, "u_slot_lo", lo);
+        cv_program_set_uint(scatter, "u_slot_hi", n - lo > window ? lo + window : n);
+        cv_program_dispatch_1d(scatter, n);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    phase_end(b, PH_LEAF_TRIS);
+    return cv_gl_check(err, "writing %u leaf triangles", n);
+}
+
 static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_params *p,
                        GLuint vertices, GLuint triangles, struct cv_error *err)
 {
@@ -437,7 +481,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         if (!ok)
             return false;
     }
-    if (!run_phases(b, p, vertices, triangles, err))
+    if (!run_phases(b, p, vertices, triangles, err) ||
+        !leaf_tris_scatter(b, bvh, p->leaf_tris_window, vertices, triangles, err))
         return false;
     if (b->split) {
         phase_begin(b, PH_SPLIT_REMAP);
@@ -472,7 +517,8 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     struct cv_bvh_stats *s = &bvh->stats;
     double *ms[PH_COUNT] = {&s->ms_bounds, &s->ms_morton, &s->ms_sort, &s->ms_hierarchy,
                             &s->ms_refit, &s->ms_treelet, &s->ms_collapse,
-                            &s->ms_split_count, &s->ms_split_emit, &s->ms_split_remap};
+                            &s->ms_split_count, &s->ms_split_emit, &s->ms_split_remap,
+                            &s->ms_leaf_tris};
     s->ms_total = 0;
     for (int i = 0; i < PH_COUNT; i++) {
         if (!b->ran[i])
@@ -521,11 +567,13 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);
     }
+    /* The trivial tree gathers its one or no triangle. */
     uint32_t n_refs = bvh->stats.n_refs;
-    ok = ok && cv_gpu_storage_fits(gpu, leaf_tris_bytes(n_refs), "bvh leaf triangles", err) &&
-         (bvh->tris = own_buffer(bvh, leaf_tris_bytes(n_refs), &bvh->tris_bytes,
-                                 "bvh leaf triangles", err)) != 0 &&
-         leaf_tris_fill(gpu, bvh->tris, vertices, triangles, bvh->prims, n_refs, err);
+    ok = ok && (bvh->tris || ((bvh->tris = own_buffer(bvh, leaf_tris_bytes(n_refs),
+                                                      &bvh->tris_bytes, "bvh leaf triangles",
+                                                      err)) != 0 &&
+                              leaf_tris_fill(gpu, bvh->tris, vertices, triangles, bvh->prims,
+                                             n_refs, err)));
     if (!ok) {
         cv_error_prefix(err, "building the BVH");
         cv_bvh_destroy(&bvh);

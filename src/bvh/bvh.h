@@ -29,6 +29,9 @@ struct cv_bvh_params {
      * generated 4 M triangle scene as fast; bvh_bench builds 1 M triangles
      * in 9.06 instead of 6.55 ms (bench/results/..._split-pool). */
     float split_budget;
+    /* Leaf slots per pass of the leaf triangles' scatter (bvh.c); 0: the
+     * default, 256 MB of records. Tests make it small to run several. */
+    uint32_t leaf_tris_window;
 };
 
 /* Defaults as above; CAVALRY_BVH_ROUNDS (0 to 32) sets treelet_rounds,
@@ -44,6 +47,7 @@ struct cv_bvh_stats {
     double ms_split;       /* triangle splitting, its read-back and remap (in ms_total) */
     /* ms_split's parts: shares and their read-back, references' boxes, remap. */
     double ms_split_count, ms_split_emit, ms_split_remap;
+    double ms_leaf_tris;   /* the leaf triangle records (in ms_total) */
     /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
      * over leaves of 1.0 * A(leaf) * triangles, divided by A(root). */
     double sah_cost;

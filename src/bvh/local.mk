@@ -15,7 +15,7 @@ GLSL_FILES += \
 	glsl/bvh/radix_scatter.comp \
 	glsl/bvh/scan_block.comp glsl/bvh/scan_add.comp \
 	glsl/bvh/hierarchy.comp glsl/bvh/refit.comp glsl/bvh/sah.glsl glsl/bvh/treelet.comp \
-	glsl/bvh/layout.comp glsl/bvh/emit.comp glsl/bvh/leaf_tris.comp \
+	glsl/bvh/layout.comp glsl/bvh/emit.comp glsl/bvh/leaf_tris.comp glsl/bvh/leaf_slots.comp \
 	glsl/bvh/split.glsl glsl/bvh/split_priority.comp \
 	glsl/bvh/split_sum.comp glsl/bvh/split_count.comp glsl/bvh/split_emit.comp \
 	glsl/bvh/split_remap.comp \

@@ -58,7 +58,7 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* The split's parts follow the total, so that the indices above stay. */
-#define N_PHASES 12
+#define N_PHASES 13
 
 int main(int argc, char **argv)
 {
@@ -194,7 +194,8 @@ int main(int argc, char **argv)
         double v[N_PHASES] = {last.ms_split, last.ms_bounds, last.ms_morton,
                               last.ms_sort,  last.ms_hierarchy, last.ms_refit,
                               last.ms_treelet, last.ms_collapse, last.ms_total,
-                              last.ms_split_count, last.ms_split_emit, last.ms_split_remap};
+                              last.ms_split_count, last.ms_split_emit, last.ms_split_remap,
+                              last.ms_leaf_tris};
         for (int p = 0; p < N_PHASES; p++)
             t[p][r] = v[p];
         walls[r] = wall;
@@ -210,7 +211,7 @@ int main(int argc, char **argv)
     }
     const char *names[N_PHASES] = {"split", "bounds",  "morton",   "sort", "hierarchy",
                                    "refit", "treelet", "collapse", "total", "split_count",
-                                   "split_emit", "split_remap"};
+                                   "split_emit", "split_remap", "leaf_tris"};
     double med[N_PHASES];
     for (int p = 0; p < N_PHASES; p++) {
         qsort(t[p], (size_t)reps, sizeof(double), cmp_double);

@@ -527,7 +527,8 @@ static void check_rounds_env(void)
 /* The tree's own buffers go back to the GPU's pool when it is destroyed
  * (bvh/bvh.c): another build of the same mesh makes no new buffer, and a
  * tree over fewer triangles, built into the larger buffers, still traces
- * as brute force does (its buffers are bound as the ranges it uses). */
+ * as brute force does (its buffers are bound as the ranges it uses; its
+ * leaf triangles are written in several passes, bvh.c). */
 static void check_reuse(struct cv_gpu *gpu)
 {
     struct cv_error err = {{0}};
@@ -548,8 +549,12 @@ static void check_reuse(struct cv_gpu *gpu)
            "(%zu made before it, %zu after)%s%s", made, again, ok ? "" : ": ", ok ? "" : err.msg);
     cv_bvh_destroy(&bvh);
 
+    /* That tree's leaf triangles also go in passes of 1000 slots. */
     m.nt = 3900;
-    ok = mesh_upload(&m, &vb2, &tb2, &err) && cv_bvh_build(gpu, vb2, tb2, m.nt, NULL, &bvh, &err);
+    struct cv_bvh_params passes = cv_bvh_default_params();
+    passes.leaf_tris_window = 1000;
+    ok = mesh_upload(&m, &vb2, &tb2, &err) &&
+         cv_bvh_build(gpu, vb2, tb2, m.nt, &passes, &bvh, &err);
     GLint64 held = 0;
     if (ok)
         glGetNamedBufferParameteri64v(cv_bvh_nodes_buffer(bvh), GL_BUFFER_SIZE, &held);
