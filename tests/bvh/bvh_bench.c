@@ -14,7 +14,8 @@
  * --ref also builds a CPU binned-SAH tree over the same triangles and prints
  * its SAH cost for comparison.
  * --rays R traces R rays (closest hit + any hit, glsl/bvh/rays_test.comp)
- * through the default tree and a plain LBVH and prints rays per second.
+ * through the default tree and a plain LBVH and prints rays per second and
+ * nodes visited per ray.
  * --check reads the last tree back and verifies its invariants (as the
  * tests do) and prints its depth; the exit status is 1 when they fail.
  * --all prints every rep's phases and the wall time of the build and of
@@ -256,7 +257,7 @@ int main(int argc, char **argv)
            "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f}\n",
            last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
            (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost);
-    double mrays[2] = {0, 0};
+    double mrays[2] = {0, 0}, steps[2] = {0, 0};
     if (n_rays) {
         GLuint rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err);
         GLuint res = rb ? cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", &err) : 0;
@@ -280,14 +281,26 @@ int main(int argc, char **argv)
             cv_program_dispatch_1d(prog, n_rays);
             glFinish();
             mrays[v] = n_rays / ((bench_ms() - t0) * 1e3);
+            /* Nodes visited per ray by both queries, so that rates of
+             * different trees compare per node as well as per ray. */
+            uint32_t *got = malloc((size_t)n_rays * 16);
+            if (got && cv_buffer_read(res, 0, (size_t)n_rays * 16, got, &err)) {
+                for (uint32_t i = 0; i < n_rays; i++)
+                    steps[v] += got[4 * i + 3];
+                steps[v] /= n_rays;
+            }
+            free(got);
             cv_bvh_destroy(&bvh);
         }
         if (!prog || mrays[1] == 0)
             fprintf(stderr, "bvh_bench: rays: %s\n", err.msg);
         printf("  rays (closest + any hit, %u): %.3f Mrays/s restructured, %.3f Mrays/s plain LBVH\n",
                n_rays, mrays[0], mrays[1]);
-        printf("{\"rays\": %u, \"mrays_per_s\": %.4f, \"mrays_per_s_lbvh\": %.4f}\n", n_rays,
-               mrays[0], mrays[1]);
+        printf("  nodes visited per ray (both queries): %.1f restructured, %.1f plain LBVH\n",
+               steps[0], steps[1]);
+        printf("{\"rays\": %u, \"mrays_per_s\": %.4f, \"mrays_per_s_lbvh\": %.4f, "
+               "\"steps_per_ray\": %.2f, \"steps_per_ray_lbvh\": %.2f}\n",
+               n_rays, mrays[0], mrays[1], steps[0], steps[1]);
         cv_buffer_destroy(&rb);
         cv_buffer_destroy(&res);
     }
