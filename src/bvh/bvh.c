@@ -463,7 +463,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->offsets = scratch(b, (2 * n - 1) * 4, "bvh offsets", err)) ||
         !(b->live = scratch(b, (n - 1) * 4, "bvh left turns", err)) ||
         !(b->starts = scratch(b, n * 4, "bvh leaf starts", err)) ||
-        !(b->info = scratch(b, 16 + sizeof(CvBvhBuildNode), "bvh info", err)) ||
+        !(b->info = scratch(b, 16, "bvh info", err)) ||
         !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
         /* layout.comp writes every slot. */
@@ -494,13 +494,22 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
 
     uint32_t n_nodes = 0;
     CvBvhBuildNode root;
-    /* One read-back, of a small buffer that the root is copied into first:
-     * read straight from the build nodes, the H100 took as long as that
-     * buffer was large (1 M triangles: 9.3 ms, 16 M: 160 ms; now 0.06). */
+    /* One read-back, of a small buffer that the count and the root are
+     * copied into first. Read straight from the build nodes, the H100 took
+     * as long as that buffer was large (1 M triangles: 9.3 ms, 16 M: 160 ms;
+     * now 0.06). The buffer is not the pool's: the NVIDIA driver moves a
+     * buffer that the host reads to host memory, where the pool would have
+     * served the next build's GPU work from it. */
     uint8_t info[16 + sizeof(CvBvhBuildNode)];
+    GLuint rb = cv_buffer_create_uninit(sizeof(info), "bvh read-back", err);
+    if (!rb)
+        return false;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(b->nodes, b->info, 0, 16, sizeof(root));
-    if (!cv_buffer_read(b->info, 0, sizeof(info), info, err))
+    glCopyNamedBufferSubData(b->info, rb, 0, 0, 4);
+    glCopyNamedBufferSubData(b->nodes, rb, 0, 16, sizeof(root));
+    bool read = cv_buffer_read(rb, 0, sizeof(info), info, err);
+    cv_buffer_destroy(&rb);
+    if (!read)
         return false;
     memcpy(&n_nodes, info, 4);
     memcpy(&root, info + 16, sizeof(root));

@@ -70,7 +70,8 @@ struct cv_bvh_split *cv_bvh_split_create(struct cv_gpu *gpu, uint32_t n, uint32_
         !(s->sums_b = split_buffer(s, g1 * 4, "bvh split sums", err)) ||
         !(s->counts = split_buffer(s, ((uint64_t)n + 1) * 4, "bvh split counts", err)) ||
         !(s->ref_tris = split_buffer(s, ((uint64_t)n + max_extra) * 4, "bvh split refs", err)) ||
-        !(s->total = split_buffer(s, 4, "bvh split total", err)) ||
+        /* Not the pool's: the host reads it (bvh.c says why). */
+        !(s->total = cv_buffer_create_uninit(4, "bvh split total", err)) ||
         !(s->scan = cv_scan_create(gpu, n + 1, err))) {
         cv_bvh_split_destroy(&s);
         return NULL;
@@ -171,9 +172,10 @@ void cv_bvh_split_destroy(struct cv_bvh_split **s)
         return;
     struct cv_buffer_pool *pool = (*s)->gpu->scratch;
     GLuint *bufs[] = {&(*s)->bounds, &(*s)->bounds_counter, &(*s)->sums_a, &(*s)->sums_b,
-                      &(*s)->counts, &(*s)->ref_tris, &(*s)->total};
+                      &(*s)->counts, &(*s)->ref_tris};
     for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
         cv_buffer_pool_put(pool, bufs[i]);
+    cv_buffer_destroy(&(*s)->total);
     cv_scan_destroy(&(*s)->scan);
     free(*s);
     *s = NULL;
