@@ -48,11 +48,11 @@ enum {
 /* The tree's own buffers come from the GPU's buffer pool too and go back
  * to it when the tree is destroyed, so that a batch's next scene, or the
  * next build of the same one, writes no fresh memory for them either:
- * they are ~130 bytes per triangle, and fresh they took the H100 more than
- * the build itself (bvh_bench 16 M triangles: 751 ms of host time per
- * build for 130 ms of GPU phases). A pooled buffer may be larger than
- * asked, so each is bound as the range the tree uses (traversal reads the
- * nodes' and leaf triangles' lengths). */
+ * they are ~130 bytes per triangle, and kept they took bvh_bench's 16 M
+ * triangle builds on an H100 from 751 to 320 ms of host time (for 130 ms
+ * of GPU phases). A pooled buffer may be larger than asked, so each is
+ * bound as the range the tree uses (traversal reads the nodes' and leaf
+ * triangles' lengths). */
 struct cv_bvh {
     struct cv_gpu *gpu;
     GLuint nodes, prims, tris;

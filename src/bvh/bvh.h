@@ -70,12 +70,12 @@ struct cv_bvh;
  * there for the next build; cv_buffer_pool_trim(gpu->scratch) frees it
  * (scene upload keeps it or not, trace/scene_upload.c). The tree's own
  * buffers (~130 bytes per triangle) come from that pool too and go back to
- * it when the tree is destroyed, which must happen before the context's. A single SSBO must hold 48
- * bytes per node of the build tree (2n - 1 nodes). Beyond the driver's
- * advertised block size (llvmpipe: 128 MiB, n near 1.39 M) that buffer is
- * used after a probe (gpu/storage.h; llvmpipe passed 1904 MiB for 16 M
- * triangles); NVIDIA advertises 2 GiB, about 22 M. Splitting makes no more
- * references than fit. */
+ * it when the tree is destroyed, which must happen before the context's.
+ * A single SSBO must hold 48 bytes per node of the build tree (2n - 1
+ * nodes). Beyond the driver's advertised block size (llvmpipe: 128 MiB, n
+ * near 1.39 M) that buffer is used after a probe (gpu/storage.h; llvmpipe
+ * passed 1904 MiB for 16 M triangles); NVIDIA advertises 2 GiB, about 22 M.
+ * Splitting makes no more references than fit. */
 bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
                   const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err);
 /* Binds the nodes at CV_BIND_BVH_NODES and the primitive order at
