@@ -170,32 +170,6 @@ static void build_free(struct build *b)
         glDeleteQueries(PH_COUNT, b->queries);
 }
 
-/* 0 or 1 triangles: one root whose children are the triangle (with a box
- * that every ray enters) and an empty child. */
-static bool build_trivial(struct cv_bvh *bvh, uint32_t n, struct cv_error *err)
-{
-    const float big = 1.0e38f;
-    float node[16] = {-big, -big, -big, 0, big, big, big, 0, big, big, big, 0, -big, -big, -big, 0};
-    int32_t count = (int32_t)n;
-    memcpy(&node[7], &count, 4);
-    if (n == 0) {
-        for (int i = 0; i < 3; i++) {
-            node[i] = big;
-            node[4 + i] = -big;
-        }
-    }
-    uint32_t prim = 0;
-    bvh->nodes = cv_buffer_create(sizeof(node), node, "bvh nodes", err);
-    bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
-    bvh->nodes_bytes = sizeof(node);
-    bvh->prims_bytes = 4;
-    bvh->stats.bytes = sizeof(node) + 4 + sizeof(CvBvhTri);
-    bvh->stats.n_nodes = 1;
-    bvh->stats.n_refs = n;
-    bvh->stats.sah_cost = n;
-    return bvh->prims != 0;
-}
-
 /* Writes the n leaf triangle records into `tris` (at least one record). */
 static bool leaf_tris_fill(struct cv_gpu *gpu, GLuint tris, GLuint vertices, GLuint triangles,
                            GLuint prims, uint32_t n, struct cv_error *err)
@@ -221,6 +195,36 @@ static bool leaf_tris_fill(struct cv_gpu *gpu, GLuint tris, GLuint vertices, GLu
 static size_t leaf_tris_bytes(uint32_t n)
 {
     return (size_t)(n ? n : 1) * sizeof(CvBvhTri);
+}
+
+/* 0 or 1 triangles: one root whose children are the triangle (with a box
+ * that every ray enters) and an empty child. */
+static bool build_trivial(struct cv_bvh *bvh, GLuint vertices, GLuint triangles, uint32_t n,
+                          struct cv_error *err)
+{
+    const float big = 1.0e38f;
+    float node[16] = {-big, -big, -big, 0, big, big, big, 0, big, big, big, 0, -big, -big, -big, 0};
+    int32_t count = (int32_t)n;
+    memcpy(&node[7], &count, 4);
+    if (n == 0) {
+        for (int i = 0; i < 3; i++) {
+            node[i] = big;
+            node[4 + i] = -big;
+        }
+    }
+    uint32_t prim = 0;
+    bvh->nodes = cv_buffer_create(sizeof(node), node, "bvh nodes", err);
+    bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
+    bvh->nodes_bytes = sizeof(node);
+    bvh->prims_bytes = 4;
+    bvh->stats.bytes = sizeof(node) + 4 + sizeof(CvBvhTri);
+    bvh->stats.n_nodes = 1;
+    bvh->stats.n_refs = n;
+    bvh->stats.sah_cost = n;
+    return bvh->prims &&
+           (bvh->tris = own_buffer(bvh, leaf_tris_bytes(n), &bvh->tris_bytes, "bvh leaf triangles",
+                                   err)) != 0 &&
+           leaf_tris_fill(bvh->gpu, bvh->tris, vertices, triangles, bvh->prims, n, err);
 }
 
 GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint triangles,
@@ -463,7 +467,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->offsets = scratch(b, (2 * n - 1) * 4, "bvh offsets", err)) ||
         !(b->live = scratch(b, (n - 1) * 4, "bvh left turns", err)) ||
         !(b->starts = scratch(b, n * 4, "bvh leaf starts", err)) ||
-        !(b->info = scratch(b, 16, "bvh info", err)) ||
+        !(b->info = scratch(b, 16 + sizeof(CvBvhBuildNode), "bvh info", err)) ||
         !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
         /* layout.comp writes every slot. */
@@ -494,22 +498,15 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
 
     uint32_t n_nodes = 0;
     CvBvhBuildNode root;
-    /* One read-back, of a small buffer that the count and the root are
-     * copied into first. Read straight from the build nodes, the H100 took
-     * as long as that buffer was large (1 M triangles: 9.3 ms, 16 M: 160 ms;
-     * now 0.06). The buffer is not the pool's: the NVIDIA driver moves a
-     * buffer that the host reads to host memory, where the pool would have
-     * served the next build's GPU work from it. */
+    /* One read-back: the root joins the count in `info`, which is read
+     * staged (gpu/buffer.h). Read straight from the build nodes, the H100
+     * took as long as that buffer was large (1 M triangles: 9.3 ms, 16 M:
+     * 160 ms; now 0.06), and a pooled buffer read directly would serve the
+     * next build's GPU work from host memory. */
     uint8_t info[16 + sizeof(CvBvhBuildNode)];
-    GLuint rb = cv_buffer_create_uninit(sizeof(info), "bvh read-back", err);
-    if (!rb)
-        return false;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(b->info, rb, 0, 0, 4);
-    glCopyNamedBufferSubData(b->nodes, rb, 0, 16, sizeof(root));
-    bool read = cv_buffer_read(rb, 0, sizeof(info), info, err);
-    cv_buffer_destroy(&rb);
-    if (!read)
+    glCopyNamedBufferSubData(b->nodes, b->info, 0, 16, sizeof(root));
+    if (!cv_buffer_read_staged(b->info, 0, sizeof(info), 0, info, err))
         return false;
     memcpy(&n_nodes, info, 4);
     memcpy(&root, info + 16, sizeof(root));
@@ -570,19 +567,12 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
     bvh->gpu = gpu;
     bool ok;
     if (n_triangles < 2) {
-        ok = build_trivial(bvh, n_triangles, err);
+        ok = build_trivial(bvh, vertices, triangles, n_triangles, err);
     } else {
         struct build b = {.gpu = gpu, .n = n_triangles, .cpu_timing = gpu->info.software};
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);
     }
-    /* The trivial tree gathers its one or no triangle. */
-    uint32_t n_refs = bvh->stats.n_refs;
-    ok = ok && (bvh->tris || ((bvh->tris = own_buffer(bvh, leaf_tris_bytes(n_refs),
-                                                      &bvh->tris_bytes, "bvh leaf triangles",
-                                                      err)) != 0 &&
-                              leaf_tris_fill(gpu, bvh->tris, vertices, triangles, bvh->prims,
-                                             n_refs, err)));
     if (!ok) {
         cv_error_prefix(err, "building the BVH");
         cv_bvh_destroy(&bvh);

@@ -76,9 +76,9 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
     }
     /* Pooled scratch (bvh/scratch.h): every pass writes them before
      * reading them. */
-    rs->keys = cv_bvh_scratch(gpu, (uint64_t)rs->max_n * 4 * words, "radix keys", &rs->bytes, err);
-    rs->vals = rs->keys ? cv_bvh_scratch(gpu, (uint64_t)rs->max_n * 4, "radix vals", &rs->bytes, err)
-                        : 0;
+    uint64_t n4 = (uint64_t)rs->max_n * 4;
+    rs->keys = cv_bvh_scratch(gpu, n4 * words, "radix keys", &rs->bytes, err);
+    rs->vals = rs->keys ? cv_bvh_scratch(gpu, n4, "radix vals", &rs->bytes, err) : 0;
     /* A row of block counts per digit, then the digits' totals. Fewer keys
      * can make more blocks (2048 tiles make 2048 blocks, 2049 make 1025),
      * but never more than tiles or RADIX_MAX_BLOCKS. */

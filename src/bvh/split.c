@@ -24,7 +24,7 @@ struct cv_bvh_split {
     GLuint sums_a, sums_b;     /* reduction levels of the priorities' sum */
     GLuint counts;             /* priorities, then shares, then their prefix sum (n + 1) */
     GLuint ref_tris;           /* n + max_extra (n_refs used) */
-    GLuint total;              /* one word: the prefix sum's last element */
+    GLuint total;              /* one word: staging for the prefix sum's last element */
     struct cv_scan *scan;
     uint64_t bytes;
 };
@@ -70,7 +70,7 @@ struct cv_bvh_split *cv_bvh_split_create(struct cv_gpu *gpu, uint32_t n, uint32_
         !(s->sums_b = split_buffer(s, g1 * 4, "bvh split sums", err)) ||
         !(s->counts = split_buffer(s, ((uint64_t)n + 1) * 4, "bvh split counts", err)) ||
         !(s->ref_tris = split_buffer(s, ((uint64_t)n + max_extra) * 4, "bvh split refs", err)) ||
-        /* Not the pool's: the host reads it (bvh.c says why). */
+        /* Not the pool's: the host reads it (gpu/buffer.h says why). */
         !(s->total = cv_buffer_create_uninit(4, "bvh split total", err)) ||
         !(s->scan = cv_scan_create(gpu, n + 1, err))) {
         cv_bvh_split_destroy(&s);
@@ -113,12 +113,11 @@ bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangle
     uint32_t fixed_total = 0;
     if (!cv_scan_exclusive(s->scan, s->counts, n + 1, err))
         return false;
-    /* The total goes through a one-word buffer: read straight from the
-     * prefix sum's, the read-back stalled the H100 for longer the larger
-     * that buffer was (split phase 19.9 instead of 7.8 ms at 4 M
-     * triangles, 74 ms at 16 M). */
-    glCopyNamedBufferSubData(s->counts, s->total, (GLintptr)n * 4, 0, 4);
-    if (!cv_buffer_read(s->total, 0, 4, &fixed_total, err))
+    /* Staged through a one-word buffer: read straight from the prefix
+     * sum's, the read-back stalled the H100 for longer the larger that
+     * buffer was (split phase 19.9 instead of 7.8 ms at 4 M triangles,
+     * 74 ms at 16 M; gpu/buffer.h). */
+    if (!cv_buffer_read_staged(s->counts, (size_t)n * 4, 4, s->total, &fixed_total, err))
         return false;
     uint32_t extra = fixed_total >> s->shift;
     if (extra > s->max_extra)

@@ -62,6 +62,20 @@ bool cv_buffer_read(GLuint buf, size_t offset, size_t bytes, void *dst, struct c
     return cv_gl_check(err, "reading back %zu bytes", bytes);
 }
 
+bool cv_buffer_read_staged(GLuint buf, size_t offset, size_t bytes, GLuint staging, void *dst,
+                           struct cv_error *err)
+{
+    GLuint own = staging ? 0 : cv_buffer_create_uninit(bytes, "read-back staging", err);
+    GLuint s = staging ? staging : own;
+    if (!s)
+        return false;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glCopyNamedBufferSubData(buf, s, (GLintptr)offset, 0, (GLsizeiptr)bytes);
+    bool ok = cv_buffer_read(s, 0, bytes, dst, err);
+    cv_buffer_destroy(&own);
+    return ok;
+}
+
 void cv_buffer_zero(GLuint buf)
 {
     GLuint zero = 0;

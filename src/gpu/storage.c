@@ -130,6 +130,13 @@ bool cv_gpu_storage_probe(struct cv_gpu *gpu, uint64_t bytes, const char *const 
     return ok;
 }
 
+GLuint cv_gpu_storage_buffer(struct cv_gpu *gpu, size_t bytes, const void *data,
+                             const char *label, struct cv_error *err)
+{
+    return cv_gpu_storage_fits(gpu, bytes, label, err) ? cv_buffer_create(bytes, data, label, err)
+                                                       : 0;
+}
+
 uint64_t cv_gpu_storage_known(const struct cv_gpu *gpu)
 {
     if (gpu->info.max_ssbo_bytes <= 0)

@@ -11,7 +11,10 @@
 #define CV_GPU_STORAGE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
+
+#include <epoxy/gl.h>
 
 #include "base/error.h"
 #include "gpu/context.h"
@@ -22,6 +25,11 @@
  * failed fails). False with err naming `label`, the size and the limit. */
 bool cv_gpu_storage_fits(struct cv_gpu *gpu, uint64_t bytes, const char *label,
                          struct cv_error *err);
+
+/* cv_buffer_create (gpu/buffer.h) of a buffer that passes
+ * cv_gpu_storage_fits first; 0 with err set when either fails. */
+GLuint cv_gpu_storage_buffer(struct cv_gpu *gpu, size_t bytes, const void *data,
+                             const char *label, struct cv_error *err);
 
 /* The largest size known to fit without probing: the advertised limit or
  * the largest size a probe passed, whichever is larger; 0 when the driver

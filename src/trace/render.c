@@ -59,7 +59,7 @@ struct cv_renderer {
     CvPassParams pass;
     GLuint ubo, queues, rays, hits, shadow, film, resolved;
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
-    GLuint queues_copy;            /* what cv_renderer_counters reads back (see there) */
+    GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
     GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
@@ -191,9 +191,7 @@ static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok
 {
     if (!*ok)
         return 0;
-    GLuint b = cv_gpu_storage_fits(gpu, bytes, label, err)
-                   ? cv_buffer_create(bytes, NULL, label, err)
-                   : 0;
+    GLuint b = cv_gpu_storage_buffer(gpu, bytes, NULL, label, err);
     if (!b)
         *ok = false;
     return b;
@@ -490,15 +488,11 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     r->n_queries = 0;
     prof_collect(r);
     CvTraceQueues q;
-    /* Through a copy: the NVIDIA driver moves a buffer that the host reads
-     * back to host memory ("copied/moved from VIDEO memory to HOST memory"
-     * in its debug output, at every pass), and every stage's queue atomics
-     * and indirect arguments then crossed the bus. H100, 1024 spp:
-     * veach-bidir 4.64 -> 4.14 s, cornell-box 2.38 -> 1.99 s; the 4 M
-     * scene's 64 spp 347 -> 306 ms. */
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(r->queues, r->queues_copy, 0, 0, sizeof(q));
-    if (!cv_buffer_read(r->queues_copy, 0, sizeof(q), &q, err))
+    /* Staged, or the queues' atomics and indirect arguments would live in
+     * host memory from the first pass on (gpu/buffer.h; H100, 1024 spp:
+     * veach-bidir 4.64 -> 4.14 s, cornell-box 2.38 -> 1.99 s, the 4 M
+     * scene's 64 spp 347 -> 306 ms). */
+    if (!cv_buffer_read_staged(r->queues, 0, sizeof(q), r->queues_copy, &q, err))
         return false;
     uint64_t extend = (uint64_t)q.stats[CV_STAT_EXTEND].y << 32 | q.stats[CV_STAT_EXTEND].x;
     c->primary_rays = (uint64_t)r->n_pixels * r->spp_done;

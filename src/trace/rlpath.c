@@ -137,15 +137,13 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     void *none = cv_xmalloc(path_bytes);
     memset(none, 0xff, path_bytes);
     rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);
-    if (rl->ubo && cv_gpu_storage_fits(gpu, cv_rlpath_table_bytes(layout), "rlpath learning table",
-                                       err))
-        rl->table = cv_buffer_create((size_t)cv_rlpath_table_bytes(layout), NULL,
-                                     "rlpath learning table", err);
+    if (rl->ubo)
+        rl->table = cv_gpu_storage_buffer(gpu, (size_t)cv_rlpath_table_bytes(layout), NULL,
+                                          "rlpath learning table", err);
     /* zero: every key's guiding weight 0 until its first rebuild */
-    if (rl->table && cv_gpu_storage_fits(gpu, cv_rlpath_guide_bytes(layout), "rlpath guide table",
-                                         err))
-        rl->guide = cv_buffer_create((size_t)cv_rlpath_guide_bytes(layout), NULL,
-                                     "rlpath guide table", err);
+    if (rl->table)
+        rl->guide = cv_gpu_storage_buffer(gpu, (size_t)cv_rlpath_guide_bytes(layout), NULL,
+                                          "rlpath guide table", err);
     if (rl->guide)
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);

@@ -99,8 +99,7 @@ static bool build_env_dists(const struct cv_scene *s, CvLight *lights, float **d
 static bool up(struct cv_gpu *gpu, GLuint *b, size_t bytes, const void *data, const char *label,
                struct cv_error *err)
 {
-    *b = cv_gpu_storage_fits(gpu, bytes, label, err) ? cv_buffer_create(bytes, data, label, err)
-                                                     : 0;
+    *b = cv_gpu_storage_buffer(gpu, bytes, data, label, err);
     return *b != 0;
 }
 
@@ -110,9 +109,9 @@ static bool up(struct cv_gpu *gpu, GLuint *b, size_t bytes, const void *data, co
  * time per MB on its first use (H100: 4 M triangles build in ~32 ms on
  * reused scratch, ~46 ms on fresh; bvh_bench --fresh). Beyond that, or
  * where the driver does not say what is free (Mesa), it is freed, so that a
- * large scene's render never runs short for it. The same holds when a scene is released and its
- * BVH's own buffers (~130 bytes per triangle, bvh/bvh.c) join the idle
- * scratch. */
+ * large scene's render never runs short for it. The same holds when a
+ * scene is released and its BVH's own buffers (~130 bytes per triangle,
+ * bvh/bvh.c) join the idle scratch. */
 static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
 {
     uint64_t total = 0, avail = 0;

@@ -282,22 +282,16 @@ int main(int argc, char **argv)
             glFinish();
             mrays[v] = n_rays / ((bench_ms() - t0) * 1e3);
             /* Nodes visited per ray by both queries, so that rates of
-             * different trees compare per node as well as per ray. Read
-             * through a copy: the NVIDIA driver moves a buffer that is read
-             * back to host memory, where the next variant would write. */
+             * different trees compare per node as well as per ray. Staged,
+             * so that the next variant writes its results to video memory
+             * (gpu/buffer.h). */
             uint32_t *got = malloc((size_t)n_rays * 16);
-            GLuint copy = cv_buffer_create_uninit((size_t)n_rays * 16, "ray results copy", &err);
-            if (copy) {
-                glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-                glCopyNamedBufferSubData(res, copy, 0, 0, (GLsizeiptr)n_rays * 16);
-            }
-            if (got && copy && cv_buffer_read(copy, 0, (size_t)n_rays * 16, got, &err)) {
+            if (got && cv_buffer_read_staged(res, 0, (size_t)n_rays * 16, 0, got, &err)) {
                 for (uint32_t i = 0; i < n_rays; i++)
                     steps[v] += got[4 * i + 3];
                 steps[v] /= n_rays;
             }
             free(got);
-            cv_buffer_destroy(&copy);
             cv_bvh_destroy(&bvh);
         }
         if (!prog || mrays[1] == 0)

@@ -58,6 +58,18 @@ int main(void)
             first_bad = i;
     }
     tap_ok(bad == 0, "every element equals in*3+i (%u wrong, first at %u)", bad, first_bad);
+    /* Staged reads (gpu/buffer.h): a slice from an offset, through a
+     * temporary and through a given staging buffer. */
+    uint32_t part[2][16];
+    GLuint staging = cv_buffer_create_uninit(sizeof(part[0]), "selftest staging", &err);
+    bool staged =
+        staging && cv_buffer_read_staged(b_out, 100 * 4, sizeof(part[0]), 0, part[0], &err) &&
+        cv_buffer_read_staged(b_out, 200 * 4, sizeof(part[1]), staging, part[1], &err);
+    tap_ok(staged && memcmp(part[0], &out[100], sizeof(part[0])) == 0 &&
+               memcmp(part[1], &out[200], sizeof(part[1])) == 0,
+           "staged reads return the slices read directly%s%s", staged ? "" : ": ",
+           staged ? "" : err.msg);
+    cv_buffer_destroy(&staging);
     cv_buffer_destroy(&b_in);
     cv_buffer_destroy(&b_out);
     tap_ok(b_in == 0, "destroy clears the handle");
