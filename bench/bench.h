@@ -61,6 +61,8 @@ struct bench_run_params {
     float rl_mix;                      /* rlpath guiding weight; 0: default */
     bool rl_guide_indirect;            /* --rl-guide indirect */
     unsigned seed;                     /* sampler seed; 0: 1 */
+    unsigned paths_per_pixel;          /* trace/render.h; 0: the renderer's choice */
+    unsigned pass_spp;                 /* passes of this many spp; 0: as cavalry-batch sizes them */
 };
 
 /* BVH build and rendering through the bvh and trace stages; each records

@@ -42,7 +42,7 @@ static void usage(FILE *f)
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
           "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
           "                     [--rl-guide all|indirect] [--seed S]\n"
-          "                     [--no-gpu]\n"
+          "                     [--paths-per-pixel N] [--pass-spp N] [--no-gpu]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
@@ -98,6 +98,7 @@ static void record_gpu(struct bench_record *r, const struct cv_gpu *gpu)
 struct opts {
     const char *scene, *reference, *csv, *out, *integrator;
     unsigned spp, repeat, width, height, ref_spp, rl_grid, rl_directions, seed;
+    unsigned paths_per_pixel, pass_spp;
     float rl_mix;
     bool rl_guide_indirect;
     int gpu_index;
@@ -110,7 +111,9 @@ static struct bench_run_params run_params(const struct opts *o)
     return (struct bench_run_params){.spp = o->spp, .width = o->width, .height = o->height,
                                      .integrator = o->integrator, .rl_grid = o->rl_grid,
                                      .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
-                                     .rl_guide_indirect = o->rl_guide_indirect, .seed = o->seed};
+                                     .rl_guide_indirect = o->rl_guide_indirect, .seed = o->seed,
+                                     .paths_per_pixel = o->paths_per_pixel,
+                                     .pass_spp = o->pass_spp};
 }
 
 #ifdef BENCH_HAVE_LOADER
@@ -231,6 +234,10 @@ int main(int argc, char **argv)
             o.rl_directions = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--seed") && has) {
             o.seed = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--paths-per-pixel") && has) {
+            o.paths_per_pixel = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--pass-spp") && has) {
+            o.pass_spp = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--rl-mix") && has) {
             o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--rl-guide") && has) {

@@ -109,6 +109,7 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_directions = p->rl_directions;
     rp.rl_mix = p->rl_mix;
     rp.rl_guide_indirect = p->rl_guide_indirect;
+    rp.paths_per_pixel = p->paths_per_pixel;
     if (rp.integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
     return cv_renderer_create(gpu, scene, &rp, out, err);
@@ -142,18 +143,19 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "render.first_pass_gpu_ms", c1.gpu_ms);
         bench_gpu_memory_sample(gpu);
     }
-    /* The rest in passes sized as cavalry-batch sizes them (each waits for
-     * its counters, as the batch's progress does). */
-    uint32_t n = 1, passes = 1;
+    /* The rest in passes sized as cavalry-batch sizes them, or of pass_spp
+     * (each waits for its counters, as the batch's progress does). */
+    uint32_t n = 1, passes = 1, max_pass = 1;
     double tp = p0;
     while (ok && cv_renderer_spp_done(ren) < p->spp) {
         double now = bench_now_ms();
-        n = cv_next_pass_spp(n, (now - tp) * 1e-3, 0);
+        n = p->pass_spp ? p->pass_spp : cv_next_pass_spp(n, (now - tp) * 1e-3, 0);
         tp = now;
         if (n > p->spp - cv_renderer_spp_done(ren))
             n = p->spp - cv_renderer_spp_done(ren);
         ok = cv_renderer_pass(ren, n, err) && cv_renderer_counters(ren, &c, err);
         passes++;
+        max_pass = n > max_pass ? n : max_pass;
     }
     ok = ok && cv_renderer_counters(ren, &c, err);
     if (ok) {
@@ -161,6 +163,8 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "render.time_to_spp_gpu_ms", c.gpu_ms);
         bench_num(r, "render.passes", passes);
         bench_num(r, "render.iterations", (double)c.iterations);
+        uint32_t ppp = (uint32_t)(c.path_slots / ((uint64_t)w * h));
+        bench_num(r, "render.paths_per_pixel", ppp);
         bench_gpu_memory_sample(gpu);
         /* llvmpipe answers GL_TIME_ELAPSED with near-zero times; there the
          * CPU is the device and the wall clock is the honest measure. */
@@ -188,6 +192,17 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
                       (double)(c.primary_rays + c.secondary_rays) / (c.intersect_ms * 1e-3));
             bench_num(r, "render.traversal.shadow_rays_per_s",
                       (double)c.shadow_rays / (c.shadow_ms * 1e-3));
+            bench_num(r, "render.stage.intersect_first_ms", c.intersect_first_ms);
+            /* With no pass longer than a slot's one sample, no path is
+             * regenerated: each pass's first iteration traces all its
+             * camera rays and the others bounce rays alone. */
+            double bounce_ms = c.intersect_ms - c.intersect_first_ms;
+            if (max_pass <= ppp && bounce_ms > 0 && c.intersect_first_ms > 0) {
+                bench_num(r, "render.traversal.camera_only_rays_per_s",
+                          (double)c.primary_rays / (c.intersect_first_ms * 1e-3));
+                bench_num(r, "render.traversal.secondary_only_rays_per_s",
+                          (double)c.secondary_rays / (bounce_ms * 1e-3));
+            }
         }
         bench_num(r, "render.primary_rays", (double)c.primary_rays);
         bench_num(r, "render.secondary_rays", (double)c.secondary_rays);

@@ -68,8 +68,8 @@
  * four: two rounds of loads at 128 bins, where a binary search over the CDF
  * takes seven one after the other (the shade stage waits on each).
  *
- * Path state (image unit CV_IMAGE_RL_PATH, one rg32ui texel per pixel of
- * the crop; each pixel has one path in flight): x: entry of the last bounce
+ * Path state (image unit CV_IMAGE_RL_PATH, one rg32ui texel per path slot,
+ * glsl/shared/trace.h; each slot has one path in flight): x: entry of the last bounce
  * whose value the next vertex (a hit, or the environment) learns from
  * (CV_RL_NONE: none), y: the depth that bounce left from. */
 #ifndef CV_SHARED_RLPATH_H
@@ -79,7 +79,7 @@
 #include "shared/bindings.h"
 
 #define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: learning table */
-#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rg32ui: path state per pixel */
+#define CV_IMAGE_RL_PATH 1     /* uimageBuffer rg32ui: path state per path slot */
 #define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the learning table again, for float atomics */
 #define CV_IMAGE_RL_GUIDE 3    /* imageBuffer rgba32f: guide table */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */

@@ -19,15 +19,17 @@ layout(std430, binding = CV_BIND_FILM) buffer CvFilm { CvFilmPixel film[]; };
 
 uint cv_iteration() { return u_pass.misc.x; }
 uint cv_max_depth() { return u_pass.seed.w; }
-uint cv_capacity() { return u_pass.frame.x; }
+uint cv_capacity() { return u_pass.wave.x; }
 
 // A ray's bits (CV_RAYF_*) and depth, both kept in beta.w (see trace.h).
 uint cv_ray_flags(CvRayItem r) { return uint(r.beta.w) & CV_RAYF_MASK; }
 uint cv_ray_depth(CvRayItem r) { return uint(r.beta.w) >> CV_RAYF_DEPTH_SHIFT; }
 float cv_ray_meta(uint flags, uint depth) { return float(flags | (depth << CV_RAYF_DEPTH_SHIFT)); }
 
-// The sample index of the path that crop pixel `pixel` has in flight.
-uint cv_pixel_sample(uint pixel) { return uint(film[pixel].normal.w); }
+// The sample index of the path in flight in slot `path` (trace.h).
+uint cv_path_sample(uint path) { return uint(film[path].normal.w); }
+// The crop pixel that path slot `path` belongs to.
+uint cv_path_pixel(uint path) { return path % u_pass.frame.x; }
 
 // The iteration's input rays and the rays it writes (see trace.h).
 CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }
@@ -51,8 +53,6 @@ uint cv_hit_slot(uint i)
 #endif
 uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
 void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray; }
-uint cv_done_pixel(uint i) { return hits[2u * cv_capacity() + i].ray; }
-void cv_done_push(uint slot, uint pixel) { hits[2u * cv_capacity() + slot].ray = pixel; }
 
 // Dimension pairs: 0 filter, 1 lens, then CV_PAIRS_PER_BOUNCE per depth.
 // (Shade stages get theirs through cv_bounce_2d in surface_inputs.glsl.)
@@ -131,12 +131,13 @@ bool cv_finite3(vec3 v)
     return !(any(isnan(v)) || any(isinf(v)));
 }
 
-// Adds radiance to a pixel. Each pixel has one path in flight and each
-// stage touches a path once, so the stages need no atomics here.
-void cv_film_add(uint pixel, vec3 L)
+// Adds radiance to a path slot's film entry. Each slot has one path in
+// flight and each stage touches a path once, so the stages need no atomics
+// here.
+void cv_film_add(uint path, vec3 L)
 {
     if (cv_finite3(L) && cv_max3(L) > 0.0)
-        film[pixel].L.rgb += L;
+        film[path].L.rgb += L;
 }
 
 #endif

@@ -3,12 +3,12 @@
 // glsl/trace/escaped.comp: rays that left the scene pick up environment
 // light, MIS-weighted against the light sampling that could have found the
 // same direction (not for camera rays or after specular bounces); their
-// paths end, so their pixels start their next samples (regenerate.glsl).
+// paths end, so their slots start their next samples (regenerate.glsl).
 // Runs every iteration where the scene has an environment light or the
 // integrator is rlpath (CV_RLPATH), whose bounce that escaped learns the
 // environment radiance it found (0 without an environment) in the Q-table
 // (rlpath/guide.glsl); otherwise a miss has nothing to add and the
-// intersect stage regenerates its pixel itself. The host defines
+// intersect stage regenerates its slot itself. The host defines
 // CV_NO_ENV, as for every stage, when the scene has no environment light.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;

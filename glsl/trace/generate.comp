@@ -1,8 +1,10 @@
 #version 450
-// glsl/trace/generate.comp: starts a pass: the pass's first sample of every
-// pixel of the crop (regenerate.glsl), written as the first iteration's
-// input; the queues start empty. Later samples start where earlier paths
-// end (path regeneration, trace.h).
+// glsl/trace/generate.comp: starts a pass: the first camera ray of every
+// path slot that has a sample in it (regenerate.glsl), written as the first
+// iteration's input; the queues start empty. Later samples start where
+// earlier paths end (path regeneration, trace.h). A pass of samples
+// [a, b) starts min(K, b - a) slots of each pixel: item i starts sample
+// a + i / P of pixel i % P (P pixels), in the slot that owns that sample.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -13,7 +15,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 void main()
 {
     uint i = cv_global_index();
-    uint n = u_pass.frame.x;
+    uint n = u_pass.wave.z;
     if (i == 0u) {
         cv_prepare_iteration(n);
         q.count[CV_Q_SHADOW] = 0u;
@@ -22,6 +24,9 @@ void main()
     }
     if (i >= n)
         return;
+    uint pixels = u_pass.frame.x;
+    uint sample_index = u_pass.frame.w + i / pixels;
+    uint path = (sample_index % u_pass.wave.y) * pixels + i % pixels;
     // iteration 0 reads the odd half
-    rays[cv_capacity() + i] = cv_camera_sample(i, u_pass.frame.w);
+    rays[cv_capacity() + i] = cv_camera_sample(path, sample_index);
 }

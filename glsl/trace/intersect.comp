@@ -3,7 +3,7 @@
 // hits go to the hit queue. With CV_ESCAPED_QUEUE misses go to the escaped
 // queue (trace/escaped.comp: environment light, rlpath's learning); the
 // host leaves it out for the path integrator in a scene without an
-// environment light, where a miss adds nothing and its pixel starts its
+// environment light, where a miss adds nothing and its slot starts its
 // next sample (regenerate.glsl) right here: an escaped stage less per
 // iteration (36 us each on an H100, veach-bidir). The environment's code
 // stays out of this kernel: with it, the kernel would use more storage
@@ -33,7 +33,7 @@ void main()
     h.prim = 0u;
     h.b1 = 0.0;
     h.b2 = 0.0;
-    bool regen = false;    // a miss's pixel starts its next sample: nr
+    bool regen = false;    // a miss's slot starts its next sample: nr
     CvRayItem nr;
     if (valid) {
         CvRayItem r = cv_ray_in(i);
@@ -45,7 +45,9 @@ void main()
         for (uint k = 0u; hit && k < 64u; k++) {
             uint word = cv_triangles[h.prim].idx.w;
             CvSurface s = cv_surface(h.prim, h.b1, h.b2);
-            float u = cv_u32_to_unit(cv_hash4(uint(r.o.w), cv_pixel_sample(uint(r.o.w)), h.prim,
+            // keyed by pixel, not slot: the same paths whatever K
+            uint path = uint(r.o.w);
+            float u = cv_u32_to_unit(cv_hash4(cv_path_pixel(path), cv_path_sample(path), h.prim,
                                               cv_ray_depth(r) * 64u + k));
             if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))
                 break;

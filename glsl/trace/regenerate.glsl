@@ -1,22 +1,24 @@
 // glsl/trace/regenerate.glsl: camera rays, one per pixel sample; each sample
-// adds weight 1 to its pixel (filter importance sampling). The pass's first
-// samples come from trace/generate.comp; every later one from the stage that
-// ends the pixel's previous path (intersect or escaped for a miss, shade
-// otherwise: path regeneration, trace.h), which queues the new camera ray
-// among the next iteration's rays in place of a bounce ray. That was a
-// stage of its own over a queue of the pixels whose paths ended, which on
-// an H100 took about 68 us an iteration for its ~180 K rays (veach-bidir).
+// adds weight 1 to its path slot's film entry (filter importance sampling).
+// The pass's first samples come from trace/generate.comp; every later one
+// from the stage that ends the slot's previous path (intersect or escaped
+// for a miss, shade otherwise: path regeneration, trace.h), which queues
+// the new camera ray among the next iteration's rays in place of a bounce
+// ray. That was a stage of its own over a queue of the pixels whose paths
+// ended, which on an H100 took about 68 us an iteration for its ~180 K rays
+// (veach-bidir).
 // Include after common.glsl and sampler.glsl.
 #ifndef CV_TRACE_REGENERATE_GLSL
 #define CV_TRACE_REGENERATE_GLSL
 
 #include "camera.glsl"
 
-// Sample `sample_index` of crop pixel i: its camera ray; the pixel's film
-// entry counts the sample and records it as the path in flight.
-CvRayItem cv_camera_sample(uint i, uint sample_index)
+// Sample `sample_index` of the pixel of path slot `path`: its camera ray;
+// the slot's film entry counts the sample and records it as the path in
+// flight.
+CvRayItem cv_camera_sample(uint path, uint sample_index)
 {
-    uint cw = u_pass.frame.y;
+    uint i = cv_path_pixel(path), cw = u_pass.frame.y;
     uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
     uint film_pixel = px.y * u_pass.film.x + px.x;
     uvec2 seed = u_pass.seed.xy;
@@ -29,22 +31,23 @@ CvRayItem cv_camera_sample(uint i, uint sample_index)
     vec3 o, d;
     cv_camera_ray(raster, ul, o, d);
     CvRayItem r;
-    r.o = vec4(o, float(i));
+    r.o = vec4(o, float(path));
     r.d = vec4(d, 0.0);
     r.beta = vec4(1.0, 1.0, 1.0, cv_ray_meta(0u, 0u));
-    film[i].L.w += 1.0;
-    film[i].normal.w = float(sample_index);
+    film[path].L.w += 1.0;
+    film[path].normal.w = float(sample_index);
     return r;
 }
 
-// The path of crop pixel `pixel` has ended: its next sample's camera ray,
-// if the pass has one left (the return value says whether r is set).
-bool cv_regenerate(uint pixel, out CvRayItem r)
+// The path in slot `path` has ended: the camera ray of the slot's next
+// sample (K on from this one, trace.h), if the pass has it (the return
+// value says whether r is set).
+bool cv_regenerate(uint path, out CvRayItem r)
 {
-    uint next = cv_pixel_sample(pixel) + 1u;
+    uint next = cv_path_sample(path) + u_pass.wave.y;
     if (next >= u_pass.misc.w)
         return false;
-    r = cv_camera_sample(pixel, next);
+    r = cv_camera_sample(path, next);
     return true;
 }
 

@@ -3,8 +3,8 @@
 // light (MIS-weighted against light sampling), the AOVs, then, below the
 // maximum depth, next-event estimation (a shadow ray queued with its
 // MIS-weighted contribution; skipped for delta BSDFs) and BSDF sampling of
-// the bounce ray with Russian roulette. A path that does not go on sends its
-// pixel to the done queue.
+// the bounce ray with Russian roulette. A path that does not go on starts its
+// slot's next sample (shade_queue.glsl).
 // The host builds it twice over the two bins of the hit queue (trace.h):
 // CV_SHADE_BIN=0 shades diffuse surfaces with the BSDF code cut down to
 // diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 every other material. The
@@ -31,7 +31,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     push_ray = false;
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
-    uint pixel = uint(r.o.w);
+    uint path = uint(r.o.w);
     uint flags = cv_ray_flags(r);
     uint depth = cv_ray_depth(r);
     vec3 beta = r.beta.rgb;
@@ -46,25 +46,25 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
             float w = 1.0;
             if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
                 w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
-            cv_film_add(pixel, beta * Le * w);
+            cv_film_add(path, beta * Le * w);
         }
     }
 
-    vec2 u_bsdf = cv_bounce_2d(pixel, depth, CV_PAIR_BSDF_U2);
-    vec2 u_bc = cv_bounce_2d(pixel, depth, CV_PAIR_BSDF_UC);
-    vec2 u_light = cv_bounce_2d(pixel, depth, CV_PAIR_LIGHT_U2);
-    vec2 u_lc = cv_bounce_2d(pixel, depth, CV_PAIR_LIGHT_UC);
+    vec2 u_bsdf = cv_bounce_2d(path, depth, CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(path, depth, CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
 
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
     bool delta = cv_bsdf_is_delta(b);
 
 #ifdef CV_AOVS
     if (depth == 0u) {
-        film[pixel].normal.xyz += sf.ns;
-        film[pixel].albedo.w += h.t;
+        film[path].normal.xyz += sf.ns;
+        film[path].albedo.w += h.t;
     }
     if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
-        film[pixel].albedo.rgb += cv_bsdf_albedo(b);
+        film[path].albedo.rgb += cv_bsdf_albedo(b);
         flags |= CV_RAYF_ALBEDO_DONE;
     }
 #endif
@@ -82,7 +82,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
                     push_shadow = true;
                     s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
                                ls.dist * (1.0 - 1e-4));
-                    s.d = vec4(ls.wi, float(pixel));
+                    s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
                 }
             }

@@ -1,7 +1,7 @@
 // glsl/trace/shade_queue.glsl: main() of the shade stages (trace/shade.comp,
 // trace/rlpath/shade.comp): shades hit i with the stage's cv_shade and
 // queues what it produced (a shadow ray; the bounce ray, or else, the path
-// having ended, the camera ray of its pixel's next sample: regenerate.glsl)
+// having ended, the camera ray of its slot's next sample: regenerate.glsl)
 // with slots taken in uniform control flow. The last group to finish (of
 // both bins' programs, which the path integrator runs side by side)
 // prepares the shadow stage and the next iteration (queue_args.glsl).
@@ -32,15 +32,15 @@ void main()
     if (valid) {
         uint slot_in = cv_hit_slot(i);
         cv_shade(slot_in, push_shadow, s, push_ray, nr);
-        uint pixel = uint(cv_ray_in(hits[slot_in].ray).o.w);
+        uint path = uint(cv_ray_in(hits[slot_in].ray).o.w);
 #ifdef CV_HAS_ALPHA
         // the shadow ray's sample for its alpha tests (shadow.comp), read
-        // before the pixel moves on to its next
+        // before the slot moves on to its next
         if (push_shadow)
-            s.L.w = float(cv_pixel_sample(pixel));
+            s.L.w = float(cv_path_sample(path));
 #endif
         if (!push_ray)
-            push_ray = cv_regenerate(pixel, nr);
+            push_ray = cv_regenerate(path, nr);
     }
     uvec2 slot = cv_queue_slots(push_shadow, CV_Q_SHADOW, push_ray, CV_Q_RAYS_OUT);
     if (push_shadow)

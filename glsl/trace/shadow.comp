@@ -1,6 +1,6 @@
 #version 450
 // glsl/trace/shadow.comp: next-event shadow rays; an unoccluded one adds its
-// contribution to its pixel. With alpha cut-outs in the scene, occluders
+// contribution to its path slot's film entry. With alpha cut-outs in the scene, occluders
 // that the alpha test lets through are skipped.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
@@ -16,26 +16,26 @@ void main()
     if (i >= q.count[CV_Q_SHADOW])
         return;
     CvShadowItem s = shadows[i];
-    uint pixel = uint(s.d.w);
+    uint path = uint(s.d.w);
 #ifdef CV_HAS_ALPHA
     float tmin = 0.0;
     CvHit h;
     for (uint k = 0u; k < 64u; k++) {
         if (!cv_trace_closest(s.o.xyz, s.d.xyz, tmin, s.o.w, h)) {
-            cv_film_add(pixel, s.L.rgb);
+            cv_film_add(path, s.L.rgb);
             return;
         }
         uint word = cv_triangles[h.prim].idx.w;
         CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
-        float u = cv_u32_to_unit(cv_hash4(pixel, uint(s.L.w), h.prim, 0x5bd1e995u + k));
+        float u = cv_u32_to_unit(cv_hash4(cv_path_pixel(path), uint(s.L.w), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, sf.uv, u))
             return;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;
     }
 #elif defined(CV_EMPTY_SCENE)
-    cv_film_add(pixel, s.L.rgb);
+    cv_film_add(path, s.L.rgb);
 #else
     if (!cv_trace_any(s.o.xyz, s.d.xyz, 0.0, s.o.w))
-        cv_film_add(pixel, s.L.rgb);
+        cv_film_add(path, s.L.rgb);
 #endif
 }

@@ -16,10 +16,10 @@ uint cv_film_pixel(uint i)
 }
 
 // Dimension pair `which` (CV_PAIR_*) of the bounce at `depth` of the path
-// that crop pixel `pixel` has in flight.
-vec2 cv_bounce_2d(uint pixel, uint depth, uint which)
+// in flight in slot `path`: its pixel's sample, whichever slot runs it.
+vec2 cv_bounce_2d(uint path, uint depth, uint which)
 {
-    return cv_sample_2d(cv_film_pixel(pixel), cv_pixel_sample(pixel),
+    return cv_sample_2d(cv_film_pixel(cv_path_pixel(path)), cv_path_sample(path),
                         2u + depth * CV_PAIRS_PER_BOUNCE + which, u_pass.seed.xy, u_pass.seed.z);
 }
 

@@ -3,7 +3,7 @@
  * intersect (closest), escaped rays, surface hits (emission, NEE, BSDF
  * sampling; path shades diffuse hits and the others with two programs,
  * rlpath has its own shade stage and then its table update),
- * shadow rays; a path that ends starts its pixel's next sample in the stage
+ * shadow rays; a path that ends starts its slot's next sample in the stage
  * that ends it (path regeneration, glsl/shared/trace.h); the film
  * accumulates in place. Queue counts stay on the GPU: the last work group
  * of the intersect and shade stages turns them into the next stages'
@@ -20,6 +20,7 @@
 #include "glsl/shared/trace.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
+#include "gpu/memory.h"
 #include "gpu/program.h"
 #include "gpu/storage.h"
 #include "trace/filter_table.h"
@@ -44,6 +45,11 @@ enum stage {
     ST_COUNT
 };
 
+/* CAVALRY_STAGE_TIMES' rows beyond the stages: rlpath's table rebuild, and
+ * the intersect stage of a pass's first iteration (camera rays only),
+ * which the intersect row leaves out. */
+enum { PROF_RLPATH = ST_COUNT, PROF_INTERSECT_FIRST, PROF_COUNT };
+
 struct cv_renderer {
     struct cv_gpu *gpu;
     const struct cv_scene_gpu *scene;  /* borrowed, or owned_scene */
@@ -51,6 +57,8 @@ struct cv_renderer {
     /* copies: the cache's entries move as it grows (ids stay valid) */
     struct cv_program prog[ST_COUNT];
     uint32_t n_pixels, crop_w, crop_h;
+    uint32_t paths_per_pixel;      /* K of glsl/shared/trace.h */
+    size_t n_paths;                /* path slots: n_pixels * paths_per_pixel */
     uint32_t max_depth;
     bool aovs;
     bool escaped_stage;            /* misses go through escaped.comp */
@@ -69,14 +77,15 @@ struct cv_renderer {
     struct {
         bool on;
         GLuint *queries;           /* before, after pairs */
-        uint8_t *stage;            /* stage of each pair; ST_COUNT: rlpath rebuild */
+        uint8_t *stage;            /* stage (or PROF_*) of each pair */
         size_t n, cap, cap_stage;
-        double ms[ST_COUNT + 1];
+        double ms[PROF_COUNT];
     } prof;
 };
 
-static const char *const stage_names[ST_COUNT + 1] = {
-    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve", "rlpath-rebuild",
+static const char *const stage_names[PROF_COUNT] = {
+    "generate", "intersect", "escaped", "shade",          "shade-b",
+    "shadow",   "resolve",   "rlpath-rebuild", "intersect-first",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -197,6 +206,40 @@ static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok
     return b;
 }
 
+/* Bytes a path slot takes: its rays (two halves), hits (two), shadow ray
+ * and film entry. */
+#define PATH_BYTES (2 * sizeof(CvRayItem) + 2 * sizeof(CvHitItem) + sizeof(CvShadowItem) + \
+                    sizeof(CvFilmPixel))
+
+/* Path slots per pixel (render.h: paths_per_pixel). */
+static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_params *p,
+                                   uint32_t n_pixels, uint32_t *out, struct cv_error *err)
+{
+    /* o.w and d.w hold slots as floats (trace.h) */
+    uint64_t max_paths = 1u << 24;
+    if (p->paths_per_pixel) {
+        if ((uint64_t)n_pixels * p->paths_per_pixel > max_paths)
+            return cv_fail(err, "%u paths per pixel over %u pixels: more than 2^24 paths",
+                           p->paths_per_pixel, n_pixels);
+        *out = p->paths_per_pixel;
+        return true;
+    }
+    /* Only for speed, so never into a probed storage size, nor into memory
+     * that scenes or other jobs might want. */
+    uint64_t cap = CV_WAVE_PATHS < max_paths ? CV_WAVE_PATHS : max_paths;
+    uint64_t known = cv_gpu_storage_known(gpu);
+    if (known && known / (2 * sizeof(CvRayItem)) < cap)
+        cap = known / (2 * sizeof(CvRayItem));
+    uint64_t total = 0, avail = 0;
+    if (cv_gpu_memory(gpu, &total, &avail) && avail / 8 / PATH_BYTES < cap)
+        cap = avail / 8 / PATH_BYTES;
+    uint32_t k = CV_MAX_PATHS_PER_PIXEL;
+    while (k > 1 && (uint64_t)n_pixels * k > cap)
+        k--;
+    *out = k;
+    return true;
+}
+
 static bool check_params(const struct cv_scene *scene, const struct cv_render_params *p,
                          struct cv_error *err)
 {
@@ -263,6 +306,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         free(r);
         return cv_fail(err, "film of %ux%u pixels is too large", w, h);
     }
+    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, &r->paths_per_pixel, err)) {
+        free(r);
+        return false;
+    }
+    r->n_paths = (size_t)r->n_pixels * r->paths_per_pixel;
+    r->pass.wave = (cv_uvec4){(uint32_t)r->n_paths, r->paths_per_pixel, 0, 0};
     r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
                               p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
     r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
@@ -335,7 +384,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         CvRlParams rp;
         if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
                               p->rl_mix, &rp, err) ||
-            !cv_rlpath_create(gpu, &rp, r->n_pixels, defines, p->rl_guide_indirect, &r->rl,
+            !cv_rlpath_create(gpu, &rp, (uint32_t)r->n_paths, defines, p->rl_guide_indirect, &r->rl,
                               err)) {
             cv_renderer_destroy(&r);
             return false;
@@ -343,7 +392,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         r->prog[ST_SHADE] = *cv_rlpath_shade_program(r->rl);
     }
 
-    size_t n = r->n_pixels;
+    size_t n = r->n_paths;
     bool ok = true;
     r->ubo = make(gpu, sizeof(CvPassParams), "trace pass params", &ok, err);
     r->queues = make(gpu, sizeof(CvTraceQueues), "trace queues", &ok, err);
@@ -351,12 +400,13 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
     r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
-    r->resolved = make(gpu, n * 4 * sizeof(float), "trace resolved", &ok, err);
+    r->resolved = make(gpu, (size_t)r->n_pixels * 4 * sizeof(float), "trace resolved", &ok, err);
     r->alive[0] = make(gpu, sizeof(uint32_t), "trace pass end check 0", &ok, err);
     r->alive[1] = make(gpu, sizeof(uint32_t), "trace pass end check 1", &ok, err);
     r->queues_copy = make(gpu, sizeof(CvTraceQueues), "trace queues read-back", &ok, err);
     if (!ok) {
-        cv_error_prefix(err, "allocating the film and queues for %ux%u: ", r->crop_w, r->crop_h);
+        cv_error_prefix(err, "allocating the film and queues for %ux%u, %u paths a pixel: ",
+                        r->crop_w, r->crop_h, r->paths_per_pixel);
         cv_renderer_destroy(&r);
         return false;
     }
@@ -379,11 +429,18 @@ static void bind_all(struct cv_renderer *r)
         cv_rlpath_bind(r->rl);
 }
 
+/* Stage s over the dispatch arguments in `slot`, timed as `row` (a stage or
+ * PROF_*) with CAVALRY_STAGE_TIMES. */
+static void stage_indirect_as(struct cv_renderer *r, int s, uint32_t slot, int row)
+{
+    prof_mark(r, row);
+    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
+    prof_mark(r, row);
+}
+
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
 {
-    prof_mark(r, s);
-    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
-    prof_mark(r, s);
+    stage_indirect_as(r, s, slot, s);
 }
 
 /* One iteration: a bounce of every path in flight; the pixels whose paths
@@ -393,7 +450,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     r->pass.misc.x = it;
     glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
                          &r->pass.misc);
-    stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
+    stage_indirect_as(r, ST_INTERSECT, CV_ARGS_RAYS, it == 0 ? PROF_INTERSECT_FIRST : ST_INTERSECT);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
     if (r->rl) {
@@ -409,9 +466,9 @@ static void iterate(struct cv_renderer *r, uint32_t it)
         stage_indirect(r, ST_SHADE_B, CV_ARGS_HITS_B);
     }
     if (r->rl) {
-        prof_mark(r, ST_COUNT);
+        prof_mark(r, PROF_RLPATH);
         cv_rlpath_update(r->rl);
-        prof_mark(r, ST_COUNT);
+        prof_mark(r, PROF_RLPATH);
     }
     stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
 }
@@ -428,18 +485,22 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     glGenQueries(2, query);
     glQueryCounter(query[0], GL_TIMESTAMP);
     bind_all(r);
+    /* the slots that have a sample in this pass (generate.comp) */
+    uint32_t slots = r->paths_per_pixel, started = spp < slots ? spp : slots;
     r->pass.frame.w = r->spp_done;
     r->pass.misc.x = 0;
     r->pass.misc.w = r->spp_done + spp;
+    r->pass.wave.z = r->n_pixels * started;
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     prof_mark(r, ST_GENERATE);
-    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->n_pixels);
+    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.wave.z);
     prof_mark(r, ST_GENERATE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-    /* Every path ends within max_depth + 1 iterations, so this bounds the
-     * pass even if a count were never read back as 0. */
-    uint64_t limit = (uint64_t)spp * (r->max_depth + 1) + CV_CHUNK;
+    /* Every path ends within max_depth + 1 iterations and a slot runs at
+     * most ceil(spp / slots) of them, so this bounds the pass even if a
+     * count were never read back as 0. */
+    uint64_t limit = (uint64_t)((spp + slots - 1) / slots) * (r->max_depth + 1) + CV_CHUNK;
     uint64_t it = 0;
     uint32_t alive = 1;
     for (uint32_t chunk = 0; it < limit; chunk++) {
@@ -496,11 +557,13 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
         return false;
     uint64_t extend = (uint64_t)q.stats[CV_STAT_EXTEND].y << 32 | q.stats[CV_STAT_EXTEND].x;
     c->primary_rays = (uint64_t)r->n_pixels * r->spp_done;
+    c->path_slots = r->n_paths;
     c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
     c->gpu_ms = r->gpu_ms;
-    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] : 0;
+    c->intersect_first_ms = r->prof.on ? r->prof.ms[PROF_INTERSECT_FIRST] : 0;
+    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] + c->intersect_first_ms : 0;
     c->shadow_ms = r->prof.on ? r->prof.ms[ST_SHADOW] : 0;
     return cv_gl_check(err, "reading render counters");
 }
@@ -520,7 +583,7 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
 {
     if ((albedo3 || normal3 || depth1) && !r->aovs)
         return cv_fail(err, "AOVs requested from a renderer made without them");
-    size_t n = r->n_pixels;
+    size_t n = r->n_pixels, k = r->paths_per_pixel;
     if (rgba) {
         if (!cv_renderer_resolve(r, err))
             return false;
@@ -529,9 +592,21 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
     }
     if (!albedo3 && !normal3 && !depth1)
         return true;
-    CvFilmPixel *aov = cv_xmalloc(n * sizeof(CvFilmPixel));
-    bool ok = cv_buffer_read(r->film, 0, n * sizeof(CvFilmPixel), aov, err);
+    CvFilmPixel *aov = cv_xmalloc(n * k * sizeof(CvFilmPixel));
+    bool ok = cv_buffer_read(r->film, 0, n * k * sizeof(CvFilmPixel), aov, err);
+    /* a pixel's sums are those of its slots, in slot order (resolve.comp) */
     for (size_t i = 0; ok && i < n; i++) {
+        for (size_t s = 1; s < k; s++) {
+            const CvFilmPixel *f = &aov[s * n + i];
+            aov[i].L.w += f->L.w;
+            aov[i].albedo.x += f->albedo.x;
+            aov[i].albedo.y += f->albedo.y;
+            aov[i].albedo.z += f->albedo.z;
+            aov[i].albedo.w += f->albedo.w;
+            aov[i].normal.x += f->normal.x;
+            aov[i].normal.y += f->normal.y;
+            aov[i].normal.z += f->normal.z;
+        }
         float w = aov[i].L.w, inv = w > 0 ? 1 / w : 0;
         if (albedo3) {
             albedo3[3 * i + 0] = aov[i].albedo.x * inv;
@@ -560,9 +635,9 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (r->prof.on) {
         prof_collect(r);
         double total = 0;
-        for (int s = 0; s <= ST_COUNT; s++)
+        for (int s = 0; s < PROF_COUNT; s++)
             total += r->prof.ms[s];
-        for (int s = 0; s <= ST_COUNT; s++)
+        for (int s = 0; s < PROF_COUNT; s++)
             if (r->prof.ms[s] > 0)
                 cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
                         total > 0 ? 100 * r->prof.ms[s] / total : 0);

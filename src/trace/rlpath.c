@@ -18,7 +18,7 @@ _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
 
 struct cv_rlpath {
     CvRlParams params;
-    uint32_t n_pixels;
+    uint32_t n_paths;
     struct cv_program shade, rebuild;   /* copies (see render.c) */
     GLuint ubo, table, guide, path;
     GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
@@ -115,13 +115,13 @@ GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct
     return tex;
 }
 
-bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
+bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
                       const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
                       struct cv_error *err)
 {
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
-    rl->n_pixels = n_pixels;
+    rl->n_paths = n_paths;
     struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
     if (p)
         rl->shade = *p;
@@ -133,7 +133,7 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         return false;
     }
     /* every path starts with nothing to learn: all state words CV_RL_NONE */
-    size_t path_bytes = (size_t)(n_pixels ? n_pixels : 1) * 2 * sizeof(uint32_t);
+    size_t path_bytes = (size_t)(n_paths ? n_paths : 1) * 2 * sizeof(uint32_t);
     void *none = cv_xmalloc(path_bytes);
     memset(none, 0xff, path_bytes);
     rl->ubo = cv_buffer_create(sizeof(CvRlParams), &rl->params, "rlpath params", err);

@@ -44,10 +44,11 @@ uint64_t cv_rlpath_guide_bytes(const CvRlParams *p);
 struct cv_rlpath;
 
 /* Creates the tables (zero: every key unguided until it learns) and the
- * per-pixel path state for n_pixels, and compiles the programs with the
- * renderer's `defines` (NULL-terminated, may be NULL). guide_indirect:
- * guide by the learned radiance less lamps seen directly (guide.glsl). */
-bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_pixels,
+ * path state for n_paths path slots (glsl/shared/trace.h), and compiles
+ * the programs with the renderer's `defines` (NULL-terminated, may be
+ * NULL). guide_indirect: guide by the learned radiance less lamps seen
+ * directly (guide.glsl). */
+bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
                       const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
                       struct cv_error *err);
 

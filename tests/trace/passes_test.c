@@ -4,7 +4,7 @@
  * the AOVs (depth, normal, albedo of a floor under an area light); the
  * resolution override and crop; renderers sharing one scene upload
  * (cv_renderer_create_shared) render what a renderer of its own renders;
- * rejected parameters. */
+ * several paths in flight per pixel; rejected parameters. */
 #include "config.h"
 
 #include "tests/trace/trace_test_util.h"
@@ -53,6 +53,46 @@ int main(void)
         free(b.rgba);
         free(c.rgba);
         free(d.rgba);
+    }
+
+    /* Path slots (glsl/shared/trace.h): with 3 a pixel, passes of 1, 2, 4
+     * and 9 spp start 1, 2, 3 and 3 slots, the second and third wrapping
+     * past the last slot, and must add up as 16 spp in one pass; against 1
+     * slot a pixel, the same paths summed in another order. The default
+     * gives this 24x16 film 8 slots a pixel, so the tests above cover
+     * that. */
+    {
+        const uint32_t uneven[] = {1, 2, 4, 9, 0};
+        struct cv_render_params p1 = {.seed = 77, .paths_per_pixel = 1}, p3 = p1;
+        p3.paths_per_pixel = 3;
+        struct test_image a = {0}, b = {0}, c = {0};
+        bool ok = test_render(gpu, s, &p3, one, &a, &err) &&
+                  test_render(gpu, s, &p3, uneven, &b, &err) &&
+                  test_render(gpu, s, &p1, one, &c, &err);
+        if (tap_ok(ok, "3 and 1 paths a pixel render: %s", err.msg)) {
+            double diff = 0;
+            tap_ok(same(&a, &b, &diff), "3 paths a pixel: 1+2+4+9 spp equals 16 (max diff %g)",
+                   diff);
+            size_t n = (size_t)a.w * a.h * 4;
+            double rel = 0;
+            for (size_t i = 0; i < n; i++)
+                rel = fmax(rel, fabs((double)a.rgba[i] - c.rgba[i]) / fmax(fabs(c.rgba[i]), 1e-3));
+            tap_ok(rel < 1e-5, "3 paths a pixel render 1's image but for rounding (max rel %g)",
+                   rel);
+            TAP_EQ_INT(a.counters.path_slots, (uint64_t)a.w * a.h * 3, "3 slots a pixel");
+            TAP_EQ_INT(c.counters.primary_rays, a.counters.primary_rays, "the same camera rays");
+            TAP_EQ_INT(c.counters.secondary_rays, a.counters.secondary_rays,
+                       "the same bounce rays");
+            TAP_EQ_INT(c.counters.shadow_rays, a.counters.shadow_rays, "the same shadow rays");
+        }
+        free(a.rgba);
+        free(b.rgba);
+        free(c.rgba);
+        struct cv_render_params huge = {.seed = 1, .paths_per_pixel = 1u << 23};
+        struct cv_renderer *rh = NULL;
+        tap_ok(!cv_renderer_create(gpu, s, &huge, &rh, &err) && strstr(err.msg, "2^24"),
+               "more than 2^24 paths are refused: %s", err.msg);
+        err.msg[0] = '\0';
     }
 
     /* AOVs: camera 5 above the floor, light 2 above it facing down */

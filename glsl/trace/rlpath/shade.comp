@@ -81,7 +81,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     target = 0.0;
     emitted = 0.0;
     entry = CV_RL_NONE;
-    uint pixel = uint(r.o.w);
+    uint path = uint(r.o.w);
     uint flags = cv_ray_flags(r);
     uint depth = cv_ray_depth(r);
     vec3 beta = r.beta.rgb;
@@ -101,14 +101,14 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
             float w = 1.0;
             if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
                 w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
-            cv_film_add(pixel, beta * Le * w);
+            cv_film_add(path, beta * Le * w);
         }
     }
 
-    vec2 u_bsdf = cv_bounce_2d(pixel, depth, CV_PAIR_BSDF_U2);
-    vec2 u_bc = cv_bounce_2d(pixel, depth, CV_PAIR_BSDF_UC);
-    vec2 u_light = cv_bounce_2d(pixel, depth, CV_PAIR_LIGHT_U2);
-    vec2 u_lc = cv_bounce_2d(pixel, depth, CV_PAIR_LIGHT_UC);
+    vec2 u_bsdf = cv_bounce_2d(path, depth, CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(path, depth, CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
 
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
     bool delta = cv_bsdf_is_delta(b);
@@ -136,11 +136,11 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
 
 #ifdef CV_AOVS
     if (depth == 0u) {
-        film[pixel].normal.xyz += sf.ns;
-        film[pixel].albedo.w += h.t;
+        film[path].normal.xyz += sf.ns;
+        film[path].albedo.w += h.t;
     }
     if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
-        film[pixel].albedo.rgb += cv_bsdf_albedo(b);
+        film[path].albedo.rgb += cv_bsdf_albedo(b);
         flags |= CV_RAYF_ALBEDO_DONE;
     }
 #endif
@@ -161,7 +161,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
                     push_shadow = true;
                     s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
                                ls.dist * (1.0 - 1e-4));
-                    s.d = vec4(ls.wi, float(pixel));
+                    s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
                 }
             }
@@ -228,15 +228,15 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 {
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
-    uint pixel = uint(r.o.w);
+    uint path = uint(r.o.w);
     uint depth = cv_ray_depth(r);
-    uvec2 st = imageLoad(rl_path, int(pixel)).xy;
+    uvec2 st = imageLoad(rl_path, int(path)).xy;
     uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
     float target, emitted;
     uint entry;
     cv_shade_hit(h, r, learn != CV_RL_NONE, target, emitted, entry, push_shadow, s, push_ray, nr);
     cv_rl_update(learn, target, emitted);
-    imageStore(rl_path, int(pixel), uvec4(entry, depth, 0u, 0u));
+    imageStore(rl_path, int(path), uvec4(entry, depth, 0u, 0u));
 }
 
 #include "../shade_queue.glsl"
