@@ -84,7 +84,7 @@ struct cv_renderer {
 };
 
 static const char *const stage_names[PROF_COUNT] = {
-    "generate", "intersect", "escaped", "shade",          "shade-b",
+    "generate", "intersect", "escaped",        "shade",           "shade-b",
     "shadow",   "resolve",   "rlpath-rebuild", "intersect-first",
 };
 
@@ -443,7 +443,7 @@ static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
     stage_indirect_as(r, s, slot, s);
 }
 
-/* One iteration: a bounce of every path in flight; the pixels whose paths
+/* One iteration: a bounce of every path in flight; the slots whose paths
  * end start their next samples on the way. */
 static void iterate(struct cv_renderer *r, uint32_t it)
 {
