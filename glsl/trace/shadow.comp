@@ -1,7 +1,7 @@
 #version 450
 // glsl/trace/shadow.comp: next-event shadow rays; an unoccluded one adds its
-// contribution to its path slot's film entry. With alpha cut-outs in the scene, occluders
-// that the alpha test lets through are skipped.
+// contribution to its path slot's film entry. With alpha cut-outs in the
+// scene, occluders that the alpha test lets through are skipped.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -27,7 +27,8 @@ void main()
         }
         uint word = cv_triangles[h.prim].idx.w;
         CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
-        float u = cv_u32_to_unit(cv_hash4(cv_path_pixel(path), uint(s.L.w), h.prim, 0x5bd1e995u + k));
+        float u = cv_u32_to_unit(
+            cv_hash4(cv_path_pixel(path), uint(s.L.w), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, sf.uv, u))
             return;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;

@@ -384,8 +384,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         CvRlParams rp;
         if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
                               p->rl_mix, &rp, err) ||
-            !cv_rlpath_create(gpu, &rp, (uint32_t)r->n_paths, defines, p->rl_guide_indirect, &r->rl,
-                              err)) {
+            !cv_rlpath_create(gpu, &rp, (uint32_t)r->n_paths, defines, p->rl_guide_indirect,
+                              &r->rl, err)) {
             cv_renderer_destroy(&r);
             return false;
         }
@@ -450,7 +450,8 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     r->pass.misc.x = it;
     glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
                          &r->pass.misc);
-    stage_indirect_as(r, ST_INTERSECT, CV_ARGS_RAYS, it == 0 ? PROF_INTERSECT_FIRST : ST_INTERSECT);
+    stage_indirect_as(r, ST_INTERSECT, CV_ARGS_RAYS,
+                      it == 0 ? PROF_INTERSECT_FIRST : ST_INTERSECT);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
     if (r->rl) {
