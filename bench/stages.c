@@ -202,6 +202,10 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
                           (double)c.primary_rays / (c.intersect_first_ms * 1e-3));
                 bench_num(r, "render.traversal.secondary_only_rays_per_s",
                           (double)c.secondary_rays / (bounce_ms * 1e-3));
+                /* the bounce rays of a full wave, before paths end */
+                if (c.first_bounce_ms > 0)
+                    bench_num(r, "render.traversal.first_bounce_rays_per_s",
+                              (double)c.first_bounce_rays / (c.first_bounce_ms * 1e-3));
             }
         }
         bench_num(r, "render.primary_rays", (double)c.primary_rays);

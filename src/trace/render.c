@@ -10,6 +10,7 @@
  * indirect dispatch arguments (glsl/trace/queue_args.glsl). The host reads
  * one count back per CV_CHUNK iterations, a chunk behind the GPU, only to
  * learn when the pass is over. */
+#include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,6 +51,11 @@ enum stage {
  * which the intersect row leaves out. */
 enum { PROF_RLPATH = ST_COUNT, PROF_INTERSECT_FIRST, PROF_COUNT };
 
+/* CAVALRY_STAGE_TIMES also times the intersect stage of each iteration of a
+ * pass by its index, with the rays it traced, up to this many iterations:
+ * the traversal rate against the wave's size. */
+#define PROF_ITERS 64
+
 struct cv_renderer {
     struct cv_gpu *gpu;
     const struct cv_scene_gpu *scene;  /* borrowed, or owned_scene */
@@ -78,8 +84,13 @@ struct cv_renderer {
         bool on;
         GLuint *queries;           /* before, after pairs */
         uint8_t *stage;            /* stage (or PROF_*) of each pair */
-        size_t n, cap, cap_stage;
+        uint8_t *pair_iter;        /* the pass's iteration of each pair */
+        size_t n, cap, cap_stage, cap_iter;
         double ms[PROF_COUNT];
+        GLuint counts;             /* rays in of the pass's iterations 0..PROF_ITERS-1 */
+        double iter_ms[PROF_ITERS];
+        uint64_t iter_rays[PROF_ITERS];
+        uint32_t iter;             /* the iteration of the pairs marked now */
     } prof;
 };
 
@@ -96,8 +107,9 @@ static void prof_mark(struct cv_renderer *r, int stage)
     glGenQueries(1, &q);
     glQueryCounter(q, GL_TIMESTAMP);
     if (r->prof.n % 2 == 0) {  /* a pair begins: note its stage */
-        size_t k = r->prof.n / 2;
+        size_t k = r->prof.n / 2, k2 = k;
         CV_PUSH(r->prof.stage, k, r->prof.cap_stage, (uint8_t)stage);
+        CV_PUSH(r->prof.pair_iter, k2, r->prof.cap_iter, (uint8_t)r->prof.iter);
     }
     CV_PUSH(r->prof.queries, r->prof.n, r->prof.cap, q);
 }
@@ -113,8 +125,13 @@ static double timestamps_ms(GLuint begin, GLuint end)
 
 static void prof_collect(struct cv_renderer *r)
 {
-    for (size_t i = 0; i + 1 < r->prof.n; i += 2)
-        r->prof.ms[r->prof.stage[i / 2]] += timestamps_ms(r->prof.queries[i], r->prof.queries[i + 1]);
+    for (size_t i = 0; i + 1 < r->prof.n; i += 2) {
+        int s = r->prof.stage[i / 2];
+        double ms = timestamps_ms(r->prof.queries[i], r->prof.queries[i + 1]);
+        r->prof.ms[s] += ms;
+        if (s == ST_INTERSECT || s == PROF_INTERSECT_FIRST)
+            r->prof.iter_ms[r->prof.pair_iter[i / 2]] += ms;
+    }
     if (r->prof.n)
         glDeleteQueries((GLsizei)r->prof.n, r->prof.queries);
     r->prof.n = 0;
@@ -401,6 +418,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
     r->resolved = make(gpu, (size_t)r->n_pixels * 4 * sizeof(float), "trace resolved", &ok, err);
+    if (r->prof.on)
+        r->prof.counts = make(gpu, PROF_ITERS * sizeof(uint32_t), "trace stage-time ray counts",
+                              &ok, err);
     r->alive[0] = make(gpu, sizeof(uint32_t), "trace pass end check 0", &ok, err);
     r->alive[1] = make(gpu, sizeof(uint32_t), "trace pass end check 1", &ok, err);
     r->queues_copy = make(gpu, sizeof(CvTraceQueues), "trace queues read-back", &ok, err);
@@ -450,6 +470,13 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     r->pass.misc.x = it;
     glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
                          &r->pass.misc);
+    if (r->prof.on && it < PROF_ITERS) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(r->queues, r->prof.counts,
+                                 (GLintptr)(sizeof(uint32_t) * CV_Q_RAYS_IN),
+                                 (GLintptr)(sizeof(uint32_t) * it), sizeof(uint32_t));
+    }
+    r->prof.iter = it < PROF_ITERS ? it : PROF_ITERS - 1;
     stage_indirect_as(r, ST_INTERSECT, CV_ARGS_RAYS,
                       it == 0 ? PROF_INTERSECT_FIRST : ST_INTERSECT);
     if (r->escaped_stage)
@@ -521,6 +548,15 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         }
     }
     glQueryCounter(query[1], GL_TIMESTAMP);
+    if (r->prof.on) {
+        /* a diagnostic: this read-back waits for the pass */
+        uint32_t counts[PROF_ITERS], n = it < PROF_ITERS ? (uint32_t)it : PROF_ITERS;
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (!cv_buffer_read(r->prof.counts, 0, n * sizeof(uint32_t), counts, err))
+            return false;
+        for (uint32_t i = 0; i < n; i++)
+            r->prof.iter_rays[i] += counts[i];
+    }
     CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[0]);
     CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[1]);
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
@@ -566,6 +602,8 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->intersect_first_ms = r->prof.on ? r->prof.ms[PROF_INTERSECT_FIRST] : 0;
     c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] + c->intersect_first_ms : 0;
     c->shadow_ms = r->prof.on ? r->prof.ms[ST_SHADOW] : 0;
+    c->first_bounce_ms = r->prof.on ? r->prof.iter_ms[1] : 0;
+    c->first_bounce_rays = r->prof.on ? r->prof.iter_rays[1] : 0;
     return cv_gl_check(err, "reading render counters");
 }
 
@@ -642,14 +680,21 @@ void cv_renderer_destroy(struct cv_renderer **rp)
             if (r->prof.ms[s] > 0)
                 cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
                         total > 0 ? 100 * r->prof.ms[s] / total : 0);
+        for (int i = 0; i < PROF_ITERS; i++)
+            if (r->prof.iter_rays[i] > 0 && r->prof.iter_ms[i] > 0)
+                cv_info("intersect iteration %2d %12" PRIu64 " rays %8.2f ms %6.3f G rays/s", i,
+                        r->prof.iter_rays[i], r->prof.iter_ms[i],
+                        (double)r->prof.iter_rays[i] / (r->prof.iter_ms[i] * 1e6));
         free(r->prof.queries);
         free(r->prof.stage);
+        free(r->prof.pair_iter);
     }
     if (r->n_queries)
         glDeleteQueries((GLsizei)r->n_queries, r->queries);
     free(r->queries);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
-                      &r->film, &r->resolved, &r->alive[0], &r->alive[1], &r->queues_copy};
+                      &r->film, &r->resolved, &r->alive[0], &r->alive[1], &r->queues_copy,
+                      &r->prof.counts};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_scene_gpu_destroy(&r->owned_scene);

@@ -91,6 +91,11 @@ struct cv_render_counters {
      * no pass has more spp than paths_per_pixel, no path is regenerated and
      * the other iterations trace bounce rays alone. */
     double intersect_ms, shadow_ms, intersect_first_ms;
+    /* The same for each pass's second iteration: with no path regenerated,
+     * its rays are all the first bounces of the pass's camera rays, traced
+     * as one wave. */
+    double first_bounce_ms;
+    uint64_t first_bounce_rays;
 };
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err);
