@@ -231,9 +231,11 @@ bool cv_bvh_step(inout CvBvhWalk w, float tfar, out int lw, out int rw, out int 
 // than the descending lanes waiting on the longest leaf run of the warp
 // (Aila & Laine 2009's if-if form). H100, medians of two interleaved rounds
 // against testing a node's leaf run whole: bounce rays of a full wave on
-// the 4 M-triangle scene 1.015 -> 1.059 G rays/s; veach-bidir 1024 spp
-// 3388 -> 3245 ms. Hits below the current one still count, so visiting the
-// next node before the triangles are done changes no result.
+// the 4 M-triangle scene 1.015 -> 1.058 G rays/s; veach-bidir 1024 spp
+// 3392 -> 3245 ms; but cornell-box, whose few large leaves pay the extra
+// loop turns, 1837 -> 1904 ms (bench/results/2026-11-24_NVIDIA-H100_if-if).
+// Hits below the current one still count, so visiting the next node before
+// the triangles are done changes no result.
 void cv_bvh_closest_run(inout CvBvhWalk w)
 {
     int k = 0, n0 = 0, n1 = 0, lw = 0, rw = 0;
@@ -258,8 +260,9 @@ void cv_bvh_closest_run(inout CvBvhWalk w)
 
 // The any-hit form, with the same loop: w.hit.prim ends 0 when an occluder
 // was found, 0xffffffff when none. In this form the any-hit stage alone ran
-// 3 % slower on the 4 M scene (0.677 -> 0.658 G rays/s) but veach-bidir ran
-// 3 % faster as a whole than with the old loop here (3335 -> 3245 ms).
+// 3 % slower on the 4 M scene (0.677 -> 0.658 G rays/s), cornell-box 1 %
+// (1881 -> 1904 ms), but veach-bidir 4 % faster as a whole than with the
+// old loop here (3340 -> 3214 ms).
 // Nearer child first here too: visiting the child with the larger box first
 // (likelier to hold an occluder) was slower on an H100 (veach-bidir, 256
 // spp: shadow stage 918 -> 977 ms).
