@@ -129,7 +129,8 @@ static void prof_collect(struct cv_renderer *r)
         int s = r->prof.stage[i / 2];
         double ms = timestamps_ms(r->prof.queries[i], r->prof.queries[i + 1]);
         r->prof.ms[s] += ms;
-        if (s == ST_INTERSECT || s == PROF_INTERSECT_FIRST)
+        if ((s == ST_INTERSECT || s == PROF_INTERSECT_FIRST) &&
+            r->prof.pair_iter[i / 2] < PROF_ITERS)
             r->prof.iter_ms[r->prof.pair_iter[i / 2]] += ms;
     }
     if (r->prof.n)
@@ -476,7 +477,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
                                  (GLintptr)(sizeof(uint32_t) * CV_Q_RAYS_IN),
                                  (GLintptr)(sizeof(uint32_t) * it), sizeof(uint32_t));
     }
-    r->prof.iter = it < PROF_ITERS ? it : PROF_ITERS - 1;
+    r->prof.iter = it < PROF_ITERS ? it : UINT8_MAX;  /* no row: its rays are not counted */
     stage_indirect_as(r, ST_INTERSECT, CV_ARGS_RAYS,
                       it == 0 ? PROF_INTERSECT_FIRST : ST_INTERSECT);
     if (r->escaped_stage)
