@@ -46,15 +46,19 @@ enum stage {
     ST_COUNT
 };
 
-/* CAVALRY_STAGE_TIMES' rows beyond the stages: rlpath's table rebuild, and
- * the intersect stage of a pass's first iteration (camera rays only),
- * which the intersect row leaves out. */
-enum { PROF_RLPATH = ST_COUNT, PROF_INTERSECT_FIRST, PROF_COUNT };
+/* CAVALRY_STAGE_TIMES' row beyond the stages: rlpath's table rebuild. */
+enum { PROF_RLPATH = ST_COUNT, PROF_COUNT };
 
 /* CAVALRY_STAGE_TIMES also times the intersect stage of each iteration of a
  * pass by its index, with the rays it traced, up to this many iterations:
  * the traversal rate against the wave's size. */
 #define PROF_ITERS 64
+
+/* A pair of CAVALRY_STAGE_TIMES queries: the stage (or PROF_*) it times and
+ * the pass's iteration it ran in (UINT8_MAX: past PROF_ITERS). */
+struct prof_pair {
+    uint8_t stage, iter;
+};
 
 struct cv_renderer {
     struct cv_gpu *gpu;
@@ -83,9 +87,8 @@ struct cv_renderer {
     struct {
         bool on;
         GLuint *queries;           /* before, after pairs */
-        uint8_t *stage;            /* stage (or PROF_*) of each pair */
-        uint8_t *pair_iter;        /* the pass's iteration of each pair */
-        size_t n, cap, cap_stage, cap_iter;
+        struct prof_pair *pairs;
+        size_t n, cap, cap_pairs;
         double ms[PROF_COUNT];
         GLuint counts;             /* rays in of the pass's iterations 0..PROF_ITERS-1 */
         double iter_ms[PROF_ITERS];
@@ -95,8 +98,7 @@ struct cv_renderer {
 };
 
 static const char *const stage_names[PROF_COUNT] = {
-    "generate", "intersect", "escaped",        "shade",           "shade-b",
-    "shadow",   "resolve",   "rlpath-rebuild", "intersect-first",
+    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve", "rlpath-rebuild",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -106,10 +108,10 @@ static void prof_mark(struct cv_renderer *r, int stage)
     GLuint q;
     glGenQueries(1, &q);
     glQueryCounter(q, GL_TIMESTAMP);
-    if (r->prof.n % 2 == 0) {  /* a pair begins: note its stage */
-        size_t k = r->prof.n / 2, k2 = k;
-        CV_PUSH(r->prof.stage, k, r->prof.cap_stage, (uint8_t)stage);
-        CV_PUSH(r->prof.pair_iter, k2, r->prof.cap_iter, (uint8_t)r->prof.iter);
+    if (r->prof.n % 2 == 0) {  /* a pair begins: note its stage and iteration */
+        size_t k = r->prof.n / 2;
+        struct prof_pair pair = {(uint8_t)stage, (uint8_t)r->prof.iter};
+        CV_PUSH(r->prof.pairs, k, r->prof.cap_pairs, pair);
     }
     CV_PUSH(r->prof.queries, r->prof.n, r->prof.cap, q);
 }
@@ -126,12 +128,11 @@ static double timestamps_ms(GLuint begin, GLuint end)
 static void prof_collect(struct cv_renderer *r)
 {
     for (size_t i = 0; i + 1 < r->prof.n; i += 2) {
-        int s = r->prof.stage[i / 2];
+        int s = r->prof.pairs[i / 2].stage, it = r->prof.pairs[i / 2].iter;
         double ms = timestamps_ms(r->prof.queries[i], r->prof.queries[i + 1]);
         r->prof.ms[s] += ms;
-        if ((s == ST_INTERSECT || s == PROF_INTERSECT_FIRST) &&
-            r->prof.pair_iter[i / 2] < PROF_ITERS)
-            r->prof.iter_ms[r->prof.pair_iter[i / 2]] += ms;
+        if (s == ST_INTERSECT && it < PROF_ITERS)
+            r->prof.iter_ms[it] += ms;
     }
     if (r->prof.n)
         glDeleteQueries((GLsizei)r->prof.n, r->prof.queries);
@@ -450,18 +451,11 @@ static void bind_all(struct cv_renderer *r)
         cv_rlpath_bind(r->rl);
 }
 
-/* Stage s over the dispatch arguments in `slot`, timed as `row` (a stage or
- * PROF_*) with CAVALRY_STAGE_TIMES. */
-static void stage_indirect_as(struct cv_renderer *r, int s, uint32_t slot, int row)
-{
-    prof_mark(r, row);
-    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
-    prof_mark(r, row);
-}
-
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
 {
-    stage_indirect_as(r, s, slot, s);
+    prof_mark(r, s);
+    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
+    prof_mark(r, s);
 }
 
 /* One iteration: a bounce of every path in flight; the slots whose paths
@@ -478,8 +472,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
                                  (GLintptr)(sizeof(uint32_t) * it), sizeof(uint32_t));
     }
     r->prof.iter = it < PROF_ITERS ? it : UINT8_MAX;  /* no row: its rays are not counted */
-    stage_indirect_as(r, ST_INTERSECT, CV_ARGS_RAYS,
-                      it == 0 ? PROF_INTERSECT_FIRST : ST_INTERSECT);
+    stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
     if (r->rl) {
@@ -552,7 +545,6 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     if (r->prof.on) {
         /* a diagnostic: this read-back waits for the pass */
         uint32_t counts[PROF_ITERS], n = it < PROF_ITERS ? (uint32_t)it : PROF_ITERS;
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         if (!cv_buffer_read(r->prof.counts, 0, n * sizeof(uint32_t), counts, err))
             return false;
         for (uint32_t i = 0; i < n; i++)
@@ -600,8 +592,8 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
     c->gpu_ms = r->gpu_ms;
-    c->intersect_first_ms = r->prof.on ? r->prof.ms[PROF_INTERSECT_FIRST] : 0;
-    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] + c->intersect_first_ms : 0;
+    c->intersect_first_ms = r->prof.on ? r->prof.iter_ms[0] : 0;
+    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] : 0;
     c->shadow_ms = r->prof.on ? r->prof.ms[ST_SHADOW] : 0;
     c->first_bounce_ms = r->prof.on ? r->prof.iter_ms[1] : 0;
     c->first_bounce_rays = r->prof.on ? r->prof.iter_rays[1] : 0;
@@ -687,8 +679,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
                         r->prof.iter_rays[i], r->prof.iter_ms[i],
                         (double)r->prof.iter_rays[i] / (r->prof.iter_ms[i] * 1e6));
         free(r->prof.queries);
-        free(r->prof.stage);
-        free(r->prof.pair_iter);
+        free(r->prof.pairs);
     }
     if (r->n_queries)
         glDeleteQueries((GLsizei)r->n_queries, r->queries);
