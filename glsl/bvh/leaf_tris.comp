@@ -31,7 +31,7 @@ layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriang
 #ifdef SCATTER
 layout(std430, binding = CV_BIND_STAGE0) readonly buffer SlotOf { uint slot_of[]; };
 layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer RefTris { uint ref_tris[]; };
-uniform bool u_split;  // references are split pieces: ref_tris[] names their triangles
+uniform uint u_split;  // 1: references are split pieces, ref_tris[] names their triangles
 uniform uint u_slot_lo, u_slot_hi;
 #else
 layout(std430, binding = CV_BIND_BVH_PRIMS) readonly buffer Prims { uint prims[]; };
@@ -49,7 +49,7 @@ void main()
     uint slot = slot_of[i];
     if (slot < u_slot_lo || slot >= u_slot_hi || slot >= u_n)
         return;
-    uint prim = u_split ? ref_tris[i] : i;
+    uint prim = u_split != 0u ? ref_tris[i] : i;
 #else
     uint prim = prims[i];
     uint slot = i;

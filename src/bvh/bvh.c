@@ -440,7 +440,7 @@ static bool leaf_tris_scatter(struct build *b, struct cv_bvh *bvh, uint32_t wind
     cv_buffer_bind(b->split ? cv_bvh_split_ref_tris(b->split) : b->keys, CV_BIND_STAGE0 + 2);
     cv_buffer_bind(bvh->tris, CV_BIND_BVH_TRIS);
     cv_program_set_uint(scatter, "u_n", n);
-    glProgramUniform1i(scatter->id, glGetUniformLocation(scatter->id, "u_split"), b->split != NULL);
+    cv_program_set_uint(scatter, "u_split", b->split != NULL);
     for (uint32_t lo = 0; lo < n; lo += window) {
         cv_program_set_uint(scatter, "u_slot_lo", lo);
         cv_program_set_uint(scatter, "u_slot_hi", n - lo > window ? lo + window : n);
