@@ -55,19 +55,19 @@ static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "bvh.build_wall_ms", bench_now_ms() - t0);
         bench_gpu_memory_sample(gpu);
         const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
-        static const char *names[] = {"split", "bounds",  "morton",   "sort",     "hierarchy",
-                                      "refit", "treelet", "collapse", "leaf_tris"};
-        const double ms[] = {st->ms_split,   st->ms_bounds,  st->ms_morton,
-                             st->ms_sort,    st->ms_hierarchy, st->ms_refit,
-                             st->ms_treelet, st->ms_collapse, st->ms_leaf_tris};
-        for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++) {
+        for (int i = 0; i < CV_BVH_N_PHASES; i++) {
+            const struct cv_bvh_phase *p = &cv_bvh_phases[i];
             char key[96];
-            snprintf(key, sizeof key, "bvh.phase.%s_ms", names[i]);
-            bench_num(r, key, ms[i]);
+            snprintf(key, sizeof key, "bvh.phase.%s_ms", p->name);
+            if (p->in_total)
+                bench_num(r, key, cv_bvh_phase_ms(st, p));
         }
         bench_num(r, "bvh.build_gpu_ms", st->ms_total);
         bench_num(r, "bvh.sah_cost", st->sah_cost);
         bench_num(r, "bvh.nodes", st->n_nodes);
+        bench_num(r, "bvh.binary_nodes", st->n_binary_nodes);
+        bench_num(r, "bvh.depth", st->depth);
+        bench_num(r, "bvh.stack_need", st->stack_need);
         bench_num(r, "bvh.refs", st->n_refs);
         bench_num(r, "bvh.mb", (double)st->bytes / 1e6);
         bench_num(r, "bvh.scratch_mb", (double)st->scratch_bytes / 1e6);

@@ -4,7 +4,7 @@
 // children that are leaves or collapsed subtrees become leaf references
 // into the primitive order. The parent of the last leaf (whose range ends
 // at slot n) stores the final node count, one fewer than the final leaves,
-// in info[0].
+// in info[CV_BVH_INFO_NODES].
 #include "shared/bvh.h"
 #include "shared/bindings.h"
 
@@ -58,7 +58,7 @@ void main()
     child_words(link.x, lw, lc);
     child_words(link.y, rw, rc);
     if (rc > 0 && uint(rw + rc) == u_n)
-        info[0] = leaves_before[rw];
+        info[CV_BVH_INFO_NODES] = leaves_before[rw];
     uint o = 4u * final_index(node);
     out_words[o] = uvec4(floatBitsToUint(nodes[link.x].bmin.xyz), uint(lw));
     out_words[o + 1u] = uvec4(floatBitsToUint(nodes[link.x].bmax.xyz), uint(lc));

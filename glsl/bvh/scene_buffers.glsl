@@ -11,7 +11,7 @@
 
 layout(std430, binding = CV_BIND_VERTICES) readonly buffer CvVertexBuffer { CvVertex cv_vertices[]; };
 layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer CvTriangleBuffer { CvTriangle cv_triangles[]; };
-layout(std430, binding = CV_BIND_BVH_NODES) readonly buffer CvBvhNodeBuffer { CvBvhNode cv_bvh_nodes[]; };
+layout(std430, binding = CV_BIND_BVH_NODES) readonly buffer CvBvhNodeBuffer { CvBvhNode4 cv_bvh_nodes[]; };
 layout(std430, binding = CV_BIND_BVH_PRIMS) readonly buffer CvBvhPrimBuffer { uint cv_bvh_prims[]; };
 layout(std430, binding = CV_BIND_BVH_TRIS) readonly buffer CvBvhTriBuffer { CvBvhTri cv_bvh_tris[]; };
 

@@ -1,27 +1,24 @@
 // glsl/bvh/traverse.glsl: closest-hit and any-hit ray queries against the
-// BVH of glsl/shared/bvh.h. Include glsl/bvh/scene_buffers.glsl first.
-// Stack-based, nearer child first, children entered beyond the current hit
-// skipped (Aila & Laine 2009); watertight triangles (triangle.glsl).
+// 4-wide BVH of glsl/shared/bvh.h. Include glsl/bvh/scene_buffers.glsl
+// first. Stack-based, nearest child first, children entered beyond the
+// current hit skipped (after Aila & Laine 2009's binary traversal);
+// watertight triangles (triangle.glsl).
 // A hit counts when tmin < t < tmax; among hits at the same t the lowest
 // triangle index wins, so the result does not depend on the tree.
-// Define CV_BVH_STACK_SIZE before including to change the stack (default
-// 64 entries; the tree depth must stay below it, deeper subtrees are
-// skipped rather than overflow it).
+// The stack holds CV_BVH_STACK_SIZE entries (glsl/shared/bvh.h); a node
+// pushes up to three, and a full stack drops what does not fit (the
+// subtree is skipped) rather than overflow.
 // A corrupt or uninitialised tree must never hang the GPU (a reset kills
 // every job on the device), so nothing here trusts the node words: inner
 // children must lie in 1..length-1 (the root is nobody's child, which also
-// rejects the empty child of a tiny tree), leaf ranges are clipped to the
-// leaf-ordered triangle buffer (whose records are valid by construction,
-// leaf_tris.comp), and the loop stops after as many steps as there are
-// nodes, which a valid tree never needs.
+// rejects unused slots), leaf ranges are clipped to the leaf-ordered
+// triangle buffer (whose records are valid by construction, leaf_tris.comp),
+// and the loop stops after as many steps as there are nodes, which a valid
+// tree never needs.
 #ifndef CV_BVH_TRAVERSE_GLSL
 #define CV_BVH_TRAVERSE_GLSL
 
 #include "triangle.glsl"
-
-#ifndef CV_BVH_STACK_SIZE
-#define CV_BVH_STACK_SIZE 64
-#endif
 
 #ifdef CV_BVH_COUNT_STEPS
 // Nodes visited by the queries of this invocation, for tests.
@@ -56,25 +53,55 @@ vec3 cv_bvh_safe_inv(vec3 d)
 // scene's size of the ray.
 float cv_bvh_pad(vec3 o, vec3 d)
 {
-    CvBvhNode root = cv_bvh_nodes[0];
-    // An empty child's inverted box drops out of min/max.
-    vec3 lo = min(root.lmin.xyz, root.rmin.xyz), hi = max(root.lmax.xyz, root.rmax.xyz);
+    CvBvhNode4 root = cv_bvh_nodes[0];
+    // The used slots' boxes only. Unused slots' (lo +CV_BVH_EMPTY, hi
+    // -CV_BVH_EMPTY) would drop out of a plain min/max with the same
+    // result, but this form traced faster on an H100 (4 M-triangle scene,
+    // first bounce 1.095 -> 1.135 G rays/s, bench/results/
+    // 2026-11-24_NVIDIA-H100_bvh4-gpu): how the compiler allocates this
+    // function's registers matters to the whole loop (see
+    // CV_BVH_STACK_SIZE).
+    bvec4 ok = lessThanEqual(root.lox, root.hix);
+    vec4 big = vec4(3.0e38);
+    vec3 lo = vec3(min(min(mix(big.x, root.lox.x, ok.x), mix(big.x, root.lox.y, ok.y)),
+                       min(mix(big.x, root.lox.z, ok.z), mix(big.x, root.lox.w, ok.w))),
+                   min(min(mix(big.x, root.loy.x, ok.x), mix(big.x, root.loy.y, ok.y)),
+                       min(mix(big.x, root.loy.z, ok.z), mix(big.x, root.loy.w, ok.w))),
+                   min(min(mix(big.x, root.loz.x, ok.x), mix(big.x, root.loz.y, ok.y)),
+                       min(mix(big.x, root.loz.z, ok.z), mix(big.x, root.loz.w, ok.w))));
+    vec3 hi = vec3(max(max(mix(-big.x, root.hix.x, ok.x), mix(-big.x, root.hix.y, ok.y)),
+                       max(mix(-big.x, root.hix.z, ok.z), mix(-big.x, root.hix.w, ok.w))),
+                   max(max(mix(-big.x, root.hiy.x, ok.x), mix(-big.x, root.hiy.y, ok.y)),
+                       max(mix(-big.x, root.hiy.z, ok.z), mix(-big.x, root.hiy.w, ok.w))),
+                   max(max(mix(-big.x, root.hiz.x, ok.x), mix(-big.x, root.hiz.y, ok.y)),
+                       max(mix(-big.x, root.hiz.z, ok.z), mix(-big.x, root.hiz.w, ok.w))));
+    if (!any(ok)) {
+        lo = vec3(0.0);
+        hi = vec3(0.0);
+    }
     vec3 m = max(abs(lo - o), abs(hi - o));
     return (m.x + m.y + m.z) * (1.0e-6 / max(length(d), 1.0e-30));
 }
 
-bool cv_bvh_slab(vec3 o, vec3 inv, float pad, vec3 lo, vec3 hi, float tmin, float tmax,
-                 out float tnear)
+// The four child slabs of node nd at once, one child per vector component:
+// which children the ray enters within [tmin, tmax] and their entry
+// distances (tnear).
+bvec4 cv_bvh_slab4(vec3 o, vec3 inv, float pad, CvBvhNode4 nd, float tmin, float tmax,
+                   out vec4 tnear)
 {
-    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
-    vec3 tn = min(t0, t1), tf = max(t0, t1);
-    float a = max(max(tn.x, tn.y), max(tn.z, tmin));
-    float b = min(min(tf.x, tf.y), min(tf.z, tmax));
+    vec4 tx0 = (nd.lox - o.x) * inv.x, tx1 = (nd.hix - o.x) * inv.x;
+    vec4 ty0 = (nd.loy - o.y) * inv.y, ty1 = (nd.hiy - o.y) * inv.y;
+    vec4 tz0 = (nd.loz - o.z) * inv.z, tz1 = (nd.hiz - o.z) * inv.z;
+    vec4 a = max(max(min(tx0, tx1), min(ty0, ty1)), max(min(tz0, tz1), vec4(tmin)));
+    vec4 b = min(min(max(tx0, tx1), max(ty0, ty1)), min(max(tz0, tz1), vec4(tmax)));
     a -= abs(a) * 2.0e-6 + pad;
     b += abs(b) * 2.0e-6 + pad;
     tnear = a;
-    // min/max above would turn an inverted (empty) box inside out.
-    return a <= b && lo.x <= hi.x;
+    // min/max above would turn an inverted (unused) box inside out. The
+    // vector ands are spelt as uint ands here and in cv_bvh_step: through
+    // a bvec4 helper function the any-hit stage ran 6 % slower on an H100
+    // (4 M-triangle scene, 0.760 -> 0.714 G rays/s).
+    return bvec4(uvec4(lessThanEqual(a, b)) & uvec4(lessThanEqual(nd.lox, nd.hix)));
 }
 
 // Triangle `prim` through the scene's index buffers (the brute force of the
@@ -99,32 +126,6 @@ bool cv_bvh_leaf_tri(CvRayTri r, int slot, out uint prim, out float t, out float
     return cv_ray_tri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, t, b1, b2);
 }
 
-// The part of slots first..first+count-1 that exists.
-int cv_bvh_leaf_count(int first, int count)
-{
-    int n = cv_bvh_tris.length();
-    return first < 0 || first >= n ? 0 : clamp(count, 0, n - first);
-}
-
-// True when a child word may be entered as an inner node.
-bool cv_bvh_inner_ok(int node)
-{
-    return node > 0 && node < cv_bvh_nodes.length();
-}
-
-// The leaf children a node's slab tests let in, as one run of triangles:
-// n0 slots from lw (left), then n1 from rw (right). One loop over both
-// rather than a loop per child: a lane with one leaf child and a lane with
-// two run in step, and the triangle test is compiled once. Measured on an
-// H100 (veach-bidir, 256 spp, with the shear rows of triangle.glsl): closest
-// 588 -> 560 ms, any-hit 669 -> 618 ms. The order of the tests decides no
-// result (ties go to the lower triangle index).
-void cv_bvh_leaf_runs(bool hl, bool hr, int lw, int lc, int rw, int rc, out int n0, out int n1)
-{
-    n0 = hl && lc > 0 ? cv_bvh_leaf_count(lw, lc) : 0;
-    n1 = hr && rc > 0 ? cv_bvh_leaf_count(rw, rc) : 0;
-}
-
 // A query's state: the ray's set-up, the node to visit next, the stack
 // depth and the best hit so far (the stack entries are the invocation's,
 // below). The same loops as one function each with local variables were
@@ -146,8 +147,8 @@ struct CvBvhWalk {
 
 int cv_bvh_stack[CV_BVH_STACK_SIZE];
 
-// A full stack drops the entry: that subtree is skipped (a valid tree never
-// gets that deep).
+// A full stack drops the entry: that subtree is skipped (glsl/shared/bvh.h
+// says which trees can get that deep; the build warns of one).
 void cv_bvh_push(inout CvBvhWalk w, int node)
 {
     if (w.sp >= CV_BVH_STACK_SIZE)
@@ -176,52 +177,91 @@ void cv_bvh_begin(vec3 o, vec3 d, float tmin, float tmax, out CvBvhWalk w)
     w.steps = cv_bvh_nodes.length();
 }
 
-// After a node whose inner children hl, hr (at lw, rw, entered at tl, tr)
-// the ray enters: the next node, the nearer child first. False when the
-// query has nothing left to visit.
-bool cv_bvh_next(inout CvBvhWalk w, bool hl, bool hr, int lw, int rw, float tl, float tr)
+// Sorts two (entry distance, node) pairs, nearer first.
+void cv_bvh_order(inout float da, inout int na, inout float db, inout int nb)
 {
-    if (hl && hr) {
-        bool left_first = tl <= tr;
-        w.node = left_first ? lw : rw;
-        cv_bvh_push(w, left_first ? rw : lw);
+    bool swap = db < da;
+    float t = da;
+    int n = na;
+    da = swap ? db : da;
+    na = swap ? nb : na;
+    db = swap ? t : db;
+    nb = swap ? n : nb;
+}
+
+// Visits node w.node of a query whose hits count below tfar: the leaf
+// children its slab tests let in, as one run of triangles (first slots f,
+// counts c, in slot order: cv_bvh_run_slot), and the next node. False when
+// the query has no node left to visit.
+// One run for all four children rather than a loop per child: lanes with
+// different numbers of leaf children run in step, and the triangle test is
+// compiled once (binary tree, H100, veach-bidir 256 spp: closest 588 -> 560
+// ms, any-hit 669 -> 618 ms). The order of the tests decides no result
+// (ties go to the lower triangle index).
+// The nearest entered inner child is visited next and the others pushed,
+// farthest first. The sort (a 5-exchange network) runs only when two or
+// more are entered: H100, 4 M-triangle scene, all bounce rays 0.875 G
+// rays/s sorting always, 0.892 so, 0.834 with the nearest first and the
+// rest in slot order; veach-bidir 1024 spp 3323 / 3276 / 3554 ms
+// (bench/results/2026-11-24_NVIDIA-H100_bvh4).
+bool cv_bvh_step(inout CvBvhWalk w, float tfar, out ivec4 f, out ivec4 c)
+{
+    w.steps--;
+#ifdef CV_BVH_COUNT_STEPS
+    cv_bvh_steps++;
+#endif
+    CvBvhNode4 nd = cv_bvh_nodes[w.node];
+    vec4 tn;
+    bvec4 h = cv_bvh_slab4(w.r.o, w.inv, w.pad, nd, w.tmin, tfar, tn);
+    int nt = cv_bvh_tris.length(), nn = cv_bvh_nodes.length();
+    f = nd.word;
+    // Leaf runs clipped to the leaf-ordered triangles, inner children
+    // inside 1..nn-1 (see the top).
+    ivec4 cnt = clamp(nd.count, ivec4(0), ivec4(nt) - max(f, ivec4(0)));
+    bvec4 leaf = bvec4(uvec4(h) & uvec4(greaterThan(nd.count, ivec4(0))) &
+                       uvec4(greaterThanEqual(f, ivec4(0))) & uvec4(lessThan(f, ivec4(nt))));
+    c = mix(ivec4(0), cnt, leaf);
+    bvec4 inner = bvec4(uvec4(h) & uvec4(equal(nd.count, ivec4(0))) &
+                        uvec4(greaterThan(f, ivec4(0))) & uvec4(lessThan(f, ivec4(nn))));
+    vec4 d = mix(vec4(3.0e38), tn, inner);
+    float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
+    int n0 = inner.x ? f.x : -1, n1 = inner.y ? f.y : -1, n2 = inner.z ? f.z : -1,
+        n3 = inner.w ? f.w : -1;
+    if (int(inner.x) + int(inner.y) + int(inner.z) + int(inner.w) > 1) {
+        cv_bvh_order(d0, n0, d1, n1);
+        cv_bvh_order(d2, n2, d3, n3);
+        cv_bvh_order(d0, n0, d2, n2);
+        cv_bvh_order(d1, n1, d3, n3);
+        cv_bvh_order(d1, n1, d2, n2);
+        if (n3 >= 0)
+            cv_bvh_push(w, n3);
+        if (n2 >= 0)
+            cv_bvh_push(w, n2);
+        cv_bvh_push(w, n1);
+        w.node = n0;
         return true;
     }
-    if (hl || hr) {
-        w.node = hl ? lw : rw;
+    int only = max(max(n0, n1), max(n2, n3));
+    if (only >= 0) {
+        w.node = only;
         return true;
     }
     // The next subtree. Its entry distance is not kept: one more node
     // fetch (whose slab tests fail beyond the hit) for a subtree entered
     // beyond the current hit costs less than a second stack word per
-    // entry (H100, veach-bidir: closest-hit stage 1.48 s -> 0.80 s at
-    // 256 spp).
+    // entry (H100, binary tree, veach-bidir: closest-hit stage 1.48 s ->
+    // 0.80 s at 256 spp).
     if (w.sp == 0)
         return false;
     w.node = cv_bvh_pop(w);
     return true;
 }
 
-// Visits node w.node of a query whose hits count below tfar: the leaf
-// triangles its slab tests let in (n0 slots from lw, then n1 from rw) and
-// the next node. False when the query has no node left to visit.
-bool cv_bvh_step(inout CvBvhWalk w, float tfar, out int lw, out int rw, out int n0, out int n1)
+// The slot of triangle k of a node's leaf run (first slots f, counts c).
+int cv_bvh_run_slot(int k, ivec4 f, ivec4 c)
 {
-    w.steps--;
-#ifdef CV_BVH_COUNT_STEPS
-    cv_bvh_steps++;
-#endif
-    CvBvhNode nd = cv_bvh_nodes[w.node];
-    lw = floatBitsToInt(nd.lmin.w);
-    rw = floatBitsToInt(nd.rmin.w);
-    int lc = floatBitsToInt(nd.lmax.w), rc = floatBitsToInt(nd.rmax.w);
-    float tl, tr;
-    bool hl = cv_bvh_slab(w.r.o, w.inv, w.pad, nd.lmin.xyz, nd.lmax.xyz, w.tmin, tfar, tl);
-    bool hr = cv_bvh_slab(w.r.o, w.inv, w.pad, nd.rmin.xyz, nd.rmax.xyz, w.tmin, tfar, tr);
-    cv_bvh_leaf_runs(hl, hr, lw, lc, rw, rc, n0, n1);
-    hl = hl && lc == 0 && cv_bvh_inner_ok(lw);
-    hr = hr && rc == 0 && cv_bvh_inner_ok(rw);
-    return cv_bvh_next(w, hl, hr, lw, rw, tl, tr);
+    int p1 = c.x, p2 = p1 + c.y, p3 = p2 + c.z;
+    return k < p1 ? f.x + k : k < p2 ? f.y + (k - p1) : k < p3 ? f.z + (k - p2) : f.w + (k - p3);
 }
 
 // Walks a closest-hit query to its end: the hit is w.hit, its prim
@@ -229,22 +269,24 @@ bool cv_bvh_step(inout CvBvhWalk w, float tfar, out int lw, out int rw, out int 
 // the last node's leaf children or visits a node, so lanes of a warp that
 // are testing leaves and lanes that are descending share the turn, rather
 // than the descending lanes waiting on the longest leaf run of the warp
-// (Aila & Laine 2009's if-if form). H100, medians of two interleaved rounds
-// against testing a node's leaf run whole: bounce rays of a full wave on
-// the 4 M-triangle scene 1.015 -> 1.058 G rays/s; veach-bidir 1024 spp
-// 3392 -> 3245 ms; but cornell-box, whose few large leaves pay the extra
-// loop turns, 1837 -> 1904 ms (bench/results/2026-11-24_NVIDIA-H100_if-if).
-// Hits below the current one still count, so visiting the next node before
-// the triangles are done changes no result.
+// (Aila & Laine 2009's if-if form). H100, binary tree, medians of two
+// interleaved rounds against testing a node's leaf run whole: bounce rays
+// of a full wave on the 4 M-triangle scene 1.015 -> 1.058 G rays/s;
+// veach-bidir 1024 spp 3392 -> 3245 ms; but cornell-box, whose few large
+// leaves pay the extra loop turns, 1837 -> 1904 ms
+// (bench/results/2026-11-24_NVIDIA-H100_if-if). Hits below the current one
+// still count, so visiting the next node before the triangles are done
+// changes no result.
 void cv_bvh_closest_run(inout CvBvhWalk w)
 {
-    int k = 0, n0 = 0, n1 = 0, lw = 0, rw = 0;
+    int k = 0, n = 0;
+    ivec4 f = ivec4(0), c = ivec4(0);
     bool more = true;
     for (;;) {
-        if (k < n0 + n1) {
+        if (k < n) {
             uint prim;
             float t, b1, b2;
-            if (cv_bvh_leaf_tri(w.r, k < n0 ? lw + k : rw + (k - n0), prim, t, b1, b2) &&
+            if (cv_bvh_leaf_tri(w.r, cv_bvh_run_slot(k, f, c), prim, t, b1, b2) &&
                 t > w.tmin &&
                 (t < w.hit.t || (t == w.hit.t && prim < w.hit.prim && w.hit.prim != 0xffffffffu)))
                 w.hit = CvHit(t, prim, b1, b2);
@@ -253,26 +295,28 @@ void cv_bvh_closest_run(inout CvBvhWalk w)
         }
         if (!more || w.steps <= 0)
             return;
-        more = cv_bvh_step(w, w.hit.t, lw, rw, n0, n1);
+        more = cv_bvh_step(w, w.hit.t, f, c);
+        n = c.x + c.y + c.z + c.w;
         k = 0;
     }
 }
 
 // The any-hit form, with the same loop: w.hit.prim ends 0 when an occluder
-// was found, 0xffffffff when none. In this form the any-hit stage alone ran
-// 3 % slower on the 4 M scene (0.677 -> 0.658 G rays/s), cornell-box 1 %
-// (1881 -> 1904 ms), but veach-bidir 4 % faster as a whole than with the
-// old loop here (3340 -> 3214 ms).
-// Nearer child first here too: visiting the child with the larger box first
-// (likelier to hold an occluder) was slower on an H100 (veach-bidir, 256
-// spp: shadow stage 918 -> 977 ms).
+// was found, 0xffffffff when none. In this form (binary tree) the any-hit
+// stage alone ran 3 % slower on the 4 M scene (0.677 -> 0.658 G rays/s),
+// cornell-box 1 % (1881 -> 1904 ms), but veach-bidir 4 % faster as a whole
+// than with the old loop here (3340 -> 3214 ms).
+// Nearest child first here too: visiting the child with the larger box
+// first (likelier to hold an occluder) was slower on an H100 (binary tree,
+// veach-bidir, 256 spp: shadow stage 918 -> 977 ms).
 void cv_bvh_any_run(inout CvBvhWalk w)
 {
-    int k = 0, n0 = 0, n1 = 0, lw = 0, rw = 0;
+    int k = 0, n = 0;
+    ivec4 f = ivec4(0), c = ivec4(0);
     bool more = true;
     for (;;) {
-        if (k < n0 + n1) {
-            CvBvhTri tri = cv_bvh_tris[k < n0 ? lw + k : rw + (k - n0)];
+        if (k < n) {
+            CvBvhTri tri = cv_bvh_tris[cv_bvh_run_slot(k, f, c)];
             if (cv_ray_tri_any(w.r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, w.tmin, w.tmax)) {
                 w.hit.prim = 0u;
                 return;
@@ -282,7 +326,8 @@ void cv_bvh_any_run(inout CvBvhWalk w)
         }
         if (!more || w.steps <= 0)
             return;
-        more = cv_bvh_step(w, w.tmax, lw, rw, n0, n1);
+        more = cv_bvh_step(w, w.tmax, f, c);
+        n = c.x + c.y + c.z + c.w;
         k = 0;
     }
 }

@@ -3,6 +3,7 @@
  * phase (queries cannot nest, so the total is their sum). Software
  * renderers (llvmpipe) report 0 for those queries around compute work, so
  * there each phase is timed on the CPU clock after glFinish instead. */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +18,7 @@
 #include "bvh/scratch.h"
 #include "bvh/split.h"
 #include "bvh/treelet_schedule.h"
+#include "bvh/widen.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bvh.h"
 #include "gpu/buffer.h"
@@ -42,7 +44,7 @@
 
 enum {
     PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE,
-    PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_LEAF_TRIS, PH_COUNT
+    PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_LEAF_TRIS, PH_WIDEN_FIND, PH_WIDEN_EMIT, PH_COUNT
 };
 
 /* The tree's own buffers come from the GPU's buffer pool too and go back
@@ -52,11 +54,11 @@ enum {
  * triangle builds on an H100 from 751 to 320 ms of host time (for 130 ms
  * of GPU phases). A pooled buffer may be larger than asked, so each is
  * bound as the range the tree uses (traversal reads the nodes' and leaf
- * triangles' lengths). */
+ * triangles' lengths). `binary` is kept only when asked (params). */
 struct cv_bvh {
     struct cv_gpu *gpu;
-    GLuint nodes, prims, tris;
-    size_t nodes_bytes, prims_bytes, tris_bytes;
+    GLuint nodes, prims, tris, binary;
+    size_t nodes_bytes, prims_bytes, tris_bytes, binary_bytes;
     struct cv_bvh_stats stats;
 };
 
@@ -114,6 +116,16 @@ static void phase_end(struct build *b, int phase)
         glEndQuery(GL_TIME_ELAPSED);
     }
 }
+
+#define PHASE(name, in_total) {#name, offsetof(struct cv_bvh_stats, ms_##name), in_total}
+const struct cv_bvh_phase cv_bvh_phases[CV_BVH_N_PHASES] = {
+    PHASE(split, true),        PHASE(bounds, true),      PHASE(morton, true),
+    PHASE(sort, true),         PHASE(hierarchy, true),   PHASE(refit, true),
+    PHASE(treelet, true),      PHASE(collapse, true),    PHASE(leaf_tris, true),
+    PHASE(widen, true),        PHASE(split_count, false), PHASE(split_emit, false),
+    PHASE(split_remap, false), PHASE(total, false),
+};
+#undef PHASE
 
 /* Sets *out from environment variable `name` when it holds a number in
  * lo..hi (a whole one when `whole`); warns and leaves *out otherwise. */
@@ -197,28 +209,38 @@ static size_t leaf_tris_bytes(uint32_t n)
     return (size_t)(n ? n : 1) * sizeof(CvBvhTri);
 }
 
-/* 0 or 1 triangles: one root whose children are the triangle (with a box
- * that every ray enters) and an empty child. */
+/* 0 or 1 triangles: one root whose first child is the triangle (with a
+ * box that every ray enters) and whose other children are empty; the
+ * binary form, when kept, the same with one empty child. */
 static bool build_trivial(struct cv_bvh *bvh, GLuint vertices, GLuint triangles, uint32_t n,
-                          struct cv_error *err)
+                          bool keep_binary, struct cv_error *err)
 {
-    const float big = 1.0e38f;
-    float node[16] = {-big, -big, -big, 0, big, big, big, 0, big, big, big, 0, -big, -big, -big, 0};
+    const float big = (float)CV_BVH_EMPTY;
+    float lo = n ? -big : big;
+    CvBvhNode4 wide = {
+        .lox = {lo, big, big, big}, .hix = {-lo, -big, -big, -big},
+        .loy = {lo, big, big, big}, .hiy = {-lo, -big, -big, -big},
+        .loz = {lo, big, big, big}, .hiz = {-lo, -big, -big, -big},
+        .count = {(int32_t)n, 0, 0, 0},
+    };
+    CvBvhNode bin = {.lmin = {lo, lo, lo, 0}, .lmax = {-lo, -lo, -lo, 0},
+                     .rmin = {big, big, big, 0}, .rmax = {-big, -big, -big, 0}};
     int32_t count = (int32_t)n;
-    memcpy(&node[7], &count, 4);
-    if (n == 0) {
-        for (int i = 0; i < 3; i++) {
-            node[i] = big;
-            node[4 + i] = -big;
-        }
-    }
+    memcpy(&bin.lmax.w, &count, 4);
     uint32_t prim = 0;
-    bvh->nodes = cv_buffer_create(sizeof(node), node, "bvh nodes", err);
+    bvh->nodes = cv_buffer_create(sizeof(wide), &wide, "bvh nodes", err);
     bvh->prims = bvh->nodes ? cv_buffer_create(4, &prim, "bvh prims", err) : 0;
-    bvh->nodes_bytes = sizeof(node);
+    if (bvh->prims && keep_binary &&
+        !(bvh->binary = cv_buffer_create(sizeof(bin), &bin, "bvh binary nodes", err)))
+        return false;
+    bvh->nodes_bytes = sizeof(wide);
     bvh->prims_bytes = 4;
-    bvh->stats.bytes = sizeof(node) + 4 + sizeof(CvBvhTri);
+    bvh->binary_bytes = sizeof(bin);
+    bvh->stats.bytes = sizeof(wide) + 4 + sizeof(CvBvhTri) + (keep_binary ? sizeof(bin) : 0);
     bvh->stats.n_nodes = 1;
+    bvh->stats.n_binary_nodes = 1;
+    bvh->stats.depth = 1;
+    bvh->stats.stack_need = 0;
     bvh->stats.n_refs = n;
     bvh->stats.sah_cost = n;
     return bvh->prims &&
@@ -467,7 +489,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !(b->offsets = scratch(b, (2 * n - 1) * 4, "bvh offsets", err)) ||
         !(b->live = scratch(b, (n - 1) * 4, "bvh left turns", err)) ||
         !(b->starts = scratch(b, n * 4, "bvh leaf starts", err)) ||
-        !(b->info = scratch(b, 16 + sizeof(CvBvhBuildNode), "bvh info", err)) ||
+        !(b->info = scratch(b, CV_BVH_INFO_WORDS * 4, "bvh info", err)) ||
         !(b->schedule = treelet_schedule(b, p->treelet_size, err)) ||
         !(b->out_nodes = scratch(b, (n - 1) * sizeof(CvBvhNode), "bvh nodes", err)) ||
         /* layout.comp writes every slot. */
@@ -496,35 +518,55 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
             return false;
     }
 
-    uint32_t n_nodes = 0;
-    CvBvhBuildNode root;
-    /* One read-back: the root joins the count in `info`, which is read
-     * staged (gpu/buffer.h). Read straight from the build nodes, the H100
-     * took as long as that buffer was large (1 M triangles: 9.3 ms, 16 M:
-     * 160 ms; now 0.06), and a pooled buffer read directly would serve the
-     * next build's GPU work from host memory. */
-    uint8_t info[16 + sizeof(CvBvhBuildNode)];
+    /* The one sync of the build: widening's first read-back (widen.h) also
+     * brings the binary node count and the root, which joins them in
+     * `info` so that it is read staged (gpu/buffer.h). Read straight from
+     * the build nodes, the H100 took as long as that buffer was large
+     * (1 M triangles: 9.3 ms, 16 M: 160 ms; now 0.06), and a pooled buffer
+     * read directly would serve the next build's GPU work from host memory.
+     * Widening's queue, stack needs and flags borrow the counters, the
+     * left turns and the leaf starts, free since emit. */
+    uint32_t words[CV_BVH_INFO_WORDS];
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(b->nodes, b->info, 0, 16, sizeof(root));
-    if (!cv_buffer_read_staged(b->info, 0, sizeof(info), 0, info, err))
+    glCopyNamedBufferSubData(b->nodes, b->info, 0, CV_BVH_INFO_ROOT * 4, sizeof(CvBvhBuildNode));
+    struct cv_bvh_widen widen = {.gpu = b->gpu, .bin = b->out_nodes, .info = b->info,
+                                 .queue = b->counters, .need = b->live, .flags = b->starts,
+                                 .levels = p->widen_levels};
+    phase_begin(b, PH_WIDEN_FIND);
+    bool found = cv_bvh_widen_find(&widen, words, err);
+    phase_end(b, PH_WIDEN_FIND);
+    if (!found)
         return false;
-    memcpy(&n_nodes, info, 4);
-    memcpy(&root, info + 16, sizeof(root));
+    uint32_t n_nodes = words[CV_BVH_INFO_NODES], n_wide = words[CV_BVH_INFO_WIDE];
+    CvBvhBuildNode root;
+    memcpy(&root, &words[CV_BVH_INFO_ROOT], sizeof(root));
     if (n_nodes == 0 || n_nodes > n - 1)
         return cv_fail(err, "BVH build produced %u nodes for %llu triangles", n_nodes,
                        (unsigned long long)n);
-    /* Keep only the live prefix of the node array. */
-    if (!(bvh->nodes = own_buffer(bvh, (size_t)n_nodes * sizeof(CvBvhNode), &bvh->nodes_bytes,
+    if (n_wide == 0 || n_wide > n_nodes)
+        return cv_fail(err, "BVH widening found %u nodes in a binary tree of %u", n_wide, n_nodes);
+    if (!(bvh->nodes = own_buffer(bvh, (size_t)n_wide * sizeof(CvBvhNode4), &bvh->nodes_bytes,
                                   "bvh nodes", err)))
         return false;
-    glCopyNamedBufferSubData(b->out_nodes, bvh->nodes, 0, 0, (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
+    phase_begin(b, PH_WIDEN_EMIT);
+    bool emitted = cv_bvh_widen_emit(&widen, b->scan, n_nodes, n_wide, bvh->nodes, err);
+    phase_end(b, PH_WIDEN_EMIT);
+    if (!emitted)
+        return false;
+    if (p->keep_binary) {
+        if (!(bvh->binary = own_buffer(bvh, (size_t)n_nodes * sizeof(CvBvhNode),
+                                       &bvh->binary_bytes, "bvh binary nodes", err)))
+            return false;
+        glCopyNamedBufferSubData(b->out_nodes, bvh->binary, 0, 0,
+                                 (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
+    }
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
 
     struct cv_bvh_stats *s = &bvh->stats;
     double *ms[PH_COUNT] = {&s->ms_bounds, &s->ms_morton, &s->ms_sort, &s->ms_hierarchy,
                             &s->ms_refit, &s->ms_treelet, &s->ms_collapse,
                             &s->ms_split_count, &s->ms_split_emit, &s->ms_split_remap,
-                            &s->ms_leaf_tris};
+                            &s->ms_leaf_tris, &s->ms_widen, &s->ms_widen};
     s->ms_total = 0;
     for (int i = 0; i < PH_COUNT; i++) {
         if (!b->ran[i])
@@ -541,9 +583,18 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     float hi[3] = {root.bmax.x, root.bmax.y, root.bmax.z};
     double a = half_area(lo, hi);
     s->sah_cost = a > 0 ? root.bmin.w / a : 0.0;
-    s->n_nodes = n_nodes;
+    s->n_nodes = n_wide;
+    s->n_binary_nodes = n_nodes;
+    s->depth = words[CV_BVH_INFO_DEPTH];
+    s->stack_need = words[CV_BVH_INFO_STACK];
+    /* Past the stack, traversal drops subtrees (glsl/bvh/traverse.glsl). */
+    if (s->stack_need > CV_BVH_STACK_SIZE)
+        cv_warn("the BVH over %llu triangles may need %u traversal stack entries, more than "
+                "its %d: rays that need them all may miss triangles", (unsigned long long)n,
+                s->stack_need, CV_BVH_STACK_SIZE);
     s->n_refs = (uint32_t)n;
-    s->bytes = (uint64_t)n_nodes * sizeof(CvBvhNode) + n * (4 + sizeof(CvBvhTri));
+    s->bytes = (uint64_t)n_wide * sizeof(CvBvhNode4) + n * (4 + sizeof(CvBvhTri)) +
+               (p->keep_binary ? (uint64_t)n_nodes * sizeof(CvBvhNode) : 0);
     s->scratch_bytes = b->scratch;
     return cv_gl_check(err, "finishing the BVH");
 }
@@ -567,7 +618,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
     bvh->gpu = gpu;
     bool ok;
     if (n_triangles < 2) {
-        ok = build_trivial(bvh, vertices, triangles, n_triangles, err);
+        ok = build_trivial(bvh, vertices, triangles, n_triangles, p.keep_binary, err);
     } else {
         struct build b = {.gpu = gpu, .n = n_triangles, .cpu_timing = gpu->info.software};
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
@@ -607,6 +658,11 @@ GLuint cv_bvh_prims_buffer(const struct cv_bvh *bvh)
     return bvh->prims;
 }
 
+GLuint cv_bvh_binary_nodes_buffer(const struct cv_bvh *bvh)
+{
+    return bvh->binary;
+}
+
 void cv_bvh_destroy(struct cv_bvh **bvh)
 {
     if (!bvh || !*bvh)
@@ -616,6 +672,7 @@ void cv_bvh_destroy(struct cv_bvh **bvh)
     cv_buffer_pool_put(pool, &(*bvh)->nodes);
     cv_buffer_pool_put(pool, &(*bvh)->prims);
     cv_buffer_pool_put(pool, &(*bvh)->tris);
+    cv_buffer_pool_put(pool, &(*bvh)->binary);
     free(*bvh);
     *bvh = NULL;
 }

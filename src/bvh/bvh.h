@@ -2,15 +2,18 @@
  * shaders (glsl/bvh): triangle splitting (Karras & Aila 2013, split.h),
  * centroid bounds, 30-bit Morton codes, radix sort, Karras 2012 hierarchy,
  * bottom-up refit, treelet restructuring (Karras & Aila 2013), SAH leaf
- * collapsing and the final layout of glsl/shared/bvh.h. Nothing of the tree
- * is read back to the CPU (only the split's reference count, which sizes
- * the build, and the final node count and the root's cost, for the stats).
+ * collapsing, the binary layout and its collapse into the 4-wide tree that
+ * traversal reads (widen.h; glsl/shared/bvh.h). Nothing of the tree is read
+ * back to the CPU (only the split's reference count, which sizes the build,
+ * and the node counts and the root's cost, which size the wide tree and
+ * go into the stats).
  * Shaders trace against it with glsl/bvh/scene_buffers.glsl and
  * glsl/bvh/traverse.glsl after cv_bvh_bind(). */
 #ifndef CV_BVH_BVH_H
 #define CV_BVH_BVH_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include <epoxy/gl.h>
@@ -32,6 +35,13 @@ struct cv_bvh_params {
     /* Leaf slots per pass of the leaf triangles' scatter (bvh.c); 0: the
      * default, 256 MB of records. Tests make it small to run several. */
     uint32_t leaf_tris_window;
+    /* Levels of widening per read-back (widen.h); 0: the default,
+     * CV_BVH_WIDEN_LEVELS. Tests make it small to run several. */
+    uint32_t widen_levels;
+    /* Keep the binary tree that the wide one is collapsed from, for
+     * cv_bvh_binary_nodes_buffer (tests and tools; 64 bytes per binary
+     * node). Default false. */
+    bool keep_binary;
 };
 
 /* Defaults as above; CAVALRY_BVH_ROUNDS (0 to 32) sets treelet_rounds,
@@ -48,14 +58,38 @@ struct cv_bvh_stats {
     /* ms_split's parts: shares and their read-back, references' boxes, remap. */
     double ms_split_count, ms_split_emit, ms_split_remap;
     double ms_leaf_tris;   /* the leaf triangle records (in ms_total) */
-    /* SAH cost of the final tree: sum over inner nodes of 1.2 * A(node) plus
-     * over leaves of 1.0 * A(leaf) * triangles, divided by A(root). */
+    /* Collapsing the binary tree into the 4-wide one (in ms_total); it
+     * includes waiting for the build's one read-back (widen.h). */
+    double ms_widen;
+    /* SAH cost of the binary tree, before widening: sum over inner nodes
+     * of 1.2 * A(node) plus over leaves of 1.0 * A(leaf) * triangles,
+     * divided by A(root). */
     double sah_cost;
-    uint64_t bytes;        /* GPU bytes the finished BVH keeps (nodes, prims, leaf triangles) */
+    uint64_t bytes;        /* GPU bytes the finished BVH keeps (nodes, prims, leaf
+                            * triangles; the binary nodes when kept) */
     uint64_t scratch_bytes;/* peak GPU scratch during the build, freed after */
-    uint32_t n_nodes;      /* final CvBvhNode count */
+    uint32_t n_nodes;      /* CvBvhNode4 count of the tree traversal reads */
+    uint32_t n_binary_nodes; /* CvBvhNode count of the binary tree it was collapsed from */
+    uint32_t depth;        /* levels of the CvBvhNode4 tree */
+    uint32_t stack_need;   /* most traversal stack entries a query can need */
     uint32_t n_refs;       /* leaf slots: the triangles plus split's extra references */
 };
+
+/* Every phase time of struct cv_bvh_stats, by name, for reports
+ * (bench/stages.c, tests/bvh/bvh_bench.c): the phases in build order, then
+ * split's parts (in_total false: ms_split is their sum) and the total. */
+struct cv_bvh_phase {
+    const char *name;
+    size_t offset;   /* of its double in struct cv_bvh_stats */
+    bool in_total;   /* one of the phases that ms_total adds up */
+};
+#define CV_BVH_N_PHASES 14
+extern const struct cv_bvh_phase cv_bvh_phases[CV_BVH_N_PHASES];
+
+static inline double cv_bvh_phase_ms(const struct cv_bvh_stats *s, const struct cv_bvh_phase *p)
+{
+    return *(const double *)((const char *)s + p->offset);
+}
 
 struct cv_bvh;
 
@@ -64,8 +98,9 @@ struct cv_bvh;
  * unchanged while the BVH is used. params NULL: defaults. Changes buffer
  * bindings: the two scene buffers end bound at CV_BIND_VERTICES/TRIANGLES,
  * stage-private slots (CV_BIND_STAGE0..+4) and the BVH slots hold scratch,
- * so call cv_bvh_bind() before tracing. Waits for the GPU at the end (it
- * reads the node count and the root's cost). The scratch (~264 bytes per
+ * so call cv_bvh_bind() before tracing. Waits for the GPU once, near the
+ * end (widening reads back the node counts and the root's cost). The
+ * scratch (~264 bytes per
  * triangle with the default splitting) is taken from gpu->scratch and left
  * there for the next build; cv_buffer_pool_trim(gpu->scratch) frees it
  * (scene upload keeps it or not, trace/scene_upload.c). The tree's own
@@ -82,9 +117,12 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
  * CV_BIND_BVH_PRIMS (not the scene buffers). */
 void cv_bvh_bind(const struct cv_bvh *bvh);
 const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh);
-/* The GL buffers (owned by the BVH), for tests and tools. */
+/* The GL buffers (owned by the BVH), for tests and tools: the CvBvhNode4
+ * tree, the leaf slots' primitives, and the binary CvBvhNode tree (0
+ * unless params.keep_binary). */
 GLuint cv_bvh_nodes_buffer(const struct cv_bvh *bvh);
 GLuint cv_bvh_prims_buffer(const struct cv_bvh *bvh);
+GLuint cv_bvh_binary_nodes_buffer(const struct cv_bvh *bvh);
 
 /* A new buffer of n (at least 1) CvBvhTri records in leaf order: slot i
  * holds the positions of triangle prims[i] (glsl/bvh/leaf_tris.comp; a

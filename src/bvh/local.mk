@@ -6,7 +6,8 @@ libcavalry_a_SOURCES += \
 	src/bvh/scan.c src/bvh/scan.h \
 	src/bvh/scratch.c src/bvh/scratch.h \
 	src/bvh/split.c src/bvh/split.h \
-	src/bvh/treelet_schedule.c src/bvh/treelet_schedule.h
+	src/bvh/treelet_schedule.c src/bvh/treelet_schedule.h \
+	src/bvh/widen.c src/bvh/widen.h
 
 GLSL_FILES += \
 	glsl/shared/bvh.h \
@@ -19,5 +20,7 @@ GLSL_FILES += \
 	glsl/bvh/split.glsl glsl/bvh/split_priority.comp \
 	glsl/bvh/split_sum.comp glsl/bvh/split_count.comp glsl/bvh/split_emit.comp \
 	glsl/bvh/split_remap.comp \
+	glsl/bvh/widen.glsl glsl/bvh/widen_next.comp glsl/bvh/widen_level.comp \
+	glsl/bvh/widen_emit.comp \
 	glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
 	glsl/bvh/rays_test.comp

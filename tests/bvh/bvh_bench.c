@@ -16,8 +16,9 @@
  * --rays R traces R rays (closest hit + any hit, glsl/bvh/rays_test.comp)
  * through the default tree and a plain LBVH and prints rays per second and
  * nodes visited per ray.
- * --check reads the last tree back and verifies its invariants (as the
- * tests do) and prints its depth; the exit status is 1 when they fail.
+ * --check keeps the binary tree, reads both trees of the last build back
+ * and verifies their invariants (as the tests do) and prints their depths;
+ * the exit status is 1 when they fail.
  * --all prints every rep's phases and the wall time of the build and of
  * its destruction; --gl-debug logs the driver's notifications (buffer
  * placement and the like). --fresh frees the context's pooled scratch
@@ -59,7 +60,6 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* The split's parts follow the total, so that the indices above stay. */
-#define N_PHASES 13
 
 int main(int argc, char **argv)
 {
@@ -94,7 +94,7 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--ref") == 0)
             ref = true;
         else if (strcmp(argv[i], "--check") == 0)
-            check = true;
+            check = params.keep_binary = true;
         else if (strcmp(argv[i], "--no-collapse") == 0)
             params.collapse_leaves = false;
         else if (strcmp(argv[i], "--all") == 0)
@@ -164,8 +164,8 @@ int main(int argc, char **argv)
         return 1;
     }
     cv_bvh_destroy(&bvh);
-    double *t[N_PHASES];
-    for (int p = 0; p < N_PHASES; p++)
+    double *t[CV_BVH_N_PHASES];
+    for (int p = 0; p < CV_BVH_N_PHASES; p++)
         t[p] = calloc((size_t)reps, sizeof(double));
     struct cv_bvh_stats last = {0};
     double *walls = calloc((size_t)reps, sizeof(double));
@@ -187,17 +187,21 @@ int main(int argc, char **argv)
         last = *cv_bvh_stats(bvh);
         if (check && r == reps - 1) {
             struct tree_info ti = check_tree(&m, bvh);
-            fprintf(stderr, "check: %s (depth %d, read-back SAH %.4f) %s\n",
-                    ti.ok ? "tree invariants hold" : "TREE INVALID", ti.depth, ti.sah, ti.why);
+            fprintf(stderr, "check: %s (binary depth %d, wide depth %d, stack need %d, read-back "
+                    "SAH %.4f) %s\n", ti.ok ? "tree invariants hold" : "TREE INVALID", ti.depth,
+                    ti.wide_depth, ti.stack_need, ti.sah, ti.why);
+            if (ti.ok && (ti.stack_need != (int)last.stack_need || ti.wide_depth != (int)last.depth)) {
+                fprintf(stderr, "check: the build counted depth %u and stack need %u\n",
+                        last.depth, last.stack_need);
+                status = 1;
+            }
             if (!ti.ok)
                 status = 1;
         }
-        double v[N_PHASES] = {last.ms_split, last.ms_bounds, last.ms_morton,
-                              last.ms_sort,  last.ms_hierarchy, last.ms_refit,
-                              last.ms_treelet, last.ms_collapse, last.ms_total,
-                              last.ms_split_count, last.ms_split_emit, last.ms_split_remap,
-                              last.ms_leaf_tris};
-        for (int p = 0; p < N_PHASES; p++)
+        double v[CV_BVH_N_PHASES];
+        for (int p = 0; p < CV_BVH_N_PHASES; p++)
+            v[p] = cv_bvh_phase_ms(&last, &cv_bvh_phases[p]);
+        for (int p = 0; p < CV_BVH_N_PHASES; p++)
             t[p][r] = v[p];
         walls[r] = wall;
         w0 = bench_ms();
@@ -205,20 +209,26 @@ int main(int argc, char **argv)
         if (all) {
             glFinish();
             printf("  rep %d:", r);
-            for (int p = 0; p < N_PHASES; p++)
+            for (int p = 0; p < CV_BVH_N_PHASES; p++)
                 printf(" %.3f", v[p]);
             printf(" | wall: build %.1f ms, destroy %.1f ms\n", wall, bench_ms() - w0);
         }
     }
-    const char *names[N_PHASES] = {"split", "bounds",  "morton",   "sort", "hierarchy",
-                                   "refit", "treelet", "collapse", "total", "split_count",
-                                   "split_emit", "split_remap", "leaf_tris"};
-    double med[N_PHASES];
-    for (int p = 0; p < N_PHASES; p++) {
+    double med[CV_BVH_N_PHASES];
+    for (int p = 0; p < CV_BVH_N_PHASES; p++) {
         qsort(t[p], (size_t)reps, sizeof(double), cmp_double);
         med[p] = t[p][reps / 2];
     }
-    double lbvh = med[1] + med[2] + med[3] + med[4] + med[5];
+    /* The LBVH proper: bounds through refit. */
+    double lbvh = 0, total = 0;
+    for (int p = 0; p < CV_BVH_N_PHASES; p++) {
+        const char *name = cv_bvh_phases[p].name;
+        if (!strcmp(name, "bounds") || !strcmp(name, "morton") || !strcmp(name, "sort") ||
+            !strcmp(name, "hierarchy") || !strcmp(name, "refit"))
+            lbvh += med[p];
+        if (!strcmp(name, "total"))
+            total = med[p];
+    }
     qsort(walls, (size_t)reps, sizeof(double), cmp_double);
     double wall_med = walls[reps / 2];
     free(walls);
@@ -229,14 +239,17 @@ int main(int argc, char **argv)
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
            params.collapse_leaves ? "on" : "off", params.split_budget,
            fresh ? ", fresh scratch" : "", idle_s > 0 ? ", idle before each" : "");
-    for (int p = 0; p < N_PHASES; p++)
-        printf("  %-10s %10.3f ms\n", names[p], med[p]);
-    printf("  LBVH part  %10.3f ms (bounds..refit)\n", lbvh);
-    printf("  wall       %10.3f ms (the cv_bvh_build call, host clock)\n", wall_med);
-    printf("  ms per million triangles: %.3f\n", med[8] * 1e6 / (n ? n : 1));
+    for (int p = 0; p < CV_BVH_N_PHASES; p++)
+        printf("  %-11s %10.3f ms\n", cv_bvh_phases[p].name, med[p]);
+    printf("  LBVH part   %10.3f ms (bounds..refit)\n", lbvh);
+    printf("  wall        %10.3f ms (the cv_bvh_build call, host clock)\n", wall_med);
+    printf("  ms per million triangles: %.3f\n", total * 1e6 / (n ? n : 1));
     printf("  references %u (%.3f per triangle)\n", last.n_refs, (double)last.n_refs / (n ? n : 1));
-    printf("  nodes %u, %.2f bytes/triangle (+ %.2f bytes/triangle scratch while building)\n",
-           last.n_nodes, (double)last.bytes / (n ? n : 1), (double)last.scratch_bytes / (n ? n : 1));
+    printf("  nodes %u (4-wide, %u levels, stack need %u; %u binary), %.2f bytes/triangle (+ %.2f "
+           "bytes/triangle scratch while building)\n",
+           last.n_nodes, last.depth, last.stack_need, last.n_binary_nodes,
+           (double)last.bytes / (n ? n : 1),
+           (double)last.scratch_bytes / (n ? n : 1));
     printf("  SAH cost %.4f", last.sah_cost);
     if (ref)
         printf(" (CPU binned SAH %.4f: %+.1f%%)", ref_cost, 100.0 * (last.sah_cost / ref_cost - 1));
@@ -250,13 +263,15 @@ int main(int argc, char **argv)
            n, gpu->info.renderer, reps, params.treelet_rounds, params.treelet_size,
            params.collapse_leaves ? "true" : "false", params.split_budget,
            fresh ? "true" : "false", idle_s, last.n_refs);
-    for (int p = 0; p < N_PHASES; p++)
-        printf(", \"ms_%s\": %.4f", names[p], med[p]);
+    for (int p = 0; p < CV_BVH_N_PHASES; p++)
+        printf(", \"ms_%s\": %.4f", cv_bvh_phases[p].name, med[p]);
     printf(", \"ms_lbvh\": %.4f, \"ms_wall\": %.4f", lbvh, wall_med);
     printf(", \"nodes\": %u, \"bytes\": %llu, \"bytes_per_triangle\": %.3f, "
-           "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f}\n",
+           "\"scratch_bytes\": %llu, \"sah_cost\": %.5f, \"ref_sah_cost\": %.5f, "
+           "\"binary_nodes\": %u, \"depth\": %u, \"stack_need\": %u}\n",
            last.n_nodes, (unsigned long long)last.bytes, (double)last.bytes / (n ? n : 1),
-           (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost);
+           (unsigned long long)last.scratch_bytes, last.sah_cost, ref_cost, last.n_binary_nodes,
+           last.depth, last.stack_need);
     double mrays[2] = {0, 0}, steps[2] = {0, 0};
     if (n_rays) {
         GLuint rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", &err);
@@ -307,7 +322,7 @@ int main(int argc, char **argv)
         cv_buffer_destroy(&res);
     }
     free(rays);
-    for (int p = 0; p < N_PHASES; p++)
+    for (int p = 0; p < CV_BVH_N_PHASES; p++)
         free(t[p]);
     cv_buffer_destroy(&vb);
     cv_buffer_destroy(&tb);

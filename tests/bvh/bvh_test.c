@@ -200,6 +200,37 @@ out:
     free(want);
 }
 
+/* The build counts the wide tree's levels and the most stack entries a
+ * query can need in it (bvh.c warns from that): both as the read-back tree
+ * has them, and the tree fits traversal's stack. */
+static void check_stack(const char *name, const struct cv_bvh *bvh, const struct tree_info *ti)
+{
+    const struct cv_bvh_stats *s = cv_bvh_stats(bvh);
+    tap_ok(s->depth == (uint32_t)ti->wide_depth && s->stack_need == (uint32_t)ti->stack_need &&
+           ti->stack_need <= CV_BVH_STACK_SIZE,
+           "%s: wide depth %d, %d stack entries at most (the build's counts: %u, %u; the stack "
+           "holds %d)", name, ti->wide_depth, ti->stack_need, s->depth, s->stack_need,
+           CV_BVH_STACK_SIZE);
+}
+
+/* Widening's result depends neither on how many levels run per read-back
+ * nor on the order its atomics hand out queue entries (src/bvh/widen.h):
+ * two builds of one mesh, one a level per read-back, give the same bytes. */
+static void check_same_tree(const char *name, const struct cv_bvh *a, const struct cv_bvh *b)
+{
+    struct cv_error err = {{0}};
+    uint32_t na = cv_bvh_stats(a)->n_nodes, nb = cv_bvh_stats(b)->n_nodes;
+    size_t bytes = (size_t)na * sizeof(CvBvhNode4);
+    void *ta = malloc(bytes), *tb = malloc(bytes);
+    bool ok = na == nb && cv_buffer_read(cv_bvh_nodes_buffer(a), 0, bytes, ta, &err) &&
+              cv_buffer_read(cv_bvh_nodes_buffer(b), 0, bytes, tb, &err);
+    tap_ok(ok && memcmp(ta, tb, bytes) == 0,
+           "%s: widened a level per read-back, the same wide tree (%u and %u nodes, depth %u)%s%s",
+           name, na, nb, cv_bvh_stats(b)->depth, err.msg[0] ? ": " : "", err.msg);
+    free(ta);
+    free(tb);
+}
+
 static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uint32_t n_rays,
                        bool check_sah)
 {
@@ -211,19 +242,25 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
      * splitting, whatever the default). */
     struct cv_bvh_params params = cv_bvh_default_params();
     params.split_budget = 0;
+    params.keep_binary = true;
     struct cv_bvh_params lbvh_params = params;
     lbvh_params.treelet_rounds = 0;
-    struct cv_bvh *bvh = NULL, *lbvh = NULL;
+    /* The same tree again, widened one level per read-back. */
+    struct cv_bvh_params step_params = params;
+    step_params.widen_levels = 1;
+    struct cv_bvh *bvh = NULL, *lbvh = NULL, *step = NULL;
     bool built = cv_bvh_build(gpu, vb, tb, m->nt, &params, &bvh, &err) &&
-                 cv_bvh_build(gpu, vb, tb, m->nt, &lbvh_params, &lbvh, &err);
+                 cv_bvh_build(gpu, vb, tb, m->nt, &lbvh_params, &lbvh, &err) &&
+                 cv_bvh_build(gpu, vb, tb, m->nt, &step_params, &step, &err);
     if (tap_ok(built, "%s: built (restructured and plain LBVH): %s", name, built ? "yes" : err.msg)) {
         const struct cv_bvh_stats *s = cv_bvh_stats(bvh), *sl = cv_bvh_stats(lbvh);
         struct tree_info ti = check_tree(m, bvh), tl = check_tree(m, lbvh);
-        tap_ok(ti.ok, "%s: restructured tree invariants hold (%u nodes, depth %d) %s", name,
-               s->n_nodes, ti.depth, ti.why);
-        tap_ok(tl.ok, "%s: LBVH tree invariants hold (%u nodes, depth %d) %s", name, sl->n_nodes,
-               tl.depth, tl.why);
-        tap_ok(ti.depth < 64, "%s: depth %d fits the traversal stack", name, ti.depth);
+        tap_ok(ti.ok, "%s: restructured tree invariants hold (%u binary nodes, depth %d; %u wide, "
+               "depth %d) %s", name, s->n_binary_nodes, ti.depth, s->n_nodes, ti.wide_depth, ti.why);
+        tap_ok(tl.ok, "%s: LBVH tree invariants hold (%u binary nodes, depth %d; %u wide, depth "
+               "%d) %s", name, sl->n_binary_nodes, tl.depth, sl->n_nodes, tl.wide_depth, tl.why);
+        check_stack(name, bvh, &ti);
+        check_same_tree(name, bvh, step);
         if (m->nt >= 2)
             tap_ok(fabs(ti.sah - s->sah_cost) <= 1e-3 * ti.sah + 1e-6,
                    "%s: GPU SAH %.4f equals the read-back tree's %.4f", name, s->sah_cost, ti.sah);
@@ -245,13 +282,14 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
     if (m->nt >= 2 && tap_ok(cv_bvh_build(gpu, vb, tb, m->nt, &flat, &fb, &err),
                              "%s: built without leaf collapsing: %s", name, fb ? "yes" : err.msg)) {
         struct tree_info tf = check_tree(m, fb);
-        tap_ok(tf.ok && cv_bvh_stats(fb)->n_nodes == m->nt - 1,
-               "%s: uncollapsed tree valid with %u nodes for %u triangles %s", name,
-               cv_bvh_stats(fb)->n_nodes, m->nt, tf.why);
+        tap_ok(tf.ok && cv_bvh_stats(fb)->n_binary_nodes == m->nt - 1,
+               "%s: uncollapsed tree valid with %u binary nodes for %u triangles (%u wide) %s",
+               name, cv_bvh_stats(fb)->n_binary_nodes, m->nt, cv_bvh_stats(fb)->n_nodes, tf.why);
     }
     cv_bvh_destroy(&fb);
     cv_bvh_destroy(&bvh);
     cv_bvh_destroy(&lbvh);
+    cv_bvh_destroy(&step);
     tap_ok(bvh == NULL, "%s: destroy clears the pointer", name);
     cv_buffer_destroy(&vb);
     cv_buffer_destroy(&tb);
@@ -339,6 +377,7 @@ static void check_split(struct cv_gpu *gpu, const char *name, struct mesh *m, fl
 
     struct cv_bvh_params params = cv_bvh_default_params(), off = params;
     params.split_budget = budget;
+    params.keep_binary = true;
     off.split_budget = 0;
     struct cv_bvh *bvh = NULL, *plain = NULL;
     bool built = cv_bvh_build(gpu, vb, tb, nt, &params, &bvh, &err) &&
@@ -347,9 +386,9 @@ static void check_split(struct cv_gpu *gpu, const char *name, struct mesh *m, fl
         const struct cv_bvh_stats *s = cv_bvh_stats(bvh);
         struct tree_info ti = check_tree(m, bvh);
         tap_ok(ti.ok && s->n_refs == n_refs,
-               "%s: split tree invariants hold (%u references, %u nodes, depth %d) %s", name,
-               s->n_refs, s->n_nodes, ti.depth, ti.why);
-        tap_ok(ti.depth < 64, "%s: depth %d fits the traversal stack", name, ti.depth);
+               "%s: split tree invariants hold (%u references, %u wide nodes, depth %d) %s", name,
+               s->n_refs, s->n_nodes, ti.wide_depth, ti.why);
+        check_stack(name, bvh, &ti);
         tap_ok(fabs(ti.sah - s->sah_cost) <= 1e-3 * ti.sah + 1e-6,
                "%s: GPU SAH %.4f equals the read-back tree's %.4f", name, s->sah_cost, ti.sah);
         tap_diag("%s: SAH %.4f split, %.4f not; %.1f bytes/triangle", name, s->sah_cost,
@@ -362,16 +401,14 @@ static void check_split(struct cv_gpu *gpu, const char *name, struct mesh *m, fl
     cv_buffer_destroy(&tb);
 }
 
-/* One CvBvhNode child: box, word, count. */
-static void set_child(float *node, int side, float lo, float hi, int32_t word, int32_t count)
+/* One CvBvhNode4 child: box, word, count. */
+static void set_child(CvBvhNode4 *nd, int slot, float lo, float hi, int32_t word, int32_t count)
 {
-    float *c = node + 8 * side;
-    for (int k = 0; k < 3; k++) {
-        c[k] = lo;
-        c[4 + k] = hi;
-    }
-    memcpy(&c[3], &word, 4);
-    memcpy(&c[7], &count, 4);
+    cv_vec4 *v[6] = {&nd->lox, &nd->loy, &nd->loz, &nd->hix, &nd->hiy, &nd->hiz};
+    for (int k = 0; k < 6; k++)
+        (&v[k]->x)[slot] = k < 3 ? lo : hi;
+    (&nd->word.x)[slot] = word;
+    (&nd->count.x)[slot] = count;
 }
 
 static void check_corrupt(struct cv_gpu *gpu)
@@ -380,18 +417,28 @@ static void check_corrupt(struct cv_gpu *gpu)
     struct mesh m;
     mesh_soup(&m, 3);
     const float big = 1.0e30f;
-    float nodes[4][16];
-    /* Root: an inner child and a leaf running far past the primitives;
-     * node 1 points at itself (a cycle) and node 2; node 2 at node 3 and
-     * beyond the array; node 3 has garbage words and counts. */
-    set_child(nodes[0], 0, -big, big, 1, 0);
-    set_child(nodes[0], 1, -big, big, 0, 1000);
-    set_child(nodes[1], 0, -big, big, 1, 0);
-    set_child(nodes[1], 1, -big, big, 2, 0);
-    set_child(nodes[2], 0, -big, big, 3, 0);
-    set_child(nodes[2], 1, -big, big, 77, 0);
-    set_child(nodes[3], 0, -big, big, -5, -3);
-    set_child(nodes[3], 1, -big, big, 1 << 30, 1 << 29);
+    CvBvhNode4 nodes[4];
+    /* Root: an inner child, a leaf running far past the primitives, the
+     * root as its own child and a leaf at a negative slot; node 1 points
+     * at itself (a cycle, twice) and node 2; node 2 at node 3, beyond the
+     * array and below 0, with a leaf whose end overflows; node 3 has
+     * garbage words and counts. */
+    set_child(&nodes[0], 0, -big, big, 1, 0);
+    set_child(&nodes[0], 1, -big, big, 0, 1000);
+    set_child(&nodes[0], 2, -big, big, 0, 0);
+    set_child(&nodes[0], 3, -big, big, -5, 3);
+    set_child(&nodes[1], 0, -big, big, 1, 0);
+    set_child(&nodes[1], 1, -big, big, 2, 0);
+    set_child(&nodes[1], 2, -big, big, 1, 0);
+    set_child(&nodes[1], 3, -big, big, 1 << 30, 1 << 29);
+    set_child(&nodes[2], 0, -big, big, 3, 0);
+    set_child(&nodes[2], 1, -big, big, 77, 0);
+    set_child(&nodes[2], 2, -big, big, -1, 0);
+    set_child(&nodes[2], 3, -big, big, 1, 0x7fffffff);
+    set_child(&nodes[3], 0, -big, big, -5, -3);
+    set_child(&nodes[3], 1, -big, big, 1 << 30, 1 << 29);
+    set_child(&nodes[3], 2, -big, big, 0x7fffffff, 5);
+    set_child(&nodes[3], 3, -big, big, 2, -1);
     uint32_t prims[2] = {99999, 0};
     uint32_t n_rays = 256;
     float *rays = malloc((size_t)n_rays * 32);
@@ -492,6 +539,7 @@ static void check_large(struct cv_gpu *gpu)
     params.split_budget = 0;
     params.treelet_rounds = 1;
     params.treelet_size = 5;
+    params.keep_binary = true;
     struct cv_bvh *bvh = NULL;
     bool built = mesh_upload(&m, &vb, &tb, &err) &&
                  cv_bvh_build(gpu, vb, tb, m.nt, &params, &bvh, &err);
@@ -558,7 +606,7 @@ static void check_reuse(struct cv_gpu *gpu)
     GLint64 held = 0;
     if (ok)
         glGetNamedBufferParameteri64v(cv_bvh_nodes_buffer(bvh), GL_BUFFER_SIZE, &held);
-    uint64_t used = ok ? (uint64_t)cv_bvh_stats(bvh)->n_nodes * sizeof(CvBvhNode) : 0;
+    uint64_t used = ok ? (uint64_t)cv_bvh_stats(bvh)->n_nodes * sizeof(CvBvhNode4) : 0;
     tap_ok(ok && cv_buffer_pool_created(gpu->scratch) == again && (uint64_t)held > used,
            "reuse: 3900 triangles' tree built in the 4000's buffers (nodes: %llu of %lld bytes)",
            (unsigned long long)used, (long long)held);

@@ -343,8 +343,10 @@ static inline double ref_sah(const struct mesh *m)
 
 struct tree_info {
     bool ok;
-    double sah;
-    int depth;
+    double sah;        /* of the binary tree */
+    int depth;         /* of the binary tree */
+    int wide_depth;    /* of the 4-wide tree */
+    int stack_need;    /* most traversal stack entries a query can need in it */
     char why[256];
 };
 
@@ -386,21 +388,23 @@ static inline bool tri_covered(const struct mesh *m, uint32_t t, const float (*b
     return true;
 }
 
-/* Reads the finished tree back and checks: every leaf slot used once and
- * every triangle in exactly one slot (with triangle splitting, in at least
- * one, and the boxes of its leaves covering it), every node reached exactly
- * once from the root, every child box inside its parent's (a triangle's box
- * inside its leaf's, unless split), and the nodes in
- * left-first depth-first order (an inner left child right after its parent,
- * an inner right child right after the parent's left subtree: what
- * glsl/bvh/layout.comp promises traversal). Also returns the depth and the
- * SAH cost of what was read. */
-static inline struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bvh)
+/* Reads the binary tree back (built with params.keep_binary) and checks:
+ * every leaf slot used once and every triangle in exactly one slot (with
+ * triangle splitting, in at least one, and the boxes of its leaves covering
+ * it), every node reached exactly once from the root, every child box
+ * inside its parent's (a triangle's box inside its leaf's, unless split),
+ * and the nodes in left-first depth-first order (an inner left child right
+ * after its parent, an inner right child right after the parent's left
+ * subtree: what glsl/bvh/layout.comp promises). Also returns the depth and
+ * the SAH cost of what was read, and each leaf by its first slot:
+ * leaf_count[s] (0 where no leaf starts) and leaf_box[s] (ns + 1 each). */
+static inline struct tree_info check_binary(const struct mesh *m, const struct cv_bvh *bvh,
+                                            int32_t *leaf_count, float (*leaf_box)[6])
 {
     struct tree_info ti = {.ok = true};
     struct cv_error err = {{0}};
     const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
-    uint32_t nn = st->n_nodes, n = m->nt, ns = st->n_refs;
+    uint32_t nn = st->n_binary_nodes, n = m->nt, ns = st->n_refs;
     bool split = ns != n;
     CvBvhNode *nodes = malloc((size_t)nn * sizeof(*nodes));
     uint32_t *prims = malloc((ns ? ns : 1) * 4);
@@ -412,7 +416,13 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
         ti.ok = false;
         goto out;
     }
-    if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes, &err) ||
+    if (!cv_bvh_binary_nodes_buffer(bvh)) {
+        snprintf(ti.why, sizeof(ti.why), "the binary tree was not kept");
+        ti.ok = false;
+        goto out;
+    }
+    if (!cv_buffer_read(cv_bvh_binary_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes,
+                        &err) ||
         !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (ns ? ns : 1) * 4, prims, &err)) {
         snprintf(ti.why, sizeof(ti.why), "read back: %.200s", err.msg);
         ti.ok = false;
@@ -465,6 +475,9 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
                 }
                 if (n >= 2)
                     sum += CV_BVH_COST_TRI * half_area3(lo, hi) * count;
+                leaf_count[word] = count;
+                memcpy(leaf_box[word], lo, 12);
+                memcpy(leaf_box[word] + 3, hi, 12);
                 for (int32_t s = word; s < word + count; s++) {
                     slot_seen[s]++;
                     memcpy(slot_box[s], lo, 12);
@@ -562,6 +575,180 @@ out:
     free(slot_seen);
     free(prim_seen);
     free(slot_box);
+    return ti;
+}
+
+/* The box of 4-wide slot c: min xyz, max xyz. */
+static inline void wide_box(const CvBvhNode4 *nd, int c, float box[6])
+{
+    const cv_vec4 *v[6] = {&nd->lox, &nd->loy, &nd->loz, &nd->hix, &nd->hiy, &nd->hiz};
+    for (int k = 0; k < 6; k++)
+        box[k] = (&v[k]->x)[c];
+}
+
+static inline bool wide_slot_unused(const CvBvhNode4 *nd, int c)
+{
+    float box[6];
+    wide_box(nd, c, box);
+    const float e = (float)CV_BVH_EMPTY;
+    return (&nd->word.x)[c] == 0 && (&nd->count.x)[c] == 0 && box[0] == e && box[1] == e &&
+           box[2] == e && box[3] == -e && box[4] == -e && box[5] == -e;
+}
+
+/* Reads the 4-wide tree back and checks it against the binary tree's
+ * leaves from check_binary: every node reached once from the root, in
+ * depth-first preorder with children in slot order; used slots first and
+ * unused ones exactly as glsl/shared/bvh.h has them; every leaf child one
+ * of the binary tree's leaves (its first slot, count and box, bit for bit),
+ * every slot in one leaf, so the two trees hold the same leaves; every inner
+ * child's box the union of its own children's; every node with an inner
+ * child full (four children: what bounds the node count, src/bvh/widen.h).
+ * Sets ti->wide_depth. */
+static inline void check_wide(const struct mesh *m, const struct cv_bvh *bvh,
+                              const int32_t *leaf_count, const float (*leaf_box)[6],
+                              struct tree_info *ti)
+{
+    struct cv_error err = {{0}};
+    const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
+    uint32_t nn = st->n_nodes, ns = st->n_refs, n = m->nt;
+    CvBvhNode4 *nodes = malloc((size_t)(nn ? nn : 1) * sizeof(*nodes));
+    uint32_t *visits = calloc(nn + 1, 4), *slot_seen = calloc(ns + 1, 4);
+    uint32_t *stack = malloc(4 * 256 * 4), *depth_of = malloc(4 * 256 * 4);
+    int *need_of = malloc(4 * 256 * sizeof(int));
+    if (nn == 0 || nn > st->n_binary_nodes) {
+        snprintf(ti->why, sizeof(ti->why), "%u wide nodes for %u binary ones", nn,
+                 st->n_binary_nodes);
+        ti->ok = false;
+        goto out;
+    }
+    if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*nodes), nodes, &err)) {
+        snprintf(ti->why, sizeof(ti->why), "read back: %.200s", err.msg);
+        ti->ok = false;
+        goto out;
+    }
+    int sp = 0;
+    stack[sp] = 0;
+    need_of[sp] = 0;
+    depth_of[sp++] = 1;
+    visits[0] = 1;
+    uint32_t next_pre = 0;
+    while (sp > 0 && ti->ok) {
+        sp--;
+        uint32_t ni = stack[sp], d = depth_of[sp];
+        int need = need_of[sp];
+        const CvBvhNode4 *nd = &nodes[ni];
+        if (ni != next_pre++) {
+            snprintf(ti->why, sizeof(ti->why), "wide node %u is not in preorder (expected %u)", ni,
+                     next_pre - 1);
+            ti->ok = false;
+            break;
+        }
+        if ((int)d > ti->wide_depth)
+            ti->wide_depth = (int)d;
+        int used = 0, inner = 0;
+        while (used < 4 && !wide_slot_unused(nd, used))
+            used++;
+        for (int c = 0; c < 4; c++) {
+            inner += c < used && (&nd->count.x)[c] == 0;
+            if (c >= used && !wide_slot_unused(nd, c)) {
+                snprintf(ti->why, sizeof(ti->why), "wide node %u: slot %d used after an unused one",
+                         ni, c);
+                ti->ok = false;
+            }
+        }
+        /* Traversal pushes all entered inner children but one. */
+        int below = need + (inner > 1 ? inner - 1 : 0);
+        if (below > ti->stack_need)
+            ti->stack_need = below;
+        int want = n >= 2 ? 2 : (int)n;
+        if (ti->ok && (used < want || (inner > 0 && used != 4))) {
+            snprintf(ti->why, sizeof(ti->why), "wide node %u: %d children, %d inner", ni, used,
+                     inner);
+            ti->ok = false;
+        }
+        for (int c = used - 1; c >= 0 && ti->ok; c--) {
+            float box[6];
+            wide_box(nd, c, box);
+            int32_t word = (&nd->word.x)[c], count = (&nd->count.x)[c];
+            if (count > 0) {
+                if (word < 0 || (uint32_t)word + (uint32_t)count > ns ||
+                    leaf_count[word] != count || memcmp(box, leaf_box[word], sizeof(box)) != 0) {
+                    snprintf(ti->why, sizeof(ti->why),
+                             "wide node %u slot %d: leaf %d+%d is not a leaf of the binary tree",
+                             ni, c, word, count);
+                    ti->ok = false;
+                    break;
+                }
+                for (int32_t k = word; k < word + count; k++)
+                    slot_seen[k]++;
+                continue;
+            }
+            if (count < 0 || word <= 0 || (uint32_t)word >= nn || visits[word]++) {
+                snprintf(ti->why, sizeof(ti->why), "wide node %u slot %d: child %d count %d%s", ni,
+                         c, word, count,
+                         word > 0 && (uint32_t)word < nn && visits[word] > 1 ? " reached twice" : "");
+                ti->ok = false;
+                break;
+            }
+            float u[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+            for (int g = 0; g < 4; g++) {
+                if (wide_slot_unused(&nodes[word], g))
+                    continue;
+                float cb[6];
+                wide_box(&nodes[word], g, cb);
+                for (int k = 0; k < 3; k++) {
+                    u[k] = fminf(u[k], cb[k]);
+                    u[3 + k] = fmaxf(u[3 + k], cb[3 + k]);
+                }
+            }
+            if (memcmp(u, box, sizeof(u)) != 0) {
+                snprintf(ti->why, sizeof(ti->why),
+                         "wide node %d: its children's boxes do not make up its box", word);
+                ti->ok = false;
+                break;
+            }
+            if (sp >= 4 * 256) {
+                snprintf(ti->why, sizeof(ti->why), "wide tree deeper than 256");
+                ti->ok = false;
+                break;
+            }
+            stack[sp] = (uint32_t)word;
+            need_of[sp] = below;
+            depth_of[sp++] = d + 1;
+        }
+    }
+    for (uint32_t i = 0; ti->ok && i < nn; i++)
+        if (visits[i] != 1) {
+            snprintf(ti->why, sizeof(ti->why), "wide node %u reached %u times", i, visits[i]);
+            ti->ok = false;
+        }
+    for (uint32_t i = 0; ti->ok && i < ns; i++)
+        if (slot_seen[i] != 1) {
+            snprintf(ti->why, sizeof(ti->why), "slot %u in %u leaves of the wide tree", i,
+                     slot_seen[i]);
+            ti->ok = false;
+        }
+out:
+    free(nodes);
+    free(visits);
+    free(slot_seen);
+    free(stack);
+    free(depth_of);
+    free(need_of);
+}
+
+/* check_binary, then check_wide against its leaves: the tree must have
+ * been built with params.keep_binary. */
+static inline struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bvh)
+{
+    uint32_t ns = cv_bvh_stats(bvh)->n_refs;
+    int32_t *leaf_count = calloc(ns + 1, sizeof(*leaf_count));
+    float (*leaf_box)[6] = calloc(ns + 1, sizeof(*leaf_box));
+    struct tree_info ti = check_binary(m, bvh, leaf_count, leaf_box);
+    if (ti.ok)
+        check_wide(m, bvh, leaf_count, (const float (*)[6])leaf_box, &ti);
+    free(leaf_count);
+    free(leaf_box);
     return ti;
 }
 

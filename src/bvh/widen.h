@@ -1,0 +1,57 @@
+/* widen.h: the 4-wide traversal tree (CvBvhNode4, glsl/shared/bvh.h),
+ * collapsed on the GPU from the binary tree that the build lays out
+ * (glsl/bvh/widen.glsl says which children each wide node takes). Two
+ * steps, because the wide tree is sized by its node count:
+ *   find: level by level from the root, each wide node's inner children
+ *         queued and flagged (glsl/bvh/widen_level.comp); the host reads
+ *         the build's info words back once per batch of levels, which is
+ *         once per build for trees up to CV_BVH_WIDEN_LEVELS deep (a
+ *         generated 16 M-triangle scene's is 23: bvh_bench);
+ *   emit: the flags' prefix sum numbers the wide nodes in preorder, and
+ *         each is written there (glsl/bvh/widen_emit.comp).
+ * Only `info`'s words are ever read back, never the tree. */
+#ifndef CV_BVH_WIDEN_H
+#define CV_BVH_WIDEN_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <epoxy/gl.h>
+
+#include "base/error.h"
+#include "bvh/scan.h"
+#include "glsl/shared/bvh.h"
+#include "gpu/context.h"
+
+/* Levels run between two read-backs, by default. */
+#define CV_BVH_WIDEN_LEVELS 24
+
+/* Buffers of one widening. bin: the binary CvBvhNode tree, its node count
+ * at info[CV_BVH_INFO_NODES] (CV_BVH_INFO_* words); queue: room for the
+ * wide nodes, one uint each, and `need` as many; flags: one uint per
+ * binary node. A tree over n leaves has at most (2 n - 1) / 3 wide nodes:
+ * every wide node with an inner child has four children. */
+struct cv_bvh_widen {
+    struct cv_gpu *gpu;
+    GLuint bin, info, queue, need, flags;
+    uint32_t levels;  /* per read-back; 0: CV_BVH_WIDEN_LEVELS */
+};
+
+/* Finds the wide nodes (see the top), leaving the queue and flags for
+ * cv_bvh_widen_emit. Ends with info's words read back into `words`:
+ * words[CV_BVH_INFO_WIDE] is the wide node count, [CV_BVH_INFO_DEPTH] its
+ * levels and [CV_BVH_INFO_STACK] the most traversal stack entries a query
+ * can need (glsl/bvh/widen_level.comp). Binds stage-private slots
+ * CV_BIND_STAGE0..+4 and the indirect dispatch buffer (unbound after).
+ * Fails when the queue overflows or the levels do not end. */
+bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_WORDS],
+                       struct cv_error *err);
+
+/* Writes the n_wide nodes into `out` (at least n_wide CvBvhNode4) after
+ * cv_bvh_widen_find; n_bin binary nodes. `scan` must take n_bin elements;
+ * the flags become the nodes' indices. Binds CV_BIND_STAGE0..+3 and
+ * CV_BIND_BVH_NODES. */
+bool cv_bvh_widen_emit(const struct cv_bvh_widen *w, struct cv_scan *scan, uint32_t n_bin,
+                       uint32_t n_wide, GLuint out, struct cv_error *err);
+
+#endif
