@@ -35,9 +35,10 @@ struct CvWideKids {
     int n;
 };
 
+// Whether slot c holds an inner child that may be opened or kept.
 bool cv_widen_inner(CvWideKids k, int c, int n_bin)
 {
-    return k.count[c] == 0 && k.word[c] > 0 && k.word[c] < n_bin;
+    return c < k.n && k.count[c] == 0 && k.word[c] > 0 && k.word[c] < n_bin;
 }
 
 // Binary node b's child `side` (0 left, 1 right) into slot c.
@@ -77,7 +78,7 @@ void cv_widen_children(int b, int n_bin, out CvWideKids k)
         float best_area = -1.0;
         for (int c = 0; c < 4; c++) {
             float a = cv_widen_area(k.lo[c].xyz, k.hi[c].xyz);
-            if (c < k.n && cv_widen_inner(k, c, n_bin) && a > best_area) {
+            if (cv_widen_inner(k, c, n_bin) && a > best_area) {
                 best = c;
                 best_area = a;
                 open = k.word[c];

@@ -37,7 +37,7 @@ void main()
     nd.word = ivec4(0);
     nd.count = ivec4(0);
     for (int c = 0; c < 4; c++) {
-        bool leaf = c < k.n && k.count[c] > 0, inner = c < k.n && cv_widen_inner(k, c, n_bin);
+        bool leaf = c < k.n && k.count[c] > 0, inner = cv_widen_inner(k, c, n_bin);
         if (!leaf && !inner)
             continue;
         nd.lox[c] = k.lo[c].x;

@@ -46,7 +46,7 @@ void main()
         cv_widen_children(int(queue[i]), n_bin, k);
     uint n_inner = 0u;
     for (int c = 0; c < 4; c++)
-        n_inner += c < k.n && cv_widen_inner(k, c, n_bin) ? 1u : 0u;
+        n_inner += cv_widen_inner(k, c, n_bin) ? 1u : 0u;
     uint below = n_inner > 0u ? need[i] + n_inner - 1u : 0u;
     uint at = n_inner > 0u ? atomicAdd(s_count, n_inner) : 0u;
     if (n_inner > 1u)
@@ -60,7 +60,7 @@ void main()
     barrier();
     at += s_base;
     for (int c = 0; c < 4; c++) {
-        if (c >= k.n || !cv_widen_inner(k, c, n_bin))
+        if (!cv_widen_inner(k, c, n_bin))
             continue;
         if (at < uint(queue.length()) && at < uint(need.length())) {
             queue[at] = uint(k.word[c]);

@@ -58,7 +58,7 @@ enum {
 struct cv_bvh {
     struct cv_gpu *gpu;
     GLuint nodes, prims, tris, binary;
-    size_t nodes_bytes, prims_bytes, tris_bytes, binary_bytes;
+    size_t nodes_bytes, prims_bytes, tris_bytes;
     struct cv_bvh_stats stats;
 };
 
@@ -235,7 +235,6 @@ static bool build_trivial(struct cv_bvh *bvh, GLuint vertices, GLuint triangles,
         return false;
     bvh->nodes_bytes = sizeof(wide);
     bvh->prims_bytes = 4;
-    bvh->binary_bytes = sizeof(bin);
     bvh->stats.bytes = sizeof(wide) + 4 + sizeof(CvBvhTri) + (keep_binary ? sizeof(bin) : 0);
     bvh->stats.n_nodes = 1;
     bvh->stats.n_binary_nodes = 1;
@@ -554,8 +553,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     if (!emitted)
         return false;
     if (p->keep_binary) {
-        if (!(bvh->binary = own_buffer(bvh, (size_t)n_nodes * sizeof(CvBvhNode),
-                                       &bvh->binary_bytes, "bvh binary nodes", err)))
+        size_t kept;
+        if (!(bvh->binary = own_buffer(bvh, (size_t)n_nodes * sizeof(CvBvhNode), &kept,
+                                       "bvh binary nodes", err)))
             return false;
         glCopyNamedBufferSubData(b->out_nodes, bvh->binary, 0, 0,
                                  (GLsizeiptr)n_nodes * sizeof(CvBvhNode));
