@@ -39,6 +39,21 @@ check "indirect: no distant or environment light" sh -c "! grep -q '^LightSource
 check "too few triangles is refused" sh -c "! '$gen' --triangles 10 --out '$tmp/e' 2>/dev/null"
 check "a bad number is refused" sh -c "! '$gen' --triangles 5x --out '$tmp/e' 2>/dev/null"
 
+"$gen" --triangles 6000 --seed 2 --production --out "$tmp/p" 2>/dev/null
+check "production: exactly 6000 triangles" test "$(faces "$tmp/p")" -eq 6000
+check "production: at least 50 materials" \
+    test "$(grep -c '^MakeNamedMaterial' "$tmp/p/scene.pbrt")" -ge 50
+for m in coateddiffuse coatedconductor conductor dielectric; do
+    check "production: material type $m" grep -q "\"string type\" \"$m\"" "$tmp/p/scene.pbrt"
+done
+check "production: image textures used by materials" grep -q '"texture reflectance" "tex_' "$tmp/p/scene.pbrt"
+check "production: textures of several sizes (64 to 2048)" sh -c \
+    "test \$(ls -l '$tmp/p/textures' | awk '/tex_/ {print \$5}' | sort -u | wc -l) -ge 6"
+check "production: meshes carry texture coordinates" \
+    grep -aq "property float u" "$tmp/p/geometry/ground.ply"
+"$gen" --triangles 6000 --seed 2 --production --out "$tmp/p2" 2>/dev/null
+check "production: same seed gives the same bytes" diff -r "$tmp/p" "$tmp/p2"
+
 # The loader reads what the generator writes (when it is in this build).
 "$cb" --bench "$tmp/a/scene.pbrt" --no-gpu > "$tmp/rec.jsonl" 2>"$tmp/err" || true
 if grep -q '"unavailable.load"' "$tmp/rec.jsonl"; then
@@ -46,6 +61,12 @@ if grep -q '"unavailable.load"' "$tmp/rec.jsonl"; then
 else
     check "the loader reads 5000 triangles" grep -q '"scene.triangles": 5000[,}]' "$tmp/rec.jsonl"
     check "without warnings" grep -q '"scene.warnings": 0[,}]' "$tmp/rec.jsonl"
+    "$cb" --bench "$tmp/p/scene.pbrt" --no-gpu > "$tmp/recp.jsonl" 2>"$tmp/errp" || true
+    check "production: the loader reads 6000 triangles" \
+        grep -q '"scene.triangles": 6000[,}]' "$tmp/recp.jsonl"
+    check "production: without warnings" grep -q '"scene.warnings": 0[,}]' "$tmp/recp.jsonl"
+    check "production: 64 materials and more" sh -c \
+        "grep -o '\"scene.materials\": [0-9]*' '$tmp/recp.jsonl' | awk '{exit !(\$2 >= 64)}'"
 fi
 
 printf 'spp,seconds,relmse\n1,0.1,1\n2,0.2,0.5\n4,0.4,0.25\n' > "$tmp/s.csv"

@@ -5,7 +5,11 @@
  * with transforms baked into the vertices, several material kinds and a mix
  * of area and distant/environment light. The same seed always gives the same
  * bytes. --indirect puts everything in a closed room lit by a lamp that faces
- * a wall, so nearly all light arrives after a bounce. */
+ * a wall, so nearly all light arrives after a bounce. --production makes it
+ * look like product and interior work instead: dozens of materials (coated
+ * plastics and conductors among them), image textures of several sizes and
+ * texture coordinates on every mesh, so that shading and texture fetches cost
+ * what they cost in real scenes. */
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -54,9 +58,10 @@ static double rng_gauss(void)
 
 struct mesh {
     float *pos, *nrm;          /* 3 floats per vertex */
+    float *uv;                 /* 2 floats per vertex, when has_uv */
     uint32_t *idx;             /* 3 per triangle */
     size_t nv, nt, cap_v, cap_t;
-    bool has_normals;
+    bool has_normals, has_uv;
 };
 
 static void *grow(void *p, size_t *cap, size_t need, size_t elem)
@@ -79,6 +84,7 @@ static void mesh_reset(struct mesh *m, bool normals)
 {
     m->nv = m->nt = 0;
     m->has_normals = normals;
+    m->has_uv = false;
 }
 
 static uint32_t mesh_vertex(struct mesh *m, double x, double y, double z,
@@ -88,6 +94,8 @@ static uint32_t mesh_vertex(struct mesh *m, double x, double y, double z,
     m->pos = grow(m->pos, &cv, m->nv + 1, 3 * sizeof(float));
     cv = m->cap_v;
     m->nrm = grow(m->nrm, &cv, m->nv + 1, 3 * sizeof(float));
+    cv = m->cap_v;
+    m->uv = grow(m->uv, &cv, m->nv + 1, 2 * sizeof(float));
     m->cap_v = cv;
     float *p = m->pos + 3 * m->nv, *n = m->nrm + 3 * m->nv;
     p[0] = (float)x, p[1] = (float)y, p[2] = (float)z;
@@ -243,6 +251,33 @@ static void shape_ground(struct mesh *m, uint64_t tris, double h, double amp)
     }
 }
 
+/* ---- texture coordinates ---- */
+
+/* Spherical coordinates of the object-space position: every shape is built
+ * around the origin, so this covers each with one image (a seam and pinched
+ * poles are of no matter to a benchmark). Call before mesh_apply. */
+static void mesh_uv_spherical(struct mesh *m, double repeat)
+{
+    for (size_t i = 0; i < m->nv; i++) {
+        const float *p = m->pos + 3 * i;
+        double r = sqrt((double)p[0] * p[0] + (double)p[1] * p[1] + (double)p[2] * p[2]);
+        double u = atan2(p[2], p[0]) / (2 * M_PI) + 0.5;
+        double v = r > 0 ? acos(p[1] / r) / M_PI : 0.5;
+        m->uv[2 * i] = (float)(u * repeat), m->uv[2 * i + 1] = (float)(v * repeat);
+    }
+    m->has_uv = true;
+}
+
+/* Planar coordinates in xz, one repeat every `period` units (the ground). */
+static void mesh_uv_planar(struct mesh *m, double period)
+{
+    for (size_t i = 0; i < m->nv; i++) {
+        m->uv[2 * i] = (float)(m->pos[3 * i] / period);
+        m->uv[2 * i + 1] = (float)(m->pos[3 * i + 2] / period);
+    }
+    m->has_uv = true;
+}
+
 /* ---- transforms baked into the vertices ---- */
 
 struct xform {
@@ -342,13 +377,14 @@ static bool mesh_write_ply(const struct mesh *m, const char *name)
                       "ply\nformat binary_little_endian 1.0\n"
                       "comment written by cavalry bench/gen_scene\n"
                       "element vertex %zu\n"
-                      "property float x\nproperty float y\nproperty float z\n%s"
+                      "property float x\nproperty float y\nproperty float z\n%s%s"
                       "element face %zu\n"
                       "property list uchar int vertex_indices\nend_header\n",
                       m->nv,
                       m->has_normals ? "property float nx\nproperty float ny\nproperty float nz\n" : "",
+                      m->has_uv ? "property float u\nproperty float v\n" : "",
                       m->nt);
-    size_t vsize = m->has_normals ? 24 : 12;
+    size_t vsize = 12 + (m->has_normals ? 12 : 0) + (m->has_uv ? 8 : 0);
     size_t total = (size_t)hl + m->nv * vsize + m->nt * 13;
     ply_buf = grow(ply_buf, &ply_cap, total, 1);
     unsigned char *p = ply_buf;
@@ -360,6 +396,9 @@ static bool mesh_write_ply(const struct mesh *m, const char *name)
         if (m->has_normals)
             for (int k = 0; k < 3; k++, p += 4)
                 put_f32(p, m->nrm[3 * i + k]);
+        if (m->has_uv)
+            for (int k = 0; k < 2; k++, p += 4)
+                put_f32(p, m->uv[2 * i + k]);
     }
     for (size_t t = 0; t < m->nt; t++) {
         *p++ = 3;
@@ -416,20 +455,162 @@ static void write_materials(FILE *f)
           "    \"rgb reflectance\" [ 0.8 0.75 0.62 ] \"float roughness\" [ 0.2 ]\n\n", f);
 }
 
+/* ---- production look: image textures and many materials ---- */
+
+/* A few large textures and more small ones, as real scenes have. */
+static const int tex_sizes[] = {2048, 1024, 1024, 512, 512, 512, 256, 256,
+                                256, 256, 128, 128, 64, 64, 64, 64};
+#define N_TEX ((int)(sizeof tex_sizes / sizeof tex_sizes[0]))
+#define N_PROD_MATERIALS 64
+
+/* Value noise on an integer lattice, hashed from the seed: [0,1). */
+static double lattice(int x, int y, uint32_t seed)
+{
+    uint32_t h = (uint32_t)x * 0x8da6b343u ^ (uint32_t)y * 0xd8163841u ^ seed * 0xcb1ab31fu;
+    h ^= h >> 13, h *= 0x5bd1e995u, h ^= h >> 15;
+    return (h & 0xffffff) / 16777216.0;
+}
+
+static double value_noise(double u, double v, uint32_t seed)
+{
+    int x = (int)floor(u), y = (int)floor(v);
+    double fx = u - x, fy = v - y;
+    fx = fx * fx * (3 - 2 * fx), fy = fy * fy * (3 - 2 * fy);
+    double a = lattice(x, y, seed), b = lattice(x + 1, y, seed);
+    double c = lattice(x, y + 1, seed), d = lattice(x + 1, y + 1, seed);
+    return (a + (b - a) * fx) * (1 - fy) + (c + (d - c) * fx) * fy;
+}
+
+/* DIR/textures/tex_NN.tga: uncompressed 24-bit TGA (read by Cavalry through
+ * stb_image and by pbrt-v4), a pattern that tiles: checks, stripes, wood-like
+ * rings or cloudy noise between two random colours. */
+static bool write_texture(int index, int size)
+{
+    char path[8192];
+    snprintf(path, sizeof path, "%s/textures/tex_%02d.tga", out_dir, index);
+    size_t n = 18 + (size_t)3 * size * size;
+    unsigned char *img = calloc(1, n);
+    if (!img) {
+        fprintf(stderr, "gen_scene: out of memory\n");
+        return false;
+    }
+    img[2] = 2;                                   /* uncompressed true colour */
+    img[12] = (unsigned char)(size & 255), img[13] = (unsigned char)(size >> 8);
+    img[14] = (unsigned char)(size & 255), img[15] = (unsigned char)(size >> 8);
+    img[16] = 24;
+    double c0[3], c1[3];
+    for (int k = 0; k < 3; k++)
+        c0[k] = rng_range(0.05, 0.9), c1[k] = rng_range(0.05, 0.9);
+    int pattern = index % 4, cells = 2 << (int)(rng_uniform() * 4);
+    uint32_t seed = (uint32_t)rng_next();
+    for (int y = 0; y < size; y++) {
+        for (int x = 0; x < size; x++) {
+            double u = (x + 0.5) / size, v = (y + 0.5) / size, t;
+            double grain = value_noise(u * 64, v * 64, seed ^ 0x55u);
+            switch (pattern) {
+            case 0: t = ((int)(u * cells) + (int)(v * cells)) & 1; break;
+            case 1: t = 0.5 + 0.5 * sin(2 * M_PI * cells * (u + 0.05 * grain)); break;
+            case 2: {
+                double du = u - 0.5, dv = v - 0.5;
+                t = 0.5 + 0.5 * sin(2 * M_PI * cells * sqrt(du * du + dv * dv) + 3 * grain);
+                break;
+            }
+            default:
+                t = 0.5 * value_noise(u * cells, v * cells, seed) +
+                    0.3 * value_noise(u * cells * 4, v * cells * 4, seed + 1) + 0.2 * grain;
+                break;
+            }
+            t = 0.85 * t + 0.15 * grain;
+            unsigned char *px = img + 18 + 3 * ((size_t)y * size + x);
+            for (int k = 0; k < 3; k++) {
+                double c = c0[k] + (c1[k] - c0[k]) * t;
+                px[2 - k] = (unsigned char)(255.0 * pow(c, 1 / 2.2) + 0.5);   /* BGR, sRGB */
+            }
+        }
+    }
+    FILE *f = fopen(path, "wb");
+    bool ok = f && write_all(f, img, n, path);
+    if (!f || (fclose(f) != 0 && ok)) {
+        fprintf(stderr, "gen_scene: %s: %s\n", path, strerror(errno));
+        ok = false;
+    }
+    free(img);
+    return ok;
+}
+
+static const char *const metals[] = {"Au", "Cu", "Al", "Ag", "CuZn"};
+
+/* Textures tex_NN and materials prod_NN: textured and plain diffuse, coated
+ * plastics (plain and textured), coated conductors, rough and polished
+ * conductors, a little glass. */
+static void write_production_materials(FILE *f)
+{
+    for (int t = 0; t < N_TEX; t++)
+        fprintf(f, "Texture \"tex_%02d\" \"spectrum\" \"imagemap\"\n"
+                "    \"string filename\" [ \"textures/tex_%02d.tga\" ]\n", t, t);
+    for (int i = 0; i < N_PROD_MATERIALS; i++) {
+        int tex = (int)(rng_next() % N_TEX);
+        const char *metal = metals[rng_next() % (sizeof metals / sizeof metals[0])];
+        double r = rng_range(0.05, 0.85), g = rng_range(0.05, 0.85), b = rng_range(0.05, 0.85);
+        fprintf(f, "MakeNamedMaterial \"prod_%02d\"", i);
+        switch (i % 8) {
+        case 0:
+        case 6:
+            fprintf(f, " \"string type\" \"diffuse\" \"texture reflectance\" \"tex_%02d\"\n", tex);
+            break;
+        case 1:
+            fprintf(f, " \"string type\" \"diffuse\" \"rgb reflectance\" [ %.3f %.3f %.3f ]\n",
+                    r, g, b);
+            break;
+        case 2:
+            fprintf(f, " \"string type\" \"coateddiffuse\" \"texture reflectance\" \"tex_%02d\"\n"
+                    "    \"float roughness\" [ %.3f ]\n", tex, rng_range(0, 0.3));
+            break;
+        case 3:
+            fprintf(f, " \"string type\" \"coateddiffuse\" \"rgb reflectance\" [ %.3f %.3f %.3f ]\n"
+                    "    \"float roughness\" [ %.3f ]\n", r, g, b, rng_range(0, 0.15));
+            break;
+        case 4:
+            fprintf(f, " \"string type\" \"coatedconductor\"\n"
+                    "    \"spectrum conductor.eta\" [ \"metal-%s-eta\" ]"
+                    " \"spectrum conductor.k\" [ \"metal-%s-k\" ]\n"
+                    "    \"float conductor.roughness\" [ %.3f ]"
+                    " \"float interface.roughness\" [ %.3f ]\n",
+                    metal, metal, rng_range(0.05, 0.4), rng_range(0, 0.1));
+            break;
+        case 5:
+            fprintf(f, " \"string type\" \"conductor\"\n"
+                    "    \"spectrum eta\" [ \"metal-%s-eta\" ] \"spectrum k\" [ \"metal-%s-k\" ]\n"
+                    "    \"float roughness\" [ %.3f ]\n", metal, metal, rng_range(0.01, 0.4));
+            break;
+        default:
+            if (i % 32 == 7)
+                fprintf(f, " \"string type\" \"dielectric\" \"float eta\" [ 1.5 ]\n");
+            else
+                fprintf(f, " \"string type\" \"conductor\" \"rgb reflectance\" [ %.3f %.3f %.3f ]\n"
+                        "    \"float roughness\" [ %.3f ]\n", r, g, b, rng_range(0.02, 0.3));
+            break;
+        }
+    }
+    fputc('\n', f);
+}
+
 struct opts {
     uint64_t triangles;
     uint64_t seed;
     const char *out;
-    bool indirect;
+    bool indirect, production;
     int width, height, spp;
 };
 
 static void usage(FILE *f)
 {
-    fputs("usage: gen_scene --triangles N --out DIR [--seed S] [--indirect]\n"
+    fputs("usage: gen_scene --triangles N --out DIR [--seed S] [--indirect] [--production]\n"
           "                 [--width W] [--height H] [--spp N]\n"
           "Writes DIR/scene.pbrt and DIR/geometry/*.ply (binary little-endian)\n"
-          "with exactly N triangles. --indirect: closed room, lamp facing a wall.\n", f);
+          "with exactly N triangles. --indirect: closed room, lamp facing a wall.\n"
+          "--production: 64 materials (coated plastics and conductors among them)\n"
+          "and 16 image textures of 64 to 2048 texels in DIR/textures.\n", f);
 }
 
 static bool parse_u64(const char *s, uint64_t *v)
@@ -461,6 +642,8 @@ static bool parse_args(int argc, char **argv, struct opts *o)
             exit(0);
         } else if (!strcmp(a, "--indirect")) {
             o->indirect = true;
+        } else if (!strcmp(a, "--production")) {
+            o->production = true;
         } else if (i + 1 < argc && !strcmp(a, "--out")) {
             o->out = argv[++i];
         } else if (i + 1 < argc && (!strcmp(a, "--triangles") || !strcmp(a, "--seed") ||
@@ -547,6 +730,15 @@ int main(int argc, char **argv)
     snprintf(geo, sizeof geo, "%s/geometry", o.out);
     if (!make_dir(o.out) || !make_dir(geo))
         return 1;
+    if (o.production) {
+        char tex[4200];
+        snprintf(tex, sizeof tex, "%s/textures", o.out);
+        if (!make_dir(tex))
+            return 1;
+        for (int t = 0; t < N_TEX; t++)
+            if (!write_texture(t, tex_sizes[t]))
+                return 1;
+    }
     char scene_path[4200];
     snprintf(scene_path, sizeof scene_path, "%s/scene.pbrt", o.out);
     FILE *sf = fopen(scene_path, "w");
@@ -559,9 +751,10 @@ int main(int argc, char **argv)
     const double H = o.indirect ? 30.0 : 60.0;
     const double room_h = 24.0;
 
-    fprintf(sf, "# Cavalry benchmark scene: %" PRIu64 " triangles, seed %" PRIu64 "%s.\n"
+    fprintf(sf, "# Cavalry benchmark scene: %" PRIu64 " triangles, seed %" PRIu64 "%s%s.\n"
             "# Written by bench/gen_scene; regenerate rather than edit.\n",
-            o.triangles, o.seed, o.indirect ? ", indirect (closed room)" : "");
+            o.triangles, o.seed, o.indirect ? ", indirect (closed room)" : "",
+            o.production ? ", production materials and textures" : "");
     if (o.indirect)
         fprintf(sf, "LookAt %.3f %.3f %.3f  0 6 0  0 1 0\n", -0.8 * H, 0.45 * room_h, -0.8 * H);
     else
@@ -573,6 +766,8 @@ int main(int argc, char **argv)
     fprintf(sf, "Integrator \"path\" \"integer maxdepth\" [ %d ]\n\n", o.indirect ? 8 : 5);
     fputs("WorldBegin\n\n", sf);
     write_materials(sf);
+    if (o.production)
+        write_production_materials(sf);
 
     if (!o.indirect) {
         fputs("LightSource \"distant\" \"point3 from\" [ -0.4 1 -0.25 ] \"point3 to\" [ 0 0 0 ]\n"
@@ -718,6 +913,8 @@ int main(int argc, char **argv)
                    upright ? rng_range(-0.15, 0.15) : rng_range(-1.2, 1.2),
                    upright ? rng_range(-0.1, 0.1) : rng_range(-1.2, 1.2),
                    (double[3]){px, 0, pz});
+        if (o.production)
+            mesh_uv_spherical(&m, k == K_PANEL || k == K_BOX ? 2.0 : 1.0 + (double)(rng_next() % 4));
         mesh_apply(&m, &x);
         /* Rest on the ground, some floating above it. */
         double lo, hi;
@@ -734,7 +931,14 @@ int main(int argc, char **argv)
         used += m.nt;
         kind_tris[k] += m.nt;
         kind_count[k]++;
-        const char *mat = materials[rng_next() % (sizeof materials / sizeof materials[0])];
+        char prod[32];
+        const char *mat;
+        if (o.production) {
+            snprintf(prod, sizeof prod, "prod_%02d", (int)(rng_next() % N_PROD_MATERIALS));
+            mat = prod;
+        } else {
+            mat = materials[rng_next() % (sizeof materials / sizeof materials[0])];
+        }
         fprintf(sf, "AttributeBegin\n    NamedMaterial \"%s\"\n"
                 "    Shape \"plymesh\" \"string filename\" [ \"%s\" ]\nAttributeEnd\n", mat, name);
     }
@@ -746,6 +950,8 @@ int main(int argc, char **argv)
     /* Sink the terrain a little so objects placed at y=0 touch it. */
     for (size_t v = 0; v < m.nv; v++)
         m.pos[3 * v + 1] -= o.indirect ? 0.0f : 0.4f;
+    if (o.production)
+        mesh_uv_planar(&m, 6.0);
     snprintf(name, sizeof name, "geometry/ground.ply");
     if (!mesh_write_ply(&m, name))
         return 1;
@@ -753,7 +959,7 @@ int main(int argc, char **argv)
     used += m.nt;
     fprintf(sf, "AttributeBegin\n    NamedMaterial \"%s\"\n"
             "    Shape \"plymesh\" \"string filename\" [ \"%s\" ]\nAttributeEnd\n",
-            o.indirect ? "diffuse_clay" : "diffuse_white", name);
+            o.production ? "prod_00" : o.indirect ? "diffuse_clay" : "diffuse_white", name);
 
     if (fclose(sf) != 0) {
         fprintf(stderr, "gen_scene: %s: %s\n", scene_path, strerror(errno));
@@ -768,6 +974,7 @@ int main(int argc, char **argv)
                 kind_count[k], kind_tris[k]);
     free(m.pos);
     free(m.nrm);
+    free(m.uv);
     free(m.idx);
     free(ply_buf);
     return used == total ? 0 : 1;

@@ -10,9 +10,10 @@
 #   --binary PATH  cavalry_bench to run (default: next to this script, then
 #                  ./bench/cavalry_bench of the build tree); gen_scene is
 #                  taken from the same folder.
-#   --quick        small generated scenes (100k, 300k, 100k indirect), 160x90,
-#                  2 spp, 300 s per run at most: minutes on llvmpipe.
-#                  Default (full): 1M, 4M, 16M and 1M indirect at 1280x720, 64 spp.
+#   --quick        small generated scenes (100k, 300k, 100k indirect, 100k
+#                  production), 160x90, 2 spp, 300 s per run at most: minutes
+#                  on llvmpipe. Default (full): 1M, 4M, 16M, 1M indirect and
+#                  1M and 4M production at 1280x720, 64 spp.
 #   --sizes, --size, --spp, --repeat (3), --timeout: override those.
 #   --save         also write bench/results/YYYY-MM-DD_<gpu>_<driver>.json
 #                  (done by default for full runs on a hardware GPU).
@@ -70,12 +71,14 @@ mkdir -p "$work/scenes" || exit 1
 if [ "$quick" = yes ]; then
     [ -n "$sizes" ] || sizes="100k 300k"
     indirect="100k"
+    production="100k"
     [ -n "$size" ] || size=160x90
     [ -n "$spp" ] || spp=2
     [ -n "$limit" ] || limit=300
 else
     [ -n "$sizes" ] || sizes="1M 4M 16M"
     indirect="1M"
+    production="1M 4M"
     [ -n "$size" ] || size=1280x720
     [ -n "$spp" ] || spp=64
 fi
@@ -103,6 +106,15 @@ if [ -z "$scenes" ]; then
         d="$work/scenes/gen-$n-indirect-seed1"
         if [ ! -f "$d/scene.pbrt" ]; then
             "$gen" --triangles "$n" --seed 1 --indirect --out "$d" || exit 1
+        fi
+        scenes="$scenes $d/scene.pbrt"
+    done
+    # Production look: 64 materials, coated plastics and conductors, image
+    # textures of several sizes (what real scenes spend their shading on).
+    for n in $production; do
+        d="$work/scenes/gen-$n-production-seed1"
+        if [ ! -f "$d/scene.pbrt" ]; then
+            "$gen" --triangles "$n" --seed 1 --production --out "$d" || exit 1
         fi
         scenes="$scenes $d/scene.pbrt"
     done
