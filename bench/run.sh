@@ -15,12 +15,15 @@
 #                  on llvmpipe. Default (full): 1M, 4M, 16M, 1M indirect and
 #                  1M and 4M production at 1280x720, 64 spp.
 #   --sizes, --size, --spp, --repeat (3), --timeout: override those.
-#   --save         also write bench/results/YYYY-MM-DD_<gpu>_<driver>.json
+#   --save         also write bench/results/YYYY-MM-DD_<gpu>_<commit>.json
 #                  (done by default for full runs on a hardware GPU).
 #   scenes         .pbrt files to run instead of the fixed set.
-# Generated scenes are cached under --work (default bench/out/scenes).
+# Generated scenes are cached under --work (default bench/out/scenes). Every
+# run also writes --work/RESULTS-entry.md: a bench/RESULTS.md section with
+# the commit, GPU, median table and command, to complete and paste there.
 set -u
 
+cmdline="bench/run.sh $*"
 here=$(cd "$(dirname "$0")" && pwd)
 srcdir=$(cd "$here/.." && pwd)
 binary=
@@ -160,13 +163,38 @@ cat "$summary"
 cat "$work/table.txt" >&2
 [ -z "$out" ] || cp "$summary" "$out" || exit 1
 
-# Keep results of hardware GPU runs in the repository, named by date, GPU
-# and driver, so that each change can be compared with the last.
+# Keep the summary of a hardware GPU run in the repository, named by date,
+# GPU and commit, and describe it in bench/RESULTS.md: one JSON per result,
+# not the records or logs.
 field() {
     sed -n "s/.*\"gpu\": {.*\"$1\": \"\([^\"]*\)\".*/\1/p" "$summary" | head -n 1
 }
 renderer=$(field renderer)
 version=$(field version)
+# The driver is what follows the GL version: "4.6.0 NVIDIA 550.54.14".
+driver=$(printf '%s' "$version" | sed 's/^[0-9.]* *//; s/(Core Profile) *//')
+commit=$(git -C "$srcdir" rev-parse --short HEAD 2>/dev/null) || commit=unknown
+if [ "$commit" != unknown ] && [ -n "$(git -C "$srcdir" status --porcelain --untracked-files=no 2>/dev/null)" ]; then
+    commit="$commit-dirty"
+fi
+slug() { printf '%s' "$1" | tr -cs 'A-Za-z0-9.' '-' | sed 's/^-//; s/-$//'; }
+name="$(date -u +%Y-%m-%d)_$(slug "${renderer:-unknown}")_$(slug "$commit").json"
+entry="$work/RESULTS-entry.md"
+{
+    echo "### TITLE: what was measured"
+    echo
+    echo "\`bench/results/$name\` (if saved), main at $commit, ${renderer:-unknown GPU},"
+    echo "driver ${driver:-unknown}, $(date -u +%Y-%m-%d)."
+    echo
+    echo "- **Question.** ..."
+    echo "- **Answer.** Medians over $repeat repeats per scene, one process each:"
+    echo
+    sed 's/^/      /' "$work/table.txt"
+    echo
+    echo "- **Decision.** ..."
+    echo "- **Reproduce.** \`$cmdline\`"
+} > "$entry"
+echo "run.sh: wrote $entry (a section for bench/RESULTS.md)" >&2
 if [ "$save" = auto ]; then
     save=no
     case "$renderer" in
@@ -175,10 +203,6 @@ if [ "$save" = auto ]; then
     esac
 fi
 if [ "$save" = yes ]; then
-    slug() { printf '%s' "$1" | tr -cs 'A-Za-z0-9.' '-' | sed 's/^-//; s/-$//'; }
-    # The driver is what follows the GL version: "4.6.0 NVIDIA 550.54.14".
-    driver=$(printf '%s' "$version" | sed 's/^[0-9.]* *//; s/(Core Profile) *//')
-    name="$(date -u +%Y-%m-%d)_$(slug "$renderer")_$(slug "${driver:-unknown}").json"
     mkdir -p "$srcdir/bench/results" && cp "$summary" "$srcdir/bench/results/$name" &&
         echo "run.sh: saved bench/results/$name" >&2
 fi

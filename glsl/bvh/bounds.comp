@@ -4,9 +4,9 @@
 // invocation and step, their loads issued together) and writes its (min,
 // max) pair to bounds[2 + 2 * group]; the last group to finish, told by an
 // atomic counter that src/bvh/bounds.c clears, reduces those pairs into
-// bounds[0..1]. One dispatch instead of one level per factor of 256 (H100:
-// 0.166 ms at 4 M triangles and 0.775 ms at 16 M, against 0.219 and ~1.08
-// for the levels; at 1 M about the same, 0.057-0.073 against 0.070).
+// bounds[0..1]. One dispatch instead of one level per factor of 256: the
+// levels' dispatches and barriers cost more than the reduction from a few
+// million triangles on (bench/RESULTS.md, "Figures behind the code").
 // With FROM_BOXES the centroids are the centres of split references' boxes
 // (src/bvh/split.h) instead of the triangles'; with SCENE_BOX the result is
 // the union of the triangles' boxes, in which splitting lays its grid.

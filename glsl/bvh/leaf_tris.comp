@@ -12,12 +12,11 @@
 // slot_of[r] (leaf_slots.comp): references come in triangle order, so the
 // vertex reads are as coherent as the scene's own order, and only the
 // writes land at random. Gathering in leaf order read the vertex buffer at
-// random, which on an H100 collapsed once that buffer passed a few hundred
-// MB (address translation, it seems): 2 ms at 4 M triangles (384 MB of
-// vertices), 89 ms at 8 M, 430 ms at 16 M. Scattering into the whole
-// output did the same past 500 MB of it (8 M triangles: 4.9 ms, 16 M:
-// 210 ms), so the host runs the scatter once per window of slots
-// [u_slot_lo, u_slot_hi), each a few hundred MB of output: every pass
+// random, and random access over more than a few hundred MB collapses on
+// NVIDIA (address translation, it seems); scattering into the whole
+// output does the same once the output is that large (bench/RESULTS.md,
+// "BVH build: wall time"), so the host runs the scatter once per window of
+// slots [u_slot_lo, u_slot_hi), each a few hundred MB of output: every pass
 // reads all references' slots in order, and only the window's write.
 #include "shared/bvh.h"
 #include "shared/scene.h"

@@ -4,8 +4,9 @@
 // (2^20 cells per axis) stored as two words, low first. Writes the key and
 // the triangle index as the value for the radix sort, and the triangle's
 // box for refit.comp: written here in input order, one coalesced pass,
-// because gathering triangles and vertices in sorted order from refit ran
-// into a cliff on NVIDIA (H100: 3.6 ms at 4 M triangles, 370 ms at 16 M).
+// because gathering triangles and vertices in sorted order from refit
+// reads at random over large buffers, which falls off a cliff on NVIDIA
+// past a few hundred MB (bench/RESULTS.md, "Figures behind the code").
 // With FROM_BOXES the elements are split references (src/bvh/split.h) whose
 // boxes are already there: the key is of the box's centre.
 #include "shared/scene.h"

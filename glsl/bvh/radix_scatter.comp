@@ -13,10 +13,9 @@
 // three dispatches), and the sorted tile leaves in runs of consecutive
 // slots, one per digit. A key's slot is its run's slot plus its place
 // minus the place where its run starts.
-// 128 invocations of 8 keys use 19 KiB of shared memory. On an H100 that
-// is no limit: 256 of 4 keys (27 KiB) sorted 1.3 M keys in 0.49 ms instead
-// of 0.42, and the scan sharing the tile's memory (10 KiB, one barrier more
-// per nibble) in 0.47.
+// 128 invocations of 8 keys use 19 KiB of shared memory, which limits no
+// GPU we know: 256 of 4 keys, or the scan sharing the tile's memory (one
+// barrier more per nibble), sorted slower (bench/RESULTS.md).
 #include "shared/bindings.h"
 
 #define THREADS 128

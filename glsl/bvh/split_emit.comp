@@ -9,9 +9,10 @@
 // right half the rest. Reference j of a triangle follows its own path down
 // these cuts from the whole triangle to its piece, so a triangle's cuts
 // run in parallel, depth deep, instead of one after the other in one
-// invocation: the 67 killeroo floor and wall triangles with 128 to 255
-// extra references each sat in the first two workgroups and held the pass
-// for 2.7 ms on an H100 (of 3.0 for all the splitting, 7.9 for the build).
+// invocation: a few triangles with hundreds of extra references each (the
+// killeroo scene's floor and walls) sit in the first workgroups, and one
+// invocation doing all their cuts in turn held the whole pass
+// (bench/RESULTS.md, "BVH build: wall time").
 // Invocations of one triangle compute the same cuts from the same inputs
 // with the same code, so they agree on every piece.
 //

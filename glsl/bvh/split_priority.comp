@@ -23,10 +23,9 @@
 // flat box crosses the triangle's plane there, so it tests at most one
 // needless triangle, the quad's other half; split, it walks a path of more
 // nodes instead. Long thin triangles, the cones of lamp shades, waste many
-// times their area and keep nearly all their priority. On an H100,
-// veach-bidir at 1024 spp with a budget of 0.3: 6.57 s unsplit, 6.00 s with
-// flat boxes left out, 5.66 s with 2 A_ideal, 5.45 s with 3 A_ideal (3.5:
-// the same by CPU traversal).
+// times their area and keep nearly all their priority. Of the thresholds
+// tried (flat boxes left out, 2, 3 and 3.5 A_ideal), 3 rendered veach-bidir
+// fastest (bench/RESULTS.md, "Figures behind the code").
 // Writes p (float bits) to prio[i] and each workgroup's sum to sums[].
 #include "shared/scene.h"
 #include "shared/bindings.h"

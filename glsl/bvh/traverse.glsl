@@ -56,11 +56,9 @@ float cv_bvh_pad(vec3 o, vec3 d)
     CvBvhNode4 root = cv_bvh_nodes[0];
     // The used slots' boxes only. Unused slots' (lo +CV_BVH_EMPTY, hi
     // -CV_BVH_EMPTY) would drop out of a plain min/max with the same
-    // result, but this form traced faster on an H100 (4 M-triangle scene,
-    // first bounce 1.095 -> 1.135 G rays/s, bench/results/
-    // 2026-11-24_NVIDIA-H100_bvh4-gpu): how the compiler allocates this
-    // function's registers matters to the whole loop (see
-    // CV_BVH_STACK_SIZE).
+    // result, but this form traces faster (bench/RESULTS.md, "The 4-wide
+    // tree, built on the GPU"): how the compiler allocates this function's
+    // registers matters to the whole loop (see CV_BVH_STACK_SIZE).
     bvec4 ok = lessThanEqual(root.lox, root.hix);
     vec4 big = vec4(3.0e38);
     vec3 lo = vec3(min(min(mix(big.x, root.lox.x, ok.x), mix(big.x, root.lox.y, ok.y)),
@@ -99,8 +97,8 @@ bvec4 cv_bvh_slab4(vec3 o, vec3 inv, float pad, CvBvhNode4 nd, float tmin, float
     tnear = a;
     // min/max above would turn an inverted (unused) box inside out. The
     // vector ands are spelt as uint ands here and in cv_bvh_step: through
-    // a bvec4 helper function the any-hit stage ran 6 % slower on an H100
-    // (4 M-triangle scene, 0.760 -> 0.714 G rays/s).
+    // a bvec4 helper function they compile to slower code (bench/RESULTS.md,
+    // "The 4-wide tree, built on the GPU").
     return bvec4(uvec4(lessThanEqual(a, b)) & uvec4(lessThanEqual(nd.lox, nd.hix)));
 }
 
@@ -129,9 +127,7 @@ bool cv_bvh_leaf_tri(CvRayTri r, int slot, out uint prim, out float t, out float
 // A query's state: the ray's set-up, the node to visit next, the stack
 // depth and the best hit so far (the stack entries are the invocation's,
 // below). The same loops as one function each with local variables were
-// 1-2 % slower on an H100 (4 M-triangle scene, 1280x720, 64 spp, medians
-// of 9: closest-hit stage 167.8 -> 165.5 ms, any-hit 114.5 -> 113.8 ms;
-// veach-bidir 1024 spp, of 6: 2027 -> 1994 and 1550 -> 1536 ms); the
+// a little slower (bench/RESULTS.md, "Figures behind the code"); the
 // arithmetic and the order of visits are the same.
 struct CvBvhWalk {
     CvRayTri r;  // r.o: the origin
@@ -195,15 +191,13 @@ void cv_bvh_order(inout float da, inout int na, inout float db, inout int nb)
 // the query has no node left to visit.
 // One run for all four children rather than a loop per child: lanes with
 // different numbers of leaf children run in step, and the triangle test is
-// compiled once (binary tree, H100, veach-bidir 256 spp: closest 588 -> 560
-// ms, any-hit 669 -> 618 ms). The order of the tests decides no result
-// (ties go to the lower triangle index).
+// compiled once, which makes both stages faster. The order of the tests
+// decides no result (ties go to the lower triangle index).
 // The nearest entered inner child is visited next and the others pushed,
-// farthest first. The sort (a 5-exchange network) runs only when two or
-// more are entered: H100, 4 M-triangle scene, all bounce rays 0.875 G
-// rays/s sorting always, 0.892 so, 0.834 with the nearest first and the
-// rest in slot order; veach-bidir 1024 spp 3323 / 3276 / 3554 ms
-// (bench/results/2026-11-24_NVIDIA-H100_bvh4).
+// farthest first, so the stack pops near subtrees before far ones. The
+// sort (a 5-exchange network) runs only when two or more are entered,
+// which beat sorting always and beat an unsorted push order by more
+// (bench/RESULTS.md, "The 4-wide tree, measured first").
 bool cv_bvh_step(inout CvBvhWalk w, float tfar, out ivec4 f, out ivec4 c)
 {
     w.steps--;
@@ -249,8 +243,7 @@ bool cv_bvh_step(inout CvBvhWalk w, float tfar, out ivec4 f, out ivec4 c)
     // The next subtree. Its entry distance is not kept: one more node
     // fetch (whose slab tests fail beyond the hit) for a subtree entered
     // beyond the current hit costs less than a second stack word per
-    // entry (H100, binary tree, veach-bidir: closest-hit stage 1.48 s ->
-    // 0.80 s at 256 spp).
+    // entry, which halves what each stack entry costs in local memory.
     if (w.sp == 0)
         return false;
     w.node = cv_bvh_pop(w);
@@ -269,14 +262,11 @@ int cv_bvh_run_slot(int k, ivec4 f, ivec4 c)
 // the last node's leaf children or visits a node, so lanes of a warp that
 // are testing leaves and lanes that are descending share the turn, rather
 // than the descending lanes waiting on the longest leaf run of the warp
-// (Aila & Laine 2009's if-if form). H100, binary tree, medians of two
-// interleaved rounds against testing a node's leaf run whole: bounce rays
-// of a full wave on the 4 M-triangle scene 1.015 -> 1.058 G rays/s;
-// veach-bidir 1024 spp 3392 -> 3245 ms; but cornell-box, whose few large
-// leaves pay the extra loop turns, 1837 -> 1904 ms
-// (bench/results/2026-11-24_NVIDIA-H100_if-if). Hits below the current one
-// still count, so visiting the next node before the triangles are done
-// changes no result.
+// (Aila & Laine 2009's if-if form). Faster than testing a node's leaf run
+// whole on large scenes, slower on scenes of a few large leaves, which pay
+// the extra loop turns (bench/RESULTS.md, "If-if traversal loop"). Hits
+// below the current one still count, so visiting the next node before the
+// triangles are done changes no result.
 void cv_bvh_closest_run(inout CvBvhWalk w)
 {
     int k = 0, n = 0;
@@ -302,13 +292,13 @@ void cv_bvh_closest_run(inout CvBvhWalk w)
 }
 
 // The any-hit form, with the same loop: w.hit.prim ends 0 when an occluder
-// was found, 0xffffffff when none. In this form (binary tree) the any-hit
-// stage alone ran 3 % slower on the 4 M scene (0.677 -> 0.658 G rays/s),
-// cornell-box 1 % (1881 -> 1904 ms), but veach-bidir 4 % faster as a whole
-// than with the old loop here (3340 -> 3214 ms).
+// was found, 0xffffffff when none. One loop form for both queries: the
+// any-hit stage alone is a little slower in it than with a loop of its own,
+// whole renders of small scenes faster (bench/RESULTS.md, "If-if traversal
+// loop").
 // Nearest child first here too: visiting the child with the larger box
-// first (likelier to hold an occluder) was slower on an H100 (binary tree,
-// veach-bidir, 256 spp: shadow stage 918 -> 977 ms).
+// first (likelier to hold an occluder) was slower (bench/RESULTS.md,
+// "Figures behind the code").
 void cv_bvh_any_run(inout CvBvhWalk w)
 {
     int k = 0, n = 0;

@@ -15,15 +15,15 @@
 // rewires the treelet when that is cheaper. The group then climbs on.
 // Nothing waits on another workgroup: the counters only decide who carries
 // on, as in refit.
-// Shared memory bounds the treelets in flight. On an H100 the groups' own
-// clock counts showed about 32 KiB of it per multiprocessor in use: groups
-// of 7 KiB averaged 3.95 resident per multiprocessor, of 23 KiB 0.77 (one
-// team of 128 lanes per group: 14.6 ms for 1 M triangles; four teams with
-// per-subset bounds in shared memory: 27.8 ms). So a team keeps per subset
+// Shared memory bounds the treelets in flight: the groups' own clock
+// counts showed that only a few tens of KiB of it per multiprocessor hold
+// resident groups, so a group of a few KiB keeps several treelets going
+// where one of tens of KiB keeps less than one (bench/RESULTS.md, "Figures
+// behind the code"). So a team keeps per subset
 // only its cost and best split (768 bytes for 7 leaves, 1.2 KiB per team
 // in all); a subset's bounds are the union of its leaves' and are formed
 // where needed, and the work lists come from a read-only buffer
-// (src/bvh/treelet_schedule.c): 5.2 ms.
+// (src/bvh/treelet_schedule.c).
 // Rounds after the first skip treelets whose subtree changed neither in the
 // previous round nor so far in this one: their optimisation would see the
 // very same input and keep it, so the tree is the same as without skipping.
@@ -39,8 +39,8 @@
 #define N_SUBSETS (1 << N_LEAVES)
 #define FULL uint(N_SUBSETS - 1)
 #define GROUP 128
-// Lanes per treelet. H100, 1 M triangles, 3 rounds: 32 lanes 5.2 ms, 64
-// lanes 5.4 ms, 128 lanes 6.5 ms, groups of 64 with two teams of 32 5.7 ms.
+// Lanes per treelet: one warp's worth; wider teams wait more on each
+// other's subsets than they gain in parallel work (bench/RESULTS.md).
 #define TEAM 32
 #define TEAMS (GROUP / TEAM)
 #define POPT_COLLAPSE 0x100u

@@ -5,12 +5,12 @@
 // caller (traversal, brute force) must use these same functions so that t
 // comes out bit-identical; `precise` stops the compiler from fusing
 // differently in different shaders. Drivers may also divide approximately
-// (GLSL allows 2.5 ulp; NVIDIA 580 does not round like IEEE), which moves t
+// (GLSL allows 2.5 ulp; NVIDIA's does not round like IEEE), which moves t
 // and the edge functions by an ulp, so every division that decides a hit or
 // its t goes through cv_div_rn: the result is then the same, correctly
-// rounded float on every driver and on the CPU. That costs: on an H100
-// (driver 580) closest + any-hit rays ran at 47 Mrays/s against 69 with
-// plain division over 1 M triangles. Define CV_BVH_FAST_DIV before
+// rounded float on every driver and on the CPU. That costs a large share
+// of the traversal rate against plain division (bench/RESULTS.md,
+// "Figures behind the code"). Define CV_BVH_FAST_DIV before
 // including for the renderer's form: plain division and the shear as
 // matrix rows (cv_ray_tri_row); traversal and brute force in one shader
 // still agree exactly, but t may differ by an ulp between drivers.
@@ -66,10 +66,9 @@ struct CvRayTri {
 // costs three fused operations a coordinate. Each vertex still goes through
 // one fixed function of the ray, so edges shared by two triangles get the
 // same edge functions and the test stays watertight; the x and y
-// coordinates round once instead of twice. Measured on an H100
-// (veach-bidir, 256 spp): closest-hit stage 756 -> 588 ms, any-hit
-// 953 -> 669 ms. The exact form keeps the indexed shear of its CPU port
-// (tests/bvh).
+// coordinates round once instead of twice; both traversal stages got
+// markedly faster (bench/RESULTS.md, "Figures behind the code"). The exact
+// form keeps the indexed shear of its CPU port (tests/bvh).
 float cv_ray_tri_row(vec3 a, vec3 m)
 {
     precise float r = fma(a.z, m.z, fma(a.y, m.y, a.x * m.x));
@@ -168,11 +167,11 @@ bool cv_ray_tri(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, out float t, out float b1
 // no barycentrics. With CV_BVH_FAST_DIV the range is tested on the
 // numerator, tmin * det < tz < tmax * det (for det > 0; flipped below 0),
 // without a division: the renderer's t is already only as good as the
-// driver's quotient, and this is at most an ulp or two off it. Measured on
-// an H100 (veach-bidir, 256 spp, medians of 3): shadow stage 1041 -> 918 ms.
-// The same numerator test as a pre-filter of closest hits (one reciprocal
-// for t and both weights on a pass) made the intersect stage slower
-// (~750 -> 781 ms), so closest hits divide as before. The exact form
+// driver's quotient, and this is at most an ulp or two off it; a division
+// per triangle is what the shadow stage saves. The same numerator test as a
+// pre-filter of closest hits (one reciprocal for t and both weights on a
+// pass) made the intersect stage slower, so closest hits divide as before
+// (bench/RESULTS.md, "Figures behind the code"). The exact form
 // divides as cv_ray_tri does, so tests/bvh still compares any-hit with
 // brute force bit for bit.
 bool cv_ray_tri_any(CvRayTri r, vec3 v0, vec3 v1, vec3 v2, float tmin, float tmax)

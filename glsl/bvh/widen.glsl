@@ -8,8 +8,8 @@
 // fetch most worth saving) into its two children, in place, until it has
 // four children or only leaves; ties go to the leftmost. Opening in place
 // keeps the binary tree's left-to-right order. This is the rule of the
-// experiment that chose the 4-wide tree (bench/results/
-// 2026-11-24_NVIDIA-H100_bvh4); no other rule has been measured.
+// experiment that chose the 4-wide tree (bench/RESULTS.md, "The 4-wide
+// tree, measured first"); no other rule has been measured.
 //
 // The binary nodes are bound at CV_BIND_STAGE0; n_bin is their count
 // (info[CV_BVH_INFO_NODES]). A child word outside 1..n_bin-1 is not
@@ -58,9 +58,9 @@ float cv_widen_area(vec3 lo, vec3 hi)
 
 // Every loop here runs over the four slots with a constant bound and
 // tests its index, rather than indexing by a variable, so that the arrays
-// can stay in registers: indexed by `best`, widening took 5.5 instead of
-// 3.0 ms at 4 M triangles on an H100 (bench/results/
-// 2026-11-24_NVIDIA-H100_bvh4-gpu, diag40 and diag43).
+// can stay in registers: indexed by `best`, they went to local memory and
+// widening took nearly twice as long (bench/RESULTS.md, "The 4-wide tree,
+// built on the GPU").
 void cv_widen_children(int b, int n_bin, out CvWideKids k)
 {
     for (int c = 0; c < 4; c++) {

@@ -25,9 +25,9 @@ layout(std430, binding = CV_BIND_STAGE0 + 4) buffer Need { uint need[]; };
 
 // The group's inner children and deepest stack need are gathered here
 // first, so that the level's nodes, which all add to the same counters, do
-// so once per group rather than twice per node: H100, widening 2.99 ->
-// 2.25 ms at 4 M triangles, 27.8 -> 14.5 ms at 16 M (bench/results/
-// 2026-11-24_NVIDIA-H100_bvh4-gpu, diag43).
+// so once per group rather than twice per node: contended global atomics
+// were a large share of widening's time (bench/RESULTS.md, "The 4-wide
+// tree, built on the GPU").
 shared uint s_count, s_base, s_need;
 
 void main()

@@ -5,9 +5,9 @@
  * the root at index 0, the boxes of all four children stored in the parent
  * so one 128-byte fetch decides which children a ray visits. Half as deep as
  * the binary tree it is collapsed from (glsl/bvh/widen.glsl), it shortens
- * the chain of dependent node fetches that bounds traversal (H100, 4 M
- * triangles: bounce rays 0.78 -> 0.89 G rays/s, bench/results/
- * 2026-11-24_NVIDIA-H100_bvh4). Per child slot k (vector component k):
+ * the chain of dependent node fetches that bounds traversal
+ * (bench/RESULTS.md, "The 4-wide tree, built on the GPU"). Per child
+ * slot k (vector component k):
  *   lox..hiz  the child's box, by axis, so four slab tests run as vec4 ops
  *   word      inner child: its node index; leaf child: its first leaf slot
  *   count     leaf child: its primitive count (1..CV_BVH_MAX_LEAF);
@@ -110,10 +110,10 @@ CV_CHECK_SIZE(CvBvhBuildNode, 48);
  * a node that has k inner children pushes at most k - 1, so the most it
  * can need is the largest sum of those along a path; widening works that
  * out (CV_BVH_INFO_STACK) and the build warns when it exceeds this. No
- * larger: the stack's size sets how many queries the NVIDIA driver runs at
- * once (H100, 4 M-triangle scene, first bounce: 48 or 64 entries 1.13 G
- * rays/s, 72 1.01, 128 0.60, 256 0.30; bench/results/
- * 2026-11-24_NVIDIA-H100_bvh4-gpu). */
+ * larger: the stack lives in local memory, whose size per query sets how
+ * many queries the NVIDIA driver runs at once; past 64 entries traversal
+ * slows down steeply (bench/RESULTS.md, "The 4-wide tree, built on the
+ * GPU"). */
 #define CV_BVH_STACK_SIZE 64
 
 /* Largest leaf that SAH collapsing may form. */

@@ -21,9 +21,8 @@
  * So film updates need no atomics, and a pixel's samples add up in the
  * same order however a render is split into passes. More than one slot a
  * pixel is for small films: the traversal stages only reach their rate
- * with a few million rays in flight (H100, 4 M-triangle scene, 64 spp:
- * closest hits 0.33 G rays/s at 640x360, 0.72 at 1280x720, 1.11 at
- * 2560x1440 with one slot a pixel). */
+ * with a few million rays in flight, more than a film of a million pixels
+ * holds (bench/RESULTS.md, "Paths in flight per pixel"). */
 #ifndef CV_SHARED_TRACE_H
 #define CV_SHARED_TRACE_H
 

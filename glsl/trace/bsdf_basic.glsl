@@ -1,10 +1,10 @@
 // glsl/trace/bsdf_basic.glsl: the BSDF interface of glsl/trace/bsdf/bsdf.glsl
 // for scenes whose materials are all untextured diffuse or mirror, without
 // bump maps or alpha (the host decides: scene_upload.c). The full library
-// makes the shade kernel large: on llvmpipe a 64x64, 16 spp cornell-box
-// pass took 7.2 s with it against 1.3 s with this file (JIT and run), and
-// the tests' scenes stay quick. Same conventions: f without cosine,
-// pdfs per solid angle, two-sided reflection.
+// makes the shade kernel large, and llvmpipe's JIT time grows with the
+// kernel's size, so with this file the tests' scenes stay quick
+// (bench/RESULTS.md, "Figures behind the code"). Same conventions: f
+// without cosine, pdfs per solid angle, two-sided reflection.
 #ifndef CV_TRACE_BSDF_BASIC_GLSL
 #define CV_TRACE_BSDF_BASIC_GLSL
 

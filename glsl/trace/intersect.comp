@@ -5,7 +5,8 @@
 // host leaves it out for the path integrator in a scene without an
 // environment light, where a miss adds nothing and its slot starts its
 // next sample (regenerate.glsl) right here: an escaped stage less per
-// iteration (36 us each on an H100, veach-bidir). The environment's code
+// iteration, whose launch and drain cost more than its work on small
+// scenes (bench/RESULTS.md, "Figures behind the code"). The environment's code
 // stays out of this kernel: with it, the kernel would use more storage
 // blocks than Mesa allows (17 of 16). Alpha cut-outs are handled here by
 // continuing the ray past a surface whose alpha test lets it through, so

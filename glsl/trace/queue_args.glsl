@@ -1,8 +1,9 @@
 // glsl/trace/queue_args.glsl: the indirect dispatch arguments of the next
 // stages, computed by the last work group to finish the stage that filled
 // their queues (a ticket counter says which group that is). A one-invocation
-// dispatch of its own between the stages did this before: on an H100 each
-// such dispatch cost about 7 us of launch and drain, three per iteration.
+// dispatch of its own between the stages did this before, and paid a
+// dispatch's launch and drain three times per iteration for one
+// invocation's work (bench/RESULTS.md, "Figures behind the code").
 // Include after common.glsl.
 #ifndef CV_TRACE_QUEUE_ARGS_GLSL
 #define CV_TRACE_QUEUE_ARGS_GLSL

@@ -5,8 +5,8 @@
 // for a miss, shade otherwise: path regeneration, trace.h), which queues
 // the new camera ray among the next iteration's rays in place of a bounce
 // ray. That was a stage of its own over a queue of the pixels whose paths
-// ended, which on an H100 took about 68 us an iteration for its ~180 K rays
-// (veach-bidir).
+// ended: a dispatch and a queue pass per iteration for a small wave
+// (bench/RESULTS.md, "Figures behind the code").
 // Include after common.glsl and sampler.glsl.
 #ifndef CV_TRACE_REGENERATE_GLSL
 #define CV_TRACE_REGENERATE_GLSL

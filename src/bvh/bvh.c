@@ -31,15 +31,16 @@
  * 60 bits (two words, KEY64 in the shaders, which support both). Equal
  * codes are split by index and treelet restructuring repairs the crowding:
  * on bvh_bench's meshes the restructured SAH differs by under 0.01 % at
- * 1 M, 4 M and 16 M triangles (H100: 484.050 vs 484.049 at 1 M), while the
- * sort takes 0.56 instead of 1.37 ms at 1 M. */
+ * 1 M, 4 M and 16 M triangles, while the sort makes half the passes
+ * (bench/RESULTS.md, "Figures behind the code"). */
 #define MORTON_BITS 30
 
 /* Refit gathers each leaf's box by triangle index, in random order for
  * meshes in random order. Over more than a few hundred MiB that gather runs
- * into a cliff on NVIDIA (H100, bvh_bench: refit 0.8 ms at 4 M triangles,
- * 21 ms at 16 M), so refit runs one pass per window of this many triangles
- * (128 MiB of boxes), each gathering from its window only: 7.5 ms at 16 M. */
+ * into a cliff on NVIDIA (random access past what address translation
+ * covers, it seems), so refit runs one pass per window of this many
+ * triangles (128 MiB of boxes), each gathering from its window only
+ * (bench/RESULTS.md, "Figures behind the code"). */
 #define REFIT_WINDOW (4u << 20)
 
 enum {
@@ -50,11 +51,12 @@ enum {
 /* The tree's own buffers come from the GPU's buffer pool too and go back
  * to it when the tree is destroyed, so that a batch's next scene, or the
  * next build of the same one, writes no fresh memory for them either:
- * they are ~130 bytes per triangle, and kept they took bvh_bench's 16 M
- * triangle builds on an H100 from 751 to 320 ms of host time (for 130 ms
- * of GPU phases). A pooled buffer may be larger than asked, so each is
- * bound as the range the tree uses (traversal reads the nodes' and leaf
- * triangles' lengths). `binary` is kept only when asked (params). */
+ * they are ~130 bytes per triangle, and fresh memory costs host time
+ * that grows with its size, several times the GPU phases of a large build
+ * (bench/RESULTS.md, "BVH build: wall time"). A pooled buffer may be
+ * larger than asked, so each is bound as the range the tree uses
+ * (traversal reads the nodes' and leaf triangles' lengths). `binary` is
+ * kept only when asked (params). */
 struct cv_bvh {
     struct cv_gpu *gpu;
     GLuint nodes, prims, tris, binary;
@@ -520,9 +522,10 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     /* The one sync of the build: widening's first read-back (widen.h) also
      * brings the binary node count and the root, which joins them in
      * `info` so that it is read staged (gpu/buffer.h). Read straight from
-     * the build nodes, the H100 took as long as that buffer was large
-     * (1 M triangles: 9.3 ms, 16 M: 160 ms; now 0.06), and a pooled buffer
-     * read directly would serve the next build's GPU work from host memory.
+     * the build nodes, the read took as long as that buffer was large (the
+     * driver moves a buffer the host reads to host memory), and a pooled
+     * buffer read directly would serve the next build's GPU work from host
+     * memory (bench/RESULTS.md, "BVH build: wall time").
      * Widening's queue, stack needs and flags borrow the counters, the
      * left turns and the leaf starts, free since emit. */
     uint32_t words[CV_BVH_INFO_WORDS];

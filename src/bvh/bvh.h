@@ -27,10 +27,9 @@ struct cv_bvh_params {
     bool collapse_leaves;  /* SAH leaf collapse (leaves of up to 8), default true */
     /* Triangle splitting before the build (src/bvh/split.h): at most this
      * many extra references per triangle, shared by priority; 0 = off,
-     * up to 4; default 0.3. H100, 1024 spp: veach-bidir 6.62 -> 5.21 s
-     * (1.0 about the same), cornell-box unchanged (nothing split), a
-     * generated 4 M triangle scene as fast; bvh_bench builds 1 M triangles
-     * in 9.06 instead of 6.55 ms (bench/results/..._split-pool). */
+     * up to 4; default 0.3: scenes with long thin triangles render
+     * faster, others as fast, for a somewhat longer build
+     * (bench/RESULTS.md, "Triangle splitting and pooled scratch"). */
     float split_budget;
     /* Leaf slots per pass of the leaf triangles' scatter (bvh.c); 0: the
      * default, 256 MB of records. Tests make it small to run several. */
@@ -108,8 +107,8 @@ struct cv_bvh;
  * it when the tree is destroyed, which must happen before the context's.
  * A single SSBO must hold 48 bytes per node of the build tree (2n - 1
  * nodes). Beyond the driver's advertised block size (llvmpipe: 128 MiB, n
- * near 1.39 M) that buffer is used after a probe (gpu/storage.h; llvmpipe
- * passed 1904 MiB for 16 M triangles); NVIDIA advertises 2 GiB, about 22 M.
+ * near 1.39 M) that buffer is used after a probe (gpu/storage.h); NVIDIA
+ * advertises 2 GiB, about 22 M.
  * Splitting makes no more references than fit. */
 bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
                   const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err);

@@ -17,10 +17,10 @@
 #include "gpu/program.h"
 
 #define RADIX_TILE 1024u
-/* Bits per digit (the shaders take 4..8). On an H100, 8 (4 passes over
- * 30-bit Morton codes) sort 1.3 M keys in 0.42 ms; 6 (5 passes) in 0.57,
- * 5 (6 passes) in 0.47, 4 (8 passes) in 0.48, against 0.51 for the 4-bit
- * sort that ranked keys straight to their slots. */
+/* Bits per digit (the shaders take 4..8). 8 makes the fewest passes over
+ * 30-bit Morton codes (4), whose dispatches and passes over the keys cost
+ * more than the wider tiles do: it sorted fastest of 4 to 8
+ * (bench/RESULTS.md, "Figures behind the code"). */
 #define RADIX_BITS 8
 #define RADIX_BINS (1u << RADIX_BITS)
 /* Blocks per pass, at most: more give more workgroups to small sorts, fewer

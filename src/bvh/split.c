@@ -114,9 +114,8 @@ bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangle
     if (!cv_scan_exclusive(s->scan, s->counts, n + 1, err))
         return false;
     /* Staged through a one-word buffer: read straight from the prefix
-     * sum's, the read-back stalled the H100 for longer the larger that
-     * buffer was (split phase 19.9 instead of 7.8 ms at 4 M triangles,
-     * 74 ms at 16 M; gpu/buffer.h). */
+     * sum's, the read-back stalls for longer the larger that buffer is
+     * (gpu/buffer.h; bench/RESULTS.md, "Figures behind the code"). */
     if (!cv_buffer_read_staged(s->counts, (size_t)n * 4, 4, s->total, &fixed_total, err))
         return false;
     uint32_t extra = fixed_total >> s->shift;

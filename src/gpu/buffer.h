@@ -14,15 +14,15 @@
 GLuint cv_buffer_create(size_t bytes, const void *data, const char *label, struct cv_error *err);
 /* Storage whose contents are undefined until written: for buffers that GPU
  * passes fill completely before anything reads them. Zero-filling fresh
- * storage is not free: ~0.8 ms of host time per MB on NVIDIA 580 (H100;
- * see gpu/buffer_pool.h). 0 on failure with err set. */
+ * storage is not free: it costs host time in proportion to its size
+ * (see gpu/buffer_pool.h). 0 on failure with err set. */
 GLuint cv_buffer_create_uninit(size_t bytes, const char *label, struct cv_error *err);
 /* Accepts a pointer to 0; clears it. */
 void cv_buffer_destroy(GLuint *buf);
 /* Copies data into buf through a staging buffer and a GPU copy, so that the
- * upload is ordered after every GPU command already queued on buf. (NVIDIA
- * 580 let a glNamedBufferSubData of a few MB land before the clear that
- * cv_buffer_create had queued on a new buffer, which then wiped it.) */
+ * upload is ordered after every GPU command already queued on buf. (The
+ * NVIDIA driver let a glNamedBufferSubData of a few MB land before the clear
+ * that cv_buffer_create had queued on a new buffer, which then wiped it.) */
 bool cv_buffer_upload(GLuint buf, size_t offset, size_t bytes, const void *data,
                       struct cv_error *err);
 /* Waits for the GPU; use outside hot loops only. The NVIDIA driver moves a
@@ -33,9 +33,9 @@ bool cv_buffer_read(GLuint buf, size_t offset, size_t bytes, void *dst, struct c
 /* The same through `staging` (at least `bytes`; 0: a temporary one), which
  * gets a GPU copy of buf's bytes and is the buffer read and moved. Read
  * straight from them, the render pass counters left the trace queues in
- * host memory (H100, veach-bidir at 1024 spp 4.64 s, through a copy 4.14),
- * and the read of a BVH build's root stalled for as long as its 2 GB
- * buffer was large (160 ms, through a copy 0.06). */
+ * host memory, which slowed every pass, and the read of a BVH build's root
+ * stalled for as long as its buffer was large (bench/RESULTS.md, "Renderer
+ * counters through a copy" and "BVH build: wall time"). */
 bool cv_buffer_read_staged(GLuint buf, size_t offset, size_t bytes, GLuint staging, void *dst,
                            struct cv_error *err);
 void cv_buffer_zero(GLuint buf);

@@ -1,10 +1,10 @@
 /* buffer_pool.h: scratch storage buffers kept for reuse, one pool per GPU
- * context (cv_gpu.scratch). Fresh GPU memory is dear on NVIDIA (H100,
- * driver 580): its first use costs ~0.8 ms of host time per MB when the
- * buffer is zero-filled at creation, or ~0.5-0.7 ms of GPU time per MB in
- * the first pass that writes it. A 4 M-triangle BVH build spent 1.3-1.5 s
- * so on its fresh scratch against 23 ms of GPU work, and the GPU, that
- * idle, clocked down (1980 to 435-1000 MHz) under the next builds. A pool
+ * context (cv_gpu.scratch). Fresh GPU memory is dear on NVIDIA: its first
+ * use costs host time in proportion to its size when the buffer is
+ * zero-filled at creation, or GPU time in the first pass that writes it,
+ * far more than a BVH build's own work; and a GPU left idle meanwhile
+ * lowers its clocks under the next builds (bench/RESULTS.md, "Triangle
+ * splitting and pooled scratch"). A pool
  * hands out a buffer of at least the size asked and takes it back; later
  * requests reuse it. Buffers handed out have undefined contents. */
 #ifndef CV_GPU_BUFFER_POOL_H

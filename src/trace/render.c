@@ -347,10 +347,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         defines[nd++] = "CV_HAS_ALPHA";
     if (r->scene->basic_materials)
         defines[nd++] = "CV_BSDF_BASIC";
-    /* Code for what the scene lacks stays out of the kernels: on an H100
-     * (veach-bidir, 256 spp) the two shade stages took 1089 ms with the
-     * texture and environment code and 265 ms without it (the texture
-     * loops' arrays live in local memory; fewer registers). */
+    /* Code for what the scene lacks stays out of the kernels: the texture
+     * loops' arrays live in local memory and take registers, which made the
+     * shade stages several times slower on scenes without textures
+     * (bench/RESULTS.md, "Figures behind the code"). */
     if (!r->scene->has_env)
         defines[nd++] = "CV_NO_ENV";
     if (!r->scene->has_textures)
@@ -580,9 +580,9 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     prof_collect(r);
     CvTraceQueues q;
     /* Staged, or the queues' atomics and indirect arguments would live in
-     * host memory from the first pass on (gpu/buffer.h; H100, 1024 spp:
-     * veach-bidir 4.64 -> 4.14 s, cornell-box 2.38 -> 1.99 s, the 4 M
-     * scene's 64 spp 347 -> 306 ms). */
+     * host memory from the first pass on, which slows every stage
+     * (gpu/buffer.h; bench/RESULTS.md, "Renderer counters through a
+     * copy"). */
     if (!cv_buffer_read_staged(r->queues, 0, sizeof(q), r->queues_copy, &q, err))
         return false;
     uint64_t extend = (uint64_t)q.stats[CV_STAT_EXTEND].y << 32 | q.stats[CV_STAT_EXTEND].x;

@@ -42,9 +42,9 @@ struct cv_render_params {
     uint32_t paths_per_pixel;
 };
 
-/* The automatic paths_per_pixel aims at this many paths in flight: on an H100
- * the closest-hit stage traced 0.72 G rays/s with 0.92 M paths (1280x720,
- * one a pixel) and 1.11 G with 3.7 M (2560x1440), 4 M-triangle scene. */
+/* The automatic paths_per_pixel aims at this many paths in flight: the
+ * traversal stages reach their rate only with a few million rays in flight
+ * (bench/RESULTS.md, "Paths in flight per pixel"). */
 #define CV_WAVE_PATHS (1u << 22)
 #define CV_MAX_PATHS_PER_PIXEL 8u
 

@@ -62,8 +62,9 @@ void cv_rlpath_bind(const struct cv_rlpath *rl);
 
 /* Queues the rebuild of the keys that the escaped and shade stages of this
  * iteration changed: run right after the shade stage. (Rebuilding every
- * fourth iteration instead saved no time on an H100: the rebuild is ~1.5 %
- * of rlpath's GPU time.) */
+ * fourth iteration instead saved no time: the rebuild is a small share of
+ * rlpath's GPU time; bench/RESULTS.md, "path against rlpath, second
+ * round".) */
 void cv_rlpath_update(const struct cv_rlpath *rl);
 
 /* Runs rebuild.comp (a program of trace/rlpath/rebuild.comp) over the keys

@@ -105,9 +105,9 @@ static bool up(struct cv_gpu *gpu, GLuint *b, size_t bytes, const void *data, co
 
 /* The build's scratch (about 260 bytes per triangle) stays pooled for the
  * next scene's build, a batch's next job, while it is under a quarter of
- * the GPU's free memory: fresh scratch costs a build ~0.5-0.7 ms of GPU
- * time per MB on its first use (H100: 4 M triangles build in ~32 ms on
- * reused scratch, ~46 ms on fresh; bvh_bench --fresh). Beyond that, or
+ * the GPU's free memory: fresh scratch costs a build GPU time in
+ * proportion to its size on its first use (gpu/buffer_pool.h;
+ * bench/RESULTS.md, "Fresh and kept scratch"). Beyond that, or
  * where the driver does not say what is free (Mesa), it is freed, so that a
  * large scene's render never runs short for it. The same holds when a
  * scene is released and its BVH's own buffers (~130 bytes per triangle,

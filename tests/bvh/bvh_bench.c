@@ -26,7 +26,8 @@
  * first build of a process (or of a scene too large to keep it) does.
  * --idle S waits S seconds before each timed build, long enough for an idle
  * GPU to lower its clocks, as it has when a batch job's scene has just been
- * parsed on the CPU (an H100 idles at 345 of 1980 MHz).
+ * parsed on the CPU (an idle GPU runs at a fraction of its clock:
+ * bench/RESULTS.md, "BVH build: wall time").
  * Run from the build tree with CAVALRY_DATA_DIR unset (embedded shaders). */
 #include "config.h"
 

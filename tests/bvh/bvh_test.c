@@ -519,8 +519,8 @@ static void check_large_rays(struct cv_gpu *gpu, const char *name, const struct 
  * storage block size. Where the driver addresses more than it advertises
  * (llvmpipe says 128 MiB: gpu/storage.h probes), build and traversal must
  * still be right. One round of 5-leaf treelets keeps llvmpipe's time down
- * (~8 s at 1.4 M triangles against ~130 s for the default); few rays, as
- * each brute-force ray tests every triangle on the CPU. */
+ * (an order of magnitude below the default's); few rays, as each
+ * brute-force ray tests every triangle on the CPU. */
 static void check_large(struct cv_gpu *gpu)
 {
     long long limit = gpu->info.max_ssbo_bytes;

@@ -13,18 +13,17 @@
 // where G_b is Q_b, the learned incident radiance as Dahm and Keller
 // sample it, or I_b with CV_RL_GUIDE_INDIRECT (rlpath.guide: indirect):
 // guided directions that find a lamp add little that the shadow ray and
-// MIS do not. On the H100 (512x512, 1024 spp, medians of seeds; relMSE at
-// 1 / 2 / 4 s GPU against path) I_b wins earlier on the generated rooms
-// (-37 / -32 / -21 % against Q_b's -24 / -25 / -21 %) but loses on
-// veach-bidir (-1 / -1 / +14 % against -48 / -31 / -4 %), where the lamp
-// is seen through its shade: Q_b is the default.
+// MIS do not. I_b reaches a given error sooner on rooms lit only by
+// bounced light but gives up the gain where the lamp is seen through its
+// shade (veach-bidir), which Q_b keeps: Q_b is the default
+// (bench/RESULTS.md, "path against rlpath after the merges").
 // The distribution is uniform in solid angle within a bin:
 // pdf(w) = P_b * bins / (4 pi).
 // Bins below a key's surfaces keep about the floor: paths sent there end
 // without teaching them anything. Weighting Q by the cosine to the class
-// axis (once per key) was tried: on the generated room it raised relMSE at
-// 512 spp from 0.066 to 0.079 (H100, mix 0.3), so the cosine is left to the
-// BSDF share of the mixture.
+// axis (once per key) was tried: it raised the generated room's error at
+// equal samples (bench/RESULTS.md, "Figures behind the code"), so the
+// cosine is left to the BSDF share of the mixture.
 // rebuild.comp builds each changed key's guide texels (CDF, bin
 // probabilities, weight) once, so a hit samples with two rounds of texel
 // loads and evaluates the pdf with one, instead of passes over every bin.

@@ -15,10 +15,10 @@
 // axis; for other lobes the one-sample estimate from the direction w' this
 // vertex samples, Q(y, bin(w')) f(y, -w, w') |cos| / p(w'). Integrating Q
 // against the BSDF over every bin per hit took a BSDF evaluation per bin
-// and made rlpath 5 to 6 times as slow per sample as path on an H100; the
-// per-key irradiance costs nothing per hit, and early in a render it
-// learns with less noise than the one-sample target (H100, generated room,
-// relMSE x spp at 8 spp 17.2 against 18.5, equal from 256 spp on).
+// and made rlpath several times as slow per sample as path; the per-key
+// irradiance costs nothing per hit, and it learns with less noise than the
+// one-sample target early in a render and as well later (bench/RESULTS.md,
+// "path against rlpath, second round").
 // The target is added to the table here, with atomics: sampling and the
 // mixture density read only the CDFs and weights, which rebuild.comp alone
 // writes, so one dispatch still sees one distribution per key and the
