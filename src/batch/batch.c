@@ -3,6 +3,7 @@
  * job), then open one GPU context and run the jobs
  * in manifest order; a scene shared by several jobs is loaded, uploaded and
  * its BVH built once. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -135,11 +136,13 @@ static void print_plan(const struct cv_manifest *m, const struct selection *p,
         const struct cv_render_plan *plan = &p->plans[k];
         uint32_t w = plan->width, h = plan->height, spp = plan->spp;
         bool skip = opt->resume && !opt->force && cv_job_outputs_current(job);
-        printf("%s: %s -> %s [%s%s%s] %ux%u, %u spp%s\n", job->name, job->scene_as_written,
-               job->output, job->formats & CV_FORMAT_EXR ? "exr" : "",
-               job->formats == (CV_FORMAT_EXR | CV_FORMAT_PNG) ? "," : "",
-               job->formats & CV_FORMAT_PNG ? "png" : "", w, h, spp,
-               skip ? " (up to date: skipped)" : "");
+        char formats[64] = "";
+        for (unsigned i = 0; i < cv_format_names.count; i++)
+            if (job->formats & (1u << i))
+                snprintf(formats + strlen(formats), sizeof(formats) - strlen(formats), "%s%s",
+                         formats[0] ? "," : "", cv_format_names.names[i]);
+        printf("%s: %s -> %s [%s] %ux%u, %u spp%s\n", job->name, job->scene_as_written,
+               job->output, formats, w, h, spp, skip ? " (up to date: skipped)" : "");
     }
 }
 

@@ -11,9 +11,6 @@
 
 #define AT(field) offsetof(struct cv_job, field)
 
-/* The largest film side (and so the largest resolution in a manifest). */
-#define MAX_RESOLUTION 65536
-
 static bool is_name_char(char c)
 {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
@@ -90,7 +87,7 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                       .def = CV_FORMAT_EXR, .def_text = "[exr]",
                       .help = "files to write: exr (scene-linear), png (display-referred)"},
     [CV_K_RESOLUTION] = {.name = "resolution", .type = CV_KT_RESOLUTION, .min = 1,
-                         .max = MAX_RESOLUTION, .offset = AT(width), .has = AT(has_resolution),
+                         .max = CV_MAX_FILM_SIDE, .offset = AT(width), .has = AT(has_resolution),
                          .hash = CV_HASH_YES, .def_text = "the scene's",
                          .help = "film size [width, height] or \"WIDTHxHEIGHT\""},
     [CV_K_SPP] = {.name = "spp", .type = CV_KT_U32, .min = 1, .max = CV_MAX_SPP,

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/limits.h"
 #include "base/mem.h"
 #include "scene/builder.h"
 #include "scene/film.h"
@@ -64,7 +65,7 @@ bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
         return false;
     b->xres = cv_params_int(ps, "xresolution", 1280);
     b->yres = cv_params_int(ps, "yresolution", 720);
-    if (b->xres <= 0 || b->yres <= 0 || b->xres > 1 << 16 || b->yres > 1 << 16)
+    if (b->xres <= 0 || b->yres <= 0 || b->xres > CV_MAX_FILM_SIDE || b->yres > CV_MAX_FILM_SIDE)
         return cv_fail(err, "%s:%d:%d: film resolution must be in 1..65536", loc->file, loc->line, loc->col);
     double crop[4] = {0, 1, 0, 1};
     if (cv_params_floats(ps, "cropwindow", crop, 4)) {
