@@ -25,6 +25,7 @@
 #define BENCH_HAVE_BVH 1
 #endif
 #if __has_include("trace/render.h")
+#include "scene/film.h"
 #include "trace/render.h"
 #define BENCH_HAVE_RENDER 1
 #endif
@@ -88,11 +89,7 @@ static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
 #ifdef BENCH_HAVE_RENDER
 static int integrator_id(const char *name)
 {
-    if (!name || !strcmp(name, "path"))
-        return CV_RENDER_PATH;
-    if (!strcmp(name, "rlpath"))
-        return CV_RENDER_RLPATH;
-    return -1;
+    return name ? cv_name_find(&cv_integrator_names, name) : CV_INTEGRATOR_PATH;
 }
 
 static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
@@ -101,16 +98,19 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
 {
     struct cv_render_params rp;
     memset(&rp, 0, sizeof rp);
-    rp.width = w;
-    rp.height = h;
+    CvCamera cam = scene->camera;
+    if (w || h)
+        cv_camera_fit_film(&cam, scene->settings.crop, w ? w : cam.film.x, h ? h : cam.film.y);
+    rp.camera = &cam;
     rp.seed = p->seed ? p->seed : 1;
-    rp.integrator = integrator_id(p->integrator);
+    int integrator = integrator_id(p->integrator);
+    rp.integrator = (enum cv_integrator)integrator;
     rp.rl_grid = p->rl_grid;
     rp.rl_directions = p->rl_directions;
     rp.rl_mix = p->rl_mix;
     rp.rl_guide_indirect = p->rl_guide_indirect;
     rp.paths_per_pixel = p->paths_per_pixel;
-    if (rp.integrator < 0)
+    if (integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
     return cv_renderer_create(gpu, scene, &rp, out, err);
 }

@@ -8,6 +8,9 @@
  * float (glsl/shared/trace.h, CvFilmPixel.normal.w), exact up to 2^24. */
 #define CV_MAX_SPP (1u << 24)
 
+/* Film side [pixels], in a scene's Film or a manifest's resolution. */
+#define CV_MAX_FILM_SIDE 65536
+
 /* rlpath's table (src/trace/rlpath.c): cells along the scene's longest axis,
  * and direction bins per key (CV_RL_MAX_BINS in glsl/shared/rlpath.h, which
  * rlpath.c checks against this one). */

@@ -1,7 +1,9 @@
 /* batch.c: the batch loop. Validate everything first (manifest, then every
- * scene the selected jobs name), then open one GPU context and run the jobs
+ * scene the selected jobs name, then the render plan of every selected
+ * job), then open one GPU context and run the jobs
  * in manifest order; a scene shared by several jobs is loaded, uploaded and
  * its BVH built once. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -9,6 +11,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "batch/batch.h"
+#include "batch/plan.h"
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "manifest/manifest.h"
@@ -23,16 +26,19 @@ struct loaded_scene {
     size_t last_use;             /* index of the last selected job using it */
 };
 
-struct plan {
+/* The selected jobs, their scenes and their render plans. */
+struct selection {
     size_t *jobs;                /* selected job indices, manifest order */
     size_t n_jobs, cap_jobs;
     struct loaded_scene *scenes;
     size_t n_scenes, cap_scenes;
     size_t *scene_of;            /* per selected job: index into scenes */
+    struct cv_render_plan *plans;  /* per selected job */
 };
 
-static void plan_free(struct plan *p)
+static void selection_free(struct selection *p)
 {
+    free(p->plans);
     for (size_t i = 0; i < p->n_scenes; i++)
         cv_scene_destroy(&p->scenes[i].scene);
     free(p->scenes);
@@ -41,7 +47,7 @@ static void plan_free(struct plan *p)
 }
 
 static bool select_jobs(const struct cv_manifest *m, const struct cv_batch_options *opt,
-                        struct plan *p, struct cv_error *err)
+                        struct selection *p, struct cv_error *err)
 {
     if (opt->only && !cv_manifest_find_job(m, opt->only))
         return cv_fail(err, "%s: no job named \"%s\"", m->path, opt->only);
@@ -57,7 +63,7 @@ static bool select_jobs(const struct cv_manifest *m, const struct cv_batch_optio
 
 /* Loads every scene once; reports every broken scene, not just the first. */
 static bool load_scenes(const struct cv_manifest *m, const struct cv_batch_options *opt,
-                        struct plan *p, struct cv_error *err)
+                        struct selection *p, struct cv_error *err)
 {
     p->scene_of = cv_xcalloc(p->n_jobs, sizeof(size_t));
     bool ok = true;
@@ -91,21 +97,52 @@ static bool load_scenes(const struct cv_manifest *m, const struct cv_batch_optio
     return ok;
 }
 
-static void print_plan(const struct cv_manifest *m, const struct plan *p,
+/* The render plan of every selected job, before the GPU opens; reports
+ * every job with a problem, not just the first. */
+static bool make_plans(const struct cv_manifest *m, const struct cv_batch_options *opt,
+                       struct selection *p, struct cv_error *err)
+{
+    p->plans = cv_xcalloc(p->n_jobs ? p->n_jobs : 1, sizeof(*p->plans));
+    struct cv_plan_options po = {
+        .manifest_path = m->path,
+        .strict = opt->strict,
+        .time_limit = opt->time_limit,
+        .check_color = true,
+    };
+    bool ok = true;
+    char *all = NULL;
+    for (size_t k = 0; k < p->n_jobs; k++) {
+        struct cv_error e = {{0}};
+        if (cv_plan_make(&m->jobs[p->jobs[k]], p->scenes[p->scene_of[k]].scene, &po,
+                         &p->plans[k], &e))
+            continue;
+        char *msg = cv_xasprintf("%s%s%s", all ? all : "", all ? "\n" : "", e.msg);
+        free(all);
+        all = msg;
+        ok = false;
+    }
+    if (!ok) {
+        cv_fail(err, "%s", all);
+        free(all);
+    }
+    return ok;
+}
+
+static void print_plan(const struct cv_manifest *m, const struct selection *p,
                        const struct cv_batch_options *opt)
 {
     for (size_t k = 0; k < p->n_jobs; k++) {
         const struct cv_job *job = &m->jobs[p->jobs[k]];
-        const struct cv_scene *s = p->scenes[p->scene_of[k]].scene;
-        uint32_t w = job->has_resolution ? job->width : s->settings.width;
-        uint32_t h = job->has_resolution ? job->height : s->settings.height;
-        uint32_t spp = job->has_spp ? job->spp : s->settings.spp;
+        const struct cv_render_plan *plan = &p->plans[k];
+        uint32_t w = plan->width, h = plan->height, spp = plan->spp;
         bool skip = opt->resume && !opt->force && cv_job_outputs_current(job);
-        printf("%s: %s -> %s [%s%s%s] %ux%u, %u spp%s\n", job->name, job->scene_as_written,
-               job->output, job->formats & CV_FORMAT_EXR ? "exr" : "",
-               job->formats == (CV_FORMAT_EXR | CV_FORMAT_PNG) ? "," : "",
-               job->formats & CV_FORMAT_PNG ? "png" : "", w, h, spp,
-               skip ? " (up to date: skipped)" : "");
+        char formats[64] = "";
+        for (unsigned i = 0; i < cv_format_names.count; i++)
+            if (job->formats & (1u << i))
+                snprintf(formats + strlen(formats), sizeof(formats) - strlen(formats), "%s%s",
+                         formats[0] ? "," : "", cv_format_names.names[i]);
+        printf("%s: %s -> %s [%s] %ux%u, %u spp%s\n", job->name, job->scene_as_written,
+               job->output, formats, w, h, spp, skip ? " (up to date: skipped)" : "");
     }
 }
 
@@ -117,23 +154,24 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         cv_error_log("%s", err.msg);
         return CV_BATCH_INVALID;
     }
-    struct plan plan = {0};
+    struct selection sel = {0};
     enum cv_batch_status status = CV_BATCH_OK;
-    if (!select_jobs(m, opt, &plan, &err) || !load_scenes(m, opt, &plan, &err)) {
+    if (!select_jobs(m, opt, &sel, &err) || !load_scenes(m, opt, &sel, &err) ||
+        !make_plans(m, opt, &sel, &err)) {
         cv_error_log("%s", err.msg);
         status = CV_BATCH_INVALID;
         goto done;
     }
     if (opt->check_only) {
-        printf("%s: valid: %zu job(s) selected, %zu scene(s)\n", manifest_path, plan.n_jobs,
-               plan.n_scenes);
+        printf("%s: valid: %zu job(s) selected, %zu scene(s)\n", manifest_path, sel.n_jobs,
+               sel.n_scenes);
         goto done;
     }
     if (opt->dry_run) {
-        print_plan(m, &plan, opt);
+        print_plan(m, &sel, opt);
         goto done;
     }
-    if (plan.n_jobs == 0) {
+    if (sel.n_jobs == 0) {
         cv_info("no job in this shard");
         goto done;
     }
@@ -148,15 +186,15 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
     struct cv_progress *progress =
         cv_progress_create(opt->progress, stderr, stdout);
     unsigned failed = 0;
-    for (size_t k = 0; k < plan.n_jobs && !cv_signals_interrupted(); k++) {
-        const struct cv_job *job = &m->jobs[plan.jobs[k]];
-        struct loaded_scene *ls = &plan.scenes[plan.scene_of[k]];
+    for (size_t k = 0; k < sel.n_jobs && !cv_signals_interrupted(); k++) {
+        const struct cv_job *job = &m->jobs[sel.jobs[k]];
+        struct loaded_scene *ls = &sel.scenes[sel.scene_of[k]];
         if (opt->resume && !opt->force && cv_job_outputs_current(job)) {
             cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0,
                                   "outputs up to date");
         } else {
-            cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)plan.n_jobs,
-                                    job->has_spp ? job->spp : ls->scene->settings.spp);
+            cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)sel.n_jobs,
+                                    sel.plans[k].spp);
             struct cv_job_result res = {0};
             struct cv_error jerr = {{0}};
             bool uploaded = ls->gpu_scene != NULL;
@@ -165,8 +203,8 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                 if (!uploaded)
                     cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
             }
-            if (uploaded && cv_run_job(gpu, job, ls->scene, ls->gpu_scene, opt, progress, &res,
-                                       &jerr)) {
+            if (uploaded && cv_run_job(gpu, &sel.plans[k], ls->scene, ls->gpu_scene, progress,
+                                       &res, &jerr)) {
                 cv_progress_job_ended(progress, job->name, res.partial ? CV_JOB_PARTIAL : CV_JOB_DONE,
                                       res.spp, res.seconds, res.written);
             } else {
@@ -185,8 +223,8 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         }
     }
     /* jobs left undone (--fail-fast, a signal) leave uploads behind */
-    for (size_t i = 0; i < plan.n_scenes; i++)
-        cv_scene_gpu_destroy(&plan.scenes[i].gpu_scene);
+    for (size_t i = 0; i < sel.n_scenes; i++)
+        cv_scene_gpu_destroy(&sel.scenes[i].gpu_scene);
     cv_progress_summary(progress);
     cv_progress_destroy(&progress);
     cv_gpu_destroy(&gpu);
@@ -195,7 +233,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
     else if (failed)
         status = CV_BATCH_JOBS_FAILED;
 done:
-    plan_free(&plan);
+    selection_free(&sel);
     cv_manifest_destroy(&m);
     return status;
 }

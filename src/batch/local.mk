@@ -2,6 +2,7 @@
 libcavalry_a_SOURCES += \
 	src/batch/batch.c src/batch/batch.h \
 	src/batch/pass_size.c src/batch/pass_size.h \
+	src/batch/plan.c src/batch/plan.h \
 	src/batch/progress.c src/batch/progress.h \
 	src/batch/run_job.c src/batch/run_job.h \
 	src/batch/signals.c src/batch/signals.h

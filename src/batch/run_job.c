@@ -1,6 +1,6 @@
-/* run_job.c: one job of a batch, as the product does it: apply the job's
- * overrides to the scene, render passes until the spp target, the time
- * limit or a signal, then write each format atomically with metadata that
+/* run_job.c: one job of a batch, as the product does it: from its plan
+ * (batch/plan.h), render passes until the spp target, the time limit or a
+ * signal, then colour and write each format atomically with metadata that
  * records the settings (for --resume) and whether the image is partial. */
 #include "config.h"
 
@@ -13,6 +13,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "batch/pass_size.h"
+#include "batch/plan.h"
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "color/color.h"
@@ -24,11 +25,6 @@
 #include "output/png_write.h"
 #include "trace/render.h"
 
-/* Passes aim at this much wall time: short enough for a responsive
- * progress line and a quick stop on SIGTERM, long enough that the readback
- * per pass costs nothing measurable. */
-#define CV_DEFAULT_SPP 16
-
 static double now_seconds(void)
 {
     struct timespec ts;
@@ -36,100 +32,17 @@ static double now_seconds(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static void normalize3(float v[3])
+static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_render_plan *plan,
+                                        const struct cv_job_result *res)
 {
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= l;
-}
-
-static void cross3(const float a[3], const float b[3], float out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/* The job's camera and resolution overrides, on a shallow copy of the
- * scene (the arrays stay shared and read-only). */
-static bool apply_overrides(const struct cv_job *job, struct cv_scene *s, struct cv_error *err)
-{
-    CvCamera *cam = &s->camera;
-    if (job->camera.has_lookat) {
-        /* pbrt's LookAt: camera space is left-handed, looking down +z. */
-        float dir[3], right[3], up[3], new_up[3];
-        for (int i = 0; i < 3; i++) {
-            dir[i] = job->camera.at[i] - job->camera.eye[i];
-            up[i] = job->camera.up[i];
-        }
-        normalize3(dir);
-        normalize3(up);
-        cross3(up, dir, right);
-        float rl = sqrtf(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
-        if (rl < 1e-6f)
-            return cv_fail(err, "job \"%s\": camera lookat: up vector and viewing direction are "
-                                "parallel", job->name);
-        normalize3(right);
-        cross3(dir, right, new_up);
-        float *rows[3] = {&cam->to_world[0].x, &cam->to_world[1].x, &cam->to_world[2].x};
-        for (int r = 0; r < 3; r++) {
-            rows[r][0] = right[r];
-            rows[r][1] = new_up[r];
-            rows[r][2] = dir[r];
-            rows[r][3] = job->camera.eye[r];
-        }
-    }
-    if (job->camera.has_fov)
-        cam->lens.z = tanf(job->camera.fov * (float)M_PI / 360.0f);
-    if (job->has_resolution) {
-        uint32_t w = job->width, h = job->height;
-        s->settings.width = w;
-        s->settings.height = h;
-        /* pbrt's default screen window follows the aspect ratio; a new
-         * resolution gets the default window for its own aspect. */
-        float aspect = (float)w / (float)h;
-        if (aspect > 1)
-            cam->screen = (CV_VEC4){-aspect, aspect, -1, 1};
-        else
-            cam->screen = (CV_VEC4){-1, 1, -1 / aspect, 1 / aspect};
-        const float *c = s->settings.crop;
-        uint32_t x0 = (uint32_t)ceilf(w * c[0]), x1 = (uint32_t)ceilf(w * c[1]);
-        uint32_t y0 = (uint32_t)ceilf(h * c[2]), y1 = (uint32_t)ceilf(h * c[3]);
-        if (x1 <= x0 || y1 <= y0) {
-            x0 = y0 = 0;
-            x1 = w;
-            y1 = h;
-        }
-        cam->film = (CV_UVEC4){w, h, x0, y0};
-        cam->crop.x = x1 - x0;
-        cam->crop.y = y1 - y0;
-    }
-    return true;
-}
-
-static int integrator_of(const struct cv_job *job, const struct cv_scene *s)
-{
-    if (job->integrator == CV_INTEGRATOR_RLPATH)
-        return CV_RENDER_RLPATH;
-    if (job->integrator == CV_INTEGRATOR_UNSET && s->settings.integrator &&
-        strcmp(s->settings.integrator, "path") != 0)
-        cv_warn("job \"%s\": scene asks for integrator \"%s\"; rendering with \"path\"", job->name,
-                s->settings.integrator);
-    return CV_RENDER_PATH;
-}
-
-static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_job *job,
-                                        const struct cv_job_result *res, int integrator)
-{
+    const struct cv_job *job = plan->job;
     struct cv_metadata *m = cv_metadata_new();
     cv_metadata_set_string(m, "software", "cavalry-batch " PACKAGE_VERSION);
     cv_metadata_set_string(m, "cavalry.job", job->name);
     cv_metadata_set_string(m, "cavalry.scene", job->scene_as_written);
-    cv_metadata_set_string(m, "cavalry.integrator",
-                           integrator == CV_RENDER_RLPATH ? "rlpath" : "path");
+    cv_metadata_set_string(m, "cavalry.integrator", cv_integrator_name(plan->integrator));
     cv_metadata_set_int(m, "cavalry.spp", res->spp);
-    cv_metadata_set_int(m, "cavalry.seed", job->has_seed ? job->seed : 0);
+    cv_metadata_set_int(m, "cavalry.seed", plan->seed);
     cv_metadata_set_float(m, "cavalry.renderTime", res->seconds);
     cv_metadata_set_string(m, "cavalry.gpu", gpu->info.renderer);
     cv_metadata_set_string(m, "cavalry.settingsHash", job->settings_hash);
@@ -141,17 +54,6 @@ static void note_written(struct cv_job_result *res, const char *path)
 {
     size_t n = strlen(res->written);
     snprintf(res->written + n, sizeof(res->written) - n, "%s%s", n ? " " : "", path);
-}
-
-static enum cv_exr_compression exr_compression(const struct cv_job *job)
-{
-    switch (job->exr.compression) {
-    case CV_JOB_EXR_NONE: return CV_EXR_NONE;
-    case CV_JOB_EXR_PIZ: return CV_EXR_PIZ;
-    case CV_JOB_EXR_DWAA: return CV_EXR_DWAA;
-    case CV_JOB_EXR_ZIP: break;
-    }
-    return CV_EXR_ZIP;
 }
 
 static bool write_exr(struct cv_renderer *r, const struct cv_job *job, uint32_t w, uint32_t h,
@@ -183,7 +85,7 @@ static bool write_exr(struct cv_renderer *r, const struct cv_job *job, uint32_t 
                                     .width = w,
                                     .height = h,
                                     .use_float = !job->exr.half,
-                                    .compression = exr_compression(job),
+                                    .compression = job->exr.compression,
                                     .layers = layers,
                                     .n_layers = n_layers,
                                     .meta = meta,
@@ -200,19 +102,13 @@ static bool write_exr(struct cv_renderer *r, const struct cv_job *job, uint32_t 
     return ok;
 }
 
-static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv_job *job,
+static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv_render_plan *plan,
                       uint32_t w, uint32_t h, struct cv_metadata *meta,
                       struct cv_job_result *res, struct cv_error *err)
 {
-    struct cv_color_params cp = {
-        .config_path = job->color.config,
-        .display = job->color.display,
-        .view = job->color.view,
-        .look = job->color.look,
-        .exposure = job->color.has_exposure ? job->color.exposure : 0.0f,
-    };
+    const struct cv_job *job = plan->job;
     struct cv_color_pass *pass = NULL;
-    if (!cv_color_pass_create(gpu, &cp, &pass, err))
+    if (!cv_color_pass_create(gpu, &plan->color, &pass, err))
         return false;
     size_t n = (size_t)w * h;
     GLuint linear = cv_renderer_resolve(r, err);
@@ -245,36 +141,20 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
     return ok;
 }
 
-bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_scene *scene,
-                const struct cv_scene_gpu *gs, const struct cv_batch_options *opt, struct cv_progress *progress,
-                struct cv_job_result *res, struct cv_error *err)
+bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
+                const struct cv_scene *scene, const struct cv_scene_gpu *gs,
+                struct cv_progress *progress, struct cv_job_result *res, struct cv_error *err)
 {
+    const struct cv_job *job = plan->job;
     double t0 = now_seconds();
     memset(res, 0, sizeof(*res));
-    struct cv_scene s = *scene;
-    if (!apply_overrides(job, &s, err))
-        return false;
-    int integrator = integrator_of(job, &s);
-    struct cv_render_params rp = {
-        .max_depth = job->has_max_depth ? job->max_depth : 0,
-        .seed = job->has_seed ? job->seed : 0,
-        .integrator = integrator,
-        .aovs = job->aovs != 0,
-        .sampler = CV_SAMPLER_SOBOL,
-        .rl_grid = job->rlpath.has_grid ? job->rlpath.grid : 0,
-        .rl_directions = job->rlpath.has_directions ? job->rlpath.directions : 0,
-        .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : 0.0f,
-        .rl_guide_indirect = job->rlpath.guide_indirect,
-    };
+    struct cv_render_params rp = cv_plan_render_params(plan);
     struct cv_renderer *r = NULL;
-    if (!cv_renderer_create_shared(gpu, gs, &s, &rp, &r, err))
+    if (!cv_renderer_create_shared(gpu, gs, scene, &rp, &r, err))
         return false;
 
-    uint32_t target = job->has_spp ? job->spp : s.settings.spp ? s.settings.spp : CV_DEFAULT_SPP;
-    double limit = job->has_time_limit ? job->time_limit : 0;
-    if (opt->time_limit > 0 && (limit == 0 || opt->time_limit < limit))
-        limit = opt->time_limit;
-
+    uint32_t target = plan->spp;
+    double limit = plan->time_limit;
     bool ok = true;
     uint32_t pass_spp = 1;
     uint64_t rays_total = 0;
@@ -317,11 +197,11 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
     }
     if (ok) {
         res->seconds = now_seconds() - t0;
-        struct cv_metadata *meta = job_metadata(gpu, job, res, integrator);
+        struct cv_metadata *meta = job_metadata(gpu, plan, res);
         if (job->formats & CV_FORMAT_EXR)
             ok = write_exr(r, job, w, h, meta, res, err);
         if (ok && (job->formats & CV_FORMAT_PNG))
-            ok = write_png(gpu, r, job, w, h, meta, res, err);
+            ok = write_png(gpu, r, plan, w, h, meta, res, err);
         cv_metadata_destroy(&meta);
     }
     cv_renderer_destroy(&r);
@@ -349,15 +229,12 @@ static bool output_current(const char *path, bool exr, const char *hash)
 
 bool cv_job_outputs_current(const struct cv_job *job)
 {
-    static const struct {
-        unsigned bit;
-        const char *ext;
-    } formats[] = {{CV_FORMAT_EXR, "exr"}, {CV_FORMAT_PNG, "png"}};
-    for (size_t i = 0; i < CV_ARRAY_SIZE(formats); i++) {
-        if (!(job->formats & formats[i].bit))
+    for (unsigned i = 0; i < cv_format_names.count; i++) {
+        unsigned bit = 1u << i;
+        if (!(job->formats & bit))
             continue;
-        char *path = cv_job_output_path(job, formats[i].ext);
-        bool current = output_current(path, formats[i].bit == CV_FORMAT_EXR, job->settings_hash);
+        char *path = cv_job_output_path(job, cv_format_ext(bit));
+        bool current = output_current(path, bit == CV_FORMAT_EXR, job->settings_hash);
         free(path);
         if (!current)
             return false;

@@ -1,4 +1,4 @@
-/* run_job.h: one job, start to finish: scene → renderer → passes →
+/* run_job.h: one job, start to finish: plan → renderer → passes →
  * colour → files. */
 #ifndef CV_BATCH_RUN_JOB_H
 #define CV_BATCH_RUN_JOB_H
@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "batch/batch.h"
+#include "batch/plan.h"
 #include "batch/progress.h"
 #include "gpu/context.h"
 #include "manifest/manifest.h"
@@ -20,11 +21,13 @@ struct cv_job_result {
     char written[1024];            /* the files written, space-separated */
 };
 
-/* gs: the scene uploaded with its BVH (cv_scene_gpu_create), shared by the
- * scene's jobs; the job's camera and resolution overrides apply on top. */
-bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_scene *scene,
-                const struct cv_scene_gpu *gs, const struct cv_batch_options *opt, struct cv_progress *progress,
-                struct cv_job_result *result, struct cv_error *err);
+/* Renders and writes the job of plan. gs: its scene uploaded with its BVH
+ * (cv_scene_gpu_create), shared by the scene's jobs; the plan's camera
+ * applies on top. */
+bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
+                const struct cv_scene *scene, const struct cv_scene_gpu *gs,
+                struct cv_progress *progress, struct cv_job_result *result,
+                struct cv_error *err);
 
 /* Whether every output of the job exists, is complete, and was rendered
  * from the same settings (the settings hash in its metadata). */

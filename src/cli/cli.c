@@ -13,6 +13,7 @@
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "gpu/context.h"
+#include "manifest/keys.h"
 #include "scene/dump.h"
 #include "scene/scene.h"
 
@@ -35,9 +36,11 @@ static void usage(FILE *out)
           "      --shard-count=N     split the jobs into N shards (see ENVIRONMENT)\n"
           "      --time-limit=SEC    stop each job after SEC seconds\n"
           "      --progress=MODE     auto, bar, json or none\n"
-          "      --strict            treat scene warnings as errors\n"
+          "      --strict            treat warnings about scenes and jobs as errors (a\n"
+          "                          scene's integrator rendered with another, too)\n"
           "      --dump-scene=FILE   print a summary of a pbrt scene and exit\n"
           "      --list-gpus         list the GPUs and which one would be used\n"
+          "      --list-keys         list the manifest keys: name, type, default, meaning\n"
           "      --gpu=N             use EGL device N (see --list-gpus)\n"
           "      --backend=NAME      auto, egl or osmesa\n"
           "  -q, --quiet             only errors\n"
@@ -130,7 +133,7 @@ int cv_cli_main(int argc, char **argv)
     enum {
         OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
         OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
-        OPT_STRICT, OPT_DUMP_SCENE,
+        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS,
     };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
@@ -148,6 +151,7 @@ int cv_cli_main(int argc, char **argv)
         {"strict", no_argument, NULL, OPT_STRICT},
         {"dump-scene", required_argument, NULL, OPT_DUMP_SCENE},
         {"list-gpus", no_argument, NULL, OPT_LIST_GPUS},
+        {"list-keys", no_argument, NULL, OPT_LIST_KEYS},
         {"gpu", required_argument, NULL, OPT_GPU},
         {"backend", required_argument, NULL, OPT_BACKEND},
         {"quiet", no_argument, NULL, 'q'},
@@ -176,6 +180,9 @@ int cv_cli_main(int argc, char **argv)
         case OPT_STRICT: o.strict = true; break;
         case OPT_DUMP_SCENE: dump = optarg; break;
         case OPT_LIST_GPUS: list_gpus = true; break;
+        case OPT_LIST_KEYS:
+            cv_keys_print(stdout);
+            return CV_EXIT_OK;
         case OPT_SHARD_INDEX:
         case OPT_SHARD_COUNT:
             if (!parse_uint(optarg, 1u << 30, &u)) {

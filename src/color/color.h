@@ -16,14 +16,16 @@
 
 struct cv_color_pass;
 
-/* Opens the config, checks the names (errors list the valid ones), compiles
- * glsl/color/display.comp with OpenColorIO's generated GLSL and uploads its
- * LUT textures and uniforms. Needs the GL context of gpu to be current. */
+/* Opens the config, checks the names (errors list the valid ones), builds
+ * glsl/color/display.comp with OpenColorIO's generated GLSL through gpu's
+ * program cache and uploads its LUT textures. Needs the GL context of gpu
+ * to be current. */
 bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
                           struct cv_color_pass **out, struct cv_error *err);
 
 /* in_rgba, out_rgba: SSBOs of width*height vec4 (16 bytes a pixel,
- * row-major, top row first); they may be the same buffer. Uses binding
+ * row-major, top row first); they may be the same buffer. Sets the pass's
+ * uniforms first (its program may be shared with other passes). Uses binding
  * points CV_BIND_STAGE0 and CV_BIND_STAGE0 + 1 and texture units from 0. */
 bool cv_color_pass_run(struct cv_color_pass *pass, GLuint in_rgba, GLuint out_rgba,
                        uint32_t width, uint32_t height, struct cv_error *err);

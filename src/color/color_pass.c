@@ -1,7 +1,8 @@
-/* color_pass.c: see color.h. The program is built here rather than through
- * the program cache: its source differs per processor (OpenColorIO's
- * generated function is spliced into glsl/color/display.comp), and it owns
- * LUT textures that live and die with the pass. */
+/* color_pass.c: see color.h. OpenColorIO's generated function is spliced
+ * into glsl/color/display.comp and the result built through the program
+ * cache (gpu/program.h); the program may be shared with other passes of the
+ * same processor, so the pass sets its uniforms and sampler units before
+ * each run. The LUT textures are the pass's own. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,7 +12,6 @@
 #include "color/ocio.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/gl_check.h"
-#include "gpu/glsl_source.h"
 #include "gpu/program.h"
 
 #define PASS_PATH "color/display.comp"
@@ -22,121 +22,34 @@
 struct color_texture {
     GLuint id;
     GLenum target;
+    char *sampler;             /* the sampler uniform's name */
 };
 
 struct cv_color_pass {
     struct cv_ocio *ocio;
-    struct cv_program prog;
+    struct cv_program prog;    /* a copy; the program cache owns the program */
     struct color_texture *textures;
     unsigned n_textures;
     GLint u_count;
 };
 
-/* 1-based line of the marker in glsl/color/display.comp, 0 when missing. */
-static int marker_line(const char *text)
+/* Compiles display.comp with OpenColorIO's function in place of the
+ * marker, through the program cache like every other program: the same
+ * config and view in the next job (or the next process, from the disk
+ * cache) need no compile. */
+static bool build_program(struct cv_gpu *gpu, struct cv_color_pass *pass, struct cv_error *err)
 {
-    int line = 1;
-    for (const char *p = text; *p; line++) {
-        const char *end = strchr(p, '\n');
-        size_t n = end ? (size_t)(end - p) : strlen(p);
-        if (n >= strlen(PASS_MARKER) && strncmp(p, PASS_MARKER, strlen(PASS_MARKER)) == 0)
-            return line;
-        if (!end)
-            break;
-        p = end + 1;
-    }
-    return 0;
-}
-
-/* The assembled pass source with the generated function in place of the
- * marker; *names gains GENERATED_NAME as the file of the generated lines. */
-static bool splice_source(const char *generated, char **out, char ***names, struct cv_error *err)
-{
-    char *raw;
-    if (!cv_glsl_read(PASS_PATH, &raw, err))
+    const struct cv_glsl_splice splice = {
+        .marker = PASS_MARKER,
+        .text = cv_ocio_gpu_source(pass->ocio),
+        .name = GENERATED_NAME,
+    };
+    struct cv_program *prog = cv_program_get_spliced(gpu, PASS_PATH, NULL, &splice, err);
+    if (!prog)
         return false;
-    int line = marker_line(raw);
-    free(raw);
-    char *src;
-    if (!cv_glsl_assemble(PASS_PATH, NULL, &src, names, err))
-        return false;
-    char *at = strstr(src, PASS_MARKER);
-    if (!line || !at) {
-        free(src);
-        return cv_fail(err, "glsl/%s: the line \"%s\" is missing", PASS_PATH, PASS_MARKER);
-    }
-    int n_names = 0;
-    while ((*names)[n_names])
-        n_names++;
-    /* the loader's table has room to spare: it holds up to 256 entries */
-    (*names)[n_names] = cv_xstrdup(GENERATED_NAME);
-    const char *rest = at + strlen(PASS_MARKER);
-    *out = cv_xasprintf("%.*s#line 1 %d\n%s\n#line %d 0\n%s", (int)(at - src), src, n_names,
-                        generated, line + 1, rest);
-    free(src);
-    return true;
-}
-
-static char *info_log(GLuint obj, bool program)
-{
-    GLint len = 0;
-    if (program)
-        glGetProgramiv(obj, GL_INFO_LOG_LENGTH, &len);
-    else
-        glGetShaderiv(obj, GL_INFO_LOG_LENGTH, &len);
-    char *log = cv_xcalloc(1, (size_t)len + 1);
-    if (len > 0 && program)
-        glGetProgramInfoLog(obj, len, NULL, log);
-    else if (len > 0)
-        glGetShaderInfoLog(obj, len, NULL, log);
-    return log;
-}
-
-static bool build_program(struct cv_color_pass *pass, struct cv_error *err)
-{
-    char *src = NULL, **names = NULL;
-    if (!splice_source(cv_ocio_gpu_source(pass->ocio), &src, &names, err))
-        return false;
-    GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-    const GLchar *srcs[1] = {src};
-    glShaderSource(sh, 1, srcs, NULL);
-    glCompileShader(sh);
-    GLint status = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &status);
-    char *raw = info_log(sh, false);
-    char *log = cv_glsl_map_log(raw, names);
-    free(raw);
-    bool ok = true;
-    if (!status) {
-        ok = cv_fail(err, "compiling glsl/%s with OpenColorIO's function failed:\n%s", PASS_PATH,
-                     log);
-    } else {
-        GLuint prog = glCreateProgram();
-        glAttachShader(prog, sh);
-        glLinkProgram(prog);
-        glGetProgramiv(prog, GL_LINK_STATUS, &status);
-        if (!status) {
-            char *plog = info_log(prog, true);
-            ok = cv_fail(err, "linking glsl/%s failed:\n%s", PASS_PATH, plog);
-            free(plog);
-            glDeleteProgram(prog);
-        } else {
-            GLint size[3] = {1, 1, 1};
-            glGetProgramiv(prog, GL_COMPUTE_WORK_GROUP_SIZE, size);
-            pass->prog.id = prog;
-            for (int i = 0; i < 3; i++)
-                pass->prog.local_size[i] = (uint32_t)size[i];
-            pass->prog.path = cv_xstrdup(PASS_PATH);
-            pass->u_count = glGetUniformLocation(prog, "u_count");
-        }
-    }
-    glDeleteShader(sh);
-    free(log);
-    free(src);
-    for (char **n = names; *n; n++)
-        free(*n);
-    free(names);
-    return ok && cv_gl_check(err, "building glsl/%s", PASS_PATH);
+    pass->prog = *prog;
+    pass->u_count = glGetUniformLocation(prog->id, "u_count");
+    return cv_gl_check(err, "building glsl/%s", PASS_PATH);
 }
 
 /* LUTs are uploaded for GL_LINEAR / GL_CLAMP_TO_EDGE lookups, as OCIO's
@@ -182,9 +95,7 @@ static bool upload_textures(struct cv_color_pass *pass, struct cv_error *err)
             glTexImage1D(target, 0, (GLint)internal, (GLsizei)t.width, 0, format, GL_FLOAT,
                          t.values);
         glBindTexture(target, 0);
-        GLint loc = glGetUniformLocation(pass->prog.id, t.sampler);
-        if (loc >= 0)
-            glProgramUniform1i(pass->prog.id, loc, (GLint)i);
+        ct->sampler = cv_xstrdup(t.sampler);
         if (!cv_gl_check(err, "uploading colour LUT \"%s\" (%ux%ux%u)", t.sampler, t.width,
                          t.height, t.depth))
             return false;
@@ -192,9 +103,15 @@ static bool upload_textures(struct cv_color_pass *pass, struct cv_error *err)
     return true;
 }
 
+/* The processor's uniforms and LUT sampler units, on the (shared) program. */
 static bool set_uniforms(struct cv_color_pass *pass, struct cv_error *err)
 {
     GLuint prog = pass->prog.id;
+    for (unsigned i = 0; i < pass->n_textures; i++) {
+        GLint loc = glGetUniformLocation(prog, pass->textures[i].sampler);
+        if (loc >= 0)
+            glProgramUniform1i(prog, loc, (GLint)i);
+    }
     unsigned n = cv_ocio_gpu_uniform_count(pass->ocio);
     for (unsigned i = 0; i < n; i++) {
         struct cv_ocio_uniform u;
@@ -231,13 +148,11 @@ static bool set_uniforms(struct cv_color_pass *pass, struct cv_error *err)
 bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
                           struct cv_color_pass **out, struct cv_error *err)
 {
-    (void)gpu;
     *out = NULL;
     struct cv_color_pass *pass = cv_xcalloc(1, sizeof(*pass));
     bool ok = cv_ocio_create(p, &pass->ocio, err) &&
               cv_ocio_gpu_extract(pass->ocio, PASS_FUNCTION, err) &&
-              build_program(pass, err) && upload_textures(pass, err) &&
-              set_uniforms(pass, err);
+              build_program(gpu, pass, err) && upload_textures(pass, err);
     if (!ok) {
         cv_color_pass_destroy(&pass);
         return false;
@@ -270,7 +185,7 @@ bool cv_color_pass_run(struct cv_color_pass *pass, GLuint in_rgba, GLuint out_rg
     if (n > UINT32_MAX)
         return cv_fail(err, "colour pass: %ux%u pixels is too many", width, height);
     if (!check_size(in_rgba, "input", (GLint64)(n * 16), err) ||
-        !check_size(out_rgba, "output", (GLint64)(n * 16), err))
+        !check_size(out_rgba, "output", (GLint64)(n * 16), err) || !set_uniforms(pass, err))
         return false;
     glProgramUniform1ui(pass->prog.id, pass->u_count, (GLuint)n);
     for (unsigned i = 0; i < pass->n_textures; i++) {
@@ -309,12 +224,11 @@ void cv_color_pass_destroy(struct cv_color_pass **pass)
     if (!pass || !*pass)
         return;
     struct cv_color_pass *p = *pass;
-    for (unsigned i = 0; i < p->n_textures; i++)
+    for (unsigned i = 0; i < p->n_textures; i++) {
         glDeleteTextures(1, &p->textures[i].id);
+        free(p->textures[i].sampler);
+    }
     free(p->textures);
-    if (p->prog.id)
-        glDeleteProgram(p->prog.id);
-    free(p->prog.path);
     cv_ocio_destroy(&p->ocio);
     free(p);
     *pass = NULL;

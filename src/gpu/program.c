@@ -106,7 +106,16 @@ struct assembly {
     char **names;
     int n_names;
     struct strbuf out;
+    const struct cv_glsl_splice *splice;  /* NULL: none */
+    bool spliced;                         /* the marker was found */
 };
+
+/* Does the line [line, end) begin with the splice's marker? */
+static bool is_marker(const struct cv_glsl_splice *sp, const char *line, const char *end)
+{
+    size_t n = sp ? strlen(sp->marker) : 0;
+    return sp && (size_t)(end - line) >= n && strncmp(line, sp->marker, n) == 0;
+}
 
 /* `#include "x"` on this line? Returns the name's start and length. */
 static bool parse_include(const char *line, const char *end, const char **name, size_t *len)
@@ -147,6 +156,16 @@ static bool expand(struct assembly *a, int file, const char *text, int depth, in
         size_t inc_len;
         if (line_no < first_line) {
             /* already emitted (the #version line) */
+        } else if (!a->spliced && is_marker(a->splice, line, end)) {
+            /* the generated text, numbered as a file of its own */
+            if (a->n_names >= CV_GLSL_MAX_FILES - 1)
+                return cv_fail(err, "glsl/%s:%d: too many files", a->names[file], line_no);
+            int id = a->n_names++;
+            a->names[id] = cv_xstrdup(a->splice->name);
+            a->spliced = true;
+            sb_addf(&a->out, "#line %d %d\n", id * CV_GLSL_LINE_STRIDE + 1, id);
+            sb_add(&a->out, a->splice->text, strlen(a->splice->text));
+            sb_addf(&a->out, "\n#line %d %d\n", file * CV_GLSL_LINE_STRIDE + line_no + 1, file);
         } else if (parse_include(line, end, &inc, &inc_len)) {
             char *rel = cv_xmalloc(inc_len + 1);
             memcpy(rel, inc, inc_len);
@@ -204,13 +223,15 @@ static bool expand(struct assembly *a, int file, const char *text, int depth, in
     return true;
 }
 
-bool cv_glsl_assemble(const char *path, const char *const *defines, char **source, char ***names,
-                      struct cv_error *err)
+static bool assemble(const char *path, const char *const *defines,
+                     const struct cv_glsl_splice *splice, char **source, char ***names,
+                     struct cv_error *err)
 {
     char *text;
     if (!cv_glsl_read(path, &text, err))
         return false;
-    struct assembly a = {.names = cv_xcalloc(CV_GLSL_MAX_FILES, sizeof(char *)), .n_names = 1};
+    struct assembly a = {.names = cv_xcalloc(CV_GLSL_MAX_FILES, sizeof(char *)), .n_names = 1,
+                         .splice = splice};
     a.names[0] = cv_xstrdup(path);
 
     /* #version must come first; the defines follow it. */
@@ -243,6 +264,8 @@ bool cv_glsl_assemble(const char *path, const char *const *defines, char **sourc
     sb_addf(&a.out, "#line %d %d\n", first_line, 0);
     bool ok = expand(&a, 0, text, 0, first_line, err);
     free(text);
+    if (ok && splice && !a.spliced)
+        ok = cv_fail(err, "glsl/%s: the line \"%s\" is missing", path, splice->marker);
     if (!ok) {
         for (int i = 0; i < a.n_names; i++)
             free(a.names[i]);
@@ -253,6 +276,12 @@ bool cv_glsl_assemble(const char *path, const char *const *defines, char **sourc
     *source = a.out.s;
     *names = a.names;
     return true;
+}
+
+bool cv_glsl_assemble(const char *path, const char *const *defines, char **source, char ***names,
+                      struct cv_error *err)
+{
+    return assemble(path, defines, NULL, source, names, err);
 }
 
 static void free_names(char **names)
@@ -355,10 +384,11 @@ static void adopt(GLuint prog, const char *path, struct cv_program *out)
 }
 
 static bool build(struct cv_program_disk_cache *disk, const char *path,
-                  const char *const *defines, struct cv_program *out, struct cv_error *err)
+                  const char *const *defines, const struct cv_glsl_splice *splice,
+                  struct cv_program *out, struct cv_error *err)
 {
     char *src, **names;
-    if (!cv_glsl_assemble(path, defines, &src, &names, err))
+    if (!assemble(path, defines, splice, &src, &names, err))
         return false;
     GLuint cached = cv_program_disk_cache_load(disk, src, path);
     if (cached) {
@@ -418,11 +448,26 @@ static bool build(struct cv_program_disk_cache *disk, const char *path,
 struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
                                   const char *const *defines, struct cv_error *err)
 {
+    return cv_program_get_spliced(gpu, path, defines, NULL, err);
+}
+
+struct cv_program *cv_program_get_spliced(struct cv_gpu *gpu, const char *path,
+                                          const char *const *defines,
+                                          const struct cv_glsl_splice *splice,
+                                          struct cv_error *err)
+{
     struct strbuf key = {0};
     sb_add(&key, path, strlen(path));
     for (const char *const *d = defines; d && *d; d++) {
         sb_add(&key, "\n", 1);
         sb_add(&key, *d, strlen(*d));
+    }
+    if (splice) {
+        /* \x01 cannot begin a define: the generated text keys apart */
+        sb_add(&key, "\n\x01", 2);
+        sb_add(&key, splice->marker, strlen(splice->marker));
+        sb_add(&key, "\n", 1);
+        sb_add(&key, splice->text, strlen(splice->text));
     }
     struct cv_program_cache *c = gpu->programs;
     for (size_t i = 0; i < c->n; i++) {
@@ -434,7 +479,7 @@ struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
     if (!c->disk)
         c->disk = cv_program_disk_cache_open(&gpu->info);
     struct cv_program prog = {0};
-    if (!build(c->disk, path, defines, &prog, err)) {
+    if (!build(c->disk, path, defines, splice, &prog, err)) {
         free(key.s);
         return NULL;
     }

@@ -33,6 +33,23 @@ void cv_program_cache_destroy(struct cv_program_cache **cache);
 struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
                                   const char *const *defines, struct cv_error *err);
 
+/* Generated GLSL spliced into a file: the line of glsl/<path> that begins
+ * with `marker` is replaced by `text`, whose lines logs name as the file
+ * `name` (e.g. OpenColorIO's function in glsl/color/display.comp). */
+struct cv_glsl_splice {
+    const char *marker;
+    const char *text;
+    const char *name;
+};
+
+/* cv_program_get for a file with generated text spliced in; cached (in
+ * memory and on disk) by path, defines and the text. A file without the
+ * marker line fails. */
+struct cv_program *cv_program_get_spliced(struct cv_gpu *gpu, const char *path,
+                                          const char *const *defines,
+                                          const struct cv_glsl_splice *splice,
+                                          struct cv_error *err);
+
 /* The disk cache's counts for this context (all zero and enabled false
  * before the first cv_program_get, or when the cache is off). */
 void cv_program_cache_stats(const struct cv_gpu *gpu, struct cv_program_disk_stats *out);

@@ -1,5 +1,6 @@
-/* job_hash.c: see job_hash.h. Changing what goes into the text changes every
- * hash, which makes --resume redo all jobs once: bump the first line's
+/* job_hash.c: see job_hash.h. The text walks the key table (keys.h): each
+ * row's hash rule says whether and how it enters. Changing what goes into
+ * the text changes every hash, which makes --resume redo all jobs once: bump the first line's
  * version when doing so on purpose. */
 #include <stdarg.h>
 #include <stdio.h>
@@ -8,6 +9,8 @@
 
 #include "base/mem.h"
 #include "manifest/job_hash.h"
+#include "manifest/job_parse.h"
+#include "manifest/keys.h"
 
 #define FNV1A64_PRIME UINT64_C(0x100000001b3)
 
@@ -72,48 +75,81 @@ static void add_vec(struct text *t, const char *key, const float *v)
     add(t, "%s=%.9g,%.9g,%.9g\n", key, v[0], v[1], v[2]);
 }
 
+/* One row's lines of the canonical text. */
+static void add_key(struct text *t, const struct cv_job *job, const struct cv_key *k,
+                    long long scene_size, long long scene_mtime)
+{
+    const void *f = (const char *)job + k->offset;
+    /* output settings always hold a value (keys.h: fill_default) */
+    bool has = k->fill_default || cv_job_key_set(job, k);
+    switch (k->type) {
+    case CV_KT_SECTION:
+        return;
+    case CV_KT_STRING:
+        add_str(t, k->name, *(char *const *)f);
+        break;
+    case CV_KT_U32:
+        add_u32(t, k->name, has, *(const uint32_t *)f);
+        break;
+    case CV_KT_FLOAT:
+        add_float(t, k->name, has, *(const float *)f);
+        break;
+    case CV_KT_DURATION:
+        add_float(t, k->name, has, *(const double *)f);
+        break;
+    case CV_KT_BOOL:
+        if (has)
+            add(t, "%s=%d\n", k->name, *(const bool *)f);
+        else
+            add(t, "%s=-\n", k->name);
+        break;
+    case CV_KT_ENUM: {
+        unsigned v = *(const unsigned *)f;
+        const struct cv_names *values = k->values ? k->values : k->names;
+        if (k->hash == CV_HASH_OFF_DEFAULT && v == (unsigned)k->def)
+            break;
+        add(t, "%s=%s\n", k->name, has ? cv_name_of(values, v) : "-");
+        break;
+    }
+    case CV_KT_BITS:
+        add(t, "%s=%u\n", k->name, *(const unsigned *)f);
+        break;
+    case CV_KT_RESOLUTION: {
+        const uint32_t *wh = f;
+        if (has)
+            add(t, "%s=%ux%u\n", k->name, (unsigned)wh[0], (unsigned)wh[1]);
+        else
+            add(t, "%s=-\n", k->name);
+        break;
+    }
+    case CV_KT_LOOKAT: {
+        /* eye, at, up, each under the key's section ("camera.eye") */
+        static const char *const parts[] = {"eye", "at", "up"};
+        size_t section = (size_t)(cv_key_leaf(k) - k->name);
+        if (!has) {
+            add(t, "%s=-\n", k->name);
+            break;
+        }
+        for (int i = 0; i < 3; i++) {
+            char name[64];
+            snprintf(name, sizeof(name), "%.*s%s", (int)section, k->name, parts[i]);
+            add_vec(t, name, (const float *)f + 3 * i);
+        }
+        break;
+    }
+    }
+    if (k->hash == CV_HASH_WITH_STAMP)
+        add(t, "%s.size=%lld\n%s.mtime=%lld\n", k->name, scene_size, k->name, scene_mtime);
+}
+
 char *cv_job_settings_text(const struct cv_job *job, long long scene_size,
                            long long scene_mtime)
 {
-    static const char *const integrators[] = {"-", "path", "rlpath"};
-    static const char *const compressions[] = {"none", "zip", "piz", "dwaa"};
     struct text t = {0};
     add(&t, "cavalry-job-settings 1\n");
-    add_str(&t, "scene", job->scene_as_written);
-    add(&t, "scene.size=%lld\nscene.mtime=%lld\n", scene_size, scene_mtime);
-    if (job->has_resolution)
-        add(&t, "resolution=%ux%u\n", (unsigned)job->width, (unsigned)job->height);
-    else
-        add(&t, "resolution=-\n");
-    add_u32(&t, "spp", job->has_spp, job->spp);
-    add_float(&t, "time_limit", job->has_time_limit, job->time_limit);
-    add(&t, "integrator=%s\n", integrators[job->integrator]);
-    add_u32(&t, "max_depth", job->has_max_depth, job->max_depth);
-    add_u32(&t, "seed", job->has_seed, job->seed);
-    add_str(&t, "color.config", job->color.config);
-    add_str(&t, "color.display", job->color.display);
-    add_str(&t, "color.view", job->color.view);
-    add_str(&t, "color.look", job->color.look);
-    add_float(&t, "color.exposure", job->color.has_exposure, job->color.exposure);
-    add(&t, "aovs=%u\n", job->aovs);
-    add(&t, "exr.half=%d\nexr.compression=%s\n", job->exr.half,
-        compressions[job->exr.compression]);
-    add(&t, "png.bits=%u\n", job->png.bits);
-    add_float(&t, "camera.fov", job->camera.has_fov, job->camera.fov);
-    if (job->camera.has_lookat) {
-        add_vec(&t, "camera.eye", job->camera.eye);
-        add_vec(&t, "camera.at", job->camera.at);
-        add_vec(&t, "camera.up", job->camera.up);
-    } else {
-        add(&t, "camera.lookat=-\n");
-    }
-    add_u32(&t, "rlpath.grid", job->rlpath.has_grid, job->rlpath.grid);
-    add_u32(&t, "rlpath.directions", job->rlpath.has_directions, job->rlpath.directions);
-    add_float(&t, "rlpath.mix", job->rlpath.has_mix, job->rlpath.mix);
-    /* only when set off its default, so that the hashes of jobs written
-     * before the key existed stay the same (resume keeps their images) */
-    if (job->rlpath.guide_indirect)
-        add(&t, "rlpath.guide=indirect\n");
+    for (size_t i = 0; i < CV_K_COUNT; i++)
+        if (cv_manifest_keys[i].hash != CV_HASH_NO)
+            add_key(&t, job, &cv_manifest_keys[i], scene_size, scene_mtime);
     return t.s;
 }
 

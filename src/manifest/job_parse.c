@@ -1,40 +1,17 @@
-/* job_parse.c: see job_parse.h. The valid-key lists here are what the
- * "unknown key" messages print and what cavalry-manifest(5) documents. */
+/* job_parse.c: see job_parse.h. Reading, merging and the "unknown key"
+ * lists walk the key table (keys.h): no key is spelled here. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/limits.h"
 #include "base/mem.h"
 #include "manifest/job_parse.h"
+#include "manifest/keys.h"
 #include "manifest/yaml_view.h"
 
-static const char *const job_keys[] = {
-    "name", "scene", "output", "formats", "resolution", "spp", "time_limit", "integrator",
-    "max_depth", "seed", "color", "aovs", "exr", "png", "camera", "rlpath",
-};
-static const char *const color_keys[] = {"config", "display", "view", "look", "exposure"};
-static const char *const exr_keys[] = {"half", "compression"};
-static const char *const png_keys[] = {"bits"};
-static const char *const camera_keys[] = {"fov", "lookat"};
-static const char *const rlpath_keys[] = {"grid", "directions", "mix", "guide"};
-
-static const char *const format_names[] = {"exr", "png"};
-static const char *const aov_names[] = {"albedo", "normal", "depth"};
-static const char *const integrator_names[] = {"path", "rlpath"};
-static const char *const compression_names[] = {"none", "zip", "piz", "dwaa"};
-
-#define MAX_RESOLUTION 65536
-
-static struct cv_ypos pos(const yaml_node_t *n)
+static struct cv_key_at pos(const yaml_node_t *n)
 {
-    return (struct cv_ypos){cv_yline(n), cv_ycol(n)};
-}
-
-static bool is_name_char(char c)
-{
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c == '.' || c == '_' || c == '-';
+    return (struct cv_key_at){(unsigned)cv_yline(n), (unsigned)cv_ycol(n)};
 }
 
 static void set_string(char **dst, const char *src)
@@ -43,26 +20,26 @@ static void set_string(char **dst, const char *src)
     *dst = cv_xstrdup(src);
 }
 
-static bool read_u32(yaml_node_t *n, struct cv_diag *d, const char *what, long long min,
-                     long long max, uint32_t *out)
+static void *field(struct cv_job *j, const struct cv_key *k)
 {
-    long long v;
-    if (!cv_yread_int(n, d, what, min, max, &v))
-        return false;
-    *out = (uint32_t)v;
-    return true;
+    return (char *)j + k->offset;
+}
+
+static bool *has_flag(struct cv_job *j, const struct cv_key *k)
+{
+    return k->has ? (bool *)((char *)j + k->has) : NULL;
 }
 
 /* A list of names into bits; a lone scalar counts as a one-item list. */
 static bool read_bits(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                      const char *what, const char *const *names, size_t count,
-                      bool allow_empty, unsigned *out)
+                      const char *what, const struct cv_names *t, bool allow_empty,
+                      unsigned *out)
 {
     unsigned bits = 0;
     bool ok = true;
     int idx;
     if (n->type == YAML_SCALAR_NODE) {
-        if (!cv_yread_enum(n, d, what, names, count, &idx))
+        if (!cv_yread_enum(n, d, what, t->names, t->count, &idx))
             return false;
         *out = 1u << idx;
         return true;
@@ -75,7 +52,7 @@ static bool read_bits(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
     for (yaml_node_item_t *it = n->data.sequence.items.start; it < n->data.sequence.items.top;
          it++) {
         yaml_node_t *item = yaml_document_get_node(doc, *it);
-        if (item && cv_yread_enum(item, d, what, names, count, &idx))
+        if (item && cv_yread_enum(item, d, what, t->names, t->count, &idx))
             bits |= 1u << idx;
         else
             ok = false;
@@ -89,10 +66,23 @@ static bool read_bits(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
     return ok;
 }
 
-static bool read_resolution(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                            uint32_t *w, uint32_t *h)
+static bool read_u32(yaml_node_t *n, struct cv_diag *d, const char *what, long long min,
+                     long long max, uint32_t *out)
 {
-    const char *exp = "[width, height] or \"WIDTHxHEIGHT\" with sides from 1 to 65536";
+    long long v;
+    if (!cv_yread_int(n, d, what, min, max, &v))
+        return false;
+    *out = (uint32_t)v;
+    return true;
+}
+
+static bool read_resolution(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
+                            const struct cv_key *k, uint32_t *w, uint32_t *h)
+{
+    const long long max = (long long)k->max;
+    char exp[96];
+    snprintf(exp, sizeof(exp), "[width, height] or \"WIDTHxHEIGHT\" with sides from %.0f to %lld",
+             k->min, max);
     if (n->type == YAML_SEQUENCE_NODE) {
         yaml_node_item_t *it = n->data.sequence.items.start;
         if (n->data.sequence.items.top - it != 2) {
@@ -103,8 +93,8 @@ static bool read_resolution(yaml_document_t *doc, yaml_node_t *n, struct cv_diag
         uint32_t v[2];
         bool ok = true;
         for (int i = 0; i < 2; i++)
-            ok &= read_u32(yaml_document_get_node(doc, it[i]), d, "resolution", 1,
-                           MAX_RESOLUTION, &v[i]);
+            ok &= read_u32(yaml_document_get_node(doc, it[i]), d, k->name, (long long)k->min,
+                           max, &v[i]);
         if (ok) {
             *w = v[0];
             *h = v[1];
@@ -118,8 +108,8 @@ static bool read_resolution(yaml_document_t *doc, yaml_node_t *n, struct cv_diag
         char *end = x;
         if (x != s && (*x == 'x' || *x == 'X') && x[1] >= '0' && x[1] <= '9')
             b = strtoul(x + 1, &end, 10);
-        if (s[0] >= '0' && s[0] <= '9' && !*end && a >= 1 && a <= MAX_RESOLUTION && b >= 1 &&
-            b <= MAX_RESOLUTION) {
+        if (s[0] >= '0' && s[0] <= '9' && !*end && a >= k->min && (long long)a <= max && b >= k->min &&
+            (long long)b <= max) {
             *w = (uint32_t)a;
             *h = (uint32_t)b;
             return true;
@@ -146,8 +136,7 @@ static bool read_vec3(yaml_document_t *doc, yaml_node_item_t *items, struct cv_d
 }
 
 /* [[eye], [at], [up]] or the nine numbers flat, as pbrt writes LookAt. */
-static bool read_lookat(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                        struct cv_job_camera *cam)
+static bool read_lookat(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d, float *out)
 {
     const char *exp = "[[ex, ey, ez], [ax, ay, az], [ux, uy, uz]] or nine numbers";
     if (n->type != YAML_SEQUENCE_NODE) {
@@ -189,9 +178,7 @@ static bool read_lookat(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
         cv_diag_add(d, cv_yline(n), cv_ycol(n), "camera.lookat: up vector is zero");
         return false;
     }
-    memcpy(cam->eye, v, sizeof(cam->eye));
-    memcpy(cam->at, v + 3, sizeof(cam->at));
-    memcpy(cam->up, v + 6, sizeof(cam->up));
+    memcpy(out, v, sizeof(v));
     return true;
 }
 
@@ -208,350 +195,200 @@ static size_t sub_pairs(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
     return cv_ymap_pairs(doc, n, d, pairs);
 }
 
-static void parse_color(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                        struct cv_job_draft *out)
+/* Reads one value of row k into the job; true when it was valid. */
+static bool read_value(yaml_document_t *doc, yaml_node_t *v, const struct cv_key *k,
+                       struct cv_diag *d, struct cv_job *j)
 {
-    struct cv_job_color *c = &out->job.color;
-    struct cv_ypair *pairs;
-    size_t np = sub_pairs(doc, n, d, "color", &pairs);
-    for (size_t i = 0; i < np; i++) {
-        const char *k = cv_ykey(&pairs[i]);
-        yaml_node_t *v = pairs[i].value;
-        const char *s;
-        double f;
-        if (!strcmp(k, "config")) {
-            if (cv_yread_string(v, d, "color.config", &s)) {
-                set_string(&c->config, s);
-                out->config_at = pos(v);
-            }
-        } else if (!strcmp(k, "display")) {
-            if (cv_yread_string(v, d, "color.display", &s))
-                set_string(&c->display, s);
-        } else if (!strcmp(k, "view")) {
-            if (cv_yread_string(v, d, "color.view", &s))
-                set_string(&c->view, s);
-        } else if (!strcmp(k, "look")) {
-            if (cv_yread_string(v, d, "color.look", &s))
-                set_string(&c->look, s);
-        } else if (!strcmp(k, "exposure")) {
-            if (cv_yread_float(v, d, "color.exposure", -64, 64, &f)) {
-                c->exposure = (float)f;
-                c->has_exposure = true;
-            }
-        } else {
-            cv_yunknown_key(&pairs[i], d, "color", color_keys, CV_ARRAY_SIZE(color_keys));
-        }
-    }
-    free(pairs);
-}
-
-static void parse_exr(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                      struct cv_job_exr *e)
-{
-    struct cv_ypair *pairs;
-    size_t np = sub_pairs(doc, n, d, "exr", &pairs);
-    for (size_t i = 0; i < np; i++) {
-        const char *k = cv_ykey(&pairs[i]);
-        int idx;
-        if (!strcmp(k, "half")) {
-            e->has_half = cv_yread_bool(pairs[i].value, d, "exr.half", &e->half) || e->has_half;
-        } else if (!strcmp(k, "compression")) {
-            if (cv_yread_enum(pairs[i].value, d, "exr.compression", compression_names,
-                              CV_ARRAY_SIZE(compression_names), &idx)) {
-                e->compression = (enum cv_job_compression)idx;
-                e->has_compression = true;
-            }
-        } else {
-            cv_yunknown_key(&pairs[i], d, "exr", exr_keys, CV_ARRAY_SIZE(exr_keys));
-        }
-    }
-    free(pairs);
-}
-
-static void parse_png(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                      struct cv_job_png *p)
-{
-    struct cv_ypair *pairs;
-    size_t np = sub_pairs(doc, n, d, "png", &pairs);
-    for (size_t i = 0; i < np; i++) {
-        long long bits;
-        if (!strcmp(cv_ykey(&pairs[i]), "bits")) {
-            yaml_node_t *v = pairs[i].value;
-            if (cv_yread_int(v, d, "png.bits", 8, 16, &bits)) {
-                if (bits != 8 && bits != 16) {
-                    cv_diag_add(d, cv_yline(v), cv_ycol(v),
-                                "png.bits: expected 8 or 16, got \"%lld\"", bits);
-                } else {
-                    p->bits = (unsigned)bits;
-                    p->has_bits = true;
-                }
-            }
-        } else {
-            cv_yunknown_key(&pairs[i], d, "png", png_keys, CV_ARRAY_SIZE(png_keys));
-        }
-    }
-    free(pairs);
-}
-
-static void parse_camera(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                         struct cv_job_camera *cam)
-{
-    struct cv_ypair *pairs;
-    size_t np = sub_pairs(doc, n, d, "camera", &pairs);
-    for (size_t i = 0; i < np; i++) {
-        const char *k = cv_ykey(&pairs[i]);
-        yaml_node_t *v = pairs[i].value;
-        double f;
-        if (!strcmp(k, "fov")) {
-            if (cv_yread_float(v, d, "camera.fov", 0, 180, &f)) {
-                if (f <= 0 || f >= 180) {
-                    cv_diag_add(d, cv_yline(v), cv_ycol(v),
-                                "camera.fov: expected degrees between 0 and 180 (exclusive), "
-                                "got \"%g\"", f);
-                } else {
-                    cam->fov = (float)f;
-                    cam->has_fov = true;
-                }
-            }
-        } else if (!strcmp(k, "lookat")) {
-            cam->has_lookat = read_lookat(doc, v, d, cam) || cam->has_lookat;
-        } else {
-            cv_yunknown_key(&pairs[i], d, "camera", camera_keys, CV_ARRAY_SIZE(camera_keys));
-        }
-    }
-    free(pairs);
-}
-
-static void parse_rlpath(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
-                         struct cv_job_rlpath *r)
-{
-    struct cv_ypair *pairs;
-    size_t np = sub_pairs(doc, n, d, "rlpath", &pairs);
-    for (size_t i = 0; i < np; i++) {
-        const char *k = cv_ykey(&pairs[i]);
-        yaml_node_t *v = pairs[i].value;
-        double f;
-        if (!strcmp(k, "grid")) {
-            r->has_grid = read_u32(v, d, "rlpath.grid", 1, CV_RL_MAX_GRID, &r->grid) || r->has_grid;
-        } else if (!strcmp(k, "directions")) {
-            r->has_directions =
-                read_u32(v, d, "rlpath.directions", 1, CV_RL_MAX_DIRECTIONS,
-                         &r->directions) || r->has_directions;
-        } else if (!strcmp(k, "mix")) {
-            if (cv_yread_float(v, d, "rlpath.mix", 0, 1, &f)) {
-                r->mix = (float)f;
-                r->has_mix = true;
-            }
-        } else if (!strcmp(k, "guide")) {
-            const char *s;
-            if (!cv_yread_string(v, d, "rlpath.guide", &s))
-                continue;
-            if (strcmp(s, "all") && strcmp(s, "indirect")) {
-                cv_diag_add(d, cv_yline(v), cv_ycol(v),
-                            "rlpath.guide: expected one of all, indirect, got \"%s\"", s);
-                continue;
-            }
-            r->guide_indirect = !strcmp(s, "indirect");
-            r->has_guide = true;
-        } else {
-            cv_yunknown_key(&pairs[i], d, "rlpath", rlpath_keys, CV_ARRAY_SIZE(rlpath_keys));
-        }
-    }
-    free(pairs);
-}
-
-static void parse_name(yaml_node_t *v, struct cv_diag *d, struct cv_job_draft *out)
-{
+    void *f = field(j, k);
+    char msg[512];
     const char *s;
-    out->name_at = pos(v);  /* given, even if invalid: not "missing" */
-    if (!cv_yread_string(v, d, "name", &s))
-        return;
-    for (const char *p = s; *p; p++) {
-        if (!is_name_char(*p)) {
-            cv_diag_add(d, cv_yline(v), cv_ycol(v),
-                        "name: \"%s\" has '%c'; job names use only letters, digits, '.', '_' "
-                        "and '-'", s, *p);
-            return;
-        }
+    long long i;
+    double x;
+    int idx;
+    switch (k->type) {
+    case CV_KT_SECTION:
+        return false; /* read by read_mapping */
+    case CV_KT_STRING:
+        if (!cv_yread_string(v, d, k->name, &s))
+            return false;
+        if (k->check && !k->check(&s, msg, sizeof(msg)))
+            break;
+        set_string(f, s);
+        return true;
+    case CV_KT_U32:
+        if (!cv_yread_int(v, d, k->name, (long long)k->min, (long long)k->max, &i))
+            return false;
+        if (k->check && !k->check(&i, msg, sizeof(msg)))
+            break;
+        *(uint32_t *)f = (uint32_t)i;
+        return true;
+    case CV_KT_FLOAT:
+        if (!cv_yread_float(v, d, k->name, k->min, k->max, &x))
+            return false;
+        if (k->check && !k->check(&x, msg, sizeof(msg)))
+            break;
+        *(float *)f = (float)x;
+        return true;
+    case CV_KT_DURATION:
+        return cv_yread_duration(v, d, k->name, f);
+    case CV_KT_BOOL:
+        return cv_yread_bool(v, d, k->name, f);
+    case CV_KT_ENUM:
+        if (!cv_yread_enum(v, d, k->name, k->names->names, k->names->count, &idx))
+            return false;
+        *(unsigned *)f = k->values ? (unsigned)cv_name_find(k->values, k->names->names[idx])
+                                   : (unsigned)idx;
+        return true;
+    case CV_KT_BITS:
+        return read_bits(doc, v, d, k->name, k->names, k->allow_empty, f);
+    case CV_KT_RESOLUTION:
+        return read_resolution(doc, v, d, k, f, (uint32_t *)f + 1);
+    case CV_KT_LOOKAT:
+        return read_lookat(doc, v, d, f);
     }
-    set_string(&out->job.name, s);
+    cv_diag_add(d, cv_yline(v), cv_ycol(v), "%s", msg);
+    return false;
 }
 
-/* Only {name} may appear in braces: a typo such as {nmae} would otherwise
- * silently become part of every file name. */
-static void parse_output(yaml_node_t *v, struct cv_diag *d, struct cv_job_draft *out)
+/* Reports an unknown key of a mapping with the keys valid there. */
+static void unknown_key(const struct cv_ypair *p, const struct cv_key *section,
+                        bool is_defaults, struct cv_diag *d)
 {
-    const char *s;
-    if (!cv_yread_string(v, d, "output", &s))
-        return;
-    for (const char *p = strchr(s, '{'); p; p = strchr(p + 1, '{')) {
-        if (strncmp(p, "{name}", 6) != 0) {
-            cv_diag_add(d, cv_yline(v), cv_ycol(v),
-                        "output: \"%s\": only {name} may be written in braces", s);
-            return;
+    const char *valid[CV_K_COUNT];
+    size_t n = 0;
+    for (size_t i = 0; i < CV_K_COUNT; i++) {
+        const struct cv_key *k = &cv_manifest_keys[i];
+        if (cv_key_in(k, section) && !(is_defaults && k->merge == CV_MERGE_JOB_ONLY))
+            valid[n++] = cv_key_leaf(k);
+    }
+    const char *where = section ? section->name : is_defaults ? "defaults" : "job";
+    cv_yunknown_key(p, d, where, valid, n);
+}
+
+static void read_mapping(yaml_document_t *doc, struct cv_ypair *pairs, size_t np,
+                         const struct cv_key *section, bool is_defaults, struct cv_diag *d,
+                         struct cv_job *j)
+{
+    for (size_t i = 0; i < np; i++) {
+        const char *leaf = cv_ykey(&pairs[i]);
+        yaml_node_t *v = pairs[i].value;
+        const struct cv_key *k = NULL;
+        for (size_t r = 0; r < CV_K_COUNT && !k; r++)
+            if (cv_key_in(&cv_manifest_keys[r], section) &&
+                !strcmp(cv_key_leaf(&cv_manifest_keys[r]), leaf))
+                k = &cv_manifest_keys[r];
+        if (!k) {
+            unknown_key(&pairs[i], section, is_defaults, d);
+        } else if (is_defaults && k->merge == CV_MERGE_JOB_ONLY) {
+            cv_diag_add(d, cv_yline(pairs[i].key), cv_ycol(pairs[i].key),
+                        "\"%s\" cannot be given in defaults: every job needs its own", k->name);
+        } else if (k->type == CV_KT_SECTION) {
+            struct cv_ypair *sub;
+            size_t ns = sub_pairs(doc, v, d, k->name, &sub);
+            read_mapping(doc, sub, ns, k, is_defaults, d, j);
+            free(sub);
+        } else {
+            size_t id = (size_t)(k - cv_manifest_keys);
+            if (k->merge == CV_MERGE_JOB_ONLY)
+                j->at[id] = pos(v); /* given, even if invalid: not "missing" */
+            if (read_value(doc, v, k, d, j)) {
+                j->at[id] = pos(v);
+                if (has_flag(j, k))
+                    *has_flag(j, k) = true;
+            }
         }
     }
-    if (s[strlen(s) - 1] == '/') {
-        cv_diag_add(d, cv_yline(v), cv_ycol(v),
-                    "output: \"%s\" names a folder; expected a file name without extension, "
-                    "e.g. \"%s{name}\"", s, s);
-        return;
-    }
-    set_string(&out->job.output, s);
-    out->job.has_output = true;
-    out->output_at = pos(v);
 }
 
 void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
                   struct cv_diag *d, struct cv_job_draft *out)
 {
     memset(out, 0, sizeof(*out));
-    out->at = pos(map);
+    out->at.line = cv_yline(map);
+    out->at.col = cv_ycol(map);
     out->job.line = (unsigned)out->at.line;
     out->job.col = (unsigned)out->at.col;
-    const char *where = is_defaults ? "defaults" : "job";
     if (map->type != YAML_MAPPING_NODE) {
-        cv_diag_add(d, cv_yline(map), cv_ycol(map), "%s: expected a mapping, got %s", where,
-                    cv_ykind(map));
+        cv_diag_add(d, cv_yline(map), cv_ycol(map), "%s: expected a mapping, got %s",
+                    is_defaults ? "defaults" : "job", cv_ykind(map));
         return;
     }
-    struct cv_job *j = &out->job;
     struct cv_ypair *pairs;
     size_t np = cv_ymap_pairs(doc, map, d, &pairs);
-    for (size_t i = 0; i < np; i++) {
-        const char *k = cv_ykey(&pairs[i]);
-        yaml_node_t *v = pairs[i].value;
-        const char *s;
-        int idx;
-        if (!strcmp(k, "name") && !is_defaults) {
-            parse_name(v, d, out);
-        } else if (!strcmp(k, "scene")) {
-            if (cv_yread_string(v, d, "scene", &s)) {
-                set_string(&j->scene_as_written, s);
-                out->scene_at = pos(v);
-            }
-        } else if (!strcmp(k, "output")) {
-            parse_output(v, d, out);
-        } else if (!strcmp(k, "formats")) {
-            j->has_formats = read_bits(doc, v, d, "formats", format_names,
-                                       CV_ARRAY_SIZE(format_names), false, &j->formats) ||
-                             j->has_formats;
-        } else if (!strcmp(k, "aovs")) {
-            j->has_aovs = read_bits(doc, v, d, "aovs", aov_names, CV_ARRAY_SIZE(aov_names),
-                                    true, &j->aovs) ||
-                          j->has_aovs;
-        } else if (!strcmp(k, "resolution")) {
-            j->has_resolution = read_resolution(doc, v, d, &j->width, &j->height);
-        } else if (!strcmp(k, "spp")) {
-            j->has_spp = read_u32(v, d, "spp", 1, CV_MAX_SPP, &j->spp);
-        } else if (!strcmp(k, "time_limit")) {
-            j->has_time_limit = cv_yread_duration(v, d, "time_limit", &j->time_limit);
-        } else if (!strcmp(k, "integrator")) {
-            if (cv_yread_enum(v, d, "integrator", integrator_names,
-                              CV_ARRAY_SIZE(integrator_names), &idx))
-                j->integrator = (enum cv_integrator)(CV_INTEGRATOR_PATH + idx);
-        } else if (!strcmp(k, "max_depth")) {
-            j->has_max_depth = read_u32(v, d, "max_depth", 1, 1024, &j->max_depth);
-        } else if (!strcmp(k, "seed")) {
-            j->has_seed = read_u32(v, d, "seed", 0, UINT32_MAX, &j->seed);
-        } else if (!strcmp(k, "color")) {
-            parse_color(doc, v, d, out);
-        } else if (!strcmp(k, "exr")) {
-            parse_exr(doc, v, d, &j->exr);
-        } else if (!strcmp(k, "png")) {
-            parse_png(doc, v, d, &j->png);
-        } else if (!strcmp(k, "camera")) {
-            parse_camera(doc, v, d, &j->camera);
-        } else if (!strcmp(k, "rlpath")) {
-            parse_rlpath(doc, v, d, &j->rlpath);
-        } else if (!strcmp(k, "name")) {
-            cv_diag_add(d, cv_yline(pairs[i].key), cv_ycol(pairs[i].key),
-                        "\"name\" cannot be given in defaults: every job needs its own");
-        } else {
-            /* Defaults take every job key but name. */
-            cv_yunknown_key(&pairs[i], d, where, job_keys + is_defaults,
-                            CV_ARRAY_SIZE(job_keys) - is_defaults);
-        }
-    }
+    read_mapping(doc, pairs, np, NULL, is_defaults, d, &out->job);
     free(pairs);
 }
 
-static void take_string(char **dst, const char *src)
+/* Bytes of a row's value in struct cv_job. */
+static size_t value_size(const struct cv_key *k)
 {
-    if (!*dst && src)
-        *dst = cv_xstrdup(src);
+    switch (k->type) {
+    case CV_KT_U32: return sizeof(uint32_t);
+    case CV_KT_FLOAT: return sizeof(float);
+    case CV_KT_DURATION: return sizeof(double);
+    case CV_KT_BOOL: return sizeof(bool);
+    case CV_KT_ENUM:
+    case CV_KT_BITS: return sizeof(unsigned);
+    case CV_KT_RESOLUTION: return 2 * sizeof(uint32_t);
+    case CV_KT_LOOKAT: return 9 * sizeof(float);
+    case CV_KT_SECTION:
+    case CV_KT_STRING: break;
+    }
+    return 0;
 }
 
-#define TAKE(flag, field)                  \
-    do {                                   \
-        if (!j->flag && dj->flag) {        \
-            j->flag = true;                \
-            j->field = dj->field;          \
-        }                                  \
-    } while (0)
+bool cv_job_key_set(const struct cv_job *job, const struct cv_key *k)
+{
+    if (k->type == CV_KT_SECTION)
+        return false;
+    if (k->type == CV_KT_STRING)
+        return *(char *const *)((const char *)job + k->offset) != NULL;
+    return *(const bool *)((const char *)job + k->has);
+}
 
 void cv_job_merge(struct cv_job_draft *job, const struct cv_job_draft *defaults)
 {
     struct cv_job *j = &job->job;
     const struct cv_job *dj = &defaults->job;
-    if (!j->scene_as_written && dj->scene_as_written) {
-        j->scene_as_written = cv_xstrdup(dj->scene_as_written);
-        job->scene_at = defaults->scene_at;
+    for (size_t i = 0; i < CV_K_COUNT; i++) {
+        const struct cv_key *k = &cv_manifest_keys[i];
+        if (k->type == CV_KT_SECTION || k->merge == CV_MERGE_JOB_ONLY ||
+            cv_job_key_set(j, k) || !cv_job_key_set(dj, k))
+            continue;
+        const void *from = (const char *)dj + k->offset;
+        if (k->type == CV_KT_STRING) {
+            *(char **)field(j, k) = cv_xstrdup(*(char *const *)from);
+        } else {
+            memcpy(field(j, k), from, value_size(k));
+            *has_flag(j, k) = true;
+        }
+        j->at[i] = dj->at[i];
     }
-    if (!j->has_output && dj->has_output) {
-        j->output = cv_xstrdup(dj->output);
-        j->has_output = true;
-        job->output_at = defaults->output_at;
-    }
-    TAKE(has_formats, formats);
-    TAKE(has_aovs, aovs);
-    if (!j->has_resolution && dj->has_resolution) {
-        j->has_resolution = true;
-        j->width = dj->width;
-        j->height = dj->height;
-    }
-    TAKE(has_spp, spp);
-    TAKE(has_time_limit, time_limit);
-    if (j->integrator == CV_INTEGRATOR_UNSET)
-        j->integrator = dj->integrator;
-    TAKE(has_max_depth, max_depth);
-    TAKE(has_seed, seed);
+}
 
-    if (!j->color.config && dj->color.config) {
-        j->color.config = cv_xstrdup(dj->color.config);
-        job->config_at = defaults->config_at;
+void cv_job_fill_defaults(struct cv_job *job)
+{
+    for (size_t i = 0; i < CV_K_COUNT; i++) {
+        const struct cv_key *k = &cv_manifest_keys[i];
+        if (!k->fill_default || cv_job_key_set(job, k))
+            continue;
+        void *f = field(job, k);
+        switch (k->type) {
+        case CV_KT_U32: *(uint32_t *)f = (uint32_t)k->def; break;
+        case CV_KT_BOOL: *(bool *)f = k->def != 0; break;
+        case CV_KT_ENUM:
+        case CV_KT_BITS: *(unsigned *)f = (unsigned)k->def; break;
+        default: break; /* no other type has a filled default */
+        }
     }
-    take_string(&j->color.display, dj->color.display);
-    take_string(&j->color.view, dj->color.view);
-    take_string(&j->color.look, dj->color.look);
-    TAKE(color.has_exposure, color.exposure);
-
-    TAKE(exr.has_half, exr.half);
-    TAKE(exr.has_compression, exr.compression);
-    TAKE(png.has_bits, png.bits);
-    TAKE(camera.has_fov, camera.fov);
-    if (!j->camera.has_lookat && dj->camera.has_lookat) {
-        j->camera.has_lookat = true;
-        memcpy(j->camera.eye, dj->camera.eye, sizeof(j->camera.eye));
-        memcpy(j->camera.at, dj->camera.at, sizeof(j->camera.at));
-        memcpy(j->camera.up, dj->camera.up, sizeof(j->camera.up));
-    }
-    TAKE(rlpath.has_grid, rlpath.grid);
-    TAKE(rlpath.has_directions, rlpath.directions);
-    TAKE(rlpath.has_mix, rlpath.mix);
-    TAKE(rlpath.has_guide, rlpath.guide_indirect);
 }
 
 void cv_job_free(struct cv_job *job)
 {
-    free(job->name);
+    for (size_t i = 0; i < CV_K_COUNT; i++)
+        if (cv_manifest_keys[i].type == CV_KT_STRING)
+            free(*(char **)field(job, &cv_manifest_keys[i]));
     free(job->scene);
-    free(job->scene_as_written);
-    free(job->output);
-    free(job->color.config);
-    free(job->color.display);
-    free(job->color.view);
-    free(job->color.look);
     free(job->settings_hash);
     memset(job, 0, sizeof(*job));
 }

@@ -18,10 +18,11 @@ struct cv_ypos {
 };
 
 /* A job while being read: after cv_job_parse, job.output holds the output
- * template and job.color.config the config as written; job.scene is NULL. */
+ * template and job.color.config the config as written; job.scene is NULL.
+ * job.at holds where each key was written. */
 struct cv_job_draft {
     struct cv_job job;
-    struct cv_ypos at, name_at, scene_at, output_at, config_at;
+    struct cv_ypos at;         /* the job's mapping */
 };
 
 /* Reads map into *out (zeroed first). In defaults `name` is not a valid key.
@@ -29,8 +30,16 @@ struct cv_job_draft {
 void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
                   struct cv_diag *d, struct cv_job_draft *out);
 
-/* Fills everything job did not set from defaults (strings are copied). */
+/* Fills everything job did not set from defaults (strings are copied),
+ * following each key's merge rule. */
 void cv_job_merge(struct cv_job_draft *job, const struct cv_job_draft *defaults);
+
+/* Whether the job holds a value of row k (a has_ flag, or a string). */
+bool cv_job_key_set(const struct cv_job *job, const struct cv_key *k);
+
+/* Stores the default of every output setting (keys.h: fill_default) the
+ * job left unset. */
+void cv_job_fill_defaults(struct cv_job *job);
 
 /* Frees the strings of a job, not the struct itself. */
 void cv_job_free(struct cv_job *job);

@@ -2,6 +2,8 @@
 libcavalry_a_SOURCES += \
 	src/manifest/diag.c src/manifest/diag.h \
 	src/manifest/yaml_view.c src/manifest/yaml_view.h \
+	src/manifest/enums.c src/manifest/enums.h \
+	src/manifest/keys.c src/manifest/keys.h \
 	src/manifest/job_parse.c src/manifest/job_parse.h \
 	src/manifest/job_hash.c src/manifest/job_hash.h \
 	src/manifest/manifest.c src/manifest/manifest.h \

@@ -20,10 +20,6 @@
 
 static const char *const top_keys[] = {"version", "defaults", "jobs", "x-*"};
 
-/* The output template when neither job nor defaults give one: the job's name
- * next to the manifest. */
-#define DEFAULT_OUTPUT "{name}"
-
 /* libyaml reader errors (bad UTF-8) carry a byte offset, not a mark. */
 static void offset_to_mark(const char *data, size_t len, size_t offset, size_t *line,
                            size_t *col)
@@ -88,19 +84,13 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
         snprintf(label, sizeof(label), "job \"%s\" (line %zu)", j->name, dr->at.line);
     else
         snprintf(label, sizeof(label), "job %zu (line %zu)", i + 1, dr->at.line);
-    if (!j->name && !dr->name_at.line)
+    const struct cv_key_at *at = j->at;
+    if (!j->name && !at[CV_K_NAME].line)
         cv_diag_add(d, dr->at.line, dr->at.col, "job %zu: missing required key \"name\"", i + 1);
 
-    if (!j->has_formats)
-        j->formats = CV_FORMAT_EXR;
-    if (!j->exr.has_compression)
-        j->exr.compression = CV_JOB_EXR_ZIP;
-    if (!j->exr.has_half)
-        j->exr.half = true;
-    if (!j->png.has_bits)
-        j->png.bits = 8;
+    cv_job_fill_defaults(j);
 
-    const char *tmpl = j->has_output ? j->output : DEFAULT_OUTPUT;
+    const char *tmpl = j->output ? j->output : cv_manifest_keys[CV_K_OUTPUT].def_text;
     char *expanded = expand_output(tmpl, j->name ? j->name : "");
     free(j->output);
     j->output = cv_path_join(dir, expanded);
@@ -115,11 +105,11 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
     } else {
         j->scene = cv_path_join(dir, j->scene_as_written);
         if (stat(j->scene, &st) != 0)
-            cv_diag_add(d, dr->scene_at.line, dr->scene_at.col,
+            cv_diag_add(d, at[CV_K_SCENE].line, at[CV_K_SCENE].col,
                         "%s: scene file \"%s\" not found (%s: %s)", label, j->scene_as_written,
                         j->scene, strerror(errno));
         else if (!S_ISREG(st.st_mode))
-            cv_diag_add(d, dr->scene_at.line, dr->scene_at.col,
+            cv_diag_add(d, at[CV_K_SCENE].line, at[CV_K_SCENE].col,
                         "%s: scene \"%s\" is not a regular file", label, j->scene_as_written);
         else
             scene_ok = true;
@@ -132,7 +122,7 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
         char *path = cv_path_join(dir, j->color.config);
         struct stat cst;
         if (stat(path, &cst) != 0)
-            cv_diag_add(d, dr->config_at.line, dr->config_at.col,
+            cv_diag_add(d, at[CV_K_COLOR_CONFIG].line, at[CV_K_COLOR_CONFIG].col,
                         "%s: color config \"%s\" not found (%s: %s)", label, j->color.config,
                         path, strerror(errno));
         free(j->color.config);
@@ -150,14 +140,16 @@ static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
         for (size_t k = 0; k < i; k++) {
             struct cv_job_draft *b = &jobs[k];
             if (a->job.name && b->job.name && !strcmp(a->job.name, b->job.name)) {
-                cv_diag_add(d, a->name_at.line, a->name_at.col,
-                            "duplicate job name \"%s\" (first defined at %s:%zu:%zu)",
-                            a->job.name, file, b->name_at.line, b->name_at.col);
+                cv_diag_add(d, a->job.at[CV_K_NAME].line, a->job.at[CV_K_NAME].col,
+                            "duplicate job name \"%s\" (first defined at %s:%u:%u)",
+                            a->job.name, file, b->job.at[CV_K_NAME].line,
+                            b->job.at[CV_K_NAME].col);
                 break;
             }
             if (a->job.name && b->job.name && !strcmp(a->job.output, b->job.output)) {
-                struct cv_ypos at = a->output_at.line ? a->output_at : a->at;
-                cv_diag_add(d, at.line, at.col,
+                const struct cv_key_at *oat = &a->job.at[CV_K_OUTPUT];
+                bool given = oat->line != 0;
+                cv_diag_add(d, given ? oat->line : a->at.line, given ? oat->col : a->at.col,
                             "job \"%s\": output \"%s\" is also the output of job \"%s\" "
                             "(line %zu); put {name} in the output template",
                             a->job.name, a->job.output, b->job.name, b->at.line);
@@ -338,58 +330,4 @@ const struct cv_job *cv_manifest_find_job(const struct cv_manifest *m, const cha
         if (!strcmp(m->jobs[i].name, name))
             return &m->jobs[i];
     return NULL;
-}
-
-const char *cv_integrator_name(enum cv_integrator integrator)
-{
-    switch (integrator) {
-    case CV_INTEGRATOR_PATH:
-        return "path";
-    case CV_INTEGRATOR_RLPATH:
-        return "rlpath";
-    default:
-        return NULL;
-    }
-}
-
-const char *cv_job_compression_name(enum cv_job_compression compression)
-{
-    switch (compression) {
-    case CV_JOB_EXR_NONE:
-        return "none";
-    case CV_JOB_EXR_ZIP:
-        return "zip";
-    case CV_JOB_EXR_PIZ:
-        return "piz";
-    case CV_JOB_EXR_DWAA:
-        return "dwaa";
-    default:
-        return NULL;
-    }
-}
-
-const char *cv_format_ext(unsigned format_bit)
-{
-    switch (format_bit) {
-    case CV_FORMAT_EXR:
-        return "exr";
-    case CV_FORMAT_PNG:
-        return "png";
-    default:
-        return NULL;
-    }
-}
-
-const char *cv_aov_name(unsigned aov_bit)
-{
-    switch (aov_bit) {
-    case CV_AOV_ALBEDO:
-        return "albedo";
-    case CV_AOV_NORMAL:
-        return "normal";
-    case CV_AOV_DEPTH:
-        return "depth";
-    default:
-        return NULL;
-    }
 }

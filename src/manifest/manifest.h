@@ -3,8 +3,9 @@
  * of resolved jobs: `defaults` merged under each job (nested mappings key by
  * key), paths joined to the manifest's folder, outputs templated.
  *
- * Optional render settings carry a has_ flag (or an UNSET enum value, or a
- * NULL string): unset means "use what the scene file says". Output settings
+ * Optional render settings carry a has_ flag (or a NULL string): unset
+ * means "use what the scene file says". Every key is a row of
+ * manifest/keys.h, which says its type, range, default and merge rule. Output settings
  * (formats, exr, png, aovs, output) always hold a value after loading; their
  * has_ flags only tell whether the manifest set them. */
 #ifndef CV_MANIFEST_MANIFEST_H
@@ -15,33 +16,11 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "manifest/enums.h"
+#include "manifest/keys.h"
 
 /* The only manifest version this reader understands. */
 #define CV_MANIFEST_VERSION 1
-
-enum cv_format_bits {
-    CV_FORMAT_EXR = 1u << 0,
-    CV_FORMAT_PNG = 1u << 1,
-};
-
-enum cv_aov_bits {
-    CV_AOV_ALBEDO = 1u << 0,
-    CV_AOV_NORMAL = 1u << 1,
-    CV_AOV_DEPTH = 1u << 2,
-};
-
-enum cv_integrator {
-    CV_INTEGRATOR_UNSET = 0,   /* the scene's integrator */
-    CV_INTEGRATOR_PATH,
-    CV_INTEGRATOR_RLPATH,
-};
-
-enum cv_job_compression {
-    CV_JOB_EXR_NONE,
-    CV_JOB_EXR_ZIP,                /* the default */
-    CV_JOB_EXR_PIZ,
-    CV_JOB_EXR_DWAA,
-};
 
 struct cv_job_color {
     char *config;              /* OCIO config: resolved path, or an "ocio://" URI as
@@ -56,7 +35,7 @@ struct cv_job_color {
 struct cv_job_exr {
     bool has_half, has_compression;
     bool half;                 /* default true: 16-bit half channels (float on request) */
-    enum cv_job_compression compression;   /* default CV_JOB_EXR_ZIP */
+    enum cv_exr_compression compression;   /* default CV_EXR_ZIP */
 };
 
 struct cv_job_png {
@@ -76,7 +55,7 @@ struct cv_job_rlpath {
     uint32_t grid;             /* spatial cells per axis, >= 1 */
     uint32_t directions;       /* directional bins per cell, >= 1 */
     float mix;                 /* [0,1]: share of guided vs. BSDF sampling */
-    bool guide_indirect;       /* guide: indirect (else all, the default) */
+    enum cv_rl_guide guide;    /* default CV_RL_GUIDE_ALL */
 };
 
 struct cv_job {
@@ -85,7 +64,7 @@ struct cv_job {
     char *scene;               /* path to open: manifest folder joined with scene_as_written */
     char *scene_as_written;    /* as in the manifest, for messages and the hash */
     char *output;              /* resolved output path without extension */
-    bool has_output, has_formats, has_aovs;
+    bool has_formats, has_aovs;
     unsigned formats;          /* CV_FORMAT_* bits, never 0; default CV_FORMAT_EXR */
     unsigned aovs;             /* CV_AOV_* bits; default 0 */
 
@@ -95,6 +74,7 @@ struct cv_job {
     uint32_t spp;              /* samples per pixel, >= 1 */
     bool has_time_limit;
     double time_limit;         /* [seconds], > 0 */
+    bool has_integrator;
     enum cv_integrator integrator;
     bool has_max_depth;
     uint32_t max_depth;        /* >= 1 */
@@ -106,6 +86,10 @@ struct cv_job {
     struct cv_job_png png;
     struct cv_job_camera camera;
     struct cv_job_rlpath rlpath;
+
+    /* Where each key's value was written (in the job, or in defaults for
+     * what the job took from there); {0, 0} for keys not given. */
+    struct cv_key_at at[CV_K_COUNT];
 
     /* 16 lowercase hex digits: FNV-1a 64 of a canonical text of every setting
      * that changes the rendered pixels or the files written (everything but
@@ -133,14 +117,6 @@ void cv_manifest_destroy(struct cv_manifest **m);
 /* Newly allocated "<output>.<ext>" (free()); ext without the dot, e.g. "exr";
  * NULL ext gives the output path alone. */
 char *cv_job_output_path(const struct cv_job *job, const char *ext);
-
-/* Names as written in a manifest, for plans, logs and metadata. Each takes
- * one value (one bit for the bit sets) and returns a static string, or NULL
- * for CV_INTEGRATOR_UNSET and anything out of range. */
-const char *cv_integrator_name(enum cv_integrator integrator);
-const char *cv_job_compression_name(enum cv_job_compression compression);
-const char *cv_format_ext(unsigned format_bit);     /* "exr", "png" */
-const char *cv_aov_name(unsigned aov_bit);          /* "albedo", "normal", "depth" */
 
 /* The job with this name, or NULL. */
 const struct cv_job *cv_manifest_find_job(const struct cv_manifest *m, const char *name);

@@ -12,18 +12,12 @@
 #include "output/atomic_file.h"
 #include "output/exr_write.h"
 
-static const struct {
-    const char *name;
-    enum cv_exr_compression c;
-    exr_compression_t exr;
-} compressions[] = {
-    { "zip", CV_EXR_ZIP, EXR_COMPRESSION_ZIP },
-    { "none", CV_EXR_NONE, EXR_COMPRESSION_NONE },
-    { "zips", CV_EXR_ZIPS, EXR_COMPRESSION_ZIPS },
-    { "piz", CV_EXR_PIZ, EXR_COMPRESSION_PIZ },
-    { "rle", CV_EXR_RLE, EXR_COMPRESSION_RLE },
-    { "dwaa", CV_EXR_DWAA, EXR_COMPRESSION_DWAA },
-    { "dwab", CV_EXR_DWAB, EXR_COMPRESSION_DWAB },
+/* OpenEXR's value of each of our compressions (names: manifest/enums.c). */
+static const exr_compression_t to_openexr[CV_EXR_COMPRESSION_COUNT] = {
+    [CV_EXR_ZIP] = EXR_COMPRESSION_ZIP,   [CV_EXR_NONE] = EXR_COMPRESSION_NONE,
+    [CV_EXR_ZIPS] = EXR_COMPRESSION_ZIPS, [CV_EXR_PIZ] = EXR_COMPRESSION_PIZ,
+    [CV_EXR_RLE] = EXR_COMPRESSION_RLE,   [CV_EXR_DWAA] = EXR_COMPRESSION_DWAA,
+    [CV_EXR_DWAB] = EXR_COMPRESSION_DWAB,
 };
 
 /* OpenEXRCore 3.1 (Debian 12) reads and writes every method but DWAA/DWAB
@@ -41,29 +35,24 @@ bool cv_exr_compression_supported(enum cv_exr_compression c)
 bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
                               struct cv_error *err)
 {
-    for (size_t i = 0; i < CV_ARRAY_SIZE(compressions); i++) {
-        if (strcmp(name, compressions[i].name) != 0)
-            continue;
-        if (!cv_exr_compression_supported(compressions[i].c)) {
-            int maj = 0, min = 0, patch = 0;
-            const char *extra = NULL;
-            exr_get_library_version(&maj, &min, &patch, &extra);
-            return cv_fail(err, "EXR compression \"%s\" needs OpenEXR 3.2 or later "
-                           "(this is %d.%d.%d); use zip or piz", name, maj, min, patch);
-        }
-        *out = compressions[i].c;
-        return true;
+    const struct cv_names *t = &cv_exr_compression_names;
+    int i = cv_name_find(t, name);
+    if (i < 0) {
+        char list[128] = "";
+        for (size_t k = 0; k < t->count; k++)
+            snprintf(list + strlen(list), sizeof(list) - strlen(list), "%s%s", k ? ", " : "",
+                     t->names[k]);
+        return cv_fail(err, "unknown EXR compression \"%s\" (%s)", name, list);
     }
-    return cv_fail(err, "unknown EXR compression \"%s\" (none, zip, zips, piz, rle, dwaa, dwab)",
-                   name);
-}
-
-const char *cv_exr_compression_name(enum cv_exr_compression c)
-{
-    for (size_t i = 0; i < CV_ARRAY_SIZE(compressions); i++)
-        if (compressions[i].c == c)
-            return compressions[i].name;
-    return "?";
+    if (!cv_exr_compression_supported((enum cv_exr_compression)i)) {
+        int maj = 0, min = 0, patch = 0;
+        const char *extra = NULL;
+        exr_get_library_version(&maj, &min, &patch, &extra);
+        return cv_fail(err, "EXR compression \"%s\" needs OpenEXR 3.2 or later "
+                       "(this is %d.%d.%d); use zip or piz", name, maj, min, patch);
+    }
+    *out = (enum cv_exr_compression)i;
+    return true;
 }
 
 /* Where one EXR channel's floats come from. */
@@ -269,7 +258,7 @@ static bool check_params(const char *path, const struct cv_exr_params *p, struct
         return cv_fail(err, "%s: empty image", path);
     if (p->width > INT32_MAX / 2 || p->height > INT32_MAX / 2)
         return cv_fail(err, "%s: image too large (%ux%u)", path, p->width, p->height);
-    if ((unsigned)p->compression >= CV_ARRAY_SIZE(compressions))
+    if ((unsigned)p->compression >= CV_EXR_COMPRESSION_COUNT)
         return cv_fail(err, "%s: invalid EXR compression %d", path, (int)p->compression);
     if (!cv_exr_compression_supported(p->compression))
         return cv_fail(err, "%s: EXR compression %s needs OpenEXR 3.2 or later", path,
@@ -279,10 +268,7 @@ static bool check_params(const char *path, const struct cv_exr_params *p, struct
 
 static exr_compression_t to_exr(enum cv_exr_compression c)
 {
-    for (size_t i = 0; i < CV_ARRAY_SIZE(compressions); i++)
-        if (compressions[i].c == c)
-            return compressions[i].exr;
-    return EXR_COMPRESSION_ZIP;
+    return (unsigned)c < CV_EXR_COMPRESSION_COUNT ? to_openexr[c] : EXR_COMPRESSION_ZIP;
 }
 
 bool cv_exr_write(const char *path, const struct cv_exr_params *p, struct cv_error *err)

@@ -11,17 +11,9 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "manifest/enums.h"   /* enum cv_exr_compression and its names */
 #include "output/metadata.h"
 
-enum cv_exr_compression {
-    CV_EXR_ZIP = 0, /* the default: lossless, good on noisy renders */
-    CV_EXR_NONE,
-    CV_EXR_ZIPS,
-    CV_EXR_PIZ,
-    CV_EXR_RLE,
-    CV_EXR_DWAA, /* lossy; needs OpenEXR >= 3.2 (cv_exr_compression_supported) */
-    CV_EXR_DWAB, /* lossy; likewise */
-};
 
 /* Channel storage of one layer. */
 enum cv_exr_pixel {
@@ -59,7 +51,6 @@ bool cv_exr_compression_supported(enum cv_exr_compression c);
  * method this OpenEXR cannot write, saying so. */
 bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
                               struct cv_error *err);
-const char *cv_exr_compression_name(enum cv_exr_compression c);
 
 /* Writes path atomically. Metadata becomes attributes of the same name:
  * strings as string, integers as int (double when outside 32 bits), floats

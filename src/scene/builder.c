@@ -69,8 +69,8 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     b->iso = 100;
     b->exposure_time = 1;
     b->film_exposure_time = 1;
-    s->settings.spp = 16;
-    s->settings.max_depth = 5;
+    s->settings.spp = CV_DEFAULT_SPP;
+    s->settings.max_depth = CV_DEFAULT_MAX_DEPTH;
     s->settings.filter = CV_FILTER_GAUSSIAN;
     s->settings.filter_radius[0] = s->settings.filter_radius[1] = 1.5f;
     s->settings.filter_sigma = 0.5f;

@@ -6,8 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/limits.h"
 #include "base/mem.h"
 #include "scene/builder.h"
+#include "scene/film.h"
 
 bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
                  const struct cv_loc *loc, struct cv_error *err)
@@ -63,7 +65,7 @@ bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
         return false;
     b->xres = cv_params_int(ps, "xresolution", 1280);
     b->yres = cv_params_int(ps, "yresolution", 720);
-    if (b->xres <= 0 || b->yres <= 0 || b->xres > 1 << 16 || b->yres > 1 << 16)
+    if (b->xres <= 0 || b->yres <= 0 || b->xres > CV_MAX_FILM_SIDE || b->yres > CV_MAX_FILM_SIDE)
         return cv_fail(err, "%s:%d:%d: film resolution must be in 1..65536", loc->file, loc->line, loc->col);
     double crop[4] = {0, 1, 0, 1};
     if (cv_params_floats(ps, "cropwindow", crop, 4)) {
@@ -97,29 +99,21 @@ void cv_b_finish_camera(struct cv_builder *b)
         c->to_world[r] = (cv_vec4){(float)b->camera_to_world.m[r][0], (float)b->camera_to_world.m[r][1],
                                    (float)b->camera_to_world.m[r][2], (float)b->camera_to_world.m[r][3]};
     double aspect = b->frameaspect > 0 ? b->frameaspect : (double)b->xres / b->yres;
-    double sw[4];
-    if (b->has_screen) {
-        memcpy(sw, b->screen, sizeof(sw));
-    } else if (aspect > 1) {
-        sw[0] = -aspect; sw[1] = aspect; sw[2] = -1; sw[3] = 1;
-    } else {
-        sw[0] = -1; sw[1] = 1; sw[2] = -1 / aspect; sw[3] = 1 / aspect;
-    }
-    c->screen = (cv_vec4){(float)sw[0], (float)sw[1], (float)sw[2], (float)sw[3]};
+    if (b->has_screen)
+        c->screen = (cv_vec4){(float)b->screen[0], (float)b->screen[1], (float)b->screen[2],
+                              (float)b->screen[3]};
+    else
+        c->screen = cv_film_default_screen(aspect);
     c->lens = (cv_vec4){(float)b->lensradius, (float)b->focaldistance,
-                        (float)tan(b->fov * M_PI / 360), 0};
-    uint32_t x0 = (uint32_t)ceil(b->xres * b->crop[0]), x1 = (uint32_t)ceil(b->xres * b->crop[1]);
-    uint32_t y0 = (uint32_t)ceil(b->yres * b->crop[2]), y1 = (uint32_t)ceil(b->yres * b->crop[3]);
-    if (x1 <= x0)
-        x1 = x0 + 1;
-    if (y1 <= y0)
-        y1 = y0 + 1;
-    c->film = (cv_uvec4){(uint32_t)b->xres, (uint32_t)b->yres, x0, y0};
-    c->crop = (cv_uvec4){x1 - x0, y1 - y0, b->cam_type, 0};
+                        cv_camera_fov_scale(b->fov), 0};
+    uint32_t px[4];
+    cv_film_crop_pixels((uint32_t)b->xres, (uint32_t)b->yres, b->crop, px);
+    c->film = (cv_uvec4){(uint32_t)b->xres, (uint32_t)b->yres, px[0], px[2]};
+    c->crop = (cv_uvec4){px[1] - px[0], px[3] - px[2], b->cam_type, 0};
     s->settings.width = (uint32_t)b->xres;
     s->settings.height = (uint32_t)b->yres;
     for (int i = 0; i < 4; i++)
-        s->settings.crop[i] = (float)b->crop[i];
+        s->settings.crop[i] = b->crop[i];
     /* pbrt-v4's imaging ratio: exposure time * ISO / 100 */
     s->settings.exposure *= (float)(b->iso / 100 * b->exposure_time * b->film_exposure_time);
 }

@@ -14,4 +14,5 @@ libcavalry_a_SOURCES += \
 	src/scene/texture.c \
 	src/scene/lights.c \
 	src/scene/camera.c \
+	src/scene/film.c src/scene/film.h \
 	src/scene/dump.c src/scene/dump.h

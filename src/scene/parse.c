@@ -560,7 +560,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     } else if (IS("Sampler")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
-        int spp = cv_params_int(&ps, "pixelsamples", 16);
+        int spp = cv_params_int(&ps, "pixelsamples", (int)CV_DEFAULT_SPP);
         if ((unsigned)spp > CV_MAX_SPP && spp > 0) {
             if (!cv_b_warn(b, err, &loc, "pixelsamples %d is above the most Cavalry renders, %u",
                            spp, CV_MAX_SPP))
@@ -596,10 +596,12 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     } else if (IS("Integrator")) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
-        int md = cv_params_int(&ps, "maxdepth", 5);
-        b->s->settings.max_depth = md > 0 ? (uint32_t)md : 0;
+        int md = cv_params_int(&ps, "maxdepth", (int)CV_DEFAULT_MAX_DEPTH);
+        b->s->settings.max_depth = md > 0 ? (uint32_t)md : CV_DEFAULT_MAX_DEPTH;
         free(b->s->settings.integrator);
         b->s->settings.integrator = type;
+        free(b->s->settings.integrator_at);
+        b->s->settings.integrator_at = cv_xasprintf("%s:%d:%d", loc.file, loc.line, loc.col);
         type = NULL;
         for (size_t i = 0; i < ps.n; i++)
             ps.v[i].used = true;

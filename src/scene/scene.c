@@ -21,6 +21,7 @@ static void scene_free(struct cv_scene *s)
     free(s->lights);
     free(s->light_power);
     free(s->settings.integrator);
+    free(s->settings.integrator_at);
     free(s->settings.sampler);
     free(s->settings.film_filename);
     free(s->path);

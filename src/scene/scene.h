@@ -16,13 +16,19 @@ enum cv_filter_type {
     CV_FILTER_GAUSSIAN,
 };
 
+/* pbrt's defaults when the scene names no Sampler pixelsamples / Integrator
+ * maxdepth. */
+#define CV_DEFAULT_SPP 16u
+#define CV_DEFAULT_MAX_DEPTH 5u
+
 /* What the scene file asks of the render; the manifest may override it. */
 struct cv_render_settings {
     uint32_t width, height;          /* full film resolution [pixels] */
-    float crop[4];                   /* crop window x0, x1, y0, y1 in [0,1] */
-    uint32_t spp;                    /* sampler pixelsamples */
-    uint32_t max_depth;              /* integrator maxdepth */
-    char *integrator;                /* "path", "volpath", ... as written */
+    double crop[4];                  /* crop window x0, x1, y0, y1 in [0,1] */
+    uint32_t spp;                    /* sampler pixelsamples, >= 1 */
+    uint32_t max_depth;              /* integrator maxdepth, >= 1 */
+    char *integrator;                /* "path", "volpath", ... as written; NULL: none */
+    char *integrator_at;             /* "file:line:col" of the Integrator directive */
     char *sampler;                   /* "halton", "sobol", "independent", ... */
     char *film_filename;             /* as written, may be NULL */
     enum cv_filter_type filter;

@@ -81,7 +81,7 @@ struct cv_renderer {
     GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
-    struct cv_rlpath *rl;          /* CV_RENDER_RLPATH, else NULL */
+    struct cv_rlpath *rl;          /* CV_INTEGRATOR_RLPATH, else NULL */
     /* CAVALRY_STAGE_TIMES: GPU time per stage, from timestamp pairs around
      * every dispatch (a diagnostic: the queries cost time themselves) */
     struct {
@@ -144,40 +144,21 @@ static const char *const stage_files[ST_COUNT] = {
     "trace/shade.comp",    "trace/shadow.comp",    "trace/resolve.comp",
 };
 
-/* The film: the scene's, or the override with the scene's crop window. */
+/* The film and camera: the plan's (p->camera), else the scene's. */
 static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
                          const struct cv_render_params *p)
 {
-    const CvCamera *c = &s->camera;
-    uint32_t w = p->width ? p->width : c->film.x, h = p->height ? p->height : c->film.y;
-    uint32_t x0 = c->film.z, y0 = c->film.w, cw = c->crop.x, ch = c->crop.y;
-    cv_vec4 screen = c->screen;
-    if (w != c->film.x || h != c->film.y) {
-        const float *cr = s->settings.crop;
-        x0 = (uint32_t)ceil(w * (double)cr[0]);
-        y0 = (uint32_t)ceil(h * (double)cr[2]);
-        uint32_t x1 = (uint32_t)ceil(w * (double)cr[1]), y1 = (uint32_t)ceil(h * (double)cr[3]);
-        cw = x1 > x0 ? x1 - x0 : 1;
-        ch = y1 > y0 ? y1 - y0 : 1;
-        double old_aspect = (double)c->film.x / c->film.y, aspect = (double)w / h;
-        if (fabs(old_aspect - aspect) > 1e-6 * aspect) {
-            /* pbrt's default screen window for the new aspect ratio */
-            if (aspect > 1)
-                screen = (cv_vec4){(float)-aspect, (float)aspect, -1, 1};
-            else
-                screen = (cv_vec4){-1, 1, (float)(-1 / aspect), (float)(1 / aspect)};
-            cv_warn("film %ux%u changes the scene's aspect ratio: default screen window used", w, h);
-        }
-    }
+    const CvCamera *c = p->camera ? p->camera : &s->camera;
+    uint32_t cw = c->crop.x, ch = c->crop.y;
     r->crop_w = cw;
     r->crop_h = ch;
     r->n_pixels = cw * ch;
     CvPassParams *u = &r->pass;
     u->frame = (cv_uvec4){r->n_pixels, cw, ch, 0};
-    u->film = (cv_uvec4){w, h, x0, y0};
+    u->film = c->film;
     for (int i = 0; i < 3; i++)
         u->cam_to_world[i] = c->to_world[i];
-    u->screen = screen;
+    u->screen = c->screen;
     u->lens = (cv_vec4){c->lens.x, c->lens.y, c->lens.z, c->crop.z == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f};
 }
 
@@ -262,11 +243,12 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
 static bool check_params(const struct cv_scene *scene, const struct cv_render_params *p,
                          struct cv_error *err)
 {
-    if (p->integrator != CV_RENDER_PATH && p->integrator != CV_RENDER_RLPATH)
-        return cv_fail(err, "unknown integrator %d", p->integrator);
+    if ((unsigned)p->integrator >= CV_INTEGRATOR_COUNT)
+        return cv_fail(err, "unknown integrator %d", (int)p->integrator);
     if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);
-    if (scene->camera.film.x == 0 || scene->camera.film.y == 0)
+    const CvCamera *c = p->camera ? p->camera : &scene->camera;
+    if (c->film.x == 0 || c->film.y == 0 || c->crop.x == 0 || c->crop.y == 0)
         return cv_fail(err, "scene has no film resolution");
     return true;
 }
@@ -316,8 +298,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->aovs = p->aovs;
     const char *times = getenv("CAVALRY_STAGE_TIMES");
     r->prof.on = times && *times && strcmp(times, "0") != 0;
-    r->max_depth = p->max_depth ? p->max_depth
-                                : (scene->settings.max_depth ? scene->settings.max_depth : 5);
+    r->max_depth = p->max_depth ? p->max_depth : scene->settings.max_depth;
     setup_camera(r, scene, p);
     setup_filter(r, &scene->settings);
     if ((uint64_t)r->crop_w * r->crop_h > (1u << 24)) {
@@ -356,7 +337,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (!r->scene->has_textures)
         defines[nd++] = "CV_NO_TEXTURES";
     defines[nd] = NULL;
-    bool rl = p->integrator == CV_RENDER_RLPATH;
+    bool rl = p->integrator == CV_INTEGRATOR_RLPATH;
     /* Misses need an escaped stage for an environment light or for
      * rlpath's learning; otherwise the intersect stage starts their pixels'
      * next samples itself (intersect.comp). */

@@ -13,16 +13,16 @@
 
 #include "base/error.h"
 #include "gpu/context.h"
+#include "manifest/enums.h"
 #include "scene/scene.h"
 
-#define CV_RENDER_PATH 0
-#define CV_RENDER_RLPATH 1   /* guided by a learned Q-table: src/trace/rlpath.h */
-
 struct cv_render_params {
-    uint32_t width, height;      /* film resolution [pixels]; 0: the scene's */
-    uint32_t max_depth;          /* 0: the scene's (5 when the scene says nothing) */
+    /* Camera and film (scene/film.h fits one to a resolution); NULL: the
+     * scene's. Read at creation only. */
+    const CvCamera *camera;
+    uint32_t max_depth;          /* 0: the scene's */
     uint64_t seed;               /* job seed: same seed, same image */
-    int integrator;              /* CV_INTEGRATOR_* */
+    enum cv_integrator integrator;  /* CV_INTEGRATOR_PATH by default */
     bool aovs;                   /* keep albedo, normal and depth per pixel */
     enum { CV_SAMPLER_SOBOL, CV_SAMPLER_INDEPENDENT } sampler;
     /* rlpath only (0, or a mix <= 0: the default, see trace/rlpath.h):
@@ -51,8 +51,7 @@ struct cv_render_params {
 struct cv_renderer;
 
 /* Uploads the scene (the renderer keeps no pointer to it), builds the BVH and
- * compiles the stage programs. The scene's crop window applies to the film
- * (also when the resolution is overridden). */
+ * compiles the stage programs. */
 bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
                         const struct cv_render_params *p, struct cv_renderer **out,
                         struct cv_error *err);

@@ -5,7 +5,7 @@
  * replaces the path tracer's shade stage and learns there, rebuild.comp
  * runs after it; the escaped stage learns too, built with CV_RLPATH), and
  * the table layout from the options. The renderer (render.c) owns one when
- * cv_render_params.integrator is CV_RENDER_RLPATH. The table lives as
+ * cv_render_params.integrator is CV_INTEGRATOR_RLPATH. The table lives as
  * long as the renderer, so every pass keeps learning from the ones before. */
 #ifndef CV_TRACE_RLPATH_H
 #define CV_TRACE_RLPATH_H

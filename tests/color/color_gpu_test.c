@@ -138,6 +138,41 @@ int main(void)
                                     .look = "ACES 1.3 Reference Gamut Compression"},
           in, "shipped sRGB / ACES with the gamut compression look");
 
+    /* Two passes alive at once whose processors differ only in exposure
+     * (a dynamic uniform, so one program from the cache may serve both):
+     * each run must use its own pass's values, whichever ran before. */
+    {
+        struct cv_color_pass *up = NULL, *down = NULL;
+        size_t nb = N_COLOURS * 4 * sizeof(float);
+        float *got = cv_xmalloc(nb), *want = cv_xmalloc(nb);
+        GLuint bi = 0, bo = 0;
+        bool fine = cv_color_pass_create(gpu, &(struct cv_color_params){.exposure = 1}, &up,
+                                         &err) &&
+                    cv_color_pass_create(gpu, &(struct cv_color_params){.exposure = -1}, &down,
+                                         &err) &&
+                    (bi = cv_buffer_create(nb, in, "colour in", &err)) &&
+                    (bo = cv_buffer_create(nb, NULL, "colour out", &err));
+        struct cv_color_pass *order[3] = {up, down, up};
+        double worst = 0;
+        for (int k = 0; fine && k < 3; k++) {
+            memcpy(want, in, nb);
+            fine = cv_color_pass_run(order[k], bi, bo, WIDTH, HEIGHT, &err) &&
+                   cv_buffer_read(bo, 0, nb, got, &err) &&
+                   cv_color_apply_cpu(order[k], want, N_COLOURS, &err);
+            for (int i = 0; fine && i < N_COLOURS * 4; i++)
+                worst = fmax(worst, fabs((double)got[i] - want[i]));
+        }
+        tap_ok(fine && worst <= TOLERANCE,
+               "+1 EV, -1 EV, +1 EV passes interleaved: each its own (max abs error %.3g) %s",
+               worst, err.msg);
+        cv_buffer_destroy(&bi);
+        cv_buffer_destroy(&bo);
+        cv_color_pass_destroy(&up);
+        cv_color_pass_destroy(&down);
+        free(got);
+        free(want);
+    }
+
     /* in place, and a buffer too small for the image */
     struct cv_color_pass *pass = NULL;
     size_t bytes = N_COLOURS * 4 * sizeof(float);

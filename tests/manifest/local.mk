@@ -1,7 +1,8 @@
 # tests/manifest: the manifest reader, settings hash, shards and man page.
-check_PROGRAMS += tests/manifest/manifest_test tests/manifest/manifest_edge_test tests/manifest/hash_test tests/manifest/shard_test
-TESTS += tests/manifest/manifest_test tests/manifest/manifest_edge_test tests/manifest/hash_test tests/manifest/shard_test \
+check_PROGRAMS += tests/manifest/keys_test tests/manifest/manifest_test tests/manifest/manifest_edge_test tests/manifest/hash_test tests/manifest/shard_test
+TESTS += tests/manifest/keys_test tests/manifest/manifest_test tests/manifest/manifest_edge_test tests/manifest/hash_test tests/manifest/shard_test \
 	tests/manifest/man_lint_test.sh
+tests_manifest_keys_test_LDADD = $(CV_LIBS)
 tests_manifest_manifest_test_LDADD = $(CV_LIBS)
 tests_manifest_manifest_edge_test_LDADD = $(CV_LIBS)
 tests_manifest_hash_test_LDADD = $(CV_LIBS)

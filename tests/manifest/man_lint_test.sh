@@ -13,14 +13,45 @@ else
     not_ok "mandoc -Tlint is clean"
     printf '%s\n' "$out" | sed 's/^/# /'
 fi
-text=$(mandoc -Tascii "$page" | col -b)
-for key in version defaults jobs name scene output formats resolution spp time_limit \
-    integrator max_depth seed color config display view look exposure aovs exr half \
-    compression png bits camera fov lookat rlpath grid directions mix; do
-    if printf '%s\n' "$text" | grep -q -w -- "$key"; then
-        ok "documents $key"
-    else
-        not_ok "documents $key"
-    fi
+# The keys come from the reader's own table (cavalry-batch --list-keys):
+# each has an .It entry (a nested key after its section's), each name of an
+# enum or list appears, and an integer range is the page's range.
+line_of() { grep -n -E "^\.It Cm $1( |\$)" "$page" | head -n 1 | cut -d: -f1; }
+"$CAVALRY_BATCH" --list-keys >"$tmp/keys"
+n_keys=$(wc -l <"$tmp/keys")
+check "--list-keys lists the keys ($n_keys)" test "$n_keys" -gt 20
+for key in version defaults jobs; do
+    check "documents $key" test -n "$(line_of "$key")"
 done
+tab=$(printf '\t')
+while IFS="$tab" read -r key type default help; do
+    leaf=${key##*.}
+    at=$(line_of "$leaf")
+    if [ "$leaf" != "$key" ]; then
+        section=$(line_of "${key%.*}")
+        check "documents $key" test -n "$at" -a -n "$section" -a "${at:-0}" -gt "${section:-0}"
+    else
+        check "documents $key" test -n "$at"
+    fi
+    case $type in
+    integer\ *..*)
+        range=${type#integer }
+        item=$(sed -n "${at:-1}p" "$page")
+        case $item in
+        *integer*)
+            if printf '%s\n' "$item" | grep -q -F -- "${range%%..*} to ${range##*..}"; then
+                ok "$key: range ${range%%..*} to ${range##*..} as in the table"
+            else
+                not_ok "$key: range ${range%%..*} to ${range##*..} as in the table (page: $item)"
+            fi
+            ;;
+        esac
+        ;;
+    *\|*)
+        for name in $(printf '%s\n' "${type#list of }" | tr '|' ' '); do
+            check "$key: documents $name" grep -q -E "Cm $name( |\$)" "$page"
+        done
+        ;;
+    esac
+done <"$tmp/keys"
 done_testing

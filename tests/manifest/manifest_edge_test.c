@@ -153,8 +153,8 @@ int main(void)
           HEAD "  - {name: a, scene: s.pbrt, time_limit: 1e306h}\n",
           "time_limit: expected a duration > 0");
     tap_ok(!strcmp(cv_integrator_name(CV_INTEGRATOR_RLPATH), "rlpath") &&
-               !cv_integrator_name(CV_INTEGRATOR_UNSET) &&
-               !strcmp(cv_job_compression_name(CV_JOB_EXR_DWAA), "dwaa") &&
+               !cv_integrator_name(CV_INTEGRATOR_COUNT) &&
+               !strcmp(cv_exr_compression_name(CV_EXR_DWAA), "dwaa") &&
                !strcmp(cv_format_ext(CV_FORMAT_PNG), "png") && !cv_format_ext(3) &&
                !strcmp(cv_aov_name(CV_AOV_DEPTH), "depth"),
            "names of settings");
@@ -187,7 +187,7 @@ int main(void)
                    m->jobs[2].camera.up[1] == 1.0f,
                "flat lookat");
         tap_ok(!strcmp(m->jobs[3].color.config, "ocio://default"), "ocio:// URI kept as written");
-        tap_ok(m->jobs[3].exr.half && m->jobs[3].exr.compression == CV_JOB_EXR_DWAA,
+        tap_ok(m->jobs[3].exr.half && m->jobs[3].exr.compression == CV_EXR_DWAA,
                "yes is true; dwaa");
         char *out = in_dir("d");
         tap_ok(!strcmp(m->jobs[3].output, out), "default output is {name} next to the manifest");

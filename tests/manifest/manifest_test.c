@@ -57,10 +57,10 @@ static void check_good(void)
            "hero display and view merged from defaults' color");
     tap_ok(h->color.look == NULL && h->color.config == NULL, "hero look and config unset");
     tap_ok(h->aovs == (CV_AOV_ALBEDO | CV_AOV_NORMAL), "hero aovs");
-    tap_ok(h->exr.compression == CV_JOB_EXR_PIZ && h->exr.half && !h->exr.has_half,
+    tap_ok(h->exr.compression == CV_EXR_PIZ && h->exr.half && !h->exr.has_half,
            "hero exr from defaults (half by default)");
     tap_ok(h->png.bits == 8 && !h->png.has_bits, "hero png bits default 8");
-    tap_ok(h->integrator == CV_INTEGRATOR_UNSET && !h->has_max_depth && !h->has_time_limit &&
+    tap_ok(!h->has_integrator && !h->has_max_depth && !h->has_time_limit &&
                !h->has_seed && !h->camera.has_fov && !h->camera.has_lookat,
            "hero leaves the rest to the scene");
     char *want = data_path("out/hero");
@@ -90,9 +90,9 @@ static void check_good(void)
                g->color.exposure == 0.5f,
            "guided color: look merged from an anchor, the rest from defaults");
     tap_ok(g->rlpath.has_grid && g->rlpath.grid == 8 && g->rlpath.directions == 16 &&
-               g->rlpath.mix == 0.5f && g->rlpath.has_guide && g->rlpath.guide_indirect,
+               g->rlpath.mix == 0.5f && g->rlpath.has_guide && g->rlpath.guide == CV_RL_GUIDE_INDIRECT,
            "guided rlpath");
-    tap_ok(!p->rlpath.has_guide && !p->rlpath.guide_indirect, "rlpath guide: all by default");
+    tap_ok(!p->rlpath.has_guide && p->rlpath.guide == CV_RL_GUIDE_ALL, "rlpath guide: all by default");
     tap_ok(str_is(g->scene, other), "guided own scene");
     want = data_path("renders/guided_final");
     tap_ok(str_is(g->output, want), "guided output template: %s", g->output);
@@ -102,7 +102,7 @@ static void check_good(void)
     tap_ok(g->camera.has_lookat && g->camera.eye[1] == 1.0f && g->camera.eye[2] == 5.0f &&
                g->camera.up[1] == 1.0f,
            "guided lookat");
-    tap_ok(g->exr.half && g->exr.compression == CV_JOB_EXR_PIZ, "guided exr merged key by key");
+    tap_ok(g->exr.half && g->exr.compression == CV_EXR_PIZ, "guided exr merged key by key");
     tap_ok(g->has_time_limit && g->time_limit == 90.0, "guided time_limit seconds");
     tap_ok(h->settings_hash && strlen(h->settings_hash) == 16, "settings hash is 16 hex digits");
     tap_ok(strcmp(h->settings_hash, p->settings_hash) != 0, "different jobs, different hashes");

@@ -21,7 +21,8 @@ static bool render(struct cv_gpu *gpu, const char *path, float **rgba, struct cv
     struct cv_scene_load_params lp = {0};
     if (!cv_scene_load(path, &lp, &s, err))
         return false;
-    struct cv_render_params p = {.seed = 2024, .width = RES, .height = RES};
+    CvCamera cam = test_camera(s, RES, RES);
+    struct cv_render_params p = {.seed = 2024, .camera = &cam};
     struct test_image img = {0};
     const uint32_t passes[] = {32, 32, 0};
     bool ok = test_render(gpu, s, &p, passes, &img, err);

@@ -11,7 +11,8 @@ int main(void)
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct cv_scene *s = test_scene("furnace.pbrt");
     struct cv_error err = {{0}};
-    struct cv_render_params p = {.seed = 11, .width = 24, .height = 24};
+    CvCamera cam = test_camera(s, 24, 24);
+    struct cv_render_params p = {.seed = 11, .camera = &cam};
     struct test_image img = {0};
     const uint32_t passes[] = {16, 16, 0};
     if (tap_ok(test_render(gpu, s, &p, passes, &img, &err), "render: %s", err.msg)) {

@@ -144,8 +144,8 @@ int main(void)
             cv_renderer_destroy(&r);
         }
         TAP_EQ_INT(w * 1000 + h, 20 * 1000 + 10, "scene crop 40x20 [.25,.75]x[0,.5] is 20x10");
-        pc.width = 80;
-        pc.height = 40;
+        CvCamera cam = test_camera(sc, 80, 40);
+        pc.camera = &cam;
         w = h = 0;
         if (cv_renderer_create(gpu, sc, &pc, &r, &err)) {
             cv_renderer_size(r, &w, &h);
@@ -166,8 +166,9 @@ int main(void)
         struct cv_renderer *ra = NULL, *rb = NULL, *rc = NULL;
         struct cv_scene moved = *s;
         moved.camera.to_world[0].w += 0.5f;
-        struct cv_render_params pa = {.seed = 99, .width = 12, .height = 8};
-        struct cv_render_params pb = {.seed = 1234, .integrator = CV_RENDER_RLPATH};
+        CvCamera small = test_camera(&moved, 12, 8);
+        struct cv_render_params pa = {.seed = 99, .camera = &small};
+        struct cv_render_params pb = {.seed = 1234, .integrator = CV_INTEGRATOR_RLPATH};
         bool ok = test_render(gpu, s, &ps, one, &own, &err) &&
                   cv_scene_gpu_create(gpu, s, &gs, &err) &&
                   cv_renderer_create_shared(gpu, gs, &moved, &pa, &ra, &err) &&
@@ -195,7 +196,7 @@ int main(void)
     }
 
     /* rlpath is implemented now (tests/trace/rlpath_*): an unknown one is refused */
-    struct cv_render_params bad = {.integrator = 99};
+    struct cv_render_params bad = {.integrator = (enum cv_integrator)99};
     tap_ok(!cv_renderer_create(gpu, s, &bad, &r, &err) && strstr(err.msg, "integrator"),
            "an unknown integrator is rejected: %s", err.msg);
     cv_scene_destroy(&s);

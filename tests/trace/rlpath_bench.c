@@ -65,7 +65,7 @@ static bool run(struct cv_gpu *gpu, const struct cv_scene *s, const struct cv_re
         c->spp[k] = cv_renderer_spp_done(r);
         errors(img, ref, n, &c->rmse[k], &c->relmse[k]);
         printf("%-7s %10.1f ms %7u spp  rmse %.6f  relmse %.6g\n",
-               p->integrator == CV_RENDER_RLPATH ? "rlpath" : "path", c->ms[k], c->spp[k],
+               cv_integrator_name(p->integrator), c->ms[k], c->spp[k],
                c->rmse[k], c->relmse[k]);
         fflush(stdout);
         if (rc.gpu_ms > time_ms)
@@ -173,7 +173,8 @@ int main(int argc, char **argv)
     }
     if (!w && !scene_path)
         w = h = 128;
-    struct cv_render_params p = {.width = w, .height = h, .seed = 99};
+    CvCamera cam = w ? test_camera(s, w, h) : s->camera;
+    struct cv_render_params p = {.camera = &cam, .seed = 99};
     struct cv_renderer *r = NULL;
     if (!cv_renderer_create(gpu, s, &p, &r, &err)) {
         fprintf(stderr, "reference: %s\n", err.msg);
@@ -195,7 +196,7 @@ int main(int argc, char **argv)
     struct curve c[2];
     p.seed = 5;
     ok = run(gpu, s, &p, ref, time_ms, &c[0], &err);
-    p.integrator = CV_RENDER_RLPATH;
+    p.integrator = CV_INTEGRATOR_RLPATH;
     p.rl_grid = grid, p.rl_directions = dirs, p.rl_mix = mix;
     ok = ok && run(gpu, s, &p, ref, time_ms, &c[1], &err);
     if (!ok) {

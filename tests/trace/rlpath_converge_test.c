@@ -76,9 +76,9 @@ int main(void)
 
     struct stats sp = {0}, sr = {0};
     struct cv_render_params pp = {.sampler = CV_SAMPLER_INDEPENDENT,
-                                  .integrator = CV_RENDER_PATH};
+                                  .integrator = CV_INTEGRATOR_PATH};
     struct cv_render_params pr = pp;
-    pr.integrator = CV_RENDER_RLPATH;
+    pr.integrator = CV_INTEGRATOR_RLPATH;
     pr.rl_grid = 4;
     if (!tap_ok(batches(gpu, s, pp, &sp, &err), "path: %d batches of 48 spp: %s", B, err.msg) ||
         !tap_ok(batches(gpu, s, pr, &sr, &err), "rlpath: %d batches of 48 spp: %s", B, err.msg))

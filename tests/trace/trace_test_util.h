@@ -9,9 +9,19 @@
 
 #include "base/file.h"
 #include "base/mem.h"
+#include "scene/film.h"
 #include "scene/scene.h"
 #include "tests/gpu/gpu_test_util.h"
 #include "trace/render.h"
+
+/* The scene's camera fitted to a w x h film (its crop window kept), as a
+ * job's resolution does it. */
+static inline CvCamera test_camera(const struct cv_scene *s, uint32_t w, uint32_t h)
+{
+    CvCamera c = s->camera;
+    cv_camera_fit_film(&c, s->settings.crop, w, h);
+    return c;
+}
 
 static inline struct cv_scene *test_scene(const char *name)
 {

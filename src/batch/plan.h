@@ -1,0 +1,56 @@
+/* plan.h: one job on its scene → the concrete render plan: film and
+ * camera, samples, integrator, depth, seed, time limit, colour, outputs.
+ * batch.c makes the plan of every selected job after loading the scenes and
+ * before any GPU work, so that --check, --dry-run and the render see the
+ * same plan and the same problems; run_job.c reads the plan and derives
+ * nothing again. */
+#ifndef CV_BATCH_PLAN_H
+#define CV_BATCH_PLAN_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "color/color_params.h"
+#include "manifest/manifest.h"
+#include "scene/scene.h"
+#include "trace/render.h"
+
+struct cv_plan_options {
+    const char *manifest_path;   /* for "manifest:line:col" in messages */
+    bool strict;                 /* what would be a warning about the job fails it */
+    double time_limit;           /* --time-limit [seconds]; 0: none */
+    bool check_color;            /* open the colour config to check the names: a
+                                  * CPU cost per job, paid before any render */
+};
+
+struct cv_render_plan {
+    const struct cv_job *job;    /* borrowed: the manifest outlives the plan */
+    CvCamera camera;             /* the scene's, with the job's overrides, fitted
+                                  * to the film; crop.xy are the pixels rendered */
+    uint32_t width, height;      /* full film [pixels] */
+    uint32_t spp;                /* target samples per pixel, >= 1 */
+    double time_limit;           /* [seconds]: the job's or --time-limit, the
+                                  * shorter; 0: none */
+    enum cv_integrator integrator;
+    uint32_t max_depth;          /* >= 1 */
+    uint32_t seed;
+    /* The scene's integrator when Cavalry renders it with another (pbrt's
+     * bdpt, volpath, sppm, ...); NULL otherwise. Borrowed from the scene. */
+    const char *substituted;
+    struct cv_color_params color;  /* strings borrowed from the job */
+};
+
+/* Makes the plan of job on scene. Problems come back as
+ * "manifest:line:col: job \"name\": ..." (the line of the key at fault,
+ * else of the job), warnings go to the log; with o->strict a warning fails
+ * the plan. */
+bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
+                  const struct cv_plan_options *o, struct cv_render_plan *out,
+                  struct cv_error *err);
+
+/* The renderer's parameters of a plan; .camera points into plan, which
+ * must outlive their use. */
+struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan);
+
+#endif
