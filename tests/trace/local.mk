@@ -13,6 +13,11 @@ tests_trace_filter_table_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h tests/trace/rlpath_room.h \
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
+# --- light and ray-offset tests (branch lightfix) ---
+check_PROGRAMS += tests/trace/env_plane_test
+TESTS += tests/trace/env_plane_test
+tests_trace_env_plane_test_LDADD = $(CV_LIBS)
+# --- end of light and ray-offset tests ---
 # --- end of pipeline tests ---
 # ---- bsdf / light sampling tests (branch bsdf) ----
 check_PROGRAMS += tests/trace/bsdf_chi2_test

@@ -174,13 +174,14 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         vec3 L = cv_light_Le_area(i, -wi, uv, c > 0.0);
         s = CvLightSample(wi, dist, L, pmf * d2 / (abs(c) * l.L.w), false);
 #ifndef CV_NO_ENV
-    } else if (l.type == CV_LIGHT_INFINITE) {
-        vec3 wi = cv_sample_uniform_sphere(u);
-        s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, l.L.rgb, pmf * CV_INV_4PI, false);
-    } else if (l.type == CV_LIGHT_INFINITE_MAP) {
+    } else if (l.type == CV_LIGHT_INFINITE || l.type == CV_LIGHT_INFINITE_MAP) {
         float pdf;
-        vec3 wi = cv_env_map_sample(l, u, pdf);
-        s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, cv_env_map_Le(l, wi), pmf * pdf, false);
+        vec3 wi = l.type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u) : cv_env_map_sample(l, u, pdf);
+        // Every infinite light shines along wi: the sample carries their sum
+        // and the density of the mixture over all of them, as an escaped
+        // ray's MIS weight sees them (cv_env_Le, cv_env_pdf); one light's
+        // share alone would weigh it against the sum's pdf there.
+        s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, cv_env_Le(wi), cv_env_pdf(wi), false);
 #endif
     } else {
         return false;
