@@ -17,7 +17,8 @@
 #include "envmap.glsl"
 
 // wi: unit direction from p to the light; dist: distance to the sampled point
-// (1e30 for infinite and distant lights: trace the shadow ray to infinity);
+// (1e30 for infinite and distant lights: trace the shadow ray to infinity;
+// for area lights short of the lamp by the point's rounding error);
 // L: radiance arriving at p (before any occlusion); delta: point, spot or
 // distant light (no MIS with BSDF sampling).
 struct CvLightSample { vec3 wi; float dist; vec3 L; float pdf; bool delta; };
@@ -172,7 +173,11 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         if (c == 0.0 || !(l.L.w > 0.0))
             return false;
         vec3 L = cv_light_Le_area(i, -wi, uv, c > 0.0);
-        s = CvLightSample(wi, dist, L, pmf * d2 / (abs(c) * l.L.w), false);
+        // the shadow ray stops short of the lamp by its point's rounding
+        // error (cv_point_error), measured along wi, so that it does not
+        // find the lamp itself in the way
+        float back = cv_point_error(v0.pos_u.xyz, v1.pos_u.xyz, v2.pos_u.xyz) / abs(c);
+        s = CvLightSample(wi, max(dist - back, 0.0), L, pmf * d2 / (abs(c) * l.L.w), false);
 #ifndef CV_NO_ENV
     } else if (l.type == CV_LIGHT_INFINITE || l.type == CV_LIGHT_INFINITE_MAP) {
         float pdf;
