@@ -263,7 +263,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
         .sampler = CV_SAMPLER_SOBOL,
         .rl_grid = job->rlpath.has_grid ? job->rlpath.grid : 0,
         .rl_directions = job->rlpath.has_directions ? job->rlpath.directions : 0,
-        .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : 0.0f,
+        .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : -1.0f,   /* negative: the default */
         .rl_guide_indirect = job->rlpath.guide_indirect,
     };
     struct cv_renderer *r = NULL;

@@ -38,10 +38,12 @@ EXTRA_DIST += tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h \
 	glsl/trace/test/bsdf_probe.comp
 # ---- end bsdf / light block ----
 # --- rlpath tests (reinforcement-learning path guiding) ---
-check_PROGRAMS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test
-TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test
+check_PROGRAMS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test \
+	tests/trace/rlpath_mix_test
+TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test tests/trace/rlpath_mix_test
 tests_trace_rlpath_sample_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_converge_test_LDADD = $(CV_LIBS)
+tests_trace_rlpath_mix_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/trace/rlpath_stats.h
 # the benchmark is not a test: `make tests/trace/rlpath_bench`
 EXTRA_PROGRAMS = tests/trace/rlpath_bench
