@@ -14,9 +14,10 @@ EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h tests/trace/rl
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
 # --- light and ray-offset tests (branch lightfix) ---
-check_PROGRAMS += tests/trace/env_plane_test
-TESTS += tests/trace/env_plane_test
+check_PROGRAMS += tests/trace/env_plane_test tests/trace/envmap_wrap_test
+TESTS += tests/trace/env_plane_test tests/trace/envmap_wrap_test
 tests_trace_env_plane_test_LDADD = $(CV_LIBS)
+tests_trace_envmap_wrap_test_LDADD = $(CV_LIBS)
 # --- end of light and ray-offset tests ---
 # --- end of pipeline tests ---
 # ---- bsdf / light sampling tests (branch bsdf) ----
