@@ -4,7 +4,7 @@
  * adds 0.5 more. Checked:
  * - light order: the environment counts whatever lights are declared
  *   before it (a distant light, a small area light), and several infinite
- *   lights add up;
+ *   lights (constant, or an image map) add up;
  * - scale: planes of half-size 1, 1000 and 100000, and a tilted plane far
  *   from the origin, reflect the same (rays leaving the surface must not
  *   hit it again: their origin offset follows the hit point's rounding
@@ -17,6 +17,7 @@
 
 #include <stdio.h>
 
+#include "tests/scene/scene_helpers.h"
 #include "tests/trace/trace_test_util.h"
 
 /* An orthonormal frame (u, v, n = u x v) around centre c. */
@@ -108,7 +109,7 @@ static double render_mean(struct cv_gpu *gpu, const char *text, uint64_t seed, b
     struct cv_error err = {{0}};
     struct cv_scene_load_params lp = {0};
     *ok = false;
-    if (!cv_scene_load_string("plane.pbrt", text, strlen(text), &lp, &s, &err)) {
+    if (!cv_scene_load_string(th_path("plane.pbrt"), text, strlen(text), &lp, &s, &err)) {
         tap_diag("load: %s", err.msg);
         return NAN;
     }
@@ -161,6 +162,21 @@ static void light_order(struct cv_gpu *gpu)
     l = cv_xasprintf("%s%s%s%s", a, env_q, d, env_3q);
     check_plane(gpu, f, 10, l, 1.0, "area light, environment 0.25, distant light, environment 0.75");
     free(l);
+    /* an image map of 0.6 (lat-long, 8x4) with a constant 0.4 */
+    float px[8 * 4 * 3];
+    for (int i = 0; i < 8 * 4 * 3; i++)
+        px[i] = 0.6f;
+    char hdr[32];
+    int n = snprintf(hdr, sizeof(hdr), "PF\n8 4\n-1.0\n");
+    char *pfm = cv_xmalloc((size_t)n + sizeof(px));
+    memcpy(pfm, hdr, (size_t)n);
+    memcpy(pfm + n, px, sizeof(px));
+    th_write("sky.pfm", pfm, (size_t)n + sizeof(px));
+    free(pfm);
+    l = cv_xasprintf("%sLightSource \"infinite\" \"string mapname\" \"sky.pfm\"\n%s"
+                     "LightSource \"infinite\" \"rgb L\" [0.4 0.4 0.4]\n", d, a);
+    check_plane(gpu, f, 10, l, 1.0, "distant light, image environment 0.6, area light, environment 0.4");
+    free(l);
     free(d), free(a);
 }
 
@@ -209,6 +225,7 @@ static void closed_box(struct cv_gpu *gpu, const struct frame *f, double half, c
 int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    th_init();
     light_order(gpu);
     scale(gpu);
     struct frame far = far_frame();
@@ -217,6 +234,7 @@ int main(void)
     closed_box(gpu, &far, 1, "tilted closed box of half-size 1 about (1e5, -7e4, 3e4)");
     closed_box(gpu, &far, 10, "tilted closed box of half-size 10 about (1e5, -7e4, 3e4)");
     closed_box(gpu, &far, 100, "tilted closed box of half-size 100 about (1e5, -7e4, 3e4)");
+    th_cleanup();
     cv_gpu_destroy(&gpu);
     return tap_done();
 }
