@@ -58,7 +58,7 @@ struct bench_run_params {
     unsigned width, height;     /* 0: as the scene file says */
     const char *integrator;     /* "path" (NULL) or "rlpath" */
     unsigned rl_grid, rl_directions;   /* rlpath options; 0: defaults */
-    float rl_mix;                      /* rlpath guiding weight; 0: default */
+    float rl_mix;                      /* rlpath guiding weight; negative: default */
     bool rl_guide_indirect;            /* --rl-guide indirect */
     unsigned seed;                     /* sampler seed; 0: 1 */
     unsigned paths_per_pixel;          /* trace/render.h; 0: the renderer's choice */

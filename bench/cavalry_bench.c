@@ -206,7 +206,8 @@ static bool parse_uint(const char *s, unsigned *v)
 int main(int argc, char **argv)
 {
     bench_now_ms();
-    struct opts o = {.spp = 16, .repeat = 1, .ref_spp = 4096, .gpu_index = -1, .csv = NULL};
+    struct opts o = {.spp = 16, .repeat = 1, .ref_spp = 4096, .gpu_index = -1, .csv = NULL,
+                     .rl_mix = -1};
     enum { M_NONE, M_BENCH, M_SUMMARIZE, M_CONVERGE, M_RELMSE } mode = M_NONE;
     char **files = cv_xcalloc((size_t)argc, sizeof(char *));
     int n_files = 0;

@@ -16,4 +16,16 @@ float cv_safe_sqrt(float x) { return sqrt(max(x, 0.0)); }
 float cv_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 float cv_luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
+// How far a ray leaving a point of triangle p0 p1 p2 must start off its
+// plane so that neither the interpolated point's rounding (each term of
+// b0 p0 + b1 p1 + b2 p2, and b0 = 1 - b1 - b2 off by an ulp of 1) nor the
+// ray-triangle test's own (vertices taken relative to the origin and
+// sheared into the ray's frame, bvh/triangle.glsl) can put the plane in
+// front of it: a few ulps of the vertices' largest coordinates. 2^-21 of
+// their sum leaves room for fused or reordered GPU arithmetic.
+float cv_point_error(vec3 p0, vec3 p1, vec3 p2)
+{
+    return (1.0 / 2097152.0) * (cv_max3(abs(p0)) + cv_max3(abs(p1)) + cv_max3(abs(p2)));
+}
+
 #endif

@@ -54,6 +54,10 @@ CV_CHECK_SIZE(CvTriangle, 16);
 #define CV_TEXF_INVERT (1u << 3)      /* 1 - value (v4 "invert") */
 #define CV_TEXF_FLOAT (1u << 4)       /* a float texture: use .r (or average for rgb images) */
 #define CV_TEXF_BILERP (1u << 5)      /* filter bilinear only (no mip) */
+/* Sphere maps of image infinite lights (set by the loader, never by a
+ * scene's "wrap"): the texels past an edge are those of the sphere there. */
+#define CV_TEXF_WRAP_OCTAHEDRAL (1u << 6) /* pbrt-v4 equal-area square: an edge mirrors about its midpoint */
+#define CV_TEXF_WRAP_LATLONG (1u << 7)    /* lat-long: repeat in u (longitude), clamp in v (the poles) */
 
 /* Texels of all image textures live in one buffer of half-float RGBA, two
  * uints per texel (packHalf2x16(r,g), packHalf2x16(b,a)); level L of a

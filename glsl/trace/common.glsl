@@ -62,19 +62,28 @@ void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray
 #define CV_PAIR_LIGHT_U2 2u   // light position
 #define CV_PAIR_LIGHT_UC 3u   // x: light choice, y: roulette
 
-// Offsets a ray origin off a surface along the geometric normal so the new
-// ray cannot hit the surface it leaves (Waechter and Binder, "A Fast and
-// Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, 2019).
-vec3 cv_offset_ray(vec3 p, vec3 n)
+// x moved to the next float in the direction of s's sign (s 0: x).
+float cv_float_away(float x, float s)
 {
-    const float origin = 1.0 / 32.0, float_scale = 1.0 / 65536.0, int_scale = 256.0;
-    ivec3 of_i = ivec3(int_scale * n);
-    vec3 p_i = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -of_i.x : of_i.x)),
-                    intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -of_i.y : of_i.y)),
-                    intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -of_i.z : of_i.z)));
-    return vec3(abs(p.x) < origin ? p.x + float_scale * n.x : p_i.x,
-                abs(p.y) < origin ? p.y + float_scale * n.y : p_i.y,
-                abs(p.z) < origin ? p.z + float_scale * n.z : p_i.z);
+    if (s == 0.0)
+        return x;
+    if (x == 0.0)
+        return s > 0.0 ? 1.1754944e-38 : -1.1754944e-38;
+    return intBitsToFloat(floatBitsToInt(x) + ((x > 0.0) == (s > 0.0) ? 1 : -1));
+}
+
+// Offsets a ray origin p off a surface along its geometric normal n (unit,
+// on the side the ray leaves to) so that the new ray cannot hit the surface
+// it leaves: by err (cv_point_error: it scales with the triangle's
+// vertices), then each coordinate one float further away from the surface,
+// as pbrt-v4's OffsetRayOrigin rounds. A fixed number of ulps of p
+// (Waechter and Binder) is too little where a hit near the origin lies on
+// a huge triangle, and far more than needed far from the origin, where it
+// let light through walls.
+vec3 cv_offset_ray(vec3 p, float err, vec3 n)
+{
+    vec3 o = p + err * n;
+    return vec3(cv_float_away(o.x, n.x), cv_float_away(o.y, n.y), cv_float_away(o.z, n.z));
 }
 
 // Queue slots for a whole group: every invocation says whether it pushes to

@@ -1,5 +1,6 @@
 // glsl/trace/geometry.glsl: the surface point of a hit from the scene's
-// triangles. Stages that trace include tracing.glsl first.
+// triangles, and the origin of a ray that leaves it. Stages that trace
+// include tracing.glsl first; every stage includes common.glsl first.
 #ifndef CV_TRACE_GEOMETRY_GLSL
 #define CV_TRACE_GEOMETRY_GLSL
 
@@ -7,6 +8,7 @@
 
 struct CvSurface {
     vec3 p;
+    float p_err; // how far rays leaving p start off the surface (cv_point_error)
     vec3 ng;     // geometric normal (pbrt's orientation, ReverseOrientation applied)
     vec3 ns;     // shading normal, same hemisphere as ng
     vec3 dpdu;
@@ -25,6 +27,7 @@ CvSurface cv_surface(uint prim, float b1, float b2)
     s.material = idx.w & CV_TRI_MATERIAL_MASK;
     vec3 p0 = v0.pos_u.xyz, p1 = v1.pos_u.xyz, p2 = v2.pos_u.xyz;
     s.p = b0 * p0 + b1 * p1 + b2 * p2;
+    s.p_err = cv_point_error(p0, p1, p2);
     vec2 uv0 = vec2(0.0, 0.0), uv1 = vec2(1.0, 0.0), uv2 = vec2(1.0, 1.0);
     if ((s.flags & CV_TRI_HAS_UV) != 0u) {
         uv0 = vec2(v0.pos_u.w, v0.nrm_v.w);
@@ -60,6 +63,13 @@ CvSurface cv_surface(uint prim, float b1, float b2)
     s.ng = ng;
     s.dpdu = dpdu;
     return s;
+}
+
+// Origin of a ray leaving surface s in direction w: off the surface on w's
+// side (cv_offset_ray).
+vec3 cv_spawn_origin(CvSurface s, vec3 w)
+{
+    return cv_offset_ray(s.p, s.p_err, dot(w, s.ng) > 0.0 ? s.ng : -s.ng);
 }
 
 #endif

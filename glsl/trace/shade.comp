@@ -80,7 +80,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
                 vec3 Ld = beta * f * ls.L * (w / ls.pdf);
                 if (cv_finite3(Ld)) {
                     push_shadow = true;
-                    s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
+                    s.o = vec4(cv_spawn_origin(sf, ls.wi),
                                ls.dist * (1.0 - 1e-4));
                     s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
@@ -107,7 +107,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     }
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
     push_ray = true;
-    nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
+    nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : bs.pdf);
     nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
 }

@@ -169,7 +169,7 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .sampler = CV_SAMPLER_SOBOL,
         .rl_grid = job->rlpath.has_grid ? job->rlpath.grid : 0,
         .rl_directions = job->rlpath.has_directions ? job->rlpath.directions : 0,
-        .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : 0.0f,
+        .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : -1.0f,   /* negative: the default */
         .rl_guide_indirect = job->rlpath.guide == CV_RL_GUIDE_INDIRECT,
     };
 }

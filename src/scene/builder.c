@@ -391,6 +391,41 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
     return ok;
 }
 
+static bool is_infinite(const CvLight *l)
+{
+    return l->type == CV_LIGHT_INFINITE || l->type == CV_LIGHT_INFINITE_MAP;
+}
+
+/* Puts the infinite lights first (each group in file order), as the scene
+ * promises (scene.h): the GPU finds the environment by walking the lights
+ * up to the first other one. Light indices elsewhere (tri_light) follow;
+ * light_power moves with its light. */
+static void order_lights(struct cv_scene *s)
+{
+    uint32_t n = s->n_lights, k = 0;
+    if (n == 0)
+        return;
+    uint32_t *to = cv_xmalloc(n * sizeof(uint32_t));
+    for (int pass = 0; pass < 2; pass++)
+        for (uint32_t i = 0; i < n; i++)
+            if (is_infinite(&s->lights[i]) == (pass == 0))
+                to[i] = k++;
+    CvLight *l = cv_xmalloc(n * sizeof(CvLight));
+    float *pw = cv_xmalloc(n * sizeof(float));
+    for (uint32_t i = 0; i < n; i++) {
+        l[to[i]] = s->lights[i];
+        pw[to[i]] = s->light_power[i];
+    }
+    memcpy(s->lights, l, n * sizeof(CvLight));
+    memcpy(s->light_power, pw, n * sizeof(float));
+    for (uint32_t t = 0; t < s->n_triangles; t++)
+        if (s->tri_light[t] >= 0)
+            s->tri_light[t] = (int32_t)to[s->tri_light[t]];
+    free(to);
+    free(l);
+    free(pw);
+}
+
 bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
 {
     struct cv_scene *s = b->s;
@@ -424,6 +459,7 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
     }
     if (b->cur_object >= 0)
         return cv_fail(err, "ObjectBegin \"%s\" not closed at end of input", b->objects[b->cur_object].name);
+    order_lights(s);
     cv_b_finish_camera(b);
     return true;
 }

@@ -140,6 +140,12 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
             int t = cv_b_image_texture(b, file, dir, true, loc, err);
             if (t < 0)
                 return false;
+            /* the light's own record of the (shared) image, wrapped as the
+             * sphere it maps: pbrt-v4 mirrors the equal-area square's
+             * edges and clamps a lat-long map at the poles */
+            CvTexture own = b->s->textures[t];
+            own.flags |= v4map ? CV_TEXF_WRAP_OCTAHEDRAL : CV_TEXF_WRAP_LATLONG;
+            t = cv_b_add_texture(b, &own);
             const CvTexture *tx = &b->s->textures[t];
             if (v4map && tx->width != tx->height)
                 return cv_fail(err, "%s:%d:%d: pbrt-v4 environment map \"%s\" must be square (equal-area octahedral), is %ux%u",

@@ -51,6 +51,9 @@ struct cv_render_settings {
  *   triangle's world-space area. light_power: luminance flux (area: Y(L) *
  *   area * pi * sides; point: 4 pi Y(I); spot: cone-weighted; distant and
  *   infinite: from the scene's bounding sphere).
+ * - Infinite lights come first in lights[] (in file order), then the others
+ *   (in file order): the GPU sums the environment over the leading infinite
+ *   lights alone (glsl/trace/light/light.glsl). tri_light indices follow.
  * - Instanced objects are flattened (copied per instance).
  * - Quadrics are tessellated (see shapes.c for the accuracy). */
 struct cv_scene {

@@ -25,9 +25,10 @@ struct cv_render_params {
     enum cv_integrator integrator;  /* CV_INTEGRATOR_PATH by default */
     bool aovs;                   /* keep albedo, normal and depth per pixel */
     enum { CV_SAMPLER_SOBOL, CV_SAMPLER_INDEPENDENT } sampler;
-    /* rlpath only (0, or a mix <= 0: the default, see trace/rlpath.h):
-     * cells along the scene's longest axis, direction bins per cell, share
-     * of guided sampling in (0, 1]. */
+    /* rlpath only (grid and directions 0, a negative mix: the default, see
+     * trace/rlpath.h): cells along the scene's longest axis, direction bins
+     * per cell, share of guided sampling in [0, 1] (0: BSDF sampling alone,
+     * as path; a zero-initialised struct asks for that). */
     uint32_t rl_grid, rl_directions;
     float rl_mix;
     /* rlpath: guide by the learned radiance less lamps seen directly

@@ -32,10 +32,10 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
         grid = CV_RL_DEFAULT_GRID;
     if (directions == 0)
         directions = CV_RL_DEFAULT_DIRECTIONS;
-    if (!(mix > 0))
+    if (mix < 0)
         mix = CV_RL_DEFAULT_MIX;
-    if (mix > 1 || isnan(mix))
-        return cv_fail(err, "rlpath mix %g is not in (0, 1]", (double)mix);
+    if (!(mix <= 1))
+        return cv_fail(err, "rlpath mix %g is not in [0, 1]", (double)mix);
     if (grid > CV_RL_MAX_GRID)
         return cv_fail(err, "rlpath grid %u is above %u cells per axis", grid, CV_RL_MAX_GRID);
     if (directions > CV_RL_MAX_BINS)

@@ -25,8 +25,9 @@
  * proportionally many, at least 1), `directions` bins on the sphere (split
  * into round(sqrt(directions / 2)) z bands of twice as many phi sectors,
  * so the actual count may differ a little: see dirs.z), guiding weight
- * `mix`. 0 selects the defaults CV_RL_DEFAULT_*, as does a mix <= 0.
- * Fails on a mix above 1, more than CV_RL_MAX_BINS bins, a grid above 256
+ * `mix` in [0, 1] (0: BSDF sampling alone). A grid or directions of 0 and a
+ * negative mix select the defaults CV_RL_DEFAULT_*. Fails on a mix above 1
+ * or NaN, more than CV_RL_MAX_BINS bins, a grid above 256
  * or a table above 1 GiB. */
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
                       uint32_t directions, float mix, CvRlParams *out, struct cv_error *err);

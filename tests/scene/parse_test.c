@@ -411,15 +411,16 @@ static void test_lights(void)
     if (s) {
         tap_ok(s->n_lights == 8, "8 lights (%u)", s->n_lights);
         const CvLight *l = s->lights;
-        tap_ok(l[0].type == CV_LIGHT_POINT && near(l[0].L.x, 100 / (4 * M_PI), 1e-4) && near(l[0].position.z, 3, 1e-6),
+        /* infinite lights first, each group in file order (scene.h) */
+        tap_ok(l[3].type == CV_LIGHT_POINT && near(l[3].L.x, 100 / (4 * M_PI), 1e-4) && near(l[3].position.z, 3, 1e-6),
                "point light power and position");
-        tap_ok(l[1].type == CV_LIGHT_SPOT && near(lum(l[1].L), 1, 1e-3) && near(l[1].direction.w, cos(20 * M_PI / 180), 1e-6) &&
-               near(l[1].position.w, cos(15 * M_PI / 180), 1e-6), "spot: blackbody normalised, cone cosines");
-        tap_ok(l[2].type == CV_LIGHT_DISTANT && near(l[2].direction.y, -1, 1e-6), "distant direction (travel)");
-        tap_ok(l[3].type == CV_LIGHT_INFINITE, "infinite constant");
-        tap_ok(l[4].type == CV_LIGHT_INFINITE_MAP && !(l[4].flags & CV_LIGHTF_EQUAL_AREA) && l[4].tex >= 0,
+        tap_ok(l[4].type == CV_LIGHT_SPOT && near(lum(l[4].L), 1, 1e-3) && near(l[4].direction.w, cos(20 * M_PI / 180), 1e-6) &&
+               near(l[4].position.w, cos(15 * M_PI / 180), 1e-6), "spot: blackbody normalised, cone cosines");
+        tap_ok(l[5].type == CV_LIGHT_DISTANT && near(l[5].direction.y, -1, 1e-6), "distant direction (travel)");
+        tap_ok(l[0].type == CV_LIGHT_INFINITE, "infinite constant");
+        tap_ok(l[1].type == CV_LIGHT_INFINITE_MAP && !(l[1].flags & CV_LIGHTF_EQUAL_AREA) && l[1].tex >= 0,
                "v3 lat-long map");
-        tap_ok(l[5].type == CV_LIGHT_INFINITE_MAP && (l[5].flags & CV_LIGHTF_EQUAL_AREA) && near(l[5].L.x, 3, 1e-6),
+        tap_ok(l[2].type == CV_LIGHT_INFINITE_MAP && (l[2].flags & CV_LIGHTF_EQUAL_AREA) && near(l[2].L.x, 3, 1e-6),
                "v4 equal-area map with scale");
         tap_ok(l[6].type == CV_LIGHT_AREA && (l[6].flags & CV_LIGHTF_TWO_SIDED) && near(l[6].L.w, 2, 1e-6) &&
                near(l[6].L.x, 10 / (M_PI * 2 * 2), 1e-5), "area light: area in L.w, power over both sides");

@@ -154,7 +154,7 @@ static void env_test(struct cv_program *prog, bool equal_area, double alpha)
     CvTexture tx;
     memset(&tx, 0, sizeof(tx));
     tx.type = CV_TEX_IMAGE;
-    tx.flags = equal_area ? CV_TEXF_WRAP_CLAMP : 0;
+    tx.flags = equal_area ? CV_TEXF_WRAP_OCTAHEDRAL : CV_TEXF_WRAP_LATLONG;   /* as the loader sets */
     tx.levels = 1;
     tx.width = w;
     tx.height = h;

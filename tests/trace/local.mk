@@ -13,6 +13,12 @@ tests_trace_filter_table_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/trace/trace_test_util.h tests/trace/exr_ref.h tests/trace/rlpath_room.h \
 	tests/data/trace/make_scenes.py tests/data/trace/analytic.pbrt \
 	tests/data/trace/furnace.pbrt tests/data/trace/quad.pbrt
+# --- light and ray-offset tests (branch lightfix) ---
+check_PROGRAMS += tests/trace/env_plane_test tests/trace/envmap_wrap_test
+TESTS += tests/trace/env_plane_test tests/trace/envmap_wrap_test
+tests_trace_env_plane_test_LDADD = $(CV_LIBS)
+tests_trace_envmap_wrap_test_LDADD = $(CV_LIBS)
+# --- end of light and ray-offset tests ---
 # --- end of pipeline tests ---
 # ---- bsdf / light sampling tests (branch bsdf) ----
 check_PROGRAMS += tests/trace/bsdf_chi2_test
@@ -33,10 +39,12 @@ EXTRA_DIST += tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h \
 	glsl/trace/test/bsdf_probe.comp
 # ---- end bsdf / light block ----
 # --- rlpath tests (reinforcement-learning path guiding) ---
-check_PROGRAMS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test
-TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test
+check_PROGRAMS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test \
+	tests/trace/rlpath_mix_test
+TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test tests/trace/rlpath_mix_test
 tests_trace_rlpath_sample_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_converge_test_LDADD = $(CV_LIBS)
+tests_trace_rlpath_mix_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/trace/rlpath_stats.h
 # the benchmark is not a test: `make tests/trace/rlpath_bench`
 EXTRA_PROGRAMS = tests/trace/rlpath_bench

@@ -168,7 +168,7 @@ int main(void)
         moved.camera.to_world[0].w += 0.5f;
         CvCamera small = test_camera(&moved, 12, 8);
         struct cv_render_params pa = {.seed = 99, .camera = &small};
-        struct cv_render_params pb = {.seed = 1234, .integrator = CV_INTEGRATOR_RLPATH};
+        struct cv_render_params pb = {.seed = 1234, .integrator = CV_INTEGRATOR_RLPATH, .rl_mix = -1};
         bool ok = test_render(gpu, s, &ps, one, &own, &err) &&
                   cv_scene_gpu_create(gpu, s, &gs, &err) &&
                   cv_renderer_create_shared(gpu, gs, &moved, &pa, &ra, &err) &&

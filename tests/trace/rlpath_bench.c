@@ -131,7 +131,7 @@ int main(int argc, char **argv)
     const char *scene_path = NULL, *svg_path = NULL;
     uint32_t w = 0, h = 0, ref_spp = 1024, grid = 0, dirs = 0;
     double time_ms = 2000;
-    float mix = 0;
+    float mix = -1;   /* the default */
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--scene") && i + 1 < argc)
             scene_path = argv[++i];

@@ -80,6 +80,7 @@ int main(void)
     struct cv_render_params pr = pp;
     pr.integrator = CV_INTEGRATOR_RLPATH;
     pr.rl_grid = 4;
+    pr.rl_mix = -1;   /* the default */
     if (!tap_ok(batches(gpu, s, pp, &sp, &err), "path: %d batches of 48 spp: %s", B, err.msg) ||
         !tap_ok(batches(gpu, s, pr, &sr, &err), "rlpath: %d batches of 48 spp: %s", B, err.msg))
         return tap_done();

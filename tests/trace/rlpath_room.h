@@ -51,4 +51,41 @@ static const char rlpath_room_glossy[] =
     "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
     "  \"point3 P\" [ -0.9 -0.99 -0.9  0.9 -0.99 -0.9  0.9 -0.99 0.9  -0.9 -0.99 0.9 ]\n";
 
+/* A room lit from a lamp in the ceiling, open to it everywhere (light
+ * sampling does most of the work: little noise), with a lobe of each kind
+ * the guide must leave to the BSDF or share with it: a floor of
+ * smooth-coated diffuse (a delta coat over a guided base), a mirror, a
+ * rough conductor (not guided) and a coated conductor with a smooth coat
+ * over a rough base. */
+static const char rlpath_room_lobes[] =
+    "LookAt 0.3 0.6 0.95  -0.1 -0.7 -0.5  0 1 0\n"
+    "Camera \"perspective\" \"float fov\" [ 70 ]\n"
+    "Sampler \"independent\" \"integer pixelsamples\" [ 16 ]\n"
+    "Integrator \"path\" \"integer maxdepth\" [ 5 ]\n"
+    "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n"
+    "  \"string filename\" \"lobes.exr\"\n"
+    "PixelFilter \"box\"\n"
+    "WorldBegin\n"
+    "AttributeBegin\n"
+    "  AreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ]\n"
+    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "    \"point3 P\" [ -0.5 0.99 -0.5  0.5 0.99 -0.5  0.5 0.99 0.5  -0.5 0.99 0.5 ]\n"
+    "AttributeEnd\n"
+    "Material \"diffuse\" \"rgb reflectance\" [ 0.6 0.6 0.6 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 3 7 0 7 4\n"
+    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
+    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n"
+    "Material \"coateddiffuse\" \"rgb reflectance\" [ 0.6 0.5 0.4 ] \"float roughness\" [ 0 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ -0.95 -0.99 -0.95  0.95 -0.99 -0.95  0.95 -0.99 0.95  -0.95 -0.99 0.95 ]\n"
+    "Material \"conductor\" \"float roughness\" [ 0 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ -0.99 -0.8 -0.8  -0.99 0.3 -0.8  -0.99 0.3 0.2  -0.99 -0.8 0.2 ]\n"
+    "Material \"conductor\" \"float roughness\" [ 0.2 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ -0.8 -0.9 -0.99  -0.1 -0.9 -0.99  -0.1 0.2 -0.99  -0.8 0.2 -0.99 ]\n"
+    "Material \"coatedconductor\" \"float interface.roughness\" [ 0 ] \"float conductor.roughness\" [ 0.4 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+    "  \"point3 P\" [ 0.1 -0.9 -0.99  0.8 -0.9 -0.99  0.8 0.2 -0.99  0.1 0.2 -0.99 ]\n";
+
 #endif

@@ -179,7 +179,7 @@ static void test_layout(void)
     struct cv_error err = {{0}};
     CvRlParams p;
     const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 0.5f};
-    tap_ok(cv_rlpath_layout(lo, hi, 0, 0, 0, &p, &err), "layout with defaults: %s", err.msg);
+    tap_ok(cv_rlpath_layout(lo, hi, 0, 0, -1, &p, &err), "layout with defaults: %s", err.msg);
     const uint32_t g = CV_RL_DEFAULT_GRID;
     tap_ok(p.dims.x == g && p.dims.y == g / 2 && p.dims.z == g / 4 && p.dims.w == g * g * g / 8,
            "default grid %u along the longest axis, proportional elsewhere (%u %u %u)", g,
@@ -193,6 +193,8 @@ static void test_layout(void)
     bool ok = cv_rlpath_layout(lo, hi, 4, 32, 0.25f, &p, &err);
     tap_ok(ok && p.dirs.z == 32 && p.dims.x == 4 && p.grid_min.w == 0.25f,
            "explicit options (%u x %u bins)", p.dirs.x, p.dirs.y);
+    ok = cv_rlpath_layout(lo, hi, 4, 32, 0, &p, &err);
+    tap_ok(ok && p.grid_min.w == 0, "mix 0 stays 0 (BSDF sampling alone): %g", p.grid_min.w);
     tap_ok(!cv_rlpath_layout(lo, hi, 4, 32, 1.5f, &p, &err) && strstr(err.msg, "mix"),
            "mix above 1 is an error: %s", err.msg);
     tap_ok(!cv_rlpath_layout(lo, hi, 4, 5000, 0.5f, &p, &err) && strstr(err.msg, "directions"),

@@ -399,6 +399,35 @@ bool cv_bsdf_is_delta(CvBsdf b)
 #endif
 }
 
+// Probability that cv_bsdf_sample, seen from wo_world, picks a delta lobe
+// (a sample flagged CV_BSDF_SPECULAR): 1 where cv_bsdf_is_delta, 0 where
+// the BSDF has no delta lobe, between for a smooth coat over a rough base
+// (or a rough coat over a smooth conductor). Which lobe a sample takes
+// depends on uc alone, never on u: rlpath/shade.comp relies on both.
+float cv_bsdf_delta_prob(CvBsdf b, vec3 wo_world)
+{
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    return 0.0;
+#else
+    if (cv_bsdf_is_delta(b))
+        return 1.0;
+    vec3 wo = cv_to_local(b.frame, wo_world);
+    if (cv_bsdf_mirrored(b))
+        wo.z = abs(wo.z);
+    if (wo.z <= 0.0)
+        return 0.0;
+    if (b.type == CV_MAT_COATED_DIFFUSE)
+        return cv_mf_smooth(b.alpha.xy) ? cv_coat_prob(b.eta, wo, b.c0) : 0.0;
+    if (b.type == CV_MAT_COATED_CONDUCTOR) {
+        float ps = cv_coated_conductor_ps(b.eta, b.c0, b.c1, wo);
+        return (cv_mf_smooth(b.alpha.xy) ? ps : 0.0) + (cv_mf_smooth(b.alpha.zw) ? 1.0 - ps : 0.0);
+    }
+    if (b.type == CV_MAT_PLASTIC)
+        return cv_mf_smooth(b.alpha.xy) ? cv_plastic_ps(b.c0, b.c1) : 0.0;
+    return 0.0;
+#endif
+}
+
 // Surface colour for the albedo AOV.
 vec3 cv_bsdf_albedo(CvBsdf b)
 {

@@ -17,7 +17,23 @@ vec4 cv_texel_fetch(uint base, uint w, uint h, ivec2 xy, uint flags)
 {
     if ((flags & CV_TEXF_WRAP_BLACK) != 0u && (xy.x < 0 || xy.y < 0 || xy.x >= int(w) || xy.y >= int(h)))
         return vec4(0.0);
-    if ((flags & (CV_TEXF_WRAP_CLAMP | CV_TEXF_WRAP_BLACK)) != 0u) {
+    if ((flags & CV_TEXF_WRAP_OCTAHEDRAL) != 0u) {
+        // pbrt-v4's octahedral sphere wrap: the point just across an edge
+        // of the equal-area square is the one mirrored about that edge's
+        // midpoint (a bilinear lookup reaches one texel out at most)
+        if (xy.x < 0 || xy.x >= int(w)) {
+            xy.x = xy.x < 0 ? -1 - xy.x : 2 * int(w) - 1 - xy.x;
+            xy.y = int(h) - 1 - xy.y;
+        }
+        if (xy.y < 0 || xy.y >= int(h)) {
+            xy.y = xy.y < 0 ? -1 - xy.y : 2 * int(h) - 1 - xy.y;
+            xy.x = int(w) - 1 - xy.x;
+        }
+        xy = clamp(xy, ivec2(0), ivec2(int(w) - 1, int(h) - 1));
+    } else if ((flags & CV_TEXF_WRAP_LATLONG) != 0u) {
+        xy.x = int(uint(xy.x % int(w) + int(w)) % w);
+        xy.y = clamp(xy.y, 0, int(h) - 1);
+    } else if ((flags & (CV_TEXF_WRAP_CLAMP | CV_TEXF_WRAP_BLACK)) != 0u) {
         xy = clamp(xy, ivec2(0), ivec2(int(w) - 1, int(h) - 1));
     } else {
         xy.x = int(uint(xy.x % int(w) + int(w)) % w);

@@ -17,7 +17,8 @@
 #include "envmap.glsl"
 
 // wi: unit direction from p to the light; dist: distance to the sampled point
-// (1e30 for infinite and distant lights: trace the shadow ray to infinity);
+// (1e30 for infinite and distant lights: trace the shadow ray to infinity;
+// for area lights short of the lamp by the point's rounding error);
 // L: radiance arriving at p (before any occlusion); delta: point, spot or
 // distant light (no MIS with BSDF sampling).
 struct CvLightSample { vec3 wi; float dist; vec3 L; float pdf; bool delta; };
@@ -96,6 +97,11 @@ float cv_light_pdf_area(uint light, vec3 p, vec3 p_light, vec3 n_light)
     return cv_light_pmf(light) * d2 / (c * l.L.w);
 }
 
+// One infinite light's radiance along dir and its density per solid angle
+// (without the light-selection probability).
+vec3 cv_env_light_Le(CvLight l, vec3 dir) { return l.type == CV_LIGHT_INFINITE ? l.L.rgb : cv_env_map_Le(l, dir); }
+float cv_env_light_pdf(CvLight l, vec3 dir) { return l.type == CV_LIGHT_INFINITE ? CV_INV_4PI : cv_env_map_pdf(l, dir); }
+
 vec3 cv_env_Le(vec3 dir)
 {
     vec3 L = vec3(0.0);
@@ -104,7 +110,7 @@ vec3 cv_env_Le(vec3 dir)
         CvLight l = lights[i];
         if (!cv_light_is_infinite(l))
             break;
-        L += l.type == CV_LIGHT_INFINITE ? l.L.rgb : cv_env_map_Le(l, dir);
+        L += cv_env_light_Le(l, dir);
     }
     return L;
 }
@@ -117,7 +123,7 @@ float cv_env_pdf(vec3 dir)
         CvLight l = lights[i];
         if (!cv_light_is_infinite(l))
             break;
-        pdf += cv_light_pmf(i) * (l.type == CV_LIGHT_INFINITE ? CV_INV_4PI : cv_env_map_pdf(l, dir));
+        pdf += cv_light_pmf(i) * cv_env_light_pdf(l, dir);
     }
     return pdf;
 }
@@ -172,15 +178,28 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         if (c == 0.0 || !(l.L.w > 0.0))
             return false;
         vec3 L = cv_light_Le_area(i, -wi, uv, c > 0.0);
-        s = CvLightSample(wi, dist, L, pmf * d2 / (abs(c) * l.L.w), false);
+        // the shadow ray stops short of the lamp by its point's rounding
+        // error (cv_point_error), measured along wi, so that it does not
+        // find the lamp itself in the way
+        float back = cv_point_error(v0.pos_u.xyz, v1.pos_u.xyz, v2.pos_u.xyz) / abs(c);
+        s = CvLightSample(wi, max(dist - back, 0.0), L, pmf * d2 / (abs(c) * l.L.w), false);
 #ifndef CV_NO_ENV
-    } else if (l.type == CV_LIGHT_INFINITE) {
-        vec3 wi = cv_sample_uniform_sphere(u);
-        s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, l.L.rgb, pmf * CV_INV_4PI, false);
-    } else if (l.type == CV_LIGHT_INFINITE_MAP) {
-        float pdf;
-        vec3 wi = cv_env_map_sample(l, u, pdf);
-        s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, cv_env_map_Le(l, wi), pmf * pdf, false);
+    } else if (l.type == CV_LIGHT_INFINITE || l.type == CV_LIGHT_INFINITE_MAP) {
+        float pdf = CV_INV_4PI;
+        vec3 wi = l.type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u) : cv_env_map_sample(l, u, pdf);
+        vec3 L = cv_env_light_Le(l, wi);
+        pdf *= pmf;
+        // Every infinite light shines along wi: the sample carries their sum
+        // and the density of the mixture over all of them (cv_env_Le,
+        // cv_env_pdf), as an escaped ray's MIS weight sees them; one light's
+        // share alone would be weighed against the sum's pdf there.
+        for (uint j = 0u; j < cv_light_count() && cv_light_is_infinite(lights[j]); j++) {
+            if (j != i) {
+                L += cv_env_light_Le(lights[j], wi);
+                pdf += cv_light_pmf(j) * cv_env_light_pdf(lights[j], wi);
+            }
+        }
+        s = CvLightSample(wi, CV_LIGHT_INFINITE_DIST, L, pdf, false);
 #endif
     } else {
         return false;

@@ -7,6 +7,7 @@
 // probabilities of lights 0..i (by power), the last entry 1.
 // Infinite lights (CV_LIGHT_INFINITE, CV_LIGHT_INFINITE_MAP) must come
 // first in lights[]: cv_env_Le / cv_env_pdf stop at the first other light.
+// The scene builder orders them so (src/scene/scene.h).
 #ifndef CV_LIGHT_BUFFERS_GLSL
 #define CV_LIGHT_BUFFERS_GLSL
 

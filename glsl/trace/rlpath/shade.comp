@@ -6,7 +6,7 @@
 // mixture of the learned distribution of the hit's key (weight m) and the
 // BSDF (1 - m), whose exact density divides the throughput and enters the MIS
 // weights against light sampling, so the estimator is unbiased for any
-// table. It also computes the temporal-difference target for the bounce that
+// table and any m in [0, 1]; delta lobes stay the BSDF's (see the bounce). It also computes the temporal-difference target for the bounce that
 // led here: Le(y, -w) (its emitted part, which next-event estimation at the
 // vertex before covers, apart) plus the radiance y reflects towards it. For
 // a diffuse-like lobe (where the key guides) that is the expected value
@@ -124,6 +124,9 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     if (guides)
         kk = cv_rl_key_load(key);
     float m = kk.m;
+    // Delta lobes are the BSDF's alone: the guide stands in for the rest,
+    // which the BSDF picks with probability 1 - pd (see the bounce below).
+    float pd = m > 0.0 ? cv_bsdf_delta_prob(b, wo) : 0.0;
     // The reflected part of the target where the key guides (a diffuse-like
     // lobe): the expected value of the one-sample estimate below, the
     // integral of Q f cos that Dahm and Keller's update takes, with f
@@ -153,13 +156,13 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
             vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
             if (cv_max3(f) > 0.0) {
                 float pl = m > 0.0 ? cv_rl_prob(kk.gt, cv_rl_bin(ls.wi)) : 0.0;
-                float pm = cv_rl_mix_pdf(m, pl * float(cv_rl_bins()) / (4.0 * CV_RL_PI),
+                float pm = cv_rl_mix_pdf(m, (1.0 - pd) * pl * float(cv_rl_bins()) / (4.0 * CV_RL_PI),
                                          cv_bsdf_pdf(b, wo, ls.wi));
                 float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, pm);
                 vec3 Ld = beta * f * ls.L * (w / ls.pdf);
                 if (cv_finite3(Ld)) {
                     push_shadow = true;
-                    s.o = vec4(cv_offset_ray(sf.p, dot(ls.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng),
+                    s.o = vec4(cv_spawn_origin(sf, ls.wi),
                                ls.dist * (1.0 - 1e-4));
                     s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
@@ -168,22 +171,34 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
         }
     }
 
-    // one-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives it
+    // One-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives
+    // it. The guide can only stand in for the BSDF's non-delta part: a
+    // guided draw first lets the BSDF pick its lobe (by u_bc.x alone, as a
+    // BSDF draw does) and keeps a delta lobe it picks. So a delta lobe is
+    // taken with the BSDF's own probability whatever m, and a direction of
+    // the rest has density m (1 - pd) pq + (1 - m) p_bsdf: every lobe is
+    // sampled for any m in [0, 1] (m = 1 drew no coat reflection before).
     CvBsdfSample bs;
     float pq = 0.0;   // the guided density of bs.wi
     uint wbin;        // the table bin of bs.wi
     bool specular = false;
     bool guided = m > 0.0 && u_bsdf.x < m;
+    vec2 u = m > 0.0 ? vec2(min((guided ? u_bsdf.x : u_bsdf.x - m) / (guided ? m : 1.0 - m), CV_ONE_MINUS_EPS),
+                            u_bsdf.y)
+                     : u_bsdf;
+    if (guided && pd > 0.0 && cv_bsdf_sample(b, wo, u_bc.x, u, bs) && (bs.flags & CV_BSDF_SPECULAR) != 0u)
+        guided = false;   // the delta lobe the BSDF picked: bs stands
+    else if (!guided && !cv_bsdf_sample(b, wo, u_bc.x, u, bs))
+        return;
     if (guided) {
         // the bin drawn, not the bin of bs.wi looked up again: rounding may
         // put a direction on a bin's edge across it, a set of measure zero
         // where either density serves (and a round of loads less)
-        wbin = cv_rl_sample_key(kk, vec2(min(u_bsdf.x / m, 0.99999994), u_bsdf.y), bs.wi, pq);
+        wbin = cv_rl_sample_key(kk, u, bs.wi, pq);
         bs.f = cv_bsdf_f(b, wo, bs.wi);
         bs.pdf = cv_bsdf_pdf(b, wo, bs.wi);
     } else {
-        vec2 u = m > 0.0 ? vec2(min((u_bsdf.x - m) / (1.0 - m), 0.99999994), u_bsdf.y) : u_bsdf;
-        if (!cv_bsdf_sample(b, wo, u_bc.x, u, bs) || bs.pdf <= 0.0)
+        if (bs.pdf <= 0.0)
             return;
         specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
         wbin = cv_rl_bin(bs.wi);
@@ -193,8 +208,8 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     if (!guided && m > 0.0 && !specular)
         pq = cv_rl_prob(kk.gt, wbin) * float(cv_rl_bins()) / (4.0 * CV_RL_PI);
     float qd = learning && !expected ? cv_rl_q(key, wbin) : 0.0;
-    // a delta lobe is chosen with probability (1 - m) * bs.pdf
-    float pdf = specular ? (1.0 - m) * bs.pdf : cv_rl_mix_pdf(m, pq, bs.pdf);
+    // a delta lobe is chosen with its BSDF probability bs.pdf
+    float pdf = specular ? bs.pdf : cv_rl_mix_pdf(m, (1.0 - pd) * pq, bs.pdf);
     if (!(pdf > 0.0))
         return;
     // one-sample estimate of the reflected radiance (pdf: the density the
@@ -215,7 +230,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     }
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
     push_ray = true;
-    nr.o = vec4(cv_offset_ray(sf.p, dot(bs.wi, sf.ng) > 0.0 ? sf.ng : -sf.ng), r.o.w);
+    nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
     nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
     entry = cv_rl_entry(key, wbin);
