@@ -31,4 +31,9 @@ src/gpu/gl_functions.h: $(GL_SCANNED) $(srcdir)/src/gpu/gl_functions.sh
 	$(AM_V_GEN)$(MKDIR_P) src/gpu && \
 	$(SHELL) $(srcdir)/src/gpu/gl_functions.sh $(GL_SCANNED) >$@.tmp && mv $@.tmp $@
 BUILT_SOURCES += src/gpu/gl_functions.h src/gpu/glsl_embedded.c
+# BUILT_SOURCES is made first only by `make all`, `check` and `install`; a
+# named target (`make src/cavalry-batch`) needs the dependency spelled out,
+# as automake's dependency tracking knows the header only after a first
+# compile.
+src/gpu/context_osmesa.$(OBJEXT): src/gpu/gl_functions.h
 CLEANFILES += src/gpu/gl_functions.h src/gpu/glsl_embedded.c
