@@ -90,9 +90,9 @@ static bool apply_overrides(const struct cv_job *job, struct cv_scene *s, struct
          * resolution gets the default window for its own aspect. */
         float aspect = (float)w / (float)h;
         if (aspect > 1)
-            cam->screen = (CV_VEC4){-aspect, aspect, -1, 1};
+            cam->screen = (cv_vec4){-aspect, aspect, -1, 1};
         else
-            cam->screen = (CV_VEC4){-1, 1, -1 / aspect, 1 / aspect};
+            cam->screen = (cv_vec4){-1, 1, -1 / aspect, 1 / aspect};
         const float *c = s->settings.crop;
         uint32_t x0 = (uint32_t)ceilf(w * c[0]), x1 = (uint32_t)ceilf(w * c[1]);
         uint32_t y0 = (uint32_t)ceilf(h * c[2]), y1 = (uint32_t)ceilf(h * c[3]);
@@ -101,7 +101,7 @@ static bool apply_overrides(const struct cv_job *job, struct cv_scene *s, struct
             x1 = w;
             y1 = h;
         }
-        cam->film = (CV_UVEC4){w, h, x0, y0};
+        cam->film = (cv_uvec4){w, h, x0, y0};
         cam->crop.x = x1 - x0;
         cam->crop.y = y1 - y0;
     }
