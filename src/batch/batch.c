@@ -161,7 +161,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
             struct cv_error jerr = {{0}};
             bool uploaded = ls->gpu_scene != NULL;
             if (!uploaded) {
-                uploaded = cv_scene_gpu_create(gpu, ls->scene, &ls->gpu_scene, &jerr);
+                uploaded = cv_scene_gpu_create(gpu, ls->scene, opt->bvh, &ls->gpu_scene, &jerr);
                 if (!uploaded)
                     cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
             }

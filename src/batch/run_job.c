@@ -265,6 +265,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_job *job, const struct cv_sc
         .rl_directions = job->rlpath.has_directions ? job->rlpath.directions : 0,
         .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : 0.0f,
         .rl_guide_indirect = job->rlpath.guide_indirect,
+        .stage_times = opt->stage_times,
     };
     struct cv_renderer *r = NULL;
     if (!cv_renderer_create_shared(gpu, gs, &s, &rp, &r, err))

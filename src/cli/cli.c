@@ -13,6 +13,7 @@
 #include "batch/batch.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/knobs.h"
 #include "gpu/context.h"
 #include "scene/dump.h"
 #include "scene/scene.h"
@@ -249,6 +250,9 @@ int cv_cli_main(int argc, char **argv)
         }
     }
     cv_log_set_level(verbosity < 0 ? CV_LOG_ERROR : verbosity == 0 ? CV_LOG_INFO : CV_LOG_DEBUG);
+    struct cv_knobs knobs = cv_knobs_from_environment();
+    o.bvh = &knobs.bvh;
+    o.stage_times = knobs.stage_times;
     if (list_gpus) {
         struct cv_error err = {{0}};
         if (!cv_gpu_list(&o.gpu, stdout, &err)) {

@@ -169,7 +169,7 @@ int main(void)
         struct cv_render_params pa = {.seed = 99, .width = 12, .height = 8};
         struct cv_render_params pb = {.seed = 1234, .integrator = CV_RENDER_RLPATH};
         bool ok = test_render(gpu, s, &ps, one, &own, &err) &&
-                  cv_scene_gpu_create(gpu, s, &gs, &err) &&
+                  cv_scene_gpu_create(gpu, s, NULL, &gs, &err) &&
                   cv_renderer_create_shared(gpu, gs, &moved, &pa, &ra, &err) &&
                   cv_renderer_create_shared(gpu, gs, s, &pb, &rb, &err) &&
                   cv_renderer_pass(ra, 4, &err) && cv_renderer_pass(rb, 4, &err) &&
