@@ -10,7 +10,8 @@ libcavalry_a_SOURCES += \
 	src/gpu/glsl_source.c src/gpu/glsl_source.h \
 	src/gpu/program.c src/gpu/program.h \
 	src/gpu/program_disk_cache.c src/gpu/program_disk_cache.h \
-	src/gpu/timer.c src/gpu/timer.h
+	src/gpu/timer.c src/gpu/timer.h \
+	src/gpu/buf.c src/gpu/buf.h
 nodist_libcavalry_a_SOURCES = src/gpu/glsl_embedded.c
 EXTRA_DIST += src/gpu/embed_glsl.sh src/gpu/gl_functions.sh $(GLSL_FILES)
 

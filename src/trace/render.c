@@ -19,6 +19,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "glsl/shared/trace.h"
+#include "gpu/buf.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "gpu/memory.h"
@@ -70,7 +71,8 @@ struct cv_renderer {
     uint32_t spp_done;
     uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
-    GLuint ubo, queues, rays, hits, shadow, film, resolved;
+    GLuint ubo, queues, rays, hits, shadow, film;
+    struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
     struct cv_gpu_timer *passes;   /* one row: every pass, start to end */
@@ -387,7 +389,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
     r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
-    r->resolved = make(gpu, (size_t)r->n_pixels * 4 * sizeof(float), "trace resolved", &ok, err);
+    if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){
+                                                      .size = (size_t)r->n_pixels * 4 * sizeof(float),
+                                                      .storable = true, .host_readable = true,
+                                                      .label = "trace resolved"},
+                                           err)))
+        ok = false;
     if (r->stages)
         r->prof.counts = make(gpu, PROF_ITERS * sizeof(uint32_t), "trace stage-time ray counts",
                               &ok, err);
@@ -413,7 +420,7 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->hits, CV_BIND_HITS);
     cv_buffer_bind(r->shadow, CV_BIND_SHADOW);
     cv_buffer_bind(r->film, CV_BIND_FILM);
-    cv_buffer_bind(r->resolved, CV_BIND_RESOLVED);
+    cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
     if (r->rl)
         cv_rlpath_bind(r->rl);
@@ -560,13 +567,13 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     return cv_gl_check(err, "reading render counters");
 }
 
-GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
+const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
 {
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     bind_all(r);
     cv_program_dispatch_1d(&r->prog[ST_RESOLVE], r->n_pixels);
     if (!cv_gl_check(err, "resolving the film"))
-        return 0;
+        return NULL;
     return r->resolved;
 }
 
@@ -579,7 +586,7 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
     if (rgba) {
         if (!cv_renderer_resolve(r, err))
             return false;
-        if (!cv_buffer_read(r->resolved, 0, n * 4 * sizeof(float), rgba, err))
+        if (!cv_buf_read(r->resolved, 0, n * 4 * sizeof(float), rgba, err))
             return false;
     }
     if (!albedo3 && !normal3 && !depth1)
@@ -636,10 +643,10 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     cv_gpu_timer_destroy(&r->stages);
     cv_gpu_timer_destroy(&r->passes);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
-                      &r->film, &r->resolved, &r->alive[0], &r->alive[1], &r->queues_copy,
-                      &r->prof.counts};
+                      &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
+    cv_buf_destroy(&r->resolved);
     cv_scene_gpu_destroy(&r->owned_scene);
     cv_rlpath_destroy(&r->rl);
     free(r);

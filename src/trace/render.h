@@ -108,10 +108,12 @@ struct cv_render_counters {
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err);
 
-/* SSBO of one vec4 per pixel of the crop (linear Rec.709 RGB = sum / weight,
- * alpha 1), row-major, top row first. Owned by the renderer, valid until the
- * next resolve or destroy. 0 on error. */
-GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err);
+/* A storage buffer of one vec4 per pixel of the crop (linear Rec.709 RGB =
+ * sum / weight, alpha 1), row-major, top row first, for the colour stage.
+ * Owned by the renderer, valid until the next resolve or destroy. NULL on
+ * error. */
+struct cv_buf;
+const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err);
 
 /* CPU copies: rgba 4 floats per pixel; albedo3 and normal3 3 floats, depth1
  * one (camera distance to the first hit, 0 where the ray escaped); the AOV
