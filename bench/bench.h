@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "base/error.h"
+#include "cli/knobs.h"
 #include "gpu/context.h"
 #include "scene/scene.h"
 
@@ -63,6 +64,7 @@ struct bench_run_params {
     unsigned seed;                     /* sampler seed; 0: 1 */
     unsigned paths_per_pixel;          /* trace/render.h; 0: the renderer's choice */
     unsigned pass_spp;                 /* passes of this many spp; 0: as cavalry-batch sizes them */
+    struct cv_knobs knobs;             /* cavalry-batch's, from the environment (cli/knobs.h) */
 };
 
 /* BVH build and rendering through the bvh and trace stages; each records

@@ -103,6 +103,7 @@ struct opts {
     bool rl_guide_indirect;
     int gpu_index;
     bool no_gpu;
+    struct cv_knobs knobs;  /* CAVALRY_BVH_*, CAVALRY_STAGE_TIMES, as cavalry-batch reads them */
 };
 
 /* What --bench and --converge render: the same options for both. */
@@ -113,7 +114,7 @@ static struct bench_run_params run_params(const struct opts *o)
                                      .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
                                      .rl_guide_indirect = o->rl_guide_indirect, .seed = o->seed,
                                      .paths_per_pixel = o->paths_per_pixel,
-                                     .pass_spp = o->pass_spp};
+                                     .pass_spp = o->pass_spp, .knobs = o->knobs};
 }
 
 #ifdef BENCH_HAVE_LOADER
@@ -207,7 +208,7 @@ int main(int argc, char **argv)
 {
     bench_now_ms();
     struct opts o = {.spp = 16, .repeat = 1, .ref_spp = 4096, .gpu_index = -1, .csv = NULL,
-                     .rl_mix = -1};
+                     .rl_mix = -1, .knobs = cv_knobs_from_environment()};
     enum { M_NONE, M_BENCH, M_SUMMARIZE, M_CONVERGE, M_RELMSE } mode = M_NONE;
     char **files = cv_xcalloc((size_t)argc, sizeof(char *));
     int n_files = 0;

@@ -2,9 +2,8 @@
  * stage (bvh/bvh.h: cv_bvh_build over GL buffers, cv_bvh_stats with GPU
  * phase times) and the trace stage (trace/render.h: cv_renderer_create,
  * cv_renderer_pass, cv_renderer_counters with rays by kind and pass GPU time,
- * cv_renderer_read). Both stages time their GPU work with GL_TIME_ELAPSED
- * queries themselves, and GL does not nest those, so this file adds none
- * around their calls. Where a stage header is not in the build, its part is
+ * cv_renderer_read). Both stages time their GPU work themselves (gpu/timer.h),
+ * so this file adds no GPU timing around their calls. Where a stage header is not in the build, its part is
  * compiled out and the record says which measurements are unavailable. */
 #include <math.h>
 #include <stdint.h>
@@ -35,7 +34,8 @@
 /* The BVH on its own, over the scene uploaded here, so that its phases are
  * measured apart from the renderer's set-up (which builds its own). */
 static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
-                        struct bench_record *r, struct cv_error *err)
+                        const struct bench_run_params *p, struct bench_record *r,
+                        struct cv_error *err)
 {
     GLuint vb = cv_buffer_create((size_t)scene->n_vertices * sizeof(CvVertex), scene->vertices,
                                  "bench vertices", err);
@@ -50,18 +50,18 @@ static bool measure_bvh(struct cv_gpu *gpu, const struct cv_scene *scene,
     glFinish();
     double t0 = bench_now_ms();
     struct cv_bvh *bvh = NULL;
-    bool ok = cv_bvh_build(gpu, vb, tb, scene->n_triangles, NULL, &bvh, err);
+    bool ok = cv_bvh_build(gpu, vb, tb, scene->n_triangles, &p->knobs.bvh, &bvh, err);
     if (ok) {
         glFinish();
         bench_num(r, "bvh.build_wall_ms", bench_now_ms() - t0);
         bench_gpu_memory_sample(gpu);
         const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
         for (int i = 0; i < CV_BVH_N_PHASES; i++) {
-            const struct cv_bvh_phase *p = &cv_bvh_phases[i];
+            const struct cv_bvh_phase *ph = &cv_bvh_phases[i];
             char key[96];
-            snprintf(key, sizeof key, "bvh.phase.%s_ms", p->name);
-            if (p->in_total)
-                bench_num(r, key, cv_bvh_phase_ms(st, p));
+            snprintf(key, sizeof key, "bvh.phase.%s_ms", ph->name);
+            if (ph->in_total)
+                bench_num(r, key, cv_bvh_phase_ms(st, ph));
         }
         bench_num(r, "bvh.build_gpu_ms", st->ms_total);
         bench_num(r, "bvh.sah_cost", st->sah_cost);
@@ -110,6 +110,8 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_mix = p->rl_mix;
     rp.rl_guide_indirect = p->rl_guide_indirect;
     rp.paths_per_pixel = p->paths_per_pixel;
+    rp.stage_times = p->knobs.stage_times;
+    rp.bvh = &p->knobs.bvh;
     if (integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
     return cv_renderer_create(gpu, scene, &rp, out, err);
@@ -183,7 +185,7 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
                       (double)(c.primary_rays + c.secondary_rays + c.shadow_rays) / secs);
             bench_num(r, "render.samples_per_s", (double)w * h * p->spp / secs);
         }
-        /* Traversal alone (CAVALRY_STAGE_TIMES): the intersect stage traces
+        /* Traversal alone (stage_times, CAVALRY_STAGE_TIMES): the intersect stage traces
          * camera and bounce rays together, so its rate counts both. */
         if (!gpu->info.software && c.intersect_ms > 0 && c.shadow_ms > 0) {
             bench_num(r, "render.stage.intersect_ms", c.intersect_ms);
@@ -232,7 +234,7 @@ bool bench_gpu_stages(struct cv_gpu *gpu, struct cv_scene *scene,
     bench_unavailable(r, "render", "trace/render.h is not in this build");
 #endif
 #ifdef BENCH_HAVE_BVH
-    return measure_bvh(gpu, scene, r, err);
+    return measure_bvh(gpu, scene, p, r, err);
 #else
     (void)gpu, (void)scene, (void)err;
     bench_unavailable(r, "bvh", "bvh/bvh.h is not in this build");

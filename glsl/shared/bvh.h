@@ -42,22 +42,22 @@
 #include "common.h"
 
 CV_STRUCT(CvBvhNode) {
-    CV_VEC4 lmin;
-    CV_VEC4 lmax;
-    CV_VEC4 rmin;
-    CV_VEC4 rmax;
+    cv_vec4 lmin;
+    cv_vec4 lmax;
+    cv_vec4 rmin;
+    cv_vec4 rmax;
 } CV_END(CvBvhNode)
 CV_CHECK_SIZE(CvBvhNode, 64);
 
 CV_STRUCT(CvBvhNode4) {
-    CV_VEC4 lox;
-    CV_VEC4 hix;
-    CV_VEC4 loy;
-    CV_VEC4 hiy;
-    CV_VEC4 loz;
-    CV_VEC4 hiz;
-    CV_IVEC4 word;
-    CV_IVEC4 count;
+    cv_vec4 lox;
+    cv_vec4 hix;
+    cv_vec4 loy;
+    cv_vec4 hiy;
+    cv_vec4 loz;
+    cv_vec4 hiz;
+    cv_ivec4 word;
+    cv_ivec4 count;
 } CV_END(CvBvhNode4)
 CV_CHECK_SIZE(CvBvhNode4, 128);
 
@@ -82,9 +82,9 @@ CV_CHECK_SIZE(CvBvhNode4, 128);
  * whose primitive is not a triangle holds zeros (a degenerate triangle that
  * no ray hits). */
 CV_STRUCT(CvBvhTri) {
-    CV_VEC4 v0;
-    CV_VEC4 v1;
-    CV_VEC4 v2;
+    cv_vec4 v0;
+    cv_vec4 v1;
+    cv_vec4 v2;
 } CV_END(CvBvhTri)
 CV_CHECK_SIZE(CvBvhTri, 48);
 
@@ -94,9 +94,9 @@ CV_CHECK_SIZE(CvBvhTri, 48);
  *   link: left, right, parent (-1 at the root), primitive count with
  *         CV_BVH_COLLAPSE set when the subtree is cheaper as one leaf. */
 CV_STRUCT(CvBvhBuildNode) {
-    CV_VEC4 bmin;
-    CV_VEC4 bmax;
-    CV_IVEC4 link;
+    cv_vec4 bmin;
+    cv_vec4 bmax;
+    cv_ivec4 link;
 } CV_END(CvBvhBuildNode)
 CV_CHECK_SIZE(CvBvhBuildNode, 48);
 

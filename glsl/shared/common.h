@@ -2,7 +2,8 @@
  * GLSL, so buffer layouts have a single source of truth. Layouts are std430:
  * use only 4-byte scalars and 16-byte vectors (no vec3, no vec2 after a
  * scalar), and keep every struct a multiple of 16 bytes. The C side checks
- * sizes with CV_CHECK_SIZE. */
+ * sizes with CV_CHECK_SIZE. The vector types are spelled cv_vec4, cv_uvec4
+ * and cv_ivec4 on both sides: C structs here, GLSL's vec4, uvec4, ivec4. */
 #ifndef CV_SHARED_COMMON_H
 #define CV_SHARED_COMMON_H
 
@@ -11,9 +12,9 @@
 #define CV_UINT uint
 #define CV_INT int
 #define CV_FLOAT float
-#define CV_VEC4 vec4
-#define CV_UVEC4 uvec4
-#define CV_IVEC4 ivec4
+#define cv_vec4 vec4
+#define cv_uvec4 uvec4
+#define cv_ivec4 ivec4
 #define CV_STRUCT(name) struct name
 #define CV_END(name) ;
 #define CV_CHECK_SIZE(name, bytes)
@@ -25,9 +26,6 @@ typedef struct { int32_t x, y, z, w; } cv_ivec4;
 #define CV_UINT uint32_t
 #define CV_INT int32_t
 #define CV_FLOAT float
-#define CV_VEC4 cv_vec4
-#define CV_UVEC4 cv_uvec4
-#define CV_IVEC4 cv_ivec4
 #define CV_STRUCT(name) typedef struct name
 #define CV_END(name) name;
 #define CV_CHECK_SIZE(name, bytes) \

@@ -119,10 +119,10 @@
 #define CV_RL_GLOSSY_ALPHA 0.5
 
 CV_STRUCT(CvRlParams) {
-    CV_VEC4 grid_min;      /* xyz: grid origin (world); w: mixture weight of guiding */
-    CV_VEC4 grid_scale;    /* xyz: cells per world unit; w: floor share (CV_RL_FLOOR) */
-    CV_UVEC4 dims;         /* xyz: cells per axis; w: cells in all */
-    CV_UVEC4 dirs;         /* x: z bands; y: phi sectors; z: bins = x * y; w: keys = cells * 6 */
+    cv_vec4 grid_min;      /* xyz: grid origin (world); w: mixture weight of guiding */
+    cv_vec4 grid_scale;    /* xyz: cells per world unit; w: floor share (CV_RL_FLOOR) */
+    cv_uvec4 dims;         /* xyz: cells per axis; w: cells in all */
+    cv_uvec4 dirs;         /* x: z bands; y: phi sectors; z: bins = x * y; w: keys = cells * 6 */
 } CV_END(CvRlParams)
 CV_CHECK_SIZE(CvRlParams, 64);
 

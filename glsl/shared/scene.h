@@ -24,8 +24,8 @@
 /* pos_u.xyz: position; pos_u.w: u.  nrm_v.xyz: shading normal (all zero when
  * the mesh has none); nrm_v.w: v. */
 CV_STRUCT(CvVertex) {
-    CV_VEC4 pos_u;
-    CV_VEC4 nrm_v;
+    cv_vec4 pos_u;
+    cv_vec4 nrm_v;
 } CV_END(CvVertex)
 CV_CHECK_SIZE(CvVertex, 32);
 
@@ -36,7 +36,7 @@ CV_CHECK_SIZE(CvVertex, 32);
 
 /* idx.xyz: vertex indices; idx.w: material word (see above). */
 CV_STRUCT(CvTriangle) {
-    CV_UVEC4 idx;
+    cv_uvec4 idx;
 } CV_END(CvTriangle)
 CV_CHECK_SIZE(CvTriangle, 16);
 
@@ -72,9 +72,9 @@ CV_STRUCT(CvTexture) {
     CV_UINT height;
     CV_INT tex_a;
     CV_INT tex_b;
-    CV_VEC4 value_a;
-    CV_VEC4 value_b;
-    CV_VEC4 uv_map;     /* u' = su*u + du, v' = sv*v + dv: (su, sv, du, dv) */
+    cv_vec4 value_a;
+    cv_vec4 value_b;
+    cv_vec4 uv_map;     /* u' = su*u + du, v' = sv*v + dv: (su, sv, du, dv) */
     CV_INT amount_tex;
     CV_FLOAT amount;
     CV_FLOAT scale;     /* multiplies the result (pbrt "scale") */
@@ -106,12 +106,12 @@ CV_STRUCT(CvMaterial) {
     CV_INT displacement_tex;  /* float texture for bump mapping */
     CV_INT normal_tex;        /* tangent-space normal map image */
 
-    CV_VEC4 reflectance;      /* rgb: Kd, conductor reflectance, Kr, diffuse-transmission R */
-    CV_VEC4 specular;         /* rgb: plastic Ks, dielectric Kt, diffuse-transmission T, coat albedo */
-    CV_VEC4 eta;              /* rgb: conductor eta; .x: dielectric/interface eta */
-    CV_VEC4 k;                /* rgb: conductor k */
-    CV_VEC4 roughness;        /* x,y: alpha u,v; z: coat thickness; w: coat g */
-    CV_VEC4 roughness2;       /* x,y: coated conductor's base alpha u,v; z: maxdepth; w: nsamples */
+    cv_vec4 reflectance;      /* rgb: Kd, conductor reflectance, Kr, diffuse-transmission R */
+    cv_vec4 specular;         /* rgb: plastic Ks, dielectric Kt, diffuse-transmission T, coat albedo */
+    cv_vec4 eta;              /* rgb: conductor eta; .x: dielectric/interface eta */
+    cv_vec4 k;                /* rgb: conductor k */
+    cv_vec4 roughness;        /* x,y: alpha u,v; z: coat thickness; w: coat g */
+    cv_vec4 roughness2;       /* x,y: coated conductor's base alpha u,v; z: maxdepth; w: nsamples */
 
     CV_INT reflectance_tex;
     CV_INT specular_tex;
@@ -147,11 +147,11 @@ CV_STRUCT(CvLight) {
     CV_UINT flags;
     CV_INT tex;           /* emission texture (area) or environment image */
     CV_UINT prim;         /* CV_LIGHT_AREA: triangle index */
-    CV_VEC4 L;            /* rgb: radiance (area, infinite) or intensity (point, spot)
+    cv_vec4 L;            /* rgb: radiance (area, infinite) or intensity (point, spot)
                            * or radiance scale (distant: irradiance); w: area of prim */
-    CV_VEC4 position;     /* xyz: point/spot position; w: cos of spot falloff start */
-    CV_VEC4 direction;    /* xyz: spot/distant direction the light travels; w: cos of spot total width */
-    CV_VEC4 to_light[3];  /* rows of the world-to-light rotation (environment maps, spot) */
+    cv_vec4 position;     /* xyz: point/spot position; w: cos of spot falloff start */
+    cv_vec4 direction;    /* xyz: spot/distant direction the light travels; w: cos of spot total width */
+    cv_vec4 to_light[3];  /* rows of the world-to-light rotation (environment maps, spot) */
 } CV_END(CvLight)
 CV_CHECK_SIZE(CvLight, 112);
 
@@ -168,11 +168,11 @@ CV_CHECK_SIZE(CvLight, 112);
  * Thin lens as pbrt: lens.x radius, lens.y focal distance. to_world rows map
  * camera space to world space (3x4 affine). */
 CV_STRUCT(CvCamera) {
-    CV_VEC4 to_world[3];
-    CV_VEC4 screen;       /* xmin, xmax, ymin, ymax */
-    CV_VEC4 lens;         /* x: lens radius, y: focal distance, z: tan(fov/2), w: unused */
-    CV_UVEC4 film;        /* full resolution x, y; crop origin x, y (pixels) */
-    CV_UVEC4 crop;        /* crop size x, y (pixels rendered); type; unused */
+    cv_vec4 to_world[3];
+    cv_vec4 screen;       /* xmin, xmax, ymin, ymax */
+    cv_vec4 lens;         /* x: lens radius, y: focal distance, z: tan(fov/2), w: unused */
+    cv_uvec4 film;        /* full resolution x, y; crop origin x, y (pixels) */
+    cv_uvec4 crop;        /* crop size x, y (pixels rendered); type; unused */
 } CV_END(CvCamera)
 CV_CHECK_SIZE(CvCamera, 112);
 

@@ -96,8 +96,8 @@
 CV_STRUCT(CvTraceQueues) {
     CV_UINT count[8];      /* CV_Q_* counters and tickets; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
-    CV_UVEC4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
-    CV_UVEC4 stats[2];     /* CV_STAT_*: x lo, y hi */
+    cv_uvec4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
+    cv_uvec4 stats[2];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
 CV_CHECK_SIZE(CvTraceQueues, 160);
 
@@ -114,9 +114,9 @@ CV_CHECK_SIZE(CvTraceQueues, 160);
  * previous vertex (solid angle), 0 for camera rays and after specular
  * bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits and depth. */
 CV_STRUCT(CvRayItem) {
-    CV_VEC4 o;
-    CV_VEC4 d;
-    CV_VEC4 beta;
+    cv_vec4 o;
+    cv_vec4 d;
+    cv_vec4 beta;
 } CV_END(CvRayItem)
 CV_CHECK_SIZE(CvRayItem, 48);
 
@@ -140,9 +140,9 @@ CV_CHECK_SIZE(CvHitItem, 32);
  * cut-outs, the sample index of the path that sent it, for the alpha tests
  * (CvFilmPixel.normal.w has moved on when that path ended). */
 CV_STRUCT(CvShadowItem) {
-    CV_VEC4 o;
-    CV_VEC4 d;
-    CV_VEC4 L;
+    cv_vec4 o;
+    cv_vec4 d;
+    cv_vec4 L;
 } CV_END(CvShadowItem)
 CV_CHECK_SIZE(CvShadowItem, 48);
 
@@ -155,9 +155,9 @@ CV_CHECK_SIZE(CvShadowItem, 48);
  * sample index of the slot's path in flight (a float holding the integer,
  * as CvRayItem.o.w; the host keeps sample counts below 2^24). */
 CV_STRUCT(CvFilmPixel) {
-    CV_VEC4 L;
-    CV_VEC4 albedo;
-    CV_VEC4 normal;
+    cv_vec4 L;
+    cv_vec4 albedo;
+    cv_vec4 normal;
 } CV_END(CvFilmPixel)
 CV_CHECK_SIZE(CvFilmPixel, 48);
 
@@ -165,18 +165,18 @@ CV_CHECK_SIZE(CvFilmPixel, 48);
 #define CV_UBO_PASS 0
 #define CV_FILTER_TABLE 64
 CV_STRUCT(CvPassParams) {
-    CV_UVEC4 frame;        /* x: pixels in the crop, y: crop width, z: crop height, w: the pass's first sample */
-    CV_UVEC4 seed;         /* x, y: job seed lo/hi; z: sampler (0 sobol, 1 independent); w: max depth */
-    CV_UVEC4 film;         /* x, y: full film resolution; z, w: crop origin */
-    CV_UVEC4 misc;         /* x: iteration (its parity picks the ray queue halves); y: filter
+    cv_uvec4 frame;        /* x: pixels in the crop, y: crop width, z: crop height, w: the pass's first sample */
+    cv_uvec4 seed;         /* x, y: job seed lo/hi; z: sampler (0 sobol, 1 independent); w: max depth */
+    cv_uvec4 film;         /* x, y: full film resolution; z, w: crop origin */
+    cv_uvec4 misc;         /* x: iteration (its parity picks the ray queue halves); y: filter
                             * type; z: light count; w: the pass's end sample (exclusive) */
-    CV_VEC4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
-    CV_VEC4 cam_to_world[3];
-    CV_VEC4 screen;
-    CV_VEC4 lens;          /* x: radius, y: focal distance, z: tan(fov/2); w: camera type */
-    CV_VEC4 filter_x[CV_FILTER_TABLE / 4 + 1]; /* gaussian inverse CDF over [0,1], x axis (65 values, padded) */
-    CV_VEC4 filter_y[CV_FILTER_TABLE / 4 + 1];
-    CV_UVEC4 wave;         /* x: path slots (the queues' capacity); y: slots per pixel (K); z: camera
+    cv_vec4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
+    cv_vec4 cam_to_world[3];
+    cv_vec4 screen;
+    cv_vec4 lens;          /* x: radius, y: focal distance, z: tan(fov/2); w: camera type */
+    cv_vec4 filter_x[CV_FILTER_TABLE / 4 + 1]; /* gaussian inverse CDF over [0,1], x axis (65 values, padded) */
+    cv_vec4 filter_y[CV_FILTER_TABLE / 4 + 1];
+    cv_uvec4 wave;         /* x: path slots (the queues' capacity); y: slots per pixel (K); z: camera
                             * rays the pass's generate stage writes; w: 0 */
 } CV_END(CvPassParams)
 CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_TABLE / 4 + 1) + 1));

@@ -5,12 +5,10 @@
 
 static enum cv_log_level log_level = CV_LOG_INFO;
 static FILE *log_stream;
-static unsigned long log_warnings;
 
 void cv_log_set_level(enum cv_log_level level) { log_level = level; }
 enum cv_log_level cv_log_get_level(void) { return log_level; }
 void cv_log_set_stream(FILE *stream) { log_stream = stream; }
-unsigned long cv_log_warning_count(void) { return log_warnings; }
 
 void cv_log(enum cv_log_level level, const char *fmt, ...)
 {
@@ -20,8 +18,6 @@ void cv_log(enum cv_log_level level, const char *fmt, ...)
         [CV_LOG_INFO] = "",
         [CV_LOG_DEBUG] = "debug: ",
     };
-    if (level == CV_LOG_WARN)
-        log_warnings++;
     if (level > log_level)
         return;
     FILE *out = log_stream ? log_stream : stderr;

@@ -1,6 +1,5 @@
 /* log.h: the program's log. Messages go to stderr (or a set stream) with a
- * level; -q and -v move the threshold. Warnings are also counted, so that a
- * caller can tell whether a stage warned (--strict). */
+ * level; -q and -v move the threshold. */
 #ifndef CV_BASE_LOG_H
 #define CV_BASE_LOG_H
 
@@ -20,8 +19,6 @@ enum cv_log_level cv_log_get_level(void);
 /* stream NULL restores stderr. */
 void cv_log_set_stream(FILE *stream);
 void cv_log(enum cv_log_level level, const char *fmt, ...) CV_PRINTF(2, 3);
-/* Number of warnings logged since start (all levels count, shown or not). */
-unsigned long cv_log_warning_count(void);
 
 #define cv_error_log(...) cv_log(CV_LOG_ERROR, __VA_ARGS__)
 #define cv_warn(...) cv_log(CV_LOG_WARN, __VA_ARGS__)

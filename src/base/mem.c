@@ -7,10 +7,19 @@
 
 #include "base/mem.h"
 
+static cv_out_of_memory_fn on_out_of_memory;
+
+void cv_mem_set_out_of_memory(cv_out_of_memory_fn fn)
+{
+    on_out_of_memory = fn;
+}
+
 static void out_of_memory(size_t size)
 {
-    fprintf(stderr, "cavalry: out of memory (asked for %zu bytes)\n", size);
-    exit(70);
+    if (on_out_of_memory)
+        on_out_of_memory(size);
+    fprintf(stderr, "error: out of memory (asked for %zu bytes)\n", size);
+    abort();
 }
 
 void *cv_xmalloc(size_t size)

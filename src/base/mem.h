@@ -1,10 +1,18 @@
 /* mem.h: allocation that cannot return NULL. Running out of memory is not an
- * input error a caller could act on, so these print and exit; bad input never
- * reaches them as a size without being checked first. */
+ * input error a caller could act on, so these do not return then: they call
+ * the handler the program set (cavalry-batch's prints and exits with its
+ * documented status, cli/exit_codes.h) or, without one, print and abort.
+ * Bad input never reaches them as a size without being checked first. */
 #ifndef CV_BASE_MEM_H
 #define CV_BASE_MEM_H
 
 #include <stddef.h>
+
+/* Called with the size asked for when an allocation fails; must not return
+ * (if it does, the process aborts). NULL: the default, print and abort.
+ * Only main sets one. */
+typedef void (*cv_out_of_memory_fn)(size_t size);
+void cv_mem_set_out_of_memory(cv_out_of_memory_fn fn);
 
 void *cv_xmalloc(size_t size);
 void *cv_xcalloc(size_t count, size_t size);

@@ -108,6 +108,7 @@ static bool make_plans(const struct cv_manifest *m, const struct cv_batch_option
         .strict = opt->strict,
         .time_limit = opt->time_limit,
         .check_color = true,
+        .stage_times = opt->stage_times,
     };
     bool ok = true;
     char *all = NULL;
@@ -199,7 +200,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
             struct cv_error jerr = {{0}};
             bool uploaded = ls->gpu_scene != NULL;
             if (!uploaded) {
-                uploaded = cv_scene_gpu_create(gpu, ls->scene, &ls->gpu_scene, &jerr);
+                uploaded = cv_scene_gpu_create(gpu, ls->scene, opt->bvh, &ls->gpu_scene, &jerr);
                 if (!uploaded)
                     cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
             }

@@ -9,6 +9,8 @@
 #include "batch/progress.h"
 #include "gpu/context.h"
 
+struct cv_bvh_params;
+
 struct cv_batch_options {
     const char *only;              /* run only this job; NULL: all */
     struct cv_gpu_params gpu;
@@ -21,6 +23,8 @@ struct cv_batch_options {
     unsigned shard_index, shard_count;  /* shard_count 0: no sharding */
     double time_limit;             /* [s] per job, 0: only the manifest's */
     enum cv_progress_mode progress;
+    const struct cv_bvh_params *bvh;  /* the scenes' BVH builds; NULL: defaults */
+    bool stage_times;              /* time every render stage (trace/render.h) */
 };
 
 enum cv_batch_status {

@@ -150,6 +150,7 @@ bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
     out->spp = job->has_spp ? job->spp : scene->settings.spp;
     out->max_depth = job->has_max_depth ? job->max_depth : scene->settings.max_depth;
     out->seed = job->has_seed ? job->seed : 0;
+    out->stage_times = o->stage_times;
     out->time_limit = job->has_time_limit ? job->time_limit : 0;
     if (o->time_limit > 0 && (out->time_limit == 0 || o->time_limit < out->time_limit))
         out->time_limit = o->time_limit;
@@ -171,5 +172,6 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_directions = job->rlpath.has_directions ? job->rlpath.directions : 0,
         .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : -1.0f,   /* negative: the default */
         .rl_guide_indirect = job->rlpath.guide == CV_RL_GUIDE_INDIRECT,
+        .stage_times = plan->stage_times,
     };
 }

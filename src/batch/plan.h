@@ -22,6 +22,7 @@ struct cv_plan_options {
     double time_limit;           /* --time-limit [seconds]; 0: none */
     bool check_color;            /* open the colour config to check the names: a
                                   * CPU cost per job, paid before any render */
+    bool stage_times;            /* time every render stage (trace/render.h) */
 };
 
 struct cv_render_plan {
@@ -39,6 +40,7 @@ struct cv_render_plan {
      * bdpt, volpath, sppm, ...); NULL otherwise. Borrowed from the scene. */
     const char *substituted;
     struct cv_color_params color;  /* strings borrowed from the job */
+    bool stage_times;            /* a diagnostic: cv_plan_options.stage_times */
 };
 
 /* Makes the plan of job on scene. Problems come back as

@@ -17,7 +17,6 @@
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "color/color.h"
-#include "gpu/buffer.h"
 #include "output/exr_read.h"
 #include "output/exr_write.h"
 #include "output/metadata.h"
@@ -111,11 +110,9 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
     if (!cv_color_pass_create(gpu, &plan->color, &pass, err))
         return false;
     size_t n = (size_t)w * h;
-    GLuint linear = cv_renderer_resolve(r, err);
-    GLuint display = linear ? cv_buffer_create(n * 4 * sizeof(float), NULL, "display", err) : 0;
-    float *px = display ? cv_xmalloc(n * 4 * sizeof(float)) : NULL;
-    bool ok = display && cv_color_pass_run(pass, linear, display, w, h, err) &&
-              cv_buffer_read(display, 0, n * 4 * sizeof(float), px, err);
+    const struct cv_buf *linear = cv_renderer_resolve(r, err);
+    float *px = cv_xmalloc(n * 4 * sizeof(float));
+    bool ok = linear && cv_color_pass_run(pass, linear, w, h, px, err);
     char *path = cv_job_output_path(job, "png");
     if (ok) {
         cv_metadata_set_string(meta, "cavalry.colour", cv_color_pass_description(pass));
@@ -136,7 +133,6 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
         note_written(res, path);
     free(path);
     free(px);
-    cv_buffer_destroy(&display);
     cv_color_pass_destroy(&pass);
     return ok;
 }

@@ -17,7 +17,7 @@ static void on_signal(int sig)
         return;
     }
     received = sig;
-    static const char msg[] = "\ncavalry-batch: stopping after this pass (signal again to quit now)\n";
+    static const char msg[] = "\nstopping after this pass (signal again to quit now)\n";
     ssize_t ignored = write(STDERR_FILENO, msg, sizeof(msg) - 1);
     (void)ignored;
 }
@@ -35,9 +35,4 @@ void cv_signals_install(void)
 bool cv_signals_interrupted(void)
 {
     return received != 0;
-}
-
-int cv_signals_which(void)
-{
-    return received;
 }

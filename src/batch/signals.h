@@ -8,7 +8,5 @@
 
 void cv_signals_install(void);
 bool cv_signals_interrupted(void);
-/* The signal number received first, 0 when none. */
-int cv_signals_which(void);
 
 #endif

@@ -1,13 +1,10 @@
 /* bvh.c: see bvh.h. The host only allocates, binds and dispatches; every
- * phase runs in glsl/bvh. Times come from one GL_TIME_ELAPSED query per
- * phase (queries cannot nest, so the total is their sum). Software
- * renderers (llvmpipe) report 0 for those queries around compute work, so
- * there each phase is timed on the CPU clock after glFinish instead. */
+ * phase runs in glsl/bvh. Each phase is a named row of the build's GPU
+ * timer (gpu/timer.h); the total is the sum of the phases. */
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/log.h"
 #include "base/mem.h"
@@ -26,6 +23,7 @@
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 #include "gpu/storage.h"
+#include "gpu/timer.h"
 
 /* 30-bit Morton codes (10 bits per axis): 8 sort passes instead of 15 for
  * 60 bits (two words, KEY64 in the shaders, which support both). Equal
@@ -46,6 +44,12 @@
 enum {
     PH_BOUNDS, PH_MORTON, PH_SORT, PH_HIERARCHY, PH_REFIT, PH_TREELET, PH_COLLAPSE,
     PH_SPLIT, PH_SPLIT_EMIT, PH_SPLIT_REMAP, PH_LEAF_TRIS, PH_WIDEN_FIND, PH_WIDEN_EMIT, PH_COUNT
+};
+
+/* The build timer's rows (PH_SPLIT counts the references: ms_split_count). */
+static const char *const phase_names[PH_COUNT] = {
+    "bounds", "morton",      "sort",      "hierarchy",  "refit",      "treelet",    "collapse",
+    "split",  "split-emit",  "split-remap", "leaf-tris", "widen-find", "widen-emit",
 };
 
 /* The tree's own buffers come from the GPU's buffer pool too and go back
@@ -84,40 +88,9 @@ struct build {
     struct cv_radix_sort *sort;
     struct cv_scan *scan;
     struct cv_bvh_split *split; /* NULL: one reference per triangle */
-    GLuint queries[PH_COUNT];
-    bool ran[PH_COUNT];         /* phases begun (the split ones run only when asked) */
-    bool cpu_timing;
-    double cpu_ms[PH_COUNT], cpu_start;
+    struct cv_gpu_timer *timer; /* a row per phase */
     uint64_t scratch;
 };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-static void phase_begin(struct build *b, int phase)
-{
-    b->ran[phase] = true;
-    if (b->cpu_timing) {
-        glFinish();
-        b->cpu_start = now_ms();
-    } else {
-        glBeginQuery(GL_TIME_ELAPSED, b->queries[phase]);
-    }
-}
-
-static void phase_end(struct build *b, int phase)
-{
-    if (b->cpu_timing) {
-        glFinish();
-        b->cpu_ms[phase] = now_ms() - b->cpu_start;
-    } else {
-        glEndQuery(GL_TIME_ELAPSED);
-    }
-}
 
 #define PHASE(name, in_total) {#name, offsetof(struct cv_bvh_stats, ms_##name), in_total}
 const struct cv_bvh_phase cv_bvh_phases[CV_BVH_N_PHASES] = {
@@ -129,28 +102,10 @@ const struct cv_bvh_phase cv_bvh_phases[CV_BVH_N_PHASES] = {
 };
 #undef PHASE
 
-/* Sets *out from environment variable `name` when it holds a number in
- * lo..hi (a whole one when `whole`); warns and leaves *out otherwise. */
-static void env_number(const char *name, bool whole, double lo, double hi, double *out)
-{
-    const char *v = getenv(name);
-    if (!v || !*v)
-        return;
-    char *end;
-    double f = whole ? (double)strtol(v, &end, 10) : strtod(v, &end);
-    if (*end == '\0' && f >= lo && f <= hi)
-        *out = f;
-    else
-        cv_warn("%s=\"%s\" is not a number from %g to %g; ignored", name, v, lo, hi);
-}
-
 struct cv_bvh_params cv_bvh_default_params(void)
 {
-    double split = 0.3, rounds = 3;
-    env_number("CAVALRY_BVH_SPLIT", false, 0, 4, &split);
-    env_number("CAVALRY_BVH_ROUNDS", true, 0, 32, &rounds);
-    return (struct cv_bvh_params){.treelet_rounds = (int)rounds, .treelet_size = 7,
-                                  .collapse_leaves = true, .split_budget = (float)split};
+    return (struct cv_bvh_params){.treelet_rounds = 3, .treelet_size = 7,
+                                  .collapse_leaves = true, .split_budget = 0.3f};
 }
 
 /* Every pass writes its scratch before reading it, or clears it itself
@@ -180,8 +135,7 @@ static void build_free(struct build *b)
     cv_radix_sort_destroy(&b->sort);
     cv_scan_destroy(&b->scan);
     cv_bvh_split_destroy(&b->split);
-    if (b->queries[0])
-        glDeleteQueries(PH_COUNT, b->queries);
+    cv_gpu_timer_destroy(&b->timer);
 }
 
 /* Writes the n leaf triangle records into `tris` (at least one record). */
@@ -295,38 +249,38 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
 
     /* Centroid bounds: one dispatch, whose last group reduces the groups'
      * pairs (bounds.comp); bounds_b holds its counter. */
-    phase_begin(b, PH_BOUNDS);
+    cv_gpu_timer_begin(b->timer, PH_BOUNDS, 0);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
     cv_bvh_bounds_dispatch(bounds, n, b->bounds_a, b->bounds_b);
-    phase_end(b, PH_BOUNDS);
+    cv_gpu_timer_end(b->timer);
 
     /* The triangles' boxes, from morton to refit, borrow out_nodes, which
      * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. Split
      * references' boxes are there already (cv_bvh_split_emit). */
-    phase_begin(b, PH_MORTON);
+    cv_gpu_timer_begin(b->timer, PH_MORTON, 0);
     cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
     cv_program_set_uint(morton, "u_n", n);
     cv_program_dispatch_1d(morton, n);
-    phase_end(b, PH_MORTON);
+    cv_gpu_timer_end(b->timer);
 
-    phase_begin(b, PH_SORT);
+    cv_gpu_timer_begin(b->timer, PH_SORT, 0);
     bool ok = cv_radix_sort_run(b->sort, b->keys, b->vals, n, MORTON_BITS, err);
-    phase_end(b, PH_SORT);
+    cv_gpu_timer_end(b->timer);
     if (!ok)
         return false;
 
-    phase_begin(b, PH_HIERARCHY);
+    cv_gpu_timer_begin(b->timer, PH_HIERARCHY, 0);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0);
     cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->counters, CV_BIND_STAGE0 + 2);
     cv_program_set_uint(hier, "u_n", n);
     cv_program_dispatch_1d(hier, n);
-    phase_end(b, PH_HIERARCHY);
+    cv_gpu_timer_end(b->timer);
 
-    phase_begin(b, PH_REFIT);
+    cv_gpu_timer_begin(b->timer, PH_REFIT, 0);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
     cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
     cv_program_set_uint(refit, "u_n", n);
@@ -335,9 +289,9 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         cv_program_set_uint(refit, "u_tri_hi", n - lo > REFIT_WINDOW ? lo + REFIT_WINDOW : n);
         cv_program_dispatch_1d(refit, n);
     }
-    phase_end(b, PH_REFIT);
+    cv_gpu_timer_end(b->timer);
 
-    phase_begin(b, PH_TREELET);
+    cv_gpu_timer_begin(b->timer, PH_TREELET, 0);
     cv_program_set_uint(treelet, "u_n", n);
     /* The rounds' change stamps borrow `live`, which layout fills later;
      * the leaf boxes at STAGE0 + 3 are not needed after refit. */
@@ -354,9 +308,9 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         cv_program_set_uint(treelet, "u_gamma", (uint32_t)p->treelet_size);
         cv_program_dispatch_1d(treelet, n);
     }
-    phase_end(b, PH_TREELET);
+    cv_gpu_timer_end(b->timer);
 
-    phase_begin(b, PH_COLLAPSE);
+    cv_gpu_timer_begin(b->timer, PH_COLLAPSE, 0);
     cv_buffer_bind(b->vals, CV_BIND_STAGE0);
     cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
     cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
@@ -381,7 +335,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         cv_program_set_uint(emit, "u_n", n);
         cv_program_dispatch_1d(emit, n);
     }
-    phase_end(b, PH_COLLAPSE);
+    cv_gpu_timer_end(b->timer);
     if (!ok)
         return false;
     return cv_gl_check(err, "building the BVH of %u triangles", n);
@@ -418,9 +372,9 @@ static bool split_first(struct build *b, const struct cv_bvh_params *p, GLuint v
     uint32_t n_refs = 0;
     if (!(b->split = cv_bvh_split_create(b->gpu, b->n, (uint32_t)most, err)))
         return false;
-    phase_begin(b, PH_SPLIT);
+    cv_gpu_timer_begin(b->timer, PH_SPLIT, 0);
     bool ok = cv_bvh_split_count(b->split, vertices, triangles, &n_refs, err);
-    phase_end(b, PH_SPLIT);
+    cv_gpu_timer_end(b->timer);
     if (ok && n_refs == b->n) {
         cv_bvh_split_destroy(&b->split);
     } else if (ok) {
@@ -451,7 +405,7 @@ static bool leaf_tris_scatter(struct build *b, struct cv_bvh *bvh, uint32_t wind
         !(bvh->tris = own_buffer(bvh, leaf_tris_bytes(n), &bvh->tris_bytes, "bvh leaf triangles",
                                  err)))
         return false;
-    phase_begin(b, PH_LEAF_TRIS);
+    cv_gpu_timer_begin(b->timer, PH_LEAF_TRIS, 0);
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
     cv_buffer_bind(b->keys, CV_BIND_STAGE0);
     cv_program_set_uint(slots, "u_n", n);
@@ -470,14 +424,15 @@ static bool leaf_tris_scatter(struct build *b, struct cv_bvh *bvh, uint32_t wind
         cv_program_dispatch_1d(scatter, n);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    phase_end(b, PH_LEAF_TRIS);
+    cv_gpu_timer_end(b->timer);
     return cv_gl_check(err, "writing %u leaf triangles", n);
 }
 
 static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_params *p,
                        GLuint vertices, GLuint triangles, struct cv_error *err)
 {
-    glGenQueries(PH_COUNT, b->queries);
+    b->timer = cv_gpu_timer_create(b->gpu, &(struct cv_gpu_timer_params){
+                                               .names = phase_names, .n_names = PH_COUNT});
     if (!split_first(b, p, vertices, triangles, err))
         return false;
     uint64_t n = b->n;
@@ -502,9 +457,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         return false;
     b->scratch += cv_radix_sort_bytes(b->sort) + cv_scan_bytes(b->scan);
     if (b->split) {
-        phase_begin(b, PH_SPLIT_EMIT);
+        cv_gpu_timer_begin(b->timer, PH_SPLIT_EMIT, 0);
         bool ok = cv_bvh_split_emit(b->split, b->out_nodes, err);
-        phase_end(b, PH_SPLIT_EMIT);
+        cv_gpu_timer_end(b->timer);
         if (!ok)
             return false;
     }
@@ -512,9 +467,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
         !leaf_tris_scatter(b, bvh, p->leaf_tris_window, vertices, triangles, err))
         return false;
     if (b->split) {
-        phase_begin(b, PH_SPLIT_REMAP);
+        cv_gpu_timer_begin(b->timer, PH_SPLIT_REMAP, 0);
         bool ok = cv_bvh_split_remap(b->split, bvh->prims, err);
-        phase_end(b, PH_SPLIT_REMAP);
+        cv_gpu_timer_end(b->timer);
         if (!ok)
             return false;
     }
@@ -534,9 +489,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     struct cv_bvh_widen widen = {.gpu = b->gpu, .bin = b->out_nodes, .info = b->info,
                                  .queue = b->counters, .need = b->live, .flags = b->starts,
                                  .levels = p->widen_levels};
-    phase_begin(b, PH_WIDEN_FIND);
+    cv_gpu_timer_begin(b->timer, PH_WIDEN_FIND, 0);
     bool found = cv_bvh_widen_find(&widen, words, err);
-    phase_end(b, PH_WIDEN_FIND);
+    cv_gpu_timer_end(b->timer);
     if (!found)
         return false;
     uint32_t n_nodes = words[CV_BVH_INFO_NODES], n_wide = words[CV_BVH_INFO_WIDE];
@@ -550,9 +505,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     if (!(bvh->nodes = own_buffer(bvh, (size_t)n_wide * sizeof(CvBvhNode4), &bvh->nodes_bytes,
                                   "bvh nodes", err)))
         return false;
-    phase_begin(b, PH_WIDEN_EMIT);
+    cv_gpu_timer_begin(b->timer, PH_WIDEN_EMIT, 0);
     bool emitted = cv_bvh_widen_emit(&widen, b->scan, n_nodes, n_wide, bvh->nodes, err);
-    phase_end(b, PH_WIDEN_EMIT);
+    cv_gpu_timer_end(b->timer);
     if (!emitted)
         return false;
     if (p->keep_binary) {
@@ -571,13 +526,9 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
                             &s->ms_split_count, &s->ms_split_emit, &s->ms_split_remap,
                             &s->ms_leaf_tris, &s->ms_widen, &s->ms_widen};
     s->ms_total = 0;
+    cv_gpu_timer_collect(b->timer);
     for (int i = 0; i < PH_COUNT; i++) {
-        if (!b->ran[i])
-            continue;
-        GLuint64 ns = 0;
-        if (!b->cpu_timing)
-            glGetQueryObjectui64v(b->queries[i], GL_QUERY_RESULT, &ns);
-        double t = b->cpu_timing ? b->cpu_ms[i] : ns * 1e-6;
+        double t = cv_gpu_timer_ms(b->timer, (unsigned)i);
         *ms[i] += t;
         s->ms_total += t;
     }
@@ -623,7 +574,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
     if (n_triangles < 2) {
         ok = build_trivial(bvh, vertices, triangles, n_triangles, p.keep_binary, err);
     } else {
-        struct build b = {.gpu = gpu, .n = n_triangles, .cpu_timing = gpu->info.software};
+        struct build b = {.gpu = gpu, .n = n_triangles};
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);
     }

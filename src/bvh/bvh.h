@@ -43,14 +43,15 @@ struct cv_bvh_params {
     bool keep_binary;
 };
 
-/* Defaults as above; CAVALRY_BVH_ROUNDS (0 to 32) sets treelet_rounds,
- * CAVALRY_BVH_SPLIT (0 to 4) split_budget. */
+/* Defaults as above. The library reads no environment: cavalry-batch and
+ * the bench tools set treelet_rounds and split_budget from
+ * CAVALRY_BVH_ROUNDS and CAVALRY_BVH_SPLIT (cli/knobs.h). */
 struct cv_bvh_params cv_bvh_default_params(void);
 
 struct cv_bvh_stats {
-    /* Milliseconds per phase from GL_TIME_ELAPSED queries; on software
-     * renderers (llvmpipe, whose queries read 0) CPU time between glFinish
-     * calls. ms_total is their sum. ms_collapse covers collapse + layout. */
+    /* Milliseconds per phase from the build's GPU timer (gpu/timer.h says
+     * which clock). ms_total is their sum. ms_collapse covers collapse +
+     * layout. */
     double ms_bounds, ms_morton, ms_sort, ms_hierarchy, ms_refit, ms_treelet, ms_collapse,
         ms_total;
     double ms_split;       /* triangle splitting, its read-back and remap (in ms_total) */

@@ -9,9 +9,11 @@
 #include <string.h>
 
 #include "base/log.h"
+#include "base/mem.h"
 #include "batch/batch.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/knobs.h"
 #include "gpu/context.h"
 #include "manifest/keys.h"
 #include "scene/dump.h"
@@ -57,8 +59,16 @@ static void usage(FILE *out)
           "  CAVALRY_STAGE_TIMES     time every render stage (diagnostic; slower)\n"
           "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
-          "or scene, 4 no usable GPU, 130 interrupted (partial images written).\n",
+          "or scene, 4 no usable GPU, 70 out of memory, 130 interrupted (partial images\n"
+          "written).\n",
           out);
+}
+
+/* Every diagnostic, this one too, carries the log's prefix ("error: "). */
+static void out_of_memory(size_t size)
+{
+    cv_error_log("out of memory (asked for %zu bytes)", size);
+    exit(CV_EXIT_NO_MEMORY);
 }
 
 static bool parse_backend(const char *s, enum cv_gpu_backend *b)
@@ -163,7 +173,9 @@ int cv_cli_main(int argc, char **argv)
     const char *dump = NULL;
     int verbosity = 0, c;
     unsigned u;
-    while ((c = getopt_long(argc, argv, "hVqv", longopts, NULL)) != -1) {
+    cv_mem_set_out_of_memory(out_of_memory);
+    opterr = 0;  /* getopt's messages would carry another prefix than the log's */
+    while ((c = getopt_long(argc, argv, ":hVqv", longopts, NULL)) != -1) {
         switch (c) {
         case 'h':
             usage(stdout);
@@ -186,7 +198,7 @@ int cv_cli_main(int argc, char **argv)
         case OPT_SHARD_INDEX:
         case OPT_SHARD_COUNT:
             if (!parse_uint(optarg, 1u << 30, &u)) {
-                fprintf(stderr, "cavalry-batch: --%s wants a number, not \"%s\"\n",
+                cv_error_log("--%s wants a number, not \"%s\"",
                         c == OPT_SHARD_INDEX ? "shard-index" : "shard-count", optarg);
                 return CV_EXIT_USAGE;
             }
@@ -202,7 +214,7 @@ int cv_cli_main(int argc, char **argv)
             char *end;
             o.time_limit = strtod(optarg, &end);
             if (*end || !(o.time_limit > 0)) {
-                fprintf(stderr, "cavalry-batch: --time-limit wants seconds > 0, not \"%s\"\n",
+                cv_error_log("--time-limit wants seconds > 0, not \"%s\"",
                         optarg);
                 return CV_EXIT_USAGE;
             }
@@ -210,33 +222,44 @@ int cv_cli_main(int argc, char **argv)
         }
         case OPT_PROGRESS:
             if (!cv_progress_mode_parse(optarg, &o.progress)) {
-                fprintf(stderr, "cavalry-batch: unknown progress mode \"%s\" (auto, bar, json, none)\n",
+                cv_error_log("unknown progress mode \"%s\" (auto, bar, json, none)",
                         optarg);
                 return CV_EXIT_USAGE;
             }
             break;
         case OPT_GPU:
             if (!parse_uint(optarg, 1000, &u)) {
-                fprintf(stderr, "cavalry-batch: --gpu wants a device index, not \"%s\"\n", optarg);
+                cv_error_log("--gpu wants a device index, not \"%s\"", optarg);
                 return CV_EXIT_USAGE;
             }
             o.gpu.gpu_index = (int)u;
             break;
         case OPT_BACKEND:
             if (!parse_backend(optarg, &o.gpu.backend)) {
-                fprintf(stderr, "cavalry-batch: unknown backend \"%s\" (auto, egl, osmesa)\n",
+                cv_error_log("unknown backend \"%s\" (auto, egl, osmesa)",
                         optarg);
                 return CV_EXIT_USAGE;
             }
             break;
         case 'q': verbosity--; break;
         case 'v': verbosity++; break;
+        case ':':
+            cv_error_log("%s wants a value", argv[optind - 1]);
+            usage(stderr);
+            return CV_EXIT_USAGE;
         default:
+            if (optopt > 0 && optopt < 128)  /* a short option, maybe in a group */
+                cv_error_log("unknown option -%c", optopt);
+            else
+                cv_error_log("unknown option %s", argv[optind - 1]);
             usage(stderr);
             return CV_EXIT_USAGE;
         }
     }
     cv_log_set_level(verbosity < 0 ? CV_LOG_ERROR : verbosity == 0 ? CV_LOG_INFO : CV_LOG_DEBUG);
+    struct cv_knobs knobs = cv_knobs_from_environment();
+    o.bvh = &knobs.bvh;
+    o.stage_times = knobs.stage_times;
     if (list_gpus) {
         struct cv_error err = {{0}};
         if (!cv_gpu_list(&o.gpu, stdout, &err)) {
@@ -248,21 +271,21 @@ int cv_cli_main(int argc, char **argv)
     if (dump)
         return dump_scene(dump, o.strict);
     if (optind != argc - 1) {
-        fprintf(stderr, "cavalry-batch: %s\n",
+        cv_error_log("%s",
                 optind >= argc ? "no manifest given" : "one manifest at a time");
         usage(stderr);
         return CV_EXIT_USAGE;
     }
     if (!shard_from_environment(&o, &have_index, have_count)) {
-        fprintf(stderr, "cavalry-batch: cannot read the shard from the environment\n");
+        cv_error_log("cannot read the shard from the environment");
         return CV_EXIT_USAGE;
     }
     if (have_index && !o.shard_count) {
-        fprintf(stderr, "cavalry-batch: a shard index needs --shard-count\n");
+        cv_error_log("a shard index needs --shard-count");
         return CV_EXIT_USAGE;
     }
     if (o.shard_count && o.shard_index >= o.shard_count) {
-        fprintf(stderr, "cavalry-batch: shard index %u is not below shard count %u\n",
+        cv_error_log("shard index %u is not below shard count %u",
                 o.shard_index, o.shard_count);
         return CV_EXIT_USAGE;
     }

@@ -9,6 +9,7 @@ enum cv_exit_code {
     CV_EXIT_USAGE = 2,         /* bad command line */
     CV_EXIT_INVALID = 3,       /* invalid manifest or scene: nothing rendered */
     CV_EXIT_NO_GPU = 4,        /* no usable GPU context */
+    CV_EXIT_NO_MEMORY = 70,    /* out of host memory (base/mem.h's handler) */
     CV_EXIT_INTERRUPTED = 130, /* SIGINT/SIGTERM: partial images written */
 };
 

@@ -23,12 +23,15 @@ struct cv_color_pass;
 bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
                           struct cv_color_pass **out, struct cv_error *err);
 
-/* in_rgba, out_rgba: SSBOs of width*height vec4 (16 bytes a pixel,
- * row-major, top row first); they may be the same buffer. Sets the pass's
- * uniforms first (its program may be shared with other passes). Uses binding
- * points CV_BIND_STAGE0 and CV_BIND_STAGE0 + 1 and texture units from 0. */
-bool cv_color_pass_run(struct cv_color_pass *pass, GLuint in_rgba, GLuint out_rgba,
-                       uint32_t width, uint32_t height, struct cv_error *err);
+/* Runs the transform on `in` (a storage buffer of width*height vec4, 16
+ * bytes a pixel, row-major, top row first; the renderer's resolved film)
+ * into the pass's own output buffer, and reads that back into out_rgba
+ * (width*height*4 floats). Sets the pass's uniforms first (its program may
+ * be shared with other passes). Waits for the GPU. Uses binding points
+ * CV_BIND_STAGE0 and CV_BIND_STAGE0 + 1 and texture units from 0. */
+struct cv_buf;
+bool cv_color_pass_run(struct cv_color_pass *pass, const struct cv_buf *in, uint32_t width,
+                       uint32_t height, float *out_rgba, struct cv_error *err);
 
 /* "sRGB / ACES 1.0 - SDR Video" (plus look and exposure when set), for
  * image metadata; owned by the pass. */

@@ -11,6 +11,7 @@
 #include "color/color.h"
 #include "color/ocio.h"
 #include "glsl/shared/bindings.h"
+#include "gpu/buf.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 
@@ -26,6 +27,8 @@ struct color_texture {
 };
 
 struct cv_color_pass {
+    struct cv_gpu *gpu;
+    struct cv_buf *out;   /* display-referred RGBA; grows with the image */
     struct cv_ocio *ocio;
     struct cv_program prog;    /* a copy; the program cache owns the program */
     struct color_texture *textures;
@@ -150,6 +153,7 @@ bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
 {
     *out = NULL;
     struct cv_color_pass *pass = cv_xcalloc(1, sizeof(*pass));
+    pass->gpu = gpu;
     bool ok = cv_ocio_create(p, &pass->ocio, err) &&
               cv_ocio_gpu_extract(pass->ocio, PASS_FUNCTION, err) &&
               build_program(gpu, pass, err) && upload_textures(pass, err);
@@ -164,43 +168,43 @@ bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
     return true;
 }
 
-static bool check_size(GLuint buf, const char *what, GLint64 need, struct cv_error *err)
-{
-    GLint64 size = 0;
-    glGetNamedBufferParameteri64v(buf, GL_BUFFER_SIZE, &size);
-    if (!cv_gl_check(err, "querying the colour pass %s buffer", what))
-        return false;
-    if (size < need)
-        return cv_fail(err, "colour pass: the %s buffer holds %lld bytes, the image needs %lld",
-                       what, (long long)size, (long long)need);
-    return true;
-}
-
-bool cv_color_pass_run(struct cv_color_pass *pass, GLuint in_rgba, GLuint out_rgba,
-                       uint32_t width, uint32_t height, struct cv_error *err)
+bool cv_color_pass_run(struct cv_color_pass *pass, const struct cv_buf *in, uint32_t width,
+                       uint32_t height, float *out_rgba, struct cv_error *err)
 {
     uint64_t n = (uint64_t)width * height;
     if (n == 0)
         return true;
     if (n > UINT32_MAX)
         return cv_fail(err, "colour pass: %ux%u pixels is too many", width, height);
-    if (!check_size(in_rgba, "input", (GLint64)(n * 16), err) ||
-        !check_size(out_rgba, "output", (GLint64)(n * 16), err) || !set_uniforms(pass, err))
+    size_t bytes = (size_t)n * 16;
+    if (in->params.size < bytes)
+        return cv_fail(err, "colour pass: the input buffer holds %zu bytes, the image needs %zu",
+                       in->params.size, bytes);
+    if (pass->out && pass->out->params.size < bytes)
+        cv_buf_destroy(&pass->out);
+    if ((!pass->out &&
+         !(pass->out = cv_buf_create(pass->gpu, &(struct cv_buf_params){
+                                                    .size = bytes, .storable = true,
+                                                    .host_readable = true,
+                                                    .label = "colour pass output"},
+                                     err))) ||
+        !set_uniforms(pass, err))
         return false;
     glProgramUniform1ui(pass->prog.id, pass->u_count, (GLuint)n);
     for (unsigned i = 0; i < pass->n_textures; i++) {
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(pass->textures[i].target, pass->textures[i].id);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_STAGE0, in_rgba);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_STAGE0 + 1, out_rgba);
+    cv_buf_bind(in, CV_BIND_STAGE0);
+    cv_buf_bind(pass->out, CV_BIND_STAGE0 + 1);
     cv_program_dispatch_1d(&pass->prog, n);
     for (unsigned i = 0; i < pass->n_textures; i++) {
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(pass->textures[i].target, 0);
     }
     glActiveTexture(GL_TEXTURE0);
-    return cv_gl_check(err, "running the colour pass (%ux%u)", width, height);
+    return cv_gl_check(err, "running the colour pass (%ux%u)", width, height) &&
+           cv_buf_read(pass->out, 0, bytes, out_rgba, err);
 }
 
 const char *cv_color_pass_description(const struct cv_color_pass *pass)
@@ -229,6 +233,7 @@ void cv_color_pass_destroy(struct cv_color_pass **pass)
         free(p->textures[i].sampler);
     }
     free(p->textures);
+    cv_buf_destroy(&p->out);
     cv_ocio_destroy(&p->ocio);
     free(p);
     *pass = NULL;

@@ -9,7 +9,9 @@ libcavalry_a_SOURCES += \
 	src/gpu/storage.c src/gpu/storage.h \
 	src/gpu/glsl_source.c src/gpu/glsl_source.h \
 	src/gpu/program.c src/gpu/program.h \
-	src/gpu/program_disk_cache.c src/gpu/program_disk_cache.h
+	src/gpu/program_disk_cache.c src/gpu/program_disk_cache.h \
+	src/gpu/timer.c src/gpu/timer.h \
+	src/gpu/buf.c src/gpu/buf.h
 nodist_libcavalry_a_SOURCES = src/gpu/glsl_embedded.c
 EXTRA_DIST += src/gpu/embed_glsl.sh src/gpu/gl_functions.sh $(GLSL_FILES)
 
@@ -31,4 +33,9 @@ src/gpu/gl_functions.h: $(GL_SCANNED) $(srcdir)/src/gpu/gl_functions.sh
 	$(AM_V_GEN)$(MKDIR_P) src/gpu && \
 	$(SHELL) $(srcdir)/src/gpu/gl_functions.sh $(GL_SCANNED) >$@.tmp && mv $@.tmp $@
 BUILT_SOURCES += src/gpu/gl_functions.h src/gpu/glsl_embedded.c
+# BUILT_SOURCES is made first only by `make all`, `check` and `install`; a
+# named target (`make src/cavalry-batch`) needs the dependency spelled out,
+# as automake's dependency tracking knows the header only after a first
+# compile.
+src/gpu/context_osmesa.$(OBJEXT): src/gpu/gl_functions.h
 CLEANFILES += src/gpu/gl_functions.h src/gpu/glsl_embedded.c

@@ -20,15 +20,12 @@ struct cv_atomic_file {
     int fd;
     uint64_t end;     /* bytes written so far, for cv_atomic_write */
     int write_errno;  /* first write failure, so commit cannot succeed */
+    struct cv_write_limit *limit;  /* NULL: none (tests set one) */
 };
 
-static long long fault_bytes = -1;
-static int fault_errno;
-
-void cv_atomic_inject_fault(long long bytes, int errnum)
+void cv_atomic_set_limit(struct cv_atomic_file *f, struct cv_write_limit *limit)
 {
-    fault_bytes = bytes;
-    fault_errno = errnum;
+    f->limit = limit;
 }
 
 static const char *base_name(const char *path)
@@ -98,10 +95,10 @@ bool cv_atomic_write_at(struct cv_atomic_file *f, const void *buf, size_t len,
     while (len > 0) {
         size_t n = len;
         ssize_t got;
-        if (fault_bytes >= 0 && (long long)n > fault_bytes)
-            n = (size_t)fault_bytes;
+        if (f->limit && (long long)n > f->limit->bytes)
+            n = f->limit->bytes > 0 ? (size_t)f->limit->bytes : 0;
         if (n == 0) {
-            errno = fault_errno;
+            errno = f->limit->errnum;
             got = -1;
         } else {
             got = pwrite(f->fd, p, n, (off_t)offset);
@@ -113,8 +110,8 @@ bool cv_atomic_write_at(struct cv_atomic_file *f, const void *buf, size_t len,
                 f->write_errno = errno;
             return cv_fail(err, "%s: write failed: %s", f->path, strerror(errno));
         }
-        if (fault_bytes >= 0)
-            fault_bytes -= got;
+        if (f->limit)
+            f->limit->bytes -= got;
         p += got;
         len -= (size_t)got;
         offset += (uint64_t)got;

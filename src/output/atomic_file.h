@@ -41,9 +41,16 @@ bool cv_atomic_commit(struct cv_atomic_file **f, struct cv_error *err);
 /* Closes and removes the temporary file; accepts NULL and *f == NULL. */
 void cv_atomic_abort(struct cv_atomic_file **f);
 
-/* Test hook: after `bytes` more bytes have been written (by any atomic file
- * in this process), writes fail with errno `errnum` (e.g. ENOSPC), as a full
- * disk would. bytes < 0 turns the fault off. Not for production use. */
-void cv_atomic_inject_fault(long long bytes, int errnum);
+/* Bytes that writes may still take before they fail with errno `errnum`
+ * (e.g. ENOSPC), as they would on a full disk: tests pass one to see how a
+ * writer fails. Every file given the same limit draws on it. */
+struct cv_write_limit {
+    long long bytes;
+    int errnum;
+};
+
+/* Makes f's later writes draw on `limit` (NULL: no limit, the default);
+ * the caller keeps it alive until f is committed or aborted. */
+void cv_atomic_set_limit(struct cv_atomic_file *f, struct cv_write_limit *limit);
 
 #endif

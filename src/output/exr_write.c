@@ -278,6 +278,7 @@ bool cv_exr_write(const char *path, const struct cv_exr_params *p, struct cv_err
     struct writer w = { 0 };
     if (!cv_atomic_open(path, &w.file, err))
         return false;
+    cv_atomic_set_limit(w.file, p->write_limit);
     current_writer = &w;
 
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;

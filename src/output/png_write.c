@@ -176,6 +176,7 @@ bool cv_png_write(const char *path, const struct cv_png_params *p, struct cv_err
         free_texts(&tx);
         return false;
     }
+    cv_atomic_set_limit(out.file, p->write_limit);
     png_bytep image = quantize_image(p, bits);
     size_t row_bytes = (size_t)p->width * p->channels * (bits / 8);
     png_bytep *rows = cv_xmalloc(p->height * sizeof(*rows));

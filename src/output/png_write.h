@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "output/atomic_file.h"
 #include "output/metadata.h"
 
 struct cv_png_params {
@@ -18,6 +19,7 @@ struct cv_png_params {
     uint32_t channels;    /* 3 (RGB) or 4 (RGBA, straight alpha) */
     uint32_t bit_depth;   /* 8 or 16; 0 means 8 */
     const struct cv_metadata *meta; /* may be NULL */
+    struct cv_write_limit *write_limit; /* NULL; tests: a disk that fills up */
 };
 
 /* The quantisation rule: NaN becomes 0, values are clamped to [0,1], then

@@ -262,7 +262,6 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
      * perspective Transform) go inline, in double like pbrt. */
     const double(*mm)[4] = M->m;
     bool affine = mm[3][0] == 0 && mm[3][1] == 0 && mm[3][2] == 0 && mm[3][3] == 1;
-    const double(*ni)[4] = inv.m;
     double sgn = flip_n ? -1 : 1;
     int finite = 1;
     for (size_t i = 0; i < m->n_verts; i++) {
@@ -279,8 +278,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
         v->nrm_v = (cv_vec4){0, 0, 0, m->uv ? m->uv[2 * i + 1] : 0};
         if (m->N) {
             double n[3] = {m->N[3 * i], m->N[3 * i + 1], m->N[3 * i + 2]}, o[3];
-            for (int r = 0; r < 3; r++)
-                o[r] = ni[0][r] * n[0] + ni[1][r] * n[1] + ni[2][r] * n[2];
+            cv_mat4_normal(&inv, n, o);
             double l = sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
             if (l > 0)
                 l = sgn / l;

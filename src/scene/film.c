@@ -23,11 +23,11 @@ void cv_film_crop_pixels(uint32_t w, uint32_t h, const double crop[4], uint32_t 
     crop_axis(h, crop[2], crop[3], &px[2], &px[3]);
 }
 
-CV_VEC4 cv_film_default_screen(double aspect)
+cv_vec4 cv_film_default_screen(double aspect)
 {
     if (aspect > 1)
-        return (CV_VEC4){(float)-aspect, (float)aspect, -1, 1};
-    return (CV_VEC4){-1, 1, (float)(-1 / aspect), (float)(1 / aspect)};
+        return (cv_vec4){(float)-aspect, (float)aspect, -1, 1};
+    return (cv_vec4){-1, 1, (float)(-1 / aspect), (float)(1 / aspect)};
 }
 
 float cv_camera_fov_scale(double fov_deg)
@@ -46,7 +46,7 @@ bool cv_camera_fit_film(CvCamera *cam, const double crop[4], uint32_t w, uint32_
         cam->screen = cv_film_default_screen((double)w / h);
     uint32_t px[4];
     cv_film_crop_pixels(w, h, crop, px);
-    cam->film = (CV_UVEC4){w, h, px[0], px[2]};
+    cam->film = (cv_uvec4){w, h, px[0], px[2]};
     cam->crop.x = px[1] - px[0];
     cam->crop.y = px[3] - px[2];
     return reshaped;
@@ -60,7 +60,7 @@ bool cv_camera_look_at(CvCamera *cam, const double eye[3], const double at[3],
     if (!cv_mat4_look_at(eye, at, up, &w2c) || !cv_mat4_inverse(&w2c, &c2w))
         return false;
     for (int r = 0; r < 3; r++)
-        cam->to_world[r] = (CV_VEC4){(float)c2w.m[r][0], (float)c2w.m[r][1],
+        cam->to_world[r] = (cv_vec4){(float)c2w.m[r][0], (float)c2w.m[r][1],
                                      (float)c2w.m[r][2], (float)c2w.m[r][3]};
     return true;
 }

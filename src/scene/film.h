@@ -21,7 +21,7 @@ void cv_film_crop_pixels(uint32_t w, uint32_t h, const double crop[4], uint32_t 
 
 /* pbrt's default screen window for an aspect ratio (width / height): the
  * longer axis spans [-aspect, aspect], the shorter [-1, 1]. */
-CV_VEC4 cv_film_default_screen(double aspect);
+cv_vec4 cv_film_default_screen(double aspect);
 
 /* The camera's lens.z: tan of half the field of view [degrees]. */
 float cv_camera_fov_scale(double fov_deg);

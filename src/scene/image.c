@@ -76,11 +76,6 @@ static bool ext_is(const char *path, const char *e)
     return strcasecmp(x, e) == 0;
 }
 
-bool cv_image_is_float_file(const char *path)
-{
-    return ext_is(path, "exr") || ext_is(path, "pfm") || ext_is(path, "hdr");
-}
-
 static bool load_pfm(const char *path, struct cv_image *img, struct cv_error *err)
 {
     char *data;

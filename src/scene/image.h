@@ -19,8 +19,6 @@ struct cv_image {
  * never decoded). */
 bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_error *err);
 void cv_image_free(struct cv_image *img);
-/* True if the 8/16-bit integer format is used by that file name (by extension). */
-bool cv_image_is_float_file(const char *path);
 
 uint16_t cv_float_to_half(float f);
 float cv_half_to_float(uint16_t h);

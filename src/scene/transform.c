@@ -23,15 +23,6 @@ struct cv_mat4 cv_mat4_mul(const struct cv_mat4 *a, const struct cv_mat4 *b)
     return r;
 }
 
-struct cv_mat4 cv_mat4_transpose(const struct cv_mat4 *a)
-{
-    struct cv_mat4 r;
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            r.m[i][j] = a->m[j][i];
-    return r;
-}
-
 bool cv_mat4_inverse(const struct cv_mat4 *a, struct cv_mat4 *out)
 {
     /* Gauss-Jordan with partial pivoting. */
@@ -181,10 +172,3 @@ void cv_mat4_vector(const struct cv_mat4 *a, const double v[3], double out[3])
     memcpy(out, r, sizeof(r));
 }
 
-void cv_mat4_normal(const struct cv_mat4 *inv, const double n[3], double out[3])
-{
-    double r[3];
-    for (int i = 0; i < 3; i++)
-        r[i] = inv->m[0][i] * n[0] + inv->m[1][i] * n[1] + inv->m[2][i] * n[2];
-    memcpy(out, r, sizeof(r));
-}

@@ -19,11 +19,13 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "glsl/shared/trace.h"
+#include "gpu/buf.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "gpu/memory.h"
 #include "gpu/program.h"
 #include "gpu/storage.h"
+#include "gpu/timer.h"
 #include "trace/filter_table.h"
 #include "trace/render.h"
 #include "trace/rlpath.h"
@@ -46,19 +48,13 @@ enum stage {
     ST_COUNT
 };
 
-/* CAVALRY_STAGE_TIMES' row beyond the stages: rlpath's table rebuild. */
+/* The stage timer's row beyond the stages: rlpath's table rebuild. */
 enum { PROF_RLPATH = ST_COUNT, PROF_COUNT };
 
-/* CAVALRY_STAGE_TIMES also times the intersect stage of each iteration of a
- * pass by its index, with the rays it traced, up to this many iterations:
- * the traversal rate against the wave's size. */
+/* The stage timer's slots: the iterations of a pass by index, up to this
+ * many, each with the rays its intersect stage traced: the traversal rate
+ * against the wave's size. */
 #define PROF_ITERS 64
-
-/* A pair of CAVALRY_STAGE_TIMES queries: the stage (or PROF_*) it times and
- * the pass's iteration it ran in (UINT8_MAX: past PROF_ITERS). */
-struct prof_pair {
-    uint8_t stage, iter;
-};
 
 struct cv_renderer {
     struct cv_gpu *gpu;
@@ -75,25 +71,20 @@ struct cv_renderer {
     uint32_t spp_done;
     uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
-    GLuint ubo, queues, rays, hits, shadow, film, resolved;
+    GLuint ubo, queues, rays, hits, shadow, film;
+    struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
-    GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
-    size_t n_queries, cap_queries;
-    double gpu_ms;
+    struct cv_gpu_timer *passes;   /* one row: every pass, start to end */
     struct cv_rlpath *rl;          /* CV_INTEGRATOR_RLPATH, else NULL */
-    /* CAVALRY_STAGE_TIMES: GPU time per stage, from timestamp pairs around
-     * every dispatch (a diagnostic: the queries cost time themselves) */
+    /* params' stage_times: GPU time of every dispatch by stage, and by the
+     * pass's iteration (a diagnostic: the scopes cost time themselves);
+     * NULL: off */
+    struct cv_gpu_timer *stages;
     struct {
-        bool on;
-        GLuint *queries;           /* before, after pairs */
-        struct prof_pair *pairs;
-        size_t n, cap, cap_pairs;
-        double ms[PROF_COUNT];
         GLuint counts;             /* rays in of the pass's iterations 0..PROF_ITERS-1 */
-        double iter_ms[PROF_ITERS];
         uint64_t iter_rays[PROF_ITERS];
-        uint32_t iter;             /* the iteration of the pairs marked now */
+        uint32_t iter;             /* the iteration of the scopes marked now (its slot) */
     } prof;
 };
 
@@ -101,42 +92,17 @@ static const char *const stage_names[PROF_COUNT] = {
     "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve", "rlpath-rebuild",
 };
 
-static void prof_mark(struct cv_renderer *r, int stage)
+static const char *const pass_names[1] = {"pass"};
+
+/* Opens and closes a scope of the stage timer (nothing when it is off). */
+static void prof_begin(struct cv_renderer *r, int stage)
 {
-    if (!r->prof.on)
-        return;
-    GLuint q;
-    glGenQueries(1, &q);
-    glQueryCounter(q, GL_TIMESTAMP);
-    if (r->prof.n % 2 == 0) {  /* a pair begins: note its stage and iteration */
-        size_t k = r->prof.n / 2;
-        struct prof_pair pair = {(uint8_t)stage, (uint8_t)r->prof.iter};
-        CV_PUSH(r->prof.pairs, k, r->prof.cap_pairs, pair);
-    }
-    CV_PUSH(r->prof.queries, r->prof.n, r->prof.cap, q);
+    cv_gpu_timer_begin(r->stages, (unsigned)stage, r->prof.iter);
 }
 
-/* Milliseconds between two GL_TIMESTAMP queries (waits for both). */
-static double timestamps_ms(GLuint begin, GLuint end)
+static void prof_end(struct cv_renderer *r)
 {
-    GLuint64 t0 = 0, t1 = 0;
-    glGetQueryObjectui64v(begin, GL_QUERY_RESULT, &t0);
-    glGetQueryObjectui64v(end, GL_QUERY_RESULT, &t1);
-    return t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
-}
-
-static void prof_collect(struct cv_renderer *r)
-{
-    for (size_t i = 0; i + 1 < r->prof.n; i += 2) {
-        int s = r->prof.pairs[i / 2].stage, it = r->prof.pairs[i / 2].iter;
-        double ms = timestamps_ms(r->prof.queries[i], r->prof.queries[i + 1]);
-        r->prof.ms[s] += ms;
-        if (s == ST_INTERSECT && it < PROF_ITERS)
-            r->prof.iter_ms[it] += ms;
-    }
-    if (r->prof.n)
-        glDeleteQueries((GLsizei)r->prof.n, r->prof.queries);
-    r->prof.n = 0;
+    cv_gpu_timer_end(r->stages);
 }
 
 static const char *const stage_files[ST_COUNT] = {
@@ -261,7 +227,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     if (!check_params(scene, p, err))
         return false;
     struct cv_scene_gpu *gs = NULL;
-    if (!cv_scene_gpu_create(gpu, scene, &gs, err)) {
+    if (!cv_scene_gpu_create(gpu, scene, p->bvh, &gs, err)) {
         cv_error_prefix(err, "uploading the scene: ");
         return false;
     }
@@ -296,8 +262,6 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
     r->aovs = p->aovs;
-    const char *times = getenv("CAVALRY_STAGE_TIMES");
-    r->prof.on = times && *times && strcmp(times, "0") != 0;
     r->max_depth = p->max_depth ? p->max_depth : scene->settings.max_depth;
     setup_camera(r, scene, p);
     setup_filter(r, &scene->settings);
@@ -315,6 +279,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
                               p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
     r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
+    r->passes = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){
+                                             .names = pass_names, .n_names = 1});
+    if (p->stage_times)
+        r->stages = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){
+                                                 .names = stage_names, .n_names = PROF_COUNT,
+                                                 .n_slots = PROF_ITERS});
 
     r->scene = gs;
 
@@ -400,8 +370,13 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
     r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
-    r->resolved = make(gpu, (size_t)r->n_pixels * 4 * sizeof(float), "trace resolved", &ok, err);
-    if (r->prof.on)
+    if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){
+                                                      .size = (size_t)r->n_pixels * 4 * sizeof(float),
+                                                      .storable = true, .host_readable = true,
+                                                      .label = "trace resolved"},
+                                           err)))
+        ok = false;
+    if (r->stages)
         r->prof.counts = make(gpu, PROF_ITERS * sizeof(uint32_t), "trace stage-time ray counts",
                               &ok, err);
     r->alive[0] = make(gpu, sizeof(uint32_t), "trace pass end check 0", &ok, err);
@@ -426,7 +401,7 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->hits, CV_BIND_HITS);
     cv_buffer_bind(r->shadow, CV_BIND_SHADOW);
     cv_buffer_bind(r->film, CV_BIND_FILM);
-    cv_buffer_bind(r->resolved, CV_BIND_RESOLVED);
+    cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
     if (r->rl)
         cv_rlpath_bind(r->rl);
@@ -434,9 +409,9 @@ static void bind_all(struct cv_renderer *r)
 
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
 {
-    prof_mark(r, s);
+    prof_begin(r, s);
     cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
-    prof_mark(r, s);
+    prof_end(r);
 }
 
 /* One iteration: a bounce of every path in flight; the slots whose paths
@@ -446,13 +421,13 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     r->pass.misc.x = it;
     glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
                          &r->pass.misc);
-    if (r->prof.on && it < PROF_ITERS) {
+    if (r->stages && it < PROF_ITERS) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glCopyNamedBufferSubData(r->queues, r->prof.counts,
                                  (GLintptr)(sizeof(uint32_t) * CV_Q_RAYS_IN),
                                  (GLintptr)(sizeof(uint32_t) * it), sizeof(uint32_t));
     }
-    r->prof.iter = it < PROF_ITERS ? it : UINT8_MAX;  /* no row: its rays are not counted */
+    r->prof.iter = it < PROF_ITERS ? it : PROF_ITERS;  /* no slot: its rays are not counted */
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
@@ -462,16 +437,16 @@ static void iterate(struct cv_renderer *r, uint32_t it)
         /* The bins' programs share no data (each pixel's hit is in one
          * bin; queue slots come from atomics), so the first needs no
          * barrier before the second and the two may overlap. */
-        prof_mark(r, ST_SHADE);
+        prof_begin(r, ST_SHADE);
         glUseProgram(r->prog[ST_SHADE].id);
         glDispatchComputeIndirect(CV_ARGS_BYTES(CV_ARGS_HITS));
-        prof_mark(r, ST_SHADE);
+        prof_end(r);
         stage_indirect(r, ST_SHADE_B, CV_ARGS_HITS_B);
     }
     if (r->rl) {
-        prof_mark(r, PROF_RLPATH);
+        prof_begin(r, PROF_RLPATH);
         cv_rlpath_update(r->rl);
-        prof_mark(r, PROF_RLPATH);
+        prof_end(r);
     }
     stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
 }
@@ -482,11 +457,7 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return true;
     if ((uint64_t)r->spp_done + spp > CV_MAX_SPP)
         return cv_fail(err, "more than %u samples per pixel", CV_MAX_SPP);
-    /* timestamps rather than GL_TIME_ELAPSED: llvmpipe reports 0 elapsed
-     * time for compute work */
-    GLuint query[2] = {0, 0};
-    glGenQueries(2, query);
-    glQueryCounter(query[0], GL_TIMESTAMP);
+    cv_gpu_timer_begin(r->passes, 0, 0);
     bind_all(r);
     /* the slots that have a sample in this pass (generate.comp) */
     uint32_t slots = r->paths_per_pixel, started = spp < slots ? spp : slots;
@@ -495,9 +466,9 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     r->pass.misc.w = r->spp_done + spp;
     r->pass.wave.z = r->n_pixels * started;
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
-    prof_mark(r, ST_GENERATE);
+    prof_begin(r, ST_GENERATE);
     cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.wave.z);
-    prof_mark(r, ST_GENERATE);
+    prof_end(r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
     /* Every path ends within max_depth + 1 iterations and a slot runs at
@@ -522,8 +493,8 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
                 break;
         }
     }
-    glQueryCounter(query[1], GL_TIMESTAMP);
-    if (r->prof.on) {
+    cv_gpu_timer_end(r->passes);
+    if (r->stages) {
         /* a diagnostic: this read-back waits for the pass */
         uint32_t counts[PROF_ITERS], n = it < PROF_ITERS ? (uint32_t)it : PROF_ITERS;
         if (!cv_buffer_read(r->prof.counts, 0, n * sizeof(uint32_t), counts, err))
@@ -531,8 +502,6 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         for (uint32_t i = 0; i < n; i++)
             r->prof.iter_rays[i] += counts[i];
     }
-    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[0]);
-    CV_PUSH(r->queries, r->n_queries, r->cap_queries, query[1]);
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
         return false;
     r->iterations += it;
@@ -554,11 +523,8 @@ void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *he
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err)
 {
-    for (size_t i = 0; i + 1 < r->n_queries; i += 2)
-        r->gpu_ms += timestamps_ms(r->queries[i], r->queries[i + 1]);
-    glDeleteQueries((GLsizei)r->n_queries, r->queries);
-    r->n_queries = 0;
-    prof_collect(r);
+    cv_gpu_timer_collect(r->passes);
+    cv_gpu_timer_collect(r->stages);
     CvTraceQueues q;
     /* Staged, or the queues' atomics and indirect arguments would live in
      * host memory from the first pass on, which slows every stage
@@ -572,22 +538,23 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
-    c->gpu_ms = r->gpu_ms;
-    c->intersect_first_ms = r->prof.on ? r->prof.iter_ms[0] : 0;
-    c->intersect_ms = r->prof.on ? r->prof.ms[ST_INTERSECT] : 0;
-    c->shadow_ms = r->prof.on ? r->prof.ms[ST_SHADOW] : 0;
-    c->first_bounce_ms = r->prof.on ? r->prof.iter_ms[1] : 0;
-    c->first_bounce_rays = r->prof.on ? r->prof.iter_rays[1] : 0;
+    c->gpu_ms = cv_gpu_timer_ms(r->passes, 0);
+    /* all 0 when the stage timer is off */
+    c->intersect_first_ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, 0);
+    c->intersect_ms = cv_gpu_timer_ms(r->stages, ST_INTERSECT);
+    c->shadow_ms = cv_gpu_timer_ms(r->stages, ST_SHADOW);
+    c->first_bounce_ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, 1);
+    c->first_bounce_rays = r->stages ? r->prof.iter_rays[1] : 0;
     return cv_gl_check(err, "reading render counters");
 }
 
-GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
+const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
 {
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     bind_all(r);
     cv_program_dispatch_1d(&r->prog[ST_RESOLVE], r->n_pixels);
     if (!cv_gl_check(err, "resolving the film"))
-        return 0;
+        return NULL;
     return r->resolved;
 }
 
@@ -600,7 +567,7 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
     if (rgba) {
         if (!cv_renderer_resolve(r, err))
             return false;
-        if (!cv_buffer_read(r->resolved, 0, n * 4 * sizeof(float), rgba, err))
+        if (!cv_buf_read(r->resolved, 0, n * 4 * sizeof(float), rgba, err))
             return false;
     }
     if (!albedo3 && !normal3 && !depth1)
@@ -645,31 +612,22 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     if (!rp || !*rp)
         return;
     struct cv_renderer *r = *rp;
-    if (r->prof.on) {
-        prof_collect(r);
-        double total = 0;
-        for (int s = 0; s < PROF_COUNT; s++)
-            total += r->prof.ms[s];
-        for (int s = 0; s < PROF_COUNT; s++)
-            if (r->prof.ms[s] > 0)
-                cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
-                        total > 0 ? 100 * r->prof.ms[s] / total : 0);
-        for (int i = 0; i < PROF_ITERS; i++)
-            if (r->prof.iter_rays[i] > 0 && r->prof.iter_ms[i] > 0)
-                cv_info("intersect iteration %2d %12" PRIu64 " rays %8.2f ms %6.3f G rays/s", i,
-                        r->prof.iter_rays[i], r->prof.iter_ms[i],
-                        (double)r->prof.iter_rays[i] / (r->prof.iter_ms[i] * 1e6));
-        free(r->prof.queries);
-        free(r->prof.pairs);
+    if (r->stages) {
+        cv_gpu_timer_report(r->stages, "stage");
+        for (unsigned i = 0; i < PROF_ITERS; i++) {
+            double ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, i);
+            if (r->prof.iter_rays[i] > 0 && ms > 0)
+                cv_info("intersect iteration %2u %12" PRIu64 " rays %8.2f ms %6.3f G rays/s", i,
+                        r->prof.iter_rays[i], ms, (double)r->prof.iter_rays[i] / (ms * 1e6));
+        }
     }
-    if (r->n_queries)
-        glDeleteQueries((GLsizei)r->n_queries, r->queries);
-    free(r->queries);
+    cv_gpu_timer_destroy(&r->stages);
+    cv_gpu_timer_destroy(&r->passes);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
-                      &r->film, &r->resolved, &r->alive[0], &r->alive[1], &r->queues_copy,
-                      &r->prof.counts};
+                      &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
+    cv_buf_destroy(&r->resolved);
     cv_scene_gpu_destroy(&r->owned_scene);
     cv_rlpath_destroy(&r->rl);
     free(r);

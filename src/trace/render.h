@@ -16,6 +16,8 @@
 #include "manifest/enums.h"
 #include "scene/scene.h"
 
+struct cv_bvh_params;
+
 struct cv_render_params {
     /* Camera and film (scene/film.h fits one to a resolution); NULL: the
      * scene's. Read at creation only. */
@@ -41,6 +43,12 @@ struct cv_render_params {
      * changes the order in which a pixel's samples are summed, nothing else:
      * each sample traces the same path. */
     uint32_t paths_per_pixel;
+    /* Time every dispatch by stage (gpu/timer.h), for cv_render_counters'
+     * stage times and a per-stage log line when the renderer is destroyed:
+     * a diagnostic, slower (cavalry-batch: CAVALRY_STAGE_TIMES). */
+    bool stage_times;
+    /* cv_renderer_create's own BVH build; NULL: cv_bvh_default_params() */
+    const struct cv_bvh_params *bvh;
 };
 
 /* The automatic paths_per_pixel aims at this many paths in flight: the
@@ -77,14 +85,14 @@ uint32_t cv_renderer_spp_done(const struct cv_renderer *r);
 void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *height);
 
 /* Totals since creation: rays traced by kind and GPU time of all passes
- * [milliseconds] (GL_TIMESTAMP queries around each pass; GL_TIME_ELAPSED
- * reads 0 for compute on llvmpipe). Reading waits for the GPU. */
+ * [milliseconds] (a timer row around each pass, gpu/timer.h). Reading
+ * waits for the GPU. */
 struct cv_render_counters {
     uint64_t primary_rays, secondary_rays, shadow_rays;
     uint64_t path_slots;     /* paths in flight at most: pixels times paths_per_pixel */
     uint64_t iterations;     /* bounce iterations of the wave (paths are regenerated) */
     double gpu_ms;
-    /* With CAVALRY_STAGE_TIMES set: GPU time of the closest-hit (intersect)
+    /* With params' stage_times: GPU time of the closest-hit (intersect)
      * and any-hit (shadow) stages over the same passes; else 0. The part of
      * intersect_ms spent in the first iteration of each pass, whose rays are
      * all camera rays (n_pixels * min(spp, paths_per_pixel) of them): when
@@ -100,10 +108,12 @@ struct cv_render_counters {
 bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
                           struct cv_error *err);
 
-/* SSBO of one vec4 per pixel of the crop (linear Rec.709 RGB = sum / weight,
- * alpha 1), row-major, top row first. Owned by the renderer, valid until the
- * next resolve or destroy. 0 on error. */
-GLuint cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err);
+/* A storage buffer of one vec4 per pixel of the crop (linear Rec.709 RGB =
+ * sum / weight, alpha 1), row-major, top row first, for the colour stage.
+ * Owned by the renderer, valid until the next resolve or destroy. NULL on
+ * error. */
+struct cv_buf;
+const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err);
 
 /* CPU copies: rgba 4 floats per pixel; albedo3 and normal3 3 floats, depth1
  * one (camera distance to the first hit, 0 where the ray escaped); the AOV

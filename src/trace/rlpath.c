@@ -203,34 +203,6 @@ void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlPara
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
-                          struct cv_error *err)
-{
-    size_t keys = rl->params.dirs.w, nb = rl->params.dirs.z, stride = CV_RL_LEARN_TEXELS(nb);
-    size_t bytes = (size_t)cv_rlpath_table_bytes(&rl->params);
-    uint32_t *raw = cv_xmalloc(bytes);
-    bool ok = cv_buffer_read(rl->table, 0, bytes, raw, err);
-    for (size_t k = 0; ok && k < keys; k++)
-        for (size_t b = 0; b < nb; b++) {
-            float s_i, s_e;
-            memcpy(&s_i, &raw[k * stride + 3 * b], sizeof(float));
-            memcpy(&s_e, &raw[k * stride + 3 * b + 2], sizeof(float));
-            uint32_t n = raw[k * stride + 3 * b + 1];
-            float sum = s_i + s_e;
-            if (q)
-                q[k * nb + b] = n ? sum / (float)n : sum;
-            if (visits)
-                visits[k * nb + b] = n;
-        }
-    free(raw);
-    return ok;
-}
-
-const CvRlParams *cv_rlpath_params(const struct cv_rlpath *rl)
-{
-    return &rl->params;
-}
-
 void cv_rlpath_destroy(struct cv_rlpath **rlp)
 {
     if (!rlp || !*rlp)

@@ -74,14 +74,6 @@ void cv_rlpath_update(const struct cv_rlpath *rl);
  * cv_rlpath_update; tests call it on a table they filled. */
 void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlParams *p);
 
-/* Copies the table: q and visits hold keys * bins values each, entry
- * key * bins + bin (either may be NULL). For tests and reports; waits for
- * the GPU. */
-bool cv_rlpath_read_table(const struct cv_rlpath *rl, float *q, uint32_t *visits,
-                          struct cv_error *err);
-
-const CvRlParams *cv_rlpath_params(const struct cv_rlpath *rl);
-
 /* Accepts NULL; clears the pointer. */
 void cv_rlpath_destroy(struct cv_rlpath **rl);
 

@@ -124,7 +124,8 @@ static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
     }
 }
 
-bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu *out,
+bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
+                     const struct cv_bvh_params *bvh, struct cv_scene_gpu *out,
                      struct cv_error *err)
 {
     struct cv_scene_gpu g = {.gpu = gpu};
@@ -178,11 +179,14 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_sce
         return false;
     }
     g.empty = s->n_triangles == 0;
-    /* tests count this line to check that a batch builds each scene's BVH once */
+    struct cv_bvh_params bp = bvh ? *bvh : cv_bvh_default_params();
+    /* tests count this line to check that a batch builds each scene's BVH
+     * once, and read the knobs that reached the build */
     if (!g.empty)
-        cv_debug("building BVH for %s (%u triangles)", s->path ? s->path : "scene",
-                 s->n_triangles);
-    if (!g.empty && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, NULL, &g.bvh, err)) {
+        cv_debug("building BVH for %s (%u triangles, %d treelet rounds, split budget %g)",
+                 s->path ? s->path : "scene", s->n_triangles, bp.treelet_rounds,
+                 bp.split_budget);
+    if (!g.empty && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, &bp, &g.bvh, err)) {
         cv_error_prefix(err, "building the BVH: ");
         cv_scene_gpu_release(&g);
         return false;
@@ -220,11 +224,12 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     memset(g, 0, sizeof(*g));
 }
 
-bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu **out,
+bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s,
+                         const struct cv_bvh_params *bvh, struct cv_scene_gpu **out,
                          struct cv_error *err)
 {
     struct cv_scene_gpu *g = cv_xcalloc(1, sizeof(*g));
-    if (!cv_scene_upload(gpu, s, g, err)) {
+    if (!cv_scene_upload(gpu, s, bvh, g, err)) {
         free(g);
         return false;
     }

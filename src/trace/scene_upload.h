@@ -30,7 +30,9 @@ struct cv_scene_gpu {
  * power (uniform when no light has power); cdf[n-1] = 1. Exposed for tests. */
 void cv_light_cdf(const float *power, uint32_t n, float *cdf);
 
-bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu *out,
+/* bvh: the BVH build's parameters; NULL: cv_bvh_default_params(). */
+bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
+                     const struct cv_bvh_params *bvh, struct cv_scene_gpu *out,
                      struct cv_error *err);
 /* Binds the scene buffers and the BVH at their fixed bindings. */
 void cv_scene_bind(const struct cv_scene_gpu *g);
@@ -42,7 +44,8 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g);
  * (cv_renderer_create_shared). It holds no pointer to the scene, and nothing
  * derived from the camera or the render settings, so the jobs' camera and
  * resolution overrides do not change it. */
-bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu **out,
+bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s,
+                         const struct cv_bvh_params *bvh, struct cv_scene_gpu **out,
                          struct cv_error *err);
 /* Accepts NULL; clears the pointer. The renderers using it must be
  * destroyed first. */

@@ -77,7 +77,7 @@ static void test_film_rules(void)
     tap_ok(crop_is(10, 10, 0, 0.01, 0, 0.01, 0, 1, 0, 1), "a thin window at the near edge");
     tap_ok(crop_is(3, 3, 1.0 / 3, 2.0 / 3, 0, 1, 1, 2, 0, 3), "edges on pixel boundaries");
 
-    CV_VEC4 wide = cv_film_default_screen(2), tall = cv_film_default_screen(0.5);
+    cv_vec4 wide = cv_film_default_screen(2), tall = cv_film_default_screen(0.5);
     tap_ok(wide.x == -2 && wide.y == 2 && wide.z == -1 && wide.w == 1 && tall.x == -1 &&
                tall.y == 1 && tall.z == -2 && tall.w == 2,
            "default screen window: the longer axis spans the aspect ratio");

@@ -2,7 +2,8 @@
 # render_test.sh: a small batch renders every job in both formats with the
 # metadata --resume relies on; --resume skips finished jobs and redoes a
 # changed one; --only and --dry-run do what they say; CAVALRY_STAGE_TIMES
-# logs the stages' GPU times when set to anything but 0.
+# logs the stages' GPU times when set to anything but 0; CAVALRY_BVH_ROUNDS
+# and CAVALRY_BVH_SPLIT reach the BVH build (the CLI reads them, cli/knobs.c).
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
@@ -36,6 +37,10 @@ check_out "stage times on" run5.jsonl env CAVALRY_STAGE_TIMES=1 "$CAVALRY_BATCH"
 check "CAVALRY_STAGE_TIMES=1 logs the stages" grep -q "stage intersect" run5.err
 check_out "stage times off" run6.jsonl env CAVALRY_STAGE_TIMES=0 "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run6.err
 check "CAVALRY_STAGE_TIMES=0 logs none" sh -c '! grep -q "stage intersect" run6.err'
+check "BVH knobs unset" "$CAVALRY_BATCH" -v --progress=none --resume --force --only=c jobs.yaml 2>run7.err
+check "the BVH build gets the defaults" grep -q "3 treelet rounds, split budget 0.3)" run7.err
+check "BVH knobs set" env CAVALRY_BVH_ROUNDS=1 CAVALRY_BVH_SPLIT=0.5 "$CAVALRY_BATCH" -v --progress=none --resume --force --only=c jobs.yaml 2>run8.err
+check "the BVH build gets CAVALRY_BVH_ROUNDS and _SPLIT" grep -q "1 treelet rounds, split budget 0.5)" run8.err
 
 check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
 check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3

@@ -39,6 +39,7 @@
 
 #include "base/log.h"
 #include "bvh/bvh.h"
+#include "cli/knobs.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/program.h"
 #include "gpu/buffer.h"
@@ -76,7 +77,8 @@ int main(int argc, char **argv)
     else
         n = (uint32_t)strtoul(argv[1], NULL, 10);
     int reps = 3;
-    struct cv_bvh_params params = cv_bvh_default_params();
+    /* as cavalry-batch: the defaults with CAVALRY_BVH_* (cli/knobs.h) */
+    struct cv_bvh_params params = cv_knobs_from_environment().bvh;
     bool check = false, ref = false;
     uint32_t n_rays = 0;
     bool all = false, gl_debug = false, fresh = false;

@@ -556,22 +556,6 @@ static void check_large(struct cv_gpu *gpu)
     mesh_free(&m);
 }
 
-/* CAVALRY_BVH_ROUNDS sets the default treelet rounds; a bad value is
- * ignored (with a warning). */
-static void check_rounds_env(void)
-{
-    setenv("CAVALRY_BVH_ROUNDS", "1", 1);
-    int one = cv_bvh_default_params().treelet_rounds;
-    setenv("CAVALRY_BVH_ROUNDS", "33", 1);
-    int past = cv_bvh_default_params().treelet_rounds;
-    setenv("CAVALRY_BVH_ROUNDS", "2x", 1);
-    int junk = cv_bvh_default_params().treelet_rounds;
-    unsetenv("CAVALRY_BVH_ROUNDS");
-    int dflt = cv_bvh_default_params().treelet_rounds;
-    tap_ok(one == 1 && past == 3 && junk == 3 && dflt == 3,
-           "CAVALRY_BVH_ROUNDS: 1 -> %d, 33 -> %d, 2x -> %d, unset -> %d", one, past, junk, dflt);
-}
-
 /* The tree's own buffers go back to the GPU's pool when it is destroyed
  * (bvh/bvh.c): another build of the same mesh makes no new buffer, and a
  * tree over fewer triangles, built into the larger buffers, still traces
@@ -621,29 +605,8 @@ static void check_reuse(struct cv_gpu *gpu)
     mesh_free(&m);
 }
 
-/* CAVALRY_BVH_SPLIT sets the default split budget, 0 to 4; a bad value is
- * ignored (with a warning). */
-static void check_split_env(void)
-{
-    float dflt = cv_bvh_default_params().split_budget;
-    setenv("CAVALRY_BVH_SPLIT", "0.5", 1);
-    float half = cv_bvh_default_params().split_budget;
-    setenv("CAVALRY_BVH_SPLIT", "0", 1);
-    float zero = cv_bvh_default_params().split_budget;
-    setenv("CAVALRY_BVH_SPLIT", "5", 1);
-    float past = cv_bvh_default_params().split_budget;
-    setenv("CAVALRY_BVH_SPLIT", "0.3x", 1);
-    float junk = cv_bvh_default_params().split_budget;
-    unsetenv("CAVALRY_BVH_SPLIT");
-    tap_ok(half == 0.5f && zero == 0.0f && past == dflt && junk == dflt && dflt >= 0 && dflt <= 4,
-           "CAVALRY_BVH_SPLIT: 0.5 -> %g, 0 -> %g, 5 -> %g, 0.3x -> %g, unset -> %g", half, zero,
-           past, junk, dflt);
-}
-
 int main(void)
 {
-    check_rounds_env();
-    check_split_env();
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct mesh m;
     mesh_soup(&m, 4000);

@@ -25,13 +25,18 @@ fi
 "$CAVALRY_BATCH" --version >"$tmp/version"
 check "--version prints the version" grep -q '^cavalry-batch [0-9]' "$tmp/version"
 set +e
-"$CAVALRY_BATCH" --no-such-option >/dev/null 2>&1; rc=$?
-"$CAVALRY_BATCH" >/dev/null 2>&1; rc2=$?
-"$CAVALRY_BATCH" --shard-index=3 --shard-count=2 x.yaml >/dev/null 2>&1; rc3=$?
+"$CAVALRY_BATCH" --no-such-option >/dev/null 2>"$tmp/e1"; rc=$?
+"$CAVALRY_BATCH" >/dev/null 2>"$tmp/e2"; rc2=$?
+"$CAVALRY_BATCH" --shard-index=3 --shard-count=2 x.yaml >/dev/null 2>"$tmp/e3"; rc3=$?
 JOB_COMPLETION_INDEX=1 "$CAVALRY_BATCH" x.yaml >/dev/null 2>&1; rc4=$?
 set -e
 check "unknown option: exit 2" test "$rc" -eq 2
 check "no manifest: exit 2" test "$rc2" -eq 2
 check "shard index beyond count: exit 2" test "$rc3" -eq 2
 check "JOB_COMPLETION_INDEX without --shard-count: exit 2" test "$rc4" -eq 2
+# one prefix for every diagnostic, the log's, getopt's own messages included
+check "unknown option: error: prefix" grep -qx 'error: unknown option --no-such-option' "$tmp/e1"
+check "no manifest: error: prefix" grep -qx 'error: no manifest given' "$tmp/e2"
+check "shard beyond count: error: prefix" grep -qx 'error: shard index 3 is not below shard count 2' "$tmp/e3"
+check "no cavalry-batch: prefix" sh -c "! grep -q '^cavalry' '$tmp/e1' '$tmp/e2' '$tmp/e3'"
 done_testing

@@ -57,7 +57,7 @@ static bool probe(struct cv_gpu *gpu, struct cv_program *prog, const struct cv_s
                   const float *dirs, size_t n, float *le, struct cv_error *err)
 {
     struct cv_scene_gpu g = {0};
-    if (!cv_scene_upload(gpu, s, &g, err))
+    if (!cv_scene_upload(gpu, s, NULL, &g, err))
         return false;
     cv_scene_bind(&g);
     GLuint in = cv_buffer_create(n * 16, dirs, "probe directions", err);

@@ -7,6 +7,7 @@
  * several paths in flight per pixel; rejected parameters. */
 #include "config.h"
 
+#include "gpu/buf.h"
 #include "tests/trace/trace_test_util.h"
 #include "trace/scene_upload.h"
 
@@ -119,8 +120,10 @@ int main(void)
         tap_ok(fabsf(alb[3 * corner] - 0.5f) < 1e-4f, "floor albedo %.4f is 0.5", alb[3 * corner]);
         tap_ok(rgba[4 * corner + 3] == 1.0f && rgba[4 * corner] > 0, "pixel alpha 1, radiance %.4f",
                rgba[4 * corner]);
-        GLuint res = cv_renderer_resolve(r, &err);
-        tap_ok(res != 0, "resolve returns an SSBO");
+        const struct cv_buf *res = cv_renderer_resolve(r, &err);
+        tap_ok(res && res->params.storable && res->params.size == (size_t)w * h * 16,
+               "resolve returns a storage buffer of a vec4 a pixel (%zu bytes)",
+               res ? res->params.size : 0);
         free(rgba);
         free(alb);
         free(nrm);
@@ -170,7 +173,7 @@ int main(void)
         struct cv_render_params pa = {.seed = 99, .camera = &small};
         struct cv_render_params pb = {.seed = 1234, .integrator = CV_INTEGRATOR_RLPATH, .rl_mix = -1};
         bool ok = test_render(gpu, s, &ps, one, &own, &err) &&
-                  cv_scene_gpu_create(gpu, s, &gs, &err) &&
+                  cv_scene_gpu_create(gpu, s, NULL, &gs, &err) &&
                   cv_renderer_create_shared(gpu, gs, &moved, &pa, &ra, &err) &&
                   cv_renderer_create_shared(gpu, gs, s, &pb, &rb, &err) &&
                   cv_renderer_pass(ra, 4, &err) && cv_renderer_pass(rb, 4, &err) &&

@@ -1,0 +1,23 @@
+/* knobs.h: the tuning and diagnostic knobs that cavalry-batch and the bench
+ * tools take from the environment (documented in cavalry-batch(1)). The
+ * library reads no environment for them: these values are passed in as
+ * parameters (struct cv_bvh_params, struct cv_render_params' stage_times). */
+#ifndef CV_CLI_KNOBS_H
+#define CV_CLI_KNOBS_H
+
+#include <stdbool.h>
+
+#include "bvh/bvh.h"
+
+struct cv_knobs {
+    /* cv_bvh_default_params() with CAVALRY_BVH_ROUNDS (0 to 32) as
+     * treelet_rounds and CAVALRY_BVH_SPLIT (0 to 4) as split_budget */
+    struct cv_bvh_params bvh;
+    bool stage_times;   /* CAVALRY_STAGE_TIMES set, not empty and not "0" */
+};
+
+/* Reads the knobs; a value that is not a number in its range is warned
+ * about and the default kept. */
+struct cv_knobs cv_knobs_from_environment(void);
+
+#endif
