@@ -1,0 +1,3 @@
+# tests/contrib: the farm scheduler files under contrib/ (Slurm, Kubernetes).
+TESTS += tests/contrib/slurm_test.sh
+EXTRA_DIST += tests/contrib/slurm_test.sh tests/data/batch/five.yaml
