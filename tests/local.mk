@@ -10,3 +10,4 @@ include tests/color/local.mk
 include tests/output/local.mk
 include tests/batch/local.mk
 include tests/cli/local.mk
+include tests/contrib/local.mk
