@@ -113,6 +113,9 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
 {
     struct cv_error err = {{0}};
     struct cv_manifest *m = NULL;
+    /* From the start, so that a closed stdout or a signal while the scenes
+     * load is handled as during a render. */
+    cv_signals_install();
     if (!cv_manifest_load(manifest_path, &m, &err)) {
         cv_error_log("%s", err.msg);
         return CV_BATCH_INVALID;
@@ -137,6 +140,10 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         cv_info("no job in this shard");
         goto done;
     }
+    if (cv_signals_interrupted()) {
+        status = CV_BATCH_INTERRUPTED;
+        goto done;
+    }
 
     struct cv_gpu *gpu = NULL;
     if (!cv_gpu_create(&opt->gpu, &gpu, &err)) {
@@ -144,7 +151,6 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         status = CV_BATCH_NO_GPU;
         goto done;
     }
-    cv_signals_install();
     struct cv_progress *progress =
         cv_progress_create(opt->progress, stderr, stdout);
     unsigned failed = 0;

@@ -10,9 +10,11 @@
 
 #include "base/log.h"
 #include "batch/batch.h"
+#include "batch/signals.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "gpu/context.h"
+#include "manifest/shard.h"
 #include "scene/dump.h"
 #include "scene/scene.h"
 
@@ -45,8 +47,8 @@ static void usage(FILE *out)
           "\n"
           "Environment (man cavalry-batch for more):\n"
           "  OCIO                    OpenColorIO config for jobs that name none\n"
-          "  SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX\n"
-          "                          shard index in a Slurm array or Kubernetes indexed Job\n"
+          "  SLURM_ARRAY_TASK_ID, _MIN, _MAX, _STEP, _COUNT, JOB_COMPLETION_INDEX\n"
+          "                          shard in a Slurm array or Kubernetes indexed Job\n"
           "  CAVALRY_CACHE_DIR       disk cache of linked GPU programs\n"
           "  CAVALRY_DATA_DIR        read shaders and configs from a source tree\n"
           "  CAVALRY_BVH_ROUNDS      treelet restructuring rounds, 0 to 32 (default 3)\n"
@@ -54,7 +56,8 @@ static void usage(FILE *out)
           "  CAVALRY_STAGE_TIMES     time every render stage (diagnostic; slower)\n"
           "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
-          "or scene, 4 no usable GPU, 130 interrupted (partial images written).\n",
+          "or scene, 4 no usable GPU, 128+N stopped by signal N (130 SIGINT, 143 SIGTERM,\n"
+          "129 SIGHUP; partial images written).\n",
           out);
 }
 
@@ -83,28 +86,60 @@ static bool parse_uint(const char *s, unsigned max, unsigned *out)
     return true;
 }
 
-/* Farm schedulers say which task this is: Slurm job arrays, and Kubernetes
- * indexed Jobs (which give no count: --shard-count must be set). */
+/* Reads an optional unsigned variable; false when set but not a number. */
+static bool env_uint(const char *name, unsigned *out)
+{
+    const char *s = getenv(name);
+    if (!s || !*s)
+        return true;
+    if (!parse_uint(s, 1u << 30, out)) {
+        fprintf(stderr, "cavalry-batch: %s is not a number: \"%s\"\n", name, s);
+        return false;
+    }
+    return true;
+}
+
+/* Farm schedulers say which task this is: Slurm job arrays (with their
+ * offset and step), and Kubernetes indexed Jobs (which give no count:
+ * --shard-count must be set). */
 static bool shard_from_environment(struct cv_batch_options *o, bool *have_index, bool have_count)
 {
+    if (*have_index)
+        return true;
     const char *id = getenv("SLURM_ARRAY_TASK_ID");
-    const char *count = getenv("SLURM_ARRAY_TASK_COUNT");
-    const char *min = getenv("SLURM_ARRAY_TASK_MIN");
-    unsigned v, c, m = 0;
-    if (!*have_index && id && count && parse_uint(id, 1u << 30, &v) &&
-        parse_uint(count, 1u << 30, &c)) {
-        if ((min && !parse_uint(min, 1u << 30, &m)) || m > v)
+    if (id && *id) {
+        unsigned v = 0, min = 0, step = 0, count = 0, max = 0, index, n;
+        if (!env_uint("SLURM_ARRAY_TASK_ID", &v) || !env_uint("SLURM_ARRAY_TASK_MIN", &min) ||
+            !env_uint("SLURM_ARRAY_TASK_MAX", &max) || !env_uint("SLURM_ARRAY_TASK_STEP", &step) ||
+            !env_uint("SLURM_ARRAY_TASK_COUNT", &count))
             return false;
-        o->shard_index = v - m;
+        if (!getenv("SLURM_ARRAY_TASK_MAX")) {
+            if (!count) {
+                fprintf(stderr, "cavalry-batch: SLURM_ARRAY_TASK_ID is set without "
+                                "SLURM_ARRAY_TASK_MAX or SLURM_ARRAY_TASK_COUNT\n");
+                return false;
+            }
+            max = min + (count - 1) * (step ? step : 1);
+        }
+        const char *why;
+        if (!cv_shard_from_array(v, min, max, step, count, &index, &n, &why)) {
+            fprintf(stderr, "cavalry-batch: Slurm array task %u (min %u, max %u, step %u, "
+                            "count %u): %s\n", v, min, max, step ? step : 1, count, why);
+            return false;
+        }
+        o->shard_index = index;
         *have_index = true;
         if (!have_count)
-            o->shard_count = c;
+            o->shard_count = n;
         return true;
     }
     const char *k8s = getenv("JOB_COMPLETION_INDEX");
-    if (!*have_index && k8s) {
-        if (!parse_uint(k8s, 1u << 30, &v))
+    if (k8s) {
+        unsigned v;
+        if (!parse_uint(k8s, 1u << 30, &v)) {
+            fprintf(stderr, "cavalry-batch: JOB_COMPLETION_INDEX is not a number: \"%s\"\n", k8s);
             return false;
+        }
         o->shard_index = v;
         *have_index = true;
     }
@@ -246,12 +281,20 @@ int cv_cli_main(int argc, char **argv)
         usage(stderr);
         return CV_EXIT_USAGE;
     }
-    if (!shard_from_environment(&o, &have_index, have_count)) {
-        fprintf(stderr, "cavalry-batch: cannot read the shard from the environment\n");
+    if (!shard_from_environment(&o, &have_index, have_count))
         return CV_EXIT_USAGE;
-    }
     if (have_index && !o.shard_count) {
         fprintf(stderr, "cavalry-batch: a shard index needs --shard-count\n");
+        return CV_EXIT_USAGE;
+    }
+    /* Without an index every worker would render shard 0: the same jobs. */
+    if (have_count && !have_index) {
+        fprintf(stderr, "cavalry-batch: --shard-count needs --shard-index, "
+                        "SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX\n");
+        return CV_EXIT_USAGE;
+    }
+    if (have_count && !o.shard_count) {
+        fprintf(stderr, "cavalry-batch: --shard-count must be at least 1\n");
         return CV_EXIT_USAGE;
     }
     if (o.shard_count && o.shard_index >= o.shard_count) {
@@ -264,7 +307,7 @@ int cv_cli_main(int argc, char **argv)
     case CV_BATCH_JOBS_FAILED: return CV_EXIT_JOBS_FAILED;
     case CV_BATCH_INVALID: return CV_EXIT_INVALID;
     case CV_BATCH_NO_GPU: return CV_EXIT_NO_GPU;
-    case CV_BATCH_INTERRUPTED: return CV_EXIT_INTERRUPTED;
+    case CV_BATCH_INTERRUPTED: return CV_EXIT_SIGNAL_BASE + cv_signals_which();
     }
     return CV_EXIT_JOBS_FAILED;
 }
