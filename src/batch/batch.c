@@ -70,7 +70,7 @@ static bool load_scenes(const struct cv_manifest *m, const struct cv_batch_optio
         if (s == p->n_scenes) {
             struct loaded_scene ls = {.path = job->scene};
             struct cv_error e = {{0}};
-            struct cv_scene_load_params lp = {.strict = opt->strict};
+            struct cv_scene_load_params lp = {.strict = opt->strict, .root = opt->scene_root};
             if (!cv_scene_load(job->scene, &lp, &ls.scene, &e)) {
                 char *msg = cv_xasprintf("%s%s%s:%u:%u: job \"%s\": %s", all ? all : "",
                                          all ? "\n" : "", m->path, job->line, job->col, job->name,

@@ -38,6 +38,7 @@ static void usage(FILE *out)
           "      --time-limit=SEC    stop each job after SEC seconds\n"
           "      --progress=MODE     auto, bar, json or none\n"
           "      --strict            treat scene warnings as errors\n"
+          "      --scene-root=DIR    refuse scene files outside DIR (untrusted scenes)\n"
           "      --dump-scene=FILE   print a summary of a pbrt scene and exit\n"
           "      --list-gpus         list the GPUs and which one would be used\n"
           "      --gpu=N             use EGL device N (see --list-gpus)\n"
@@ -146,11 +147,11 @@ static bool shard_from_environment(struct cv_batch_options *o, bool *have_index,
     return true;
 }
 
-static int dump_scene(const char *path, bool strict)
+static int dump_scene(const char *path, bool strict, const char *root)
 {
     struct cv_scene *scene = NULL;
     struct cv_error err = {{0}};
-    struct cv_scene_load_params lp = {.strict = strict};
+    struct cv_scene_load_params lp = {.strict = strict, .root = root};
     if (!cv_scene_load(path, &lp, &scene, &err)) {
         cv_error_log("%s", err.msg);
         return CV_EXIT_INVALID;
@@ -165,7 +166,7 @@ int cv_cli_main(int argc, char **argv)
     enum {
         OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
         OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
-        OPT_STRICT, OPT_DUMP_SCENE,
+        OPT_STRICT, OPT_DUMP_SCENE, OPT_SCENE_ROOT,
     };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
@@ -181,6 +182,7 @@ int cv_cli_main(int argc, char **argv)
         {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
         {"progress", required_argument, NULL, OPT_PROGRESS},
         {"strict", no_argument, NULL, OPT_STRICT},
+        {"scene-root", required_argument, NULL, OPT_SCENE_ROOT},
         {"dump-scene", required_argument, NULL, OPT_DUMP_SCENE},
         {"list-gpus", no_argument, NULL, OPT_LIST_GPUS},
         {"gpu", required_argument, NULL, OPT_GPU},
@@ -209,6 +211,7 @@ int cv_cli_main(int argc, char **argv)
         case OPT_FORCE: o.force = true; break;
         case OPT_FAIL_FAST: o.fail_fast = true; break;
         case OPT_STRICT: o.strict = true; break;
+        case OPT_SCENE_ROOT: o.scene_root = optarg; break;
         case OPT_DUMP_SCENE: dump = optarg; break;
         case OPT_LIST_GPUS: list_gpus = true; break;
         case OPT_SHARD_INDEX:
@@ -274,7 +277,7 @@ int cv_cli_main(int argc, char **argv)
         return CV_EXIT_OK;
     }
     if (dump)
-        return dump_scene(dump, o.strict);
+        return dump_scene(dump, o.strict, o.scene_root);
     if (optind != argc - 1) {
         fprintf(stderr, "cavalry-batch: %s\n",
                 optind >= argc ? "no manifest given" : "one manifest at a time");
