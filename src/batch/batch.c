@@ -9,6 +9,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "batch/batch.h"
+#include "batch/job_lock.h"
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "manifest/manifest.h"
@@ -157,19 +158,35 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
     for (size_t k = 0; k < plan.n_jobs && !cv_signals_interrupted(); k++) {
         const struct cv_job *job = &m->jobs[plan.jobs[k]];
         struct loaded_scene *ls = &plan.scenes[plan.scene_of[k]];
-        if (opt->resume && !opt->force && cv_job_outputs_current(job)) {
-            cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0,
-                                  "outputs up to date");
+        /* Several workers may share the manifest: a job is rendered only
+         * under its lock, and with --resume checked again once locked, in
+         * case another worker finished it meanwhile. */
+        bool resume = opt->resume && !opt->force;
+        const char *skip = resume && cv_job_outputs_current(job) ? "outputs up to date" : NULL;
+        struct cv_job_lock *lock = NULL;
+        struct cv_error jerr = {{0}};
+        enum cv_lock_status locked = CV_LOCK_FAILED;
+        if (!skip) {
+            locked = cv_job_lock_take(job, &lock, &jerr);
+            if (locked == CV_LOCK_BUSY)
+                skip = "another process is rendering it";
+            else if (locked == CV_LOCK_TAKEN && resume && cv_job_outputs_current(job))
+                skip = "outputs up to date";
+        }
+        bool stop = false;
+        if (skip) {
+            cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0, skip);
         } else {
             cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)plan.n_jobs,
                                     job->has_spp ? job->spp : ls->scene->settings.spp);
             struct cv_job_result res = {0};
-            struct cv_error jerr = {{0}};
-            bool uploaded = ls->gpu_scene != NULL;
-            if (!uploaded) {
+            bool uploaded = locked == CV_LOCK_TAKEN && ls->gpu_scene != NULL;
+            if (locked == CV_LOCK_TAKEN && !uploaded) {
                 uploaded = cv_scene_gpu_create(gpu, ls->scene, &ls->gpu_scene, &jerr);
                 if (!uploaded)
                     cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
+            } else if (locked != CV_LOCK_TAKEN) {
+                cv_error_prefix(&jerr, "job \"%s\": ", job->name);
             }
             if (uploaded && cv_run_job(gpu, job, ls->scene, ls->gpu_scene, opt, progress, &res,
                                        &jerr)) {
@@ -180,10 +197,12 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                 cv_error_log("%s", jerr.msg);
                 cv_progress_job_ended(progress, job->name, CV_JOB_FAILED, res.spp, res.seconds,
                                       jerr.msg);
-                if (opt->fail_fast)
-                    break;
+                stop = opt->fail_fast;
             }
         }
+        cv_job_lock_release(&lock);
+        if (stop)
+            break;
         /* Free a scene after the last job that uses it. */
         if (ls->last_use == k) {
             cv_scene_gpu_destroy(&ls->gpu_scene);
