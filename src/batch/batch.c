@@ -180,16 +180,16 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
             cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)plan.n_jobs,
                                     job->has_spp ? job->spp : ls->scene->settings.spp);
             struct cv_job_result res = {0};
-            bool uploaded = locked == CV_LOCK_TAKEN && ls->gpu_scene != NULL;
-            if (locked == CV_LOCK_TAKEN && !uploaded) {
-                uploaded = cv_scene_gpu_create(gpu, ls->scene, &ls->gpu_scene, &jerr);
-                if (!uploaded)
-                    cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
-            } else if (locked != CV_LOCK_TAKEN) {
+            bool ready = locked == CV_LOCK_TAKEN; /* else jerr says why */
+            if (!ready) {
                 cv_error_prefix(&jerr, "job \"%s\": ", job->name);
+            } else if (!ls->gpu_scene &&
+                       !cv_scene_gpu_create(gpu, ls->scene, &ls->gpu_scene, &jerr)) {
+                cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
+                ready = false;
             }
-            if (uploaded && cv_run_job(gpu, job, ls->scene, ls->gpu_scene, opt, progress, &res,
-                                       &jerr)) {
+            if (ready && cv_run_job(gpu, job, ls->scene, ls->gpu_scene, opt, progress, &res,
+                                    &jerr)) {
                 cv_progress_job_ended(progress, job->name, res.partial ? CV_JOB_PARTIAL : CV_JOB_DONE,
                                       res.spp, res.seconds, res.written);
             } else {

@@ -132,15 +132,21 @@ bool cv_b_set_root(struct cv_builder *b, const char *root, struct cv_error *err)
 }
 
 /* The test is on real paths, so neither "../" nor a symbolic link (to a
- * file or to a folder above) leads out; a file that does not exist is left
- * to its reader to report. */
+ * file or to a folder above) leads out. A file that does not exist is
+ * judged by its folder, so that whether a file outside exists cannot be
+ * learnt from the message; with no folder either, its reader reports it. */
 bool cv_b_check_root(struct cv_builder *b, const char *path, struct cv_error *err)
 {
     if (!b->root)
         return true;
     char *real = realpath(path, NULL);
-    if (!real)
-        return true;
+    if (!real) {
+        char *dir = cv_path_dirname(path);
+        real = realpath(dir, NULL);
+        free(dir);
+        if (!real)
+            return true;
+    }
     size_t n = strlen(b->root);
     bool inside = strncmp(real, b->root, n) == 0 &&
                   (real[n] == '/' || real[n] == '\0' || b->root[n - 1] == '/');

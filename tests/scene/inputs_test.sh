@@ -89,6 +89,7 @@ in_root '"../" in an Include' 'Include "../outside/o.pbrt"'
 in_root 'an absolute path' "Include \"$tmp/outside/o.pbrt\""
 in_root 'a symbolic link to a file outside' 'Include "link.pbrt"'
 in_root 'a file under a linked folder' 'Shape "plymesh" "string filename" "dirlink/m.ply"'
+in_root 'a file outside that does not exist' 'Include "../outside/none.pbrt"'
 in_root 'a redundant path that leaves' 'Include "sub/../../outside/o.pbrt"'
 set +e
 "$CAVALRY_BATCH" --dump-scene=outside/o.pbrt --scene-root=root >/dev/null 2>err.txt
