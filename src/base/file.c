@@ -1,20 +1,62 @@
 /* file.c: see file.h. */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "base/file.h"
+#include "base/limits.h"
 #include "base/mem.h"
+
+static bool check_stat(const char *path, const struct stat *st, struct cv_error *err)
+{
+    if (S_ISDIR(st->st_mode))
+        return cv_fail(err, "%s: is a folder, not a file", path);
+    if (!S_ISREG(st->st_mode))
+        return cv_fail(err, "%s: not a regular file (a device, FIFO or socket)", path);
+    if ((long long)st->st_size > CV_MAX_INPUT_BYTES)
+        return cv_fail(err, "%s: %lld bytes, more than the %lld bytes an input file may hold",
+                       path, (long long)st->st_size, CV_MAX_INPUT_BYTES);
+    return true;
+}
+
+bool cv_input_check(const char *path, struct cv_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return cv_fail(err, "%s: %s", path, strerror(errno));
+    return check_stat(path, &st, err);
+}
 
 bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    /* O_NONBLOCK: opening a FIFO must not wait for a writer; it is then
+     * refused as not regular. (The flag means nothing for regular files.) */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
         return cv_fail(err, "%s: %s", path, strerror(errno));
-    size_t cap = 1 << 16, n = 0;
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        int saved = errno;
+        close(fd);
+        return cv_fail(err, "%s: %s", path, strerror(saved));
+    }
+    if (!check_stat(path, &st, err)) {
+        close(fd);
+        return false;
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        int saved = errno;
+        close(fd);
+        return cv_fail(err, "%s: %s", path, strerror(saved));
+    }
+    size_t cap = (size_t)st.st_size + 2 > (1 << 16) ? (size_t)st.st_size + 2 : (1 << 16), n = 0;
     char *buf = cv_xmalloc(cap);
+    bool too_big = false;
     for (;;) {
         if (n + 1 >= cap)
             buf = cv_xrealloc(buf, cap *= 2);
@@ -22,12 +64,19 @@ bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *e
         n += got;
         if (got == 0)
             break;
+        if ((long long)n > CV_MAX_INPUT_BYTES) { /* it grew while being read */
+            too_big = true;
+            break;
+        }
     }
     bool failed = ferror(f);
     int saved = errno;
     fclose(f);
-    if (failed) {
+    if (failed || too_big) {
         free(buf);
+        if (too_big)
+            return cv_fail(err, "%s: more than the %lld bytes an input file may hold", path,
+                           CV_MAX_INPUT_BYTES);
         return cv_fail(err, "%s: read error: %s", path, strerror(saved));
     }
     buf[n] = '\0';

@@ -8,8 +8,12 @@
 #include "base/error.h"
 
 /* Reads a whole file; *data is NUL-terminated (one extra byte) and owned by
- * the caller (free()). */
+ * the caller (free()). Only a regular file of at most CV_MAX_INPUT_BYTES
+ * (base/limits.h) is read: a device or a FIFO is refused without blocking. */
 bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *err);
+/* The same check for files that a library opens by name (images, gzip):
+ * path names a regular file within the size limit. */
+bool cv_input_check(const char *path, struct cv_error *err);
 
 /* Newly allocated directory part of path ("." when there is none). */
 char *cv_path_dirname(const char *path);

@@ -17,4 +17,11 @@
 #define CV_RL_MAX_GRID 256u
 #define CV_RL_MAX_DIRECTIONS 1024u
 
+/* Bytes of one input file: a scene file, an Include, a PLY mesh (after
+ * gzip), a texture, a spectrum, a manifest. Far above any real one (the
+ * largest are PLY meshes of a few GB), it stops a sparse or growing file
+ * from filling memory; files that are not regular (/dev/zero, a FIFO) are
+ * refused before any read. */
+#define CV_MAX_INPUT_BYTES (16LL << 30)
+
 #endif

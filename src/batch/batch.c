@@ -12,6 +12,7 @@
 #include "base/mem.h"
 #include "batch/batch.h"
 #include "batch/plan.h"
+#include "batch/job_lock.h"
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "manifest/manifest.h"
@@ -76,7 +77,7 @@ static bool load_scenes(const struct cv_manifest *m, const struct cv_batch_optio
         if (s == p->n_scenes) {
             struct loaded_scene ls = {.path = job->scene};
             struct cv_error e = {{0}};
-            struct cv_scene_load_params lp = {.strict = opt->strict};
+            struct cv_scene_load_params lp = {.strict = opt->strict, .root = opt->scene_root};
             if (!cv_scene_load(job->scene, &lp, &ls.scene, &e)) {
                 char *msg = cv_xasprintf("%s%s%s:%u:%u: job \"%s\": %s", all ? all : "",
                                          all ? "\n" : "", m->path, job->line, job->col, job->name,
@@ -151,6 +152,9 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
 {
     struct cv_error err = {{0}};
     struct cv_manifest *m = NULL;
+    /* From the start, so that a closed stdout or a signal while the scenes
+     * load is handled as during a render. */
+    cv_signals_install();
     if (!cv_manifest_load(manifest_path, &m, &err)) {
         cv_error_log("%s", err.msg);
         return CV_BATCH_INVALID;
@@ -176,6 +180,10 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         cv_info("no job in this shard");
         goto done;
     }
+    if (cv_signals_interrupted()) {
+        status = CV_BATCH_INTERRUPTED;
+        goto done;
+    }
 
     struct cv_gpu *gpu = NULL;
     if (!cv_gpu_create(&opt->gpu, &gpu, &err)) {
@@ -183,29 +191,44 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         status = CV_BATCH_NO_GPU;
         goto done;
     }
-    cv_signals_install();
     struct cv_progress *progress =
         cv_progress_create(opt->progress, stderr, stdout);
     unsigned failed = 0;
     for (size_t k = 0; k < sel.n_jobs && !cv_signals_interrupted(); k++) {
         const struct cv_job *job = &m->jobs[sel.jobs[k]];
         struct loaded_scene *ls = &sel.scenes[sel.scene_of[k]];
-        if (opt->resume && !opt->force && cv_job_outputs_current(job)) {
-            cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0,
-                                  "outputs up to date");
+        /* Several workers may share the manifest: a job is rendered only
+         * under its lock, and with --resume checked again once locked, in
+         * case another worker finished it meanwhile. */
+        bool resume = opt->resume && !opt->force;
+        const char *skip = resume && cv_job_outputs_current(job) ? "outputs up to date" : NULL;
+        struct cv_job_lock *lock = NULL;
+        struct cv_error jerr = {{0}};
+        enum cv_lock_status locked = CV_LOCK_FAILED;
+        if (!skip) {
+            locked = cv_job_lock_take(job, &lock, &jerr);
+            if (locked == CV_LOCK_BUSY)
+                skip = "another process is rendering it";
+            else if (locked == CV_LOCK_TAKEN && resume && cv_job_outputs_current(job))
+                skip = "outputs up to date";
+        }
+        bool stop = false;
+        if (skip) {
+            cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0, skip);
         } else {
             cv_progress_job_started(progress, job->name, (unsigned)k + 1, (unsigned)sel.n_jobs,
                                     sel.plans[k].spp);
             struct cv_job_result res = {0};
-            struct cv_error jerr = {{0}};
-            bool uploaded = ls->gpu_scene != NULL;
-            if (!uploaded) {
-                uploaded = cv_scene_gpu_create(gpu, ls->scene, opt->bvh, &ls->gpu_scene, &jerr);
-                if (!uploaded)
-                    cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
+            bool ready = locked == CV_LOCK_TAKEN; /* else jerr says why */
+            if (!ready) {
+                cv_error_prefix(&jerr, "job \"%s\": ", job->name);
+            } else if (!ls->gpu_scene &&
+                       !cv_scene_gpu_create(gpu, ls->scene, opt->bvh, &ls->gpu_scene, &jerr)) {
+                cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
+                ready = false;
             }
-            if (uploaded && cv_run_job(gpu, &sel.plans[k], ls->scene, ls->gpu_scene, progress,
-                                       &res, &jerr)) {
+            if (ready && cv_run_job(gpu, &sel.plans[k], ls->scene, ls->gpu_scene, progress,
+                                    &res, &jerr)) {
                 cv_progress_job_ended(progress, job->name, res.partial ? CV_JOB_PARTIAL : CV_JOB_DONE,
                                       res.spp, res.seconds, res.written);
             } else {
@@ -213,10 +236,12 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                 cv_error_log("%s", jerr.msg);
                 cv_progress_job_ended(progress, job->name, CV_JOB_FAILED, res.spp, res.seconds,
                                       jerr.msg);
-                if (opt->fail_fast)
-                    break;
+                stop = opt->fail_fast;
             }
         }
+        cv_job_lock_release(&lock);
+        if (stop)
+            break;
         /* Free a scene after the last job that uses it. */
         if (ls->last_use == k) {
             cv_scene_gpu_destroy(&ls->gpu_scene);

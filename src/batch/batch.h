@@ -20,6 +20,7 @@ struct cv_batch_options {
     bool force;                    /* overwrite outputs even when resuming would skip */
     bool fail_fast;                /* stop at the first failed job */
     bool strict;                   /* scene warnings are errors */
+    const char *scene_root;        /* files scenes read must lie in it; NULL: anywhere */
     unsigned shard_index, shard_count;  /* shard_count 0: no sharding */
     double time_limit;             /* [s] per job, 0: only the manifest's */
     enum cv_progress_mode progress;

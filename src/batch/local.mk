@@ -1,6 +1,7 @@
 # src/batch: runs a manifest's jobs.
 libcavalry_a_SOURCES += \
 	src/batch/batch.c src/batch/batch.h \
+	src/batch/job_lock.c src/batch/job_lock.h \
 	src/batch/pass_size.c src/batch/pass_size.h \
 	src/batch/plan.c src/batch/plan.h \
 	src/batch/progress.c src/batch/progress.h \

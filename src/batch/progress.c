@@ -1,4 +1,5 @@
 /* progress.c: see progress.h. */
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -19,6 +20,7 @@ struct cv_progress {
     enum cv_progress_mode mode;
     FILE *tty, *json;
     bool line_open;      /* a \r-updated bar is on screen */
+    bool json_lost;      /* a write to the JSON stream failed: reported, no more tried */
     struct job_row *rows;
     size_t n_rows, cap_rows;
 };
@@ -90,6 +92,12 @@ void cv_json_string(FILE *out, const char *s)
     fputc('"', out);
 }
 
+/* JSON events are written only while the stream takes them. */
+static bool json_on(const struct cv_progress *p)
+{
+    return p->mode == CV_PROGRESS_JSON && !p->json_lost;
+}
+
 static void json_begin(struct cv_progress *p, const char *event, const char *job)
 {
     fprintf(p->json, "{\"event\":\"%s\"", event);
@@ -99,10 +107,16 @@ static void json_begin(struct cv_progress *p, const char *event, const char *job
     }
 }
 
+/* A reader that went away (SIGPIPE is ignored, so EPIPE), a full disk: the
+ * render goes on, but whoever watches the stream must learn why it stopped. */
 static void json_end(struct cv_progress *p)
 {
     fputs("}\n", p->json);
-    fflush(p->json);
+    if (fflush(p->json) != 0 || ferror(p->json)) {
+        cv_warn("progress stream: write failed (%s); no more progress events are written",
+                strerror(errno));
+        p->json_lost = true;
+    }
 }
 
 static void close_line(struct cv_progress *p)
@@ -116,7 +130,7 @@ static void close_line(struct cv_progress *p)
 void cv_progress_job_started(struct cv_progress *p, const char *job, unsigned index,
                              unsigned total, uint32_t target_spp)
 {
-    if (p->mode == CV_PROGRESS_JSON) {
+    if (json_on(p)) {
         json_begin(p, "job_started", job);
         fprintf(p->json, ",\"index\":%u,\"total\":%u,\"target_spp\":%u", index, total, target_spp);
         json_end(p);
@@ -141,7 +155,7 @@ static void human_rate(char *buf, size_t n, double v)
 void cv_progress_update(struct cv_progress *p, const char *job, uint32_t spp, uint32_t target_spp,
                         double rays_per_s, double elapsed_s, double eta_s)
 {
-    if (p->mode == CV_PROGRESS_JSON) {
+    if (json_on(p)) {
         json_begin(p, "progress", job);
         fprintf(p->json, ",\"spp\":%u,\"target_spp\":%u,\"rays_per_s\":%.0f,\"elapsed_s\":%.3f", spp,
                 target_spp, rays_per_s, elapsed_s);
@@ -176,7 +190,7 @@ void cv_progress_job_ended(struct cv_progress *p, const char *job, enum cv_job_o
         .detail = detail ? cv_xstrdup(detail) : NULL,
     };
     CV_PUSH(p->rows, p->n_rows, p->cap_rows, row);
-    if (p->mode == CV_PROGRESS_JSON) {
+    if (json_on(p)) {
         char event[32];
         snprintf(event, sizeof(event), "job_%s", outcome == CV_JOB_DONE ? "finished"
                                                  : outcome == CV_JOB_PARTIAL ? "partial"
@@ -200,7 +214,7 @@ void cv_progress_summary(struct cv_progress *p)
     unsigned counts[4] = {0};
     for (size_t i = 0; i < p->n_rows; i++)
         counts[p->rows[i].outcome]++;
-    if (p->mode == CV_PROGRESS_JSON) {
+    if (json_on(p)) {
         json_begin(p, "batch_finished", NULL);
         fprintf(p->json, ",\"done\":%u,\"partial\":%u,\"failed\":%u,\"skipped\":%u",
                 counts[CV_JOB_DONE], counts[CV_JOB_PARTIAL], counts[CV_JOB_FAILED],

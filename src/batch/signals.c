@@ -30,9 +30,20 @@ void cv_signals_install(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    /* A reader that goes away (a pipe to "head -1", a closed log) must not
+     * kill the render: writes then fail with EPIPE, which the progress
+     * stream reports once. */
+    sa.sa_handler = SIG_IGN;
+    sigaction(SIGPIPE, &sa, NULL);
 }
 
 bool cv_signals_interrupted(void)
 {
     return received != 0;
+}
+
+int cv_signals_which(void)
+{
+    return received;
 }

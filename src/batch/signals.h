@@ -1,6 +1,8 @@
-/* signals.h: SIGINT and SIGTERM ask the batch to stop after the current
- * pass; the job in flight then writes what it has as a complete image marked
- * partial. A second signal of either kind exits at once. */
+/* signals.h: SIGINT, SIGTERM and SIGHUP ask the batch to stop after the
+ * current pass; the job in flight then writes what it has as a complete image
+ * marked partial, and the process exits with 128 + the signal's number, as a
+ * shell reports a process killed by it. A second signal exits at once.
+ * SIGPIPE is ignored: a closed stdout does not stop a render. */
 #ifndef CV_BATCH_SIGNALS_H
 #define CV_BATCH_SIGNALS_H
 
@@ -8,5 +10,7 @@
 
 void cv_signals_install(void);
 bool cv_signals_interrupted(void);
+/* The signal number received first, 0 when none. */
+int cv_signals_which(void);
 
 #endif

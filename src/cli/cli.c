@@ -11,11 +11,13 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "batch/batch.h"
+#include "batch/signals.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "cli/knobs.h"
 #include "gpu/context.h"
 #include "manifest/keys.h"
+#include "manifest/shard.h"
 #include "scene/dump.h"
 #include "scene/scene.h"
 
@@ -40,6 +42,7 @@ static void usage(FILE *out)
           "      --progress=MODE     auto, bar, json or none\n"
           "      --strict            treat warnings about scenes and jobs as errors (a\n"
           "                          scene's integrator rendered with another, too)\n"
+          "      --scene-root=DIR    refuse scene files outside DIR (untrusted scenes)\n"
           "      --dump-scene=FILE   print a summary of a pbrt scene and exit\n"
           "      --list-gpus         list the GPUs and which one would be used\n"
           "      --list-keys         list the manifest keys: name, type, default, meaning\n"
@@ -50,8 +53,8 @@ static void usage(FILE *out)
           "\n"
           "Environment (man cavalry-batch for more):\n"
           "  OCIO                    OpenColorIO config for jobs that name none\n"
-          "  SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX\n"
-          "                          shard index in a Slurm array or Kubernetes indexed Job\n"
+          "  SLURM_ARRAY_TASK_ID, _MIN, _MAX, _STEP, _COUNT, JOB_COMPLETION_INDEX\n"
+          "                          shard in a Slurm array or Kubernetes indexed Job\n"
           "  CAVALRY_CACHE_DIR       disk cache of linked GPU programs\n"
           "  CAVALRY_DATA_DIR        read shaders and configs from a source tree\n"
           "  CAVALRY_BVH_ROUNDS      treelet restructuring rounds, 0 to 32 (default 3)\n"
@@ -59,8 +62,8 @@ static void usage(FILE *out)
           "  CAVALRY_STAGE_TIMES     time every render stage (diagnostic; slower)\n"
           "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
-          "or scene, 4 no usable GPU, 70 out of memory, 130 interrupted (partial images\n"
-          "written).\n",
+          "or scene, 4 no usable GPU, 70 out of memory, 128+N stopped by signal N (130\n"
+          "SIGINT, 143 SIGTERM, 129 SIGHUP; partial images written).\n",
           out);
 }
 
@@ -96,39 +99,71 @@ static bool parse_uint(const char *s, unsigned max, unsigned *out)
     return true;
 }
 
-/* Farm schedulers say which task this is: Slurm job arrays, and Kubernetes
- * indexed Jobs (which give no count: --shard-count must be set). */
+/* Reads an optional unsigned variable; false when set but not a number. */
+static bool env_uint(const char *name, unsigned *out)
+{
+    const char *s = getenv(name);
+    if (!s || !*s)
+        return true;
+    if (!parse_uint(s, 1u << 30, out)) {
+        cv_error_log("%s is not a number: \"%s\"", name, s);
+        return false;
+    }
+    return true;
+}
+
+/* Farm schedulers say which task this is: Slurm job arrays (with their
+ * offset and step), and Kubernetes indexed Jobs (which give no count:
+ * --shard-count must be set). */
 static bool shard_from_environment(struct cv_batch_options *o, bool *have_index, bool have_count)
 {
+    if (*have_index)
+        return true;
     const char *id = getenv("SLURM_ARRAY_TASK_ID");
-    const char *count = getenv("SLURM_ARRAY_TASK_COUNT");
-    const char *min = getenv("SLURM_ARRAY_TASK_MIN");
-    unsigned v, c, m = 0;
-    if (!*have_index && id && count && parse_uint(id, 1u << 30, &v) &&
-        parse_uint(count, 1u << 30, &c)) {
-        if ((min && !parse_uint(min, 1u << 30, &m)) || m > v)
+    if (id && *id) {
+        unsigned v = 0, min = 0, step = 0, count = 0, max = 0, index, n;
+        if (!env_uint("SLURM_ARRAY_TASK_ID", &v) || !env_uint("SLURM_ARRAY_TASK_MIN", &min) ||
+            !env_uint("SLURM_ARRAY_TASK_MAX", &max) || !env_uint("SLURM_ARRAY_TASK_STEP", &step) ||
+            !env_uint("SLURM_ARRAY_TASK_COUNT", &count))
             return false;
-        o->shard_index = v - m;
+        if (!getenv("SLURM_ARRAY_TASK_MAX")) {
+            if (!count) {
+                cv_error_log("SLURM_ARRAY_TASK_ID is set without "
+                             "SLURM_ARRAY_TASK_MAX or SLURM_ARRAY_TASK_COUNT");
+                return false;
+            }
+            max = min + (count - 1) * (step ? step : 1);
+        }
+        const char *why;
+        if (!cv_shard_from_array(v, min, max, step, count, &index, &n, &why)) {
+            cv_error_log("Slurm array task %u (min %u, max %u, step %u, "
+                         "count %u): %s", v, min, max, step ? step : 1, count, why);
+            return false;
+        }
+        o->shard_index = index;
         *have_index = true;
         if (!have_count)
-            o->shard_count = c;
+            o->shard_count = n;
         return true;
     }
     const char *k8s = getenv("JOB_COMPLETION_INDEX");
-    if (!*have_index && k8s) {
-        if (!parse_uint(k8s, 1u << 30, &v))
+    if (k8s) {
+        unsigned v;
+        if (!parse_uint(k8s, 1u << 30, &v)) {
+            cv_error_log("JOB_COMPLETION_INDEX is not a number: \"%s\"", k8s);
             return false;
+        }
         o->shard_index = v;
         *have_index = true;
     }
     return true;
 }
 
-static int dump_scene(const char *path, bool strict)
+static int dump_scene(const char *path, bool strict, const char *root)
 {
     struct cv_scene *scene = NULL;
     struct cv_error err = {{0}};
-    struct cv_scene_load_params lp = {.strict = strict};
+    struct cv_scene_load_params lp = {.strict = strict, .root = root};
     if (!cv_scene_load(path, &lp, &scene, &err)) {
         cv_error_log("%s", err.msg);
         return CV_EXIT_INVALID;
@@ -143,7 +178,7 @@ int cv_cli_main(int argc, char **argv)
     enum {
         OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
         OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
-        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS,
+        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS, OPT_SCENE_ROOT,
     };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
@@ -159,6 +194,7 @@ int cv_cli_main(int argc, char **argv)
         {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
         {"progress", required_argument, NULL, OPT_PROGRESS},
         {"strict", no_argument, NULL, OPT_STRICT},
+        {"scene-root", required_argument, NULL, OPT_SCENE_ROOT},
         {"dump-scene", required_argument, NULL, OPT_DUMP_SCENE},
         {"list-gpus", no_argument, NULL, OPT_LIST_GPUS},
         {"list-keys", no_argument, NULL, OPT_LIST_KEYS},
@@ -190,6 +226,7 @@ int cv_cli_main(int argc, char **argv)
         case OPT_FORCE: o.force = true; break;
         case OPT_FAIL_FAST: o.fail_fast = true; break;
         case OPT_STRICT: o.strict = true; break;
+        case OPT_SCENE_ROOT: o.scene_root = optarg; break;
         case OPT_DUMP_SCENE: dump = optarg; break;
         case OPT_LIST_GPUS: list_gpus = true; break;
         case OPT_LIST_KEYS:
@@ -269,19 +306,27 @@ int cv_cli_main(int argc, char **argv)
         return CV_EXIT_OK;
     }
     if (dump)
-        return dump_scene(dump, o.strict);
+        return dump_scene(dump, o.strict, o.scene_root);
     if (optind != argc - 1) {
         cv_error_log("%s",
                 optind >= argc ? "no manifest given" : "one manifest at a time");
         usage(stderr);
         return CV_EXIT_USAGE;
     }
-    if (!shard_from_environment(&o, &have_index, have_count)) {
-        cv_error_log("cannot read the shard from the environment");
+    if (!shard_from_environment(&o, &have_index, have_count))
         return CV_EXIT_USAGE;
-    }
     if (have_index && !o.shard_count) {
         cv_error_log("a shard index needs --shard-count");
+        return CV_EXIT_USAGE;
+    }
+    /* Without an index every worker would render shard 0: the same jobs. */
+    if (have_count && !have_index) {
+        cv_error_log("--shard-count needs --shard-index, "
+                     "SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX");
+        return CV_EXIT_USAGE;
+    }
+    if (have_count && !o.shard_count) {
+        cv_error_log("--shard-count must be at least 1");
         return CV_EXIT_USAGE;
     }
     if (o.shard_count && o.shard_index >= o.shard_count) {
@@ -294,7 +339,7 @@ int cv_cli_main(int argc, char **argv)
     case CV_BATCH_JOBS_FAILED: return CV_EXIT_JOBS_FAILED;
     case CV_BATCH_INVALID: return CV_EXIT_INVALID;
     case CV_BATCH_NO_GPU: return CV_EXIT_NO_GPU;
-    case CV_BATCH_INTERRUPTED: return CV_EXIT_INTERRUPTED;
+    case CV_BATCH_INTERRUPTED: return CV_EXIT_SIGNAL_BASE + cv_signals_which();
     }
     return CV_EXIT_JOBS_FAILED;
 }

@@ -10,7 +10,10 @@ enum cv_exit_code {
     CV_EXIT_INVALID = 3,       /* invalid manifest or scene: nothing rendered */
     CV_EXIT_NO_GPU = 4,        /* no usable GPU context */
     CV_EXIT_NO_MEMORY = 70,    /* out of host memory (base/mem.h's handler) */
-    CV_EXIT_INTERRUPTED = 130, /* SIGINT/SIGTERM: partial images written */
+    /* Stopped by SIGINT, SIGTERM or SIGHUP: partial images written; the
+     * status is this plus the signal's number (130, 143, 129), as a shell
+     * reports a process the signal killed. */
+    CV_EXIT_SIGNAL_BASE = 128,
 };
 
 #endif

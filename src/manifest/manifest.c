@@ -15,7 +15,9 @@
 #include "manifest/diag.h"
 #include "manifest/job_hash.h"
 #include "manifest/job_parse.h"
+#include "manifest/key_set.h"
 #include "manifest/manifest.h"
+#include "manifest/yaml_scan.h"
 #include "manifest/yaml_view.h"
 
 static const char *const top_keys[] = {"version", "defaults", "jobs", "x-*"};
@@ -132,31 +134,34 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
 
 /* Names and output files must be unique: two jobs writing one file would
  * silently overwrite each other on a farm. */
+/* Sets of names and outputs seen: linear in the number of jobs. */
 static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
                          struct cv_diag *d)
 {
+    struct cv_key_set names = {0}, outputs = {0};
     for (size_t i = 0; i < n; i++) {
         struct cv_job_draft *a = &jobs[i];
-        for (size_t k = 0; k < i; k++) {
+        if (!a->job.name)
+            continue;
+        size_t k;
+        if (!cv_key_set_add(&names, a->job.name, i, &k)) {
             struct cv_job_draft *b = &jobs[k];
-            if (a->job.name && b->job.name && !strcmp(a->job.name, b->job.name)) {
-                cv_diag_add(d, a->job.at[CV_K_NAME].line, a->job.at[CV_K_NAME].col,
-                            "duplicate job name \"%s\" (first defined at %s:%u:%u)",
-                            a->job.name, file, b->job.at[CV_K_NAME].line,
-                            b->job.at[CV_K_NAME].col);
-                break;
-            }
-            if (a->job.name && b->job.name && !strcmp(a->job.output, b->job.output)) {
-                const struct cv_key_at *oat = &a->job.at[CV_K_OUTPUT];
-                bool given = oat->line != 0;
-                cv_diag_add(d, given ? oat->line : a->at.line, given ? oat->col : a->at.col,
-                            "job \"%s\": output \"%s\" is also the output of job \"%s\" "
-                            "(line %zu); put {name} in the output template",
-                            a->job.name, a->job.output, b->job.name, b->at.line);
-                break;
-            }
+            cv_diag_add(d, a->job.at[CV_K_NAME].line, a->job.at[CV_K_NAME].col,
+                        "duplicate job name \"%s\" (first defined at %s:%u:%u)",
+                        a->job.name, file, b->job.at[CV_K_NAME].line,
+                        b->job.at[CV_K_NAME].col);
+        } else if (a->job.output && !cv_key_set_add(&outputs, a->job.output, i, &k)) {
+            struct cv_job_draft *b = &jobs[k];
+            const struct cv_key_at *oat = &a->job.at[CV_K_OUTPUT];
+            bool given = oat->line != 0;
+            cv_diag_add(d, given ? oat->line : a->at.line, given ? oat->col : a->at.col,
+                        "job \"%s\": output \"%s\" is also the output of job \"%s\" "
+                        "(line %zu); put {name} in the output template",
+                        a->job.name, a->job.output, b->job.name, b->at.line);
         }
     }
+    cv_key_set_clear(&names);
+    cv_key_set_clear(&outputs);
 }
 
 static void read_version(yaml_node_t *v, struct cv_diag *d)
@@ -238,6 +243,10 @@ bool cv_manifest_load(const char *path, struct cv_manifest **out, struct cv_erro
         return false;
 
     struct cv_diag d = {.file = path};
+    if (!cv_yaml_scan(data, len, &d)) {
+        free(data);
+        return cv_diag_finish(&d, err);
+    }
     yaml_parser_t parser;
     yaml_document_t doc;
     if (!yaml_parser_initialize(&parser)) {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "manifest/key_set.h"
 #include "manifest/yaml_view.h"
 
 /* Merge chains deeper than this are certainly a mistake (or a cycle). */
@@ -60,14 +61,6 @@ static const char *scalar(const yaml_node_t *n)
     return (const char *)n->data.scalar.value;
 }
 
-static bool has_key(const struct cv_ypair *pairs, size_t n, const char *key)
-{
-    for (size_t i = 0; i < n; i++)
-        if (!strcmp(cv_ykey(&pairs[i]), key))
-            return true;
-    return false;
-}
-
 static bool is_merge_key(const yaml_node_t *k)
 {
     return k->type == YAML_SCALAR_NODE && k->data.scalar.style == YAML_PLAIN_SCALAR_STYLE &&
@@ -87,14 +80,16 @@ struct merge_walk {
     int depth;
     long budget;
     bool reported;
+    unsigned long compares;  /* key comparisons of the duplicate checks */
 };
 
+/* Appends the pairs of map, its own first, to the empty list *out. */
 static void collect(struct merge_walk *w, yaml_node_t *map, struct cv_ypair **out, size_t *n,
                     size_t *cap);
 
-/* Appends the pairs of one merge source whose keys are not there yet. */
-static void merge_from(struct merge_walk *w, yaml_node_t *src, struct cv_ypair **out,
-                       size_t *n, size_t *cap)
+/* Appends the pairs of one merge source whose keys are not in seen yet. */
+static void merge_from(struct merge_walk *w, yaml_node_t *src, struct cv_key_set *seen,
+                       struct cv_ypair **out, size_t *n, size_t *cap)
 {
     if (src->type != YAML_MAPPING_NODE) {
         cv_diag_add(w->d, cv_yline(src), cv_ycol(src),
@@ -113,7 +108,7 @@ static void merge_from(struct merge_walk *w, yaml_node_t *src, struct cv_ypair *
     size_t sn = 0, scap = 0;
     collect(w, src, &sub, &sn, &scap);
     for (size_t i = 0; i < sn; i++)
-        if (!has_key(*out, *n, cv_ykey(&sub[i])))
+        if (cv_key_set_add(seen, cv_ykey(&sub[i]), *n, NULL))
             CV_PUSH(*out, *n, *cap, sub[i]);
     free(sub);
 }
@@ -131,7 +126,7 @@ static void collect(struct merge_walk *w, yaml_node_t *map, struct cv_ypair **ou
     w->chain[w->depth++] = map;
     yaml_node_t *merges[64];
     size_t n_merges = 0;
-    size_t own_start = *n;
+    struct cv_key_set seen = {0}; /* keys in *out, valued by their index */
     for (yaml_node_pair_t *p = map->data.mapping.pairs.start; p < map->data.mapping.pairs.top;
          p++) {
         yaml_node_t *k = yaml_document_get_node(w->doc, p->key);
@@ -155,35 +150,40 @@ static void collect(struct merge_walk *w, yaml_node_t *map, struct cv_ypair **ou
                         cv_ykind(k));
             continue;
         }
-        bool dup = false;
-        for (size_t i = own_start; i < *n; i++) {
-            if (!strcmp(cv_ykey(&(*out)[i]), scalar(k))) {
-                cv_diag_add(w->d, cv_yline(k), cv_ycol(k),
-                            "duplicate key \"%s\" (first given at line %zu)", scalar(k),
-                            cv_yline((*out)[i].key));
-                dup = true;
-                break;
-            }
+        size_t first;
+        if (!cv_key_set_add(&seen, scalar(k), *n, &first)) {
+            cv_diag_add(w->d, cv_yline(k), cv_ycol(k),
+                        "duplicate key \"%s\" (first given at line %zu)", scalar(k),
+                        cv_yline((*out)[first].key));
+            continue;
         }
-        if (!dup) {
-            struct cv_ypair pair = {k, v};
-            CV_PUSH(*out, *n, *cap, pair);
-        }
+        struct cv_ypair pair = {k, v};
+        CV_PUSH(*out, *n, *cap, pair);
     }
     for (size_t i = 0; i < n_merges; i++)
         if (merges[i])
-            merge_from(w, merges[i], out, n, cap);
+            merge_from(w, merges[i], &seen, out, n, cap);
+    w->compares += seen.compares;
+    cv_key_set_clear(&seen);
     w->depth--;
 }
 
-size_t cv_ymap_pairs(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
-                     struct cv_ypair **pairs)
+size_t cv_ymap_pairs_counted(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
+                             struct cv_ypair **pairs, unsigned long *compares)
 {
     size_t n = 0, cap = 0;
     struct merge_walk w = {.doc = doc, .d = d, .budget = MERGE_BUDGET};
     *pairs = NULL;
     collect(&w, map, pairs, &n, &cap);
+    if (compares)
+        *compares = w.compares;
     return n;
+}
+
+size_t cv_ymap_pairs(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
+                     struct cv_ypair **pairs)
+{
+    return cv_ymap_pairs_counted(doc, map, d, pairs, NULL);
 }
 
 static void expected(yaml_node_t *n, struct cv_diag *d, const char *what, const char *exp)

@@ -35,6 +35,10 @@ const char *cv_ykind(const yaml_node_t *n);
  * reported. *pairs is newly allocated (free()); returns the count. */
 size_t cv_ymap_pairs(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
                      struct cv_ypair **pairs);
+/* The same, telling how many key comparisons its duplicate checks made
+ * (expected linear in the number of pairs; the tests hold it to that). */
+size_t cv_ymap_pairs_counted(yaml_document_t *doc, yaml_node_t *map, struct cv_diag *d,
+                             struct cv_ypair **pairs, unsigned long *compares);
 
 /* Each reader checks the node and reports "<what>: expected ..., got ..."
  * at the node on failure, returning false and leaving *out alone. */

@@ -3,11 +3,13 @@
  * flags, emitting triangles become one area light each, object instances are
  * flattened (copied per instance: the scenes we target instance little, and
  * a flat list keeps the BVH and shaders simple). */
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "base/file.h"
 #include "base/log.h"
@@ -107,22 +109,68 @@ void cv_b_free(struct cv_builder *b)
     free(b->objects);
     free(b->color_space);
     free(b->main_dir);
+    free(b->root);
     for (size_t i = 0; i < b->n_paths; i++)
         free(b->paths[i]);
     free(b->paths);
     memset(b, 0, sizeof(*b));
 }
 
-char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name)
+bool cv_b_set_root(struct cv_builder *b, const char *root, struct cv_error *err)
+{
+    char *real = realpath(root, NULL);
+    struct stat st;
+    if (!real || stat(real, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        bool exists = real != NULL;
+        free(real);
+        return cv_fail(err, "scene root \"%s\": %s", root,
+                       exists ? "not a folder" : strerror(errno));
+    }
+    free(b->root);
+    b->root = real;
+    return true;
+}
+
+/* The test is on real paths, so neither "../" nor a symbolic link (to a
+ * file or to a folder above) leads out. A file that does not exist is
+ * judged by its folder, so that whether a file outside exists cannot be
+ * learnt from the message; with no folder either, its reader reports it. */
+bool cv_b_check_root(struct cv_builder *b, const char *path, struct cv_error *err)
+{
+    if (!b->root)
+        return true;
+    char *real = realpath(path, NULL);
+    if (!real) {
+        char *dir = cv_path_dirname(path);
+        real = realpath(dir, NULL);
+        free(dir);
+        if (!real)
+            return true;
+    }
+    size_t n = strlen(b->root);
+    bool inside = strncmp(real, b->root, n) == 0 &&
+                  (real[n] == '/' || real[n] == '\0' || b->root[n - 1] == '/');
+    free(real);
+    if (!inside)
+        return cv_fail(err, "%s: outside the scene root %s (--scene-root)", path, b->root);
+    return true;
+}
+
+char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name, struct cv_error *err)
 {
     char *path = cv_path_join(dir, name);
     if (b->main_dir && !cv_path_exists(path)) {
         char *alt = cv_path_join(b->main_dir, name);
         if (cv_path_exists(alt)) {
             free(path);
-            return alt;
+            path = alt;
+        } else {
+            free(alt);
         }
-        free(alt);
+    }
+    if (!cv_b_check_root(b, path, err) || !cv_input_check(path, err)) {
+        free(path);
+        return NULL;
     }
     return path;
 }

@@ -103,6 +103,7 @@ struct cv_builder {
     struct cv_named *images;     /* "path|srgb" -> texture index */
     size_t n_images, cap_images;
     char *main_dir;              /* folder of the top-level scene file */
+    char *root;                  /* real path every file read must lie in; NULL: any */
     char **paths;                /* every file read, kept for locations */
     size_t n_paths, cap_paths;
 };
@@ -129,8 +130,16 @@ int cv_b_add_texture(struct cv_builder *b, const CvTexture *t);
 uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power);
 /* A file named in the scene: relative to the folder of the file that names
  * it (dir); failing that, relative to the top-level file's folder, which is
- * what pbrt itself does for nested includes. Newly allocated. */
-char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name);
+ * what pbrt itself does for nested includes. Newly allocated. NULL, with
+ * err naming the path, when the file is no regular file within the input
+ * size limit, or lies outside the scene root (symbolic links and ".."
+ * resolved); the caller adds the location. */
+char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name, struct cv_error *err);
+/* Confines every file read to the folder root (--scene-root); false, with
+ * err set, when root is no folder. */
+bool cv_b_set_root(struct cv_builder *b, const char *root, struct cv_error *err);
+/* path lies inside the scene root (true when there is none). */
+bool cv_b_check_root(struct cv_builder *b, const char *path, struct cv_error *err);
 int cv_b_lookup(const struct cv_named *v, size_t n, const char *name);
 void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *name, int index);
 

@@ -205,8 +205,8 @@ static bool load_stb(const char *path, bool srgb, struct cv_image *img, struct c
 bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_error *err)
 {
     memset(img, 0, sizeof(*img));
-    if (!cv_path_exists(path))
-        return cv_fail(err, "%s: no such file", path);
+    if (!cv_input_check(path, err))
+        return false;
     if (ext_is(path, "pfm"))
         return load_pfm(path, img, err);
     if (ext_is(path, "exr"))

@@ -383,6 +383,28 @@ static void attrs_apply(struct parser *p, const char *target, struct cv_params *
 
 static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_error *err);
 
+/* The names do_directive takes, for telling a scene file from any other
+ * file by its first token alone. */
+static bool known_directive(const struct cv_token *t)
+{
+    static const char *const names[] = {
+        "Accelerator", "ActiveTransform", "AreaLightSource", "Attribute", "AttributeBegin",
+        "AttributeEnd", "Camera", "ColorSpace", "ConcatTransform", "CoordSysTransform",
+        "CoordinateSystem", "Film", "Identity", "Import", "Include", "Integrator",
+        "LightSource", "LookAt", "MakeNamedMaterial", "MakeNamedMedium", "Material",
+        "MediumInterface", "NamedMaterial", "ObjectBegin", "ObjectEnd", "ObjectInstance",
+        "Option", "PixelFilter", "ReverseOrientation", "Rotate", "Sampler", "Scale", "Shape",
+        "Texture", "Transform", "TransformBegin", "TransformEnd", "TransformTimes", "Translate",
+        "WorldBegin", "WorldEnd",
+    };
+    if (t->kind != CV_TOK_WORD)
+        return false;
+    for (size_t i = 0; i < CV_ARRAY_SIZE(names); i++)
+        if (cv_token_is(t, names[i]))
+            return true;
+    return false;
+}
+
 static bool run(struct parser *p, size_t base, struct cv_error *err)
 {
     while (p->n_lx > base) {
@@ -393,6 +415,11 @@ static bool run(struct parser *p, size_t base, struct cv_error *err)
             pop_file(p);
             continue;
         }
+        /* A file that does not start with a directive may be anything the
+         * scene names (Include "/etc/shadow"): its text is not echoed. */
+        if (top(p)->directives++ == 0 && !known_directive(&t))
+            return cv_fail(err, "%s:%d:%d: not a pbrt scene file (it does not start with a "
+                                "directive)", t.file, t.line, t.col);
         if (t.kind != CV_TOK_WORD)
             return cv_fail(err, "%s:%d:%d: expected a directive, found %s\"%.*s\"", t.file,
                            t.line, t.col,
@@ -734,8 +761,14 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (!expect_string(p, d, &name, err))
             return false;
         dir = dir_of(p, d);
-        char *path = cv_b_resolve(b, dir, name);
-        ok = push_file(p, path, name, d, err);
+        char *path = cv_b_resolve(b, dir, name, err);
+        if (path)
+            ok = push_file(p, path, name, d, err);
+        else {
+            cv_error_prefix(err, "%s:%d:%d: cannot include \"%s\"", d->file, d->line, d->col,
+                            name);
+            ok = false;
+        }
         free(path);
     } else {
         return cv_fail(err, "%s:%d:%d: unknown directive \"%.*s\"", d->file, d->line, d->col,
@@ -779,7 +812,7 @@ bool cv_parse_file(struct cv_builder *b, const char *path, struct cv_error *err)
     struct parser p = {.b = b};
     free(b->main_dir);
     b->main_dir = cv_path_dirname(path);
-    if (!push_file(&p, path, path, NULL, err)) {
+    if (!cv_b_check_root(b, path, err) || !push_file(&p, path, path, NULL, err)) {
         free(p.lx);
         free(p.real);
         return false;

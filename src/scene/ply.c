@@ -13,6 +13,7 @@
 #include <zlib.h>
 
 #include "base/file.h"
+#include "base/limits.h"
 #include "base/mem.h"
 #include "scene/ply.h"
 
@@ -473,6 +474,8 @@ bool cv_ply_read(const char *path, struct cv_ply_mesh *m, struct cv_error *err)
 {
     unsigned char *data;
     size_t len;
+    if (!cv_input_check(path, err))
+        return false;
     FILE *f = fopen(path, "rb");
     if (!f)
         return cv_fail(err, "%s: cannot open", path);
@@ -489,6 +492,13 @@ bool cv_ply_read(const char *path, struct cv_ply_mesh *m, struct cv_error *err)
         data = cv_xmalloc(cap + 1);
         for (;;) {
             if (len == cap) {
+                if ((long long)cap >= CV_MAX_INPUT_BYTES) {
+                    cv_fail(err, "%s: more than the %lld bytes an input file may hold, "
+                                 "uncompressed", path, CV_MAX_INPUT_BYTES);
+                    gzclose(gz);
+                    free(data);
+                    return false;
+                }
                 cap *= 2;
                 data = cv_xrealloc(data, cap + 1);
             }

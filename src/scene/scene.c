@@ -34,7 +34,8 @@ bool cv_scene_load(const char *path, const struct cv_scene_load_params *params,
     struct cv_scene *s = cv_xcalloc(1, sizeof(*s));
     struct cv_builder b;
     cv_b_init(&b, s, params && params->strict);
-    bool ok = cv_parse_file(&b, path, err) && cv_b_finish(&b, err);
+    bool ok = (!params || !params->root || cv_b_set_root(&b, params->root, err)) &&
+              cv_parse_file(&b, path, err) && cv_b_finish(&b, err);
     cv_b_free(&b);
     if (!ok) {
         scene_free(s);
@@ -52,7 +53,8 @@ bool cv_scene_load_string(const char *name, const char *text, size_t len,
     struct cv_scene *s = cv_xcalloc(1, sizeof(*s));
     struct cv_builder b;
     cv_b_init(&b, s, params && params->strict);
-    bool ok = cv_parse_string(&b, name, text, len, err) && cv_b_finish(&b, err);
+    bool ok = (!params || !params->root || cv_b_set_root(&b, params->root, err)) &&
+              cv_parse_string(&b, name, text, len, err) && cv_b_finish(&b, err);
     cv_b_free(&b);
     if (!ok) {
         scene_free(s);

@@ -86,6 +86,10 @@ struct cv_scene {
 
 struct cv_scene_load_params {
     bool strict;                     /* warnings become errors */
+    /* NULL, or a folder every file the scene reads (itself, Include and
+     * Import, PLY meshes, textures, spectra) must lie in once symbolic
+     * links and ".." are resolved: for scenes from untrusted hands. */
+    const char *root;
 };
 
 /* Loads a pbrt-v3 or pbrt-v4 file (syntax detected per directive). On failure

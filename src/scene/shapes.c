@@ -481,8 +481,8 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
         if (!file) {
             ok = cv_fail(err, "%s:%d:%d: plymesh has no \"string filename\"", loc->file, loc->line, loc->col);
         } else {
-            char *path = cv_b_resolve(b, dir, file);
-            ok = cv_ply_read(path, &ply, err);
+            char *path = cv_b_resolve(b, dir, file, err);
+            ok = path && cv_ply_read(path, &ply, err);
             free(path);
             if (!ok)
                 cv_error_prefix(err, "%s:%d:%d: plymesh \"%s\"", loc->file, loc->line, loc->col, file);

@@ -219,10 +219,10 @@ bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
                 rgb[0] = rgb[1] = rgb[2] = 1;
                 break;
             }
-            char *path = cv_b_resolve(b, dir, s);
+            char *path = cv_b_resolve(b, dir, s, err);
             double *pairs = NULL;
             size_t n = 0;
-            if (!read_spd(path, &pairs, &n, err)) {
+            if (!path || !read_spd(path, &pairs, &n, err)) {
                 free(path);
                 cv_error_prefix(err, "%s:%d:%d: spectrum \"%s\" is neither a known name nor a readable file",
                                 p->file, p->line, p->col, s);

@@ -83,7 +83,11 @@ static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uin
 int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
                        const struct cv_loc *loc, struct cv_error *err)
 {
-    char *path = cv_b_resolve(b, dir, file);
+    char *path = cv_b_resolve(b, dir, file, err);
+    if (!path) {
+        cv_error_prefix(err, "%s:%d:%d: image \"%s\"", loc->file, loc->line, loc->col, file);
+        return -1;
+    }
     char *key = cv_xasprintf("%s|%d", path, srgb);
     int idx = cv_b_lookup(b->images, b->n_images, key);
     if (idx >= 0) {

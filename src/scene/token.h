@@ -33,6 +33,7 @@ struct cv_lexer {
     int line, col;
     bool has_peek;
     struct cv_token peek;
+    size_t directives; /* read from this file so far (the parser counts) */
 };
 
 /* Opens path; on failure err names the path. */

@@ -3,9 +3,11 @@ check_PROGRAMS += tests/batch/exr_attr tests/batch/exr_same tests/batch/plan_tes
 tests_batch_plan_test_LDADD = $(CV_LIBS)
 tests_batch_exr_attr_LDADD = $(CV_LIBS)
 tests_batch_exr_same_LDADD = $(CV_LIBS)
-TESTS += tests/batch/plan_test tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh tests/batch/shard_test.sh \
-	tests/batch/render_test.sh tests/batch/sigterm_test.sh tests/batch/shared_scene_test.sh
+TESTS += tests/batch/plan_test tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh \
+	tests/batch/shard_test.sh tests/batch/render_test.sh tests/batch/signals_test.sh \
+	tests/batch/shared_scene_test.sh tests/batch/lock_test.sh
 EXTRA_DIST += tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh tests/batch/shard_test.sh \
-	tests/batch/render_test.sh tests/batch/sigterm_test.sh tests/batch/shared_scene_test.sh \
+	tests/batch/render_test.sh tests/batch/signals_test.sh tests/batch/shared_scene_test.sh \
+	tests/batch/lock_test.sh \
 	tests/data/batch/tiny.pbrt tests/data/batch/broken.pbrt tests/data/batch/jobs.yaml \
 	tests/data/batch/many.yaml tests/data/batch/long.yaml

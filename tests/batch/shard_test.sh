@@ -24,4 +24,22 @@ for t in 1 2 3; do
 done
 sort slurm.txt >slurm.sorted
 check "Slurm array of 3 (ids 1..3) covers every job once" cmp -s all.txt slurm.sorted
+# --array=1-9:2: task ids 1, 3, 5, 7, 9, as Slurm sets them.
+: >slurm.txt
+for t in 1 3 5 7 9; do
+    SLURM_ARRAY_TASK_ID=$t SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_MAX=9 SLURM_ARRAY_TASK_STEP=2 \
+        SLURM_ARRAY_TASK_COUNT=5 "$CAVALRY_BATCH" --dry-run many.yaml | cut -d: -f1 >>slurm.txt || true
+done
+sort slurm.txt >slurm.sorted
+check "Slurm --array=1-9:2 covers every job once" cmp -s all.txt slurm.sorted
+SLURM_ARRAY_TASK_ID=9 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_MAX=9 SLURM_ARRAY_TASK_STEP=2 \
+    SLURM_ARRAY_TASK_COUNT=5 "$CAVALRY_BATCH" --dry-run many.yaml | cut -d: -f1 >last.txt || true
+"$CAVALRY_BATCH" --dry-run --shard-index=4 --shard-count=5 many.yaml | cut -d: -f1 >shard4.txt
+check "Slurm task 9 of 1-9:2 is shard 4 of 5" cmp -s last.txt shard4.txt
+set +e
+"$CAVALRY_BATCH" --dry-run --shard-count=3 many.yaml >nodex.out 2>nodex.err
+rc=$?
+set -e
+check "--shard-count without an index: usage error (status $rc)" test "$rc" -eq 2
+check "--shard-count without an index: says so" grep -q 'needs --shard-index' nodex.err
 done_testing

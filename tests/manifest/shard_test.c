@@ -1,6 +1,7 @@
 /* shard_test.c: for 20 jobs and every shard count from 1 to 7, each job is
  * in exactly one shard and shard sizes differ by at most one; invalid shard
- * arguments select nothing. */
+ * arguments select nothing; Slurm array tasks with an offset and a step map
+ * to shards 0..count-1. */
 #include <stdbool.h>
 
 #include "manifest/shard.h"
@@ -37,5 +38,22 @@ int main(void)
     tap_ok(!cv_shard_select(20, 0, 1, 20), "job index past the end selects nothing");
     tap_ok(cv_shard_valid(0, 1) && !cv_shard_valid(1, 1) && !cv_shard_valid(0, 0),
            "cv_shard_valid");
+
+    /* Slurm "--array=1-9:2": tasks 1, 3, 5, 7, 9 are shards 0..4 of 5. */
+    unsigned index, n;
+    const char *why = NULL;
+    bool all = true;
+    for (unsigned id = 1, want = 0; id <= 9; id += 2, want++) {
+        bool got = cv_shard_from_array(id, 1, 9, 2, 5, &index, &n, &why);
+        all &= got && index == want && n == 5;
+    }
+    tap_ok(all, "--array=1-9:2: tasks 1,3,5,7,9 are shards 0..4 of 5");
+    bool refused = !cv_shard_from_array(4, 1, 9, 2, 5, &index, &n, &why);
+    tap_ok(refused, "task 4 of 1-9:2 is refused (%s)", refused ? why : "");
+    tap_ok(!cv_shard_from_array(11, 1, 9, 2, 5, &index, &n, &why), "task 11 of 1-9:2 is refused");
+    tap_ok(cv_shard_from_array(12, 10, 12, 0, 0, &index, &n, &why) && index == 2 && n == 3,
+           "--array=10-12 (no step, no count): task 12 is shard 2 of 3");
+    tap_ok(!cv_shard_from_array(4, 1, 6, 1, 3, &index, &n, &why),
+           "--array=1,4,6 (count 3, range 1-6): refused, cannot be mapped");
     return tap_done();
 }

@@ -12,7 +12,8 @@ check_PROGRAMS += tests/scene/ply_test
 TESTS += tests/scene/ply_test
 tests_scene_ply_test_LDADD = $(CV_LIBS)
 
-TESTS += tests/scene/fuzz_test.sh tests/scene/shared_scenes_test.sh
+TESTS += tests/scene/fuzz_test.sh tests/scene/shared_scenes_test.sh tests/scene/inputs_test.sh
 EXTRA_DIST += tests/scene/scene_helpers.h tests/scene/fuzz_test.sh tests/scene/shared_scenes_test.sh \
+	tests/scene/inputs_test.sh \
 	tests/data/scene/tiny-v3.pbrt tests/data/scene/tiny-v4.pbrt tests/data/scene/errors.pbrt \
 	tests/data/scene/quad.ply tests/data/scene/quad-be.ply tests/data/scene/quad-le.ply

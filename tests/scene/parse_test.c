@@ -540,7 +540,11 @@ static void test_errors(void)
     fails("WorldBegin\nAttributeEnd\n", false, "main.pbrt:2:1: AttributeEnd without a matching AttributeBegin",
           "AttributeEnd without begin");
     fails("WorldBegin\n  AttributeBegin\n", false, "main.pbrt:2:3: AttributeBegin not closed", "AttributeBegin unclosed");
-    fails("Frobnicate 3\n", false, "main.pbrt:1:1: unknown directive \"Frobnicate\"", "unknown directive");
+    fails("WorldBegin\nFrobnicate 3\n", false, "main.pbrt:2:1: unknown directive \"Frobnicate\"",
+          "unknown directive");
+    fails("Frobnicate 3\n", false, "main.pbrt:1:1: not a pbrt scene file", "unknown first word");
+    fails("root:x:0:0:root:/root:/bin/bash\n", false, "main.pbrt:1:1: not a pbrt scene file (it does "
+          "not start with a directive)", "a file that is no scene");
     fails("WorldBegin\nNamedMaterial \"x\"\n", false, "main.pbrt:2:1: unknown named material \"x\"", "unknown material");
     fails("WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" \"nope\"\n", false,
           "main.pbrt:2:20: unknown texture \"nope\"", "unknown texture");

@@ -78,7 +78,7 @@ static inline const char *th_log_text(void)
 /* Loads text as th_dir/main.pbrt. */
 static inline struct cv_scene *th_load(const char *text, bool strict, struct cv_error *err)
 {
-    struct cv_scene_load_params p = {strict};
+    struct cv_scene_load_params p = {.strict = strict};
     struct cv_scene *s = NULL;
     th_log_text();
     if (!cv_scene_load_string(th_path("main.pbrt"), text, strlen(text), &p, &s, err))

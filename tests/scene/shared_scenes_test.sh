@@ -5,7 +5,7 @@
 # project's own v3/v4 twin in tests/data/scene. Skips the shared part when
 # the folder is absent.
 . "$CAVALRY_DATA_DIR/tests/setup.sh"
-dump="$(cd "$(dirname "$0")" && pwd)/dump_scene"
+dump="$CV_TEST_BUILDDIR/scene/dump_scene"
 
 # load DESC OUT ARGS...: dump into OUT; ok when it loads.
 load() {
