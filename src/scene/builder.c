@@ -124,6 +124,12 @@ char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name)
         }
         free(alt);
     }
+    struct cv_scene *sc = b->s;
+    size_t i = 0;
+    while (i < sc->n_inputs && strcmp(sc->inputs[i], path) != 0)
+        i++;
+    if (i == sc->n_inputs)
+        CV_PUSH(sc->inputs, sc->n_inputs, sc->cap_inputs, cv_xstrdup(path));
     return path;
 }
 
