@@ -46,6 +46,7 @@ std::string join(const std::vector<std::string> &v)
 
 OCIO::ConstConfigRcPtr load_config(const char *path, std::string &source)
 {
+    const char *file = cv_ocio_config_file(path);
     if (path && path[0]) {
         source = path;
         if (!file_exists(path))
@@ -60,11 +61,9 @@ OCIO::ConstConfigRcPtr load_config(const char *path, std::string &source)
                           "\", which does not exist (unset OCIO to use Cavalry's shipped config)");
         return OCIO::Config::CreateFromFile(env);
     }
-    const char *dir = getenv("CAVALRY_DATA_DIR");
-    if (dir && dir[0]) {
-        source = std::string(dir) + "/configs/cavalry.ocio";
-        if (file_exists(source.c_str()))
-            return OCIO::Config::CreateFromFile(source.c_str());
+    if (file) {
+        source = file;
+        return OCIO::Config::CreateFromFile(file);
     }
     source = "shipped cavalry.ocio";
     std::istringstream text(cv_ocio_shipped_config);
@@ -412,4 +411,21 @@ extern "C" void cv_ocio_free_names(char ***names)
         free(*n);
     free(*names);
     *names = nullptr;
+}
+
+extern "C" const char *cv_ocio_config_file(const char *config_path)
+{
+    if (config_path && config_path[0])
+        return config_path;
+    const char *env = getenv("OCIO");
+    if (env && env[0])
+        return env;
+    static std::string data;
+    const char *dir = getenv("CAVALRY_DATA_DIR");
+    if (dir && dir[0]) {
+        data = std::string(dir) + "/configs/cavalry.ocio";
+        if (file_exists(data.c_str()))
+            return data.c_str();
+    }
+    return nullptr;
 }

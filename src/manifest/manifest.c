@@ -135,6 +135,10 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
 static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
                          struct cv_diag *d)
 {
+    /* outputs compared in one spelling: out/a, ./out/a, out//a, out/../out/a */
+    char **norm = cv_xcalloc(n ? n : 1, sizeof(char *));
+    for (size_t i = 0; i < n; i++)
+        norm[i] = jobs[i].job.output ? cv_path_normalize(jobs[i].job.output) : NULL;
     for (size_t i = 0; i < n; i++) {
         struct cv_job_draft *a = &jobs[i];
         for (size_t k = 0; k < i; k++) {
@@ -146,7 +150,7 @@ static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
                             b->job.at[CV_K_NAME].col);
                 break;
             }
-            if (a->job.name && b->job.name && !strcmp(a->job.output, b->job.output)) {
+            if (a->job.name && b->job.name && norm[i] && norm[k] && !strcmp(norm[i], norm[k])) {
                 const struct cv_key_at *oat = &a->job.at[CV_K_OUTPUT];
                 bool given = oat->line != 0;
                 cv_diag_add(d, given ? oat->line : a->at.line, given ? oat->col : a->at.col,
@@ -157,6 +161,9 @@ static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
             }
         }
     }
+    for (size_t i = 0; i < n; i++)
+        free(norm[i]);
+    free(norm);
 }
 
 static void read_version(yaml_node_t *v, struct cv_diag *d)
