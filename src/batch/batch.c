@@ -135,7 +135,7 @@ static void print_plan(const struct cv_manifest *m, const struct selection *p,
         const struct cv_job *job = &m->jobs[p->jobs[k]];
         const struct cv_render_plan *plan = &p->plans[k];
         uint32_t w = plan->width, h = plan->height, spp = plan->spp;
-        bool skip = opt->resume && !opt->force && cv_job_outputs_current(job);
+        bool skip = opt->resume && !opt->force && cv_job_outputs_current(plan);
         char formats[64] = "";
         for (unsigned i = 0; i < cv_format_names.count; i++)
             if (job->formats & (1u << i))
@@ -189,7 +189,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
     for (size_t k = 0; k < sel.n_jobs && !cv_signals_interrupted(); k++) {
         const struct cv_job *job = &m->jobs[sel.jobs[k]];
         struct loaded_scene *ls = &sel.scenes[sel.scene_of[k]];
-        if (opt->resume && !opt->force && cv_job_outputs_current(job)) {
+        if (opt->resume && !opt->force && cv_job_outputs_current(&sel.plans[k])) {
             cv_progress_job_ended(progress, job->name, CV_JOB_SKIPPED, 0, 0,
                                   "outputs up to date");
         } else {
