@@ -137,3 +137,44 @@ bool cv_path_exists(const char *path)
     struct stat st;
     return stat(path, &st) == 0;
 }
+
+char *cv_path_normalize(const char *path)
+{
+    char *joined;
+    if (path[0] == '/') {
+        joined = cv_xstrdup(path);
+    } else {
+        char *cwd = getcwd(NULL, 0);
+        joined = cv_xasprintf("%s/%s", cwd ? cwd : ".", path);
+        free(cwd);
+    }
+    /* out never outgrows joined: each component is copied at most once */
+    char *out = cv_xmalloc(strlen(joined) + 2);
+    size_t n = 0;
+    for (char *p = joined; *p;) {
+        while (*p == '/')
+            p++;
+        char *end = p;
+        while (*end && *end != '/')
+            end++;
+        size_t len = (size_t)(end - p);
+        if (len == 0 || (len == 1 && p[0] == '.')) {
+            /* nothing */
+        } else if (len == 2 && p[0] == '.' && p[1] == '.') {
+            while (n > 0 && out[n - 1] != '/')
+                n--;
+            if (n > 0)
+                n--;
+        } else {
+            out[n++] = '/';
+            memcpy(out + n, p, len);
+            n += len;
+        }
+        p = end;
+    }
+    if (n == 0)
+        out[n++] = '/';
+    out[n] = '\0';
+    free(joined);
+    return out;
+}

@@ -20,6 +20,11 @@ char *cv_path_dirname(const char *path);
 /* Newly allocated dir/rel, or rel itself when rel is absolute or dir empty. */
 char *cv_path_join(const char *dir, const char *rel);
 bool cv_path_exists(const char *path);
+/* Newly allocated absolute form of path, spelled one way: joined to the
+ * working folder, "//" and "." dropped, ".." taken lexically (symbolic
+ * links are not followed: two spellings of one file through a link still
+ * differ). For comparing paths, not for opening them. */
+char *cv_path_normalize(const char *path);
 /* Creates the folders above path that do not exist yet (mkdir -p of its
  * dirname), mode 0777 less the umask. */
 bool cv_mkdir_parents(const char *path, struct cv_error *err);

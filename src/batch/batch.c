@@ -137,7 +137,7 @@ static void print_plan(const struct cv_manifest *m, const struct selection *p,
         const struct cv_job *job = &m->jobs[p->jobs[k]];
         const struct cv_render_plan *plan = &p->plans[k];
         uint32_t w = plan->width, h = plan->height, spp = plan->spp;
-        bool skip = opt->resume && !opt->force && cv_job_outputs_current(job);
+        bool skip = opt->resume && !opt->force && cv_job_outputs_current(plan);
         char formats[64] = "";
         for (unsigned i = 0; i < cv_format_names.count; i++)
             if (job->formats & (1u << i))
@@ -201,7 +201,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
          * under its lock, and with --resume checked again once locked, in
          * case another worker finished it meanwhile. */
         bool resume = opt->resume && !opt->force;
-        const char *skip = resume && cv_job_outputs_current(job) ? "outputs up to date" : NULL;
+        const char *skip = resume && cv_job_outputs_current(&sel.plans[k]) ? "outputs up to date" : NULL;
         struct cv_job_lock *lock = NULL;
         struct cv_error jerr = {{0}};
         enum cv_lock_status locked = CV_LOCK_FAILED;
@@ -209,7 +209,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
             locked = cv_job_lock_take(job, &lock, &jerr);
             if (locked == CV_LOCK_BUSY)
                 skip = "another process is rendering it";
-            else if (locked == CV_LOCK_TAKEN && resume && cv_job_outputs_current(job))
+            else if (locked == CV_LOCK_TAKEN && resume && cv_job_outputs_current(&sel.plans[k]))
                 skip = "outputs up to date";
         }
         bool stop = false;

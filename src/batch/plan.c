@@ -3,13 +3,22 @@
  * scene loader's), the sample count, depth and integrator with their
  * fallbacks to the scene, the time limit, and the colour settings, which
  * are checked against the OCIO config here rather than after the render. */
+#include "config.h"
+
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include "base/file.h"
+#include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "batch/plan.h"
 #include "color/ocio.h"
+#include "manifest/job_hash.h"
+#include "output/exr_write.h"
 #include "scene/film.h"
 
 /* A job's problem at key k (else at the job): fails err with it. */
@@ -50,10 +59,11 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
                     job->at[CV_K_RESOLUTION].line, job->at[CV_K_RESOLUTION].col, job->name,
                     p->width, p->height);
     }
-    if ((uint64_t)p->camera.crop.x * p->camera.crop.y > (1u << 24)) {
-        char msg[128];
-        snprintf(msg, sizeof(msg), "a film of %ux%u rendered pixels is too large",
-                 p->camera.crop.x, p->camera.crop.y);
+    if ((uint64_t)p->camera.crop.x * p->camera.crop.y > CV_MAX_FILM_PIXELS) {
+        char msg[160];
+        snprintf(msg, sizeof(msg),
+                 "a film of %ux%u rendered pixels is too large (at most %u pixels, "
+                 "such as 4096x4096)", p->camera.crop.x, p->camera.crop.y, CV_MAX_FILM_PIXELS);
         return fail_at(err, o, job, CV_K_RESOLUTION, msg);
     }
     return true;
@@ -141,6 +151,125 @@ static bool plan_color(const struct cv_job *job, const struct cv_plan_options *o
     return culprit == CV_K_COUNT || fail_at(err, o, job, culprit, e.msg);
 }
 
+/* The folder of out can be made and written: the nearest folder that
+ * exists is a folder we may write, and no component on the way is a file.
+ * Makes nothing (--check leaves no trace). */
+static bool check_out_dir(const char *out, char *msg, size_t n)
+{
+    char *dir = cv_path_dirname(out);
+    bool ok = true;
+    for (;;) {
+        struct stat st;
+        if (stat(dir, &st) == 0) {
+            if (!S_ISDIR(st.st_mode)) {
+                snprintf(msg, n, "output folder of \"%s\" cannot be made: \"%s\" is not a folder",
+                         out, dir);
+                ok = false;
+            } else if (access(dir, W_OK | X_OK) != 0) {
+                snprintf(msg, n, "output folder of \"%s\" cannot be written: %s: %s", out, dir,
+                         strerror(errno));
+                ok = false;
+            }
+            break;
+        }
+        if (errno != ENOENT) {
+            snprintf(msg, n, "output folder of \"%s\" cannot be made: %s: %s", out, dir,
+                     strerror(errno));
+            ok = false;
+            break;
+        }
+        char *up = cv_path_dirname(dir);
+        bool top = strcmp(up, dir) == 0;
+        free(dir);
+        dir = up;
+        if (top)
+            break;
+    }
+    free(dir);
+    return ok;
+}
+
+/* Each output file: its folder can be made, and it is none of the job's
+ * inputs (the scene and every file it reads), compared in one spelling. */
+static bool plan_outputs(const struct cv_job *job, const struct cv_scene *scene,
+                         const struct cv_plan_options *o, struct cv_error *err)
+{
+    if ((job->formats & CV_FORMAT_EXR) && !cv_exr_compression_supported(job->exr.compression)) {
+        char msg[160];
+        snprintf(msg, sizeof(msg), "EXR compression \"%s\" needs OpenEXR 3.2 or later, "
+                 "which this one is not", cv_exr_compression_name(job->exr.compression));
+        return fail_at(err, o, job, CV_K_EXR_COMPRESSION, msg);
+    }
+    char *scene_norm = cv_path_normalize(job->scene);
+    bool ok = true;
+    for (unsigned i = 0; ok && i < cv_format_names.count; i++) {
+        unsigned bit = 1u << i;
+        if (!(job->formats & bit))
+            continue;
+        char *path = cv_job_output_path(job, cv_format_ext(bit));
+        char *norm = cv_path_normalize(path);
+        char msg[1024];
+        if (!check_out_dir(path, msg, sizeof(msg))) {
+            ok = fail_at(err, o, job, CV_K_OUTPUT, msg);
+        } else {
+            const char *input = strcmp(norm, scene_norm) == 0 ? job->scene : NULL;
+            for (size_t k = 0; !input && k < scene->n_inputs; k++) {
+                char *in = cv_path_normalize(scene->inputs[k]);
+                if (strcmp(in, norm) == 0)
+                    input = scene->inputs[k];
+                free(in);
+            }
+            if (input) {
+                snprintf(msg, sizeof(msg), "output \"%s\" would overwrite \"%s\", which the "
+                         "job's scene reads", path, input);
+                ok = fail_at(err, o, job, CV_K_OUTPUT, msg);
+            }
+        }
+        free(norm);
+        free(path);
+    }
+    free(scene_norm);
+    return ok;
+}
+
+/* One file's size and mtime into hash h; a missing file enters as such. */
+static uint64_t hash_stamp(uint64_t h, const char *what, const char *path)
+{
+    struct stat st;
+    char line[128];
+    if (path && stat(path, &st) == 0)
+        snprintf(line, sizeof(line), "%s=%lld,%lld\n", what, (long long)st.st_size,
+                 (long long)st.st_mtim.tv_sec);
+    else
+        snprintf(line, sizeof(line), "%s=-\n", what);
+    return cv_fnv1a64(h, line, strlen(line));
+}
+
+/* The settings hash that --resume compares (plan.h: settings_hash). Files
+ * enter by size and mtime, as the scene file does in the job's own hash:
+ * cheap at every --resume, and a touched file re-renders rather than a
+ * changed one being missed. */
+static void plan_hash(const struct cv_job *job, const struct cv_scene *scene,
+                      struct cv_render_plan *p)
+{
+    uint64_t h = CV_FNV1A64_BASIS;
+    const char *head = "cavalry " PACKAGE_VERSION "\n";
+    h = cv_fnv1a64(h, head, strlen(head));
+    h = cv_fnv1a64(h, job->settings_hash, strlen(job->settings_hash));
+    for (size_t i = 0; i < scene->n_inputs; i++)
+        h = hash_stamp(h, "input", scene->inputs[i]);
+    if (job->formats & CV_FORMAT_PNG) {
+        const char *cfg = cv_ocio_config_file(job->color.config);
+        if (!cfg) {
+            h = cv_fnv1a64(h, cv_ocio_shipped_config, strlen(cv_ocio_shipped_config));
+        } else {
+            h = cv_fnv1a64(h, cfg, strlen(cfg));
+            h = hash_stamp(h, "ocio", cfg);
+        }
+    }
+    snprintf(p->settings_hash, sizeof(p->settings_hash), "%016llx", (unsigned long long)h);
+}
+
 bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
                   const struct cv_plan_options *o, struct cv_render_plan *out,
                   struct cv_error *err)
@@ -154,8 +283,10 @@ bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
     out->time_limit = job->has_time_limit ? job->time_limit : 0;
     if (o->time_limit > 0 && (out->time_limit == 0 || o->time_limit < out->time_limit))
         out->time_limit = o->time_limit;
+    if (job->settings_hash)
+        plan_hash(job, scene, out);
     return plan_camera(job, scene, o, out, err) && plan_integrator(job, scene, o, out, err) &&
-           plan_color(job, o, out, err);
+           plan_color(job, o, out, err) && plan_outputs(job, scene, o, err);
 }
 
 struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)

@@ -41,6 +41,11 @@ struct cv_render_plan {
     const char *substituted;
     struct cv_color_params color;  /* strings borrowed from the job */
     bool stage_times;            /* a diagnostic: cv_plan_options.stage_times */
+    /* What --resume compares (16 hex digits): the job's settings hash
+     * (manifest/job_hash.h) with the size and mtime of every file the scene
+     * reads, of the effective OCIO config for PNG outputs, and Cavalry's
+     * version. */
+    char settings_hash[17];
 };
 
 /* Makes the plan of job on scene. Problems come back as

@@ -44,8 +44,9 @@ static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_rend
     cv_metadata_set_int(m, "cavalry.seed", plan->seed);
     cv_metadata_set_float(m, "cavalry.renderTime", res->seconds);
     cv_metadata_set_string(m, "cavalry.gpu", gpu->info.renderer);
-    cv_metadata_set_string(m, "cavalry.settingsHash", job->settings_hash);
-    cv_metadata_set_string(m, "cavalry.status", res->partial ? "partial" : "complete");
+    cv_metadata_set_int(m, "cavalry.sppTarget", plan->spp);
+    cv_metadata_set_string(m, "cavalry.settingsHash", plan->settings_hash);
+    cv_metadata_set_string(m, "cavalry.status", cv_job_status_name(res->stop));
     return m;
 }
 
@@ -173,10 +174,15 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         cv_progress_update(progress, job->name, done, target, rate, elapsed, eta);
         if (cv_signals_interrupted()) {
             res->partial = done < target;
+            res->stop = done < target ? CV_STOP_SIGNAL : CV_STOP_COMPLETE;
             break;
         }
-        if (limit > 0 && now - t0 >= limit) {
-            cv_info("job \"%s\": time limit %.1fs reached at %u spp", job->name, limit, done);
+        /* the limit counts from the job's start, program build included */
+        if (limit > 0 && now - t0 >= limit && done < target) {
+            cv_info("job \"%s\": time limit %.1fs reached at %u of %u spp", job->name, limit,
+                    done, target);
+            res->partial = true;
+            res->stop = CV_STOP_TIME_LIMIT;
             break;
         }
         pass_spp = cv_next_pass_spp(n, dt, limit > 0 ? fmax(limit - (now - t0), 1e-9) : 0);
@@ -207,6 +213,30 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     return ok;
 }
 
+const char *cv_job_status_name(enum cv_job_stop stop)
+{
+    static const char *const names[] = {
+        [CV_STOP_COMPLETE] = "complete",
+        [CV_STOP_SIGNAL] = "partial",
+        [CV_STOP_TIME_LIMIT] = "time-limit",
+    };
+    return names[stop];
+}
+
+/* Decodes the whole image (every pixel; every PNG chunk's CRC): a cut or
+ * damaged file is not up to date, whatever its header says. */
+static bool output_decodes(const char *path, bool exr)
+{
+    struct cv_error err;
+    if (!exr)
+        return cv_png_check(path, &err);
+    float *rgba = NULL;
+    uint32_t w, h;
+    bool ok = cv_exr_read_rgba(path, &rgba, &w, &h, &err);
+    free(rgba);
+    return ok;
+}
+
 static bool output_current(const char *path, bool exr, const char *hash)
 {
     if (!cv_path_exists(path))
@@ -217,20 +247,22 @@ static bool output_current(const char *path, bool exr, const char *hash)
                         cv_exr_read_attribute_string(path, "cavalry.status", &status, &err)
                   : cv_png_read_text(path, "cavalry.settingsHash", &got, &err) &&
                         cv_png_read_text(path, "cavalry.status", &status, &err);
-    ok = ok && strcmp(got, hash) == 0 && strcmp(status, "complete") == 0;
+    ok = ok && strcmp(got, hash) == 0 &&
+         strcmp(status, cv_job_status_name(CV_STOP_COMPLETE)) == 0 && output_decodes(path, exr);
     free(got);
     free(status);
     return ok;
 }
 
-bool cv_job_outputs_current(const struct cv_job *job)
+bool cv_job_outputs_current(const struct cv_render_plan *plan)
 {
+    const struct cv_job *job = plan->job;
     for (unsigned i = 0; i < cv_format_names.count; i++) {
         unsigned bit = 1u << i;
         if (!(job->formats & bit))
             continue;
         char *path = cv_job_output_path(job, cv_format_ext(bit));
-        bool current = output_current(path, bit == CV_FORMAT_EXR, job->settings_hash);
+        bool current = output_current(path, bit == CV_FORMAT_EXR, plan->settings_hash);
         free(path);
         if (!current)
             return false;

@@ -14,10 +14,20 @@
 #include "scene/scene.h"
 #include "trace/scene_upload.h"
 
+/* Why a job stopped: its image's cavalry.status (cv_job_status_name). */
+enum cv_job_stop {
+    CV_STOP_COMPLETE,              /* the spp target reached */
+    CV_STOP_SIGNAL,                /* "partial": SIGTERM/SIGINT */
+    CV_STOP_TIME_LIMIT,            /* "time-limit": time_limit / --time-limit */
+};
+
+const char *cv_job_status_name(enum cv_job_stop stop);
+
 struct cv_job_result {
     uint32_t spp;                  /* samples per pixel rendered */
     double seconds;                /* wall clock of the whole job */
-    bool partial;                  /* stopped by a signal */
+    bool partial;                  /* stopped before the spp target */
+    enum cv_job_stop stop;         /* why it stopped */
     char written[1024];            /* the files written, space-separated */
 };
 
@@ -29,8 +39,9 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
                 struct cv_progress *progress, struct cv_job_result *result,
                 struct cv_error *err);
 
-/* Whether every output of the job exists, is complete, and was rendered
- * from the same settings (the settings hash in its metadata). */
-bool cv_job_outputs_current(const struct cv_job *job);
+/* Whether every output of the plan's job exists, is complete (not
+ * "partial" nor "time-limit"), decodes fully, and was rendered from the same
+ * settings (the plan's settings hash in its metadata). */
+bool cv_job_outputs_current(const struct cv_render_plan *plan);
 
 #endif

@@ -23,6 +23,12 @@ struct cv_ocio;
 /* Text of configs/cavalry.ocio compiled into the binary (NUL-terminated). */
 extern const char cv_ocio_shipped_config[];
 
+/* The config that a colour pass with config_path would open (color_params.h:
+ * the path or ocio:// URI itself, else $OCIO, else the data folder's
+ * cavalry.ocio), or NULL for the copy compiled in (cv_ocio_shipped_config).
+ * The one home of that order; the string lives until the next call. */
+const char *cv_ocio_config_file(const char *config_path);
+
 /* Opens the config p names (see color_params.h for the fallbacks) and builds
  * the processor from the scene_linear role to p's display / view. Unknown
  * display, view or look names fail with the valid names listed; $OCIO naming

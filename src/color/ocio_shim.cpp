@@ -46,29 +46,23 @@ std::string join(const std::vector<std::string> &v)
 
 OCIO::ConstConfigRcPtr load_config(const char *path, std::string &source)
 {
-    if (path && path[0]) {
-        source = path;
-        if (!file_exists(path))
+    const char *file = cv_ocio_config_file(path);
+    if (!file) {
+        source = "shipped cavalry.ocio";
+        std::istringstream text(cv_ocio_shipped_config);
+        return OCIO::Config::CreateFromStream(text);
+    }
+    source = file;
+    /* a built-in config's URI: OpenColorIO 2.2 and later resolve it, older
+     * ones fail with their own message */
+    bool uri = std::strncmp(file, "ocio://", 7) == 0;
+    if (!uri && !file_exists(file)) {
+        if (path && path[0])
             throw Failure("colour config \"" + source + "\": no such file");
-        return OCIO::Config::CreateFromFile(path);
+        throw Failure("$OCIO names the colour config \"" + source +
+                      "\", which does not exist (unset OCIO to use Cavalry's shipped config)");
     }
-    const char *env = getenv("OCIO");
-    if (env && env[0]) {
-        source = env;
-        if (!file_exists(env))
-            throw Failure("$OCIO names the colour config \"" + source +
-                          "\", which does not exist (unset OCIO to use Cavalry's shipped config)");
-        return OCIO::Config::CreateFromFile(env);
-    }
-    const char *dir = getenv("CAVALRY_DATA_DIR");
-    if (dir && dir[0]) {
-        source = std::string(dir) + "/configs/cavalry.ocio";
-        if (file_exists(source.c_str()))
-            return OCIO::Config::CreateFromFile(source.c_str());
-    }
-    source = "shipped cavalry.ocio";
-    std::istringstream text(cv_ocio_shipped_config);
-    return OCIO::Config::CreateFromStream(text);
+    return OCIO::Config::CreateFromFile(file);
 }
 
 OCIO::ConstConfigRcPtr open_config(const char *path, std::string &source)
@@ -412,4 +406,21 @@ extern "C" void cv_ocio_free_names(char ***names)
         free(*n);
     free(*names);
     *names = nullptr;
+}
+
+extern "C" const char *cv_ocio_config_file(const char *config_path)
+{
+    if (config_path && config_path[0])
+        return config_path;
+    const char *env = getenv("OCIO");
+    if (env && env[0])
+        return env;
+    static std::string data;
+    const char *dir = getenv("CAVALRY_DATA_DIR");
+    if (dir && dir[0]) {
+        data = std::string(dir) + "/configs/cavalry.ocio";
+        if (file_exists(data.c_str()))
+            return data.c_str();
+    }
+    return nullptr;
 }

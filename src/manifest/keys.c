@@ -20,6 +20,11 @@ static bool is_name_char(char c)
 static bool check_name(const void *value, char *msg, size_t n)
 {
     const char *s = *(const char *const *)value;
+    /* "." and ".." would make {name} outputs name the folder itself or its parent */
+    if (strcmp(s, ".") == 0 || strcmp(s, "..") == 0) {
+        snprintf(msg, n, "name: \"%s\" is not a job name: it names a folder", s);
+        return false;
+    }
     for (const char *p = s; *p; p++) {
         if (!is_name_char(*p)) {
             snprintf(msg, n,

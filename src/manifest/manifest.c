@@ -133,12 +133,16 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
 }
 
 /* Names and output files must be unique: two jobs writing one file would
- * silently overwrite each other on a farm. */
-/* Sets of names and outputs seen: linear in the number of jobs. */
+ * silently overwrite each other on a farm. Sets of the names and outputs
+ * seen keep it linear in the number of jobs. */
 static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
                          struct cv_diag *d)
 {
     struct cv_key_set names = {0}, outputs = {0};
+    /* outputs compared in one spelling: out/a, ./out/a, out//a, out/../out/a */
+    char **norm = cv_xcalloc(n ? n : 1, sizeof(char *));
+    for (size_t i = 0; i < n; i++)
+        norm[i] = jobs[i].job.output ? cv_path_normalize(jobs[i].job.output) : NULL;
     for (size_t i = 0; i < n; i++) {
         struct cv_job_draft *a = &jobs[i];
         if (!a->job.name)
@@ -150,7 +154,7 @@ static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
                         "duplicate job name \"%s\" (first defined at %s:%u:%u)",
                         a->job.name, file, b->job.at[CV_K_NAME].line,
                         b->job.at[CV_K_NAME].col);
-        } else if (a->job.output && !cv_key_set_add(&outputs, a->job.output, i, &k)) {
+        } else if (norm[i] && !cv_key_set_add(&outputs, norm[i], i, &k)) {
             struct cv_job_draft *b = &jobs[k];
             const struct cv_key_at *oat = &a->job.at[CV_K_OUTPUT];
             bool given = oat->line != 0;
@@ -162,6 +166,9 @@ static void check_unique(struct cv_job_draft *jobs, size_t n, const char *file,
     }
     cv_key_set_clear(&names);
     cv_key_set_clear(&outputs);
+    for (size_t i = 0; i < n; i++)
+        free(norm[i]);
+    free(norm);
 }
 
 static void read_version(yaml_node_t *v, struct cv_diag *d)

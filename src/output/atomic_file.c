@@ -2,6 +2,7 @@
  * open(O_EXCL, 0666) rather than mkstemp so that the finished image gets the
  * usual permissions under the user's umask instead of mkstemp's 0600. */
 #include <errno.h>
+#include <dirent.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,6 +57,38 @@ static char *temp_name(const char *dir, const char *base, unsigned attempt)
     return cv_xasprintf("%s/.%s.%s.tmp", dir, base, suffix);
 }
 
+/* Whether name is one of temp_name's names for base: ".BASE.xxxxxx.tmp". */
+static bool is_temp_of(const char *name, const char *base)
+{
+    size_t nb = strlen(base);
+    if (name[0] != '.' || strncmp(name + 1, base, nb) != 0 || name[1 + nb] != '.')
+        return false;
+    const char *suffix = name + 2 + nb;
+    for (int i = 0; i < 6; i++)
+        if (!((suffix[i] >= 'a' && suffix[i] <= 'z') || (suffix[i] >= '0' && suffix[i] <= '9')))
+            return false;
+    return strcmp(suffix + 6, ".tmp") == 0;
+}
+
+/* Removes temporary files of path left by a writer that was killed (SIGKILL,
+ * a lost node): this writer replaces path anyway. A scan of one folder per
+ * output written. */
+static void remove_stale_temps(const char *dir, const char *base)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (!is_temp_of(e->d_name, base))
+            continue;
+        char *p = cv_xasprintf("%s/%s", dir, e->d_name);
+        unlink(p);
+        free(p);
+    }
+    closedir(d);
+}
+
 bool cv_atomic_open(const char *path, struct cv_atomic_file **out, struct cv_error *err)
 {
     *out = NULL;
@@ -63,6 +96,7 @@ bool cv_atomic_open(const char *path, struct cv_atomic_file **out, struct cv_err
     if (*base == '\0')
         return cv_fail(err, "%s: not a file name", path);
     char *dir = cv_path_dirname(path);
+    remove_stale_temps(dir, base);
     for (unsigned attempt = 0; attempt < 100; attempt++) {
         char *temp = temp_name(dir, base, attempt);
         int fd = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);

@@ -17,7 +17,8 @@
 
 struct cv_atomic_file;
 
-/* Creates the temporary file next to path. The error names the folder and
+/* Creates the temporary file next to path, first removing path's stale
+ * temporary files (".NAME.xxxxxx.tmp", left by a killed writer). The error names the folder and
  * the reason (no such directory, permission denied, read-only filesystem). */
 bool cv_atomic_open(const char *path, struct cv_atomic_file **out, struct cv_error *err);
 

@@ -12,4 +12,9 @@
  * has no such chunk. */
 bool cv_png_read_text(const char *path, const char *key, char **value, struct cv_error *err);
 
+/* Whether the file decodes fully: every pixel row, and every chunk to IEND
+ * with its CRC (--resume: a damaged image is not up to date). Reads the
+ * whole file: once per output, not per pixel. */
+bool cv_png_check(const char *path, struct cv_error *err);
+
 #endif

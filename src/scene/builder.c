@@ -172,6 +172,12 @@ char *cv_b_resolve(struct cv_builder *b, const char *dir, const char *name, stru
         free(path);
         return NULL;
     }
+    struct cv_scene *sc = b->s;
+    size_t i = 0;
+    while (i < sc->n_inputs && strcmp(sc->inputs[i], path) != 0)
+        i++;
+    if (i == sc->n_inputs)
+        CV_PUSH(sc->inputs, sc->n_inputs, sc->cap_inputs, cv_xstrdup(path));
     return path;
 }
 

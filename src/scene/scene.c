@@ -9,6 +9,9 @@
 
 static void scene_free(struct cv_scene *s)
 {
+    for (size_t i = 0; i < s->n_inputs; i++)
+        free(s->inputs[i]);
+    free(s->inputs);
     free(s->vertices);
     free(s->triangles);
     free(s->tri_light);

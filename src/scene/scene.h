@@ -81,6 +81,11 @@ struct cv_scene {
 
     float bounds_min[3], bounds_max[3];
     char *path;                      /* the scene file as given */
+    /* Every other file the scene reads (Include/Import, PLY, textures,
+     * spectra, env maps) as opened, each once, in first-use order: for
+     * --resume's hash and for outputs that would overwrite an input. */
+    char **inputs;
+    size_t n_inputs, cap_inputs;
     unsigned warnings;               /* warnings emitted while loading */
 };
 
