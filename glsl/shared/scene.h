@@ -168,8 +168,10 @@ CV_STRUCT(CvCamera) {
     CV_VEC4 screen;       /* xmin, xmax, ymin, ymax */
     CV_VEC4 lens;         /* x: lens radius, y: focal distance, z: tan(fov/2), w: unused */
     CV_UVEC4 film;        /* full resolution x, y; crop origin x, y (pixels) */
-    CV_UVEC4 crop;        /* crop size x, y (pixels rendered); type; unused */
+    CV_UVEC4 crop;        /* crop size x, y (pixels rendered); z, w: 0 */
+    CV_UINT type;         /* CV_CAMERA_* */
+    CV_UINT pad[3];
 } CV_END(CvCamera)
-CV_CHECK_SIZE(CvCamera, 112);
+CV_CHECK_SIZE(CvCamera, 128);
 
 #endif

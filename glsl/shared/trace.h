@@ -7,7 +7,7 @@
  * count back between bounces and no dispatch of its own does that work.
  *
  * Paths are regenerated: each pixel of the crop owns K path slots (K =
- * u_pass.wave.y, chosen by the host), and when a slot's path ends (escaped,
+ * u_pass.paths_per_pixel, chosen by the host), and when a slot's path ends (escaped,
  * absorbed, roulette, maximum depth) the stage that ends it starts the
  * slot's next sample of the pass (regenerate.glsl) among the rays of the
  * next iteration. The wave stays full until slots run out of samples, so
@@ -162,23 +162,35 @@ CV_STRUCT(CvFilmPixel) {
 } CV_END(CvFilmPixel)
 CV_CHECK_SIZE(CvFilmPixel, 48);
 
-/* Per-pass constants, in a uniform block at binding 0. */
+/* Per-pass constants, in a uniform block at binding 0 (std140: every row
+ * of four scalars below fills one 16-byte row, as a vec4 would). */
 #define CV_UBO_PASS 0
 #define CV_FILTER_TABLE 64
 CV_STRUCT(CvPassParams) {
-    CV_UVEC4 frame;        /* x: pixels in the crop, y: crop width, z: crop height, w: the pass's first sample */
-    CV_UVEC4 seed;         /* x, y: job seed lo/hi; z: sampler (0 sobol, 1 independent); w: max depth */
+    CV_UINT n_pixels;      /* pixels in the crop */
+    CV_UINT crop_w, crop_h;
+    CV_UINT first_sample;  /* the pass's first sample */
+    CV_UINT seed_lo, seed_hi;  /* job seed */
+    CV_UINT sampler;       /* 0 sobol, 1 independent */
+    CV_UINT max_depth;
     CV_UVEC4 film;         /* x, y: full film resolution; z, w: crop origin */
-    CV_UVEC4 misc;         /* x: iteration (its parity picks the ray queue halves); y: filter
-                            * type; z: light count; w: the pass's end sample (exclusive) */
+    CV_UINT iteration;     /* its parity picks the ray queue halves */
+    CV_UINT filter_type;   /* CV_FILTER_* (glsl/trace/camera.glsl) */
+    CV_UINT n_lights;
+    CV_UINT end_sample;    /* the pass's end sample (exclusive) */
     CV_VEC4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
     CV_VEC4 cam_to_world[3];
     CV_VEC4 screen;
-    CV_VEC4 lens;          /* x: radius, y: focal distance, z: tan(fov/2); w: camera type */
+    CV_FLOAT lens_radius;
+    CV_FLOAT focal_distance;
+    CV_FLOAT tan_half_fov;
+    CV_FLOAT orthographic; /* 1: orthographic, 0: perspective */
     CV_VEC4 filter_x[CV_FILTER_TABLE / 4 + 1]; /* gaussian inverse CDF over [0,1], x axis (65 values, padded) */
     CV_VEC4 filter_y[CV_FILTER_TABLE / 4 + 1];
-    CV_UVEC4 wave;         /* x: path slots (the queues' capacity); y: slots per pixel (K); z: camera
-                            * rays the pass's generate stage writes; w: 0 */
+    CV_UINT n_paths;       /* path slots (the queues' capacity) */
+    CV_UINT paths_per_pixel;   /* slots per pixel (K) */
+    CV_UINT camera_rays;   /* camera rays the pass's generate stage writes */
+    CV_UINT pad;
 } CV_END(CvPassParams)
 CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_TABLE / 4 + 1) + 1));
 

@@ -71,7 +71,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     if (depth >= cv_max_depth())
         return;
 
-    if (!delta && u_pass.misc.z > 0u) {
+    if (!delta && cv_n_lights() > 0u) {
         CvLightSample ls;
         if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
             vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));

@@ -115,7 +115,8 @@ void cv_b_finish_camera(struct cv_builder *b)
     if (y1 <= y0)
         y1 = y0 + 1;
     c->film = (cv_uvec4){(uint32_t)b->xres, (uint32_t)b->yres, x0, y0};
-    c->crop = (cv_uvec4){x1 - x0, y1 - y0, b->cam_type, 0};
+    c->crop = (cv_uvec4){x1 - x0, y1 - y0, 0, 0};
+    c->type = b->cam_type;
     s->settings.width = (uint32_t)b->xres;
     s->settings.height = (uint32_t)b->yres;
     for (int i = 0; i < 4; i++)

@@ -173,12 +173,17 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     r->crop_h = ch;
     r->n_pixels = cw * ch;
     CvPassParams *u = &r->pass;
-    u->frame = (cv_uvec4){r->n_pixels, cw, ch, 0};
+    u->n_pixels = r->n_pixels;
+    u->crop_w = cw;
+    u->crop_h = ch;
     u->film = (cv_uvec4){w, h, x0, y0};
     for (int i = 0; i < 3; i++)
         u->cam_to_world[i] = c->to_world[i];
     u->screen = screen;
-    u->lens = (cv_vec4){c->lens.x, c->lens.y, c->lens.z, c->crop.z == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f};
+    u->lens_radius = c->lens.x;
+    u->focal_distance = c->lens.y;
+    u->tan_half_fov = c->lens.z;
+    u->orthographic = c->type == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f;
 }
 
 static void setup_filter(struct cv_renderer *r, const struct cv_render_settings *st)
@@ -203,7 +208,7 @@ static void setup_filter(struct cv_renderer *r, const struct cv_render_settings 
         if (ry <= 0) ry = 1.5f;
         break;
     }
-    u->misc.y = type;
+    u->filter_type = type;
     u->pixel_filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
     float tx[CV_FILTER_TABLE + 4] = {0}, ty[CV_FILTER_TABLE + 4] = {0};
     if (type == 2) {
@@ -330,10 +335,15 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         return false;
     }
     r->n_paths = (size_t)r->n_pixels * r->paths_per_pixel;
-    r->pass.wave = (cv_uvec4){(uint32_t)r->n_paths, r->paths_per_pixel, 0, 0};
-    r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
-                              p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
-    r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
+    r->pass.n_paths = (uint32_t)r->n_paths;
+    r->pass.paths_per_pixel = r->paths_per_pixel;
+    r->pass.seed_lo = (uint32_t)p->seed;
+    r->pass.seed_hi = (uint32_t)(p->seed >> 32);
+    r->pass.sampler = p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u;
+    r->pass.max_depth = r->max_depth;
+    r->pass.iteration = 0;
+    r->pass.n_lights = scene->n_lights;
+    r->pass.end_sample = 0;
 
     r->scene = gs;
 
@@ -462,9 +472,9 @@ static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
  * end start their next samples on the way. */
 static void iterate(struct cv_renderer *r, uint32_t it)
 {
-    r->pass.misc.x = it;
-    glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
-                         &r->pass.misc);
+    r->pass.iteration = it;
+    glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, iteration),
+                         sizeof(r->pass.iteration), &r->pass.iteration);
     if (r->prof.on && it < PROF_ITERS) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glCopyNamedBufferSubData(r->queues, r->prof.counts,
@@ -509,13 +519,13 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     bind_all(r);
     /* the slots that have a sample in this pass (generate.comp) */
     uint32_t slots = r->paths_per_pixel, started = spp < slots ? spp : slots;
-    r->pass.frame.w = r->spp_done;
-    r->pass.misc.x = 0;
-    r->pass.misc.w = r->spp_done + spp;
-    r->pass.wave.z = r->n_pixels * started;
+    r->pass.first_sample = r->spp_done;
+    r->pass.iteration = 0;
+    r->pass.end_sample = r->spp_done + spp;
+    r->pass.camera_rays = r->n_pixels * started;
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     prof_mark(r, ST_GENERATE);
-    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.wave.z);
+    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.camera_rays);
     prof_mark(r, ST_GENERATE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 

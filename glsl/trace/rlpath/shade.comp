@@ -95,7 +95,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
         target = cv_mean3(Le);
         // next-event estimation at the vertex before sampled this light
         // unless that bounce was specular (no light sampling there)
-        if (u_pass.misc.z > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+        if (cv_n_lights() > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
             emitted = target;
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
@@ -147,7 +147,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     if (depth >= cv_max_depth())
         return;
 
-    if (!delta && u_pass.misc.z > 0u) {
+    if (!delta && cv_n_lights() > 0u) {
         CvLightSample ls;
         if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
             vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
