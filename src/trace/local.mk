@@ -1,6 +1,7 @@
 # src/trace: the wavefront path tracer (host side; shaders in glsl/trace).
 libcavalry_a_SOURCES += \
 	src/trace/filter_table.c src/trace/filter_table.h \
+	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/render.c src/trace/render.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h
 
@@ -9,7 +10,7 @@ GLSL_FILES += \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
 	glsl/trace/geometry.glsl glsl/trace/tracing.glsl glsl/trace/mesh_buffers.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
-	glsl/trace/surface_inputs.glsl glsl/trace/shade_queue.glsl \
+	glsl/trace/surface_inputs.glsl glsl/trace/path_vertex.glsl glsl/trace/shade_queue.glsl \
 	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
 	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \

@@ -1,9 +1,8 @@
 /* render.c: see render.h. The stages follow pbrt-v4's wavefront
  * integrator: generate camera rays; per iteration: reset the queues,
  * intersect (closest), escaped rays, surface hits (emission, NEE, BSDF
- * sampling; path shades diffuse hits and the others with two programs,
- * rlpath has its own shade stage and then its table update),
- * shadow rays; a path that ends starts its slot's next sample in the stage
+ * sampling: the integrator's shade programs, then its own work, as its
+ * entry in trace/integrator.h says), shadow rays; a path that ends starts its slot's next sample in the stage
  * that ends it (path regeneration, glsl/shared/trace.h); the film
  * accumulates in place. Queue counts stay on the GPU: the last work group
  * of the intersect and shade stages turns them into the next stages'
@@ -25,8 +24,8 @@
 #include "gpu/program.h"
 #include "gpu/storage.h"
 #include "trace/filter_table.h"
+#include "trace/integrator.h"
 #include "trace/render.h"
-#include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 
 /* Iterations queued between looks at whether the pass is over. Small, so
@@ -46,8 +45,9 @@ enum stage {
     ST_COUNT
 };
 
-/* CAVALRY_STAGE_TIMES' row beyond the stages: rlpath's table rebuild. */
-enum { PROF_RLPATH = ST_COUNT, PROF_COUNT };
+/* CAVALRY_STAGE_TIMES' row beyond the stages: the integrator's work after
+ * the shade stage (cv_integrator_ops.after_shade). */
+enum { PROF_AFTER_SHADE = ST_COUNT, PROF_COUNT };
 
 /* CAVALRY_STAGE_TIMES also times the intersect stage of each iteration of a
  * pass by its index, with the rays it traced, up to this many iterations:
@@ -81,7 +81,8 @@ struct cv_renderer {
     GLuint *queries;               /* GL_TIMESTAMP pairs (pass start, end), not yet read */
     size_t n_queries, cap_queries;
     double gpu_ms;
-    struct cv_rlpath *rl;          /* CV_RENDER_RLPATH, else NULL */
+    const struct cv_integrator_ops *ops;
+    void *integrator;              /* ops->create's state, or NULL */
     /* CAVALRY_STAGE_TIMES: GPU time per stage, from timestamp pairs around
      * every dispatch (a diagnostic: the queries cost time themselves) */
     struct {
@@ -97,8 +98,8 @@ struct cv_renderer {
     } prof;
 };
 
-static const char *const stage_names[PROF_COUNT] = {
-    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve", "rlpath-rebuild",
+static const char *const stage_names[ST_COUNT] = {
+    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve",
 };
 
 static void prof_mark(struct cv_renderer *r, int stage)
@@ -139,9 +140,10 @@ static void prof_collect(struct cv_renderer *r)
     r->prof.n = 0;
 }
 
+/* The shade stages' files come from the integrator (NULL here). */
 static const char *const stage_files[ST_COUNT] = {
-    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", "trace/shade.comp",
-    "trace/shade.comp",    "trace/shadow.comp",    "trace/resolve.comp",
+    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
+    NULL,                  "trace/shadow.comp",    "trace/resolve.comp",
 };
 
 /* The film: the scene's, or the override with the scene's crop window. */
@@ -267,7 +269,7 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
 static bool check_params(const struct cv_scene *scene, const struct cv_render_params *p,
                          struct cv_error *err)
 {
-    if (p->integrator != CV_RENDER_PATH && p->integrator != CV_RENDER_RLPATH)
+    if (!cv_integrator_find(p->integrator))
         return cv_fail(err, "unknown integrator %d", p->integrator);
     if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);
@@ -366,41 +368,41 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (!r->scene->has_textures)
         defines[nd++] = "CV_NO_TEXTURES";
     defines[nd] = NULL;
-    bool rl = p->integrator == CV_RENDER_RLPATH;
-    /* Misses need an escaped stage for an environment light or for
-     * rlpath's learning; otherwise the intersect stage starts their pixels'
-     * next samples itself (intersect.comp). */
-    r->escaped_stage = rl || r->scene->has_env;
+    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    r->ops = ops;
+    /* Misses need an escaped stage for an environment light or where the
+     * integrator asks for it; otherwise the intersect stage starts their
+     * pixels' next samples itself (intersect.comp). */
+    r->escaped_stage = ops->escaped_stage || r->scene->has_env;
     const char *escaped[9];
-    defines_plus(escaped, defines, nd, rl ? "CV_RLPATH" : NULL, NULL);
+    defines_plus(escaped, defines, nd, ops->escaped_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
     const char *intersect[10];
     defines_plus(intersect, defines, nd, "CV_HIT_BINS",
                  r->escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
-    /* path shades each bin with its own program (shade.comp); rlpath's one
-     * shade program takes both bins in one dispatch */
-    const char *shade_a[9], *shade_b[9];
-    defines_plus(shade_a, defines, nd, "CV_SHADE_BIN=0", NULL);
-    defines_plus(shade_b, defines, nd, "CV_SHADE_BIN=1", NULL);
+    const char *shade[CV_SHADE_PROGRAMS][9];
+    for (int k = 0; k < ops->n_shade; k++)
+        defines_plus(shade[k], defines, nd, ops->define[k], NULL);
     const char *const no_defines[1] = {NULL};
     for (int s = 0; s < ST_COUNT; s++) {
-        /* rlpath's shade stage replaces these, with the same defines */
-        if ((s == ST_SHADE || s == ST_SHADE_B) && rl)
-            continue;
+        const char *file = stage_files[s];
+        const char *const *d = defines;
+        if (s == ST_SHADE || s == ST_SHADE_B) {
+            int k = s - ST_SHADE;
+            if (k >= ops->n_shade || !ops->file[k])
+                continue;   /* none, or the integrator's create makes it */
+            file = ops->file[k];
+            d = shade[k];
+        }
         if (s == ST_ESCAPED && !r->escaped_stage)
             continue;
-        const char *const *d = defines;
         if (s == ST_GENERATE)
             d = no_defines;
         else if (s == ST_ESCAPED)
             d = escaped;
         else if (s == ST_INTERSECT)
             d = intersect;
-        else if (s == ST_SHADE)
-            d = shade_a;
-        else if (s == ST_SHADE_B)
-            d = shade_b;
-        struct cv_program *pr = cv_program_get(gpu, stage_files[s], d, err);
+        struct cv_program *pr = cv_program_get(gpu, file, d, err);
         if (pr)
             r->prog[s] = *pr;
         if (!pr) {
@@ -409,16 +411,22 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         }
     }
 
-    if (rl) {
-        CvRlParams rp;
-        if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
-                              p->rl_mix, &rp, err) ||
-            !cv_rlpath_create(gpu, &rp, (uint32_t)r->n_paths, defines, p->rl_guide_indirect,
-                              &r->rl, err)) {
+    if (ops->create) {
+        struct cv_integrator_setup setup = {
+            .gpu = gpu,
+            .scene = scene,
+            .params = p,
+            .defines = defines,
+            .n_paths = (uint32_t)r->n_paths,
+        };
+        struct cv_program made[CV_SHADE_PROGRAMS];
+        if (!ops->create(&setup, &r->integrator, made, err)) {
             cv_renderer_destroy(&r);
             return false;
         }
-        r->prog[ST_SHADE] = *cv_rlpath_shade_program(r->rl);
+        for (int k = 0; k < ops->n_shade; k++)
+            if (!ops->file[k])
+                r->prog[ST_SHADE + k] = made[k];
     }
 
     size_t n = r->n_paths;
@@ -457,8 +465,8 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->film, CV_BIND_FILM);
     cv_buffer_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
-    if (r->rl)
-        cv_rlpath_bind(r->rl);
+    if (r->ops->bind)
+        r->ops->bind(r->integrator);
 }
 
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
@@ -485,22 +493,20 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
-    if (r->rl) {
-        stage_indirect(r, ST_SHADE, CV_ARGS_HITS_ALL);
-    } else {
-        /* The bins' programs share no data (each pixel's hit is in one
-         * bin; queue slots come from atomics), so the first needs no
-         * barrier before the second and the two may overlap. */
-        prof_mark(r, ST_SHADE);
-        glUseProgram(r->prog[ST_SHADE].id);
-        glDispatchComputeIndirect(CV_ARGS_BYTES(CV_ARGS_HITS));
-        prof_mark(r, ST_SHADE);
-        stage_indirect(r, ST_SHADE_B, CV_ARGS_HITS_B);
+    /* The shade programs share no data (integrator.h), so only the last
+     * is followed by a barrier and they may overlap. */
+    const struct cv_integrator_ops *ops = r->ops;
+    for (int k = 0; k + 1 < ops->n_shade; k++) {
+        prof_mark(r, ST_SHADE + k);
+        glUseProgram(r->prog[ST_SHADE + k].id);
+        glDispatchComputeIndirect(CV_ARGS_BYTES(ops->args[k]));
+        prof_mark(r, ST_SHADE + k);
     }
-    if (r->rl) {
-        prof_mark(r, PROF_RLPATH);
-        cv_rlpath_update(r->rl);
-        prof_mark(r, PROF_RLPATH);
+    stage_indirect(r, ST_SHADE + ops->n_shade - 1, ops->args[ops->n_shade - 1]);
+    if (ops->after_shade) {
+        prof_mark(r, PROF_AFTER_SHADE);
+        ops->after_shade(r->integrator);
+        prof_mark(r, PROF_AFTER_SHADE);
     }
     stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
 }
@@ -681,7 +687,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
             total += r->prof.ms[s];
         for (int s = 0; s < PROF_COUNT; s++)
             if (r->prof.ms[s] > 0)
-                cv_info("stage %-13s %10.1f ms %5.1f %%", stage_names[s], r->prof.ms[s],
+                cv_info("stage %-13s %10.1f ms %5.1f %%",
+                        s < ST_COUNT ? stage_names[s] : r->ops->after_shade_name, r->prof.ms[s],
                         total > 0 ? 100 * r->prof.ms[s] / total : 0);
         for (int i = 0; i < PROF_ITERS; i++)
             if (r->prof.iter_rays[i] > 0 && r->prof.iter_ms[i] > 0)
@@ -700,7 +707,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_scene_gpu_destroy(&r->owned_scene);
-    cv_rlpath_destroy(&r->rl);
+    if (r->ops && r->ops->destroy)
+        r->ops->destroy(&r->integrator);
     free(r);
     *rp = NULL;
 }
