@@ -33,9 +33,9 @@
 /* Every stage shader runs this many invocations per group. */
 #define CV_TRACE_GROUP 64
 
-/* Binding points (stage-private range, see bindings.h). Few buffers, each
- * holding related queues, because Mesa counts every declared storage block
- * against its limit of 16 per shader.
+/* Binding points: CV_BIND_QUEUES .. CV_BIND_RESOLVED (bindings.h). Few
+ * buffers, each holding related queues, because Mesa counts every declared
+ * storage block against its limit of 16 per shader.
  * - CV_BIND_RAYS: the ray queue, double-buffered by depth parity: with
  *   capacity n (path slots), rays of depth d sit at
  *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
@@ -43,14 +43,6 @@
  *   escaped rays at [n, 2n) (their .ray only: a ray index; rlpath alone
  *   queues them, the path integrator's intersect stage handles misses).
  * Items refer to rays by their index within the iteration's half. */
-#define CV_BIND_QUEUES (CV_BIND_STAGE0 + 0)    /* CvTraceQueues */
-#define CV_BIND_RAYS (CV_BIND_STAGE0 + 1)      /* CvRayItem[2n] */
-#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[2n] */
-#define CV_BIND_SHADOW (CV_BIND_STAGE0 + 3)    /* CvShadowItem[n] */
-#define CV_BIND_FILM (CV_BIND_STAGE0 + 4)      /* CvFilmPixel[n] */
-/* CV_BIND_STAGE0 + 5 (15) is CV_BIND_ENV_DIST, the environment map
- * distribution (glsl/shared/envmap.h, src/trace/envmap_dist.h). */
-#define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 6)  /* vec4[n]: resolve output */
 
 /* Queue counters (slots of CvTraceQueues.count). */
 #define CV_Q_RAYS_IN 0u

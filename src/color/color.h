@@ -24,7 +24,7 @@ bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
 
 /* in_rgba, out_rgba: SSBOs of width*height vec4 (16 bytes a pixel,
  * row-major, top row first); they may be the same buffer. Uses binding
- * points CV_BIND_STAGE0 and CV_BIND_STAGE0 + 1 and texture units from 0. */
+ * points CV_BIND_COLOR_IN and CV_BIND_COLOR_OUT and texture units from 0. */
 bool cv_color_pass_run(struct cv_color_pass *pass, GLuint in_rgba, GLuint out_rgba,
                        uint32_t width, uint32_t height, struct cv_error *err);
 

@@ -277,8 +277,8 @@ bool cv_color_pass_run(struct cv_color_pass *pass, GLuint in_rgba, GLuint out_rg
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(pass->textures[i].target, pass->textures[i].id);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_STAGE0, in_rgba);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_STAGE0 + 1, out_rgba);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_COLOR_IN, in_rgba);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_COLOR_OUT, out_rgba);
     cv_program_dispatch_1d(&pass->prog, n);
     for (unsigned i = 0; i < pass->n_textures; i++) {
         glActiveTexture(GL_TEXTURE0 + i);

@@ -8,7 +8,7 @@ libcavalry_a_SOURCES += \
 GLSL_FILES += \
 	glsl/shared/trace.h \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
-	glsl/trace/geometry.glsl glsl/trace/tracing.glsl glsl/trace/mesh_buffers.glsl \
+	glsl/trace/geometry.glsl glsl/trace/tracing.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
 	glsl/trace/surface_inputs.glsl glsl/trace/path_vertex.glsl glsl/trace/shade_queue.glsl \
 	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
@@ -19,6 +19,7 @@ GLSL_FILES += \
 GLSL_FILES += \
 	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \
 	glsl/trace/bsdf/bsdf.glsl glsl/trace/bsdf/bsdf_sample.glsl glsl/trace/bsdf/material_buffers.glsl \
+	glsl/trace/bsdf/texture_buffers.glsl \
 	glsl/trace/bsdf/fresnel.glsl glsl/trace/bsdf/microfacet.glsl glsl/trace/bsdf/diffuse.glsl \
 	glsl/trace/bsdf/conductor.glsl glsl/trace/bsdf/dielectric.glsl glsl/trace/bsdf/coated.glsl \
 	glsl/trace/bsdf/texture.glsl
