@@ -19,15 +19,14 @@
 layout(local_size_x = THREADS) in;
 
 #ifdef FROM_BOXES
-layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Boxes { vec4 boxes[]; };
+layout(std430, binding = CV_BIND_LEAF_BOXES) readonly buffer Boxes { vec4 boxes[]; };
 #else
-layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
+#include "mesh_buffers.glsl"
 #endif
 // The result at [0..1], each group's pair after it; read by morton.comp.
-layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Bounds { vec4 bounds[]; };
+layout(std430, binding = CV_BIND_BOUNDS_OUT) coherent buffer Bounds { vec4 bounds[]; };
 // [0]: groups finished; zero when the dispatch starts.
-layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Done { uint done[]; };
+layout(std430, binding = CV_BIND_BOUNDS_DONE) coherent buffer Done { uint done[]; };
 
 uniform uint u_n;
 
@@ -69,12 +68,12 @@ void main()
         uvec4 t[K];
         for (uint k = 0u; k < uint(K); k++) {
             uint i = base + k * uint(THREADS);
-            t[k] = i < u_n ? tris[i].idx : uvec4(0u);
+            t[k] = i < u_n ? cv_triangles[i].idx : uvec4(0u);
         }
         for (uint k = 0u; k < uint(K); k++) {
             if (base + k * uint(THREADS) < u_n) {
-                vec3 a = verts[t[k].x].pos_u.xyz, b = verts[t[k].y].pos_u.xyz,
-                     c = verts[t[k].z].pos_u.xyz;
+                vec3 a = cv_vertices[t[k].x].pos_u.xyz, b = cv_vertices[t[k].y].pos_u.xyz,
+                     c = cv_vertices[t[k].z].pos_u.xyz;
 #ifdef SCENE_BOX
                 lo = min(lo, min(a, min(b, c)));
                 hi = max(hi, max(a, max(b, c)));

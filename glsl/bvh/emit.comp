@@ -11,12 +11,12 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Nodes { CvBvhBuildNode nodes[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Offsets { uint offsets[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Lefts { uint lefts[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer Info { uint info[]; };
+layout(std430, binding = CV_BIND_BUILD_NODES) readonly buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_BUILD_OFFSETS) readonly buffer Offsets { uint offsets[]; };
+layout(std430, binding = CV_BIND_BUILD_LEFTS) readonly buffer Lefts { uint lefts[]; };
+layout(std430, binding = CV_BIND_EMIT_INFO) writeonly buffer Info { uint info[]; };
 // Exclusive prefix sum of layout.comp's final-leaf starts, per leaf slot.
-layout(std430, binding = CV_BIND_STAGE0 + 5) readonly buffer Leaves { uint leaves_before[]; };
+layout(std430, binding = CV_BIND_EMIT_LEAVES) readonly buffer Leaves { uint leaves_before[]; };
 // Written as raw words: the .w fields are integers, and small ones are
 // float denormals that no float path should get a chance to flush.
 layout(std430, binding = CV_BIND_BVH_NODES) writeonly buffer Out { uvec4 out_words[]; };

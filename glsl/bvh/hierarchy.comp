@@ -10,9 +10,9 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Keys { uint keys[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) buffer Nodes { CvBvhBuildNode nodes[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Counters { uint counters[]; };
+layout(std430, binding = CV_BIND_BUILD_KEYS) readonly buffer Keys { uint keys[]; };
+layout(std430, binding = CV_BIND_BUILD_NODES) buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_BUILD_COUNTERS) writeonly buffer Counters { uint counters[]; };
 
 uniform uint u_n;
 

@@ -24,12 +24,12 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Vals { uint vals[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Nodes { CvBvhBuildNode nodes[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Offsets { uint offsets[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) writeonly buffer Lefts { uint lefts[]; };
+layout(std430, binding = CV_BIND_BUILD_VALS) readonly buffer Vals { uint vals[]; };
+layout(std430, binding = CV_BIND_BUILD_NODES) readonly buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_BUILD_OFFSETS) writeonly buffer Offsets { uint offsets[]; };
+layout(std430, binding = CV_BIND_BUILD_LEFTS) writeonly buffer Lefts { uint lefts[]; };
 // Zeroed by the host; one word per leaf slot.
-layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer Starts { uint starts[]; };
+layout(std430, binding = CV_BIND_BUILD_STARTS) writeonly buffer Starts { uint starts[]; };
 layout(std430, binding = CV_BIND_BVH_PRIMS) writeonly buffer Prims { uint prims[]; };
 
 uniform uint u_n;

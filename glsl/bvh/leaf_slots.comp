@@ -10,7 +10,7 @@ layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
 layout(std430, binding = CV_BIND_BVH_PRIMS) readonly buffer Prims { uint prims[]; };
-layout(std430, binding = CV_BIND_STAGE0) writeonly buffer SlotOf { uint slot_of[]; };
+layout(std430, binding = CV_BIND_BUILD_SLOT_OF) writeonly buffer SlotOf { uint slot_of[]; };
 
 uniform uint u_n;
 

@@ -25,11 +25,10 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex vertices[]; };
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle triangles[]; };
+#include "mesh_buffers.glsl"
 #ifdef SCATTER
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer SlotOf { uint slot_of[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer RefTris { uint ref_tris[]; };
+layout(std430, binding = CV_BIND_BUILD_SLOT_OF) readonly buffer SlotOf { uint slot_of[]; };
+layout(std430, binding = CV_BIND_SPLIT_REF_TRIS) readonly buffer RefTris { uint ref_tris[]; };
 uniform uint u_split;  // 1: references are split pieces, ref_tris[] names their triangles
 uniform uint u_slot_lo, u_slot_hi;
 #else
@@ -55,13 +54,13 @@ void main()
 #endif
     uvec4 a = uvec4(0u), b = uvec4(0u), c = uvec4(0u);
     // Anything out of range stays the all-zero triangle, which no ray hits.
-    if (prim < uint(triangles.length())) {
-        uvec3 idx = triangles[prim].idx.xyz;
-        uint nv = uint(vertices.length());
+    if (prim < uint(cv_triangles.length())) {
+        uvec3 idx = cv_triangles[prim].idx.xyz;
+        uint nv = uint(cv_vertices.length());
         if (idx.x < nv && idx.y < nv && idx.z < nv) {
-            a = uvec4(floatBitsToUint(vertices[idx.x].pos_u.xyz), prim);
-            b = uvec4(floatBitsToUint(vertices[idx.y].pos_u.xyz), 0u);
-            c = uvec4(floatBitsToUint(vertices[idx.z].pos_u.xyz), 0u);
+            a = uvec4(floatBitsToUint(cv_vertices[idx.x].pos_u.xyz), prim);
+            b = uvec4(floatBitsToUint(cv_vertices[idx.y].pos_u.xyz), 0u);
+            c = uvec4(floatBitsToUint(cv_vertices[idx.z].pos_u.xyz), 0u);
         }
     }
     out_words[3u * slot] = a;

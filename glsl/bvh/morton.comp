@@ -15,15 +15,14 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Bounds { vec4 bounds[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer Keys { uint keys[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Vals { uint vals[]; };
+#include "mesh_buffers.glsl"
+layout(std430, binding = CV_BIND_BUILD_BOUNDS) readonly buffer Bounds { vec4 bounds[]; };
+layout(std430, binding = CV_BIND_MORTON_KEYS) writeonly buffer Keys { uint keys[]; };
+layout(std430, binding = CV_BIND_MORTON_VALS) writeonly buffer Vals { uint vals[]; };
 #ifdef FROM_BOXES
-layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer LeafBoxes { vec4 leaf_boxes[]; };
+layout(std430, binding = CV_BIND_LEAF_BOXES) readonly buffer LeafBoxes { vec4 leaf_boxes[]; };
 #else
-layout(std430, binding = CV_BIND_STAGE0 + 3) writeonly buffer LeafBoxes { vec4 leaf_boxes[]; };
+layout(std430, binding = CV_BIND_LEAF_BOXES) writeonly buffer LeafBoxes { vec4 leaf_boxes[]; };
 #endif
 
 uniform uint u_n;
@@ -46,8 +45,8 @@ void main()
 #ifdef FROM_BOXES
     vec3 c = (leaf_boxes[2u * i].xyz + leaf_boxes[2u * i + 1u].xyz) * 0.5;
 #else
-    uvec4 t = tris[i].idx;
-    vec3 a = verts[t.x].pos_u.xyz, b = verts[t.y].pos_u.xyz, c3 = verts[t.z].pos_u.xyz;
+    uvec4 t = cv_triangles[i].idx;
+    vec3 a = cv_vertices[t.x].pos_u.xyz, b = cv_vertices[t.y].pos_u.xyz, c3 = cv_vertices[t.z].pos_u.xyz;
     leaf_boxes[2u * i] = vec4(min(a, min(b, c3)), 0.0);
     leaf_boxes[2u * i + 1u] = vec4(max(a, max(b, c3)), 0.0);
     vec3 c = (a + b + c3) * (1.0 / 3.0);

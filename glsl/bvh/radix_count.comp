@@ -13,8 +13,8 @@
 #define THREADS 256
 layout(local_size_x = THREADS) in;
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Keys { uint keys[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Counts { uint counts[]; };
+layout(std430, binding = CV_BIND_SORT_KEYS) readonly buffer Keys { uint keys[]; };
+layout(std430, binding = CV_BIND_SORT_COUNTS) writeonly buffer Counts { uint counts[]; };
 
 uniform uint u_n;
 uniform uint u_shift;

@@ -22,11 +22,11 @@
 #define KEYS (1024 / THREADS)
 layout(local_size_x = THREADS) in;
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Keys { uint keys[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Vals { uint vals[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Counts { uint counts[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) writeonly buffer KeysOut { uint keys_out[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer ValsOut { uint vals_out[]; };
+layout(std430, binding = CV_BIND_SORT_KEYS) readonly buffer Keys { uint keys[]; };
+layout(std430, binding = CV_BIND_SORT_VALS) readonly buffer Vals { uint vals[]; };
+layout(std430, binding = CV_BIND_SORT_COUNTS) readonly buffer Counts { uint counts[]; };
+layout(std430, binding = CV_BIND_SORT_KEYS_OUT) writeonly buffer KeysOut { uint keys_out[]; };
+layout(std430, binding = CV_BIND_SORT_VALS_OUT) writeonly buffer ValsOut { uint vals_out[]; };
 
 uniform uint u_n;
 uniform uint u_shift;

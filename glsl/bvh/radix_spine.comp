@@ -13,7 +13,7 @@
 #define THREADS 256
 layout(local_size_x = THREADS) in;
 
-layout(std430, binding = CV_BIND_STAGE0 + 2) buffer Counts { uint counts[]; };
+layout(std430, binding = CV_BIND_SORT_COUNTS) buffer Counts { uint counts[]; };
 
 uniform uint u_blocks;  // at most THREADS * RUN
 

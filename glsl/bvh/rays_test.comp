@@ -15,8 +15,8 @@
 layout(local_size_x = 64) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Rays { vec4 rays[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer Results { uvec4 results[]; };
+layout(std430, binding = CV_BIND_PROBE_IN) readonly buffer Rays { vec4 rays[]; };
+layout(std430, binding = CV_BIND_PROBE_OUT) writeonly buffer Results { uvec4 results[]; };
 
 uniform uint u_n_rays;
 uniform uint u_n_tris;

@@ -13,11 +13,11 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Vals { uint vals[]; };
+layout(std430, binding = CV_BIND_BUILD_VALS) readonly buffer Vals { uint vals[]; };
 // each triangle's box in input order, from morton.comp
-layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer LeafBoxes { vec4 leaf_boxes[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
+layout(std430, binding = CV_BIND_LEAF_BOXES) readonly buffer LeafBoxes { vec4 leaf_boxes[]; };
+layout(std430, binding = CV_BIND_BUILD_NODES) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_BUILD_COUNTERS) coherent buffer Counters { uint counters[]; };
 
 uniform uint u_n;
 // This pass's window of triangle indices, [u_tri_lo, u_tri_hi).

@@ -6,8 +6,8 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = CV_BIND_STAGE0) buffer Data { uint data[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer Sums { uint sums[]; };
+layout(std430, binding = CV_BIND_SCAN_DATA) buffer Data { uint data[]; };
+layout(std430, binding = CV_BIND_SCAN_SUMS) writeonly buffer Sums { uint sums[]; };
 
 uniform uint u_n;
 

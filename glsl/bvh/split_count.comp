@@ -18,8 +18,8 @@ layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 #include "split.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) buffer Counts { uint counts[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Sums { float sums[]; };
+layout(std430, binding = CV_BIND_SPLIT_COUNTS) buffer Counts { uint counts[]; };
+layout(std430, binding = CV_BIND_SPLIT_SUMS) readonly buffer Sums { float sums[]; };
 
 uniform uint u_n;
 uniform float u_budget;   // B: the most extra references, over all triangles

@@ -39,14 +39,13 @@ layout(local_size_x = 64) in;
 #include "../lib/index.glsl"
 #include "split.glsl"
 
-layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Bounds { vec4 bounds[]; };
+#include "mesh_buffers.glsl"
+layout(std430, binding = CV_BIND_SPLIT_BOUNDS) readonly buffer Bounds { vec4 bounds[]; };
 // Exclusive prefix sum of the fixed-point shares, n + 1 elements
 // (split_count.comp says how to read it).
-layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Offsets { uint offsets[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer RefTris { uint ref_tris[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) writeonly buffer RefBoxes { vec4 ref_boxes[]; };
+layout(std430, binding = CV_BIND_SPLIT_COUNTS) readonly buffer Offsets { uint offsets[]; };
+layout(std430, binding = CV_BIND_SPLIT_REF_TRIS) writeonly buffer RefTris { uint ref_tris[]; };
+layout(std430, binding = CV_BIND_SPLIT_REF_BOXES) writeonly buffer RefBoxes { vec4 ref_boxes[]; };
 
 uniform uint u_n;       // triangles
 uniform uint u_n_refs;  // references
@@ -123,10 +122,10 @@ void main()
     uint first = offsets[t] >> u_shift;
     uint k = 1u + (offsets[t + 1u] >> u_shift) - first;
     uint j = r < u_n ? 0u : r - u_n - first + 1u;
-    uvec4 idx = tris[t].idx;
-    g_v[0] = verts[idx.x].pos_u.xyz;
-    g_v[1] = verts[idx.y].pos_u.xyz;
-    g_v[2] = verts[idx.z].pos_u.xyz;
+    uvec4 idx = cv_triangles[t].idx;
+    g_v[0] = cv_vertices[idx.x].pos_u.xyz;
+    g_v[1] = cv_vertices[idx.y].pos_u.xyz;
+    g_v[2] = cv_vertices[idx.z].pos_u.xyz;
     vec3 lo = cv_split_tri_lo(g_v[0], g_v[1], g_v[2]), hi = cv_split_tri_hi(g_v[0], g_v[1], g_v[2]);
     g_eps = max(abs(lo), abs(hi)) * (1.0 / 262144.0);
     vec3 s_lo = bounds[0].xyz, s_ext = bounds[1].xyz - s_lo;

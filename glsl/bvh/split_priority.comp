@@ -34,11 +34,10 @@ layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 #include "split.glsl"
 
-layout(std430, binding = CV_BIND_VERTICES) readonly buffer Vertices { CvVertex verts[]; };
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer Triangles { CvTriangle tris[]; };
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer Bounds { vec4 bounds[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer Prio { float prio[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) writeonly buffer Sums { float sums[]; };
+#include "mesh_buffers.glsl"
+layout(std430, binding = CV_BIND_SPLIT_BOUNDS) readonly buffer Bounds { vec4 bounds[]; };
+layout(std430, binding = CV_BIND_SPLIT_COUNTS) writeonly buffer Prio { float prio[]; };
+layout(std430, binding = CV_BIND_SPLIT_SUMS) writeonly buffer Sums { float sums[]; };
 
 uniform uint u_n;
 
@@ -49,8 +48,8 @@ void main()
     uint i = cv_global_index();
     float p = 0.0;
     if (i < u_n) {
-        uvec4 t = tris[i].idx;
-        vec3 a = verts[t.x].pos_u.xyz, b = verts[t.y].pos_u.xyz, c = verts[t.z].pos_u.xyz;
+        uvec4 t = cv_triangles[i].idx;
+        vec3 a = cv_vertices[t.x].pos_u.xyz, b = cv_vertices[t.y].pos_u.xyz, c = cv_vertices[t.z].pos_u.xyz;
         vec3 lo = cv_split_tri_lo(a, b, c), hi = cv_split_tri_hi(a, b, c);
         vec3 s_lo = bounds[0].xyz, s_ext = bounds[1].xyz - s_lo;
         int axis;

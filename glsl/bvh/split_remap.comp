@@ -8,7 +8,7 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer RefTris { uint ref_tris[]; };
+layout(std430, binding = CV_BIND_SPLIT_REF_TRIS) readonly buffer RefTris { uint ref_tris[]; };
 layout(std430, binding = CV_BIND_BVH_PRIMS) buffer Prims { uint prims[]; };
 
 uniform uint u_n;

@@ -7,8 +7,8 @@
 layout(local_size_x = 256) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer In { float in_s[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer Out { float out_s[]; };
+layout(std430, binding = CV_BIND_SPLIT_SUM_IN) readonly buffer In { float in_s[]; };
+layout(std430, binding = CV_BIND_SPLIT_SUM_OUT) writeonly buffer Out { float out_s[]; };
 
 uniform uint u_n;
 

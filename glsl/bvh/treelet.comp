@@ -48,12 +48,12 @@
 layout(local_size_x = GROUP) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) coherent buffer Counters { uint counters[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) coherent buffer Stamps { uint stamps[]; };
+layout(std430, binding = CV_BIND_BUILD_NODES) coherent buffer Nodes { CvBvhBuildNode nodes[]; };
+layout(std430, binding = CV_BIND_BUILD_COUNTERS) coherent buffer Counters { uint counters[]; };
+layout(std430, binding = CV_BIND_TREELET_STAMPS) coherent buffer Stamps { uint stamps[]; };
 // The subsets of 2..N_LEAVES leaves by size, then the pairs of sizes 3 and
 // up as subset | left part << 8 (src/bvh/treelet_schedule.h).
-layout(std430, binding = CV_BIND_STAGE0 + 4) readonly restrict buffer Schedule { uint sched[]; };
+layout(std430, binding = CV_BIND_TREELET_SCHEDULE) readonly restrict buffer Schedule { uint sched[]; };
 
 uniform uint u_n;
 uniform uint u_gamma;  // at least TREELET_SIZE (src/bvh/bvh.c)

@@ -11,7 +11,7 @@
 // experiment that chose the 4-wide tree (bench/RESULTS.md, "The 4-wide
 // tree, measured first"); no other rule has been measured.
 //
-// The binary nodes are bound at CV_BIND_STAGE0; n_bin is their count
+// The binary nodes are bound at CV_BIND_WIDEN_BIN; n_bin is their count
 // (info[CV_BVH_INFO_NODES]). A child word outside 1..n_bin-1 is not
 // opened and not kept as an inner child: the binary tree is emit.comp's
 // and valid, but nothing here may run away on a bad one.
@@ -25,7 +25,7 @@
 // dispatch counts assume.
 #define CV_WIDEN_GROUP 64
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer CvWidenBin { CvBvhNode cv_widen_bin[]; };
+layout(std430, binding = CV_BIND_WIDEN_BIN) readonly buffer CvWidenBin { CvBvhNode cv_widen_bin[]; };
 
 struct CvWideKids {
     vec4 lo[4];   // .xyz: box

@@ -13,9 +13,9 @@
 layout(local_size_x = 64) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) readonly buffer Info { uint info[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) readonly buffer Queue { uint queue[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) readonly buffer Rank { uint rank[]; };
+layout(std430, binding = CV_BIND_WIDEN_INFO) readonly buffer Info { uint info[]; };
+layout(std430, binding = CV_BIND_WIDEN_QUEUE) readonly buffer Queue { uint queue[]; };
+layout(std430, binding = CV_BIND_WIDEN_FLAGS) readonly buffer Rank { uint rank[]; };
 layout(std430, binding = CV_BIND_BVH_NODES) writeonly buffer Wide { CvBvhNode4 wide[]; };
 
 uniform uint u_n;  // wide nodes

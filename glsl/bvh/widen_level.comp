@@ -18,10 +18,10 @@
 layout(local_size_x = CV_WIDEN_GROUP) in;
 #include "../lib/index.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) coherent buffer Info { uint info[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) buffer Queue { uint queue[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) writeonly buffer Flags { uint flags[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 4) buffer Need { uint need[]; };
+layout(std430, binding = CV_BIND_WIDEN_INFO) coherent buffer Info { uint info[]; };
+layout(std430, binding = CV_BIND_WIDEN_QUEUE) buffer Queue { uint queue[]; };
+layout(std430, binding = CV_BIND_WIDEN_FLAGS) writeonly buffer Flags { uint flags[]; };
+layout(std430, binding = CV_BIND_WIDEN_NEED) buffer Need { uint need[]; };
 
 // The group's inner children and deepest stack need are gathered here
 // first, so that the level's nodes, which all add to the same counters, do

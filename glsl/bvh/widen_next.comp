@@ -10,10 +10,10 @@
 
 layout(local_size_x = 1) in;
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) buffer Info { uint info[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 2) buffer Queue { uint queue[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 3) buffer Flags { uint flags[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 4) writeonly buffer Need { uint need[]; };
+layout(std430, binding = CV_BIND_WIDEN_INFO) buffer Info { uint info[]; };
+layout(std430, binding = CV_BIND_WIDEN_QUEUE) buffer Queue { uint queue[]; };
+layout(std430, binding = CV_BIND_WIDEN_FLAGS) buffer Flags { uint flags[]; };
+layout(std430, binding = CV_BIND_WIDEN_NEED) writeonly buffer Need { uint need[]; };
 
 uniform uint u_start;
 

@@ -13,8 +13,8 @@ layout(local_size_x = 64) in;
 #include "shared/bindings.h"
 #include "lut_filter.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer ColorIn { vec4 color_in[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer ColorOut { vec4 color_out[]; };
+layout(std430, binding = CV_BIND_COLOR_IN) readonly buffer ColorIn { vec4 color_in[]; };
+layout(std430, binding = CV_BIND_COLOR_OUT) writeonly buffer ColorOut { vec4 color_out[]; };
 
 uniform uint u_count;   // pixels
 

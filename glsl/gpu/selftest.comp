@@ -3,10 +3,11 @@
 // Used by the context tests (every backend) and --list-gpus --check.
 layout(local_size_x = 64) in;
 
+#include "shared/bindings.h"
 #include "../lib/index.glsl"
 
-layout(std430, binding = 0) readonly buffer In { uint values_in[]; };
-layout(std430, binding = 1) writeonly buffer Out { uint values_out[]; };
+layout(std430, binding = CV_BIND_CHECK_IN) readonly buffer In { uint values_in[]; };
+layout(std430, binding = CV_BIND_CHECK_OUT) writeonly buffer Out { uint values_out[]; };
 
 uniform uint u_count;
 

@@ -8,11 +8,12 @@
 // those and the words themselves, so that a driver that wraps, clamps or
 // drops accesses beyond its limit is caught (src/gpu/storage.c).
 layout(local_size_x = 16) in;
+#include "shared/bindings.h"
 
-layout(std430, binding = 0) buffer Large { uint large[]; };
+layout(std430, binding = CV_BIND_CHECK_IN) buffer Large { uint large[]; };
 // In: the word indices to probe. Out: what the shader read back at each,
 // and the array length the shader sees (in out[count]).
-layout(std430, binding = 1) buffer Probe { uint probe[]; };
+layout(std430, binding = CV_BIND_CHECK_OUT) buffer Probe { uint probe[]; };
 
 uniform uint u_count;
 uniform uint u_pass;

@@ -15,10 +15,7 @@
 #ifndef CV_SHARED_ENVMAP_H
 #define CV_SHARED_ENVMAP_H
 
-/* Stage-private binding (glsl/shared/bindings.h: 10 and above). */
-#ifndef CV_BIND_ENV_DIST
-#define CV_BIND_ENV_DIST 15
-#endif
+#include "shared/bindings.h"
 
 #define CV_ENV_HEADER_FLOATS 4u
 #define CV_ENV_FLAG_EQUAL_AREA 1u

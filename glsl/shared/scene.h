@@ -172,8 +172,10 @@ CV_STRUCT(CvCamera) {
     cv_vec4 screen;       /* xmin, xmax, ymin, ymax */
     cv_vec4 lens;         /* x: lens radius, y: focal distance, z: tan(fov/2), w: unused */
     cv_uvec4 film;        /* full resolution x, y; crop origin x, y (pixels) */
-    cv_uvec4 crop;        /* crop size x, y (pixels rendered); type; unused */
+    cv_uvec4 crop;        /* crop size x, y (pixels rendered); z, w: 0 */
+    CV_UINT type;         /* CV_CAMERA_* */
+    CV_UINT pad[3];
 } CV_END(CvCamera)
-CV_CHECK_SIZE(CvCamera, 112);
+CV_CHECK_SIZE(CvCamera, 128);
 
 #endif

@@ -7,7 +7,7 @@
  * count back between bounces and no dispatch of its own does that work.
  *
  * Paths are regenerated: each pixel of the crop owns K path slots (K =
- * u_pass.wave.y, chosen by the host), and when a slot's path ends (escaped,
+ * u_pass.paths_per_pixel, chosen by the host), and when a slot's path ends (escaped,
  * absorbed, roulette, maximum depth) the stage that ends it starts the
  * slot's next sample of the pass (regenerate.glsl) among the rays of the
  * next iteration. The wave stays full until slots run out of samples, so
@@ -32,9 +32,9 @@
 /* Every stage shader runs this many invocations per group. */
 #define CV_TRACE_GROUP 64
 
-/* Binding points (stage-private range, see bindings.h). Few buffers, each
- * holding related queues, because Mesa counts every declared storage block
- * against its limit of 16 per shader.
+/* Binding points: CV_BIND_QUEUES .. CV_BIND_RESOLVED (bindings.h). Few
+ * buffers, each holding related queues, because Mesa counts every declared
+ * storage block against its limit of 16 per shader.
  * - CV_BIND_RAYS: the ray queue, double-buffered by depth parity: with
  *   capacity n (path slots), rays of depth d sit at
  *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
@@ -42,14 +42,6 @@
  *   escaped rays at [n, 2n) (their .ray only: a ray index; rlpath alone
  *   queues them, the path integrator's intersect stage handles misses).
  * Items refer to rays by their index within the iteration's half. */
-#define CV_BIND_QUEUES (CV_BIND_STAGE0 + 0)    /* CvTraceQueues */
-#define CV_BIND_RAYS (CV_BIND_STAGE0 + 1)      /* CvRayItem[2n] */
-#define CV_BIND_HITS (CV_BIND_STAGE0 + 2)      /* CvHitItem[2n] */
-#define CV_BIND_SHADOW (CV_BIND_STAGE0 + 3)    /* CvShadowItem[n] */
-#define CV_BIND_FILM (CV_BIND_STAGE0 + 4)      /* CvFilmPixel[n] */
-/* CV_BIND_STAGE0 + 5 (15) is CV_BIND_ENV_DIST, the environment map
- * distribution (glsl/shared/envmap.h, src/trace/envmap_dist.h). */
-#define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 6)  /* vec4[n]: resolve output */
 
 /* Queue counters (slots of CvTraceQueues.count). */
 #define CV_Q_RAYS_IN 0u
@@ -161,23 +153,35 @@ CV_STRUCT(CvFilmPixel) {
 } CV_END(CvFilmPixel)
 CV_CHECK_SIZE(CvFilmPixel, 48);
 
-/* Per-pass constants, in a uniform block at binding 0. */
+/* Per-pass constants, in a uniform block at binding 0 (std140: every row
+ * of four scalars below fills one 16-byte row, as a vec4 would). */
 #define CV_UBO_PASS 0
 #define CV_FILTER_TABLE 64
 CV_STRUCT(CvPassParams) {
-    cv_uvec4 frame;        /* x: pixels in the crop, y: crop width, z: crop height, w: the pass's first sample */
-    cv_uvec4 seed;         /* x, y: job seed lo/hi; z: sampler (0 sobol, 1 independent); w: max depth */
+    CV_UINT n_pixels;      /* pixels in the crop */
+    CV_UINT crop_w, crop_h;
+    CV_UINT first_sample;  /* the pass's first sample */
+    CV_UINT seed_lo, seed_hi;  /* job seed */
+    CV_UINT sampler;       /* 0 sobol, 1 independent */
+    CV_UINT max_depth;
     cv_uvec4 film;         /* x, y: full film resolution; z, w: crop origin */
-    cv_uvec4 misc;         /* x: iteration (its parity picks the ray queue halves); y: filter
-                            * type; z: light count; w: the pass's end sample (exclusive) */
+    CV_UINT iteration;     /* its parity picks the ray queue halves */
+    CV_UINT filter_type;   /* CV_FILTER_* (glsl/trace/camera.glsl) */
+    CV_UINT n_lights;
+    CV_UINT end_sample;    /* the pass's end sample (exclusive) */
     cv_vec4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
     cv_vec4 cam_to_world[3];
     cv_vec4 screen;
-    cv_vec4 lens;          /* x: radius, y: focal distance, z: tan(fov/2); w: camera type */
+    CV_FLOAT lens_radius;
+    CV_FLOAT focal_distance;
+    CV_FLOAT tan_half_fov;
+    CV_FLOAT orthographic; /* 1: orthographic, 0: perspective */
     cv_vec4 filter_x[CV_FILTER_TABLE / 4 + 1]; /* gaussian inverse CDF over [0,1], x axis (65 values, padded) */
     cv_vec4 filter_y[CV_FILTER_TABLE / 4 + 1];
-    cv_uvec4 wave;         /* x: path slots (the queues' capacity); y: slots per pixel (K); z: camera
-                            * rays the pass's generate stage writes; w: 0 */
+    CV_UINT n_paths;       /* path slots (the queues' capacity) */
+    CV_UINT paths_per_pixel;   /* slots per pixel (K) */
+    CV_UINT camera_rays;   /* camera rays the pass's generate stage writes */
+    CV_UINT pad;
 } CV_END(CvPassParams)
 CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_TABLE / 4 + 1) + 1));
 

@@ -4,6 +4,8 @@
 #ifndef CV_TRACE_CAMERA_GLSL
 #define CV_TRACE_CAMERA_GLSL
 
+#include "../lib/sampling.glsl"
+
 #define CV_FILTER_BOX 0u
 #define CV_FILTER_TRIANGLE 1u
 #define CV_FILTER_GAUSSIAN 2u
@@ -17,7 +19,7 @@ float cv_filter_table(bool y_axis, uint i)
 // Offset in pixels along one axis for a uniform u.
 float cv_filter_offset(float u, float radius, bool y_axis)
 {
-    uint type = u_pass.misc.y;
+    uint type = u_pass.filter_type;
     if (type == CV_FILTER_TRIANGLE)
         return u < 0.5 ? radius * (sqrt(2.0 * u) - 1.0) : radius * (1.0 - sqrt(2.0 - 2.0 * u));
     if (type == CV_FILTER_GAUSSIAN) {
@@ -30,22 +32,6 @@ float cv_filter_offset(float u, float radius, bool y_axis)
     return radius * (2.0 * u - 1.0);
 }
 
-vec2 cv_concentric_disk(vec2 u)
-{
-    vec2 o = 2.0 * u - 1.0;
-    if (o.x == 0.0 && o.y == 0.0)
-        return vec2(0.0);
-    float r, theta;
-    if (abs(o.x) > abs(o.y)) {
-        r = o.x;
-        theta = (CV_PI / 4.0) * (o.y / o.x);
-    } else {
-        r = o.y;
-        theta = CV_PI / 2.0 - (CV_PI / 4.0) * (o.x / o.y);
-    }
-    return r * vec2(cos(theta), sin(theta));
-}
-
 // Raster position (full film pixels) to a world-space ray.
 void cv_camera_ray(vec2 raster, vec2 u_lens, out vec3 o, out vec3 d)
 {
@@ -54,16 +40,16 @@ void cv_camera_ray(vec2 raster, vec2 u_lens, out vec3 o, out vec3 d)
     float sx = s.x + (raster.x / film.x) * (s.y - s.x);
     float sy = s.w - (raster.y / film.y) * (s.w - s.z);
     vec3 oc, dc;
-    if (u_pass.lens.w == 1.0) { // orthographic
+    if (u_pass.orthographic == 1.0) { // orthographic
         oc = vec3(sx, sy, 0.0);
         dc = vec3(0.0, 0.0, 1.0);
     } else {
         oc = vec3(0.0);
-        dc = normalize(vec3(sx * u_pass.lens.z, sy * u_pass.lens.z, 1.0));
+        dc = normalize(vec3(sx * u_pass.tan_half_fov, sy * u_pass.tan_half_fov, 1.0));
     }
-    if (u_pass.lens.x > 0.0) {
-        vec2 pl = u_pass.lens.x * cv_concentric_disk(u_lens);
-        float ft = u_pass.lens.y / dc.z;
+    if (u_pass.lens_radius > 0.0) {
+        vec2 pl = u_pass.lens_radius * cv_sample_disk_concentric(u_lens);
+        float ft = u_pass.focal_distance / dc.z;
         vec3 pf = oc + dc * ft;
         oc = vec3(oc.xy + pl, 0.0);
         dc = normalize(pf - oc);

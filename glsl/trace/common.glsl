@@ -17,9 +17,11 @@ layout(std430, binding = CV_BIND_HITS) buffer CvHits { CvHitItem hits[]; };
 layout(std430, binding = CV_BIND_SHADOW) buffer CvShadow { CvShadowItem shadows[]; };
 layout(std430, binding = CV_BIND_FILM) buffer CvFilm { CvFilmPixel film[]; };
 
-uint cv_iteration() { return u_pass.misc.x; }
-uint cv_max_depth() { return u_pass.seed.w; }
-uint cv_capacity() { return u_pass.wave.x; }
+uint cv_iteration() { return u_pass.iteration; }
+// The scene's lights (the light buffer holds a placeholder when there are none).
+uint cv_n_lights() { return u_pass.n_lights; }
+uint cv_max_depth() { return u_pass.max_depth; }
+uint cv_capacity() { return u_pass.n_paths; }
 
 // A ray's bits (CV_RAYF_*) and depth, both kept in beta.w (see trace.h).
 uint cv_ray_flags(CvRayItem r) { return uint(r.beta.w) & CV_RAYF_MASK; }
@@ -29,7 +31,7 @@ float cv_ray_meta(uint flags, uint depth) { return float(flags | (depth << CV_RA
 // The sample index of the path in flight in slot `path` (trace.h).
 uint cv_path_sample(uint path) { return uint(film[path].normal.w); }
 // The crop pixel that path slot `path` belongs to.
-uint cv_path_pixel(uint path) { return path % u_pass.frame.x; }
+uint cv_path_pixel(uint path) { return path % u_pass.n_pixels; }
 
 // The iteration's input rays and the rays it writes (see trace.h).
 CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }

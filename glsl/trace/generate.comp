@@ -15,7 +15,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 void main()
 {
     uint i = cv_global_index();
-    uint n = u_pass.wave.z;
+    uint n = u_pass.camera_rays;
     if (i == 0u) {
         cv_prepare_iteration(n);
         q.count[CV_Q_SHADOW] = 0u;
@@ -24,9 +24,9 @@ void main()
     }
     if (i >= n)
         return;
-    uint pixels = u_pass.frame.x;
-    uint sample_index = u_pass.frame.w + i / pixels;
-    uint path = (sample_index % u_pass.wave.y) * pixels + i % pixels;
+    uint pixels = u_pass.n_pixels;
+    uint sample_index = u_pass.first_sample + i / pixels;
+    uint path = (sample_index % u_pass.paths_per_pixel) * pixels + i % pixels;
     // iteration 0 reads the odd half
     rays[cv_capacity() + i] = cv_camera_sample(path, sample_index);
 }

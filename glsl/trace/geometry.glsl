@@ -4,7 +4,7 @@
 #ifndef CV_TRACE_GEOMETRY_GLSL
 #define CV_TRACE_GEOMETRY_GLSL
 
-#include "mesh_buffers.glsl"
+#include "../bvh/mesh_buffers.glsl"
 
 struct CvSurface {
     vec3 p;

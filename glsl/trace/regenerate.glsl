@@ -18,11 +18,11 @@
 // flight.
 CvRayItem cv_camera_sample(uint path, uint sample_index)
 {
-    uint i = cv_path_pixel(path), cw = u_pass.frame.y;
+    uint i = cv_path_pixel(path), cw = u_pass.crop_w;
     uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
     uint film_pixel = px.y * u_pass.film.x + px.x;
-    uvec2 seed = u_pass.seed.xy;
-    uint sampler = u_pass.seed.z;
+    uvec2 seed = uvec2(u_pass.seed_lo, u_pass.seed_hi);
+    uint sampler = u_pass.sampler;
     vec2 uf = cv_sample_2d(film_pixel, sample_index, 0u, seed, sampler);
     vec2 ul = cv_sample_2d(film_pixel, sample_index, 1u, seed, sampler);
     vec2 raster = vec2(px) + 0.5 +
@@ -44,8 +44,8 @@ CvRayItem cv_camera_sample(uint path, uint sample_index)
 // value says whether r is set).
 bool cv_regenerate(uint path, out CvRayItem r)
 {
-    uint next = cv_path_sample(path) + u_pass.wave.y;
-    if (next >= u_pass.misc.w)
+    uint next = cv_path_sample(path) + u_pass.paths_per_pixel;
+    if (next >= u_pass.end_sample)
         return false;
     r = cv_camera_sample(path, next);
     return true;

@@ -12,11 +12,11 @@ layout(std430, binding = CV_BIND_RESOLVED) writeonly buffer CvResolved { vec4 re
 void main()
 {
     uint i = cv_global_index();
-    uint pixels = u_pass.frame.x;
+    uint pixels = u_pass.n_pixels;
     if (i >= pixels)
         return;
     vec4 f = film[i].L;
-    for (uint k = 1u; k < u_pass.wave.y; k++)
+    for (uint k = 1u; k < u_pass.paths_per_pixel; k++)
         f += film[k * pixels + i].L;
     resolved[i] = vec4(f.w > 0.0 ? f.rgb / f.w : vec3(0.0), 1.0);
 }

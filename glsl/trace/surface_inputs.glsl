@@ -10,7 +10,7 @@
 // The full film's pixel index of crop pixel i.
 uint cv_film_pixel(uint i)
 {
-    uint cw = u_pass.frame.y;
+    uint cw = u_pass.crop_w;
     uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
     return px.y * u_pass.film.x + px.x;
 }
@@ -20,7 +20,7 @@ uint cv_film_pixel(uint i)
 vec2 cv_bounce_2d(uint path, uint depth, uint which)
 {
     return cv_sample_2d(cv_film_pixel(cv_path_pixel(path)), cv_path_sample(path),
-                        2u + depth * CV_PAIRS_PER_BOUNCE + which, u_pass.seed.xy, u_pass.seed.z);
+                        2u + depth * CV_PAIRS_PER_BOUNCE + which, uvec2(u_pass.seed_lo, u_pass.seed_hi), u_pass.sampler);
 }
 
 CvShadingPoint cv_shading_point(CvSurface sf, bool front)

@@ -21,8 +21,8 @@ uint64_t cv_bvh_bounds_bytes(uint32_t n)
 void cv_bvh_bounds_dispatch(struct cv_program *bounds, uint32_t n, GLuint out, GLuint counter)
 {
     cv_buffer_zero(counter);
-    cv_buffer_bind(out, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(counter, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(out, CV_BIND_BOUNDS_OUT);
+    cv_buffer_bind(counter, CV_BIND_BOUNDS_DONE);
     cv_program_set_uint(bounds, "u_n", n);
     cv_program_dispatch_1d(bounds, (uint64_t)bounds_groups(n) * bounds->local_size[0]);
 }

@@ -250,7 +250,7 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     /* Centroid bounds: one dispatch, whose last group reduces the groups'
      * pairs (bounds.comp); bounds_b holds its counter. */
     cv_gpu_timer_begin(b->timer, PH_BOUNDS, 0);
-    cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
+    cv_buffer_bind(b->out_nodes, CV_BIND_LEAF_BOXES);
     cv_bvh_bounds_dispatch(bounds, n, b->bounds_a, b->bounds_b);
     cv_gpu_timer_end(b->timer);
 
@@ -258,10 +258,10 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
      * only emit writes: (n - 1) * 64 bytes hold n * 32 for n >= 2. Split
      * references' boxes are there already (cv_bvh_split_emit). */
     cv_gpu_timer_begin(b->timer, PH_MORTON, 0);
-    cv_buffer_bind(b->bounds_a, CV_BIND_STAGE0);
-    cv_buffer_bind(b->keys, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(b->vals, CV_BIND_STAGE0 + 2);
-    cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
+    cv_buffer_bind(b->bounds_a, CV_BIND_BUILD_BOUNDS);
+    cv_buffer_bind(b->keys, CV_BIND_MORTON_KEYS);
+    cv_buffer_bind(b->vals, CV_BIND_MORTON_VALS);
+    cv_buffer_bind(b->out_nodes, CV_BIND_LEAF_BOXES);
     cv_program_set_uint(morton, "u_n", n);
     cv_program_dispatch_1d(morton, n);
     cv_gpu_timer_end(b->timer);
@@ -273,16 +273,16 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
         return false;
 
     cv_gpu_timer_begin(b->timer, PH_HIERARCHY, 0);
-    cv_buffer_bind(b->keys, CV_BIND_STAGE0);
-    cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(b->counters, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(b->keys, CV_BIND_BUILD_KEYS);
+    cv_buffer_bind(b->nodes, CV_BIND_BUILD_NODES);
+    cv_buffer_bind(b->counters, CV_BIND_BUILD_COUNTERS);
     cv_program_set_uint(hier, "u_n", n);
     cv_program_dispatch_1d(hier, n);
     cv_gpu_timer_end(b->timer);
 
     cv_gpu_timer_begin(b->timer, PH_REFIT, 0);
-    cv_buffer_bind(b->vals, CV_BIND_STAGE0);
-    cv_buffer_bind(b->out_nodes, CV_BIND_STAGE0 + 3);
+    cv_buffer_bind(b->vals, CV_BIND_BUILD_VALS);
+    cv_buffer_bind(b->out_nodes, CV_BIND_LEAF_BOXES);
     cv_program_set_uint(refit, "u_n", n);
     for (uint32_t lo = 0; lo < n; lo += REFIT_WINDOW) {
         cv_program_set_uint(refit, "u_tri_lo", lo);
@@ -296,8 +296,8 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     /* The rounds' change stamps borrow `live`, which layout fills later;
      * the leaf boxes at STAGE0 + 3 are not needed after refit. */
     cv_buffer_zero(b->live);
-    cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
-    cv_buffer_bind(b->schedule, CV_BIND_STAGE0 + 4);
+    cv_buffer_bind(b->live, CV_BIND_TREELET_STAMPS);
+    cv_buffer_bind(b->schedule, CV_BIND_TREELET_SCHEDULE);
     for (int r = 0; r < p->treelet_rounds; r++) {
         cv_buffer_zero(b->counters);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -311,26 +311,26 @@ static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint ve
     cv_gpu_timer_end(b->timer);
 
     cv_gpu_timer_begin(b->timer, PH_COLLAPSE, 0);
-    cv_buffer_bind(b->vals, CV_BIND_STAGE0);
-    cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(b->vals, CV_BIND_BUILD_VALS);
+    cv_buffer_bind(b->nodes, CV_BIND_BUILD_NODES);
+    cv_buffer_bind(b->offsets, CV_BIND_BUILD_OFFSETS);
     /* `live` now holds each node's count of left turns (layout.comp), and
      * the prefix sum of `starts` counts final leaves per slot: emit.comp
      * adds them into depth-first node indices. */
-    cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
+    cv_buffer_bind(b->live, CV_BIND_BUILD_LEFTS);
     cv_buffer_zero(b->starts);
-    cv_buffer_bind(b->starts, CV_BIND_STAGE0 + 4);
+    cv_buffer_bind(b->starts, CV_BIND_BUILD_STARTS);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     cv_program_set_uint(layout, "u_n", n);
     cv_program_dispatch_1d(layout, 2 * (uint64_t)n - 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     ok = cv_scan_exclusive(b->scan, b->starts, n, err);
     if (ok) {
-        cv_buffer_bind(b->nodes, CV_BIND_STAGE0 + 1);
-        cv_buffer_bind(b->offsets, CV_BIND_STAGE0 + 2);
-        cv_buffer_bind(b->live, CV_BIND_STAGE0 + 3);
-        cv_buffer_bind(b->info, CV_BIND_STAGE0 + 4);
-        cv_buffer_bind(b->starts, CV_BIND_STAGE0 + 5);
+        cv_buffer_bind(b->nodes, CV_BIND_BUILD_NODES);
+        cv_buffer_bind(b->offsets, CV_BIND_BUILD_OFFSETS);
+        cv_buffer_bind(b->live, CV_BIND_BUILD_LEFTS);
+        cv_buffer_bind(b->info, CV_BIND_EMIT_INFO);
+        cv_buffer_bind(b->starts, CV_BIND_EMIT_LEAVES);
         cv_buffer_bind(b->out_nodes, CV_BIND_BVH_NODES);
         cv_program_set_uint(emit, "u_n", n);
         cv_program_dispatch_1d(emit, n);
@@ -407,14 +407,14 @@ static bool leaf_tris_scatter(struct build *b, struct cv_bvh *bvh, uint32_t wind
         return false;
     cv_gpu_timer_begin(b->timer, PH_LEAF_TRIS, 0);
     cv_buffer_bind(bvh->prims, CV_BIND_BVH_PRIMS);
-    cv_buffer_bind(b->keys, CV_BIND_STAGE0);
+    cv_buffer_bind(b->keys, CV_BIND_BUILD_SLOT_OF);
     cv_program_set_uint(slots, "u_n", n);
     cv_program_dispatch_1d(slots, n);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
     cv_buffer_bind(triangles, CV_BIND_TRIANGLES);
     /* Unsplit, reference r is triangle r and the shader reads no ref_tris. */
-    cv_buffer_bind(b->split ? cv_bvh_split_ref_tris(b->split) : b->keys, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(b->split ? cv_bvh_split_ref_tris(b->split) : b->keys, CV_BIND_SPLIT_REF_TRIS);
     cv_buffer_bind(bvh->tris, CV_BIND_BVH_TRIS);
     cv_program_set_uint(scatter, "u_n", n);
     cv_program_set_uint(scatter, "u_split", b->split != NULL);

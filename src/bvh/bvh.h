@@ -97,8 +97,8 @@ struct cv_bvh;
  * `vertices` (glsl/shared/scene.h); the caller keeps both buffers alive and
  * unchanged while the BVH is used. params NULL: defaults. Changes buffer
  * bindings: the two scene buffers end bound at CV_BIND_VERTICES/TRIANGLES,
- * stage-private slots (CV_BIND_STAGE0..+4) and the BVH slots hold scratch,
- * so call cv_bvh_bind() before tracing. Waits for the GPU once, near the
+ * the build's stage-private slots (glsl/shared/bindings.h) and the BVH
+ * slots hold scratch, so call cv_bvh_bind() before tracing. Waits for the GPU once, near the
  * end (widening reads back the node counts and the root's cost). The
  * scratch (~264 bytes per
  * triangle with the default splitting) is taken from gpu->scratch and left

@@ -118,17 +118,17 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
     cv_program_set_uint(spine, "u_blocks", blocks);
     cv_program_set_uint(scatter, "u_n", n);
     cv_program_set_uint(scatter, "u_block_tiles", tiles);
-    cv_buffer_bind(rs->counts, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(rs->counts, CV_BIND_SORT_COUNTS);
     GLuint src_k = keys, src_v = vals, dst_k = rs->keys, dst_v = rs->vals;
     for (int pass = 0; pass < passes; pass++) {
         uint32_t shift = (uint32_t)(pass * RADIX_BITS);
-        cv_buffer_bind(src_k, CV_BIND_STAGE0);
+        cv_buffer_bind(src_k, CV_BIND_SORT_KEYS);
         cv_program_set_uint(count, "u_shift", shift);
         cv_program_dispatch_1d(count, (uint64_t)blocks * count->local_size[0]);
         cv_program_dispatch_1d(spine, (uint64_t)RADIX_BINS * spine->local_size[0]);
-        cv_buffer_bind(src_v, CV_BIND_STAGE0 + 1);
-        cv_buffer_bind(dst_k, CV_BIND_STAGE0 + 3);
-        cv_buffer_bind(dst_v, CV_BIND_STAGE0 + 4);
+        cv_buffer_bind(src_v, CV_BIND_SORT_VALS);
+        cv_buffer_bind(dst_k, CV_BIND_SORT_KEYS_OUT);
+        cv_buffer_bind(dst_v, CV_BIND_SORT_VALS_OUT);
         cv_program_set_uint(scatter, "u_shift", shift);
         cv_program_dispatch_1d(scatter, (uint64_t)blocks * scatter->local_size[0]);
         GLuint tk = src_k, tv = src_v;

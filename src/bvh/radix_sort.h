@@ -22,7 +22,7 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
                                            struct cv_error *err);
 /* Sorts keys[0..n) by their low `bits` bits (1..max_bits), carrying vals;
  * keys are 64-bit (two words) when bits > 32. The result ends in the same
- * two buffers. n <= max_n. Uses stage-private bindings CV_BIND_STAGE0..+4. */
+ * two buffers. n <= max_n. Binds CV_BIND_SORT_*. */
 bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint32_t n,
                        int bits, struct cv_error *err);
 uint64_t cv_radix_sort_bytes(const struct cv_radix_sort *rs);

@@ -57,15 +57,15 @@ static bool scan_level(struct cv_scan *scan, GLuint buf, uint32_t n, int level,
     if (level >= scan->n_levels)
         return cv_fail(err, "scan: more elements than the scratch was made for");
     uint32_t tiles = (n + SCAN_TILE - 1) / SCAN_TILE;
-    cv_buffer_bind(buf, CV_BIND_STAGE0);
-    cv_buffer_bind(scan->sums[level], CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(buf, CV_BIND_SCAN_DATA);
+    cv_buffer_bind(scan->sums[level], CV_BIND_SCAN_SUMS);
     cv_program_set_uint(block, "u_n", n);
     cv_program_dispatch_1d(block, (uint64_t)tiles * block->local_size[0]);
     if (tiles > 1) {
         if (!scan_level(scan, scan->sums[level], tiles, level + 1, err))
             return false;
-        cv_buffer_bind(buf, CV_BIND_STAGE0);
-        cv_buffer_bind(scan->sums[level], CV_BIND_STAGE0 + 1);
+        cv_buffer_bind(buf, CV_BIND_SCAN_DATA);
+        cv_buffer_bind(scan->sums[level], CV_BIND_SCAN_SUMS);
         cv_program_set_uint(add, "u_n", n);
         cv_program_dispatch_1d(add, n);
     }

@@ -17,7 +17,7 @@ struct cv_scan;
 /* Scratch for scans of up to max_n elements. NULL on failure. */
 struct cv_scan *cv_scan_create(struct cv_gpu *gpu, uint32_t max_n, struct cv_error *err);
 /* Replaces buf[0..n) by its exclusive prefix sum; n <= max_n. Binds
- * stage-private bindings CV_BIND_STAGE0 and +1. */
+ * CV_BIND_SCAN_DATA and CV_BIND_SCAN_SUMS. */
 bool cv_scan_exclusive(struct cv_scan *scan, GLuint buf, uint32_t n, struct cv_error *err);
 /* Bytes of GPU scratch held. */
 uint64_t cv_scan_bytes(const struct cv_scan *scan);

@@ -42,8 +42,8 @@ static GLuint split_buffer(struct cv_bvh_split *s, uint64_t bytes, const char *l
 static GLuint reduce_sums(struct cv_program *sum, GLuint a, GLuint b, uint32_t m)
 {
     for (; m > 1; m = (m + 255) / 256) {
-        cv_buffer_bind(a, CV_BIND_STAGE0);
-        cv_buffer_bind(b, CV_BIND_STAGE0 + 1);
+        cv_buffer_bind(a, CV_BIND_SPLIT_SUM_IN);
+        cv_buffer_bind(b, CV_BIND_SPLIT_SUM_OUT);
         cv_program_set_uint(sum, "u_n", m);
         cv_program_dispatch_1d(sum, m);
         GLuint t = a;
@@ -96,15 +96,15 @@ bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangle
     /* The scene box, which the Morton grid divides. */
     cv_bvh_bounds_dispatch(box, n, s->bounds, s->bounds_counter);
 
-    cv_buffer_bind(s->bounds, CV_BIND_STAGE0);
-    cv_buffer_bind(s->counts, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(s->sums_a, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(s->bounds, CV_BIND_SPLIT_BOUNDS);
+    cv_buffer_bind(s->counts, CV_BIND_SPLIT_COUNTS);
+    cv_buffer_bind(s->sums_a, CV_BIND_SPLIT_SUMS);
     cv_program_set_uint(prio, "u_n", n);
     cv_program_dispatch_1d(prio, n);
     GLuint psum = reduce_sums(sum, s->sums_a, s->sums_b, g0);
 
-    cv_buffer_bind(s->counts, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(psum, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(s->counts, CV_BIND_SPLIT_COUNTS);
+    cv_buffer_bind(psum, CV_BIND_SPLIT_SUMS);
     cv_program_set_uint(count, "u_n", n);
     cv_program_set_uint(count, "u_shift", s->shift);
     glProgramUniform1f(count->id, glGetUniformLocation(count->id, "u_budget"),
@@ -131,10 +131,10 @@ bool cv_bvh_split_emit(struct cv_bvh_split *s, GLuint boxes, struct cv_error *er
     struct cv_program *emit = cv_program_get(s->gpu, "bvh/split_emit.comp", NULL, err);
     if (!emit)
         return false;
-    cv_buffer_bind(s->bounds, CV_BIND_STAGE0);
-    cv_buffer_bind(s->counts, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(s->ref_tris, CV_BIND_STAGE0 + 2);
-    cv_buffer_bind(boxes, CV_BIND_STAGE0 + 3);
+    cv_buffer_bind(s->bounds, CV_BIND_SPLIT_BOUNDS);
+    cv_buffer_bind(s->counts, CV_BIND_SPLIT_COUNTS);
+    cv_buffer_bind(s->ref_tris, CV_BIND_SPLIT_REF_TRIS);
+    cv_buffer_bind(boxes, CV_BIND_SPLIT_REF_BOXES);
     cv_program_set_uint(emit, "u_n", s->n);
     cv_program_set_uint(emit, "u_n_refs", s->n_refs);
     cv_program_set_uint(emit, "u_shift", s->shift);
@@ -147,7 +147,7 @@ bool cv_bvh_split_remap(struct cv_bvh_split *s, GLuint prims, struct cv_error *e
     struct cv_program *remap = cv_program_get(s->gpu, "bvh/split_remap.comp", NULL, err);
     if (!remap)
         return false;
-    cv_buffer_bind(s->ref_tris, CV_BIND_STAGE0 + 2);
+    cv_buffer_bind(s->ref_tris, CV_BIND_SPLIT_REF_TRIS);
     cv_buffer_bind(prims, CV_BIND_BVH_PRIMS);
     cv_program_set_uint(remap, "u_n", s->n_refs);
     cv_program_dispatch_1d(remap, s->n_refs);

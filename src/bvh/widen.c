@@ -7,11 +7,11 @@
 
 static void bind_all(const struct cv_bvh_widen *w)
 {
-    cv_buffer_bind(w->bin, CV_BIND_STAGE0);
-    cv_buffer_bind(w->info, CV_BIND_STAGE0 + 1);
-    cv_buffer_bind(w->queue, CV_BIND_STAGE0 + 2);
-    cv_buffer_bind(w->flags, CV_BIND_STAGE0 + 3);
-    cv_buffer_bind(w->need, CV_BIND_STAGE0 + 4);
+    cv_buffer_bind(w->bin, CV_BIND_WIDEN_BIN);
+    cv_buffer_bind(w->info, CV_BIND_WIDEN_INFO);
+    cv_buffer_bind(w->queue, CV_BIND_WIDEN_QUEUE);
+    cv_buffer_bind(w->flags, CV_BIND_WIDEN_FLAGS);
+    cv_buffer_bind(w->need, CV_BIND_WIDEN_NEED);
 }
 
 bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_WORDS],

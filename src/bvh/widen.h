@@ -42,14 +42,14 @@ struct cv_bvh_widen {
  * words[CV_BVH_INFO_WIDE] is the wide node count, [CV_BVH_INFO_DEPTH] its
  * levels and [CV_BVH_INFO_STACK] the most traversal stack entries a query
  * can need (glsl/bvh/widen_level.comp). Binds stage-private slots
- * CV_BIND_STAGE0..+4 and the indirect dispatch buffer (unbound after).
+ * CV_BIND_WIDEN_* and the indirect dispatch buffer (unbound after).
  * Fails when the queue overflows or the levels do not end. */
 bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_WORDS],
                        struct cv_error *err);
 
 /* Writes the n_wide nodes into `out` (at least n_wide CvBvhNode4) after
  * cv_bvh_widen_find; n_bin binary nodes. `scan` must take n_bin elements;
- * the flags become the nodes' indices. Binds CV_BIND_STAGE0..+3 and
+ * the flags become the nodes' indices. Binds CV_BIND_WIDEN_* and
  * CV_BIND_BVH_NODES. */
 bool cv_bvh_widen_emit(const struct cv_bvh_widen *w, struct cv_scan *scan, uint32_t n_bin,
                        uint32_t n_wide, GLuint out, struct cv_error *err);

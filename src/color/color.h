@@ -28,7 +28,7 @@ bool cv_color_pass_create(struct cv_gpu *gpu, const struct cv_color_params *p,
  * into the pass's own output buffer, and reads that back into out_rgba
  * (width*height*4 floats). Sets the pass's uniforms first (its program may
  * be shared with other passes). Waits for the GPU. Uses binding points
- * CV_BIND_STAGE0 and CV_BIND_STAGE0 + 1 and texture units from 0. */
+ * CV_BIND_COLOR_IN and CV_BIND_COLOR_OUT and texture units from 0. */
 struct cv_buf;
 bool cv_color_pass_run(struct cv_color_pass *pass, const struct cv_buf *in, uint32_t width,
                        uint32_t height, float *out_rgba, struct cv_error *err);

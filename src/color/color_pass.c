@@ -195,8 +195,8 @@ bool cv_color_pass_run(struct cv_color_pass *pass, const struct cv_buf *in, uint
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(pass->textures[i].target, pass->textures[i].id);
     }
-    cv_buf_bind(in, CV_BIND_STAGE0);
-    cv_buf_bind(pass->out, CV_BIND_STAGE0 + 1);
+    cv_buf_bind(in, CV_BIND_COLOR_IN);
+    cv_buf_bind(pass->out, CV_BIND_COLOR_OUT);
     cv_program_dispatch_1d(&pass->prog, n);
     for (unsigned i = 0; i < pass->n_textures; i++) {
         glActiveTexture(GL_TEXTURE0 + i);

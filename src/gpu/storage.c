@@ -2,6 +2,7 @@
 #include <stdlib.h>
 
 #include "base/log.h"
+#include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
@@ -104,8 +105,8 @@ bool cv_gpu_storage_probe(struct cv_gpu *gpu, uint64_t bytes, const char *const 
 
     struct saved_binding b0, b1;
     GLint program = 0;
-    save_binding(0, &b0);
-    save_binding(1, &b1);
+    save_binding(CV_BIND_CHECK_IN, &b0);
+    save_binding(CV_BIND_CHECK_OUT, &b1);
     glGetIntegerv(GL_CURRENT_PROGRAM, &program);
     /* No data and no zero fill: a whole-buffer clear of a probe of
      * gigabytes would cost more than the probe, and the words checked are
@@ -116,14 +117,14 @@ bool cv_gpu_storage_probe(struct cv_gpu *gpu, uint64_t bytes, const char *const 
                          : 0;
     bool ok = large && probe;
     if (ok) {
-        cv_buffer_bind(large, 0);
-        cv_buffer_bind(probe, 1);
+        cv_buffer_bind(large, CV_BIND_CHECK_IN);
+        cv_buffer_bind(probe, CV_BIND_CHECK_OUT);
         ok = run_probe(p, large, probe, words, n, n_words, works, err);
     }
     cv_buffer_destroy(&large);
     cv_buffer_destroy(&probe);
-    restore_binding(0, &b0);
-    restore_binding(1, &b1);
+    restore_binding(CV_BIND_CHECK_IN, &b0);
+    restore_binding(CV_BIND_CHECK_OUT, &b1);
     glUseProgram((GLuint)program);
     free(init);
     gpu->storage.probes++;

@@ -109,7 +109,8 @@ void cv_b_finish_camera(struct cv_builder *b)
     uint32_t px[4];
     cv_film_crop_pixels((uint32_t)b->xres, (uint32_t)b->yres, b->crop, px);
     c->film = (cv_uvec4){(uint32_t)b->xres, (uint32_t)b->yres, px[0], px[2]};
-    c->crop = (cv_uvec4){px[1] - px[0], px[3] - px[2], b->cam_type, 0};
+    c->crop = (cv_uvec4){px[1] - px[0], px[3] - px[2], 0, 0};
+    c->type = b->cam_type;
     s->settings.width = (uint32_t)b->xres;
     s->settings.height = (uint32_t)b->yres;
     for (int i = 0; i < 4; i++)

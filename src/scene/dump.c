@@ -62,7 +62,7 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
     fprintf(o, "integrator %s maxdepth %u\n", st->integrator ? st->integrator : "-", st->max_depth);
     fprintf(o, "filter %d radius %.6g %.6g sigma %.6g\n", (int)st->filter, st->filter_radius[0],
             st->filter_radius[1], st->filter_sigma);
-    fprintf(o, "camera %s", c->crop.z == CV_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective");
+    fprintf(o, "camera %s", c->type == CV_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective");
     v4(o, "row0", c->to_world[0]);
     v4(o, "row1", c->to_world[1]);
     v4(o, "row2", c->to_world[2]);

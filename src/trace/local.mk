@@ -1,15 +1,16 @@
 # src/trace: the wavefront path tracer (host side; shaders in glsl/trace).
 libcavalry_a_SOURCES += \
 	src/trace/filter_table.c src/trace/filter_table.h \
+	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/render.c src/trace/render.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h
 
 GLSL_FILES += \
 	glsl/shared/trace.h \
 	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
-	glsl/trace/geometry.glsl glsl/trace/tracing.glsl glsl/trace/mesh_buffers.glsl \
+	glsl/trace/geometry.glsl glsl/trace/tracing.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
-	glsl/trace/surface_inputs.glsl glsl/trace/shade_queue.glsl \
+	glsl/trace/surface_inputs.glsl glsl/trace/path_vertex.glsl glsl/trace/shade_queue.glsl \
 	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
 	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
@@ -18,6 +19,7 @@ GLSL_FILES += \
 GLSL_FILES += \
 	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \
 	glsl/trace/bsdf/bsdf.glsl glsl/trace/bsdf/bsdf_sample.glsl glsl/trace/bsdf/material_buffers.glsl \
+	glsl/trace/bsdf/texture_buffers.glsl \
 	glsl/trace/bsdf/fresnel.glsl glsl/trace/bsdf/microfacet.glsl glsl/trace/bsdf/diffuse.glsl \
 	glsl/trace/bsdf/conductor.glsl glsl/trace/bsdf/dielectric.glsl glsl/trace/bsdf/coated.glsl \
 	glsl/trace/bsdf/texture.glsl

@@ -1,9 +1,8 @@
 /* render.c: see render.h. The stages follow pbrt-v4's wavefront
  * integrator: generate camera rays; per iteration: reset the queues,
  * intersect (closest), escaped rays, surface hits (emission, NEE, BSDF
- * sampling; path shades diffuse hits and the others with two programs,
- * rlpath has its own shade stage and then its table update),
- * shadow rays; a path that ends starts its slot's next sample in the stage
+ * sampling: the integrator's shade programs, then its own work, as its
+ * entry in trace/integrator.h says), shadow rays; a path that ends starts its slot's next sample in the stage
  * that ends it (path regeneration, glsl/shared/trace.h); the film
  * accumulates in place. Queue counts stay on the GPU: the last work group
  * of the intersect and shade stages turns them into the next stages'
@@ -27,8 +26,8 @@
 #include "gpu/storage.h"
 #include "gpu/timer.h"
 #include "trace/filter_table.h"
+#include "trace/integrator.h"
 #include "trace/render.h"
-#include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 
 /* Iterations queued between looks at whether the pass is over. Small, so
@@ -48,8 +47,9 @@ enum stage {
     ST_COUNT
 };
 
-/* The stage timer's row beyond the stages: rlpath's table rebuild. */
-enum { PROF_RLPATH = ST_COUNT, PROF_COUNT };
+/* The stage timer's row beyond the stages: the integrator's work after the
+ * shade stage (cv_integrator_ops.after_shade). */
+enum { PROF_AFTER_SHADE = ST_COUNT, PROF_COUNT };
 
 /* The stage timer's slots: the iterations of a pass by index, up to this
  * many, each with the rays its intersect stage traced: the traversal rate
@@ -76,11 +76,13 @@ struct cv_renderer {
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
     struct cv_gpu_timer *passes;   /* one row: every pass, start to end */
-    struct cv_rlpath *rl;          /* CV_INTEGRATOR_RLPATH, else NULL */
+    const struct cv_integrator_ops *ops;
+    void *integrator;              /* ops->create's state, or NULL */
     /* params' stage_times: GPU time of every dispatch by stage, and by the
      * pass's iteration (a diagnostic: the scopes cost time themselves);
      * NULL: off */
     struct cv_gpu_timer *stages;
+    const char *stage_rows[PROF_COUNT];  /* its row names: the stages, then ops' */
     struct {
         GLuint counts;             /* rays in of the pass's iterations 0..PROF_ITERS-1 */
         uint64_t iter_rays[PROF_ITERS];
@@ -88,8 +90,8 @@ struct cv_renderer {
     } prof;
 };
 
-static const char *const stage_names[PROF_COUNT] = {
-    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve", "rlpath-rebuild",
+static const char *const stage_names[ST_COUNT] = {
+    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve",
 };
 
 static const char *const pass_names[1] = {"pass"};
@@ -105,9 +107,10 @@ static void prof_end(struct cv_renderer *r)
     cv_gpu_timer_end(r->stages);
 }
 
+/* The shade stages' files come from the integrator (NULL here). */
 static const char *const stage_files[ST_COUNT] = {
-    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", "trace/shade.comp",
-    "trace/shade.comp",    "trace/shadow.comp",    "trace/resolve.comp",
+    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
+    NULL,                  "trace/shadow.comp",    "trace/resolve.comp",
 };
 
 /* The film and camera: the plan's (p->camera), else the scene's. */
@@ -120,12 +123,17 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     r->crop_h = ch;
     r->n_pixels = cw * ch;
     CvPassParams *u = &r->pass;
-    u->frame = (cv_uvec4){r->n_pixels, cw, ch, 0};
+    u->n_pixels = r->n_pixels;
+    u->crop_w = cw;
+    u->crop_h = ch;
     u->film = c->film;
     for (int i = 0; i < 3; i++)
         u->cam_to_world[i] = c->to_world[i];
     u->screen = c->screen;
-    u->lens = (cv_vec4){c->lens.x, c->lens.y, c->lens.z, c->crop.z == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f};
+    u->lens_radius = c->lens.x;
+    u->focal_distance = c->lens.y;
+    u->tan_half_fov = c->lens.z;
+    u->orthographic = c->type == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f;
 }
 
 static void setup_filter(struct cv_renderer *r, const struct cv_render_settings *st)
@@ -150,7 +158,7 @@ static void setup_filter(struct cv_renderer *r, const struct cv_render_settings 
         if (ry <= 0) ry = 1.5f;
         break;
     }
-    u->misc.y = type;
+    u->filter_type = type;
     u->pixel_filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
     float tx[CV_FILTER_TABLE + 4] = {0}, ty[CV_FILTER_TABLE + 4] = {0};
     if (type == 2) {
@@ -209,7 +217,7 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
 static bool check_params(const struct cv_scene *scene, const struct cv_render_params *p,
                          struct cv_error *err)
 {
-    if ((unsigned)p->integrator >= CV_INTEGRATOR_COUNT)
+    if (!cv_integrator_find(p->integrator))
         return cv_fail(err, "unknown integrator %d", (int)p->integrator);
     if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);
@@ -275,16 +283,27 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         return false;
     }
     r->n_paths = (size_t)r->n_pixels * r->paths_per_pixel;
-    r->pass.wave = (cv_uvec4){(uint32_t)r->n_paths, r->paths_per_pixel, 0, 0};
-    r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
-                              p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
-    r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
+    r->pass.n_paths = (uint32_t)r->n_paths;
+    r->pass.paths_per_pixel = r->paths_per_pixel;
+    r->pass.seed_lo = (uint32_t)p->seed;
+    r->pass.seed_hi = (uint32_t)(p->seed >> 32);
+    r->pass.sampler = p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u;
+    r->pass.max_depth = r->max_depth;
+    r->pass.iteration = 0;
+    r->pass.n_lights = scene->n_lights;
+    r->pass.end_sample = 0;
     r->passes = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){
                                              .names = pass_names, .n_names = 1});
-    if (p->stage_times)
+    if (p->stage_times) {
+        const struct cv_integrator_ops *sops = cv_integrator_find(p->integrator);
+        for (int k = 0; k < ST_COUNT; k++)
+            r->stage_rows[k] = stage_names[k];
+        r->stage_rows[PROF_AFTER_SHADE] =
+            sops->after_shade_name ? sops->after_shade_name : "after-shade";
         r->stages = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){
-                                                 .names = stage_names, .n_names = PROF_COUNT,
+                                                 .names = r->stage_rows, .n_names = PROF_COUNT,
                                                  .n_slots = PROF_ITERS});
+    }
 
     r->scene = gs;
 
@@ -307,41 +326,41 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (!r->scene->has_textures)
         defines[nd++] = "CV_NO_TEXTURES";
     defines[nd] = NULL;
-    bool rl = p->integrator == CV_INTEGRATOR_RLPATH;
-    /* Misses need an escaped stage for an environment light or for
-     * rlpath's learning; otherwise the intersect stage starts their pixels'
-     * next samples itself (intersect.comp). */
-    r->escaped_stage = rl || r->scene->has_env;
+    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    r->ops = ops;
+    /* Misses need an escaped stage for an environment light or where the
+     * integrator asks for it; otherwise the intersect stage starts their
+     * pixels' next samples itself (intersect.comp). */
+    r->escaped_stage = ops->escaped_stage || r->scene->has_env;
     const char *escaped[9];
-    defines_plus(escaped, defines, nd, rl ? "CV_RLPATH" : NULL, NULL);
+    defines_plus(escaped, defines, nd, ops->escaped_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
     const char *intersect[10];
     defines_plus(intersect, defines, nd, "CV_HIT_BINS",
                  r->escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
-    /* path shades each bin with its own program (shade.comp); rlpath's one
-     * shade program takes both bins in one dispatch */
-    const char *shade_a[9], *shade_b[9];
-    defines_plus(shade_a, defines, nd, "CV_SHADE_BIN=0", NULL);
-    defines_plus(shade_b, defines, nd, "CV_SHADE_BIN=1", NULL);
+    const char *shade[CV_SHADE_PROGRAMS][9];
+    for (int k = 0; k < ops->n_shade; k++)
+        defines_plus(shade[k], defines, nd, ops->define[k], NULL);
     const char *const no_defines[1] = {NULL};
     for (int s = 0; s < ST_COUNT; s++) {
-        /* rlpath's shade stage replaces these, with the same defines */
-        if ((s == ST_SHADE || s == ST_SHADE_B) && rl)
-            continue;
+        const char *file = stage_files[s];
+        const char *const *d = defines;
+        if (s == ST_SHADE || s == ST_SHADE_B) {
+            int k = s - ST_SHADE;
+            if (k >= ops->n_shade || !ops->file[k])
+                continue;   /* none, or the integrator's create makes it */
+            file = ops->file[k];
+            d = shade[k];
+        }
         if (s == ST_ESCAPED && !r->escaped_stage)
             continue;
-        const char *const *d = defines;
         if (s == ST_GENERATE)
             d = no_defines;
         else if (s == ST_ESCAPED)
             d = escaped;
         else if (s == ST_INTERSECT)
             d = intersect;
-        else if (s == ST_SHADE)
-            d = shade_a;
-        else if (s == ST_SHADE_B)
-            d = shade_b;
-        struct cv_program *pr = cv_program_get(gpu, stage_files[s], d, err);
+        struct cv_program *pr = cv_program_get(gpu, file, d, err);
         if (pr)
             r->prog[s] = *pr;
         if (!pr) {
@@ -350,16 +369,22 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         }
     }
 
-    if (rl) {
-        CvRlParams rp;
-        if (!cv_rlpath_layout(scene->bounds_min, scene->bounds_max, p->rl_grid, p->rl_directions,
-                              p->rl_mix, &rp, err) ||
-            !cv_rlpath_create(gpu, &rp, (uint32_t)r->n_paths, defines, p->rl_guide_indirect,
-                              &r->rl, err)) {
+    if (ops->create) {
+        struct cv_integrator_setup setup = {
+            .gpu = gpu,
+            .scene = scene,
+            .params = p,
+            .defines = defines,
+            .n_paths = (uint32_t)r->n_paths,
+        };
+        struct cv_program made[CV_SHADE_PROGRAMS];
+        if (!ops->create(&setup, &r->integrator, made, err)) {
             cv_renderer_destroy(&r);
             return false;
         }
-        r->prog[ST_SHADE] = *cv_rlpath_shade_program(r->rl);
+        for (int k = 0; k < ops->n_shade; k++)
+            if (!ops->file[k])
+                r->prog[ST_SHADE + k] = made[k];
     }
 
     size_t n = r->n_paths;
@@ -403,8 +428,8 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->film, CV_BIND_FILM);
     cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
-    if (r->rl)
-        cv_rlpath_bind(r->rl);
+    if (r->ops->bind)
+        r->ops->bind(r->integrator);
 }
 
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
@@ -418,9 +443,9 @@ static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
  * end start their next samples on the way. */
 static void iterate(struct cv_renderer *r, uint32_t it)
 {
-    r->pass.misc.x = it;
-    glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, misc), sizeof(cv_uvec4),
-                         &r->pass.misc);
+    r->pass.iteration = it;
+    glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, iteration),
+                         sizeof(r->pass.iteration), &r->pass.iteration);
     if (r->stages && it < PROF_ITERS) {
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glCopyNamedBufferSubData(r->queues, r->prof.counts,
@@ -431,21 +456,19 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
-    if (r->rl) {
-        stage_indirect(r, ST_SHADE, CV_ARGS_HITS_ALL);
-    } else {
-        /* The bins' programs share no data (each pixel's hit is in one
-         * bin; queue slots come from atomics), so the first needs no
-         * barrier before the second and the two may overlap. */
-        prof_begin(r, ST_SHADE);
-        glUseProgram(r->prog[ST_SHADE].id);
-        glDispatchComputeIndirect(CV_ARGS_BYTES(CV_ARGS_HITS));
+    /* The shade programs share no data (integrator.h), so only the last
+     * is followed by a barrier and they may overlap. */
+    const struct cv_integrator_ops *ops = r->ops;
+    for (int k = 0; k + 1 < ops->n_shade; k++) {
+        prof_begin(r, ST_SHADE + k);
+        glUseProgram(r->prog[ST_SHADE + k].id);
+        glDispatchComputeIndirect(CV_ARGS_BYTES(ops->args[k]));
         prof_end(r);
-        stage_indirect(r, ST_SHADE_B, CV_ARGS_HITS_B);
     }
-    if (r->rl) {
-        prof_begin(r, PROF_RLPATH);
-        cv_rlpath_update(r->rl);
+    stage_indirect(r, ST_SHADE + ops->n_shade - 1, ops->args[ops->n_shade - 1]);
+    if (ops->after_shade) {
+        prof_begin(r, PROF_AFTER_SHADE);
+        ops->after_shade(r->integrator);
         prof_end(r);
     }
     stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
@@ -461,13 +484,13 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     bind_all(r);
     /* the slots that have a sample in this pass (generate.comp) */
     uint32_t slots = r->paths_per_pixel, started = spp < slots ? spp : slots;
-    r->pass.frame.w = r->spp_done;
-    r->pass.misc.x = 0;
-    r->pass.misc.w = r->spp_done + spp;
-    r->pass.wave.z = r->n_pixels * started;
+    r->pass.first_sample = r->spp_done;
+    r->pass.iteration = 0;
+    r->pass.end_sample = r->spp_done + spp;
+    r->pass.camera_rays = r->n_pixels * started;
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     prof_begin(r, ST_GENERATE);
-    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.wave.z);
+    cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.camera_rays);
     prof_end(r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
@@ -629,7 +652,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);
     cv_scene_gpu_destroy(&r->owned_scene);
-    cv_rlpath_destroy(&r->rl);
+    if (r->ops && r->ops->destroy)
+        r->ops->destroy(&r->integrator);
     free(r);
     *rp = NULL;
 }

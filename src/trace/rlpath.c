@@ -11,6 +11,7 @@
 #include "gpu/buffer.h"
 #include "gpu/gl_check.h"
 #include "gpu/storage.h"
+#include "trace/integrator.h"
 #include "trace/rlpath.h"
 
 _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
@@ -168,11 +169,6 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     return true;
 }
 
-const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl)
-{
-    return &rl->shade;
-}
-
 void cv_rlpath_bind(const struct cv_rlpath *rl)
 {
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
@@ -223,3 +219,47 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
     free(rl);
     *rlp = NULL;
 }
+
+static bool ops_create(const struct cv_integrator_setup *s, void **state,
+                       struct cv_program shade[CV_SHADE_PROGRAMS], struct cv_error *err)
+{
+    const struct cv_render_params *p = s->params;
+    CvRlParams rp;
+    struct cv_rlpath *rl = NULL;
+    if (!cv_rlpath_layout(s->scene->bounds_min, s->scene->bounds_max, p->rl_grid,
+                          p->rl_directions, p->rl_mix, &rp, err) ||
+        !cv_rlpath_create(s->gpu, &rp, s->n_paths, s->defines, p->rl_guide_indirect, &rl, err))
+        return false;
+    shade[0] = rl->shade;
+    *state = rl;
+    return true;
+}
+
+static void ops_bind(const void *state)
+{
+    cv_rlpath_bind(state);
+}
+
+static void ops_after_shade(const void *state)
+{
+    cv_rlpath_update(state);
+}
+
+static void ops_destroy(void **state)
+{
+    struct cv_rlpath *rl = *state;
+    cv_rlpath_destroy(&rl);
+    *state = NULL;
+}
+
+const struct cv_integrator_ops cv_rlpath_ops = {
+    .escaped_stage = true,   /* misses learn too */
+    .escaped_define = "CV_RLPATH",
+    .n_shade = 1,
+    .args = {CV_ARGS_HITS_ALL},
+    .create = ops_create,
+    .bind = ops_bind,
+    .after_shade = ops_after_shade,
+    .after_shade_name = "rlpath-rebuild",
+    .destroy = ops_destroy,
+};

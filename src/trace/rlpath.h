@@ -4,8 +4,9 @@
  * glsl/shared/rlpath.h), its programs (glsl/trace/rlpath: shade.comp
  * replaces the path tracer's shade stage and learns there, rebuild.comp
  * runs after it; the escaped stage learns too, built with CV_RLPATH), and
- * the table layout from the options. The renderer (render.c) owns one when
- * cv_render_params.integrator is CV_INTEGRATOR_RLPATH. The table lives as
+ * the table layout from the options. The renderer (render.c) owns one,
+ * through cv_rlpath_ops, when cv_render_params.integrator is
+ * CV_INTEGRATOR_RLPATH. The table lives as
  * long as the renderer, so every pass keeps learning from the ones before. */
 #ifndef CV_TRACE_RLPATH_H
 #define CV_TRACE_RLPATH_H
@@ -53,9 +54,6 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
                       const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
                       struct cv_error *err);
 
-/* The shade stage to run instead of trace/shade.comp. */
-const struct cv_program *cv_rlpath_shade_program(const struct cv_rlpath *rl);
-
 /* Binds the tables, path state and uniform block (after the renderer's own
  * bindings; the renderer's queue buffer must be the bound
  * GL_DISPATCH_INDIRECT_BUFFER). */
@@ -76,5 +74,11 @@ void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlPara
 
 /* Accepts NULL; clears the pointer. */
 void cv_rlpath_destroy(struct cv_rlpath **rl);
+
+/* The integrator table's entry (trace/integrator.h): the layout from the
+ * render parameters and the scene bounds, the tables, shade.comp as the
+ * one shade program over both bins, the rebuild after each shade stage. */
+struct cv_integrator_ops;
+extern const struct cv_integrator_ops cv_rlpath_ops;
 
 #endif

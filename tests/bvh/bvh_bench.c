@@ -289,8 +289,8 @@ int main(int argc, char **argv)
             cv_buffer_bind(vb, CV_BIND_VERTICES);
             cv_buffer_bind(tb, CV_BIND_TRIANGLES);
             cv_bvh_bind(bvh);
-            cv_buffer_bind(rb, CV_BIND_STAGE0);
-            cv_buffer_bind(res, CV_BIND_STAGE0 + 1);
+            cv_buffer_bind(rb, CV_BIND_PROBE_IN);
+            cv_buffer_bind(res, CV_BIND_PROBE_OUT);
             cv_program_set_uint(prog, "u_n_rays", n_rays);
             cv_program_set_uint(prog, "u_n_tris", n);
             cv_program_dispatch_1d(prog, n_rays); /* warm-up */

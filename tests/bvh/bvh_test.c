@@ -104,8 +104,8 @@ static bool trace(struct cv_gpu *gpu, bool brute, bool fast, GLuint rays, GLuint
     struct cv_program *p = cv_program_get(gpu, "bvh/rays_test.comp", n_defs ? defs : NULL, err);
     if (!p)
         return false;
-    cv_buffer_bind(rays, CV_BIND_STAGE0);
-    cv_buffer_bind(results, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(rays, CV_BIND_PROBE_IN);
+    cv_buffer_bind(results, CV_BIND_PROBE_OUT);
     glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_rays"), n_rays);
     glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_tris"), n_tris);
     cv_program_dispatch_1d(p, n_rays);

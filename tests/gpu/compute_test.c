@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
@@ -46,8 +47,8 @@ int main(void)
     GLuint b_in = cv_buffer_create(n * sizeof(*in), in, "selftest in", &err);
     GLuint b_out = cv_buffer_create(n * sizeof(*out), NULL, "selftest out", &err);
     tap_ok(b_in && b_out, "buffers created");
-    cv_buffer_bind(b_in, 0);
-    cv_buffer_bind(b_out, 1);
+    cv_buffer_bind(b_in, CV_BIND_CHECK_IN);
+    cv_buffer_bind(b_out, CV_BIND_CHECK_OUT);
     glUseProgram(prog->id);
     glUniform1ui(glGetUniformLocation(prog->id, "u_count"), n);
     cv_program_dispatch_1d(prog, n);

@@ -19,6 +19,7 @@
 
 #include "base/file.h"
 #include "base/mem.h"
+#include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
@@ -100,8 +101,8 @@ static struct cv_program_disk_stats run_selftest(struct cv_gpu *gpu, unsigned mu
     }
     GLuint b_in = cv_buffer_create(sizeof(in), in, "selftest in", &err);
     GLuint b_out = cv_buffer_create(sizeof(out), NULL, "selftest out", &err);
-    cv_buffer_bind(b_in, 0);
-    cv_buffer_bind(b_out, 1);
+    cv_buffer_bind(b_in, CV_BIND_CHECK_IN);
+    cv_buffer_bind(b_out, CV_BIND_CHECK_OUT);
     glUseProgram(prog->id);
     glUniform1ui(glGetUniformLocation(prog->id, "u_count"), n);
     cv_program_dispatch_1d(prog, n);

@@ -86,7 +86,7 @@ static void test_transforms(void)
                 "WorldBegin\nAttributeBegin\nCoordSysTransform \"camera\"\nLightSource \"distant\"\nAttributeEnd\n",
                 "CoordSysTransform camera");
     if (s) {
-        tap_ok(s->camera.crop.z == CV_CAMERA_ORTHOGRAPHIC && near(s->camera.screen.x, -2, 1e-6),
+        tap_ok(s->camera.type == CV_CAMERA_ORTHOGRAPHIC && near(s->camera.screen.x, -2, 1e-6),
                "orthographic with screenwindow");
         tap_ok(s->n_lights == 1 && near(s->lights[0].direction.z, -1, 1e-6),
                "distant light in camera space points along the view");

@@ -109,8 +109,8 @@ static bool probe_run(struct probe *p, unsigned mode, unsigned material, const f
     cv_buffer_bind(p->materials, CV_BIND_MATERIALS);
     cv_buffer_bind(p->textures, CV_BIND_TEXTURES);
     cv_buffer_bind(p->texels, CV_BIND_TEXELS);
-    cv_buffer_bind(p->in, CV_BIND_STAGE0);
-    cv_buffer_bind(p->out, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(p->in, CV_BIND_PROBE_IN);
+    cv_buffer_bind(p->out, CV_BIND_PROBE_OUT);
     GLuint id = p->prog->id;
     glUseProgram(id);
     glUniform1ui(glGetUniformLocation(id, "u_mode"), mode);

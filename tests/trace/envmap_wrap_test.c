@@ -64,8 +64,8 @@ static bool probe(struct cv_gpu *gpu, struct cv_program *prog, const struct cv_s
     GLuint out = cv_buffer_create(n * 16, NULL, "probe radiance", err);
     bool ok = in && out;
     if (ok) {
-        cv_buffer_bind(in, CV_BIND_STAGE0);
-        cv_buffer_bind(out, CV_BIND_STAGE0 + 1);
+        cv_buffer_bind(in, CV_BIND_PROBE_IN);
+        cv_buffer_bind(out, CV_BIND_PROBE_OUT);
         glUseProgram(prog->id);
         glUniform1ui(glGetUniformLocation(prog->id, "u_mode"), 1);
         glUniform1ui(glGetUniformLocation(prog->id, "u_count"), (GLuint)n);

@@ -72,8 +72,8 @@ static bool run(struct cv_program *prog, struct gpu_scene *s, unsigned mode, uns
     cv_buffer_bind(s->lights, CV_BIND_LIGHTS);
     cv_buffer_bind(s->cdf, CV_BIND_LIGHT_CDF);
     cv_buffer_bind(s->env, CV_BIND_ENV_DIST);
-    cv_buffer_bind(s->in, CV_BIND_STAGE0);
-    cv_buffer_bind(s->out, CV_BIND_STAGE0 + 1);
+    cv_buffer_bind(s->in, CV_BIND_PROBE_IN);
+    cv_buffer_bind(s->out, CV_BIND_PROBE_OUT);
     GLuint id = prog->id;
     glUseProgram(id);
     glUniform1ui(glGetUniformLocation(id, "u_mode"), mode);

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
@@ -27,7 +28,7 @@ static bool run(struct cv_gpu *gpu, struct cv_program *prog, uint32_t sampler, u
     GLuint buf = cv_buffer_create(n * 8, NULL, "sampler probe", &err);
     if (!buf)
         return false;
-    cv_buffer_bind(buf, 0);
+    cv_buffer_bind(buf, CV_BIND_PROBE_OUT);
     glUseProgram(prog->id);
     glUniform1ui(glGetUniformLocation(prog->id, "u_n_samples"), NS);
     glUniform1ui(glGetUniformLocation(prog->id, "u_n_pairs"), NP);

@@ -55,14 +55,14 @@ bool cv_light_is_infinite(CvLight l) { return l.type == CV_LIGHT_INFINITE || l.t
 // else flipped by CV_TRI_REVERSE.
 vec3 cv_light_triangle_normal(uint tri, vec3 b)
 {
-    CvTriangle t = CV_LIGHT_TRIS[tri];
-    vec3 p0 = CV_LIGHT_VERTS[t.idx.x].pos_u.xyz;
-    vec3 p1 = CV_LIGHT_VERTS[t.idx.y].pos_u.xyz;
-    vec3 p2 = CV_LIGHT_VERTS[t.idx.z].pos_u.xyz;
+    CvTriangle t = cv_triangles[tri];
+    vec3 p0 = cv_vertices[t.idx.x].pos_u.xyz;
+    vec3 p1 = cv_vertices[t.idx.y].pos_u.xyz;
+    vec3 p2 = cv_vertices[t.idx.z].pos_u.xyz;
     vec3 n = normalize(cross(p1 - p0, p2 - p0));
     if ((t.idx.w & CV_TRI_HAS_NORMAL) != 0u) {
-        vec3 ns = b.x * CV_LIGHT_VERTS[t.idx.x].nrm_v.xyz + b.y * CV_LIGHT_VERTS[t.idx.y].nrm_v.xyz +
-                  b.z * CV_LIGHT_VERTS[t.idx.z].nrm_v.xyz;
+        vec3 ns = b.x * cv_vertices[t.idx.x].nrm_v.xyz + b.y * cv_vertices[t.idx.y].nrm_v.xyz +
+                  b.z * cv_vertices[t.idx.z].nrm_v.xyz;
         if (dot(n, ns) < 0.0)
             n = -n;
     } else if ((t.idx.w & CV_TRI_REVERSE) != 0u) {
@@ -159,9 +159,9 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
     } else if (l.type == CV_LIGHT_DISTANT) {
         s = CvLightSample(-normalize(l.direction.xyz), CV_LIGHT_INFINITE_DIST, l.L.rgb, pmf, true);
     } else if (l.type == CV_LIGHT_AREA) {
-        CvTriangle t = CV_LIGHT_TRIS[l.prim];
+        CvTriangle t = cv_triangles[l.prim];
         vec3 b = cv_sample_uniform_triangle(u);
-        CvVertex v0 = CV_LIGHT_VERTS[t.idx.x], v1 = CV_LIGHT_VERTS[t.idx.y], v2 = CV_LIGHT_VERTS[t.idx.z];
+        CvVertex v0 = cv_vertices[t.idx.x], v1 = cv_vertices[t.idx.y], v2 = cv_vertices[t.idx.z];
         vec3 pl = b.x * v0.pos_u.xyz + b.y * v1.pos_u.xyz + b.z * v2.pos_u.xyz;
         vec2 uv = (t.idx.w & CV_TRI_HAS_UV) != 0u
                       ? b.x * vec2(v0.pos_u.w, v0.nrm_v.w) + b.y * vec2(v1.pos_u.w, v1.nrm_v.w) +

@@ -12,8 +12,8 @@ layout(local_size_x = 64) in;
 #include "../../lib/index.glsl"
 #include "guide.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 12) writeonly buffer CvOut { vec4 outv[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 13) readonly buffer CvIn { vec4 inv[]; };
+layout(std430, binding = CV_BIND_RL_PROBE_OUT) writeonly buffer CvOut { vec4 outv[]; };
+layout(std430, binding = CV_BIND_RL_PROBE_IN) readonly buffer CvIn { vec4 inv[]; };
 layout(location = 0) uniform uint u_n;
 layout(location = 1) uniform uint u_seed;
 

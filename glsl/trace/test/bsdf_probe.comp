@@ -11,8 +11,8 @@ layout(local_size_x = 64) in;
 #include "trace/bsdf/material_buffers.glsl"
 #include "trace/bsdf/bsdf.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0) readonly buffer ProbeIn { vec4 probe_in[]; };
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer ProbeOut { vec4 probe_out[]; };
+layout(std430, binding = CV_BIND_PROBE_IN) readonly buffer ProbeIn { vec4 probe_in[]; };
+layout(std430, binding = CV_BIND_PROBE_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
 
 uniform uint u_mode;
 uniform uint u_count;

@@ -2,10 +2,11 @@
 // glsl/trace/test/sampler_probe.comp: writes cv_sample_2d for a range of
 // pixels, sample indices and dimension pairs, for tests/trace/sampler_test.
 layout(local_size_x = 64) in;
+#include "shared/bindings.h"
 #include "../../lib/index.glsl"
 #include "../sampler.glsl"
 
-layout(std430, binding = 0) writeonly buffer Out { vec2 samples[]; };
+layout(std430, binding = CV_BIND_PROBE_OUT) writeonly buffer Out { vec2 samples[]; };
 uniform uint u_n_samples;   // per (pixel, pair)
 uniform uint u_n_pairs;
 uniform uint u_n_pixels;

@@ -12,7 +12,7 @@ layout(local_size_x = 64) in;
 #include "trace/bsdf/bsdf.glsl"
 #include "trace/light/light.glsl"
 
-layout(std430, binding = CV_BIND_STAGE0 + 1) writeonly buffer ShadeOut { vec4 shade_out[]; };
+layout(std430, binding = CV_BIND_PROBE_OUT) writeonly buffer ShadeOut { vec4 shade_out[]; };
 
 uniform uint u_count;
 
@@ -25,7 +25,7 @@ void main()
     vec3 wo = vec3(0.0, 0.0, 1.0);
     CvShadingPoint sp = CvShadingPoint(vec3(0.0), vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0),
                                        vec3(1.0, 0.0, 0.0), vec2(0.5), true);
-    uint mat = CV_LIGHT_TRIS[0].idx.w & CV_TRI_MATERIAL_MASK;
+    uint mat = cv_triangles[0].idx.w & CV_TRI_MATERIAL_MASK;
     if (cv_material_alpha_pass(mat, sp.uv, cv_rng_next(rng)))
         return;
     CvBsdf b = cv_bsdf_at(mat, sp, cv_rng_next(rng));

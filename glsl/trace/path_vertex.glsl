@@ -1,0 +1,126 @@
+// glsl/trace/path_vertex.glsl: one vertex of a path at a surface hit, the
+// same for every integrator: emitted light (MIS-weighted against light
+// sampling), the AOVs, then, below the maximum depth, next-event estimation
+// (a shadow ray queued with its MIS-weighted contribution; skipped for delta
+// BSDFs) and the bounce with Russian roulette. What varies is the sampling
+// strategy of the bounce direction: the shade stage that includes this file
+// (trace/shade.comp: the BSDF's own sampling; trace/rlpath/shade.comp: a
+// mixture with a learned distribution) defines, before the include,
+//   struct CvStrategy                per-vertex state of the strategy
+//   void cv_strategy_emitted(inout CvStrategy g, vec3 Le, uint flags)
+//       at a hit on a lamp with emitted radiance Le towards the path
+//       (flags: the incoming ray's CV_RAYF_*), before it is added
+//   void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo,
+//                          CvBsdf b, bool delta)
+//       once the BSDF is known
+//   float cv_strategy_pdf(CvStrategy g, CvBsdf b, vec3 wo, vec3 wi)
+//       the density (solid angle) with which the strategy would draw wi:
+//       next-event estimation weighs its light sample against it
+//   bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf,
+//                           vec3 wo, vec2 u_bc, vec2 u_bsdf,
+//                           out CvBsdfSample bs, out float pdf,
+//                           out bool specular)
+//       draws the bounce: bs.wi and bs.f, pdf the density it was drawn
+//       with (for a delta lobe its probability, > 0), specular whether a
+//       delta lobe was chosen; false ends the path
+// The strategy only decides directions and densities; throughput, MIS,
+// roulette and the queued rays stay here, so the integrators' images differ
+// only by their sampling. Include after surface_inputs.glsl.
+#ifndef CV_TRACE_PATH_VERTEX_GLSL
+#define CV_TRACE_PATH_VERTEX_GLSL
+
+// Shades hit h of ray r with strategy g; what it queues comes back in the
+// out parameters, so that main() can take queue slots in uniform control
+// flow (shade_queue.glsl).
+void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_shadow,
+                    out CvShadowItem s, out bool push_ray, out CvRayItem nr)
+{
+    push_shadow = false;
+    push_ray = false;
+    uint path = uint(r.o.w);
+    uint flags = cv_ray_flags(r);
+    uint depth = cv_ray_depth(r);
+    vec3 beta = r.beta.rgb;
+    vec3 wo = -r.d.xyz;
+    CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+    bool front = dot(wo, sf.ng) > 0.0;
+
+    int light = cv_tri_light[h.prim];
+    if (light >= 0) {
+        vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
+        cv_strategy_emitted(g, Le, flags);
+        if (cv_max3(Le) > 0.0) {
+            float w = 1.0;
+            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+                w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
+            cv_film_add(path, beta * Le * w);
+        }
+    }
+
+    vec2 u_bsdf = cv_bounce_2d(path, depth, CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(path, depth, CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
+
+    CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+    bool delta = cv_bsdf_is_delta(b);
+    cv_strategy_begin(g, sf, wo, b, delta);
+
+#ifdef CV_AOVS
+    if (depth == 0u) {
+        film[path].normal.xyz += sf.ns;
+        film[path].albedo.w += h.t;
+    }
+    if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
+        film[path].albedo.rgb += cv_bsdf_albedo(b);
+        flags |= CV_RAYF_ALBEDO_DONE;
+    }
+#endif
+    if (depth >= cv_max_depth())
+        return;
+
+    if (!delta && cv_n_lights() > 0u) {
+        CvLightSample ls;
+        if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
+            vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
+            if (cv_max3(f) > 0.0) {
+                float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, cv_strategy_pdf(g, b, wo, ls.wi));
+                vec3 Ld = beta * f * ls.L * (w / ls.pdf);
+                if (cv_finite3(Ld)) {
+                    push_shadow = true;
+                    s.o = vec4(cv_spawn_origin(sf, ls.wi),
+                               ls.dist * (1.0 - 1e-4));
+                    s.d = vec4(ls.wi, float(path));
+                    s.L = vec4(Ld, 0.0);
+                }
+            }
+        }
+    }
+
+    CvBsdfSample bs;
+    float pdf;
+    bool specular;
+    if (!cv_strategy_sample(g, b, sf, wo, u_bc, u_bsdf, bs, pdf, specular))
+        return;
+    beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
+    if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
+        return;
+    // Russian roulette from the fourth vertex on: a path whose throughput
+    // fell below 1 ends with probability p_end, the survivors weigh more
+    if (depth >= 3u) {
+        float m = cv_max3(beta);
+        if (m < 1.0) {
+            float p_end = max(0.0, 1.0 - m);
+            if (u_lc.y < p_end)
+                return;
+            beta /= 1.0 - p_end;
+        }
+    }
+    flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
+    push_ray = true;
+    nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);
+    nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
+    nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
+}
+
+#endif

@@ -1,0 +1,30 @@
+/* integrator.c: see integrator.h. The table of integrators, and the path
+ * integrator's entry, which is data alone. */
+#include <stddef.h>
+
+#include "glsl/shared/trace.h"
+#include "trace/integrator.h"
+#include "trace/rlpath.h"
+
+/* The path integrator shades each bin of the hit queue with its own build
+ * of trace/shade.comp (CV_SHADE_BIN: diffuse hits with the BSDF code cut
+ * down to diffuse, then the others). */
+static const struct cv_integrator_ops path_ops = {
+    .n_shade = 2,
+    .file = {"trace/shade.comp", "trace/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
+};
+
+/* One entry for each of manifest/enums.h's integrators. */
+static const struct cv_integrator_ops *const integrators[CV_INTEGRATOR_COUNT] = {
+    [CV_INTEGRATOR_PATH] = &path_ops,
+    [CV_INTEGRATOR_RLPATH] = &cv_rlpath_ops,
+};
+
+const struct cv_integrator_ops *cv_integrator_find(enum cv_integrator id)
+{
+    if ((unsigned)id >= CV_INTEGRATOR_COUNT)
+        return NULL;
+    return integrators[id];
+}

@@ -1,0 +1,65 @@
+/* integrator.h: the integrators as the renderer (render.c) sees them: a
+ * table of operations per integrator. Every integrator runs the same
+ * stages (generate, intersect, escaped, shade, shadow, resolve; render.c)
+ * and differs in its shade programs, in buffers of its own and in work
+ * after each iteration's shade stage. An integrator with no state of its
+ * own (path) is data alone. */
+#ifndef CV_TRACE_INTEGRATOR_H
+#define CV_TRACE_INTEGRATOR_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "gpu/context.h"
+#include "gpu/program.h"
+#include "scene/scene.h"
+#include "trace/render.h"
+
+/* What the renderer hands an integrator's create. */
+struct cv_integrator_setup {
+    struct cv_gpu *gpu;
+    const struct cv_scene *scene;
+    const struct cv_render_params *params;
+    const char *const *defines;   /* the scene's program defines, NULL-terminated */
+    uint32_t n_paths;             /* path slots (glsl/shared/trace.h) */
+};
+
+/* At most this many shade programs per integrator. */
+#define CV_SHADE_PROGRAMS 2
+
+struct cv_integrator_ops {
+    /* Misses always go through the escaped stage (else only with an
+     * environment light; otherwise the intersect stage starts their
+     * pixels' next samples itself: intersect.comp), built with
+     * escaped_define added when not NULL. */
+    bool escaped_stage;
+    const char *escaped_define;
+    /* The shade stage: n_shade programs, each over the hits of the
+     * CV_ARGS_* slot args[k] (glsl/shared/trace.h). They share no data
+     * (each path's hit is in one bin; queue slots come from atomics), so
+     * they run without a barrier between them and may overlap. Program k
+     * is file[k] built with the scene's defines plus define[k] (when not
+     * NULL); a NULL file[k] is create's shade[k]. */
+    int n_shade;
+    const char *file[CV_SHADE_PROGRAMS];
+    const char *define[CV_SHADE_PROGRAMS];
+    uint32_t args[CV_SHADE_PROGRAMS];
+    /* The remaining operations may be NULL: no state of its own. create
+     * makes the state (its buffers and programs) and fills the shade
+     * programs that file leaves out; bind binds its buffers after the
+     * renderer's own; after_shade queues its work after each iteration's
+     * shade stage (after_shade_name: its row of CAVALRY_STAGE_TIMES);
+     * destroy accepts NULL and clears the pointer. */
+    bool (*create)(const struct cv_integrator_setup *s, void **state,
+                   struct cv_program shade[CV_SHADE_PROGRAMS], struct cv_error *err);
+    void (*bind)(const void *state);
+    void (*after_shade)(const void *state);
+    const char *after_shade_name;
+    void (*destroy)(void **state);
+};
+
+/* The operations of integrator id (CV_RENDER_*); NULL for an unknown id. */
+const struct cv_integrator_ops *cv_integrator_find(enum cv_integrator id);
+
+#endif
