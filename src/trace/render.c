@@ -355,6 +355,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         defines[nd++] = "CV_NO_ENV";
     if (!r->scene->has_textures)
         defines[nd++] = "CV_NO_TEXTURES";
+    /* a tree deeper than the default stack allows is traced with a larger
+     * one (bvh/bvh.h) */
+    if (cv_bvh_stack_define(r->scene->bvh))
+        defines[nd++] = cv_bvh_stack_define(r->scene->bvh);
     defines[nd] = NULL;
     bool rl = p->integrator == CV_RENDER_RLPATH;
     /* Misses need an escaped stage for an environment light or for
