@@ -8,3 +8,6 @@ EXTRA_DIST += tests/batch/manifest_errors_test.sh tests/batch/shard_test.sh \
 	tests/batch/render_test.sh tests/batch/sigterm_test.sh tests/batch/shared_scene_test.sh \
 	tests/data/batch/tiny.pbrt tests/data/batch/broken.pbrt tests/data/batch/jobs.yaml \
 	tests/data/batch/many.yaml tests/data/batch/long.yaml
+# --- PNG colour tags by display encoding (issue 24, bug 7) ---
+TESTS += tests/batch/png_tag_test.sh
+EXTRA_DIST += tests/batch/png_tag_test.sh
