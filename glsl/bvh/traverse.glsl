@@ -6,8 +6,11 @@
 // A hit counts when tmin < t < tmax; among hits at the same t the lowest
 // triangle index wins, so the result does not depend on the tree.
 // The stack holds CV_BVH_STACK_SIZE entries (glsl/shared/bvh.h); a node
-// pushes up to three, and a full stack drops what does not fit (the
-// subtree is skipped) rather than overflow.
+// pushes up to three. The build sizes it for the tree (the programs that
+// trace a tree needing more than the default are compiled with more,
+// cv_bvh_stack_define), so a valid tree never fills it; only a corrupt one
+// can, and then what does not fit is dropped rather than written past the
+// end.
 // A corrupt or uninitialised tree must never hang the GPU (a reset kills
 // every job on the device), so nothing here trusts the node words: inner
 // children must lie in 1..length-1 (the root is nobody's child, which also
@@ -143,8 +146,8 @@ struct CvBvhWalk {
 
 int cv_bvh_stack[CV_BVH_STACK_SIZE];
 
-// A full stack drops the entry: that subtree is skipped (glsl/shared/bvh.h
-// says which trees can get that deep; the build warns of one).
+// A full stack drops the entry (that subtree is skipped): only a corrupt
+// tree gets here, the stack being sized for the tree (see the top).
 void cv_bvh_push(inout CvBvhWalk w, int node)
 {
     if (w.sp >= CV_BVH_STACK_SIZE)

@@ -109,12 +109,16 @@ CV_CHECK_SIZE(CvBvhBuildNode, 48);
 /* Entries of traversal's stack (glsl/bvh/traverse.glsl). A query visiting
  * a node that has k inner children pushes at most k - 1, so the most it
  * can need is the largest sum of those along a path; widening works that
- * out (CV_BVH_INFO_STACK) and the build warns when it exceeds this. No
- * larger: the stack lives in local memory, whose size per query sets how
- * many queries the NVIDIA driver runs at once; past 64 entries traversal
- * slows down steeply (bench/RESULTS.md, "The 4-wide tree, built on the
- * GPU"). */
+ * out (CV_BVH_INFO_STACK). This is the size for trees that need no more;
+ * the programs that trace a tree needing more are compiled with a larger
+ * one (cv_bvh_stack_define, src/bvh/bvh.h), so no valid tree ever fills
+ * its stack. Not larger for every tree: the stack lives in local memory,
+ * whose size per query sets how many queries the NVIDIA driver runs at
+ * once, and traversal slows sharply as it grows (bench/RESULTS.md, "The
+ * 4-wide tree, built on the GPU"). */
+#ifndef CV_BVH_STACK_SIZE
 #define CV_BVH_STACK_SIZE 64
+#endif
 
 /* Largest leaf that SAH collapsing may form. */
 #define CV_BVH_MAX_LEAF 8

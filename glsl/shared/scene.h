@@ -58,15 +58,21 @@ CV_CHECK_SIZE(CvTriangle, 16);
  * scene's "wrap"): the texels past an edge are those of the sphere there. */
 #define CV_TEXF_WRAP_OCTAHEDRAL (1u << 6) /* pbrt-v4 equal-area square: an edge mirrors about its midpoint */
 #define CV_TEXF_WRAP_LATLONG (1u << 7)    /* lat-long: repeat in u (longitude), clamp in v (the poles) */
+#define CV_TEXF_RGBA32F (1u << 8)     /* texels in 32-bit float, else half */
 
-/* Texels of all image textures live in one buffer of half-float RGBA, two
- * uints per texel (packHalf2x16(r,g), packHalf2x16(b,a)); level L of a
- * texture starts at `offset` + sum of the sizes of levels 0..L-1, each level
- * half the size of the last (rounded down, at least 1). */
+/* Texels of all image textures live in one buffer of 8-byte slots. A
+ * texel takes one slot in half-float RGBA (packHalf2x16(r,g),
+ * packHalf2x16(b,a)), or with CV_TEXF_RGBA32F two slots of float RGBA
+ * (floatBitsToUint r, g, b, a): images of high dynamic range (EXR, PFM,
+ * Radiance HDR) are kept so, since half floats end at 65504 (an HDRI sun is
+ * brighter) and lose precision long before; 8-bit images stay in half.
+ * Level L of a texture starts at `offset` + the slots of levels 0..L-1,
+ * each level half the size of the last (rounded down, at least 1). */
+#define CV_TEX_SLOTS(flags) (((flags) & CV_TEXF_RGBA32F) != 0u ? 2u : 1u)
 CV_STRUCT(CvTexture) {
     CV_UINT type;
     CV_UINT flags;
-    CV_UINT offset;     /* in texels */
+    CV_UINT offset;     /* in texel slots (8 bytes) */
     CV_UINT levels;
     CV_UINT width;
     CV_UINT height;

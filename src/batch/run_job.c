@@ -126,6 +126,7 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
                                     .height = h,
                                     .channels = 3,
                                     .bit_depth = job->png.bits,
+                                    .encoding = cv_color_pass_encoding(pass),
                                     .meta = meta,
                                 },
                           err);

@@ -66,6 +66,7 @@ struct cv_bvh {
     GLuint nodes, prims, tris, binary;
     size_t nodes_bytes, prims_bytes, tris_bytes;
     struct cv_bvh_stats stats;
+    char stack_define[32];  /* cv_bvh_stack_define's; empty for the default */
 };
 
 /* A buffer for the tree, from the pool when one there is no more than a
@@ -388,6 +389,26 @@ static bool split_first(struct build *b, const struct cv_bvh_params *p, GLuint v
  * (glsl/bvh/leaf_tris.comp says why). */
 #define LEAF_TRIS_WINDOW ((256u << 20) / (uint32_t)sizeof(CvBvhTri))
 
+/* A full stack would drop subtrees (glsl/bvh/traverse.glsl), so a tree
+ * that needs more than the default is traced with programs compiled with
+ * more: the need rounded up to STACK_STEP, so that trees of similar depth
+ * share their programs. Only such trees pay for the larger stack. */
+#define STACK_STEP 16
+static void set_stack_size(struct cv_bvh *bvh, uint64_t n)
+{
+    struct cv_bvh_stats *s = &bvh->stats;
+    s->stack_size = CV_BVH_STACK_SIZE;
+    bvh->stack_define[0] = '\0';
+    if (s->stack_need <= CV_BVH_STACK_SIZE)
+        return;
+    s->stack_size = (s->stack_need + STACK_STEP - 1) / STACK_STEP * STACK_STEP;
+    snprintf(bvh->stack_define, sizeof(bvh->stack_define), "CV_BVH_STACK_SIZE=%u",
+             s->stack_size);
+    cv_info("the BVH over %llu triangles may need %u traversal stack entries: tracing it with a "
+            "stack of %u instead of %d (slower)", (unsigned long long)n, s->stack_need,
+            s->stack_size, CV_BVH_STACK_SIZE);
+}
+
 /* The tree's leaf triangles, scattered from reference order
  * (glsl/bvh/leaf_tris.comp says why), while `prims` still holds references.
  * The Morton keys, dead since the hierarchy, hold each reference's slot. */
@@ -541,11 +562,7 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     s->n_binary_nodes = n_nodes;
     s->depth = words[CV_BVH_INFO_DEPTH];
     s->stack_need = words[CV_BVH_INFO_STACK];
-    /* Past the stack, traversal drops subtrees (glsl/bvh/traverse.glsl). */
-    if (s->stack_need > CV_BVH_STACK_SIZE)
-        cv_warn("the BVH over %llu triangles may need %u traversal stack entries, more than "
-                "its %d: rays that need them all may miss triangles", (unsigned long long)n,
-                s->stack_need, CV_BVH_STACK_SIZE);
+    set_stack_size(bvh, n);
     s->n_refs = (uint32_t)n;
     s->bytes = (uint64_t)n_wide * sizeof(CvBvhNode4) + n * (4 + sizeof(CvBvhTri)) +
                (p->keep_binary ? (uint64_t)n_nodes * sizeof(CvBvhNode) : 0);
@@ -570,6 +587,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
         return cv_fail(err, "%u triangles are more than the BVH can hold", n_triangles);
     struct cv_bvh *bvh = cv_xcalloc(1, sizeof(*bvh));
     bvh->gpu = gpu;
+    bvh->stats.stack_size = CV_BVH_STACK_SIZE;
     bool ok;
     if (n_triangles < 2) {
         ok = build_trivial(bvh, vertices, triangles, n_triangles, p.keep_binary, err);
@@ -595,6 +613,11 @@ void cv_bvh_bind(const struct cv_bvh *bvh)
                       (GLsizeiptr)bvh->prims_bytes);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CV_BIND_BVH_TRIS, bvh->tris, 0,
                       (GLsizeiptr)bvh->tris_bytes);
+}
+
+const char *cv_bvh_stack_define(const struct cv_bvh *bvh)
+{
+    return bvh && bvh->stack_define[0] ? bvh->stack_define : NULL;
 }
 
 const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh)

@@ -72,6 +72,8 @@ struct cv_bvh_stats {
     uint32_t n_binary_nodes; /* CvBvhNode count of the binary tree it was collapsed from */
     uint32_t depth;        /* levels of the CvBvhNode4 tree */
     uint32_t stack_need;   /* most traversal stack entries a query can need */
+    uint32_t stack_size;   /* entries of the stack that traces it: CV_BVH_STACK_SIZE,
+                            * or more where stack_need is (cv_bvh_stack_define) */
     uint32_t n_refs;       /* leaf slots: the triangles plus split's extra references */
 };
 
@@ -117,6 +119,10 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
  * CV_BIND_BVH_PRIMS (not the scene buffers). */
 void cv_bvh_bind(const struct cv_bvh *bvh);
 const struct cv_bvh_stats *cv_bvh_stats(const struct cv_bvh *bvh);
+/* The define ("CV_BVH_STACK_SIZE=N") that every program tracing this tree
+ * must be compiled with, or NULL where the default stack is enough (and
+ * for bvh NULL). The string is the tree's. */
+const char *cv_bvh_stack_define(const struct cv_bvh *bvh);
 /* The GL buffers (owned by the BVH), for tests and tools: the CvBvhNode4
  * tree, the leaf slots' primitives, and the binary CvBvhNode tree (0
  * unless params.keep_binary). */

@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "color/color_params.h"
+#include "color/display_encoding.h"
 #include "gpu/context.h"
 
 struct cv_color_pass;
@@ -38,6 +39,8 @@ bool cv_color_pass_run(struct cv_color_pass *pass, const struct cv_buf *in, uint
 const char *cv_color_pass_description(const struct cv_color_pass *pass);
 /* The config's path, or "shipped cavalry.ocio"; owned by the pass. */
 const char *cv_color_pass_config_source(const struct cv_color_pass *pass);
+/* What the output encodes, for tagging images (color/display_encoding.h). */
+enum cv_display_encoding cv_color_pass_encoding(const struct cv_color_pass *pass);
 
 /* Accepts NULL; clears the pointer. Needs the context current. */
 void cv_color_pass_destroy(struct cv_color_pass **pass);

@@ -217,6 +217,11 @@ const char *cv_color_pass_config_source(const struct cv_color_pass *pass)
     return cv_ocio_config_source(pass->ocio);
 }
 
+enum cv_display_encoding cv_color_pass_encoding(const struct cv_color_pass *pass)
+{
+    return cv_ocio_display_encoding(pass->ocio);
+}
+
 bool cv_color_apply_cpu(const struct cv_color_pass *pass, float *rgba, size_t n,
                         struct cv_error *err)
 {

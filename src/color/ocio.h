@@ -1,5 +1,5 @@
-/* ocio.h: the C face of OpenColorIO (src/color/ocio_shim.cpp, the project's
- * only C++). A cv_ocio holds one config and the processor for one job's
+/* ocio.h: the C face of OpenColorIO (src/color/ocio_shim.cpp, with
+ * ocio_spaces.cpp). A cv_ocio holds one config and the processor for one job's
  * display / view / look / exposure; it hands out the GLSL, LUT textures and
  * uniforms of the GPU processor, and applies the CPU processor (the test
  * oracle). No C++ exception crosses this header: every failure comes back
@@ -13,6 +13,7 @@
 
 #include "base/error.h"
 #include "color/color_params.h"
+#include "color/display_encoding.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -30,9 +31,13 @@ extern const char cv_ocio_shipped_config[];
 const char *cv_ocio_config_file(const char *config_path);
 
 /* Opens the config p names (see color_params.h for the fallbacks) and builds
- * the processor from the scene_linear role to p's display / view. Unknown
- * display, view or look names fail with the valid names listed; $OCIO naming
- * a missing file fails naming the path. */
+ * the processor from the render's colour space (linear Rec.709) to p's
+ * display / view, with exposure applied in the scene_linear role's space.
+ * The render's space is found in the config by name, else through its
+ * aces_interchange or cie_xyz_d65_interchange role (ocio_spaces.hpp); a
+ * config where none applies fails, saying so. Unknown display, view or look
+ * names fail with the valid names listed; $OCIO naming a missing file fails
+ * naming the path. */
 bool cv_ocio_create(const struct cv_color_params *p, struct cv_ocio **out, struct cv_error *err);
 /* Accepts NULL; clears the pointer. */
 void cv_ocio_destroy(struct cv_ocio **ocio);
@@ -42,6 +47,12 @@ void cv_ocio_destroy(struct cv_ocio **ocio);
 const char *cv_ocio_description(const struct cv_ocio *ocio);
 /* Where the config came from: its path, or "shipped cavalry.ocio". */
 const char *cv_ocio_config_source(const struct cv_ocio *ocio);
+/* How the render's space was found: 'colour space "lin_rec709"', or
+ * 'aces_interchange role ("ACES2065-1")'. */
+const char *cv_ocio_render_space(const struct cv_ocio *ocio);
+/* What the view's display colour space encodes (CV_DISPLAY_UNKNOWN for a
+ * Raw view, a linear one, or one not recognised). */
+enum cv_display_encoding cv_ocio_display_encoding(const struct cv_ocio *ocio);
 
 /* Applies the CPU processor in place to n RGBA float pixels. */
 bool cv_ocio_apply_cpu(const struct cv_ocio *ocio, float *rgba, size_t n, struct cv_error *err);

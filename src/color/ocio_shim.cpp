@@ -19,6 +19,7 @@ extern "C" {
 #include "base/mem.h"
 }
 #include "color/ocio.h"
+#include "color/ocio_spaces.hpp"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -141,6 +142,8 @@ struct cv_ocio {
     OCIO::ConstGPUProcessorRcPtr gpu;
     OCIO::GpuShaderDescRcPtr shader;
     std::string description, source;
+    std::string render_space;  // how the render's space was found
+    cv_display_encoding encoding = CV_DISPLAY_UNKNOWN;
 };
 
 #define CV_OCIO_TRY try {
@@ -170,6 +173,16 @@ extern "C" bool cv_ocio_create(const struct cv_color_params *p, struct cv_ocio *
         const OCIO::ConstConfigRcPtr &config = o->config;
         if (!config->getColorSpace(OCIO::ROLE_SCENE_LINEAR))
             throw Failure("colour config " + o->source + " has no scene_linear role");
+        // The render is in linear Rec.709, which scene_linear need not be:
+        // the transform starts from that space as the config knows it.
+        cv_ocio_spaces::RenderSpace rs;
+        try {
+            rs = cv_ocio_spaces::find_render_space(config, o->source);
+        } catch (const cv_ocio_spaces::SpaceError &e) {
+            throw Failure(e.what());
+        }
+        o->config = rs.config;  // a copy with the space added, where it had none
+        o->render_space = rs.how;
 
         std::vector<std::string> displays = display_names(config);
         std::string display = p->display && p->display[0] ? p->display
@@ -185,7 +198,7 @@ extern "C" bool cv_ocio_create(const struct cv_color_params *p, struct cv_ocio *
                           "\" in colour config " + o->source + "; views: " + join(views));
 
         OCIO::DisplayViewTransformRcPtr dvt = OCIO::DisplayViewTransform::Create();
-        dvt->setSrc(OCIO::ROLE_SCENE_LINEAR);
+        dvt->setSrc(rs.name.c_str());
         dvt->setDisplay(display.c_str());
         dvt->setView(view.c_str());
         OCIO::LegacyViewingPipelineRcPtr pipe = OCIO::LegacyViewingPipeline::Create();
@@ -203,6 +216,7 @@ extern "C" bool cv_ocio_create(const struct cv_color_params *p, struct cv_ocio *
             pipe->setLooksOverride(p->look);
         }
         o->processor = pipe->getProcessor(config);
+        o->encoding = cv_ocio_spaces::identify_encoding(rs, display.c_str(), view.c_str());
         // The oracle: no approximations beyond lossless op folding.
         o->cpu = o->processor->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
                                                         OCIO::OPTIMIZATION_LOSSLESS);
@@ -251,6 +265,16 @@ extern "C" const char *cv_ocio_description(const struct cv_ocio *ocio)
 extern "C" const char *cv_ocio_config_source(const struct cv_ocio *ocio)
 {
     return ocio->source.c_str();
+}
+
+extern "C" const char *cv_ocio_render_space(const struct cv_ocio *ocio)
+{
+    return ocio->render_space.c_str();
+}
+
+extern "C" enum cv_display_encoding cv_ocio_display_encoding(const struct cv_ocio *ocio)
+{
+    return ocio->encoding;
 }
 
 extern "C" bool cv_ocio_apply_cpu(const struct cv_ocio *ocio, float *rgba, size_t n,

@@ -118,6 +118,47 @@ static void free_texts(struct texts *tx)
     free(tx->t);
 }
 
+/* The colour chunks of each known encoding: ITU-T H.273 code points for
+ * cICP (colour primaries, transfer characteristics; matrix 0 for RGB, full
+ * range), which takes precedence over the rest where a reader knows it,
+ * then gAMA and cHRM (the encoding's primaries and D65 white, the curve as
+ * a power) for readers that know only those. BT.1886 content goes as H.273
+ * transfer 1 (BT.709), whose reference display is BT.1886. */
+static const struct colour_tag {
+    png_byte primaries, transfer;
+    double gamma;                   /* gAMA: the encoding exponent */
+    double wx, wy, rx, ry, gx, gy, bx, by;
+} colour_tags[] = {
+    [CV_DISPLAY_SRGB] = {1, 13, 1 / 2.2, 0.3127, 0.3290, 0.64, 0.33, 0.30, 0.60, 0.15, 0.06},
+    [CV_DISPLAY_P3] = {12, 13, 1 / 2.2, 0.3127, 0.3290, 0.680, 0.320, 0.265, 0.690, 0.150, 0.060},
+    [CV_DISPLAY_BT1886] = {1, 1, 1 / 2.4, 0.3127, 0.3290, 0.64, 0.33, 0.30, 0.60, 0.15, 0.06},
+};
+
+/* libpng 1.6 before 1.6.45 has no cICP support: it goes as a chunk that
+ * libpng passes through, written before PLTE and IDAT as cICP must be. */
+static void set_colour(png_structp png, png_infop info, enum cv_display_encoding e,
+                       png_unknown_chunk *cicp)
+{
+    if (e <= CV_DISPLAY_UNKNOWN || e >= sizeof(colour_tags) / sizeof(colour_tags[0]))
+        return;
+    const struct colour_tag *t = &colour_tags[e];
+    if (e == CV_DISPLAY_SRGB) {
+        png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    } else {
+        png_set_gAMA(png, info, t->gamma);
+        png_set_cHRM(png, info, t->wx, t->wy, t->rx, t->ry, t->gx, t->gy, t->bx, t->by);
+    }
+    memcpy(cicp->name, "cICP", 5);
+    cicp->data[0] = t->primaries;
+    cicp->data[1] = t->transfer;
+    cicp->data[2] = 0;
+    cicp->data[3] = 1;
+    cicp->size = 4;
+    cicp->location = PNG_HAVE_IHDR;
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_ALWAYS, (png_const_bytep) "cICP", 1);
+    png_set_unknown_chunks(png, info, cicp, 1);
+}
+
 /* Everything libpng may longjmp out of. rows holds the whole image,
  * quantised, big-endian at 16 bits as PNG stores it. */
 static bool write_png(png_structp png, png_infop info, const struct cv_png_params *p,
@@ -129,7 +170,9 @@ static bool write_png(png_structp png, png_infop info, const struct cv_png_param
     png_set_IHDR(png, info, p->width, p->height, (int)bits,
                  p->channels == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_byte cicp_data[4];
+    png_unknown_chunk cicp = {.data = cicp_data};
+    set_colour(png, info, p->encoding, &cicp);
     png_set_text(png, info, tx->t, (int)tx->n);
     png_write_info(png, info);
     png_write_image(png, rows);

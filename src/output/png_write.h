@@ -1,6 +1,8 @@
 /* png_write.h: the display-referred image as PNG, 8 or 16 bits per
- * channel, RGB or RGBA, tagged sRGB (sRGB chunk plus the matching gAMA and
- * cHRM for older readers) with the metadata as text chunks. Pixels arrive
+ * channel, RGB or RGBA, tagged with the display encoding it holds (a cICP
+ * chunk, plus gAMA and cHRM for older readers, and the sRGB chunk for
+ * sRGB), or with no colour chunk where that is unknown, and with the
+ * metadata as text chunks. Pixels arrive
  * already through the colour stage's display transform. Written atomically
  * (output/atomic_file.h). */
 #ifndef CV_OUTPUT_PNG_WRITE_H
@@ -11,6 +13,7 @@
 
 #include "base/error.h"
 #include "output/atomic_file.h"
+#include "color/display_encoding.h"
 #include "output/metadata.h"
 
 struct cv_png_params {
@@ -18,6 +21,8 @@ struct cv_png_params {
     uint32_t width, height;
     uint32_t channels;    /* 3 (RGB) or 4 (RGBA, straight alpha) */
     uint32_t bit_depth;   /* 8 or 16; 0 means 8 */
+    enum cv_display_encoding encoding; /* what the pixels encode; CV_DISPLAY_UNKNOWN
+                                        * (0): no colour chunk */
     const struct cv_metadata *meta; /* may be NULL */
     struct cv_write_limit *write_limit; /* NULL; tests: a disk that fills up */
 };

@@ -6,11 +6,11 @@
 #include <string.h>
 #include <strings.h>
 
-#include <OpenEXR/ImfCRgbaFile.h>
 #include <stb/stb_image.h>
 
 #include "base/file.h"
 #include "base/mem.h"
+#include "scene/exr_image.h"
 #include "scene/image.h"
 
 #define MAX_DIM 65536
@@ -129,31 +129,9 @@ static bool load_pfm(const char *path, struct cv_image *img, struct cv_error *er
 
 static bool load_exr(const char *path, struct cv_image *img, struct cv_error *err)
 {
-    ImfInputFile *in = ImfOpenInputFile(path);
-    if (!in)
-        return cv_fail(err, "%s: %s", path, ImfErrorMessage());
-    int x0, y0, x1, y1;
-    ImfHeaderDataWindow(ImfInputHeader(in), &x0, &y0, &x1, &y1);
-    long w = (long)x1 - x0 + 1, h = (long)y1 - y0 + 1;
-    if (w <= 0 || h <= 0 || w > MAX_DIM || h > MAX_DIM || w * h > MAX_PIXELS) {
-        ImfCloseInputFile(in);
-        return cv_fail(err, "%s: bad EXR data window", path);
-    }
-    ImfRgba *px = cv_xmalloc((size_t)w * h * sizeof(ImfRgba));
-    ImfInputSetFrameBuffer(in, px - x0 - (long)y0 * w, 1, (size_t)w);
-    if (!ImfInputReadPixels(in, y0, y1)) {
-        cv_fail(err, "%s: %s", path, ImfErrorMessage());
-        free(px);
-        ImfCloseInputFile(in);
+    if (!cv_exr_image_load(path, MAX_DIM, MAX_PIXELS, &img->rgba, &img->width, &img->height, err))
         return false;
-    }
-    ImfCloseInputFile(in);
-    img->width = (int)w;
-    img->height = (int)h;
     img->is_float = true;
-    img->rgba = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
-    ImfHalfToFloatArray((int)(w * h * 4), (const ImfHalf *)px, img->rgba);
-    free(px);
     return true;
 }
 

@@ -154,17 +154,15 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
             l.flags = v4map ? CV_LIGHTF_EQUAL_AREA : 0;
             l.tex = t;
             /* the last mip level (1x1) is the map's average */
-            uint64_t last = (uint64_t)b->s->n_texels; /* texels appended last belong to it if new */
-            (void)last;
-            uint32_t lw = tx->width, lh = tx->height, off = tx->offset;
-            while (lw > 1 || lh > 1) {
-                off += lw * lh;
+            uint64_t last = 0;
+            for (uint32_t lw = tx->width, lh = tx->height; lw > 1 || lh > 1;) {
+                last += (uint64_t)lw * lh;
                 lw = lw > 1 ? lw / 2 : 1;
                 lh = lh > 1 ? lh / 2 : 1;
             }
-            uint32_t w0 = b->s->texels[2 * (size_t)off], w1 = b->s->texels[2 * (size_t)off + 1];
-            double c[3] = {cv_half_to_float((uint16_t)(w0 & 0xffff)), cv_half_to_float((uint16_t)(w0 >> 16)),
-                           cv_half_to_float((uint16_t)(w1 & 0xffff))};
+            float rgba[4];
+            cv_scene_texel(b->s, tx, last, rgba);
+            double c[3] = {rgba[0], rgba[1], rgba[2]};
             avg = (float)luminance(c);
         } else {
             l.type = CV_LIGHT_INFINITE;

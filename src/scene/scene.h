@@ -69,8 +69,8 @@ struct cv_scene {
 
     CvTexture *textures;
     uint32_t n_textures;
-    uint32_t *texels;                /* half RGBA, 2 words per texel */
-    uint64_t n_texels;
+    uint32_t *texels;                /* texel slots of 2 words (glsl/shared/scene.h) */
+    uint64_t n_texels;               /* in slots */
 
     CvLight *lights;
     uint32_t n_lights;
@@ -108,5 +108,10 @@ bool cv_scene_load_string(const char *name, const char *text, size_t len,
                           struct cv_error *err);
 /* Accepts NULL; clears the pointer. */
 void cv_scene_destroy(struct cv_scene **scene);
+
+/* Texel i (counted over the mip chain, level 0 first) of image texture t,
+ * as linear RGBA, whichever way it is stored. i must lie inside the
+ * texture's texels. */
+void cv_scene_texel(const struct cv_scene *s, const CvTexture *t, uint64_t i, float rgba[4]);
 
 #endif

@@ -1,5 +1,7 @@
 /* texture.c: pbrt textures into CvTexture records, and image files into the
- * shared half-float texel buffer with a box-filtered mip chain. */
+ * shared texel buffer with a box-filtered mip chain: half floats for 8-bit
+ * images, 32-bit floats for images of high dynamic range (glsl/shared/
+ * scene.h says why). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,23 +21,25 @@ static void tex_init(CvTexture *t, uint32_t type)
     t->amount = 0.5f;
 }
 
-/* Appends levels of img to the texel buffer; returns the first texel. */
-static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uint32_t *levels,
-                           struct cv_error *err, bool *ok)
+/* Appends levels of img to the texel buffer, in float where `flags` has
+ * CV_TEXF_RGBA32F, else in half; returns the first slot. */
+static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uint32_t flags,
+                           uint32_t *levels, struct cv_error *err, bool *ok)
 {
     struct cv_scene *s = b->s;
     int w = img->width, h = img->height;
+    uint32_t slots = CV_TEX_SLOTS(flags);
     uint64_t total = 0;
     uint32_t nl = 0;
     for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
-        total += (uint64_t)lw * lh;
+        total += (uint64_t)lw * lh * slots;
         nl++;
         if (lw == 1 && lh == 1)
             break;
     }
     *ok = true;
     if (s->n_texels + total > 0xffffffffu) {
-        *ok = cv_fail(err, "texel buffer exceeds 2^32 texels");
+        *ok = cv_fail(err, "texel buffer exceeds 2^32 slots of 8 bytes");
         return 0;
     }
     uint32_t offset = (uint32_t)s->n_texels;
@@ -46,10 +50,14 @@ static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uin
     for (int lw = w, lh = h;;) {
         for (size_t i = 0; i < (size_t)lw * lh; i++) {
             const float *c = &cur[i * 4];
+            if (slots == 2) {
+                memcpy(&out[4 * i], c, 4 * sizeof(float));
+                continue;
+            }
             out[2 * i] = cv_float_to_half(c[0]) | ((uint32_t)cv_float_to_half(c[1]) << 16);
             out[2 * i + 1] = cv_float_to_half(c[2]) | ((uint32_t)cv_float_to_half(c[3]) << 16);
         }
-        out += (size_t)lw * lh * 2;
+        out += (size_t)lw * lh * 2 * slots;
         if (lw == 1 && lh == 1)
             break;
         int nw = lw > 1 ? lw / 2 : 1, nh = lh > 1 ? lh / 2 : 1;
@@ -80,6 +88,17 @@ static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uin
     return offset;
 }
 
+void cv_scene_texel(const struct cv_scene *s, const CvTexture *t, uint64_t i, float rgba[4])
+{
+    const uint32_t *w = s->texels + ((uint64_t)t->offset + i * CV_TEX_SLOTS(t->flags)) * 2;
+    if (t->flags & CV_TEXF_RGBA32F) {
+        memcpy(rgba, w, 4 * sizeof(float));
+        return;
+    }
+    for (int c = 0; c < 4; c++)
+        rgba[c] = cv_half_to_float((uint16_t)(w[c / 2] >> (16 * (c % 2))));
+}
+
 int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
                        const struct cv_loc *loc, struct cv_error *err)
 {
@@ -104,8 +123,10 @@ int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, 
     }
     CvTexture t;
     tex_init(&t, CV_TEX_IMAGE);
+    if (img.is_float)
+        t.flags |= CV_TEXF_RGBA32F;
     bool ok;
-    t.offset = add_texels(b, &img, &t.levels, err, &ok);
+    t.offset = add_texels(b, &img, t.flags, &t.levels, err, &ok);
     t.width = (uint32_t)img.width;
     t.height = (uint32_t)img.height;
     if (srgb && !img.is_float)

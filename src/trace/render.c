@@ -307,7 +307,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     r->scene = gs;
 
-    const char *defines[8];
+    /* the scene's defines, then a stage's own (defines_plus) and the NULL */
+    enum { MAX_SCENE_DEFINES = 12 };
+    const char *defines[MAX_SCENE_DEFINES + 1];
     int nd = 0;
     if (r->scene->empty)
         defines[nd++] = "CV_EMPTY_SCENE";
@@ -325,6 +327,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         defines[nd++] = "CV_NO_ENV";
     if (!r->scene->has_textures)
         defines[nd++] = "CV_NO_TEXTURES";
+    /* a tree deeper than the default stack allows is traced with a larger
+     * one (bvh/bvh.h) */
+    if (cv_bvh_stack_define(r->scene->bvh))
+        defines[nd++] = cv_bvh_stack_define(r->scene->bvh);
     defines[nd] = NULL;
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
@@ -332,13 +338,13 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
      * integrator asks for it; otherwise the intersect stage starts their
      * pixels' next samples itself (intersect.comp). */
     r->escaped_stage = ops->escaped_stage || r->scene->has_env;
-    const char *escaped[9];
+    const char *escaped[MAX_SCENE_DEFINES + 2];
     defines_plus(escaped, defines, nd, ops->escaped_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
-    const char *intersect[10];
+    const char *intersect[MAX_SCENE_DEFINES + 3];
     defines_plus(intersect, defines, nd, "CV_HIT_BINS",
                  r->escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
-    const char *shade[CV_SHADE_PROGRAMS][9];
+    const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 2];
     for (int k = 0; k < ops->n_shade; k++)
         defines_plus(shade[k], defines, nd, ops->define[k], NULL);
     const char *const no_defines[1] = {NULL};

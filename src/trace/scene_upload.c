@@ -27,24 +27,6 @@ void cv_light_cdf(const float *power, uint32_t n, float *cdf)
         cdf[n - 1] = 1;
 }
 
-static float half_to_float(uint16_t h)
-{
-    uint32_t s = (uint32_t)(h >> 15) << 31, e = (h >> 10) & 31u, m = h & 1023u, bits;
-    if (e == 0 && m == 0) {
-        bits = s;
-    } else if (e == 0) {
-        float f = (float)m / 16777216.0f; /* 2^-24 */
-        return (h >> 15) ? -f : f;
-    } else if (e == 31) {
-        bits = s | 0x7f800000u | (m << 13);
-    } else {
-        bits = s | ((e + 112u) << 23) | (m << 13);
-    }
-    float f;
-    memcpy(&f, &bits, 4);
-    return f;
-}
-
 /* Environment-map distributions of the image infinite lights, one float
  * buffer (glsl/shared/envmap.h); each such light's prim becomes its offset
  * in `lights` (a copy). *dist is at least one float. */
@@ -69,18 +51,14 @@ static bool build_env_dists(const struct cv_scene *s, CvLight *lights, float **d
             continue;
         const CvTexture *t = &s->textures[l->tex];
         size_t np = (size_t)t->width * t->height;
-        if ((uint64_t)t->offset + np > s->n_texels) {
+        if ((uint64_t)t->offset + np * CV_TEX_SLOTS(t->flags) > s->n_texels) {
             free(out);
             return cv_fail(err, "image infinite light %u: texels out of range", i);
         }
+        /* the values the GPU looks up, so that sampling follows them */
         float *rgba = cv_xmalloc(np * 4 * sizeof(float));
-        for (size_t k = 0; k < np; k++) {
-            uint32_t w0 = s->texels[2 * (t->offset + k)], w1 = s->texels[2 * (t->offset + k) + 1];
-            rgba[4 * k + 0] = half_to_float((uint16_t)(w0 & 0xffff));
-            rgba[4 * k + 1] = half_to_float((uint16_t)(w0 >> 16));
-            rgba[4 * k + 2] = half_to_float((uint16_t)(w1 & 0xffff));
-            rgba[4 * k + 3] = half_to_float((uint16_t)(w1 >> 16));
-        }
+        for (size_t k = 0; k < np; k++)
+            cv_scene_texel(s, t, k, &rgba[4 * k]);
         bool ok = cv_envmap_dist_build(rgba, t->width, t->height, 4,
                                        (l->flags & CV_LIGHTF_EQUAL_AREA) != 0, out + at, err);
         free(rgba);

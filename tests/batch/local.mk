@@ -13,3 +13,6 @@ EXTRA_DIST += tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh
 	tests/batch/resume_stale_test.sh \
 	tests/data/batch/tiny.pbrt tests/data/batch/broken.pbrt tests/data/batch/jobs.yaml \
 	tests/data/batch/many.yaml tests/data/batch/long.yaml
+# --- PNG colour tags by display encoding (issue 24, bug 7) ---
+TESTS += tests/batch/png_tag_test.sh
+EXTRA_DIST += tests/batch/png_tag_test.sh

@@ -286,6 +286,12 @@ int main(int argc, char **argv)
                 rp.treelet_rounds = 0;
             if (!cv_bvh_build(gpu, vb, tb, n, &rp, &bvh, &err))
                 break;
+            /* the stack the renderer would trace this tree with */
+            const char *stack_defs[2] = {cv_bvh_stack_define(bvh), NULL};
+            if (!(prog = cv_program_get(gpu, "bvh/rays_test.comp", stack_defs, &err))) {
+                cv_bvh_destroy(&bvh);
+                break;
+            }
             cv_buffer_bind(vb, CV_BIND_VERTICES);
             cv_buffer_bind(tb, CV_BIND_TRIANGLES);
             cv_bvh_bind(bvh);

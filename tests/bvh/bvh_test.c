@@ -91,16 +91,21 @@ static void cpu_closest(const struct mesh *m, const float *r, uint32_t *prim, ui
     memcpy(t_bits, &best, 4);
 }
 
-/* fast: the renderer's form of the triangle tests (CV_BVH_FAST_DIV). */
-static bool trace(struct cv_gpu *gpu, bool brute, bool fast, GLuint rays, GLuint results,
-                  uint32_t n_rays, uint32_t n_tris, uint32_t *out, struct cv_error *err)
+/* fast: the renderer's form of the triangle tests (CV_BVH_FAST_DIV);
+ * bvh: the tree bound, whose stack size the program takes as the renderer's
+ * do (NULL for a tree of the test's own). */
+static bool trace(struct cv_gpu *gpu, const struct cv_bvh *bvh, bool brute, bool fast,
+                  GLuint rays, GLuint results, uint32_t n_rays, uint32_t n_tris, uint32_t *out,
+                  struct cv_error *err)
 {
-    const char *defs[3] = {NULL, NULL, NULL};
+    const char *defs[4] = {NULL, NULL, NULL, NULL};
     int n_defs = 0;
     if (brute)
         defs[n_defs++] = "BRUTE_FORCE";
     if (fast)
         defs[n_defs++] = "CV_BVH_FAST_DIV";
+    if (cv_bvh_stack_define(bvh))
+        defs[n_defs++] = cv_bvh_stack_define(bvh);
     struct cv_program *p = cv_program_get(gpu, "bvh/rays_test.comp", n_defs ? defs : NULL, err);
     if (!p)
         return false;
@@ -113,11 +118,15 @@ static bool trace(struct cv_gpu *gpu, bool brute, bool fast, GLuint rays, GLuint
 }
 
 /* Makes n_rays rays over the mesh into `rays` (8 floats each) and their
- * GPU buffer *rb, a result buffer *res, and binds the mesh and tree. */
+ * GPU buffer *rb, a result buffer *res, and binds the mesh and tree. With
+ * `from`, half the rays start there (make_rays_from). */
 static bool rays_setup(const struct mesh *m, const struct cv_bvh *bvh, GLuint vb, GLuint tb,
-                       uint32_t n_rays, float *rays, GLuint *rb, GLuint *res, struct cv_error *err)
+                       uint32_t n_rays, const float *from, float *rays, GLuint *rb, GLuint *res,
+                       struct cv_error *err)
 {
     make_rays(m, rays, n_rays);
+    if (from)
+        make_rays_from(m, from, rays, n_rays / 2);
     *rb = cv_buffer_create((size_t)n_rays * 32, rays, "rays", err);
     *res = cv_buffer_create((size_t)n_rays * 16, NULL, "ray results", err);
     cv_buffer_bind(vb, CV_BIND_VERTICES);
@@ -127,15 +136,16 @@ static bool rays_setup(const struct mesh *m, const struct cv_bvh *bvh, GLuint vb
 }
 
 static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *m,
-                       const struct cv_bvh *bvh, GLuint vb, GLuint tb, uint32_t n_rays)
+                       const struct cv_bvh *bvh, GLuint vb, GLuint tb, uint32_t n_rays,
+                       const float *from)
 {
     struct cv_error err = {{0}};
     float *rays = malloc((size_t)n_rays * 32);
     uint32_t *got = malloc((size_t)n_rays * 16), *want = malloc((size_t)n_rays * 16);
     GLuint rb = 0, res = 0;
-    bool ok = rays_setup(m, bvh, vb, tb, n_rays, rays, &rb, &res, &err) &&
-              trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err) &&
-              trace(gpu, true, false, rb, res, n_rays, m->nt, want, &err);
+    bool ok = rays_setup(m, bvh, vb, tb, n_rays, from, rays, &rb, &res, &err) &&
+              trace(gpu, bvh, false, false, rb, res, n_rays, m->nt, got, &err) &&
+              trace(gpu, bvh, true, false, rb, res, n_rays, m->nt, want, &err);
     if (!tap_ok(ok, "%s: %u rays traced: %s", name, n_rays, ok ? "yes" : err.msg))
         goto out;
     uint32_t bad_hit = 0, bad_any = 0, hits = 0, first = 0, steps = 0;
@@ -182,8 +192,8 @@ static void check_rays(struct cv_gpu *gpu, const char *name, const struct mesh *
     /* The renderer traces with the driver's division and a division-free
      * any-hit test: traversal must still find what brute force finds with
      * the same tests. */
-    ok = trace(gpu, false, true, rb, res, n_rays, m->nt, got, &err) &&
-         trace(gpu, true, true, rb, res, n_rays, m->nt, want, &err);
+    ok = trace(gpu, bvh, false, true, rb, res, n_rays, m->nt, got, &err) &&
+         trace(gpu, bvh, true, true, rb, res, n_rays, m->nt, want, &err);
     uint32_t bad_fast = 0;
     for (uint32_t i = 0; ok && i < n_rays; i++) {
         const uint32_t *g = &got[4 * i], *w = &want[4 * i];
@@ -201,16 +211,23 @@ out:
 }
 
 /* The build counts the wide tree's levels and the most stack entries a
- * query can need in it (bvh.c warns from that): both as the read-back tree
- * has them, and the tree fits traversal's stack. */
+ * query can need in it (bvh.c sizes the stack from that): both as the
+ * read-back tree has them, and the tree fits the stack it is traced with,
+ * which is the default unless the tree needs more. */
 static void check_stack(const char *name, const struct cv_bvh *bvh, const struct tree_info *ti)
 {
     const struct cv_bvh_stats *s = cv_bvh_stats(bvh);
+    const char *def = cv_bvh_stack_define(bvh);
+    char want[32] = "";
+    if (s->stack_size > CV_BVH_STACK_SIZE)
+        snprintf(want, sizeof(want), "CV_BVH_STACK_SIZE=%u", s->stack_size);
     tap_ok(s->depth == (uint32_t)ti->wide_depth && s->stack_need == (uint32_t)ti->stack_need &&
-           ti->stack_need <= CV_BVH_STACK_SIZE,
+           (uint32_t)ti->stack_need <= s->stack_size && s->stack_size >= CV_BVH_STACK_SIZE &&
+           (s->stack_size == CV_BVH_STACK_SIZE || s->stack_size < (uint32_t)ti->stack_need + 16) &&
+           strcmp(def ? def : "", want) == 0,
            "%s: wide depth %d, %d stack entries at most (the build's counts: %u, %u; the stack "
-           "holds %d)", name, ti->wide_depth, ti->stack_need, s->depth, s->stack_need,
-           CV_BVH_STACK_SIZE);
+           "holds %u, define %s)", name, ti->wide_depth, ti->stack_need, s->depth, s->stack_need,
+           s->stack_size, def ? def : "none");
 }
 
 /* Widening's result depends neither on how many levels run per read-back
@@ -229,6 +246,43 @@ static void check_same_tree(const char *name, const struct cv_bvh *a, const stru
            name, na, nb, cv_bvh_stats(b)->depth, err.msg[0] ? ": " : "", err.msg);
     free(ta);
     free(tb);
+}
+
+/* A tree that needs more traversal stack than CV_BVH_STACK_SIZE: more
+ * treelet rounds deepen mesh_geometric's tree further. Every ray must still
+ * find what brute force finds. */
+static void check_deep(struct cv_gpu *gpu)
+{
+    struct cv_error err = {{0}};
+    struct mesh m;
+    mesh_geometric(&m, 150, 16, 0.7);
+    GLuint vb = 0, tb = 0;
+    struct cv_bvh_params params = cv_bvh_default_params();
+    params.split_budget = 0;
+    params.keep_binary = true;
+    params.treelet_rounds = 12;
+    struct cv_bvh *bvh = NULL;
+    bool ok = tap_ok(mesh_upload(&m, &vb, &tb, &err), "deep tree: uploaded %u triangles", m.nt) &&
+              tap_ok(cv_bvh_build(gpu, vb, tb, m.nt, &params, &bvh, &err), "deep tree: built%s%s",
+                     bvh ? "" : ": ", bvh ? "" : err.msg);
+    if (ok) {
+        const struct cv_bvh_stats *s = cv_bvh_stats(bvh);
+        struct tree_info ti = check_tree(&m, bvh);
+        tap_ok(ti.ok, "deep tree: invariants hold (%u wide nodes, depth %d) %s", s->n_nodes,
+               ti.wide_depth, ti.why);
+        tap_ok(s->stack_need > CV_BVH_STACK_SIZE,
+               "deep tree: needs %u stack entries, more than the default %d", s->stack_need,
+               CV_BVH_STACK_SIZE);
+        check_stack("deep tree", bvh, &ti);
+        /* From beyond the shallow end of the axis: a ray to a triangle deep
+         * down enters every cluster's box on the way and pushes them all. */
+        const float from[3] = {-1.0e-25f, 0.0f, 0.0f};
+        check_rays(gpu, "deep tree", &m, bvh, vb, tb, 16000, from);
+    }
+    cv_bvh_destroy(&bvh);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    mesh_free(&m);
 }
 
 static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uint32_t n_rays,
@@ -273,7 +327,7 @@ static void check_mesh(struct cv_gpu *gpu, const char *name, struct mesh *m, uin
         }
         tap_diag("%s: %.1f bytes/triangle, %u nodes", name, (double)s->bytes / (m->nt ? m->nt : 1),
                  s->n_nodes);
-        check_rays(gpu, name, m, bvh, vb, tb, n_rays);
+        check_rays(gpu, name, m, bvh, vb, tb, n_rays, NULL);
     }
     /* Without collapsing every leaf holds one triangle: n - 1 nodes. */
     struct cv_bvh_params flat = params;
@@ -393,7 +447,7 @@ static void check_split(struct cv_gpu *gpu, const char *name, struct mesh *m, fl
                "%s: GPU SAH %.4f equals the read-back tree's %.4f", name, s->sah_cost, ti.sah);
         tap_diag("%s: SAH %.4f split, %.4f not; %.1f bytes/triangle", name, s->sah_cost,
                  cv_bvh_stats(plain)->sah_cost, (double)s->bytes / nt);
-        check_rays(gpu, name, m, bvh, vb, tb, n_rays);
+        check_rays(gpu, name, m, bvh, vb, tb, n_rays, NULL);
     }
     cv_bvh_destroy(&bvh);
     cv_bvh_destroy(&plain);
@@ -457,7 +511,7 @@ static void check_corrupt(struct cv_gpu *gpu)
         cv_buffer_bind(nb, CV_BIND_BVH_NODES);
         cv_buffer_bind(pb, CV_BIND_BVH_PRIMS);
         cv_buffer_bind(lt, CV_BIND_BVH_TRIS);
-        ok = trace(gpu, false, false, rb, res, n_rays, m.nt, got, &err);
+        ok = trace(gpu, NULL, false, false, rb, res, n_rays, m.nt, got, &err);
     }
     tap_ok(ok, "corrupt tree: %u rays traced and ended: %s", n_rays, ok ? "yes" : err.msg);
     uint32_t bad = 0, steps = 0;
@@ -491,8 +545,8 @@ static void check_large_rays(struct cv_gpu *gpu, const char *name, const struct 
     float *rays = malloc((size_t)n_rays * 32);
     uint32_t *got = malloc((size_t)n_rays * 16);
     GLuint rb = 0, res = 0;
-    bool ok = rays_setup(m, bvh, vb, tb, n_rays, rays, &rb, &res, &err) &&
-              trace(gpu, false, false, rb, res, n_rays, m->nt, got, &err);
+    bool ok = rays_setup(m, bvh, vb, tb, n_rays, NULL, rays, &rb, &res, &err) &&
+              trace(gpu, bvh, false, false, rb, res, n_rays, m->nt, got, &err);
     uint32_t bad = 0, hits = 0;
     for (uint32_t i = 0; ok && i < n_rays; i++) {
         uint32_t prim, t_bits;
@@ -595,7 +649,7 @@ static void check_reuse(struct cv_gpu *gpu)
            "reuse: 3900 triangles' tree built in the 4000's buffers (nodes: %llu of %lld bytes)",
            (unsigned long long)used, (long long)held);
     if (ok)
-        check_rays(gpu, "reuse, 3900 of 4000", &m, bvh, vb2, tb2, 8000);
+        check_rays(gpu, "reuse, 3900 of 4000", &m, bvh, vb2, tb2, 8000, NULL);
     m.nt = 4000;
     cv_bvh_destroy(&bvh);
     cv_buffer_destroy(&vb);
@@ -647,6 +701,7 @@ int main(void)
         check_mesh(gpu, name, &m, 1000, false);
         mesh_free(&m);
     }
+    check_deep(gpu);
     check_corrupt(gpu);
     check_large(gpu);
     cv_gpu_destroy(&gpu);

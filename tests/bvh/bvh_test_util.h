@@ -170,6 +170,28 @@ static inline void mesh_fans(struct mesh *m, uint32_t fans, uint32_t seg)
     }
 }
 
+/* Deep on purpose: `clusters` clusters of `per` small triangles along the
+ * x axis at geometrically shrinking distances (cluster i at ratio^i, its
+ * size in proportion), each cluster two halves either side of the axis.
+ * SAH wants each cluster peeled off in turn with both halves kept as inner
+ * nodes, so the tree is about as deep as there are clusters and a query
+ * down it pushes several siblings per level. */
+static inline void mesh_geometric(struct mesh *m, uint32_t clusters, uint32_t per, double ratio)
+{
+    mesh_alloc(m, 3 * clusters * per, clusters * per);
+    uint32_t t = 0;
+    for (uint32_t i = 0; i < clusters; i++) {
+        double c = pow(ratio, i);
+        for (uint32_t j = 0; j < per; j++, t++) {
+            double y = (j & 1) ? 0.3 * c : -0.3 * c;
+            for (uint32_t k = 0; k < 3; k++)
+                set_v(m, 3 * t + k, c + 0.05 * c * (mesh_rand() - 0.5),
+                      y + 0.05 * c * (mesh_rand() - 0.5), 0.05 * c * (mesh_rand() - 0.5));
+            m->t[t].idx = (cv_uvec4){3 * t, 3 * t + 1, 3 * t + 2, 0};
+        }
+    }
+}
+
 static inline bool mesh_upload(const struct mesh *m, GLuint *vb, GLuint *tb, struct cv_error *err)
 {
     /* An empty mesh still binds: one zeroed element each. */
@@ -807,6 +829,31 @@ static inline void make_rays(const struct mesh *m, float *rays, uint32_t n)
                 d[3] = (float)mesh_rand() * 2.0f * ext;
             }
         }
+    }
+}
+
+/* Rays from one origin, each aimed at a random point of a random triangle
+ * (tmin 0, tmax 1e30): rays that enter every box between the origin and
+ * their triangle. */
+static inline void make_rays_from(const struct mesh *m, const float from[3], float *rays,
+                                  uint32_t n)
+{
+    for (uint32_t i = 0; i < n && m->nt > 0; i++) {
+        float *o = &rays[8 * i], *d = &rays[8 * i + 4];
+        const uint32_t *ix = &m->t[(uint32_t)(mesh_rand() * m->nt) % m->nt].idx.x;
+        double b1 = mesh_rand(), b2 = mesh_rand();
+        if (b1 + b2 > 1) {
+            b1 = 1 - b1;
+            b2 = 1 - b2;
+        }
+        for (int k = 0; k < 3; k++) {
+            o[k] = from[k];
+            d[k] = (float)((1 - b1 - b2) * (&m->v[ix[0]].pos_u.x)[k] +
+                           b1 * (&m->v[ix[1]].pos_u.x)[k] + b2 * (&m->v[ix[2]].pos_u.x)[k]) -
+                   from[k];
+        }
+        o[3] = 0.0f;
+        d[3] = 1.0e30f;
     }
 }
 

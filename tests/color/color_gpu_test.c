@@ -234,6 +234,23 @@ int main(void)
           in, "LUT config, looks \"curve, +warm\" overriding the view's, +0.5 EV");
     free(lut_config);
 
+    /* a config whose scene_linear is ACEScg: the GPU pass starts from the
+     * render's linear Rec.709 as the CPU does (ocio_spaces_test checks the
+     * CPU against colour maths). Views that end in [0, 1]: the linear ones
+     * carry the test colours' large values, where float rounding alone
+     * passes the absolute tolerance. */
+    char *acescg = cv_xasprintf("%s/color/acescg.ocio", data ? data : "tests/data");
+    const char *acescg_views[][2] = {
+        {"sRGB", "ACES 1.0 - SDR Video"}, {"sRGB", "Encoded"}, {"Display P3", "Encoded"}};
+    for (int i = 0; i < 3; i++) {
+        struct cv_color_params p = {.config_path = acescg, .display = acescg_views[i][0],
+                                    .view = acescg_views[i][1], .exposure = 0.5f};
+        char *what = cv_xasprintf("ACEScg config %s / %s, +0.5 EV", p.display, p.view);
+        check(gpu, &p, in, what);
+        free(what);
+    }
+    free(acescg);
+
     free(in);
     cv_gpu_destroy(&gpu);
     return tap_done();

@@ -1,7 +1,8 @@
 /* png_write_test.c: PNGs written by cv_png_write decode back with libpng to
  * exactly the quantised input (8 and 16 bit, RGB and RGBA), carry the sRGB
- * chunk (with gAMA and cHRM) and the metadata as text; failures leave
- * nothing behind and keep an older file. */
+ * chunk (with gAMA and cHRM) when sRGB and the metadata as text; each
+ * display encoding gets its cICP, gAMA and cHRM, an unknown one no colour
+ * chunk; failures leave nothing behind and keep an older file. */
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -122,6 +123,107 @@ static void test_quantize(void)
     TAP_EQ_INT(cv_png_quantize(0.1f, 16), 6554, "0.1 -> 6554 (6553.5)");
 }
 
+/* The colour chunks of a PNG file, read by walking its chunks. */
+struct colour_chunks {
+    bool cicp, srgb, gama, chrm, iccp, cicp_before_idat;
+    unsigned char cicp_data[4];
+    uint32_t gama_value;      /* gAMA: gamma * 100000 */
+    uint32_t chrm_value[8];   /* wx wy rx ry gx gy bx by, * 100000 */
+};
+
+static uint32_t be32(const unsigned char *b)
+{
+    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3];
+}
+
+static bool read_colour_chunks(const char *path, struct colour_chunks *c)
+{
+    memset(c, 0, sizeof(*c));
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    unsigned char sig[8], head[8];
+    bool idat = false, ok = fread(sig, 1, 8, f) == 8;
+    while (ok && fread(head, 1, 8, f) == 8) {
+        uint32_t len = be32(head);
+        unsigned char *data = cv_xmalloc(len + 4);
+        ok = fread(data, 1, len + 4, f) == len + 4;
+        if (ok && memcmp(head + 4, "cICP", 4) == 0 && len == 4) {
+            c->cicp = true;
+            c->cicp_before_idat = !idat;
+            memcpy(c->cicp_data, data, 4);
+        } else if (memcmp(head + 4, "sRGB", 4) == 0) {
+            c->srgb = true;
+        } else if (memcmp(head + 4, "iCCP", 4) == 0) {
+            c->iccp = true;
+        } else if (ok && memcmp(head + 4, "gAMA", 4) == 0 && len == 4) {
+            c->gama = true;
+            c->gama_value = be32(data);
+        } else if (ok && memcmp(head + 4, "cHRM", 4) == 0 && len == 32) {
+            c->chrm = true;
+            for (int i = 0; i < 8; i++)
+                c->chrm_value[i] = be32(data + 4 * i);
+        } else if (memcmp(head + 4, "IDAT", 4) == 0) {
+            idat = true;
+        }
+        free(data);
+    }
+    fclose(f);
+    return ok;
+}
+
+/* Each display encoding's tags: cICP (H.273 primaries, transfer, matrix 0,
+ * full range) before IDAT, gAMA and cHRM for the encoding, the sRGB chunk
+ * for sRGB only, and nothing for an unknown encoding. */
+static void test_tags(const char *dir)
+{
+    static const struct {
+        enum cv_display_encoding e;
+        unsigned char primaries, transfer;
+        uint32_t gama, rx, gy;
+        bool srgb;
+    } cases[] = {
+        {CV_DISPLAY_SRGB, 1, 13, 45455, 64000, 60000, true},
+        {CV_DISPLAY_P3, 12, 13, 45455, 68000, 69000, false},
+        {CV_DISPLAY_BT1886, 1, 1, 41667, 64000, 60000, false},
+    };
+    float px[3 * 4 * 2] = {0.25f, 0.5f, 0.75f};
+    struct cv_error err = {{0}};
+    for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+        const char *name = cv_display_encoding_name(cases[i].e);
+        char *path = cv_xasprintf("%s/tag-%zu.png", dir, i);
+        struct cv_png_params p = {.pixels = px, .width = 4, .height = 2, .channels = 3,
+                                  .encoding = cases[i].e};
+        struct colour_chunks c = {0};
+        struct decoded d;
+        bool ok = cv_png_write(path, &p, &err) && read_colour_chunks(path, &c);
+        tap_ok(ok && decode(path, &d) && d.w == 4 && d.samples[0] == cv_png_quantize(0.25f, 8),
+               "%s: libpng decodes it", name);
+        if (ok)
+            free_decoded(&d);
+        tap_ok(ok && c.cicp && c.cicp_before_idat && c.cicp_data[0] == cases[i].primaries &&
+                   c.cicp_data[1] == cases[i].transfer && c.cicp_data[2] == 0 &&
+                   c.cicp_data[3] == 1,
+               "%s: cICP %u/%u/%u/%u before IDAT %s", name, c.cicp_data[0], c.cicp_data[1],
+               c.cicp_data[2], c.cicp_data[3], err.msg);
+        tap_ok(ok && c.gama && c.gama_value == cases[i].gama && c.chrm &&
+                   c.chrm_value[0] == 31270 && c.chrm_value[2] == cases[i].rx &&
+                   c.chrm_value[5] == cases[i].gy,
+               "%s: gAMA %u, cHRM white %u red x %u green y %u", name, c.gama_value,
+               c.chrm_value[0], c.chrm_value[2], c.chrm_value[5]);
+        tap_ok(ok && c.srgb == cases[i].srgb && !c.iccp, "%s: %s sRGB chunk", name,
+               cases[i].srgb ? "an" : "no");
+        free(path);
+    }
+    char *path = cv_xasprintf("%s/tag-unknown.png", dir);
+    struct cv_png_params p = {.pixels = px, .width = 4, .height = 2, .channels = 3};
+    struct colour_chunks c = {0};
+    bool ok = cv_png_write(path, &p, &err) && read_colour_chunks(path, &c);
+    tap_ok(ok && !c.cicp && !c.srgb && !c.gama && !c.chrm && !c.iccp,
+           "unknown encoding: no colour chunk at all %s", err.msg);
+    free(path);
+}
+
 static void test_roundtrip(const char *dir, uint32_t channels, uint32_t depth)
 {
     size_t n = (size_t)W * H * channels;
@@ -139,7 +241,7 @@ static void test_roundtrip(const char *dir, uint32_t channels, uint32_t depth)
     cv_metadata_set_string(meta, "job", "plan\xc3\xa8te"); /* UTF-8: needs iTXt */
     struct cv_png_params p = {
         .pixels = px, .width = W, .height = H, .channels = channels, .bit_depth = depth,
-        .meta = meta,
+        .encoding = CV_DISPLAY_SRGB, .meta = meta,
     };
     struct cv_error err = { { 0 } };
     if (!tap_ok(cv_png_write(path, &p, &err), "write %u-bit %s", depth,
@@ -246,6 +348,9 @@ int main(void)
     test_roundtrip(dir, 3, 16);
     test_roundtrip(dir, 4, 16);
     test_failures(dir);
+    remove_scratch(dir);
+    dir = scratch_dir("png-tags");
+    test_tags(dir);
     remove_scratch(dir);
     return tap_done();
 }

@@ -299,12 +299,14 @@ static void write_pfm(const char *rel, int w, int h, float v)
     free(buf);
 }
 
-static void write_exr(const char *rel, int w, int h, float v)
+/* channels: IMF_WRITE_RGBA, or IMF_WRITE_Y / IMF_WRITE_YC (luminance,
+ * with chroma) for the loader's other paths. */
+static void write_exr_channels(const char *rel, int w, int h, float v, int channels)
 {
     ImfHeader *hdr = ImfNewHeader();
     ImfHeaderSetDataWindow(hdr, 0, 0, w - 1, h - 1);
     ImfHeaderSetDisplayWindow(hdr, 0, 0, w - 1, h - 1);
-    ImfOutputFile *out = ImfOpenOutputFile(th_path(rel), hdr, IMF_WRITE_RGBA);
+    ImfOutputFile *out = ImfOpenOutputFile(th_path(rel), hdr, channels);
     ImfRgba *px = calloc((size_t)w * h, sizeof(ImfRgba));
     for (int i = 0; i < w * h; i++) {
         ImfFloatToHalf(v, &px[i].r);
@@ -321,6 +323,11 @@ static void write_exr(const char *rel, int w, int h, float v)
     ImfDeleteHeader(hdr);
 }
 
+static void write_exr(const char *rel, int w, int h, float v)
+{
+    write_exr_channels(rel, w, h, v, IMF_WRITE_RGBA);
+}
+
 static void test_textures(void)
 {
     unsigned char px[2 * 2 * 3] = {255, 255, 255, 0, 0, 0, 128, 128, 128, 255, 0, 0};
@@ -332,12 +339,34 @@ static void test_textures(void)
         "Material \"diffuse\" \"texture reflectance\" \"e\"\n" TRI, "EXR texture");
     if (s) {
         const CvTexture *t = &s->textures[s->n_textures - 1];
-        uint32_t w0 = s->texels[2 * t->offset], w1 = s->texels[2 * t->offset + 1];
+        float c[4];
+        cv_scene_texel(s, t, 0, c);
         tap_ok(t->width == 8 && t->height == 4 && t->levels == 4 && !(t->flags & CV_TEXF_SRGB) &&
-               near(cv_half_to_float((uint16_t)(w0 >> 16)), 0.5, 1e-6) &&
-               near(cv_half_to_float((uint16_t)(w1 & 0xffff)), 1.0, 1e-6), "EXR read as linear half RGBA");
+               (t->flags & CV_TEXF_RGBA32F) && c[0] == 0.25f && c[1] == 0.5f && c[2] == 1.0f &&
+               c[3] == 1.0f, "EXR read as linear float RGBA (%g %g %g %g)", c[0], c[1], c[2], c[3]);
     }
     cv_scene_destroy(&s);
+    /* luminance alone reads as grey; luminance-chroma through OpenEXR's
+     * RGBA conversion (the colour 0.25, 0.5, 1 comes back near itself) */
+    write_exr_channels("y.exr", 4, 2, 0.25f, IMF_WRITE_Y);
+    write_exr_channels("yc.exr", 4, 2, 0.25f, IMF_WRITE_YC);
+    const char *lum[2] = {"y.exr", "yc.exr"};
+    float c2[2][4] = {{0}};
+    for (int k = 0; k < 2; k++) {
+        char text[512];
+        snprintf(text, sizeof(text),
+                 "WorldBegin\nTexture \"l\" \"spectrum\" \"imagemap\" \"string filename\" \"%s\"\n"
+                 "Material \"diffuse\" \"texture reflectance\" \"l\"\n" TRI, lum[k]);
+        s = ok_load(text, lum[k]);
+        if (s)
+            cv_scene_texel(s, &s->textures[s->n_textures - 1], 0, c2[k]);
+        cv_scene_destroy(&s);
+    }
+    const float *y = c2[0], *yc = c2[1];
+    tap_ok(y[0] > 0.3f && y[0] < 0.6f && y[0] == y[1] && y[1] == y[2] && y[3] == 1.0f,
+           "EXR of Y alone reads as grey (%g %g %g %g)", y[0], y[1], y[2], y[3]);
+    tap_ok(fabsf(yc[0] - 0.25f) < 0.03f && fabsf(yc[1] - 0.5f) < 0.03f && fabsf(yc[2] - 1.0f) < 0.06f,
+           "EXR of Y and chroma reads back its colour (%g %g %g)", yc[0], yc[1], yc[2]);
     s = ok_load(
         "WorldBegin\n"
         "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"float uscale\" 4"

@@ -51,3 +51,7 @@ EXTRA_PROGRAMS = tests/trace/rlpath_bench
 tests_trace_rlpath_bench_LDADD = $(CV_LIBS)
 CLEANFILES += tests/trace/rlpath_bench
 # --- end of rlpath tests ---
+# --- HDR textures in float (issue 24, bug 5) ---
+check_PROGRAMS += tests/trace/hdr_envmap_test
+TESTS += tests/trace/hdr_envmap_test
+tests_trace_hdr_envmap_test_LDADD = $(CV_LIBS)

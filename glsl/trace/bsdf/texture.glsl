@@ -39,7 +39,10 @@ vec4 cv_texel_fetch(uint base, uint w, uint h, ivec2 xy, uint flags)
         xy.x = int(uint(xy.x % int(w) + int(w)) % w);
         xy.y = int(uint(xy.y % int(h) + int(h)) % h);
     }
-    uvec2 t = texels[base + uint(xy.y) * w + uint(xy.x)];
+    uint at = base + (uint(xy.y) * w + uint(xy.x)) * CV_TEX_SLOTS(flags);
+    uvec2 t = texels[at];
+    if ((flags & CV_TEXF_RGBA32F) != 0u)
+        return vec4(uintBitsToFloat(t), uintBitsToFloat(texels[at + 1u]));
     return vec4(unpackHalf2x16(t.x), unpackHalf2x16(t.y));
 }
 
@@ -55,7 +58,7 @@ vec4 cv_image_lookup(CvTexture tx, vec2 st, float lod)
     int n_levels = lf > 0.0 ? 2 : 1;
     uint base = tx.offset, w = max(tx.width, 1u), h = max(tx.height, 1u);
     for (uint l = 0u; l < l0; l++) {
-        base += w * h;
+        base += w * h * CV_TEX_SLOTS(tx.flags);
         w = max(w / 2u, 1u);
         h = max(h / 2u, 1u);
     }
@@ -71,7 +74,7 @@ vec4 cv_image_lookup(CvTexture tx, vec2 st, float lod)
             sum += wt.x * wt.y * cv_texel_fetch(base, w, h, i + o, tx.flags);
         }
         result += (level == 0 ? 1.0 - lf : lf) * sum;
-        base += w * h;
+        base += w * h * CV_TEX_SLOTS(tx.flags);
         w = max(w / 2u, 1u);
         h = max(h / 2u, 1u);
     }
