@@ -44,7 +44,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
         vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
-            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u && u_pass.misc.z > 0u)
                 w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
             cv_film_add(path, beta * Le * w);
         }

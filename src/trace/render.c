@@ -333,7 +333,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->pass.wave = (cv_uvec4){(uint32_t)r->n_paths, r->paths_per_pixel, 0, 0};
     r->pass.seed = (cv_uvec4){(uint32_t)p->seed, (uint32_t)(p->seed >> 32),
                               p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u, r->max_depth};
-    r->pass.misc = (cv_uvec4){0, r->pass.misc.y, scene->n_lights, 0};
+    /* misc.z: lights to sample at each vertex; 0 turns next-event
+     * estimation off, and with it the MIS weights of emission hits */
+    r->pass.misc = (cv_uvec4){0, r->pass.misc.y, p->no_nee ? 0 : scene->n_lights, 0};
 
     r->scene = gs;
 

@@ -40,6 +40,11 @@ struct cv_render_params {
      * changes the order in which a pixel's samples are summed, nothing else:
      * each sample traces the same path. */
     uint32_t paths_per_pixel;
+    /* Tests only: no next-event estimation. Every light is then found by
+     * BSDF sampling alone, at full weight, so point, spot and distant
+     * lights add nothing; the image of area and environment lights must
+     * match the one with light sampling within noise. */
+    bool no_nee;
 };
 
 /* The automatic paths_per_pixel aims at this many paths in flight: on an H100

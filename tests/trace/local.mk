@@ -43,3 +43,10 @@ EXTRA_PROGRAMS = tests/trace/rlpath_bench
 tests_trace_rlpath_bench_LDADD = $(CV_LIBS)
 CLEANFILES += tests/trace/rlpath_bench
 # --- end of rlpath tests ---
+# --- next-event estimation off against on; BSDFs with a delta lobe ---
+check_PROGRAMS += tests/trace/nee_test tests/trace/bsdf_delta_test
+TESTS += tests/trace/nee_test tests/trace/bsdf_delta_test
+tests_trace_nee_test_LDADD = $(CV_LIBS)
+tests_trace_bsdf_delta_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/data/trace/oracle/nee_area_env.pbrt tests/data/trace/oracle/sphere.pbrt
+# --- end of nee / delta tests ---

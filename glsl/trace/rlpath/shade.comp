@@ -99,7 +99,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
             emitted = target;
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
-            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u && u_pass.misc.z > 0u)
                 w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
             cv_film_add(path, beta * Le * w);
         }
