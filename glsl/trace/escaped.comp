@@ -51,7 +51,8 @@ void main()
         vec3 Le = cv_env_Le(r.d.xyz);
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
-            if (cv_ray_depth(r) > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u)
+            if (cv_ray_depth(r) > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u &&
+                cv_n_lights() > 0u)
                 w = cv_power_heuristic(r.d.w, cv_env_pdf(r.d.xyz));
             cv_film_add(uint(r.o.w), r.beta.rgb * Le * w);
         }

@@ -51,7 +51,7 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
         cv_strategy_emitted(g, Le, flags);
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
-            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u)
+            if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u && cv_n_lights() > 0u)
                 w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
             cv_film_add(path, beta * Le * w);
         }

@@ -81,7 +81,7 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
         double d[3] = {wt[0] - wf[0], wt[1] - wf[1], wt[2] - wf[2]};
         if (!normalize3(d))
             return cv_fail(err, "%s:%d:%d: spot light with from == to", loc->file, loc->line, loc->col);
-        double cone = cv_params_float(ps, "coneangle", 30), delta = cv_params_float(ps, "conedelta", 5);
+        double cone = cv_params_float(ps, "coneangle", 30), delta = cv_params_float(ps, "conedeltaangle", 5);
         double cos_end = cos(cone * M_PI / 180), cos_start = cos((cone - delta) * M_PI / 180);
         double k = 2 * M_PI * ((1 - cos_start) + (cos_start - cos_end) / 2);
         if (power > 0 && k > 0)

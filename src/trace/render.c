@@ -290,7 +290,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->pass.sampler = p->sampler == CV_SAMPLER_INDEPENDENT ? 1u : 0u;
     r->pass.max_depth = r->max_depth;
     r->pass.iteration = 0;
-    r->pass.n_lights = scene->n_lights;
+    /* lights to sample at each vertex; 0 turns next-event estimation off,
+     * and with it the MIS weights of emission hits */
+    r->pass.n_lights = p->no_nee ? 0 : scene->n_lights;
     r->pass.end_sample = 0;
     r->passes = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){
                                              .names = pass_names, .n_names = 1});

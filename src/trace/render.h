@@ -49,6 +49,11 @@ struct cv_render_params {
     bool stage_times;
     /* cv_renderer_create's own BVH build; NULL: cv_bvh_default_params() */
     const struct cv_bvh_params *bvh;
+    /* Tests only: no next-event estimation. Every light is then found by
+     * BSDF sampling alone, at full weight, so point, spot and distant
+     * lights add nothing; the image of area and environment lights must
+     * match the one with light sampling within noise. */
+    bool no_nee;
 };
 
 /* The automatic paths_per_pixel aims at this many paths in flight: the

@@ -427,7 +427,7 @@ static void test_lights(void)
     struct cv_scene *s = ok_load(
         "WorldBegin\n"
         "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100 \"point3 from\" [1 2 3]\n"
-        "LightSource \"spot\" \"blackbody I\" 3000 \"float coneangle\" 20 \"float conedelta\" 5\n"
+        "LightSource \"spot\" \"blackbody I\" 3000 \"float coneangle\" 20 \"float conedeltaangle\" 5\n"
         "LightSource \"distant\" \"color L\" [2 2 2] \"point from\" [0 0 0] \"point to\" [0 -1 0]\n"
         "LightSource \"infinite\" \"rgb L\" [0.5 0.5 0.5]\n"
         "LightSource \"infinite\" \"string mapname\" \"env.pfm\"\n"

@@ -55,3 +55,16 @@ CLEANFILES += tests/trace/rlpath_bench
 check_PROGRAMS += tests/trace/hdr_envmap_test
 TESTS += tests/trace/hdr_envmap_test
 tests_trace_hdr_envmap_test_LDADD = $(CV_LIBS)
+# --- next-event estimation off against on; BSDFs with a delta lobe ---
+check_PROGRAMS += tests/trace/nee_test tests/trace/bsdf_delta_test
+TESTS += tests/trace/nee_test tests/trace/bsdf_delta_test
+tests_trace_nee_test_LDADD = $(CV_LIBS)
+tests_trace_bsdf_delta_test_LDADD = $(CV_LIBS)
+# --- end of nee / delta tests ---
+# --- oracle tests: pbrt-v4 references (tests/data/trace/oracle/README) ---
+check_PROGRAMS += tests/trace/oracle_test
+TESTS += tests/trace/oracle_test
+tests_trace_oracle_test_LDADD = $(CV_LIBS)
+# scenes (nee_test's too), their pbrt-v4 references and the generator
+EXTRA_DIST += tests/data/trace/oracle
+# --- end of oracle tests ---

@@ -1,0 +1,243 @@
+#!/usr/bin/env python3
+# make_oracle.py: writes the oracle scenes of tests/trace/oracle_test.c (run
+# once; the .pbrt, .png and .pfm files are committed, as are the pbrt-v4
+# references rendered from them, see README). Each scene isolates one
+# feature: a material on a sphere over a grey floor, or one kind of light.
+# Everything is a triangle mesh with explicit normals, so that pbrt-v4 and
+# Cavalry intersect the same geometry.
+import math
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+RES = 32
+
+
+def icosphere(level):
+    t = (1 + 5 ** 0.5) / 2
+    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+         (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    v = [tuple(c / math.sqrt(sum(x * x for x in p)) for c in p) for p in v]
+    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+         (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+         (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(level):
+        cache = {}
+
+        def mid(a, b):
+            k = (min(a, b), max(a, b))
+            if k not in cache:
+                p = [(v[a][i] + v[b][i]) / 2 for i in range(3)]
+                n = math.sqrt(sum(x * x for x in p))
+                v.append(tuple(x / n for x in p))
+                cache[k] = len(v) - 1
+            return cache[k]
+        nf = []
+        for a, b, c in f:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        f = nf
+    return v, f
+
+
+def fmt(xs):
+    return " ".join("%.6g" % x for x in xs)
+
+
+def mesh(idx, p, n=None, uv=None):
+    s = 'Shape "trianglemesh"\n  "integer indices" [ %s ]\n  "point3 P" [ %s ]' % (
+        " ".join(str(i) for i in idx), fmt(p))
+    if n:
+        s += '\n  "normal N" [ %s ]' % fmt(n)
+    if uv:
+        s += '\n  "point2 uv" [ %s ]' % fmt(uv)
+    return s + "\n"
+
+
+def sphere_include():
+    v, f = icosphere(3)
+    idx = [i for tri in f for i in tri]
+    p = [c for q in v for c in q]
+    return ("# sphere.pbrt: unit icosphere (level 3, 1280 triangles) with its analytic\n"
+            "# normals; made by make_oracle.py.\n" + mesh(idx, p, p))
+
+
+def quad_y(h, y, down=False, uv_scale=1.0):
+    """Square of half-size h in the plane y, normal +y (or -y when down)."""
+    p = [-h, y, -h, h, y, -h, h, y, h, -h, y, h]
+    uv = [0, 0, uv_scale, 0, uv_scale, uv_scale, 0, uv_scale]
+    # pbrt-v4's triangle normal is cross(p0 - p2, p1 - p2): (0 1 2) faces -y here
+    idx = [0, 1, 2, 0, 2, 3] if down else [0, 2, 1, 0, 3, 2]
+    ny = -1 if down else 1
+    return mesh(idx, p, [0, ny, 0] * 4, uv)
+
+
+HEADER = """# %s: %s
+# Made by make_oracle.py; reference: %s.exr (pbrt-v4, see README).
+LookAt 0 2.6 -5.6  0 0.8 0  0 1 0
+Camera "perspective" "float fov" [ 40 ]
+Sampler "zsobol" "integer pixelsamples" [ 64 ]
+Integrator "path" "integer maxdepth" [ %d ]
+Film "rgb" "integer xresolution" [ %d ] "integer yresolution" [ %d ]
+  "string sensor" "cie1931" "string filename" "%s.exr"
+PixelFilter "box"
+WorldBegin
+"""
+
+FLOOR = ('AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]\n  '
+         + quad_y(5, 0).replace("\n", "\n  ").rstrip() + "\nAttributeEnd\n")
+
+ENV_CONST = 'LightSource "infinite" "rgb L" [ 0.5 0.5 0.5 ]\n'
+AREA_LAMP = ('AttributeBegin\n  AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]\n'
+             '  Material "diffuse" "rgb reflectance" [ 0 0 0 ]\n  '
+             + quad_y(0.75, 4, down=True).replace("\n", "\n  ").rstrip() + "\nAttributeEnd\n")
+POINT = 'LightSource "point" "point3 from" [ 1.5 3 -1 ] "rgb I" [ 6 6 6 ]\n'
+DISTANT = 'LightSource "distant" "point3 from" [ 1 2 -1.5 ] "point3 to" [ 0 0 0 ] "rgb L" [ 2 2 2 ]\n'
+
+
+def sphere(material, at=(0, 1, 0)):
+    return ("AttributeBegin\n  %s\n  Translate %g %g %g\n  Include \"sphere.pbrt\"\nAttributeEnd\n"
+            % (material, at[0], at[1], at[2]))
+
+
+def scene(name, what, body, maxdepth=5):
+    with open(os.path.join(HERE, name + ".pbrt"), "w") as out:
+        out.write(HEADER % (name + ".pbrt", what, name, maxdepth, RES, RES, name) + body)
+
+
+# Materials: each on the sphere, lit by a constant environment (declared first:
+# issue 24 bug 1 is a test of its own) and a square lamp above.
+LIT = ENV_CONST + AREA_LAMP + FLOOR
+MATERIALS = [
+    ("mat_diffuse", "white diffuse", 'Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]'),
+    ("mat_conductor_smooth", "smooth conductor, grey reflectance",
+     'Material "conductor" "rgb reflectance" [ 0.8 0.8 0.8 ]'),
+    ("mat_conductor_rough", "rough conductor (roughness 0.3), grey reflectance",
+     'Material "conductor" "rgb reflectance" [ 0.8 0.8 0.8 ] "float roughness" [ 0.3 ]'),
+    ("mat_conductor_cu", "rough copper (pbrt-v4's default spectral eta and k, roughness 0.2)",
+     'Material "conductor" "float roughness" [ 0.2 ]'),
+    ("mat_dielectric", "smooth glass, eta 1.5", 'Material "dielectric" "float eta" [ 1.5 ]'),
+    ("mat_dielectric_rough", "rough glass, eta 1.5, roughness 0.3",
+     'Material "dielectric" "float eta" [ 1.5 ] "float roughness" [ 0.3 ]'),
+    ("mat_thindielectric", "thin dielectric, eta 1.5", 'Material "thindielectric" "float eta" [ 1.5 ]'),
+    ("mat_coateddiffuse", "coated diffuse, smooth coat, white base",
+     'Material "coateddiffuse" "rgb reflectance" [ 0.8 0.8 0.8 ] "float roughness" [ 0 ]'),
+    ("mat_coateddiffuse_rough", "coated diffuse, coat roughness 0.3, thickness 0.1",
+     'Material "coateddiffuse" "rgb reflectance" [ 0.8 0.8 0.8 ] "float roughness" [ 0.3 ]'
+     ' "float thickness" [ 0.1 ]'),
+    ("mat_coatedconductor", "coated conductor, smooth coat over a grey base of roughness 0.3",
+     'Material "coatedconductor" "rgb reflectance" [ 0.8 0.8 0.8 ]'
+     ' "float interface.roughness" [ 0 ] "float conductor.roughness" [ 0.3 ]'),
+    ("mat_diffusetransmission", "diffuse transmission, reflectance 0.3, transmittance 0.6",
+     'Material "diffusetransmission" "rgb reflectance" [ 0.3 0.3 0.3 ]'
+     ' "rgb transmittance" [ 0.6 0.6 0.6 ]'),
+]
+
+GREY_SPHERE = sphere('Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]')
+
+
+def spot():
+    return ('LightSource "spot" "point3 from" [ 0 4 -1.5 ] "point3 to" [ 0 0 0.5 ] "rgb I" [ 12 12 12 ]\n'
+            '  "float coneangle" [ 30 ] "float conedeltaangle" [ 10 ]\n')
+
+
+def env_map():
+    """Equal-area octahedral map (square) of a dim sky with one bright patch."""
+    n = 32
+    rows = []
+    for y in range(n):
+        row = []
+        for x in range(n):
+            u, v = (x + 0.5) / n, (y + 0.5) / n
+            r, g, b = 0.3 + 0.4 * u, 0.4, 0.3 + 0.4 * v
+            if abs(u - 0.3) < 0.07 and abs(v - 0.4) < 0.07:
+                r, g, b = 20.0, 20.0, 20.0
+            row.append((r, g, b))
+        rows.append(row)
+    # PFM rows run bottom to top
+    with open(os.path.join(HERE, "envmap.pfm"), "wb") as out:
+        out.write(b"PF\n%d %d\n-1.0\n" % (n, n))
+        for row in reversed(rows):
+            for px in row:
+                out.write(struct.pack("<3f", *px))
+
+
+def texture_png():
+    """16x16 sRGB checker of greys with one coloured block, 8-bit PNG."""
+    n = 16
+    raw = b""
+    for y in range(n):
+        raw += b"\0"
+        for x in range(n):
+            if x < 8 and y < 8:
+                px = (200, 60, 40) if (x // 2 + y // 2) % 2 else (230, 230, 230)
+            else:
+                px = (230, 230, 230) if (x // 4 + y // 4) % 2 else (40, 40, 40)
+            raw += bytes(px)
+
+    def chunk(kind, data):
+        c = kind + data
+        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xffffffff)
+    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", n, n, 8, 2, 0, 0, 0))
+           + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    with open(os.path.join(HERE, "checker.png"), "wb") as out:
+        out.write(png)
+
+
+def deep_bvh():
+    """A spiral of triangles shrinking geometrically towards the sphere's top:
+    sizes over six orders of magnitude make the tree deep."""
+    idx, p = [], []
+    k = 1200
+    for i in range(k):
+        s = 0.4 * 0.9912 ** i
+        a = i * 0.7
+        r = 1.6 * 0.997 ** i
+        cx, cz, cy = r * math.cos(a), r * math.sin(a), 0.02 + 1.5 * (1 - 0.997 ** i)
+        base = len(p) // 3
+        p += [cx - s, cy, cz - s, cx + s, cy, cz - s, cx, cy, cz + s]
+        idx += [base, base + 2, base + 1]
+    return mesh(idx, p)
+
+
+def main():
+    with open(os.path.join(HERE, "sphere.pbrt"), "w") as out:
+        out.write(sphere_include())
+    env_map()
+    texture_png()
+    for name, what, mat in MATERIALS:
+        scene(name, what, LIT + sphere(mat), maxdepth=8)
+    scene("light_point", "point light", POINT + FLOOR + GREY_SPHERE)
+    scene("light_spot", "spot light, cone 30 degrees, falloff 10", spot() + FLOOR + GREY_SPHERE)
+    scene("light_distant", "distant light", DISTANT + FLOOR + GREY_SPHERE)
+    scene("light_area", "one-sided square area light", AREA_LAMP + FLOOR + GREY_SPHERE)
+    scene("light_env_const", "constant environment", ENV_CONST + FLOOR + GREY_SPHERE)
+    scene("light_env_map", "equal-area environment map with a bright patch",
+          'AttributeBegin\n  Rotate -90 1 0 0\n  LightSource "infinite" "string filename" "envmap.pfm"\n'
+          'AttributeEnd\n' + FLOOR + GREY_SPHERE)
+    scene("texture_image", "sRGB PNG image texture on the floor",
+          ENV_CONST.replace("0.5 0.5 0.5", "0.2 0.2 0.2") + AREA_LAMP
+          + 'Texture "checker" "spectrum" "imagemap" "string filename" "checker.png"\n'
+          'AttributeBegin\n  Material "diffuse" "texture reflectance" "checker"\n  '
+          + quad_y(5, 0).replace("\n", "\n  ").rstrip() + "\nAttributeEnd\n" + GREY_SPHERE)
+    many = [ENV_CONST, DISTANT.replace("2 2 2", "1 1 1"), AREA_LAMP, POINT.replace("6 6 6", "3 3 3")]
+    scene("lights_env_first", "environment, distant, area and point lights, the environment first",
+          "".join(many) + FLOOR + GREY_SPHERE)
+    scene("lights_env_last", "the same four lights, the environment last",
+          "".join(many[1:] + many[:1]) + FLOOR + GREY_SPHERE)
+    scene("huge_plane", "floor of half-size 100000 under a constant environment",
+          ENV_CONST + 'AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]\n  '
+          + quad_y(100000, 0).replace("\n", "\n  ").rstrip() + "\nAttributeEnd\n" + GREY_SPHERE)
+    big_lamp = AREA_LAMP.replace("0.75", "1.5").replace("8 8 8", "5 5 5")
+    scene("nee_area_env", "large lamp and constant environment over a rough conductor: every light "
+          "can be found by BSDF sampling (tests/trace/nee_test.c)",
+          ENV_CONST.replace("0.5 0.5 0.5", "0.25 0.25 0.25") + big_lamp + FLOOR
+          + sphere(MATERIALS[2][2]), maxdepth=8)
+    scene("deep_bvh", "1200 triangles shrinking geometrically (a deep BVH) over the floor",
+          ENV_CONST + AREA_LAMP + FLOOR + 'AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
+          + deep_bvh() + "AttributeEnd\n")
+
+
+if __name__ == "__main__":
+    main()
