@@ -41,7 +41,8 @@ int main(int argc, char **argv)
     const uint32_t passes[] = {NEE_SPP / 2, NEE_SPP / 2, 0};
     struct test_image on = {0}, off = {0};
     struct cv_error err = {{0}};
-    struct cv_render_params p = {.seed = seed, .width = RES, .height = RES};
+    CvCamera cam = test_camera(s, RES, RES);
+    struct cv_render_params p = {.seed = seed, .camera = &cam};
     bool ok_on = tap_ok(test_render(gpu, s, &p, passes, &on, &err), "renders with light sampling: %s",
                         err.msg);
     p.no_nee = true;

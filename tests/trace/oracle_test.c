@@ -90,7 +90,8 @@ static void check_scene(struct cv_gpu *gpu, const struct oracle_scene *sc, uint6
     uint32_t rw = 0, rh = 0;
     bool read = exr_ref_read_rgb(ref_path, &ref, &rw, &rh, why, sizeof(why));
     free(ref_path);
-    struct cv_render_params p = {.seed = seed, .width = RES, .height = RES};
+    CvCamera cam = test_camera(s, RES, RES);
+    struct cv_render_params p = {.seed = seed, .camera = &cam};
     const uint32_t passes[] = {ORACLE_SPP / 4, ORACLE_SPP / 4, ORACLE_SPP / 4, ORACLE_SPP / 4, 0};
     struct test_image img = {0};
     struct cv_error err = {{0}};
