@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "base/file.h"
 #include "base/log.h"
@@ -22,6 +23,7 @@
 #include "output/metadata.h"
 #include "output/png_read.h"
 #include "output/png_write.h"
+#include "scene/camera_matrix.h"
 #include "trace/render.h"
 
 static double now_seconds(void)
@@ -31,22 +33,58 @@ static double now_seconds(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
+/* OpenEXR's capDate ("YYYY:MM:DD hh:mm:ss", local time) and utcOffset
+ * [seconds, UTC = local time + utcOffset] of now. */
+static void set_capture_date(struct cv_metadata *m)
+{
+    time_t now = time(NULL);
+    struct tm local;
+    char date[32];
+    if (!localtime_r(&now, &local) ||
+        strftime(date, sizeof(date), "%Y:%m:%d %H:%M:%S", &local) == 0)
+        return;
+    cv_metadata_set_string(m, "capDate", date);
+    cv_metadata_set_float(m, "utcOffset", (double)-local.tm_gmtoff);
+}
+
 static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_render_plan *plan,
                                         const struct cv_job_result *res)
 {
     const struct cv_job *job = plan->job;
     struct cv_metadata *m = cv_metadata_new();
+    /* "software" (EXR) and "Software" (PNG, png_write.c) carry it */
     cv_metadata_set_string(m, "software", "cavalry-batch " PACKAGE_VERSION);
+    /* OpenEXR's standard attributes (scene/camera_matrix.h: conventions) */
+    float w2c[16], w2ndc[16];
+    if (cv_camera_world_to_camera(&plan->camera, w2c) &&
+        cv_camera_world_to_ndc(&plan->camera, w2ndc)) {
+        cv_metadata_set_m44f(m, "worldToCamera", w2c);
+        cv_metadata_set_m44f(m, "worldToNDC", w2ndc);
+    }
+    set_capture_date(m);
+    char host[256] = "";
+    if (gethostname(host, sizeof(host) - 1) == 0 && host[0])
+        cv_metadata_set_string(m, "cavalry.host", host);
+    cv_metadata_set_string(m, "cavalry.version", PACKAGE_VERSION);
     cv_metadata_set_string(m, "cavalry.job", job->name);
     cv_metadata_set_string(m, "cavalry.scene", job->scene_as_written);
     cv_metadata_set_string(m, "cavalry.integrator", cv_integrator_name(plan->integrator));
-    cv_metadata_set_int(m, "cavalry.spp", res->spp);
+    cv_metadata_set_int(m, "cavalry.spp", res->spp);  /* reached */
     cv_metadata_set_int(m, "cavalry.seed", plan->seed);
     cv_metadata_set_float(m, "cavalry.renderTime", res->seconds);
     cv_metadata_set_string(m, "cavalry.gpu", gpu->info.renderer);
     cv_metadata_set_int(m, "cavalry.sppTarget", plan->spp);
     cv_metadata_set_string(m, "cavalry.settingsHash", plan->settings_hash);
     cv_metadata_set_string(m, "cavalry.status", cv_job_status_name(res->stop));
+    /* the colour settings as the job gives them; the png's text has the
+     * resolved config (write_png) */
+    const struct cv_color_params *c = &plan->color;
+    cv_metadata_set_string(m, "cavalry.ocioConfig", c->config_path && *c->config_path
+                                                         ? c->config_path
+                                                         : "$OCIO, else shipped cavalry.ocio");
+    cv_metadata_set_string(m, "cavalry.ocioDisplay",
+                           c->display && *c->display ? c->display : "(default)");
+    cv_metadata_set_string(m, "cavalry.ocioView", c->view && *c->view ? c->view : "(default)");
     return m;
 }
 
@@ -117,6 +155,7 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
     char *path = cv_job_output_path(job, "png");
     if (ok) {
         cv_metadata_set_string(meta, "cavalry.colour", cv_color_pass_description(pass));
+        cv_metadata_set_string(meta, "cavalry.ocioConfig", cv_color_pass_config_source(pass));
         /* Alpha is 1 everywhere: write RGB. */
         for (size_t i = 0; i < n; i++)
             memmove(&px[i * 3], &px[i * 4], 3 * sizeof(float));

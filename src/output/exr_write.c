@@ -184,6 +184,12 @@ static bool set_attributes(exr_context_t ctxt, struct writer *w, const struct cv
         case CV_META_FLOAT:
             rv = exr_attr_set_float(ctxt, 0, e->key, (float)e->v.f);
             break;
+        case CV_META_M44F: {
+            exr_attr_m44f_t m;
+            memcpy(m.m, e->v.m, sizeof(m.m));
+            rv = exr_attr_set_m44f(ctxt, 0, e->key, &m);
+            break;
+        }
         }
         if (rv != EXR_ERR_SUCCESS) {
             char *what = cv_xasprintf("attribute \"%s\"", e->key);

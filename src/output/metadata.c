@@ -1,4 +1,5 @@
 /* metadata.c: see metadata.h. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,6 +70,13 @@ void cv_metadata_set_bool(struct cv_metadata *m, const char *key, bool value)
     cv_metadata_set_int(m, key, value ? 1 : 0);
 }
 
+void cv_metadata_set_m44f(struct cv_metadata *m, const char *key, const float value[16])
+{
+    struct cv_meta_entry *e = slot(m, key);
+    e->type = CV_META_M44F;
+    memcpy(e->v.m, value, sizeof(e->v.m));
+}
+
 const struct cv_meta_entry *cv_metadata_get(const struct cv_metadata *m, const char *key)
 {
     for (size_t i = 0; m && i < m->len; i++)
@@ -86,6 +94,13 @@ char *cv_meta_value_text(const struct cv_meta_entry *e)
         return cv_xasprintf("%lld", (long long)e->v.i);
     case CV_META_FLOAT:
         return cv_xasprintf("%.9g", e->v.f);
+    case CV_META_M44F: {
+        char buf[16 * 18] = "";
+        for (int i = 0; i < 16; i++)
+            snprintf(buf + strlen(buf), sizeof(buf) - strlen(buf), "%s%.9g", i ? " " : "",
+                     (double)e->v.m[i]);
+        return cv_xstrdup(buf);
+    }
     }
     return cv_xstrdup("");
 }

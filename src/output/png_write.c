@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <png.h>
 
@@ -89,6 +90,14 @@ static bool make_texts(const char *path, const struct cv_metadata *meta, struct 
     tx->n = 1;
     for (size_t i = 0; meta && i < meta->len; i++) {
         const struct cv_meta_entry *e = &meta->entries[i];
+        /* the PNG specification's one "Software" keyword: the caller's
+         * software entry replaces our default text rather than adding a
+         * second chunk */
+        if (strcasecmp(e->key, "Software") == 0 && e->type == CV_META_STRING) {
+            free(tx->owned[0]);
+            tx->t[0].text = tx->owned[0] = cv_xstrdup(e->v.s);
+            continue;
+        }
         size_t klen = strlen(e->key);
         if (klen < 1 || klen > 79 || !is_ascii(e->key, true) || e->key[0] == ' '
             || e->key[klen - 1] == ' ')

@@ -16,4 +16,5 @@ libcavalry_a_SOURCES += \
 	src/scene/lights.c \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
+	src/scene/camera_matrix.c src/scene/camera_matrix.h \
 	src/scene/dump.c src/scene/dump.h

@@ -38,6 +38,14 @@ int main(void)
     tap_ok((float)strtod(t, NULL) == (float)(1.0 / 3.0), "float text reads back as float32 (%s)", t);
     free(t);
 
+    float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.5f, -2, 3, 1};
+    cv_metadata_set_m44f(m, "worldToCamera", id);
+    e = cv_metadata_get(m, "worldToCamera");
+    tap_ok(e && e->type == CV_META_M44F && e->v.m[12] == 0.5f, "get m44f");
+    t = cv_meta_value_text(e);
+    tap_ok(strcmp(t, "1 0 0 0 0 1 0 0 0 0 1 0 0.5 -2 3 1") == 0, "m44f text, row by row: %s", t);
+    free(t);
+
     cv_metadata_destroy(&m);
     tap_ok(m == NULL, "destroy clears the pointer");
     cv_metadata_destroy(&m);

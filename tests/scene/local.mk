@@ -8,6 +8,10 @@ check_PROGRAMS += tests/scene/parse_test
 TESTS += tests/scene/parse_test
 tests_scene_parse_test_LDADD = $(CV_LIBS)
 
+check_PROGRAMS += tests/scene/camera_matrix_test
+TESTS += tests/scene/camera_matrix_test
+tests_scene_camera_matrix_test_LDADD = $(CV_LIBS)
+
 check_PROGRAMS += tests/scene/ply_test
 TESTS += tests/scene/ply_test
 tests_scene_ply_test_LDADD = $(CV_LIBS)
