@@ -50,10 +50,21 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
     }
     if (job->camera.has_fov)
         p->camera.lens.z = cv_camera_fov_scale(job->camera.fov);
+    /* One crop rule for both homes of a crop window: the job's crop key
+     * replaces the scene's Film "cropwindow" (pbrt's fractions, pixel
+     * bounds by scene/film.h). The film stays full size: crop.xy are the
+     * pixels rendered, film.zw their origin, so samples keep the keys of
+     * their full-film pixels (a crop is the same pixels of the full
+     * render). */
+    double crop[4];
+    for (int i = 0; i < 4; i++)
+        crop[i] = job->has_crop ? job->crop[i] : scene->settings.crop[i];
+    if (job->has_crop && !job->has_resolution)
+        cv_camera_fit_film(&p->camera, crop, p->width, p->height);
     if (job->has_resolution) {
         p->width = job->width;
         p->height = job->height;
-        if (cv_camera_fit_film(&p->camera, scene->settings.crop, p->width, p->height))
+        if (cv_camera_fit_film(&p->camera, crop, p->width, p->height))
             cv_warn("%s:%u:%u: job \"%s\": resolution %ux%u changes the scene's aspect ratio: "
                     "default screen window used", o->manifest_path,
                     job->at[CV_K_RESOLUTION].line, job->at[CV_K_RESOLUTION].col, job->name,

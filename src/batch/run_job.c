@@ -94,10 +94,11 @@ static void note_written(struct cv_job_result *res, const char *path)
     snprintf(res->written + n, sizeof(res->written) - n, "%s%s", n ? " " : "", path);
 }
 
-static bool write_exr(struct cv_renderer *r, const struct cv_job *job, uint32_t w, uint32_t h,
-                      const struct cv_metadata *meta, struct cv_job_result *res,
+static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, uint32_t w,
+                      uint32_t h, const struct cv_metadata *meta, struct cv_job_result *res,
                       struct cv_error *err)
 {
+    const struct cv_job *job = plan->job;
     size_t n = (size_t)w * h;
     float *rgba = cv_xmalloc(n * 4 * sizeof(float));
     float *albedo = job->aovs & CV_AOV_ALBEDO ? cv_xmalloc(n * 3 * sizeof(float)) : NULL;
@@ -122,6 +123,11 @@ static bool write_exr(struct cv_renderer *r, const struct cv_job *job, uint32_t 
                                     .rgba = rgba,
                                     .width = w,
                                     .height = h,
+                                    /* a crop: the data window in the full film */
+                                    .full_width = plan->camera.film.x,
+                                    .full_height = plan->camera.film.y,
+                                    .x0 = plan->camera.film.z,
+                                    .y0 = plan->camera.film.w,
                                     .use_float = !job->exr.half,
                                     .compression = job->exr.compression,
                                     .layers = layers,
@@ -241,7 +247,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         res->seconds = now_seconds() - t0;
         struct cv_metadata *meta = job_metadata(gpu, plan, res);
         if (job->formats & CV_FORMAT_EXR)
-            ok = write_exr(r, job, w, h, meta, res, err);
+            ok = write_exr(r, plan, w, h, meta, res, err);
         if (ok && (job->formats & CV_FORMAT_PNG))
             ok = write_png(gpu, r, plan, w, h, meta, res, err);
         cv_metadata_destroy(&meta);

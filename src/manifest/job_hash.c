@@ -122,6 +122,13 @@ static void add_key(struct text *t, const struct cv_job *job, const struct cv_ke
             add(t, "%s=-\n", k->name);
         break;
     }
+    case CV_KT_CROP: {
+        /* a key added later: absent from the hash when unset */
+        const float *c = f;
+        if (has)
+            add(t, "%s=%.9g,%.9g,%.9g,%.9g\n", k->name, c[0], c[1], c[2], c[3]);
+        break;
+    }
     case CV_KT_LOOKAT: {
         /* eye, at, up, each under the key's section ("camera.eye") */
         static const char *const parts[] = {"eye", "at", "up"};

@@ -182,6 +182,34 @@ static bool read_lookat(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
     return true;
 }
 
+/* crop: [x0, x1, y0, y1], fractions of the film as pbrt's cropwindow. */
+static bool read_crop(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d, float *out)
+{
+    if (n->type != YAML_SEQUENCE_NODE ||
+        n->data.sequence.items.top - n->data.sequence.items.start != 4) {
+        cv_diag_add(d, cv_yline(n), cv_ycol(n),
+                    "crop: expected [x0, x1, y0, y1] (film fractions in [0, 1]), got %s",
+                    cv_ykind(n));
+        return false;
+    }
+    yaml_node_item_t *it = n->data.sequence.items.start;
+    double v[4];
+    bool ok = true;
+    for (int i = 0; i < 4; i++)
+        ok &= cv_yread_float(yaml_document_get_node(doc, it[i]), d, "crop", 0, 1, &v[i]);
+    if (!ok)
+        return false;
+    if (!(v[0] < v[1] && v[2] < v[3])) {
+        cv_diag_add(d, cv_yline(n), cv_ycol(n),
+                    "crop: empty window [%g, %g, %g, %g]: needs x0 < x1 and y0 < y1", v[0],
+                    v[1], v[2], v[3]);
+        return false;
+    }
+    for (int i = 0; i < 4; i++)
+        out[i] = (float)v[i];
+    return true;
+}
+
 /* The pairs of a nested mapping such as `color:`, or NULL after reporting. */
 static size_t sub_pairs(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
                         const char *what, struct cv_ypair **pairs)
@@ -245,6 +273,8 @@ static bool read_value(yaml_document_t *doc, yaml_node_t *v, const struct cv_key
         return read_resolution(doc, v, d, k, f, (uint32_t *)f + 1);
     case CV_KT_LOOKAT:
         return read_lookat(doc, v, d, f);
+    case CV_KT_CROP:
+        return read_crop(doc, v, d, f);
     }
     cv_diag_add(d, cv_yline(v), cv_ycol(v), "%s", msg);
     return false;
@@ -331,6 +361,7 @@ static size_t value_size(const struct cv_key *k)
     case CV_KT_BITS: return sizeof(unsigned);
     case CV_KT_RESOLUTION: return 2 * sizeof(uint32_t);
     case CV_KT_LOOKAT: return 9 * sizeof(float);
+    case CV_KT_CROP: return 4 * sizeof(float);
     case CV_KT_SECTION:
     case CV_KT_STRING: break;
     }

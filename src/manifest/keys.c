@@ -95,6 +95,9 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                          .max = CV_MAX_FILM_SIDE, .offset = AT(width), .has = AT(has_resolution),
                          .hash = CV_HASH_YES, .def_text = "the scene's",
                          .help = "film size [width, height] or \"WIDTHxHEIGHT\""},
+    [CV_K_CROP] = {.name = "crop", .type = CV_KT_CROP, .offset = AT(crop),
+                   .has = AT(has_crop), .hash = CV_HASH_OFF_DEFAULT, .def_text = "[0, 1, 0, 1]",
+                   .help = "film part to render [x0, x1, y0, y1] in [0, 1], as pbrt's cropwindow"},
     [CV_K_SPP] = {.name = "spp", .type = CV_KT_U32, .min = 1, .max = CV_MAX_SPP,
                   .offset = AT(spp), .has = AT(has_spp), .hash = CV_HASH_YES,
                   .def_text = "the scene's", .help = "samples per pixel"},
@@ -222,6 +225,7 @@ static const char *type_name(const struct cv_key *k, char *buf, size_t n)
     case CV_KT_BOOL: return "boolean";
     case CV_KT_RESOLUTION: return "resolution";
     case CV_KT_LOOKAT: return "lookat";
+    case CV_KT_CROP: return "crop";
     case CV_KT_ENUM:
     case CV_KT_BITS: {
         size_t len = 0;

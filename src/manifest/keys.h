@@ -22,6 +22,7 @@ enum cv_key_id {
     CV_K_OUTPUT,
     CV_K_FORMATS,
     CV_K_RESOLUTION,
+    CV_K_CROP,
     CV_K_SPP,
     CV_K_TIME_LIMIT,
     CV_K_INTEGRATOR,
@@ -61,6 +62,8 @@ enum cv_key_type {
     CV_KT_BITS,        /* unsigned: a list of names, bit i for values' name i */
     CV_KT_RESOLUTION,  /* uint32_t[2]: [w, h] or "WxH", each side in [min, max] */
     CV_KT_LOOKAT,      /* float[9]: eye, at, up, as pbrt's LookAt */
+    CV_KT_CROP,        /* float[4]: x0, x1, y0, y1, film fractions, as pbrt's
+                        * cropwindow; hashed only when set */
 };
 
 enum cv_key_merge {

@@ -70,6 +70,9 @@ struct cv_job {
 
     bool has_resolution;
     uint32_t width, height;    /* [pixels] */
+    bool has_crop;
+    float crop[4];             /* x0, x1, y0, y1: film fractions in [0, 1], x0 < x1,
+                                * y0 < y1 (pbrt's cropwindow); unset: the scene's */
     bool has_spp;
     uint32_t spp;              /* samples per pixel, >= 1 */
     bool has_time_limit;

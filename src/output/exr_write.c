@@ -32,6 +32,14 @@ bool cv_exr_compression_supported(enum cv_exr_compression c)
     return maj > 3 || (maj == 3 && min >= 2);
 }
 
+enum cv_exr_compression cv_exr_compression_of(int openexr_value)
+{
+    for (int i = 0; i < CV_EXR_COMPRESSION_COUNT; i++)
+        if ((int)to_openexr[i] == openexr_value)
+            return (enum cv_exr_compression)i;
+    return CV_EXR_ZIP;
+}
+
 bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
                               struct cv_error *err)
 {
@@ -218,9 +226,11 @@ static bool write_pixels(exr_context_t ctxt, struct writer *w, const struct cv_e
         return fail_exr(w, path, "chunk layout", rv, err);
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     bool started = false, ok = true;
+    /* chunks are addressed by the data window's y; rows by y - y0 */
+    int32_t y0 = p->full_width ? (int32_t)p->y0 : 0;
     for (int32_t y = 0; ok && y < (int32_t)p->height; y += lines) {
         exr_chunk_info_t cinfo;
-        rv = exr_write_scanline_chunk_info(ctxt, 0, y, &cinfo);
+        rv = exr_write_scanline_chunk_info(ctxt, 0, y0 + y, &cinfo);
         if (rv == EXR_ERR_SUCCESS)
             rv = started ? exr_encoding_update(ctxt, 0, &cinfo, &enc)
                          : exr_encoding_initialize(ctxt, 0, &cinfo, &enc);
@@ -240,7 +250,7 @@ static bool write_pixels(exr_context_t ctxt, struct writer *w, const struct cv_e
             ch->user_pixel_stride = (int32_t)(s->stride * sizeof(float));
             ch->user_line_stride = (int32_t)(s->stride * sizeof(float) * p->width);
             ch->encode_from_ptr =
-                (const uint8_t *)(s->base + (size_t)cinfo.start_y * p->width * s->stride);
+                (const uint8_t *)(s->base + (size_t)(cinfo.start_y - y0) * p->width * s->stride);
         }
         if (!ok)
             break;
@@ -264,6 +274,12 @@ static bool check_params(const char *path, const struct cv_exr_params *p, struct
         return cv_fail(err, "%s: empty image", path);
     if (p->width > INT32_MAX / 2 || p->height > INT32_MAX / 2)
         return cv_fail(err, "%s: image too large (%ux%u)", path, p->width, p->height);
+    if (p->full_width && ((uint64_t)p->x0 + p->width > p->full_width ||
+                          (uint64_t)p->y0 + p->height > p->full_height))
+        return cv_fail(err, "%s: data window %ux%u at (%u, %u) outside the %ux%u display window",
+                       path, p->width, p->height, p->x0, p->y0, p->full_width, p->full_height);
+    if (p->full_width > INT32_MAX / 2 || p->full_height > INT32_MAX / 2)
+        return cv_fail(err, "%s: image too large (%ux%u)", path, p->full_width, p->full_height);
     if ((unsigned)p->compression >= CV_EXR_COMPRESSION_COUNT)
         return cv_fail(err, "%s: invalid EXR compression %d", path, (int)p->compression);
     if (!cv_exr_compression_supported(p->compression))
@@ -297,9 +313,18 @@ bool cv_exr_write(const char *path, const struct cv_exr_params *p, struct cv_err
     exr_result_t rv = exr_start_write(&ctxt, path, EXR_WRITE_FILE_DIRECTLY, &init);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_add_part(ctxt, "rgba", EXR_STORAGE_SCANLINE, &part);
+    uint32_t fw = p->full_width ? p->full_width : p->width;
+    uint32_t fh = p->full_width ? p->full_height : p->height;
+    int32_t x0 = p->full_width ? (int32_t)p->x0 : 0, y0 = p->full_width ? (int32_t)p->y0 : 0;
+    exr_attr_box2i_t display = {.min = {.x = 0, .y = 0},
+                                .max = {.x = (int32_t)fw - 1, .y = (int32_t)fh - 1}};
+    exr_attr_box2i_t data = {.min = {.x = x0, .y = y0},
+                             .max = {.x = x0 + (int32_t)p->width - 1,
+                                     .y = y0 + (int32_t)p->height - 1}};
+    exr_attr_v2f_t center = {.x = 0.0f, .y = 0.0f};
     if (rv == EXR_ERR_SUCCESS)
-        rv = exr_initialize_required_attr_simple(ctxt, part, (int32_t)p->width,
-                                                 (int32_t)p->height, to_exr(p->compression));
+        rv = exr_initialize_required_attr(ctxt, part, &display, &data, 1.0f, &center, 1.0f,
+                                          EXR_LINEORDER_INCREASING_Y, to_exr(p->compression));
     if (rv != EXR_ERR_SUCCESS)
         ok = fail_exr(&w, path, "starting the file", rv, err);
     ok = ok && add_channels(ctxt, &w, p, path, err);

@@ -1,8 +1,9 @@
 /* exr_write.h: the scene-linear image as OpenEXR, through OpenEXR's C API:
  * RGBA in half (default) or float, a chosen compression, optional AOV
  * layers (albedo.R/G/B, N.X/Y/Z, Z), chromaticities (Rec.709 primaries, D65
- * white), "software" and the caller's metadata as attributes. The file is
- * written atomically (output/atomic_file.h). */
+ * white), "software" and the caller's metadata as attributes; a crop as a
+ * data window inside its full image's display window. The file is written
+ * atomically (output/atomic_file.h). */
 #ifndef CV_OUTPUT_EXR_WRITE_H
 #define CV_OUTPUT_EXR_WRITE_H
 
@@ -37,6 +38,10 @@ struct cv_image_layer {
 struct cv_exr_params {
     const float *rgba;   /* width*height*4 floats, top row first, borrowed */
     uint32_t width, height;
+    /* A crop: the pixels are the data window, at (x0, y0) of a display
+     * window of full_width x full_height, so that compositors place them.
+     * full_width 0: the display window is the image (x0, y0 ignored). */
+    uint32_t full_width, full_height, x0, y0;
     bool use_float;      /* false: half (the default; magnitudes above 65504
                           * become infinity, NaN stays NaN), true: float32 */
     enum cv_exr_compression compression;
@@ -53,8 +58,13 @@ bool cv_exr_compression_supported(enum cv_exr_compression c);
 bool cv_exr_compression_parse(const char *name, enum cv_exr_compression *out,
                               struct cv_error *err);
 
+/* Ours of OpenEXR's compression value (exr_compression_t): zip for one we
+ * do not name. */
+enum cv_exr_compression cv_exr_compression_of(int openexr_value);
+
 /* Writes path atomically. Metadata becomes attributes of the same name:
- * strings as string, integers as int (double when outside 32 bits), floats
+ * strings as string, integers as int (double when outside 32 bits), matrices
+ * as m44f, floats
  * as float. The error names the path and the reason (e.g. "No space left
  * on device"); on failure nothing is left behind and an older file under
  * path is untouched. */

@@ -185,9 +185,13 @@ static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok
 #define PATH_BYTES (2 * sizeof(CvRayItem) + 2 * sizeof(CvHitItem) + sizeof(CvShadowItem) + \
                     sizeof(CvFilmPixel))
 
-/* Path slots per pixel (render.h: paths_per_pixel). */
+/* Path slots per pixel (render.h: paths_per_pixel). The automatic choice
+ * is made for the full film (film_pixels), not for the pixels a crop
+ * renders: K sets the order in which a pixel's samples are summed, so a
+ * tile must use the K of the whole image to give its pixels bit for bit. */
 static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_params *p,
-                                   uint32_t n_pixels, uint32_t *out, struct cv_error *err)
+                                   uint32_t n_pixels, uint64_t film_pixels, uint32_t *out,
+                                   struct cv_error *err)
 {
     /* o.w and d.w hold slots as floats (trace.h) */
     uint64_t max_paths = 1u << 24;
@@ -208,7 +212,7 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
     if (cv_gpu_memory(gpu, &total, &avail) && avail / 8 / PATH_BYTES < cap)
         cap = avail / 8 / PATH_BYTES;
     uint32_t k = CV_MAX_PATHS_PER_PIXEL;
-    while (k > 1 && (uint64_t)n_pixels * k > cap)
+    while (k > 1 && film_pixels * k > cap)
         k--;
     *out = k;
     return true;
@@ -278,7 +282,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         free(r);
         return cv_fail(err, "film of %ux%u pixels is too large", w, h);
     }
-    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, &r->paths_per_pixel, err)) {
+    const CvCamera *cam = p->camera ? p->camera : &scene->camera;
+    uint64_t film_pixels = (uint64_t)cam->film.x * cam->film.y;
+    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, film_pixels, &r->paths_per_pixel, err)) {
         free(r);
         return false;
     }

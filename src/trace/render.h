@@ -41,7 +41,9 @@ struct cv_render_params {
      * CV_MAX_PATHS_PER_PIXEL), within the advertised storage-buffer size and
      * an eighth of the free GPU memory where the driver reports it. It
      * changes the order in which a pixel's samples are summed, nothing else:
-     * each sample traces the same path. */
+     * each sample traces the same path. The automatic choice counts the
+     * full film's pixels, also for a crop, so that a tile sums as the
+     * whole image does (bit-identical tiles). */
     uint32_t paths_per_pixel;
     /* Time every dispatch by stage (gpu/timer.h), for cv_render_counters'
      * stage times and a per-stage log line when the renderer is destroyed:

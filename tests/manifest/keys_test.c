@@ -64,6 +64,7 @@ static char *example(const struct cv_key *k)
     case CV_KT_BITS: return cv_xasprintf("[%s]", k->names->names[k->names->count - 1]);
     case CV_KT_RESOLUTION: return cv_xstrdup("[3, 2]");
     case CV_KT_LOOKAT: return cv_xstrdup("[[0, 0, 0], [0, 0, 1], [0, 1, 0]]");
+    case CV_KT_CROP: return cv_xstrdup("[0.25, 0.75, 0, 0.5]");
     case CV_KT_SECTION: break;
     }
     return NULL;

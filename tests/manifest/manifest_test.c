@@ -167,7 +167,7 @@ static void check_error(const char *name, const char *const *want, size_t n_want
     } while (0)
 
 #define JOB_KEYS                                                                      \
-    "name, scene, output, formats, resolution, spp, time_limit, integrator, max_depth, " \
+    "name, scene, output, formats, resolution, crop, spp, time_limit, integrator, max_depth, " \
     "seed, color, aovs, exr, png, camera, rlpath"
 
 int main(void)
@@ -199,7 +199,7 @@ int main(void)
                 "flow sequence at line 4, column 12)");
     CHECK_ERROR("err_many.yaml",
                 "5:3: unknown key \"colour\" in defaults; valid keys: scene, output, formats, "
-                "resolution, spp, time_limit, integrator, max_depth, seed, color, aovs, exr, "
+                "resolution, crop, spp, time_limit, integrator, max_depth, seed, color, aovs, exr, "
                 "png, camera, rlpath (did you mean \"color\"?)",
                 "8:17: integrator: expected one of path, rlpath, got \"bidir\"",
                 "9:5: job 2: missing required key \"name\"",
