@@ -18,6 +18,7 @@
 #include "gpu/context.h"
 #include "manifest/keys.h"
 #include "manifest/shard.h"
+#include "output/exr_merge.h"
 #include "scene/dump.h"
 #include "scene/scene.h"
 
@@ -26,6 +27,7 @@ static void usage(FILE *out)
     fputs("usage: cavalry-batch [OPTION]... MANIFEST.yaml\n"
           "       cavalry-batch --list-gpus\n"
           "       cavalry-batch --dump-scene SCENE.pbrt\n"
+          "       cavalry-batch --merge OUT.exr TILE.exr...\n"
           "Render the jobs of a batch manifest on a headless GPU.\n"
           "\n"
           "  -h, --help              show this help and exit\n"
@@ -44,6 +46,7 @@ static void usage(FILE *out)
           "                          scene's integrator rendered with another, too)\n"
           "      --scene-root=DIR    refuse scene files outside DIR (untrusted scenes)\n"
           "      --dump-scene=FILE   print a summary of a pbrt scene and exit\n"
+          "      --merge=OUT.exr     merge the crop tiles given as arguments into OUT.exr\n"
           "      --list-gpus         list the GPUs and which one would be used\n"
           "      --list-keys         list the manifest keys: name, type, default, meaning\n"
           "      --gpu=N             use EGL device N (see --list-gpus)\n"
@@ -178,7 +181,7 @@ int cv_cli_main(int argc, char **argv)
     enum {
         OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
         OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
-        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS, OPT_SCENE_ROOT,
+        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS, OPT_SCENE_ROOT, OPT_MERGE,
     };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
@@ -196,6 +199,7 @@ int cv_cli_main(int argc, char **argv)
         {"strict", no_argument, NULL, OPT_STRICT},
         {"scene-root", required_argument, NULL, OPT_SCENE_ROOT},
         {"dump-scene", required_argument, NULL, OPT_DUMP_SCENE},
+        {"merge", required_argument, NULL, OPT_MERGE},
         {"list-gpus", no_argument, NULL, OPT_LIST_GPUS},
         {"list-keys", no_argument, NULL, OPT_LIST_KEYS},
         {"gpu", required_argument, NULL, OPT_GPU},
@@ -206,7 +210,7 @@ int cv_cli_main(int argc, char **argv)
     };
     struct cv_batch_options o = {.gpu = {.gpu_index = -1, .backend = CV_BACKEND_AUTO}};
     bool list_gpus = false, have_index = false, have_count = false;
-    const char *dump = NULL;
+    const char *dump = NULL, *merge = NULL;
     int verbosity = 0, c;
     unsigned u;
     cv_mem_set_out_of_memory(out_of_memory);
@@ -228,6 +232,7 @@ int cv_cli_main(int argc, char **argv)
         case OPT_STRICT: o.strict = true; break;
         case OPT_SCENE_ROOT: o.scene_root = optarg; break;
         case OPT_DUMP_SCENE: dump = optarg; break;
+        case OPT_MERGE: merge = optarg; break;
         case OPT_LIST_GPUS: list_gpus = true; break;
         case OPT_LIST_KEYS:
             cv_keys_print(stdout);
@@ -307,6 +312,15 @@ int cv_cli_main(int argc, char **argv)
     }
     if (dump)
         return dump_scene(dump, o.strict, o.scene_root);
+    if (merge) {
+        struct cv_error err = {{0}};
+        if (!cv_exr_merge(merge, (const char *const *)argv + optind, (size_t)(argc - optind),
+                          &err)) {
+            cv_error_log("%s", err.msg);
+            return CV_EXIT_INVALID;
+        }
+        return CV_EXIT_OK;
+    }
     if (optind != argc - 1) {
         cv_error_log("%s",
                 optind >= argc ? "no manifest given" : "one manifest at a time");
