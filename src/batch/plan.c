@@ -287,6 +287,10 @@ bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
 {
     memset(out, 0, sizeof(*out));
     out->job = job;
+    /* AOV layers live only in the EXR: never dropped without a word */
+    if (job->aovs && !(job->formats & CV_FORMAT_EXR))
+        return fail_at(err, o, job, CV_K_AOVS,
+                       "aovs need the exr format (PNG has no layers): add exr to formats");
     out->spp = job->has_spp ? job->spp : scene->settings.spp;
     out->max_depth = job->has_max_depth ? job->max_depth : scene->settings.max_depth;
     out->seed = job->has_seed ? job->seed : 0;
