@@ -143,8 +143,14 @@ static void print_plan(const struct cv_manifest *m, const struct selection *p,
             if (job->formats & (1u << i))
                 snprintf(formats + strlen(formats), sizeof(formats) - strlen(formats), "%s%s",
                          formats[0] ? "," : "", cv_format_names.names[i]);
-        printf("%s: %s -> %s [%s] %ux%u, %u spp%s\n", job->name, job->scene_as_written,
-               job->output, formats, w, h, spp, skip ? " (up to date: skipped)" : "");
+        /* a crop as oiiotool writes geometry: WxH+X+Y of the full film */
+        const CvCamera *c = &plan->camera;
+        char crop[64] = "";
+        if (c->crop.x != w || c->crop.y != h)
+            snprintf(crop, sizeof(crop), " crop %ux%u+%u+%u", c->crop.x, c->crop.y, c->film.z,
+                     c->film.w);
+        printf("%s: %s -> %s [%s] %ux%u%s, %u spp%s\n", job->name, job->scene_as_written,
+               job->output, formats, w, h, crop, spp, skip ? " (up to date: skipped)" : "");
     }
 }
 

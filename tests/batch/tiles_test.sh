@@ -15,6 +15,9 @@ probe="$CV_TEST_BUILDDIR/batch/exr_probe"
 cp "$data/tiny.pbrt" "$data/tiles.yaml" "$tmp/"
 cd "$tmp"
 
+check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run tiles.yaml
+check "--dry-run shows the crop as WxH+X+Y of the film" grep -q "^crop: .* 16x12 crop 8x6+4+6, 3 spp" plan.txt
+check "--dry-run shows no crop for the whole film" grep -q "^full: .* 16x12, 3 spp" plan.txt
 check "renders" "$CAVALRY_BATCH" --progress=none tiles.yaml
 check_out "full: display = data window" w_full.txt "$probe" windows out/full.exr
 check "full window is 16x12" grep -qx "display 0 0 15 11 data 0 0 15 11" w_full.txt
