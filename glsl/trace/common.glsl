@@ -32,6 +32,14 @@ float cv_ray_meta(uint flags, uint depth) { return float(flags | (depth << CV_RA
 uint cv_path_sample(uint path) { return uint(film[path].normal.w); }
 // The crop pixel that path slot `path` belongs to.
 uint cv_path_pixel(uint path) { return path % u_pass.n_pixels; }
+// The full film's pixel index of crop pixel i: what keys every random
+// number of a pixel, so that a crop draws the same ones as the full film.
+uint cv_film_pixel(uint i)
+{
+    uint cw = u_pass.crop_w;
+    uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
+    return px.y * u_pass.film.x + px.x;
+}
 
 // The iteration's input rays and the rays it writes (see trace.h).
 CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }

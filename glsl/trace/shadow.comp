@@ -28,7 +28,7 @@ void main()
         uint word = cv_triangles[h.prim].idx.w;
         CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
         float u = cv_u32_to_unit(
-            cv_hash4(cv_path_pixel(path), uint(s.L.w), h.prim, 0x5bd1e995u + k));
+            cv_hash4(cv_film_pixel(cv_path_pixel(path)), uint(s.L.w), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, sf.uv, u))
             return;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;

@@ -1,19 +1,11 @@
 // glsl/trace/surface_inputs.glsl: what the shade stages (trace/shade.comp,
-// trace/rlpath/shade.comp) build the same way at a hit: the film pixel that
-// keys the sampler, a bounce's sample values, the shading point the BSDF
-// takes. Shared so the integrators consume the same sample dimensions and
-// stay comparable pixel for pixel. Include after sampler.glsl, geometry.glsl
+// trace/rlpath/shade.comp) build the same way at a hit: a bounce's sample
+// values, keyed by film pixel (common.glsl), and the shading point the
+// BSDF takes. Shared so the integrators consume the same sample dimensions
+// and stay comparable pixel for pixel. Include after sampler.glsl, geometry.glsl
 // and materials.glsl.
 #ifndef CV_TRACE_SURFACE_INPUTS_GLSL
 #define CV_TRACE_SURFACE_INPUTS_GLSL
-
-// The full film's pixel index of crop pixel i.
-uint cv_film_pixel(uint i)
-{
-    uint cw = u_pass.crop_w;
-    uvec2 px = uvec2(i % cw, i / cw) + u_pass.film.zw;
-    return px.y * u_pass.film.x + px.x;
-}
 
 // Dimension pair `which` (CV_PAIR_*) of the bounce at `depth` of the path
 // in flight in slot `path`: its pixel's sample, whichever slot runs it.

@@ -12,7 +12,7 @@
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
 probe="$CV_TEST_BUILDDIR/batch/exr_probe"
-cp "$data/tiny.pbrt" "$data/tiles.yaml" "$tmp/"
+cp "$data/tiny.pbrt" "$data/tiles.pbrt" "$data/tiles.yaml" "$tmp/"
 cd "$tmp"
 
 check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run tiles.yaml
