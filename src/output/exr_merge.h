@@ -16,8 +16,8 @@
  * those of the tile that holds it. Attributes come from the first tile,
  * except cavalry.settingsHash (a tile's, not the whole image's: --resume
  * must not take the merge for a render) and cavalry.status, which is
- * "partial" when any tile is. Reads every tile whole: memory grows with
- * the full image. */
+ * "partial" when any tile's is not "complete". Reads every tile whole:
+ * memory grows with the full image. */
 bool cv_exr_merge(const char *out_path, const char *const *tiles, size_t n_tiles,
                   struct cv_error *err);
 

@@ -57,14 +57,14 @@ check "capDate in OpenEXR's form" sh -c "'$probe' attr out/look.exr capDate | gr
 check "utcOffset" sh -c "'$probe' attr out/look.exr utcOffset >/dev/null"
 check "host" sh -c "test -n \"\$('$probe' attr out/look.exr cavalry.host)\""
 check "version" sh -c "'$probe' attr out/look.exr cavalry.version | grep -q ."
-check "target spp" sh -c "test \"\$('$probe' attr out/look.exr cavalry.targetSpp)\" = 3"
+check "target spp" sh -c "test \"\$('$probe' attr out/look.exr cavalry.sppTarget)\" = 3"
 check "reached spp" sh -c "test \"\$('$probe' attr out/look.exr cavalry.spp)\" = 3"
 check "OCIO view" sh -c "'$probe' attr out/look.exr cavalry.ocioView | grep -q ."
 check "PNG: one Software chunk" sh -c "test \"\$('$probe' pngtext out/look.png Software | wc -l)\" -eq 1"
 check "PNG: Software names cavalry-batch" sh -c "'$probe' pngtext out/look.png Software | grep -q '^cavalry-batch '"
 check "PNG: no lowercase software chunk" sh -c "test -z \"\$('$probe' pngtext out/look.png software)\""
 check "PNG: worldToCamera text" sh -c "test \"\$('$probe' pngtext out/look.png worldToCamera | wc -w)\" -eq 16"
-check "PNG: capDate, OCIO config, target spp" sh -c "'$probe' pngtext out/look.png capDate | grep -q . && '$probe' pngtext out/look.png cavalry.ocioConfig | grep -q . && '$probe' pngtext out/look.png cavalry.targetSpp | grep -qx 3"
+check "PNG: capDate, OCIO config, target spp" sh -c "'$probe' pngtext out/look.png capDate | grep -q . && '$probe' pngtext out/look.png cavalry.ocioConfig | grep -q . && '$probe' pngtext out/look.png cavalry.sppTarget | grep -qx 3"
 
 cat >aovpng.yaml <<'Y'
 version: 1
