@@ -42,6 +42,12 @@ CV_CHECK_SIZE(CvTriangle, 16);
 
 /* ---- textures ---------------------------------------------------------- */
 
+/* Pixel filters the renderer samples (src/scene/filter.h names them and
+ * holds their defaults; CvPassParams.filter_type carries one). */
+#define CV_FILTER_ID_BOX 0u
+#define CV_FILTER_ID_TRIANGLE 1u
+#define CV_FILTER_ID_GAUSSIAN 2u
+
 #define CV_TEX_CONSTANT 0u     /* value_a */
 #define CV_TEX_IMAGE 1u        /* texels[offset..], width x height, mip chain */
 #define CV_TEX_CHECKERBOARD 2u /* 2D checker of tex_a/value_a and tex_b/value_b */

@@ -5,10 +5,7 @@
 #define CV_TRACE_CAMERA_GLSL
 
 #include "../lib/sampling.glsl"
-
-#define CV_FILTER_BOX 0u
-#define CV_FILTER_TRIANGLE 1u
-#define CV_FILTER_GAUSSIAN 2u
+#include "../shared/scene.h"
 
 float cv_filter_table(bool y_axis, uint i)
 {
@@ -20,9 +17,9 @@ float cv_filter_table(bool y_axis, uint i)
 float cv_filter_offset(float u, float radius, bool y_axis)
 {
     uint type = u_pass.filter_type;
-    if (type == CV_FILTER_TRIANGLE)
+    if (type == CV_FILTER_ID_TRIANGLE)
         return u < 0.5 ? radius * (sqrt(2.0 * u) - 1.0) : radius * (1.0 - sqrt(2.0 - 2.0 * u));
-    if (type == CV_FILTER_GAUSSIAN) {
+    if (type == CV_FILTER_ID_GAUSSIAN) {
         // tabulated inverse CDF of the truncated Gaussian on [0,1] -> [-1,1]
         float x = u * float(CV_FILTER_TABLE);
         uint i = min(uint(x), uint(CV_FILTER_TABLE) - 1u);

@@ -8,10 +8,13 @@
  * float (glsl/shared/trace.h, CvFilmPixel.normal.w), exact up to 2^24. */
 #define CV_MAX_SPP (1u << 24)
 
+/* Path slots of one render: slot indices travel through the GPU as floats
+ * (glsl/shared/trace.h, CvRayItem o.w and d.w), exact up to 2^24. */
+#define CV_MAX_PATHS (1u << 24)
+
 /* Rendered pixels of one film (its crop window): each pixel needs a path
- * slot, and slot indices travel through the GPU as floats (render.c:
- * choose_paths_per_pixel), exact up to 2^24. 8K UHD (7680x4320) is over it. */
-#define CV_MAX_FILM_PIXELS (1u << 24)
+ * slot (render.c: choose_paths_per_pixel). 8K UHD (7680x4320) is over it. */
+#define CV_MAX_FILM_PIXELS CV_MAX_PATHS
 
 /* Film side [pixels], in a scene's Film or a manifest's resolution. */
 #define CV_MAX_FILM_SIDE 65536

@@ -15,6 +15,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "scene/builder.h"
+#include "scene/filter.h"
 
 bool cv_b_warn(struct cv_builder *b, struct cv_error *err, const struct cv_loc *loc,
                const char *fmt, ...)
@@ -73,9 +74,10 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     b->film_exposure_time = 1;
     s->settings.spp = CV_DEFAULT_SPP;
     s->settings.max_depth = CV_DEFAULT_MAX_DEPTH;
-    s->settings.filter = CV_FILTER_GAUSSIAN;
-    s->settings.filter_radius[0] = s->settings.filter_radius[1] = 1.5f;
-    s->settings.filter_sigma = 0.5f;
+    s->settings.filter = CV_FILTER_DEFAULT;
+    s->settings.filter_radius[0] = s->settings.filter_radius[1] =
+        cv_filter_info(CV_FILTER_DEFAULT)->radius;
+    s->settings.filter_sigma = CV_FILTER_GAUSSIAN_SIGMA;
     s->settings.exposure = 1;
     s->settings.crop[1] = s->settings.crop[3] = 1;
 }

@@ -16,5 +16,6 @@ libcavalry_a_SOURCES += \
 	src/scene/lights.c \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
+	src/scene/filter.c src/scene/filter.h \
 	src/scene/camera_matrix.c src/scene/camera_matrix.h \
 	src/scene/dump.c src/scene/dump.h

@@ -10,6 +10,7 @@
 #include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
+#include "scene/filter.h"
 #include "scene/parse.h"
 #include "scene/token.h"
 
@@ -604,20 +605,18 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         struct cv_render_settings *st = &b->s->settings;
-        double def = strcmp(type, "gaussian") == 0 ? 1.5 : strcmp(type, "box") == 0 ? 0.5 : 2;
-        if (strcmp(type, "box") == 0)
-            st->filter = CV_FILTER_BOX;
-        else if (strcmp(type, "triangle") == 0)
-            st->filter = CV_FILTER_TRIANGLE;
-        else if (strcmp(type, "gaussian") == 0)
-            st->filter = CV_FILTER_GAUSSIAN;
-        else
-            ok = cv_b_warn(b, err, &loc, "pixel filter \"%s\" is not supported; using a gaussian", type),
-            st->filter = CV_FILTER_GAUSSIAN;
+        const struct cv_filter_info *fi = cv_filter_by_name(type);
+        if (!fi) {
+            fi = cv_filter_info(CV_FILTER_DEFAULT);
+            ok = cv_b_warn(b, err, &loc, "pixel filter \"%s\" is not supported; using a %s", type,
+                           fi->name);
+        }
+        st->filter = fi->type;
+        double def = fi->radius;
         /* v4 radius, v3 width (which pbrt-v3 also meant as a radius) */
         st->filter_radius[0] = (float)cv_params_float(&ps, "xradius", cv_params_float(&ps, "xwidth", def));
         st->filter_radius[1] = (float)cv_params_float(&ps, "yradius", cv_params_float(&ps, "ywidth", def));
-        st->filter_sigma = (float)cv_params_float(&ps, "sigma", 0.5);
+        st->filter_sigma = (float)cv_params_float(&ps, "sigma", CV_FILTER_GAUSSIAN_SIGMA);
         cv_params_float(&ps, "alpha", 0);
         ok = ok && cv_b_check_unused(b, &ps, "PixelFilter", err);
     } else if (IS("Integrator")) {

@@ -5,15 +5,19 @@
 #define CV_SCENE_SCENE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "base/error.h"
 #include "glsl/shared/scene.h"
 
+/* The renderer's ids (glsl/shared/scene.h); names and defaults:
+ * scene/filter.h. */
 enum cv_filter_type {
-    CV_FILTER_BOX,
-    CV_FILTER_TRIANGLE,
-    CV_FILTER_GAUSSIAN,
+    CV_FILTER_BOX = CV_FILTER_ID_BOX,
+    CV_FILTER_TRIANGLE = CV_FILTER_ID_TRIANGLE,
+    CV_FILTER_GAUSSIAN = CV_FILTER_ID_GAUSSIAN,
+    CV_FILTER_COUNT
 };
 
 /* pbrt's defaults when the scene names no Sampler pixelsamples / Integrator

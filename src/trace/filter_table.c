@@ -1,13 +1,15 @@
 /* filter_table.c: see filter_table.h. */
 #include <math.h>
 
+#include "scene/filter.h"
 #include "trace/filter_table.h"
 
 #define STEPS 4096
 
 void cv_gaussian_filter_table(float radius, float sigma, float *out, size_t n)
 {
-    double r = radius > 0 ? radius : 1.5, s = sigma > 0 ? sigma : 0.5;
+    const struct cv_filter_info *g = cv_filter_info(CV_FILTER_GAUSSIAN);
+    double r = radius > 0 ? radius : g->radius, s = sigma > 0 ? sigma : CV_FILTER_GAUSSIAN_SIGMA;
     double edge = exp(-r * r / (2 * s * s));
     double cdf[STEPS + 1];
     cdf[0] = 0;

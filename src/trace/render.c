@@ -25,6 +25,7 @@
 #include "gpu/program.h"
 #include "gpu/storage.h"
 #include "gpu/timer.h"
+#include "scene/filter.h"
 #include "trace/filter_table.h"
 #include "trace/integrator.h"
 #include "trace/render.h"
@@ -139,29 +140,13 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
 static void setup_filter(struct cv_renderer *r, const struct cv_render_settings *st)
 {
     CvPassParams *u = &r->pass;
-    float rx = st->filter_radius[0], ry = st->filter_radius[1];
-    uint32_t type = 0;
-    switch (st->filter) {
-    case CV_FILTER_BOX:
-        type = 0;
-        if (rx <= 0) rx = 0.5f;
-        if (ry <= 0) ry = 0.5f;
-        break;
-    case CV_FILTER_TRIANGLE:
-        type = 1;
-        if (rx <= 0) rx = 2;
-        if (ry <= 0) ry = 2;
-        break;
-    case CV_FILTER_GAUSSIAN:
-        type = 2;
-        if (rx <= 0) rx = 1.5f;
-        if (ry <= 0) ry = 1.5f;
-        break;
-    }
-    u->filter_type = type;
+    const struct cv_filter_info *fi = cv_filter_info(st->filter);
+    float rx = st->filter_radius[0] > 0 ? st->filter_radius[0] : fi->radius;
+    float ry = st->filter_radius[1] > 0 ? st->filter_radius[1] : fi->radius;
+    u->filter_type = fi->type;
     u->pixel_filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
     float tx[CV_FILTER_TABLE + 4] = {0}, ty[CV_FILTER_TABLE + 4] = {0};
-    if (type == 2) {
+    if (fi->type == CV_FILTER_GAUSSIAN) {
         cv_gaussian_filter_table(rx, st->filter_sigma, tx, CV_FILTER_TABLE);
         cv_gaussian_filter_table(ry, st->filter_sigma, ty, CV_FILTER_TABLE);
     }
@@ -193,8 +178,7 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
                                    uint32_t n_pixels, uint64_t film_pixels, uint32_t *out,
                                    struct cv_error *err)
 {
-    /* o.w and d.w hold slots as floats (trace.h) */
-    uint64_t max_paths = 1u << 24;
+    uint64_t max_paths = CV_MAX_PATHS;
     if (p->paths_per_pixel) {
         if ((uint64_t)n_pixels * p->paths_per_pixel > max_paths)
             return cv_fail(err, "%u paths per pixel over %u pixels: more than 2^24 paths",
@@ -277,7 +261,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->max_depth = p->max_depth ? p->max_depth : scene->settings.max_depth;
     setup_camera(r, scene, p);
     setup_filter(r, &scene->settings);
-    if ((uint64_t)r->crop_w * r->crop_h > (1u << 24)) {
+    if ((uint64_t)r->crop_w * r->crop_h > CV_MAX_FILM_PIXELS) {
         uint32_t w = r->crop_w, h = r->crop_h;
         free(r);
         return cv_fail(err, "film of %ux%u pixels is too large", w, h);
