@@ -56,6 +56,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
 
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+    cv_bsdf_set_stream(b, u_bsdf, u_light);  // stochastic (coated) BSDFs' random numbers
     bool delta = cv_bsdf_is_delta(b);
 
 #ifdef CV_AOVS

@@ -111,6 +111,7 @@ void cv_shade_hit(CvHitItem h, CvRayItem r, bool learning, out float target,
     vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
 
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+    cv_bsdf_set_stream(b, u_bsdf, u_light);  // stochastic (coated) BSDFs' random numbers
     bool delta = cv_bsdf_is_delta(b);
 
     // the key takes the normal on the side the path came from
