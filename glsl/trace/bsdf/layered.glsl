@@ -5,9 +5,14 @@
 //
 // f, the sample and the pdf are stochastic estimates, as pbrt-v4's: f is a
 // random walk between the interfaces with next-event connections through
-// the coat, averaged over n_samples walks of at most max_depth events; the
+// the coat, averaged over n_samples walks of at most max_depth events (one
+// deliberate difference: the MIS weights of the exits through a rough coat,
+// cv_lay_exit_pdf); the
 // sample follows one walk out (its f / pdf is the walk's weight); the pdf is
-// an estimate of the TRT lobe mixed with a uniform sphere term. Each
+// an estimate of the TRT lobe mixed with a uniform sphere term (as
+// pbrt-v4's, it leaves out the refraction Jacobians, so it integrates to
+// more than 1: it only weights MIS, and samples keep their walk's f / pdf
+// ratio). Each
 // estimate draws from its own stream, a hash of the per-shade key (CvLayered
 // .key, from the shade stage's sampler) and the directions involved, so one
 // seed renders one image.
@@ -224,6 +229,15 @@ bool cv_lay_base_sample(CvLayered L, vec3 wo, vec2 u, out CvBsdfSample s)
     return L.conductor ? cv_conductor_sample(L.base_alpha, L.c0, L.c1, wo, u, s) : cv_diffuse_sample(L.c0, wo, u, s);
 }
 
+// MIS weight partner of the connections out through a rough coat: the
+// density with which the other strategy (wis, drawn from wi) makes the
+// upward direction w inside the slab, i.e. the coat's transmission pdf
+// from wi to -w. pbrt-v4 uses the reverse density (from -w to wi, measured
+// outside) here, so its two weights for one path do not sum to 1 and its
+// f overshoots its own sampler (and the physics) by 6-8 % under a rough
+// coat (bsdf_layered_test); under a smooth coat the two agree.
+float cv_lay_exit_pdf(CvLayered L, vec3 w, vec3 wi) { return cv_lay_coat_pdf(L, wi, -w, CV_LAY_T); }
+
 bool cv_lay_ok(CvBsdfSample s) { return cv_max3(s.f) > 0.0 && s.pdf > 0.0 && s.wi.z != 0.0; }
 
 // ---- the layered BSDF
@@ -280,7 +294,7 @@ vec3 cv_layered_f(CvLayered L, vec3 wo, vec3 wi)
                     if (w.z > 0.0 && !coat_smooth) {
                         float fe = cv_lay_coat_f(L, -w, wi, true);
                         if (fe > 0.0) {
-                            float wt2 = cv_lay_power(ppdf, cv_lay_coat_pdf(L, -w, wi, CV_LAY_T));
+                            float wt2 = cv_lay_power(ppdf, cv_lay_exit_pdf(L, w, wi));
                             f += beta * cv_lay_tr(zp - th, w) * fe * wt2;
                         }
                     }
@@ -312,7 +326,7 @@ vec3 cv_layered_f(CvLayered L, vec3 wo, vec3 wi)
                     // next event: the sampled direction out through the coat
                     float fe = cv_lay_coat_f(L, -w, wi, true);
                     if (fe > 0.0) {
-                        float wt = base_smooth ? 1.0 : cv_lay_power(bs.pdf, cv_lay_coat_pdf(L, -w, wi, CV_LAY_T));
+                        float wt = base_smooth ? 1.0 : cv_lay_power(bs.pdf, cv_lay_exit_pdf(L, w, wi));
                         f += beta * cv_lay_tr(th, bs.wi) * fe * wt;
                     }
                 }
