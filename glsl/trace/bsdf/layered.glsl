@@ -241,10 +241,22 @@ float cv_lay_exit_pdf(CvLayered L, vec3 w, vec3 wi) { return cv_lay_coat_pdf(L, 
 bool cv_lay_ok(CvBsdfSample s) { return cv_max3(s.f) > 0.0 && s.pdf > 0.0 && s.wi.z != 0.0; }
 
 // ---- the layered BSDF
+// Probability that cv_layered_sample returns a delta sample from wo.
+float cv_layered_delta_prob(CvLayered L, vec3 wo)
+{
+    if (!cv_lay_coat_smooth(L))
+        return 0.0;
+    if (cv_lay_base_smooth(L) && !cv_lay_has_medium(L))
+        return 1.0;
+    return L.eta == 1.0 ? 0.0 : cv_fr_dielectric(wo.z, L.eta);
+}
+
 vec3 cv_layered_f(CvLayered L, vec3 wo, vec3 wi)
 {
     if (!(wi.z > 0.0) || !(wo.z > 0.0))
         return vec3(0.0);  // the base transmits nothing
+    if (cv_layered_delta_prob(L, wo) == 1.0)
+        return vec3(0.0);  // the one exact shortcut: all delta (every walk adds 0)
     float n = float(L.n_samples);
     vec3 f = vec3(n * cv_lay_coat_f(L, wo, wi, true));
     CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(wo)), cv_lay_dir_hash(wi));
@@ -339,7 +351,7 @@ vec3 cv_layered_f(CvLayered L, vec3 wo, vec3 wi)
 float cv_layered_pdf(CvLayered L, vec3 wo, vec3 wi)
 {
     float sum = 0.0;
-    if (wo.z > 0.0 && wi.z > 0.0) {
+    if (wo.z > 0.0 && wi.z > 0.0 && cv_layered_delta_prob(L, wo) < 1.0) {
         float n = float(L.n_samples);
         sum = n * cv_lay_coat_pdf(L, wo, wi, CV_LAY_R);
         CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(wi)), cv_lay_dir_hash(wo));
@@ -454,16 +466,6 @@ bool cv_layered_sample(CvLayered L, vec3 wo, float uc, vec2 u, out CvBsdfSample 
         s.pdf = p;
     }
     return true;
-}
-
-// Probability that cv_layered_sample returns a delta sample from wo.
-float cv_layered_delta_prob(CvLayered L, vec3 wo)
-{
-    if (!cv_lay_coat_smooth(L))
-        return 0.0;
-    if (cv_lay_base_smooth(L) && !cv_lay_has_medium(L))
-        return 1.0;
-    return L.eta == 1.0 ? 0.0 : cv_fr_dielectric(wo.z, L.eta);
 }
 
 #endif
