@@ -49,6 +49,8 @@ CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
 }
 
 bool cv_bsdf_is_delta(CvBsdf b) { return b.mirror; }
+// as bsdf/bsdf.glsl (nothing here is stochastic)
+void cv_bsdf_set_stream(inout CvBsdf b, vec2 u_a, vec2 u_b) {}
 // as bsdf/bsdf.glsl
 float cv_bsdf_delta_prob(CvBsdf b, vec3 wo) { return b.mirror ? 1.0 : 0.0; }
 vec3 cv_bsdf_albedo(CvBsdf b) { return b.r; }

@@ -63,6 +63,7 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
 
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+    cv_bsdf_set_stream(b, u_bsdf, u_light);  // stochastic (coated) BSDFs' random numbers
     bool delta = cv_bsdf_is_delta(b);
     cv_strategy_begin(g, sf, wo, b, delta);
 

@@ -198,7 +198,9 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
             return false;
     } else if (strcmp(type, "substrate") == 0) {
         /* Ashikhmin-Shirley substrate is rendered as a coated diffuse
-         * (Kd under a rough dielectric coat tinted by Ks). */
+         * (Kd under a rough dielectric coat, a clear slab: albedo 0).
+         * Ks is read for its errors only: specular is the coat's medium
+         * albedo in a coated diffuse. */
         m.type = CV_MAT_COATED_DIFFUSE;
         if (!color(b, ps, "Kd", 0.5, CV_SPEC_REFLECTANCE, dir, &m.reflectance, &m.reflectance_tex, err) ||
             !color(b, ps, "Ks", 0.5, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err) ||
@@ -207,7 +209,9 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         m.roughness = (cv_vec4){au, av, 0.01f, 0};
         m.eta.x = 1.5f;
         m.roughness2 = (cv_vec4){0, 0, 10, 1};
-        if (!cv_b_warn(b, err, loc, "substrate: rendered as coated diffuse (Ks tints the coat)"))
+        m.specular = (cv_vec4){0, 0, 0, 0};
+        m.specular_tex = -1;
+        if (!cv_b_warn(b, err, loc, "substrate: rendered as coated diffuse (Ks ignored)"))
             return false;
     } else if (strcmp(type, "coateddiffuse") == 0) {
         m.type = CV_MAT_COATED_DIFFUSE;

@@ -2,7 +2,10 @@
  * routine against its pdf (both from the shipped GLSL), and consistency of
  * the sampled pdf and value with cv_bsdf_pdf / cv_bsdf_f. Rough and smooth
  * settings, anisotropy, and wo on both sides of dielectrics (eta > 1 and
- * eta < 1). Fixed seeds; alpha 0.01 with Šidák correction over all runs. */
+ * eta < 1). Fixed seeds; alpha 0.01 with Šidák correction over all runs.
+ * Coated materials are not here: their f and pdf are pbrt-v4's stochastic
+ * estimates (layered.glsl), which neither equal the sample's values nor
+ * give the samples' density; bsdf_layered_test checks them. */
 #include "config.h"
 
 #include <math.h>
@@ -40,24 +43,6 @@ static CvMaterial dielectric(float eta, float a)
     return m;
 }
 
-static CvMaterial coated_diffuse(float a, float r)
-{
-    CvMaterial m = probe_material(CV_MAT_COATED_DIFFUSE);
-    m.reflectance = (cv_vec4){r, r * 0.5f, r * 0.2f, 0};
-    m.roughness = (cv_vec4){a, a, 0.01f, 0};
-    return m;
-}
-
-static CvMaterial coated_conductor(float a, float a2)
-{
-    CvMaterial m = conductor(a2, a2);
-    m.type = CV_MAT_COATED_CONDUCTOR;
-    m.roughness = (cv_vec4){a, a, 0.01f, 0};
-    m.roughness2 = (cv_vec4){a2, a2, 10, 1};
-    m.eta.w = 1.5f;
-    return m;
-}
-
 static CvMaterial plastic(float a)
 {
     CvMaterial m = probe_material(CV_MAT_PLASTIC);
@@ -88,10 +73,6 @@ int main(void)
         {"dielectric eta 1.5 a=0.6", dielectric(1.5f, 0.6f), {30, 70, 150}, 3},
         {"dielectric eta 0.7 a=0.3", dielectric(0.7f, 0.3f), {20, 60, 120}, 3},
         {"dielectric eta 1.33 aniso 0.05x0.4", (CvMaterial){0}, {45, 135}, 2},
-        {"coated diffuse a=0.15", coated_diffuse(0.15f, 0.8f), {30, 75}, 2},
-        {"coated diffuse a=0.6", coated_diffuse(0.6f, 1.0f), {30, 110}, 2},
-        {"coated conductor a=0.2 base 0.4", coated_conductor(0.2f, 0.4f), {30, 70}, 2},
-        {"coated conductor a=0.5 base 0.1", coated_conductor(0.5f, 0.1f), {20, 60}, 2},
         {"diffuse transmission", dt, {30, 120}, 2},
         {"plastic a=0.15", plastic(0.15f), {30, 75}, 2},
         {"plastic a=0.6", plastic(0.6f), {50, 100}, 2},

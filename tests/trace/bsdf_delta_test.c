@@ -153,14 +153,10 @@ int main(void)
     struct cv_error err = {{0}};
     CvMaterial mirror = probe_material(CV_MAT_MIRROR);
     mirror.reflectance = (cv_vec4){0.9f, 0.6f, 0.3f, 0};
-    CvMaterial cd = probe_material(CV_MAT_COATED_DIFFUSE);
-    cd.reflectance = (cv_vec4){0.8f, 0.5f, 0.2f, 0};
-    cd.roughness = (cv_vec4){0, 0, 0.01f, 0};
-    CvMaterial cc = conductor(0.3f);
-    cc.type = CV_MAT_COATED_CONDUCTOR;
-    cc.roughness = (cv_vec4){0, 0, 0.01f, 0};
-    cc.roughness2 = (cv_vec4){0.3f, 0.3f, 10, 1};
-    cc.eta.w = 1.5f;
+    /* Coated materials are pbrt-v4's stochastic layered BSDFs: their pdf is
+     * an estimate, so a chi-square against it does not apply; their
+     * sampling is checked against an independent random walk in
+     * bsdf_layered_test. */
     struct cfg cfgs[] = {
         {"smooth conductor", conductor(0), {30, 75, 120}, 3},
         {"mirror", mirror, {20, 80}, 2},
@@ -169,8 +165,6 @@ int main(void)
          {135}, 1},
         {"smooth dielectric eta 0.7", dielectric(CV_MAT_DIELECTRIC, 0.7f), {30, 160}, 2},
         {"thin dielectric eta 1.5", dielectric(CV_MAT_THIN_DIELECTRIC, 1.5f), {30, 80, 140}, 3},
-        {"coated diffuse, smooth coat", cd, {30, 75}, 2},
-        {"coated conductor, smooth coat, base a=0.3", cc, {30, 75}, 2},
     };
     size_t n_cfg = CV_ARRAY_SIZE(cfgs);
     CvMaterial *mats = cv_xcalloc(n_cfg, sizeof(*mats));

@@ -13,9 +13,13 @@
  * tested angles (5..85 degrees): alpha 0.1: 0.89..0.99, alpha 0.3:
  * 0.82..0.90, alpha 0.7: 0.50..0.84, alpha 1: 0.31..0.78 (alpha is the
  * microfacet alpha, not pbrt's "roughness" before remapping).
- * A smooth coat over a smooth white conductor sums its internal bounces
- * exactly (coated.glsl), so it reflects everything; rough bases under a
- * coat lose what the coat reflects back down (reported, not bounded). */
+ * Coated materials are pbrt-v4's layered model (layered.glsl): its walks
+ * stop after maxdepth events (10 here), which costs a white coated diffuse
+ * under a smooth coat up to about 6 % (bsdf_layered_test checks the model
+ * against a CPU random walk, and the furnace with deep walks); a rough coat
+ * also loses GGX's single-scattering share at each of its many internal
+ * reflections (about 30 % at alpha 0.3). A smooth coat over a smooth white
+ * conductor without a medium is one delta lobe that reflects everything. */
 #include "config.h"
 
 #include <math.h>
@@ -59,6 +63,7 @@ static CvMaterial coated_diffuse(float a, float r, float thick)
     CvMaterial m = probe_material(CV_MAT_COATED_DIFFUSE);
     m.reflectance = (cv_vec4){r, r, r, 0};
     m.roughness = (cv_vec4){a, a, thick, 0};
+    m.roughness2 = (cv_vec4){0, 0, 10, 1}; /* pbrt-v4's maxdepth, nsamples */
     return m;
 }
 
@@ -111,8 +116,8 @@ int main(void)
         {"rough glass 1.5 a=0.2", dielectric(1.5f, 0.2f, 0.2f), 0.85},
         {"rough glass 1.5 a=0.8", dielectric(1.5f, 0.8f, 0.8f), 0.5},
         {"rough glass 0.7 aniso", dielectric(0.7f, 0.1f, 0.5f), 0.5},
-        {"coated diffuse R=1 smooth", coated_diffuse(0, 1, 0), 0.95},
-        {"coated diffuse R=1 a=0.3", coated_diffuse(0.3f, 1, 0), 0.9},
+        {"coated diffuse R=1 smooth", coated_diffuse(0, 1, 0), 0.92},
+        {"coated diffuse R=1 a=0.3", coated_diffuse(0.3f, 1, 0), 0.65},
         {"coated diffuse R=1 a=0.8 thick", coated_diffuse(0.8f, 1, 0.1f), 0},
         {"coated conductor white smooth/smooth", coated_conductor(0, 0, true), 0.99},
         {"coated conductor white 0.2/0.3", coated_conductor(0.2f, 0.3f, true), 0},

@@ -30,7 +30,8 @@
 #include "diffuse.glsl"
 #include "conductor.glsl"
 #include "dielectric.glsl"
-#include "coated.glsl"
+#include "layered.glsl"
+#include "plastic.glsl"
 #include "texture.glsl"
 
 // ng: geometric normal as stored (oriented by CV_TRI_REVERSE); ns: shading
@@ -41,8 +42,9 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 // A material resolved at one point. Fields by type:
 //  DIFFUSE c0 = R | CONDUCTOR c0 = eta, c1 = k, alpha.xy
 //  DIELECTRIC eta, alpha.xy, c0 = Kr, c1 = Kt | THIN_DIELECTRIC eta | MIRROR c0 = Kr
-//  COATED_DIFFUSE c0 = R, eta, alpha.xy (coat), thickness
-//  COATED_CONDUCTOR eta (coat), alpha.xy (coat), alpha.zw (base), c0/c1 = base eta/k over coat eta, thickness
+//  COATED_DIFFUSE c0 = R, eta, alpha.xy (coat), thickness, medium, walk
+//  COATED_CONDUCTOR eta (coat), alpha.xy (coat), alpha.zw (base), c0/c1 = base eta/k over coat eta,
+//    thickness, medium, walk
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
 struct CvBsdf {
     uint type;  // read through CV_BSDF_TYPE
@@ -54,6 +56,9 @@ struct CvBsdf {
     vec4 alpha;
     float eta;
     float thickness;
+    vec4 medium;  // coated: slab albedo (rgb), Henyey-Greenstein g (w)
+    ivec2 walk;   // coated: max depth, samples per estimate
+    uint stream;  // key of the stochastic BSDFs' random streams (cv_bsdf_set_stream)
 };
 
 #ifdef CV_BSDF_DIFFUSE_ONLY
@@ -171,6 +176,9 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     b.alpha = vec4(0.0);
     b.eta = 1.0;
     b.thickness = 0.0;
+    b.medium = vec4(0.0);
+    b.walk = ivec2(0);
+    b.stream = 0u;
 
     // Every texture the material reads, evaluated in one loop (one inlined
     // copy of the texture code): reflectance, specular, eta, roughness u, v,
@@ -235,6 +243,8 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.eta = eta > 0.0 ? eta : 1.5;
         b.alpha.xy = alpha;
         b.thickness = m.roughness.z;
+        b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
+        b.walk = ivec2(m.roughness2.zw);
     } else if (b.type == CV_MAT_COATED_CONDUCTOR) {
         b.eta = m.eta.w > 0.0 ? m.eta.w : 1.5;
         b.alpha.xy = alpha;
@@ -244,6 +254,8 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.c1 = ck;
         b.c0 /= b.eta;
         b.c1 /= b.eta;
+        b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
+        b.walk = ivec2(m.roughness2.zw);
     } else if (b.type == CV_MAT_DIFFUSE_TRANSMISSION) {
         b.c0 = clamp(refl, 0.0, 1.0);
         b.c1 = clamp(spec, 0.0, 1.0);
@@ -259,6 +271,35 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
 CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
 {
     return cv_bsdf_at_lod(material, sp, u_mix, 0.0);
+}
+
+// The stochastic BSDFs (coated: a random walk per evaluation) draw their
+// random numbers from streams keyed by the shade stage's sampler values at
+// this vertex (u_a, u_b: any two of its pairs), hashed with the directions
+// of each call: one seed, one image. Without it every vertex shares key 0.
+void cv_bsdf_set_stream(inout CvBsdf b, vec2 u_a, vec2 u_b)
+{
+    b.stream = cv_hash3(floatBitsToUint(u_a.x), floatBitsToUint(u_a.y),
+                        cv_hash2(floatBitsToUint(u_b.x), floatBitsToUint(u_b.y)));
+}
+
+// pbrt-v4's LayeredBxDF parameters of a coated material.
+CvLayered cv_bsdf_layered(CvBsdf b)
+{
+    CvLayered L;
+    L.eta = b.eta;
+    L.coat_alpha = b.alpha.xy;
+    L.conductor = CV_BSDF_TYPE(b) == CV_MAT_COATED_CONDUCTOR;
+    L.c0 = b.c0;
+    L.c1 = b.c1;
+    L.base_alpha = b.alpha.zw;
+    L.thickness = max(b.thickness, 1.17549435e-38);
+    L.albedo = b.medium.rgb;
+    L.g = b.medium.w;
+    L.max_depth = b.walk.x;
+    L.n_samples = max(b.walk.y, 1);
+    L.key = b.stream;
+    return L;
 }
 
 // Two-sided layered lobes work with wo on +z.
@@ -282,9 +323,8 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
     case CV_MAT_DIELECTRIC:
         return cv_dielectric_f(b.eta, b.alpha.xy, b.c0, b.c1, wo, wi);
     case CV_MAT_COATED_DIFFUSE:
-        return cv_coated_diffuse_f(b.c0, b.eta, b.alpha.xy, b.thickness, wo, wi);
     case CV_MAT_COATED_CONDUCTOR:
-        return cv_coated_conductor_f(b.eta, b.alpha.xy, b.thickness, b.alpha.zw, b.c0, b.c1, wo, wi);
+        return cv_layered_f(cv_bsdf_layered(b), wo, wi);
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_f(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
@@ -308,9 +348,8 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
     case CV_MAT_DIELECTRIC:
         return cv_dielectric_pdf(b.eta, b.alpha.xy, wo, wi);
     case CV_MAT_COATED_DIFFUSE:
-        return cv_coated_diffuse_pdf(b.c0, b.eta, b.alpha.xy, wo, wi);
     case CV_MAT_COATED_CONDUCTOR:
-        return cv_coated_conductor_pdf(b.eta, b.alpha.xy, b.alpha.zw, b.c0, b.c1, wo, wi);
+        return cv_layered_pdf(cv_bsdf_layered(b), wo, wi);
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
@@ -360,10 +399,8 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         }
         break;
     case CV_MAT_COATED_DIFFUSE:
-        ok = cv_coated_diffuse_sample(b.c0, b.eta, b.alpha.xy, b.thickness, wo, uc, u, s);
-        break;
     case CV_MAT_COATED_CONDUCTOR:
-        ok = cv_coated_conductor_sample(b.eta, b.alpha.xy, b.thickness, b.alpha.zw, b.c0, b.c1, wo, uc, u, s);
+        ok = cv_layered_sample(cv_bsdf_layered(b), wo, uc, u, s);
         break;
     case CV_MAT_DIFFUSE_TRANSMISSION:
         ok = cv_difftrans_sample(b.c0, b.c1, wo, uc, u, s);
@@ -394,7 +431,7 @@ bool cv_bsdf_is_delta(CvBsdf b)
     if (b.type == CV_MAT_DIELECTRIC)
         return cv_dielectric_is_delta(b.eta, b.alpha.xy);
     if (b.type == CV_MAT_COATED_CONDUCTOR)
-        return cv_mf_smooth(b.alpha.xy) && cv_mf_smooth(b.alpha.zw);
+        return cv_layered_delta_prob(cv_bsdf_layered(b), vec3(0.0, 0.0, 1.0)) == 1.0;
     return false;
 #endif
 }
@@ -416,12 +453,8 @@ float cv_bsdf_delta_prob(CvBsdf b, vec3 wo_world)
         wo.z = abs(wo.z);
     if (wo.z <= 0.0)
         return 0.0;
-    if (b.type == CV_MAT_COATED_DIFFUSE)
-        return cv_mf_smooth(b.alpha.xy) ? cv_coat_prob(b.eta, wo, b.c0) : 0.0;
-    if (b.type == CV_MAT_COATED_CONDUCTOR) {
-        float ps = cv_coated_conductor_ps(b.eta, b.c0, b.c1, wo);
-        return (cv_mf_smooth(b.alpha.xy) ? ps : 0.0) + (cv_mf_smooth(b.alpha.zw) ? 1.0 - ps : 0.0);
-    }
+    if (b.type == CV_MAT_COATED_DIFFUSE || b.type == CV_MAT_COATED_CONDUCTOR)
+        return cv_layered_delta_prob(cv_bsdf_layered(b), wo);
     if (b.type == CV_MAT_PLASTIC)
         return cv_mf_smooth(b.alpha.xy) ? cv_plastic_ps(b.c0, b.c1) : 0.0;
     return 0.0;

@@ -41,6 +41,8 @@ void main()
     CvShadingPoint sp = CvShadingPoint(vec3(0.0), u_ng, u_ns, u_dpdu, u_uv, dot(u_wo, u_ng) > 0.0);
     CvRng rng = cv_rng_init(u_seed, i);
     CvBsdf b = cv_bsdf_at(u_material, sp, cv_rng_next(rng));
+    CvRng stream = cv_rng_init(u_seed ^ 0x5bd1e995u, i);  // own stream: the draws below stay as they were
+    cv_bsdf_set_stream(b, cv_rng_next2(stream), cv_rng_next2(stream));
     if (u_mode == 0u) {
         float uc = cv_rng_next(rng);
         vec2 u = cv_rng_next2(rng);

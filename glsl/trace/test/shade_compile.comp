@@ -29,6 +29,7 @@ void main()
     if (cv_material_alpha_pass(mat, sp.uv, cv_rng_next(rng)))
         return;
     CvBsdf b = cv_bsdf_at(mat, sp, cv_rng_next(rng));
+    cv_bsdf_set_stream(b, cv_rng_next2(rng), cv_rng_next2(rng));
     vec3 L = vec3(0.0);
     CvLightSample ls;
     if (cv_light_sample(sp.p, sp.ns, vec3(cv_rng_next(rng), cv_rng_next2(rng)), ls)) {
