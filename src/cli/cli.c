@@ -231,10 +231,10 @@ int cv_cli_main(int argc, char **argv)
     const char *dump = NULL, *merge = NULL;
     int verbosity = 0, c;
     unsigned u;
-    /* --only patterns point into argv; at most one per argument */
-    const char **only = calloc((size_t)argc + 1, sizeof(char *));
-    if (!only)
-        out_of_memory(((size_t)argc + 1) * sizeof(char *));
+    /* --only patterns point into argv, at most one per argument; static,
+     * so that a usage error's early return leaves nothing unreachable. */
+    static const char **only;
+    only = cv_xcalloc((size_t)argc + 1, sizeof(char *));
     o.only = only;
     cv_mem_set_out_of_memory(out_of_memory);
     opterr = 0;  /* getopt's messages would carry another prefix than the log's */
@@ -405,9 +405,7 @@ int cv_cli_main(int argc, char **argv)
                 o.shard_index, o.shard_count);
         return usage_error();
     }
-    enum cv_batch_status st = cv_batch_run(argv[optind], &o);
-    free(only);
-    switch (st) {
+    switch (cv_batch_run(argv[optind], &o)) {
     case CV_BATCH_OK: return CV_EXIT_OK;
     case CV_BATCH_JOBS_FAILED: return CV_EXIT_JOBS_FAILED;
     case CV_BATCH_INVALID: return CV_EXIT_INVALID;
