@@ -386,8 +386,8 @@ int cv_cli_main(int argc, char **argv)
         return usage_error();
     }
     /* Without an index every worker would render shard 0: the same jobs. */
-    /* A submitter may list every shard's jobs at once. */
-    if (have_count && !have_index && o.dry_run) {
+    /* A submitter may list every shard's jobs at once, each with its shard. */
+    if (have_count && !have_index && o.dry_run && o.json) {
         o.all_shards = true;
         have_index = true;
     }

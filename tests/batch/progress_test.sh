@@ -33,10 +33,10 @@ check "invalid manifest on stdin: errors at <stdin>" "$py" "$checker" json stdin
     'file=<stdin>'
 check "invalid manifest on stdin: log says <stdin>:line:col" grep -q '^<stdin>:5:10: spp' stdin.err
 
-# The first job cannot write its output (its folder is a file): with
-# --fail-fast the others never start.
-: >blocker
-sed 's|  - name: a|  - name: a\n    output: blocker/{name}|' jobs.yaml >ff.yaml
+# The first job fails when it starts (its lock file is a folder, which the
+# plan does not look at): with --fail-fast the others never start.
+sed 's|output: out/{name}|output: ff/{name}|' jobs.yaml >ff.yaml
+mkdir -p ff/.a.lock
 "$CAVALRY_BATCH" --progress=json --fail-fast ff.yaml >ff.jsonl 2>ff.err && rc=0 || rc=$?
 check "fail-fast: exit 1 (got $rc)" test "$rc" -eq 1
 check "fail-fast: b and c never started" "$py" "$checker" json ff.jsonl done=0 not_started=b,c
