@@ -249,7 +249,7 @@ static void print_plan_json(const struct cv_manifest *m, const struct selection 
     printf("\n]}\n");
 }
 
-/* The error events of a batch that stops, its batch_finished, and the log. */
+/* A problem that stops the batch: to the log, and as error events. */
 static void report_error(struct cv_progress *progress, const char *msg)
 {
     cv_error_log("%s", msg);
