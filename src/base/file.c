@@ -31,6 +31,49 @@ bool cv_input_check(const char *path, struct cv_error *err)
     return check_stat(path, &st, err);
 }
 
+/* Reads f to its end and closes it, refusing more than an input file may
+ * hold; size_hint: the expected size (0: unknown). */
+static bool read_all(FILE *f, const char *path, size_t size_hint, char **data, size_t *len,
+                     struct cv_error *err)
+{
+    size_t cap = size_hint + 2 > (1 << 16) ? size_hint + 2 : (1 << 16), n = 0;
+    char *buf = cv_xmalloc(cap);
+    bool too_big = false;
+    for (;;) {
+        if (n + 1 >= cap)
+            buf = cv_xrealloc(buf, cap *= 2);
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0)
+            break;
+        if ((long long)n > CV_MAX_INPUT_BYTES) { /* it grew while being read, or a pipe */
+            too_big = true;
+            break;
+        }
+    }
+    bool failed = ferror(f);
+    int saved = errno;
+    if (f != stdin)
+        fclose(f);
+    if (failed || too_big) {
+        free(buf);
+        if (too_big)
+            return cv_fail(err, "%s: more than the %lld bytes an input file may hold", path,
+                           CV_MAX_INPUT_BYTES);
+        return cv_fail(err, "%s: read error: %s", path, strerror(saved));
+    }
+    buf[n] = '\0';
+    *data = buf;
+    if (len)
+        *len = n;
+    return true;
+}
+
+bool cv_read_stdin(const char *label, char **data, size_t *len, struct cv_error *err)
+{
+    return read_all(stdin, label, 0, data, len, err);
+}
+
 bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *err)
 {
     /* O_NONBLOCK: opening a FIFO must not wait for a writer; it is then
@@ -54,36 +97,7 @@ bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *e
         close(fd);
         return cv_fail(err, "%s: %s", path, strerror(saved));
     }
-    size_t cap = (size_t)st.st_size + 2 > (1 << 16) ? (size_t)st.st_size + 2 : (1 << 16), n = 0;
-    char *buf = cv_xmalloc(cap);
-    bool too_big = false;
-    for (;;) {
-        if (n + 1 >= cap)
-            buf = cv_xrealloc(buf, cap *= 2);
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0)
-            break;
-        if ((long long)n > CV_MAX_INPUT_BYTES) { /* it grew while being read */
-            too_big = true;
-            break;
-        }
-    }
-    bool failed = ferror(f);
-    int saved = errno;
-    fclose(f);
-    if (failed || too_big) {
-        free(buf);
-        if (too_big)
-            return cv_fail(err, "%s: more than the %lld bytes an input file may hold", path,
-                           CV_MAX_INPUT_BYTES);
-        return cv_fail(err, "%s: read error: %s", path, strerror(saved));
-    }
-    buf[n] = '\0';
-    *data = buf;
-    if (len)
-        *len = n;
-    return true;
+    return read_all(f, path, (size_t)st.st_size, data, len, err);
 }
 
 char *cv_path_dirname(const char *path)

@@ -11,6 +11,9 @@
  * the caller (free()). Only a regular file of at most CV_MAX_INPUT_BYTES
  * (base/limits.h) is read: a device or a FIFO is refused without blocking. */
 bool cv_read_file(const char *path, char **data, size_t *len, struct cv_error *err);
+/* Standard input read to its end with the same size cap as cv_read_file;
+ * label names it in messages ("<stdin>"). */
+bool cv_read_stdin(const char *label, char **data, size_t *len, struct cv_error *err);
 /* The same check for files that a library opens by name (images, gzip):
  * path names a regular file within the size limit. */
 bool cv_input_check(const char *path, struct cv_error *err);

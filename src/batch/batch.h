@@ -6,22 +6,28 @@
 
 #include <stdbool.h>
 
+#include "batch/plan.h"
 #include "batch/progress.h"
 #include "gpu/context.h"
 
 struct cv_bvh_params;
 
 struct cv_batch_options {
-    const char *only;              /* run only this job; NULL: all */
+    const char *const *only;       /* run only jobs matching one of these fnmatch(3)
+                                    * patterns; n_only 0: all */
+    size_t n_only;
     struct cv_gpu_params gpu;
     bool check_only;               /* validate manifest and scenes, render nothing */
     bool dry_run;                  /* print the plan, render nothing */
+    bool json;                     /* --dry-run: the plan as one JSON document */
     bool resume;                   /* skip jobs whose outputs came from the same settings */
     bool force;                    /* overwrite outputs even when resuming would skip */
     bool fail_fast;                /* stop at the first failed job */
     bool strict;                   /* scene warnings are errors */
     const char *scene_root;        /* files scenes read must lie in it; NULL: anywhere */
     unsigned shard_index, shard_count;  /* shard_count 0: no sharding */
+    bool all_shards;               /* --dry-run: every shard's jobs, each with its shard */
+    struct cv_plan_overrides overrides;  /* --spp, --resolution, --output-dir */
     double time_limit;             /* [s] per job, 0: only the manifest's */
     enum cv_progress_mode progress;
     const struct cv_bvh_params *bvh;  /* the scenes' BVH builds; NULL: defaults */
@@ -36,6 +42,7 @@ enum cv_batch_status {
     CV_BATCH_INTERRUPTED,          /* SIGINT/SIGTERM: the job in flight wrote a partial image */
 };
 
+/* manifest_path "-": the manifest on standard input. */
 enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_batch_options *opt);
 
 #endif

@@ -64,11 +64,14 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
     if (job->has_resolution) {
         p->width = job->width;
         p->height = job->height;
+        const struct cv_key_at *at = &job->at[CV_K_RESOLUTION];
+        char where[64] = "";  /* no line: set by --resolution */
+        if (at->line)
+            snprintf(where, sizeof(where), ":%u:%u", at->line, at->col);
         if (cv_camera_fit_film(&p->camera, crop, p->width, p->height))
-            cv_warn("%s:%u:%u: job \"%s\": resolution %ux%u changes the scene's aspect ratio: "
-                    "default screen window used", o->manifest_path,
-                    job->at[CV_K_RESOLUTION].line, job->at[CV_K_RESOLUTION].col, job->name,
-                    p->width, p->height);
+            cv_warn("%s%s: job \"%s\": %sresolution %ux%u changes the scene's aspect ratio: "
+                    "default screen window used", o->manifest_path, where, job->name,
+                    at->line ? "" : "--", p->width, p->height);
     }
     if ((uint64_t)p->camera.crop.x * p->camera.crop.y > CV_MAX_FILM_PIXELS) {
         char msg[160];
@@ -320,4 +323,73 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_guide_indirect = job->rlpath.guide == CV_RL_GUIDE_INDIRECT,
         .stage_times = plan->stage_times,
     };
+}
+
+static bool in_range(enum cv_key_id id, const char *flag, uint32_t v, struct cv_error *err)
+{
+    const struct cv_key *k = &cv_manifest_keys[id];
+    if (v < k->min || v > k->max)
+        return cv_fail(err, "%s: %u is not in [%.0f, %.0f] (as the manifest's %s)", flag, v,
+                       k->min, k->max, k->name);
+    return true;
+}
+
+bool cv_plan_overrides_check(const struct cv_plan_overrides *ov, struct cv_error *err)
+{
+    if (ov->spp && !in_range(CV_K_SPP, "--spp", ov->spp, err))
+        return false;
+    if (ov->width || ov->height)
+        return in_range(CV_K_RESOLUTION, "--resolution", ov->width, err) &&
+               in_range(CV_K_RESOLUTION, "--resolution", ov->height, err);
+    return true;
+}
+
+/* Writes n values of row id into job through the key table, as the reader
+ * does for a manifest value; it comes from no line of the manifest. */
+static void set_u32s(struct cv_job *job, enum cv_key_id id, const uint32_t *v, size_t n)
+{
+    const struct cv_key *k = &cv_manifest_keys[id];
+    memcpy((char *)job + k->offset, v, n * sizeof(*v));
+    *(bool *)((char *)job + k->has) = true;
+    job->at[id] = (struct cv_key_at){0, 0};
+}
+
+bool cv_plan_override_job(struct cv_job *job, const char *manifest_dir,
+                          const struct cv_plan_overrides *ov, struct cv_error *err)
+{
+    bool rehash = false;
+    if (ov->spp) {
+        set_u32s(job, CV_K_SPP, &ov->spp, 1);
+        rehash = true;
+    }
+    if (ov->width && ov->height) {
+        const uint32_t wh[2] = {ov->width, ov->height};
+        set_u32s(job, CV_K_RESOLUTION, wh, 2);
+        rehash = true;
+    }
+    if (ov->output_dir) {
+        /* The output as resolved is "<manifest folder>/<template>", or the
+         * template alone when it is absolute or the folder is the working one. */
+        size_t n = strlen(manifest_dir);
+        const char *rel = NULL;
+        if (!n && job->output[0] != '/')
+            rel = job->output;
+        else if (n && !strncmp(job->output, manifest_dir, n) && job->output[n] == '/')
+            rel = job->output + n + 1;
+        if (rel) {
+            char *moved = cv_path_join(ov->output_dir, rel);
+            free(job->output);
+            job->output = moved;
+        }
+    }
+    if (!rehash)
+        return true;
+    /* The same stamp of the scene file as the manifest's hash (manifest.c). */
+    struct stat st;
+    if (stat(job->scene, &st) != 0)
+        return cv_fail(err, "%s: %s", job->scene, strerror(errno));
+    free(job->settings_hash);
+    job->settings_hash = cv_job_settings_hash(job, (long long)st.st_size,
+                                              (long long)st.st_mtim.tv_sec);
+    return true;
 }

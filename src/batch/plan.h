@@ -48,6 +48,26 @@ struct cv_render_plan {
     char settings_hash[17];
 };
 
+/* Command-line overrides (cavalry-batch --spp, --resolution, --output-dir),
+ * applied to a job as if its manifest said them, before its plan is made:
+ * --dry-run shows them and the settings hash that --resume compares sees
+ * them. Ranges are the manifest key table's (manifest/keys.h). */
+struct cv_plan_overrides {
+    uint32_t spp;                /* 0: the job's */
+    uint32_t width, height;      /* [pixels]; 0: the job's */
+    const char *output_dir;      /* outputs that lie in the manifest's folder (all
+                                  * relative templates) go under it instead; NULL: none */
+};
+
+/* Checks the overrides against the key table's ranges; the message names
+ * the flag ("--spp: ..."). */
+bool cv_plan_overrides_check(const struct cv_plan_overrides *ov, struct cv_error *err);
+
+/* Applies ov to job (manifest_dir: the folder its outputs were resolved
+ * against, "" for the working folder) and updates its settings hash. */
+bool cv_plan_override_job(struct cv_job *job, const char *manifest_dir,
+                          const struct cv_plan_overrides *ov, struct cv_error *err);
+
 /* Makes the plan of job on scene. Problems come back as
  * "manifest:line:col: job \"name\": ..." (the line of the key at fault,
  * else of the job), warnings go to the log; with o->strict a warning fails

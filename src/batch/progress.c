@@ -1,7 +1,13 @@
-/* progress.c: see progress.h. */
+/* progress.c: see progress.h. The OpenJD lines follow the Open Job
+ * Description specification ("How Jobs Are Run": an action's stdout lines
+ * "openjd_progress: <number>" with a percentage in [0, 100],
+ * "openjd_status: <message>" and "openjd_fail: <message>"), the prefixes the
+ * openjd-adaptor-runtime and Deadline Cloud workers parse. */
 #include <errno.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "base/log.h"
@@ -13,17 +19,40 @@ struct job_row {
     enum cv_job_outcome outcome;
     uint32_t spp;
     double seconds;
-    char *detail;
+    char *detail;        /* outputs space-separated, or why skipped or failed */
 };
 
 struct cv_progress {
     enum cv_progress_mode mode;
     FILE *tty, *json;
     bool line_open;      /* a \r-updated bar is on screen */
-    bool json_lost;      /* a write to the JSON stream failed: reported, no more tried */
+    bool json_lost;      /* a write to the machine stream failed: reported, no more tried */
     struct job_row *rows;
     size_t n_rows, cap_rows;
+    char **selected;     /* the batch's jobs, for "never started" */
+    bool *reached;
+    size_t n_selected;
+    int last_openjd;     /* the last openjd_progress percentage printed; -1: none */
 };
+
+static const char *const mode_names[] = {"auto", "bar", "json", "none", "openjd"};
+const char cv_progress_mode_names[] = "auto, bar, json, openjd, none";
+
+static const char *const phase_names[CV_PHASE_COUNT] = {
+    [CV_PHASE_MANIFEST_READ] = "manifest_read",
+    [CV_PHASE_SCENE_LOAD] = "scene_load",
+    [CV_PHASE_GPU_OPEN] = "gpu_open",
+    [CV_PHASE_BVH_BUILD] = "bvh_build",
+    [CV_PHASE_PROGRAM_COMPILE] = "program_compile",
+    [CV_PHASE_RENDER] = "render",
+    [CV_PHASE_COLOUR] = "colour",
+    [CV_PHASE_WRITE] = "write",
+};
+
+const char *cv_phase_name(enum cv_phase phase)
+{
+    return phase < CV_PHASE_COUNT ? phase_names[phase] : "?";
+}
 
 static const char *outcome_name(enum cv_job_outcome o)
 {
@@ -38,9 +67,8 @@ static const char *outcome_name(enum cv_job_outcome o)
 
 bool cv_progress_mode_parse(const char *name, enum cv_progress_mode *mode)
 {
-    static const char *const names[] = {"auto", "bar", "json", "none"};
-    for (size_t i = 0; i < CV_ARRAY_SIZE(names); i++) {
-        if (strcmp(name, names[i]) == 0) {
+    for (size_t i = 0; i < CV_ARRAY_SIZE(mode_names); i++) {
+        if (strcmp(name, mode_names[i]) == 0) {
             *mode = (enum cv_progress_mode)i;
             return true;
         }
@@ -56,6 +84,7 @@ struct cv_progress *cv_progress_create(enum cv_progress_mode mode, FILE *tty, FI
     p->mode = mode;
     p->tty = tty;
     p->json = json;
+    p->last_openjd = -1;
     return p;
 }
 
@@ -67,6 +96,10 @@ void cv_progress_destroy(struct cv_progress **p)
         free((*p)->rows[i].name);
         free((*p)->rows[i].detail);
     }
+    for (size_t i = 0; i < (*p)->n_selected; i++)
+        free((*p)->selected[i]);
+    free((*p)->selected);
+    free((*p)->reached);
     free((*p)->rows);
     free(*p);
     *p = NULL;
@@ -92,31 +125,88 @@ void cv_json_string(FILE *out, const char *s)
     fputc('"', out);
 }
 
-/* JSON events are written only while the stream takes them. */
+/* Machine lines are written only while the stream takes them. */
 static bool json_on(const struct cv_progress *p)
 {
     return p->mode == CV_PROGRESS_JSON && !p->json_lost;
 }
 
+static bool openjd_on(const struct cv_progress *p)
+{
+    return p->mode == CV_PROGRESS_OPENJD && !p->json_lost;
+}
+
+/* A reader that went away (SIGPIPE is ignored, so EPIPE), a full disk: the
+ * render goes on, but whoever watches the stream must learn why it stopped. */
+static void flush_machine(struct cv_progress *p)
+{
+    if (fflush(p->json) != 0 || ferror(p->json)) {
+        cv_warn("progress stream: write failed (%s); no more progress events are written",
+                strerror(errno));
+        p->json_lost = true;
+    }
+}
+
+/* Every event starts with its name and the UTC time, ISO 8601 with
+ * milliseconds ("2026-01-31T12:00:00.250Z"): farm logs merge by it. */
 static void json_begin(struct cv_progress *p, const char *event, const char *job)
 {
-    fprintf(p->json, "{\"event\":\"%s\"", event);
+    struct timespec ts;
+    struct tm tm;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    gmtime_r(&ts.tv_sec, &tm);
+    char when[32];
+    strftime(when, sizeof(when), "%Y-%m-%dT%H:%M:%S", &tm);
+    fprintf(p->json, "{\"event\":\"%s\",\"time\":\"%s.%03ldZ\"", event, when,
+            ts.tv_nsec / 1000000);
     if (job) {
         fputs(",\"job\":", p->json);
         cv_json_string(p->json, job);
     }
 }
 
-/* A reader that went away (SIGPIPE is ignored, so EPIPE), a full disk: the
- * render goes on, but whoever watches the stream must learn why it stopped. */
 static void json_end(struct cv_progress *p)
 {
     fputs("}\n", p->json);
-    if (fflush(p->json) != 0 || ferror(p->json)) {
-        cv_warn("progress stream: write failed (%s); no more progress events are written",
-                strerror(errno));
-        p->json_lost = true;
-    }
+    flush_machine(p);
+}
+
+/* One OpenJD line; a message is kept on its line. */
+static void openjd_line(struct cv_progress *p, const char *kind, const char *fmt, ...)
+    CV_PRINTF(3, 4);
+static void openjd_line(struct cv_progress *p, const char *kind, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof(msg), fmt, ap);
+    va_end(ap);
+    for (char *c = msg; *c; c++)
+        if (*c == '\n' || *c == '\r')
+            *c = ' ';
+    fprintf(p->json, "openjd_%s: %s\n", kind, msg);
+    flush_machine(p);
+}
+
+/* Jobs ended so far plus the share of the one running, over the batch. */
+static void openjd_progress(struct cv_progress *p, double job_percent)
+{
+    size_t total = p->n_selected ? p->n_selected : 1;
+    double pct = ((double)p->n_rows + job_percent / 100.0) / (double)total * 100.0;
+    int whole = pct < 0 ? 0 : pct > 100 ? 100 : (int)pct;
+    if (whole == p->last_openjd)
+        return;  /* one line per percent, not per pass */
+    p->last_openjd = whole;
+    openjd_line(p, "progress", "%d", whole);
+}
+
+static void mark_reached(struct cv_progress *p, const char *job)
+{
+    for (size_t i = 0; i < p->n_selected; i++)
+        if (!p->reached[i] && strcmp(p->selected[i], job) == 0) {
+            p->reached[i] = true;
+            return;
+        }
 }
 
 static void close_line(struct cv_progress *p)
@@ -127,13 +217,112 @@ static void close_line(struct cv_progress *p)
     }
 }
 
+void cv_progress_batch_started(struct cv_progress *p, const char *manifest,
+                               const char *const *jobs, size_t n_jobs)
+{
+    p->selected = cv_xcalloc(n_jobs ? n_jobs : 1, sizeof(char *));
+    p->reached = cv_xcalloc(n_jobs ? n_jobs : 1, sizeof(bool));
+    p->n_selected = n_jobs;
+    for (size_t i = 0; i < n_jobs; i++)
+        p->selected[i] = cv_xstrdup(jobs[i]);
+    if (json_on(p)) {
+        json_begin(p, "batch_started", NULL);
+        fputs(",\"manifest\":", p->json);
+        cv_json_string(p->json, manifest);
+        fputs(",\"jobs\":[", p->json);
+        for (size_t i = 0; i < n_jobs; i++) {
+            if (i)
+                fputc(',', p->json);
+            cv_json_string(p->json, jobs[i]);
+        }
+        fputc(']', p->json);
+        json_end(p);
+    } else if (openjd_on(p)) {
+        openjd_line(p, "status", "%zu job(s) to render", n_jobs);
+        openjd_progress(p, 0);
+    }
+}
+
+void cv_progress_phase(struct cv_progress *p, const char *job, enum cv_phase phase,
+                       const char *what)
+{
+    if (!p)
+        return;
+    if (json_on(p)) {
+        json_begin(p, "phase", job);
+        fprintf(p->json, ",\"phase\":\"%s\"", cv_phase_name(phase));
+        if (what) {
+            fputs(",\"file\":", p->json);
+            cv_json_string(p->json, what);
+        }
+        json_end(p);
+    } else if (openjd_on(p)) {
+        openjd_line(p, "status", "%s%s%s%s%s", job ? job : "", job ? ": " : "",
+                    cv_phase_name(phase), what ? " " : "", what ? what : "");
+    }
+}
+
+/* "file:line:col: message": the first ":N:N: " after at least one
+ * character (a file name may hold colons, rarely digits between them). */
+static bool split_located(const char *s, size_t *file_len, unsigned *line, unsigned *col,
+                          const char **msg)
+{
+    for (const char *c = s + 1; (c = strchr(c, ':')) != NULL; c++) {
+        unsigned l, k;
+        int n = 0;
+        if (sscanf(c, ":%u:%u: %n", &l, &k, &n) == 2 && n > 0 && c[1] >= '0' && c[1] <= '9') {
+            *file_len = (size_t)(c - s);
+            *line = l;
+            *col = k;
+            *msg = c + n;
+            return true;
+        }
+    }
+    return false;
+}
+
+void cv_progress_error(struct cv_progress *p, const char *lines)
+{
+    if (!json_on(p) && !openjd_on(p))
+        return;  /* the log has printed them */
+    const char *s = lines ? lines : "";
+    do {
+        const char *nl = strchr(s, '\n');
+        char *one = nl ? cv_xasprintf("%.*s", (int)(nl - s), s) : cv_xstrdup(s);
+        size_t file_len;
+        unsigned line, col;
+        const char *msg;
+        if (json_on(p)) {
+            json_begin(p, "error", NULL);
+            if (split_located(one, &file_len, &line, &col, &msg)) {
+                one[file_len] = '\0';
+                fputs(",\"file\":", p->json);
+                cv_json_string(p->json, one);
+                fprintf(p->json, ",\"line\":%u,\"column\":%u", line, col);
+            } else {
+                msg = one;
+            }
+            fputs(",\"message\":", p->json);
+            cv_json_string(p->json, msg);
+            json_end(p);
+        } else if (openjd_on(p)) {
+            openjd_line(p, "fail", "%s", one);
+        }
+        free(one);
+        s = nl ? nl + 1 : NULL;
+    } while (s && *s);
+}
+
 void cv_progress_job_started(struct cv_progress *p, const char *job, unsigned index,
                              unsigned total, uint32_t target_spp)
 {
+    mark_reached(p, job);
     if (json_on(p)) {
         json_begin(p, "job_started", job);
         fprintf(p->json, ",\"index\":%u,\"total\":%u,\"target_spp\":%u", index, total, target_spp);
         json_end(p);
+    } else if (openjd_on(p)) {
+        openjd_line(p, "status", "job %u/%u: %s", index, total, job);
     } else if (p->mode == CV_PROGRESS_BAR) {
         close_line(p);
         fprintf(p->tty, "[%u/%u] %s\n", index, total, job);
@@ -153,18 +342,22 @@ static void human_rate(char *buf, size_t n, double v)
 }
 
 void cv_progress_update(struct cv_progress *p, const char *job, uint32_t spp, uint32_t target_spp,
-                        double rays_per_s, double elapsed_s, double eta_s)
+                        double rays_per_s, double elapsed_s, double percent, double eta_s)
 {
     if (json_on(p)) {
         json_begin(p, "progress", job);
-        fprintf(p->json, ",\"spp\":%u,\"target_spp\":%u,\"rays_per_s\":%.0f,\"elapsed_s\":%.3f", spp,
-                target_spp, rays_per_s, elapsed_s);
+        fprintf(p->json,
+                ",\"spp\":%u,\"target_spp\":%u,\"percent\":%.1f,\"rays_per_s\":%.0f,"
+                "\"elapsed_s\":%.3f",
+                spp, target_spp, percent, rays_per_s, elapsed_s);
         if (eta_s >= 0)
             fprintf(p->json, ",\"eta_s\":%.1f", eta_s);
         json_end(p);
+    } else if (openjd_on(p)) {
+        openjd_progress(p, percent);
     } else if (p->mode == CV_PROGRESS_BAR) {
         enum { WIDTH = 30 };
-        int fill = target_spp ? (int)((double)spp / target_spp * WIDTH) : 0;
+        int fill = (int)(percent / 100.0 * WIDTH);
         char bar[WIDTH + 1], rate[32], eta[32] = "";
         for (int i = 0; i < WIDTH; i++)
             bar[i] = i < fill ? '#' : '.';
@@ -179,33 +372,59 @@ void cv_progress_update(struct cv_progress *p, const char *job, uint32_t spp, ui
     }
 }
 
-void cv_progress_job_ended(struct cv_progress *p, const char *job, enum cv_job_outcome outcome,
-                           uint32_t spp, double seconds, const char *detail)
+void cv_progress_job_ended(struct cv_progress *p, const char *job, const struct cv_job_report *r)
 {
+    mark_reached(p, job);
+    char *detail = NULL;
+    if (r->n_outputs) {
+        size_t n = 1;
+        for (size_t i = 0; i < r->n_outputs; i++)
+            n += strlen(r->outputs[i]) + 1;
+        detail = cv_xcalloc(n, 1);
+        for (size_t i = 0; i < r->n_outputs; i++) {
+            if (i)
+                strcat(detail, " ");
+            strcat(detail, r->outputs[i]);
+        }
+    } else if (r->detail) {
+        detail = cv_xstrdup(r->detail);
+    }
     struct job_row row = {
         .name = cv_xstrdup(job),
-        .outcome = outcome,
-        .spp = spp,
-        .seconds = seconds,
-        .detail = detail ? cv_xstrdup(detail) : NULL,
+        .outcome = r->outcome,
+        .spp = r->spp,
+        .seconds = r->seconds,
+        .detail = detail,
     };
     CV_PUSH(p->rows, p->n_rows, p->cap_rows, row);
     if (json_on(p)) {
         char event[32];
-        snprintf(event, sizeof(event), "job_%s", outcome == CV_JOB_DONE ? "finished"
-                                                 : outcome == CV_JOB_PARTIAL ? "partial"
-                                                 : outcome_name(outcome));
+        snprintf(event, sizeof(event), "job_%s", r->outcome == CV_JOB_DONE ? "finished"
+                                                 : outcome_name(r->outcome));
         json_begin(p, event, job);
-        fprintf(p->json, ",\"spp\":%u,\"seconds\":%.3f", spp, seconds);
-        if (detail) {
-            fputs(outcome == CV_JOB_FAILED ? ",\"error\":" : ",\"detail\":", p->json);
-            cv_json_string(p->json, detail);
+        fprintf(p->json,
+                ",\"spp\":%u,\"seconds\":%.3f,\"scene_seconds\":%.3f,\"render_seconds\":%.3f",
+                r->spp, r->seconds, r->scene_seconds, r->render_seconds);
+        fputs(",\"outputs\":[", p->json);
+        for (size_t i = 0; i < r->n_outputs; i++) {
+            if (i)
+                fputc(',', p->json);
+            cv_json_string(p->json, r->outputs[i]);
+        }
+        fputc(']', p->json);
+        if (r->detail) {
+            fputs(r->outcome == CV_JOB_FAILED ? ",\"error\":" : ",\"detail\":", p->json);
+            cv_json_string(p->json, r->detail);
         }
         json_end(p);
+    } else if (openjd_on(p)) {
+        openjd_line(p, "status", "%s: %s%s%s", job, outcome_name(r->outcome),
+                    r->detail ? ": " : "", r->detail ? r->detail : "");
+        openjd_progress(p, 0);
     } else if (p->mode == CV_PROGRESS_BAR) {
         close_line(p);
-        fprintf(p->tty, "  %s: %u spp in %.1fs%s%s\n", outcome_name(outcome), spp, seconds,
-                detail ? " - " : "", detail ? detail : "");
+        fprintf(p->tty, "  %s: %u spp in %.1fs%s%s\n", outcome_name(r->outcome), r->spp,
+                r->seconds, detail ? " - " : "", detail ? detail : "");
     }
 }
 
@@ -214,16 +433,34 @@ void cv_progress_summary(struct cv_progress *p)
     unsigned counts[4] = {0};
     for (size_t i = 0; i < p->n_rows; i++)
         counts[p->rows[i].outcome]++;
+    size_t never = 0;
+    for (size_t i = 0; i < p->n_selected; i++)
+        never += !p->reached[i];
     if (json_on(p)) {
         json_begin(p, "batch_finished", NULL);
         fprintf(p->json, ",\"done\":%u,\"partial\":%u,\"failed\":%u,\"skipped\":%u",
                 counts[CV_JOB_DONE], counts[CV_JOB_PARTIAL], counts[CV_JOB_FAILED],
                 counts[CV_JOB_SKIPPED]);
+        fprintf(p->json, ",\"not_started\":[");
+        for (size_t i = 0, k = 0; i < p->n_selected; i++) {
+            if (p->reached[i])
+                continue;
+            if (k++)
+                fputc(',', p->json);
+            cv_json_string(p->json, p->selected[i]);
+        }
+        fputc(']', p->json);
         json_end(p);
         return;
     }
+    if (openjd_on(p)) {
+        openjd_line(p, "status", "%u done, %u partial, %u failed, %u skipped, %zu not started",
+                    counts[CV_JOB_DONE], counts[CV_JOB_PARTIAL], counts[CV_JOB_FAILED],
+                    counts[CV_JOB_SKIPPED], never);
+        return;
+    }
     /* The table is for people and logs; -q keeps it for failures only. */
-    if (cv_log_get_level() < CV_LOG_INFO && counts[CV_JOB_FAILED] == 0)
+    if (p->n_rows == 0 || (cv_log_get_level() < CV_LOG_INFO && counts[CV_JOB_FAILED] == 0))
         return;
     close_line(p);
     size_t w = 4;
@@ -236,6 +473,9 @@ void cv_progress_summary(struct cv_progress *p)
         fprintf(p->tty, "%-*s  %-8s %8u %9.2f  %s\n", (int)w, r->name, outcome_name(r->outcome),
                 r->spp, r->seconds, r->detail ? r->detail : "");
     }
-    fprintf(p->tty, "%u done, %u partial, %u failed, %u skipped\n", counts[CV_JOB_DONE],
+    fprintf(p->tty, "%u done, %u partial, %u failed, %u skipped", counts[CV_JOB_DONE],
             counts[CV_JOB_PARTIAL], counts[CV_JOB_FAILED], counts[CV_JOB_SKIPPED]);
+    if (never)
+        fprintf(p->tty, ", %zu not started", never);
+    fputc('\n', p->tty);
 }

@@ -90,13 +90,20 @@ static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_rend
 
 static void note_written(struct cv_job_result *res, const char *path)
 {
-    size_t n = strlen(res->written);
-    snprintf(res->written + n, sizeof(res->written) - n, "%s%s", n ? " " : "", path);
+    if (res->n_outputs < CV_ARRAY_SIZE(res->outputs))
+        res->outputs[res->n_outputs++] = cv_xstrdup(path);
+}
+
+void cv_job_result_clear(struct cv_job_result *r)
+{
+    for (size_t i = 0; i < r->n_outputs; i++)
+        free(r->outputs[i]);
+    r->n_outputs = 0;
 }
 
 static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, uint32_t w,
-                      uint32_t h, const struct cv_metadata *meta, struct cv_job_result *res,
-                      struct cv_error *err)
+                      uint32_t h, const struct cv_metadata *meta, struct cv_progress *progress,
+                      struct cv_job_result *res, struct cv_error *err)
 {
     const struct cv_job *job = plan->job;
     size_t n = (size_t)w * h;
@@ -119,6 +126,7 @@ static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, 
             .pixel = CV_EXR_PIXEL_FLOAT};
     char *path = cv_job_output_path(job, "exr");
     if (ok) {
+        cv_progress_phase(progress, job->name, CV_PHASE_WRITE, path);
         ok = cv_exr_write(path, &(struct cv_exr_params){
                                     .rgba = rgba,
                                     .width = w,
@@ -148,10 +156,12 @@ static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, 
 
 static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv_render_plan *plan,
                       uint32_t w, uint32_t h, struct cv_metadata *meta,
-                      struct cv_job_result *res, struct cv_error *err)
+                      struct cv_progress *progress, struct cv_job_result *res,
+                      struct cv_error *err)
 {
     const struct cv_job *job = plan->job;
     struct cv_color_pass *pass = NULL;
+    cv_progress_phase(progress, job->name, CV_PHASE_COLOUR, NULL);
     if (!cv_color_pass_create(gpu, &plan->color, &pass, err))
         return false;
     size_t n = (size_t)w * h;
@@ -165,6 +175,7 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
         /* Alpha is 1 everywhere: write RGB. */
         for (size_t i = 0; i < n; i++)
             memmove(&px[i * 3], &px[i * 4], 3 * sizeof(float));
+        cv_progress_phase(progress, job->name, CV_PHASE_WRITE, path);
         ok = cv_png_write(path, &(struct cv_png_params){
                                     .pixels = px,
                                     .width = w,
@@ -193,6 +204,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     memset(res, 0, sizeof(*res));
     struct cv_render_params rp = cv_plan_render_params(plan);
     struct cv_renderer *r = NULL;
+    cv_progress_phase(progress, job->name, CV_PHASE_PROGRAM_COMPILE, NULL);
     if (!cv_renderer_create_shared(gpu, gs, scene, &rp, &r, err))
         return false;
 
@@ -202,6 +214,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     uint32_t pass_spp = 1;
     uint64_t rays_total = 0;
     double t_render = now_seconds();
+    cv_progress_phase(progress, job->name, CV_PHASE_RENDER, NULL);
     while (cv_renderer_spp_done(r) < target) {
         uint32_t done = cv_renderer_spp_done(r);
         uint32_t n = pass_spp < target - done ? pass_spp : target - done;
@@ -216,8 +229,15 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         double elapsed = now - t_render;
         done = cv_renderer_spp_done(r);
         double rate = elapsed > 0 ? rays_total / elapsed : 0;
-        double eta = done ? elapsed / done * (target - done) : -1;
-        cv_progress_update(progress, job->name, done, target, rate, elapsed, eta);
+        /* Done is whichever comes first: the samples or the time limit. */
+        double frac = (double)done / target, eta = done ? elapsed / done * (target - done) : -1;
+        if (limit > 0) {
+            frac = fmax(frac, (now - t0) / limit);
+            eta = eta < 0 ? limit - (now - t0) : fmin(eta, limit - (now - t0));
+            eta = fmax(eta, 0);
+        }
+        cv_progress_update(progress, job->name, done, target, rate, elapsed,
+                           fmin(frac, 1.0) * 100.0, eta);
         if (cv_signals_interrupted()) {
             res->partial = done < target;
             res->stop = done < target ? CV_STOP_SIGNAL : CV_STOP_COMPLETE;
@@ -234,6 +254,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         pass_spp = cv_next_pass_spp(n, dt, limit > 0 ? fmax(limit - (now - t0), 1e-9) : 0);
     }
     res->spp = cv_renderer_spp_done(r);
+    res->render_seconds = now_seconds() - t_render;
     uint32_t w, h;
     cv_renderer_size(r, &w, &h);
     if (ok && res->spp == 0)
@@ -247,9 +268,9 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         res->seconds = now_seconds() - t0;
         struct cv_metadata *meta = job_metadata(gpu, plan, res);
         if (job->formats & CV_FORMAT_EXR)
-            ok = write_exr(r, plan, w, h, meta, res, err);
+            ok = write_exr(r, plan, w, h, meta, progress, res, err);
         if (ok && (job->formats & CV_FORMAT_PNG))
-            ok = write_png(gpu, r, plan, w, h, meta, res, err);
+            ok = write_png(gpu, r, plan, w, h, meta, progress, res, err);
         cv_metadata_destroy(&meta);
     }
     cv_renderer_destroy(&r);

@@ -25,11 +25,16 @@ const char *cv_job_status_name(enum cv_job_stop stop);
 
 struct cv_job_result {
     uint32_t spp;                  /* samples per pixel rendered */
-    double seconds;                /* wall clock of the whole job */
+    double seconds;                /* wall clock of cv_run_job: compile, render, write */
+    double render_seconds;         /* wall clock of the render passes */
     bool partial;                  /* stopped before the spp target */
     enum cv_job_stop stop;         /* why it stopped */
-    char written[1024];            /* the files written, space-separated */
+    char *outputs[2];              /* the files written (one per format); owned */
+    size_t n_outputs;
 };
+
+/* Frees the result's outputs; the result may be reused after. */
+void cv_job_result_clear(struct cv_job_result *r);
 
 /* Renders and writes the job of plan. gs: its scene uploaded with its BVH
  * (cv_scene_gpu_create), shared by the scene's jobs; the plan's camera

@@ -18,13 +18,14 @@
 #include "gpu/context.h"
 #include "manifest/keys.h"
 #include "manifest/shard.h"
+#include "manifest/yaml_view.h"
 #include "output/exr_merge.h"
 #include "scene/dump.h"
 #include "scene/scene.h"
 
 static void usage(FILE *out)
 {
-    fputs("usage: cavalry-batch [OPTION]... MANIFEST.yaml\n"
+    fputs("usage: cavalry-batch [OPTION]... MANIFEST.yaml   (- for standard input)\n"
           "       cavalry-batch --list-gpus\n"
           "       cavalry-batch --dump-scene SCENE.pbrt\n"
           "       cavalry-batch --merge OUT.exr TILE.exr...\n"
@@ -34,14 +35,19 @@ static void usage(FILE *out)
           "  -V, --version           show the version and exit\n"
           "      --check             validate the manifest and its scenes, render nothing\n"
           "      --dry-run           print what would be rendered\n"
-          "      --only=NAME         render only the job NAME\n"
+          "      --json              with --dry-run: the resolved jobs as JSON\n"
+          "      --only=PATTERN      render only jobs whose name matches PATTERN (a\n"
+          "                          glob: *, ?, [...]); may be repeated\n"
+          "      --spp=N             samples per pixel of every job\n"
+          "      --resolution=WxH    film size of every job\n"
+          "      --output-dir=DIR    write outputs under DIR, not the manifest's folder\n"
           "      --resume            skip jobs whose outputs exist and match their settings\n"
           "      --force             render every selected job, even when up to date\n"
           "      --fail-fast         stop at the first failed job\n"
           "      --shard-index=I     render shard I (0-based) of --shard-count\n"
           "      --shard-count=N     split the jobs into N shards (see ENVIRONMENT)\n"
-          "      --time-limit=SEC    stop each job after SEC seconds\n"
-          "      --progress=MODE     auto, bar, json or none\n"
+          "      --time-limit=TIME   stop each job after TIME (90, 1.5m, 2h)\n"
+          "      --progress=MODE     auto, bar, json, openjd or none\n"
           "      --strict            treat warnings about scenes and jobs as errors (a\n"
           "                          scene's integrator rendered with another, too)\n"
           "      --scene-root=DIR    refuse scene files outside DIR (untrusted scenes)\n"
@@ -88,6 +94,13 @@ static bool parse_backend(const char *s, enum cv_gpu_backend *b)
     else
         return false;
     return true;
+}
+
+/* The rest of a usage error, as GNU tools say it. */
+static int usage_error(void)
+{
+    fputs("Try 'cavalry-batch --help' for more information.\n", stderr);
+    return CV_EXIT_USAGE;
 }
 
 static bool parse_uint(const char *s, unsigned max, unsigned *out)
@@ -181,7 +194,8 @@ int cv_cli_main(int argc, char **argv)
     enum {
         OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
         OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
-        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS, OPT_SCENE_ROOT, OPT_MERGE,
+        OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS, OPT_SCENE_ROOT, OPT_MERGE, OPT_JSON, OPT_SPP,
+        OPT_RESOLUTION, OPT_OUTPUT_DIR,
     };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
@@ -189,6 +203,10 @@ int cv_cli_main(int argc, char **argv)
         {"check", no_argument, NULL, OPT_CHECK},
         {"dry-run", no_argument, NULL, OPT_DRY_RUN},
         {"only", required_argument, NULL, OPT_ONLY},
+        {"json", no_argument, NULL, OPT_JSON},
+        {"spp", required_argument, NULL, OPT_SPP},
+        {"resolution", required_argument, NULL, OPT_RESOLUTION},
+        {"output-dir", required_argument, NULL, OPT_OUTPUT_DIR},
         {"resume", no_argument, NULL, OPT_RESUME},
         {"force", no_argument, NULL, OPT_FORCE},
         {"fail-fast", no_argument, NULL, OPT_FAIL_FAST},
@@ -213,6 +231,11 @@ int cv_cli_main(int argc, char **argv)
     const char *dump = NULL, *merge = NULL;
     int verbosity = 0, c;
     unsigned u;
+    /* --only patterns point into argv, at most one per argument; static,
+     * so that a usage error's early return leaves nothing unreachable. */
+    static const char **only;
+    only = cv_xcalloc((size_t)argc + 1, sizeof(char *));
+    o.only = only;
     cv_mem_set_out_of_memory(out_of_memory);
     opterr = 0;  /* getopt's messages would carry another prefix than the log's */
     while ((c = getopt_long(argc, argv, ":hVqv", longopts, NULL)) != -1) {
@@ -225,7 +248,34 @@ int cv_cli_main(int argc, char **argv)
             return CV_EXIT_OK;
         case OPT_CHECK: o.check_only = true; break;
         case OPT_DRY_RUN: o.dry_run = true; break;
-        case OPT_ONLY: o.only = optarg; break;
+        case OPT_ONLY: only[o.n_only++] = optarg; break;
+        case OPT_JSON: o.json = true; break;
+        case OPT_OUTPUT_DIR:
+            if (!*optarg) {
+                cv_error_log("--output-dir wants a folder");
+                return usage_error();
+            }
+            o.overrides.output_dir = optarg;
+            break;
+        case OPT_SPP:
+            if (!parse_uint(optarg, UINT32_MAX, &o.overrides.spp) || !o.overrides.spp) {
+                cv_error_log("--spp wants a number of samples >= 1, not \"%s\"", optarg);
+                return usage_error();
+            }
+            break;
+        case OPT_RESOLUTION: {
+            unsigned w, h;
+            int n = 0;
+            if (sscanf(optarg, "%ux%u%n", &w, &h, &n) != 2 || optarg[n] || optarg[0] == '-' ||
+                !w || !h) {
+                cv_error_log("--resolution wants WIDTHxHEIGHT (\"640x480\"), not \"%s\"",
+                             optarg);
+                return usage_error();
+            }
+            o.overrides.width = w;
+            o.overrides.height = h;
+            break;
+        }
         case OPT_RESUME: o.resume = true; break;
         case OPT_FORCE: o.force = true; break;
         case OPT_FAIL_FAST: o.fail_fast = true; break;
@@ -242,7 +292,7 @@ int cv_cli_main(int argc, char **argv)
             if (!parse_uint(optarg, 1u << 30, &u)) {
                 cv_error_log("--%s wants a number, not \"%s\"",
                         c == OPT_SHARD_INDEX ? "shard-index" : "shard-count", optarg);
-                return CV_EXIT_USAGE;
+                return usage_error();
             }
             if (c == OPT_SHARD_INDEX) {
                 o.shard_index = u;
@@ -252,27 +302,23 @@ int cv_cli_main(int argc, char **argv)
                 have_count = true;
             }
             break;
-        case OPT_TIME_LIMIT: {
-            char *end;
-            o.time_limit = strtod(optarg, &end);
-            if (*end || !(o.time_limit > 0)) {
-                cv_error_log("--time-limit wants seconds > 0, not \"%s\"",
-                        optarg);
-                return CV_EXIT_USAGE;
+        case OPT_TIME_LIMIT:
+            if (!cv_duration_parse(optarg, &o.time_limit)) {
+                cv_error_log("--time-limit wants %s, not \"%s\"", CV_DURATION_EXPECTED, optarg);
+                return usage_error();
             }
             break;
-        }
         case OPT_PROGRESS:
             if (!cv_progress_mode_parse(optarg, &o.progress)) {
-                cv_error_log("unknown progress mode \"%s\" (auto, bar, json, none)",
-                        optarg);
-                return CV_EXIT_USAGE;
+                cv_error_log("unknown progress mode \"%s\" (%s)", optarg,
+                             cv_progress_mode_names);
+                return usage_error();
             }
             break;
         case OPT_GPU:
             if (!parse_uint(optarg, 1000, &u)) {
                 cv_error_log("--gpu wants a device index, not \"%s\"", optarg);
-                return CV_EXIT_USAGE;
+                return usage_error();
             }
             o.gpu.gpu_index = (int)u;
             break;
@@ -280,22 +326,20 @@ int cv_cli_main(int argc, char **argv)
             if (!parse_backend(optarg, &o.gpu.backend)) {
                 cv_error_log("unknown backend \"%s\" (auto, egl, osmesa)",
                         optarg);
-                return CV_EXIT_USAGE;
+                return usage_error();
             }
             break;
         case 'q': verbosity--; break;
         case 'v': verbosity++; break;
         case ':':
             cv_error_log("%s wants a value", argv[optind - 1]);
-            usage(stderr);
-            return CV_EXIT_USAGE;
+            return usage_error();
         default:
             if (optopt > 0 && optopt < 128)  /* a short option, maybe in a group */
                 cv_error_log("unknown option -%c", optopt);
             else
                 cv_error_log("unknown option %s", argv[optind - 1]);
-            usage(stderr);
-            return CV_EXIT_USAGE;
+            return usage_error();
         }
     }
     cv_log_set_level(verbosity < 0 ? CV_LOG_ERROR : verbosity == 0 ? CV_LOG_INFO : CV_LOG_DEBUG);
@@ -324,29 +368,42 @@ int cv_cli_main(int argc, char **argv)
     if (optind != argc - 1) {
         cv_error_log("%s",
                 optind >= argc ? "no manifest given" : "one manifest at a time");
-        usage(stderr);
-        return CV_EXIT_USAGE;
+        return usage_error();
+    }
+    if (o.json && !o.dry_run) {
+        cv_error_log("--json goes with --dry-run (--progress=json for a render)");
+        return usage_error();
+    }
+    struct cv_error err = {{0}};
+    if (!cv_plan_overrides_check(&o.overrides, &err)) {
+        cv_error_log("%s", err.msg);
+        return usage_error();
     }
     if (!shard_from_environment(&o, &have_index, have_count))
-        return CV_EXIT_USAGE;
+        return usage_error();
     if (have_index && !o.shard_count) {
         cv_error_log("a shard index needs --shard-count");
-        return CV_EXIT_USAGE;
+        return usage_error();
     }
     /* Without an index every worker would render shard 0: the same jobs. */
+    /* A submitter may list every shard's jobs at once, each with its shard. */
+    if (have_count && !have_index && o.dry_run && o.json) {
+        o.all_shards = true;
+        have_index = true;
+    }
     if (have_count && !have_index) {
         cv_error_log("--shard-count needs --shard-index, "
                      "SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX");
-        return CV_EXIT_USAGE;
+        return usage_error();
     }
     if (have_count && !o.shard_count) {
         cv_error_log("--shard-count must be at least 1");
-        return CV_EXIT_USAGE;
+        return usage_error();
     }
     if (o.shard_count && o.shard_index >= o.shard_count) {
         cv_error_log("shard index %u is not below shard count %u",
                 o.shard_index, o.shard_count);
-        return CV_EXIT_USAGE;
+        return usage_error();
     }
     switch (cv_batch_run(argv[optind], &o)) {
     case CV_BATCH_OK: return CV_EXIT_OK;

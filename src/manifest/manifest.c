@@ -241,14 +241,28 @@ static size_t read_document(yaml_document_t *doc, yaml_node_t *root, struct cv_d
     return n;
 }
 
+/* Parses data (owned: freed here) read from path. */
+static bool load_data(const char *path, char *data, size_t len, struct cv_manifest **out,
+                      struct cv_error *err);
+
 bool cv_manifest_load(const char *path, struct cv_manifest **out, struct cv_error *err)
 {
     *out = NULL;
     char *data;
     size_t len;
-    if (!cv_read_file(path, &data, &len, err))
+    if (!strcmp(path, "-")) {
+        if (!cv_read_stdin(CV_MANIFEST_STDIN, &data, &len, err))
+            return false;
+        path = CV_MANIFEST_STDIN;
+    } else if (!cv_read_file(path, &data, &len, err)) {
         return false;
+    }
+    return load_data(path, data, len, out, err);
+}
 
+static bool load_data(const char *path, char *data, size_t len, struct cv_manifest **out,
+                      struct cv_error *err)
+{
     struct cv_diag d = {.file = path};
     if (!cv_yaml_scan(data, len, &d)) {
         free(data);

@@ -108,7 +108,12 @@ struct cv_manifest {
     size_t n_jobs;
 };
 
-/* Reads and validates the manifest at path, including that every scene (and
+/* The name of standard input in messages and cv_manifest.path. */
+#define CV_MANIFEST_STDIN "<stdin>"
+
+/* Reads and validates the manifest at path ("-": standard input, read
+ * whole with the size cap of a file; its paths are relative to the working
+ * folder), including that every scene (and
  * colour config) file it names exists. On failure returns false, *out is
  * NULL and err holds every problem found, one "path:line:col: message" per
  * line, in document order. On success *out is owned by the caller. */

@@ -305,15 +305,12 @@ bool cv_yread_enum(yaml_node_t *n, struct cv_diag *d, const char *what,
     return false;
 }
 
-bool cv_yread_duration(yaml_node_t *n, struct cv_diag *d, const char *what, double *out)
+bool cv_duration_parse(const char *s, double *out)
 {
-    const char *exp = "a duration > 0 in seconds, or with a unit s, m or h (\"90\", \"1.5m\", \"2h\")";
     double v;
     const char *rest;
-    if (n->type != YAML_SCALAR_NODE || is_null(n) || !parse_number(scalar(n), &v, &rest)) {
-        expected(n, d, what, exp);
+    if (!parse_number(s, &v, &rest))
         return false;
-    }
     double unit = 1.0;
     if (!strcmp(rest, "") || !strcmp(rest, "s"))
         unit = 1.0;
@@ -323,11 +320,18 @@ bool cv_yread_duration(yaml_node_t *n, struct cv_diag *d, const char *what, doub
         unit = 3600.0;
     else
         unit = 0.0;
-    if (unit == 0.0 || !(v > 0.0) || !isfinite(v * unit)) {
-        expected(n, d, what, exp);
+    if (unit == 0.0 || !(v > 0.0) || !isfinite(v * unit))
+        return false;
+    *out = v * unit;
+    return true;
+}
+
+bool cv_yread_duration(yaml_node_t *n, struct cv_diag *d, const char *what, double *out)
+{
+    if (n->type != YAML_SCALAR_NODE || is_null(n) || !cv_duration_parse(scalar(n), out)) {
+        expected(n, d, what, CV_DURATION_EXPECTED);
         return false;
     }
-    *out = v * unit;
     return true;
 }
 

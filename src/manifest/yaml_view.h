@@ -52,6 +52,11 @@ bool cv_yread_bool(yaml_node_t *n, struct cv_diag *d, const char *what, bool *ou
 /* One of names[0..count); *out is the index. */
 bool cv_yread_enum(yaml_node_t *n, struct cv_diag *d, const char *what,
                    const char *const *names, size_t count, int *out);
+/* A duration (keys.h CV_KT_DURATION) from text: seconds > 0, with an
+ * optional unit s, m or h; the manifest's reader and --time-limit share it. */
+#define CV_DURATION_EXPECTED \
+    "a duration > 0 in seconds, or with a unit s, m or h (\"90\", \"1.5m\", \"2h\")"
+bool cv_duration_parse(const char *s, double *out);
 /* Seconds > 0: a plain number, or a number followed by s, m or h. */
 bool cv_yread_duration(yaml_node_t *n, struct cv_diag *d, const char *what, double *out);
 

@@ -8,12 +8,13 @@ tests_batch_exr_same_LDADD = $(CV_LIBS)
 TESTS += tests/batch/plan_test tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh \
 	tests/batch/shard_test.sh tests/batch/render_test.sh tests/batch/signals_test.sh \
 	tests/batch/shared_scene_test.sh tests/batch/lock_test.sh tests/batch/check_all_test.sh \
-	tests/batch/man_examples_test.sh tests/batch/resume_stale_test.sh tests/batch/tiles_test.sh
+	tests/batch/man_examples_test.sh tests/batch/resume_stale_test.sh tests/batch/tiles_test.sh \
+	tests/batch/progress_test.sh
 EXTRA_DIST += tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh tests/batch/shard_test.sh \
 	tests/batch/render_test.sh tests/batch/signals_test.sh tests/batch/shared_scene_test.sh \
 	tests/batch/lock_test.sh tests/batch/check_all_test.sh tests/batch/man_examples_test.sh \
 	tests/batch/resume_stale_test.sh tests/batch/tiles_test.sh tests/data/batch/tiles.yaml \
-	tests/data/batch/tiles.pbrt \
+	tests/data/batch/tiles.pbrt tests/batch/progress_test.sh tests/batch/progress_check.py \
 	tests/data/batch/tiny.pbrt tests/data/batch/broken.pbrt tests/data/batch/jobs.yaml \
 	tests/data/batch/many.yaml tests/data/batch/long.yaml
 # --- PNG colour tags by display encoding (issue 24, bug 7) ---

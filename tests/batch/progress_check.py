@@ -1,0 +1,190 @@
+#!/usr/bin/python3
+"""progress_check.py: checks a cavalry-batch machine progress stream for the
+shell tests, with a real parser.
+
+  progress_check.py json FILE [EXPECT...]    --progress=json lines
+  progress_check.py openjd FILE              --progress=openjd lines
+  progress_check.py dryrun FILE [EXPECT...]  --dry-run --json document
+
+EXPECT items are checks by name (see the functions below), e.g.
+"done=3", "not_started=b,c", "errors", "stdin". Prints what is wrong and
+exits 1; exits 0 when every check holds."""
+import datetime
+import json
+import os
+import re
+import sys
+
+ISO = re.compile(r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z$")
+# The order of a batch's phases, then of each job's (progress.h enum cv_phase).
+BATCH_PHASES = ["manifest_read", "scene_load", "gpu_open"]
+JOB_PHASES = ["bvh_build", "program_compile", "render", "colour", "write"]
+
+problems = []
+
+
+def fail(msg):
+    problems.append(msg)
+
+
+def parse_time(s):
+    if not isinstance(s, str) or not ISO.match(s):
+        fail("time %r is not ISO 8601 UTC with milliseconds" % (s,))
+        return None
+    return datetime.datetime.strptime(s, "%Y-%m-%dT%H:%M:%S.%fZ")
+
+
+def check_json(path, expect):
+    events = []
+    with open(path) as f:
+        for n, line in enumerate(f, 1):
+            try:
+                events.append(json.loads(line))
+            except ValueError as e:
+                fail("line %d is not JSON (%s): %r" % (n, e, line))
+    if not events:
+        fail("no events")
+        return
+    last = None
+    for e in events:
+        t = parse_time(e.get("time"))
+        if t is not None and last is not None and t < last:
+            fail("time goes back at %r" % (e,))
+        last = t or last
+    names = [e["event"] for e in events]
+    if names[-1] != "batch_finished":
+        fail("the last event is %s, not batch_finished" % names[-1])
+    finished = events[-1]
+    if not isinstance(finished.get("not_started"), list):
+        fail("batch_finished has no not_started list")
+    # Batch phases in order, before any job's.
+    seen = [e["phase"] for e in events if e["event"] == "phase" and "job" not in e]
+    order = [p for p in BATCH_PHASES if p in seen]
+    if "errors" not in expect:
+        if seen[:1] != ["manifest_read"] or order != sorted(order, key=BATCH_PHASES.index) or \
+                [p for p in seen if p not in BATCH_PHASES]:
+            fail("batch phases out of order: %r" % seen)
+        for p in BATCH_PHASES:
+            if p not in seen:
+                fail("no %s phase" % p)
+    # Per job: phases in order (colour comes right before the PNG's write,
+    # which may follow an EXR's write), progress within [0, 100].
+    jobs = {}
+    for e in events:
+        if "job" in e:
+            jobs.setdefault(e["job"], []).append(e)
+    for job, evs in jobs.items():
+        phases = [e["phase"] for e in evs if e["event"] == "phase"]
+        ranks = [JOB_PHASES.index(p) for p in phases]
+        first_write = phases.index("write") if "write" in phases else len(phases)
+        head = ranks[:first_write]
+        if head != sorted(head):
+            fail("job %s: phases out of order: %r" % (job, phases))
+        if "colour" in phases and phases[phases.index("colour") + 1:][:1] != ["write"]:
+            fail("job %s: colour not followed by a write: %r" % (job, phases))
+        end = [e for e in evs if e["event"].startswith("job_") and e["event"] != "job_started"]
+        if end and end[-1]["event"] == "job_finished":
+            for p in ("program_compile", "render", "write"):
+                if p not in phases:
+                    fail("job %s: no %s phase" % (job, p))
+            if phases.count("write") != len(end[-1]["outputs"]):
+                fail("job %s: %d writes for outputs %r" % (job, phases.count("write"),
+                                                            end[-1]["outputs"]))
+        for e in evs:
+            if e["event"] == "progress":
+                if not 0 <= e["percent"] <= 100 or "eta_s" not in e or e["eta_s"] < 0:
+                    fail("job %s: bad progress event %r" % (job, e))
+            if e["event"] in ("job_finished", "job_partial", "job_failed"):
+                if not isinstance(e.get("outputs"), list):
+                    fail("job %s: outputs is not a list: %r" % (job, e))
+                for o in e.get("outputs", []):
+                    if not os.path.isfile(o):
+                        fail("job %s: output %s does not exist" % (job, o))
+                if not e["seconds"] >= e["render_seconds"] >= 0 or e["scene_seconds"] < 0:
+                    fail("job %s: seconds do not add up: %r" % (job, e))
+                if e["seconds"] < e["scene_seconds"]:
+                    fail("job %s: seconds leave out the scene's: %r" % (job, e))
+        pct = [e["percent"] for e in evs if e["event"] == "progress"]
+        if pct != sorted(pct):
+            fail("job %s: percent goes back: %r" % (job, pct))
+    for x in expect:
+        if x.startswith("done="):
+            if finished.get("done") != int(x[5:]):
+                fail("batch_finished: done %r, expected %s" % (finished.get("done"), x[5:]))
+        elif x.startswith("not_started="):
+            want = [s for s in x[12:].split(",") if s]
+            if finished.get("not_started") != want:
+                fail("not_started %r, expected %r" % (finished.get("not_started"), want))
+        elif x == "errors" or x.startswith("file="):
+            errs = [e for e in events if e["event"] == "error"]
+            if not errs:
+                fail("no error events")
+            for e in errs:
+                if not isinstance(e.get("line"), int) or not isinstance(e.get("column"), int) \
+                        or not e.get("file") or not e.get("message"):
+                    fail("error event without file, line, column, message: %r" % (e,))
+                if x.startswith("file=") and e.get("file") != x[5:]:
+                    fail("error in %r, expected %s" % (e.get("file"), x[5:]))
+        elif x.startswith("scene_seconds_once"):
+            paid = [e for e in events if e["event"] == "job_finished" and e["scene_seconds"] > 0]
+            if len(paid) != 1:
+                fail("the scene's time is reported %d times, expected once" % len(paid))
+        else:
+            fail("unknown expectation %r" % x)
+
+
+def check_openjd(path):
+    last = -1
+    lines = open(path).read().splitlines()
+    if not lines:
+        fail("no lines")
+    for line in lines:
+        m = re.match(r"^openjd_(progress|status|fail): (.*)$", line)
+        if not m:
+            fail("not an OpenJD line: %r" % line)
+            continue
+        if m.group(1) == "progress":
+            v = float(m.group(2))
+            if not 0 <= v <= 100 or v < last:
+                fail("progress %r after %r" % (v, last))
+            last = v
+    if last != 100:
+        fail("progress ends at %r, not 100" % last)
+
+
+def check_dryrun(path, expect):
+    doc = json.load(open(path))
+    jobs = {j["name"]: j for j in doc["jobs"]}
+    for j in doc["jobs"]:
+        for key, kind in (("name", str), ("scene", str), ("outputs", list), ("resolution", list),
+                          ("spp", int), ("integrator", str), ("seed", int), ("shard", int)):
+            if not isinstance(j.get(key), kind):
+                fail("job %r: %s is not a %s" % (j.get("name"), key, kind.__name__))
+    for x in expect:
+        # name.key=value, value compared as JSON ("a.spp=3", "a.resolution=[8,6]")
+        m = re.match(r"^([^.=]+)\.([a-z_]+)=(.*)$", x)
+        if m:
+            got = jobs.get(m.group(1), {}).get(m.group(2), "<missing>")
+            if got != json.loads(m.group(3)):
+                fail("%s.%s is %r, expected %s" % (m.group(1), m.group(2), got, m.group(3)))
+        elif x.startswith("jobs="):
+            want = [s for s in x[5:].split(",") if s]
+            if [j["name"] for j in doc["jobs"]] != want:
+                fail("jobs %r, expected %r" % ([j["name"] for j in doc["jobs"]], want))
+        else:
+            fail("unknown expectation %r" % x)
+
+
+def main():
+    kind, path, expect = sys.argv[1], sys.argv[2], sys.argv[3:]
+    try:
+        {"json": lambda: check_json(path, expect), "openjd": lambda: check_openjd(path),
+         "dryrun": lambda: check_dryrun(path, expect)}[kind]()
+    except (ValueError, KeyError, OSError) as e:
+        fail("%s: %r" % (type(e).__name__, e))
+    for p in problems:
+        print("# %s: %s" % (path, p))
+    sys.exit(1 if problems else 0)
+
+
+main()
