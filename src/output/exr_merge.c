@@ -23,23 +23,6 @@ struct channel {
     float *pixels;   /* the whole display window */
 };
 
-static void quiet(exr_const_context_t ctxt, exr_result_t code, const char *msg)
-{
-}
-
-static bool open_tile(const char *path, exr_context_t *ctxt, struct cv_error *err)
-{
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = quiet;
-    exr_result_t rv = exr_start_read(ctxt, path, &init);
-    if (rv != EXR_ERR_SUCCESS) {
-        exr_finish(ctxt);
-        return cv_fail(err, "%s: cannot read as OpenEXR: %s", path,
-                       exr_get_default_error_message(rv));
-    }
-    return true;
-}
-
 /* The first tile's attributes that Cavalry writes as metadata. */
 static void copy_attributes(exr_context_t ctxt, struct cv_metadata *meta)
 {
@@ -87,7 +70,7 @@ static bool read_header(struct tile *t, bool first, struct channel **chans, size
                         struct cv_error *err)
 {
     exr_context_t ctxt = NULL;
-    if (!open_tile(t->path, &ctxt, err))
+    if (!cv_exr_open_read(t->path, &ctxt, err))
         return false;
     const exr_attr_chlist_t *cl = NULL;
     exr_compression_t c;

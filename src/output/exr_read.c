@@ -13,7 +13,7 @@ static void quiet(exr_const_context_t ctxt, exr_result_t code, const char *msg)
 {
 }
 
-static bool open_read(const char *path, exr_context_t *ctxt, struct cv_error *err)
+bool cv_exr_open_read(const char *path, exr_context_t *ctxt, struct cv_error *err)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = quiet;
@@ -30,7 +30,7 @@ bool cv_exr_read_attribute_string(const char *path, const char *name, char **val
                                   struct cv_error *err)
 {
     exr_context_t ctxt = NULL;
-    if (!open_read(path, &ctxt, err))
+    if (!cv_exr_open_read(path, &ctxt, err))
         return false;
     int32_t len = 0;
     const char *s = NULL;
@@ -106,7 +106,7 @@ static bool decode(exr_context_t ctxt, const char *path, const char *const *name
 static bool open_image(const char *path, exr_context_t *ctxt, exr_attr_box2i_t *dw,
                        struct cv_error *err)
 {
-    if (!open_read(path, ctxt, err))
+    if (!cv_exr_open_read(path, ctxt, err))
         return false;
     exr_storage_t storage;
     exr_result_t rv = exr_get_storage(*ctxt, 0, &storage);

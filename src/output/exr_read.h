@@ -9,7 +9,13 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include <openexr.h>
+
 #include "base/error.h"
+
+/* Starts reading `path` with OpenEXR's core API, its own messages quiet
+ * (the error names the path); the caller ends with exr_finish(ctxt). */
+bool cv_exr_open_read(const char *path, exr_context_t *ctxt, struct cv_error *err);
 
 /* *value is a newly allocated copy (free()). Fails, naming the path, when
  * the file cannot be read, or the attribute is missing or not a string. */
