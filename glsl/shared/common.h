@@ -3,7 +3,12 @@
  * use only 4-byte scalars and 16-byte vectors (no vec3, no vec2 after a
  * scalar), and keep every struct a multiple of 16 bytes. The C side checks
  * sizes with CV_CHECK_SIZE. The vector types are spelled cv_vec4, cv_uvec4
- * and cv_ivec4 on both sides: C structs here, GLSL's vec4, uvec4, ivec4. */
+ * and cv_ivec4 on both sides: C structs here, GLSL's vec4, uvec4, ivec4.
+ *
+ * Naming, one rule for the tree: a type that exists on the GPU (declared
+ * here for both languages, or in GLSL alone) is CvName, since GLSL has no
+ * struct tags and C sees the same name through CV_STRUCT's typedef; a type
+ * of the host alone is `struct cv_name`, never typedef'd. */
 #ifndef CV_SHARED_COMMON_H
 #define CV_SHARED_COMMON_H
 
