@@ -384,12 +384,10 @@ bool cv_plan_override_job(struct cv_job *job, const char *manifest_dir,
     }
     if (!rehash)
         return true;
-    /* The same stamp of the scene file as the manifest's hash (manifest.c). */
     struct stat st;
     if (stat(job->scene, &st) != 0)
         return cv_fail(err, "%s: %s", job->scene, strerror(errno));
     free(job->settings_hash);
-    job->settings_hash = cv_job_settings_hash(job, (long long)st.st_size,
-                                              (long long)st.st_mtim.tv_sec);
+    job->settings_hash = cv_job_settings_hash_stat(job, &st);
     return true;
 }

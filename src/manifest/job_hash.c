@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "base/mem.h"
 #include "manifest/job_hash.h"
@@ -167,4 +168,9 @@ char *cv_job_settings_hash(const struct cv_job *job, long long scene_size,
     uint64_t h = cv_fnv1a64(CV_FNV1A64_BASIS, text, strlen(text));
     free(text);
     return cv_xasprintf("%016llx", (unsigned long long)h);
+}
+
+char *cv_job_settings_hash_stat(const struct cv_job *job, const struct stat *scene)
+{
+    return cv_job_settings_hash(job, (long long)scene->st_size, (long long)scene->st_mtim.tv_sec);
 }

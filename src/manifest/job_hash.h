@@ -29,4 +29,9 @@ char *cv_job_settings_text(const struct cv_job *job, long long scene_size,
 char *cv_job_settings_hash(const struct cv_job *job, long long scene_size,
                            long long scene_mtime);
 
+/* The same with the scene file's stamp taken from its stat: the one place
+ * that decides which of its fields enter (size, whole-second mtime). */
+struct stat;
+char *cv_job_settings_hash_stat(const struct cv_job *job, const struct stat *scene);
+
 #endif

@@ -117,8 +117,7 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
             scene_ok = true;
     }
     if (scene_ok)
-        j->settings_hash = cv_job_settings_hash(j, (long long)st.st_size,
-                                                (long long)st.st_mtim.tv_sec);
+        j->settings_hash = cv_job_settings_hash_stat(j, &st);
 
     if (j->color.config && !is_ocio_uri(j->color.config)) {
         char *path = cv_path_join(dir, j->color.config);

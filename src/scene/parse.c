@@ -384,26 +384,39 @@ static void attrs_apply(struct parser *p, const char *target, struct cv_params *
 
 static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_error *err);
 
-/* The names do_directive takes, for telling a scene file from any other
- * file by its first token alone. */
-static bool known_directive(const struct cv_token *t)
+/* Every directive do_directive takes, once: its dispatch and the test that
+ * tells a scene file from any other file by its first token read this. */
+#define CV_DIRECTIVES(X) \
+    X(Accelerator) X(ActiveTransform) X(AreaLightSource) X(Attribute) X(AttributeBegin) \
+    X(AttributeEnd) X(Camera) X(ColorSpace) X(ConcatTransform) X(CoordSysTransform) \
+    X(CoordinateSystem) X(Film) X(Identity) X(Import) X(Include) X(Integrator) \
+    X(LightSource) X(LookAt) X(MakeNamedMaterial) X(MakeNamedMedium) X(Material) \
+    X(MediumInterface) X(NamedMaterial) X(ObjectBegin) X(ObjectEnd) X(ObjectInstance) \
+    X(Option) X(PixelFilter) X(ReverseOrientation) X(Rotate) X(Sampler) X(Scale) X(Shape) \
+    X(Texture) X(Transform) X(TransformBegin) X(TransformEnd) X(TransformTimes) X(Translate) \
+    X(WorldBegin) X(WorldEnd)
+
+enum directive {
+#define X(name) DIR_##name,
+    CV_DIRECTIVES(X)
+#undef X
+};
+
+static const char *const directive_names[] = {
+#define X(name) #name,
+    CV_DIRECTIVES(X)
+#undef X
+};
+
+/* The directive token t names, or -1. */
+static int directive_of(const struct cv_token *t)
 {
-    static const char *const names[] = {
-        "Accelerator", "ActiveTransform", "AreaLightSource", "Attribute", "AttributeBegin",
-        "AttributeEnd", "Camera", "ColorSpace", "ConcatTransform", "CoordSysTransform",
-        "CoordinateSystem", "Film", "Identity", "Import", "Include", "Integrator",
-        "LightSource", "LookAt", "MakeNamedMaterial", "MakeNamedMedium", "Material",
-        "MediumInterface", "NamedMaterial", "ObjectBegin", "ObjectEnd", "ObjectInstance",
-        "Option", "PixelFilter", "ReverseOrientation", "Rotate", "Sampler", "Scale", "Shape",
-        "Texture", "Transform", "TransformBegin", "TransformEnd", "TransformTimes", "Translate",
-        "WorldBegin", "WorldEnd",
-    };
     if (t->kind != CV_TOK_WORD)
-        return false;
-    for (size_t i = 0; i < CV_ARRAY_SIZE(names); i++)
-        if (cv_token_is(t, names[i]))
-            return true;
-    return false;
+        return -1;
+    for (size_t i = 0; i < CV_ARRAY_SIZE(directive_names); i++)
+        if (cv_token_is(t, directive_names[i]))
+            return (int)i;
+    return -1;
 }
 
 static bool run(struct parser *p, size_t base, struct cv_error *err)
@@ -418,7 +431,7 @@ static bool run(struct parser *p, size_t base, struct cv_error *err)
         }
         /* A file that does not start with a directive may be anything the
          * scene names (Include "/etc/shadow"): its text is not echoed. */
-        if (top(p)->directives++ == 0 && !known_directive(&t))
+        if (top(p)->directives++ == 0 && directive_of(&t) < 0)
             return cv_fail(err, "%s:%d:%d: not a pbrt scene file (it does not start with a "
                                 "directive)", t.file, t.line, t.col);
         if (t.kind != CV_TOK_WORD)
@@ -456,20 +469,21 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
     struct cv_params ps = {0};
     bool ok = true;
 
-#define IS(w) cv_token_is(d, w)
-    if (IS("Translate")) {
+    int id = directive_of(d);
+#define IS(name) (id == DIR_##name)
+    if (IS(Translate)) {
         if (!read_numbers(p, d, v, 3, err))
             return false;
         apply(b, cv_mat4_translate(v[0], v[1], v[2]));
-    } else if (IS("Scale")) {
+    } else if (IS(Scale)) {
         if (!read_numbers(p, d, v, 3, err))
             return false;
         apply(b, cv_mat4_scale(v[0], v[1], v[2]));
-    } else if (IS("Rotate")) {
+    } else if (IS(Rotate)) {
         if (!read_numbers(p, d, v, 4, err))
             return false;
         apply(b, cv_mat4_rotate(v[0], v[1], v[2], v[3]));
-    } else if (IS("LookAt")) {
+    } else if (IS(LookAt)) {
         if (!read_numbers(p, d, v, 9, err))
             return false;
         struct cv_mat4 m;
@@ -479,27 +493,27 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         } else {
             apply(b, m);
         }
-    } else if (IS("Transform") || IS("ConcatTransform")) {
+    } else if (IS(Transform) || IS(ConcatTransform)) {
         if (!read_numbers(p, d, v, 16, err))
             return false;
         struct cv_mat4 m;
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++)
                 m.m[j][i] = v[i * 4 + j];
-        if (IS("Transform"))
+        if (IS(Transform))
             set_ctm(b, m);
         else
             apply(b, m);
-    } else if (IS("Identity")) {
+    } else if (IS(Identity)) {
         set_ctm(b, cv_mat4_identity());
-    } else if (IS("CoordinateSystem") || IS("CoordSysTransform")) {
+    } else if (IS(CoordinateSystem) || IS(CoordSysTransform)) {
         if (!expect_string(p, d, &name, err))
             return false;
         size_t i;
         for (i = 0; i < b->n_coordsys; i++)
             if (strcmp(b->coordsys[i].name, name) == 0)
                 break;
-        if (IS("CoordinateSystem")) {
+        if (IS(CoordinateSystem)) {
             if (i == b->n_coordsys) {
                 struct cv_coordsys c = {cv_xstrdup(name), b->gs.ctm};
                 CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
@@ -511,7 +525,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         } else {
             set_ctm(b, b->coordsys[i].m);
         }
-    } else if (IS("ActiveTransform")) {
+    } else if (IS(ActiveTransform)) {
         struct cv_token t;
         if (!next(p, &t, err))
             return false;
@@ -525,18 +539,18 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (!cv_token_is(&t, "All"))
             ok = cv_b_warn(b, err, &loc, "ActiveTransform %.*s: motion blur is not supported; "
                            "the scene is taken at shutter open", (int)t.len, t.text);
-    } else if (IS("TransformTimes")) {
+    } else if (IS(TransformTimes)) {
         if (!read_numbers(p, d, v, 2, err))
             return false;
-    } else if (IS("ReverseOrientation")) {
+    } else if (IS(ReverseOrientation)) {
         b->gs.reverse = !b->gs.reverse;
-    } else if (IS("AttributeBegin") || IS("TransformBegin")) {
-        attr_push(b, IS("TransformBegin"), &loc);
-    } else if (IS("AttributeEnd") || IS("TransformEnd")) {
-        if (!attr_pop(b, IS("TransformEnd"), d, err))
+    } else if (IS(AttributeBegin) || IS(TransformBegin)) {
+        attr_push(b, IS(TransformBegin), &loc);
+    } else if (IS(AttributeEnd) || IS(TransformEnd)) {
+        if (!attr_pop(b, IS(TransformEnd), d, err))
             return false;
         attrs_drop_to(p, b->n_stack);
-    } else if (IS("Attribute")) {
+    } else if (IS(Attribute)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         if (strcmp(type, "shape") != 0 && strcmp(type, "light") != 0 && strcmp(type, "material") != 0 &&
@@ -551,13 +565,13 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
                 ps.v[i].used = true;
             }
         }
-    } else if (IS("Option")) {
+    } else if (IS(Option)) {
         if (!read_params(p, &ps, err))
             goto fail;
         for (size_t i = 0; i < ps.n; i++)
             ps.v[i].used = true;
         ok = ps.n == 0 || cv_b_warn(b, err, &loc, "Option \"%s\" noted and ignored", ps.v[0].name);
-    } else if (IS("ColorSpace")) {
+    } else if (IS(ColorSpace)) {
         if (!expect_string(p, d, &name, err))
             return false;
         if (strcmp(name, "srgb") != 0)
@@ -565,7 +579,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         free(b->color_space);
         b->color_space = name;
         name = NULL;
-    } else if (IS("WorldBegin")) {
+    } else if (IS(WorldBegin)) {
         if (b->world)
             ok = cv_b_warn(b, err, &loc, "WorldBegin repeated");
         b->world = true;
@@ -575,17 +589,17 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         b->gs.end_only = false;
         struct cv_coordsys c = {cv_xstrdup("world"), cv_mat4_identity()};
         CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
-    } else if (IS("WorldEnd")) {
+    } else if (IS(WorldEnd)) {
         /* v3: end of scene; nothing to do. */
-    } else if (IS("Camera")) {
+    } else if (IS(Camera)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         ok = cv_b_camera(b, type, &ps, &loc, err) && cv_b_check_unused(b, &ps, "Camera", err);
-    } else if (IS("Film")) {
+    } else if (IS(Film)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         ok = cv_b_film(b, type, &ps, &loc, err) && cv_b_check_unused(b, &ps, "Film", err);
-    } else if (IS("Sampler")) {
+    } else if (IS(Sampler)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         int spp = cv_params_int(&ps, "pixelsamples", (int)CV_DEFAULT_SPP);
@@ -601,7 +615,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         type = NULL;
         for (size_t i = 0; i < ps.n; i++)
             ps.v[i].used = true; /* sampler tuning has no meaning here */
-    } else if (IS("PixelFilter")) {
+    } else if (IS(PixelFilter)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         struct cv_render_settings *st = &b->s->settings;
@@ -619,7 +633,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         st->filter_sigma = (float)cv_params_float(&ps, "sigma", CV_FILTER_GAUSSIAN_SIGMA);
         cv_params_float(&ps, "alpha", 0);
         ok = ok && cv_b_check_unused(b, &ps, "PixelFilter", err);
-    } else if (IS("Integrator")) {
+    } else if (IS(Integrator)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         int md = cv_params_int(&ps, "maxdepth", (int)CV_DEFAULT_MAX_DEPTH);
@@ -631,20 +645,20 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         type = NULL;
         for (size_t i = 0; i < ps.n; i++)
             ps.v[i].used = true;
-    } else if (IS("Accelerator")) {
+    } else if (IS(Accelerator)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         for (size_t i = 0; i < ps.n; i++)
             ps.v[i].used = true;
         cv_info("%s:%d:%d: Accelerator \"%s\" ignored (Cavalry builds its own BVH)", loc.file,
                 loc.line, loc.col, type);
-    } else if (IS("Shape")) {
+    } else if (IS(Shape)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         attrs_apply(p, "shape", &ps);
         dir = dir_of(p, d);
         ok = cv_b_shape(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "Shape", err);
-    } else if (IS("Material")) {
+    } else if (IS(Material)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         attrs_apply(p, "material", &ps);
@@ -654,7 +668,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
              cv_b_check_unused(b, &ps, "Material", err);
         if (ok)
             b->gs.material = idx;
-    } else if (IS("MakeNamedMaterial")) {
+    } else if (IS(MakeNamedMaterial)) {
         if (!typed(p, d, &name, &ps, err))
             goto fail;
         attrs_apply(p, "material", &ps);
@@ -674,7 +688,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
                                &b->cap_materials_named, name, idx);
             }
         }
-    } else if (IS("NamedMaterial")) {
+    } else if (IS(NamedMaterial)) {
         if (!expect_string(p, d, &name, err))
             return false;
         int idx = cv_b_lookup(b->materials_named, b->n_materials_named, name);
@@ -683,7 +697,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
                          loc.col, name);
         else
             b->gs.material = idx;
-    } else if (IS("Texture")) {
+    } else if (IS(Texture)) {
         char *kind = NULL;
         if (!expect_string(p, d, &name, err) || !expect_string(p, d, &kind, err) ||
             !typed(p, d, &type, &ps, err)) {
@@ -695,20 +709,20 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         ok = cv_b_texture(b, name, kind, type, &ps, &loc, dir, err) &&
              cv_b_check_unused(b, &ps, "Texture", err);
         free(kind);
-    } else if (IS("LightSource")) {
+    } else if (IS(LightSource)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         attrs_apply(p, "light", &ps);
         dir = dir_of(p, d);
         ok = cv_b_light(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "LightSource", err);
-    } else if (IS("AreaLightSource")) {
+    } else if (IS(AreaLightSource)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
         attrs_apply(p, "light", &ps);
         dir = dir_of(p, d);
         ok = cv_b_area_light(b, type, &ps, &loc, dir, err) &&
              cv_b_check_unused(b, &ps, "AreaLightSource", err);
-    } else if (IS("MakeNamedMedium")) {
+    } else if (IS(MakeNamedMedium)) {
         if (!typed(p, d, &name, &ps, err))
             goto fail;
         attrs_apply(p, "medium", &ps);
@@ -716,7 +730,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             ps.v[i].used = true;
         CV_PUSH(b->media, b->n_media, b->cap_media, cv_xstrdup(name));
         ok = cv_b_warn(b, err, &loc, "medium \"%s\" parsed; participating media are not rendered", name);
-    } else if (IS("MediumInterface")) {
+    } else if (IS(MediumInterface)) {
         /* one or two names: inside [outside] */
         if (!expect_string(p, d, &name, err))
             return false;
@@ -725,7 +739,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             goto fail;
         if (t.kind == CV_TOK_STRING)
             next(p, &t, err);
-    } else if (IS("ObjectBegin")) {
+    } else if (IS(ObjectBegin)) {
         if (!expect_string(p, d, &name, err))
             return false;
         if (b->cur_object >= 0) {
@@ -739,13 +753,13 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             CV_PUSH(b->objects, b->n_objects, b->cap_objects, o);
             b->cur_object = (int)b->n_objects - 1;
         }
-    } else if (IS("ObjectEnd")) {
+    } else if (IS(ObjectEnd)) {
         if (b->cur_object < 0)
             return cv_fail(err, "%s:%d:%d: ObjectEnd without ObjectBegin", loc.file, loc.line, loc.col);
         b->cur_object = -1;
         if (!attr_pop(b, false, d, err))
             return false;
-    } else if (IS("ObjectInstance")) {
+    } else if (IS(ObjectInstance)) {
         if (!expect_string(p, d, &name, err))
             return false;
         int found = -1;
@@ -756,7 +770,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             ok = cv_fail(err, "%s:%d:%d: unknown object \"%s\"", loc.file, loc.line, loc.col, name);
         else
             ok = cv_b_instance(b, found, &loc, err);
-    } else if (IS("Include") || IS("Import")) {
+    } else if (IS(Include) || IS(Import)) {
         if (!expect_string(p, d, &name, err))
             return false;
         dir = dir_of(p, d);
