@@ -13,7 +13,13 @@ cd "$tmp"
 
 # stop SIGNAL STATUS: starts the long job, sends SIGNAL after its first pass.
 stop() {
-    rm -rf out
+    # The last run's events must be gone before this run starts: the
+    # background job truncates run.jsonl only once it is scheduled, and a
+    # grep that found the last run's progress would signal this one before
+    # it has its handlers (a non-interactive shell starts background jobs
+    # with SIGINT ignored, nohup with SIGHUP ignored: the signal is lost and
+    # the job runs to the end).
+    rm -rf out run.jsonl run.err
     "$CAVALRY_BATCH" --progress=json long.yaml >run.jsonl 2>run.err &
     pid=$!
     # Wait (bounded) for the first finished pass.
