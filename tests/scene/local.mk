@@ -1,8 +1,10 @@
 # tests/scene: the pbrt importer. dump_scene prints cv_scene_dump for the
-# shell tests; fuzz_scene is the mutation fuzzer run by fuzz_test.sh.
-check_PROGRAMS += tests/scene/dump_scene tests/scene/fuzz_scene
+# shell tests; fuzz_scene and fuzz_texture are the mutation fuzzers run by
+# fuzz_test.sh and fuzz_texture_test.sh.
+check_PROGRAMS += tests/scene/dump_scene tests/scene/fuzz_scene tests/scene/fuzz_texture
 tests_scene_dump_scene_LDADD = $(CV_LIBS)
 tests_scene_fuzz_scene_LDADD = $(CV_LIBS)
+tests_scene_fuzz_texture_LDADD = $(CV_LIBS)
 
 check_PROGRAMS += tests/scene/parse_test
 TESTS += tests/scene/parse_test
@@ -16,8 +18,8 @@ check_PROGRAMS += tests/scene/ply_test
 TESTS += tests/scene/ply_test
 tests_scene_ply_test_LDADD = $(CV_LIBS)
 
-TESTS += tests/scene/fuzz_test.sh tests/scene/shared_scenes_test.sh tests/scene/inputs_test.sh
-EXTRA_DIST += tests/scene/scene_helpers.h tests/scene/fuzz_test.sh tests/scene/shared_scenes_test.sh \
+TESTS += tests/scene/fuzz_test.sh tests/scene/fuzz_texture_test.sh tests/scene/shared_scenes_test.sh tests/scene/inputs_test.sh
+EXTRA_DIST += tests/scene/scene_helpers.h tests/scene/fuzz_test.sh tests/scene/fuzz_texture_test.sh tests/scene/shared_scenes_test.sh \
 	tests/scene/inputs_test.sh \
 	tests/data/scene/tiny-v3.pbrt tests/data/scene/tiny-v4.pbrt tests/data/scene/errors.pbrt \
 	tests/data/scene/quad.ply tests/data/scene/quad-be.ply tests/data/scene/quad-le.ply
