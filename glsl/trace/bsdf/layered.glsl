@@ -30,6 +30,7 @@
 #include "fresnel.glsl"
 #include "microfacet.glsl"
 #include "conductor.glsl"
+#include "dielectric.glsl"
 #include "diffuse.glsl"
 #include "bsdf_sample.glsl"
 
@@ -105,23 +106,6 @@ float cv_lay_power(float f, float g) { return f * f / (f * f + g * g); }
 
 // ---- the coat: a dielectric of IOR eta seen from either side. radiance:
 // transport mode (radiance divides transmission by eta'^2, importance not).
-// The generalized half vector of a coat reflection or transmission from
-// wo to wi, facing +z, with the relative IOR etap of the pair; false where
-// the pair has none (grazing, or a microfacet facing away from either).
-bool cv_lay_coat_half(CvLayered L, vec3 wo, vec3 wi, out vec3 wm, out float etap, out bool refl)
-{
-    float co = wo.z, ci = wi.z;
-    refl = co * ci > 0.0;
-    etap = refl ? 1.0 : (co > 0.0 ? L.eta : 1.0 / L.eta);
-    wm = wi * etap + wo;
-    if (ci == 0.0 || co == 0.0 || dot(wm, wm) == 0.0)
-        return false;
-    wm = normalize(wm);
-    if (wm.z < 0.0)
-        wm = -wm;
-    return dot(wm, wi) * ci >= 0.0 && dot(wm, wo) * co >= 0.0;
-}
-
 float cv_lay_coat_f(CvLayered L, vec3 wo, vec3 wi, bool radiance)
 {
     if (cv_lay_coat_smooth(L) || L.eta == 1.0)
@@ -129,7 +113,7 @@ float cv_lay_coat_f(CvLayered L, vec3 wo, vec3 wi, bool radiance)
     float co = wo.z, ci = wi.z, etap;
     vec3 wm;
     bool refl;
-    if (!cv_lay_coat_half(L, wo, wi, wm, etap, refl))
+    if (!cv_dielectric_half(L.eta, wo, wi, wm, etap, refl))
         return 0.0;
     float F = cv_fr_dielectric(dot(wo, wm), L.eta);
     vec2 a = L.coat_alpha;
@@ -147,7 +131,7 @@ float cv_lay_coat_pdf(CvLayered L, vec3 wo, vec3 wi, uint mask)
     float etap;
     vec3 wm;
     bool refl;
-    if (!cv_lay_coat_half(L, wo, wi, wm, etap, refl))
+    if (!cv_dielectric_half(L.eta, wo, wi, wm, etap, refl))
         return 0.0;
     float R = cv_fr_dielectric(dot(wo, wm), L.eta);
     float pr = (mask & CV_LAY_R) != 0u ? R : 0.0;
