@@ -1,5 +1,6 @@
 /* image.c: reading the image formats pbrt scenes use. */
 #include <ctype.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include "base/file.h"
 #include "base/mem.h"
 #include "scene/exr_image.h"
+#include "scene/hdr_check.h"
 #include "scene/image.h"
 
 #define MAX_DIM 65536
@@ -139,7 +141,19 @@ static bool load_stb(const char *path, bool srgb, struct cv_image *img, struct c
 {
     int w, h, n;
     if (stbi_is_hdr(path)) {
-        float *f = stbi_loadf(path, &w, &h, &n, 4);
+        char *data;
+        size_t len;
+        if (!cv_read_file(path, &data, &len, err))
+            return false;
+        const unsigned char *u = (const unsigned char *)data;
+        if (len > INT_MAX || !cv_hdr_check(path, u, len, err)) {
+            if (len > INT_MAX)
+                cv_fail(err, "%s: image too large", path);
+            free(data);
+            return false;
+        }
+        float *f = stbi_loadf_from_memory(u, (int)len, &w, &h, &n, 4);
+        free(data);
         if (!f)
             return cv_fail(err, "%s: %s", path, stbi_failure_reason());
         img->width = w;

@@ -11,6 +11,7 @@ libcavalry_a_SOURCES += \
 	src/scene/materials.c \
 	src/scene/spectrum.c \
 	src/scene/image.c src/scene/image.h \
+	src/scene/hdr_check.c src/scene/hdr_check.h \
 	src/scene/exr_image.cpp src/scene/exr_image.h \
 	src/scene/texture.c \
 	src/scene/lights.c \

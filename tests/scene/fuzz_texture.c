@@ -69,10 +69,10 @@ static void add_pfm(struct cv_fuzz_seed *seeds, size_t *n)
 
 static void add_hdr(struct cv_fuzz_seed *seeds, size_t *n)
 {
-    /* 2x2 flat RGBE. No run-length seed: Debian's stb_image loops forever
-     * on a truncated new-style run-length scanline (a run count of 0 read
-     * at end of file), which a seed of that kind finds within a few
-     * hundred cases; see the fuzz report of issue 25. */
+    /* 2x2 flat RGBE, and 8x2 run-length encoded (one run per channel on
+     * the first scanline, literal bytes on the second): truncating it ends
+     * a scanline early, which Debian's stb_image would decode forever were
+     * it not checked first (src/scene/hdr_check.c). */
     unsigned char buf[128];
     const char *flat = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\n";
     size_t l = strlen(flat);
@@ -82,6 +82,22 @@ static void add_hdr(struct cv_fuzz_seed *seeds, size_t *n)
         memcpy(buf + l + 4 * i, px, 4);
     }
     add_seed(seeds, n, buf, l + 16, K_HDR);
+    const char *rle = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 8\n";
+    l = strlen(rle);
+    memcpy(buf, rle, l);
+    for (int k = 0; k < 4; k++) { /* scanline 0: a run of 8 per channel */
+        if (k == 0)
+            memcpy(buf + l, (unsigned char[4]){2, 2, 0, 8}, 4), l += 4;
+        buf[l++] = 128 + 8;
+        buf[l++] = (unsigned char)(k == 3 ? 129 : 100 + 20 * k);
+    }
+    memcpy(buf + l, (unsigned char[4]){2, 2, 0, 8}, 4), l += 4;
+    for (int k = 0; k < 4; k++) { /* scanline 1: 8 literal bytes per channel */
+        buf[l++] = 8;
+        for (int i = 0; i < 8; i++)
+            buf[l++] = (unsigned char)(k == 3 ? 128 : 16 * i + k);
+    }
+    add_seed(seeds, n, buf, l, K_HDR);
 }
 
 static void add_exr(struct cv_fuzz_seed *seeds, size_t *n, const char *dir)

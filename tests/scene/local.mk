@@ -23,3 +23,7 @@ EXTRA_DIST += tests/scene/scene_helpers.h tests/scene/fuzz_test.sh tests/scene/f
 	tests/scene/inputs_test.sh \
 	tests/data/scene/tiny-v3.pbrt tests/data/scene/tiny-v4.pbrt tests/data/scene/errors.pbrt \
 	tests/data/scene/quad.ply tests/data/scene/quad-be.ply tests/data/scene/quad-le.ply
+
+check_PROGRAMS += tests/scene/hdr_check_test
+TESTS += tests/scene/hdr_check_test
+tests_scene_hdr_check_test_LDADD = $(CV_LIBS)
