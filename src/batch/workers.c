@@ -218,9 +218,9 @@ static void job_ended(struct parent *P, struct worker *w, const struct cv_wire_m
     cv_progress_job_ended(P->progress, job ? job : "?", &r);
     if (w->job >= 0 && job && strcmp(job, P->jobs[w->job]) == 0)
         w->job = -1;
-    /* a partial image without a signal to the batch: someone stopped this
-     * worker, and the job is not done */
-    if (r.outcome == CV_JOB_FAILED || (r.outcome == CV_JOB_PARTIAL && !P->signalled)) {
+    /* A partial image is a time limit reached, or a signal: to the batch,
+     * or to this worker alone, whose exit status then says so (outcome). */
+    if (r.outcome == CV_JOB_FAILED) {
         P->failed++;
         P->stop |= P->opt->fail_fast;
     }
@@ -299,12 +299,18 @@ static void worker_ended(struct parent *P, struct worker *w)
     w->fd = -1;
     while (waitpid(w->pid, &w->status, 0) < 0 && errno == EINTR)
         ;
-    if (w->job < 0)
-        return;
-    /* The job it had never ended: the parent reports it, once. */
     size_t wi = (size_t)(w - P->w);
-    const char *name = P->jobs[w->job];
+    enum cv_batch_status s;
     char *why = describe_exit(w->status);
+    if (w->job < 0) {
+        /* a crash between jobs, or a program that did not start */
+        if (!WIFEXITED(w->status) || !P->wp->status_of_exit(WEXITSTATUS(w->status), &s))
+            cv_error_log("worker %zu (gpu %d) %s", wi, w->gpu, why);
+        free(why);
+        return;
+    }
+    /* The job it had never ended: the parent reports it, once. */
+    const char *name = P->jobs[w->job];
     char *msg = cv_xasprintf("job \"%s\": worker %zu (gpu %d) %s before the job ended", name, wi,
                              w->gpu, why);
     cv_error_log("%s", msg);
@@ -439,7 +445,7 @@ static enum cv_batch_status outcome(const struct parent *P)
 {
     if (cv_signals_interrupted())
         return CV_BATCH_INTERRUPTED;
-    bool invalid = false, no_gpu = false, opened = false, crashed = false;
+    bool invalid = false, no_gpu = false, opened = false, crashed = false, stopped = false;
     for (size_t i = 0; i < P->n; i++) {
         const struct worker *w = &P->w[i];
         enum cv_batch_status s = CV_BATCH_JOBS_FAILED;
@@ -448,6 +454,7 @@ static enum cv_batch_status outcome(const struct parent *P)
         if (!WIFEXITED(w->status) || !P->wp->status_of_exit(WEXITSTATUS(w->status), &s))
             crashed = true;
         invalid |= s == CV_BATCH_INVALID;
+        stopped |= s == CV_BATCH_INTERRUPTED;  /* by a signal to it alone */
         no_gpu |= s == CV_BATCH_NO_GPU;
         opened |= w->opened_gpu;
     }
@@ -457,7 +464,7 @@ static enum cv_batch_status outcome(const struct parent *P)
     bool unrun = P->have_jobs && P->next < P->n_jobs && !P->stop;
     if (unrun && no_gpu && !opened)
         return CV_BATCH_NO_GPU;
-    if (P->failed || unrun || crashed)
+    if (P->failed || unrun || crashed || stopped)
         return CV_BATCH_JOBS_FAILED;
     return CV_BATCH_OK;
 }

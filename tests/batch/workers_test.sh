@@ -9,9 +9,10 @@
 # while the other worker renders the rest; SIGTERM stops every worker,
 # leaves images marked partial and no temporary file, and exits 143;
 # --resume and a manifest on standard input work; OpenJD progress rises to
-# 100; a worker whose GPU does not open leaves its jobs to the others (exit
-# 4 when none opens); --gpu all on a machine with one device runs as a
-# single process does.
+# 100; jobs stopped by their time limit are no failure, a worker stopped by
+# a signal of its own is; a worker whose GPU does not open leaves its jobs
+# to the others (exit 4 when none opens); --gpu all on a machine with one
+# device runs as a single process does.
 . "${srcdir:-.}/tests/setup.sh"
 py=/usr/bin/python3
 [ -x "$py" ] || skip_all "no $py"
@@ -141,6 +142,33 @@ for j in $partial; do
         test "$("$exr_attr" "out/$j.exr" cavalry.status 2>/dev/null)" = partial
 done
 check "SIGTERM: the stream ends with batch_finished" "$py" "$checker" json term.jsonl each_once
+
+# A time limit that stops both workers' jobs is no failure, as in one process.
+"$CAVALRY_BATCH" --workers=2 --time-limit=1 --progress=json --output-dir=limit long.yaml \
+    >limit.jsonl 2>limit.err && rc=0 || rc=$?
+check "time limit: exit 0 (got $rc)" test "$rc" -eq 0
+check "time limit: every job partial, once" test "$(jobs_with job_partial limit.jsonl)" = "l0 l1 l2 "
+
+# SIGTERM to one worker alone: its job is partial, the other worker goes on
+# (to its time limit), and the batch is not done: exit 1.
+"$CAVALRY_BATCH" --workers=2 --time-limit=3 --progress=json --output-dir=one long.yaml \
+    >one.jsonl 2>one.err &
+pid=$!
+n=0
+while [ "$(count '"event":"progress"' one.jsonl)" -lt 2 ]; do
+    n=$((n + 1))
+    if [ "$n" -gt 1200 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
+    sleep 0.1
+done
+w=$(ps -o pid= --ppid "$pid" | head -n 1)
+kill -TERM $w || :
+set +e
+wait "$pid"
+rc=$?
+set -e
+check "SIGTERM to one worker: exit 1 (got $rc)" test "$rc" -eq 1
+check "SIGTERM to one worker: every job ended once" "$py" "$checker" json one.jsonl \
+    each_once not_started=
 
 # A worker whose GPU does not open: the other renders every job; only when
 # none opens is the status 4.
