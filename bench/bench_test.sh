@@ -80,4 +80,15 @@ done > "$tmp/runs.jsonl"
 "$cb" --summarize "$tmp/runs.jsonl" > "$tmp/sum.json" 2>/dev/null
 check "summary: median of 1, 5, 3 is 3" grep -q '"load.wall_ms": {"median": 3, "min": 1, "max": 5' "$tmp/sum.json"
 check "summary lists what is unavailable" grep -q '"unavailable": {"bvh": "why"}' "$tmp/sum.json"
+
+# multigpu.sh on llvmpipe's one device, two workers on it: both wall times
+# and a speed-up are printed, and the jobs are spread over the workers.
+if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
+    check_out "multigpu.sh runs" "$tmp/mg.out" sh "$CAVALRY_DATA_DIR/bench/multigpu.sh" \
+        --binary "$CAVALRY_BATCH" --work "$tmp/mg" --jobs 4 --spp 1 --size 16x9 \
+        --gpus 0,0 "$tmp/a/scene.pbrt" 2>"$tmp/mg.err"
+    check "multigpu.sh prints both times and the speed-up" sh -c "grep -q '^gpu0_s [0-9.]*\$' \
+        '$tmp/mg.out' && grep -q '^multi_s [0-9.]*\$' '$tmp/mg.out' && grep -q '^speedup ' '$tmp/mg.out'"
+    check "multigpu.sh counts the jobs of each worker" grep -q 'worker [01] (gpu 0)' "$tmp/mg.out"
+fi
 done_testing

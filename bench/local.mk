@@ -27,3 +27,10 @@ EXTRA_DIST += bench/run.sh bench/converge.sh bench/csv_median.sh bench/README.md
 	bench/RESULTS.md
 TESTS += bench/bench_test.sh
 EXTRA_DIST += bench/bench_test.sh
+
+# `make bench-multigpu`: the wall time of N jobs on GPU 0, then on every GPU
+# (bench/multigpu.sh; its options through MULTIGPU_FLAGS, e.g. "--jobs 32").
+.PHONY: bench-multigpu
+bench-multigpu: src/cavalry-batch bench/gen_scene
+	$(SHELL) $(srcdir)/bench/multigpu.sh --binary src/cavalry-batch $(MULTIGPU_FLAGS)
+EXTRA_DIST += bench/multigpu.sh

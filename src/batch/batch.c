@@ -17,6 +17,7 @@
 #include "batch/job_lock.h"
 #include "batch/run_job.h"
 #include "batch/signals.h"
+#include "batch/workers.h"
 #include "manifest/manifest.h"
 #include "manifest/shard.h"
 #include "scene/scene.h"
@@ -324,8 +325,12 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         status = CV_BATCH_NO_GPU;
         goto done;
     }
+    cv_progress_source(progress, -1, gpu->info.device_index);
     unsigned failed = 0;
-    for (size_t k = 0; k < sel.n_jobs && !cv_signals_interrupted(); k++) {
+    /* In manifest order; a worker of a multi-GPU batch gets its jobs from
+     * the parent instead (workers.h), still in that order. */
+    size_t k, next = 0;
+    while (!cv_signals_interrupted() && cv_batch_next_job(opt->worker, sel.n_jobs, &next, &k)) {
         const struct cv_job *job = &m->jobs[sel.jobs[k]];
         struct loaded_scene *ls = &sel.scenes[sel.scene_of[k]];
         /* Several workers may share the manifest: a job is rendered only

@@ -11,6 +11,7 @@
 #include "gpu/context.h"
 
 struct cv_bvh_params;
+struct cv_worker_link;
 
 struct cv_batch_options {
     const char *const *only;       /* run only jobs matching one of these fnmatch(3)
@@ -32,6 +33,8 @@ struct cv_batch_options {
     enum cv_progress_mode progress;
     const struct cv_bvh_params *bvh;  /* the scenes' BVH builds; NULL: defaults */
     bool stage_times;              /* time every render stage (trace/render.h) */
+    struct cv_worker_link *worker; /* a worker of a multi-GPU batch: jobs and events
+                                    * go through its parent (workers.h); NULL: none */
 };
 
 enum cv_batch_status {

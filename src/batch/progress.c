@@ -13,6 +13,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "batch/progress.h"
+#include "batch/progress_wire.h"
 
 struct job_row {
     char *name;
@@ -20,6 +21,13 @@ struct job_row {
     uint32_t spp;
     double seconds;
     char *detail;        /* outputs space-separated, or why skipped or failed */
+};
+
+/* The job a worker runs (index 0 in a single process), for the OpenJD
+ * percentage and the bar of a multi-GPU batch. */
+struct running {
+    char *job;           /* NULL: none */
+    double percent;
 };
 
 struct cv_progress {
@@ -33,6 +41,9 @@ struct cv_progress {
     bool *reached;
     size_t n_selected;
     int last_openjd;     /* the last openjd_progress percentage printed; -1: none */
+    int worker, gpu;     /* cv_progress_source; -1: none */
+    struct running *running;
+    size_t n_running, cap_running;
 };
 
 static const char *const mode_names[] = {"auto", "bar", "json", "none", "openjd"};
@@ -85,6 +96,8 @@ struct cv_progress *cv_progress_create(enum cv_progress_mode mode, FILE *tty, FI
     p->tty = tty;
     p->json = json;
     p->last_openjd = -1;
+    p->worker = -1;
+    p->gpu = -1;
     return p;
 }
 
@@ -100,6 +113,9 @@ void cv_progress_destroy(struct cv_progress **p)
         free((*p)->selected[i]);
     free((*p)->selected);
     free((*p)->reached);
+    for (size_t i = 0; i < (*p)->n_running; i++)
+        free((*p)->running[i].job);
+    free((*p)->running);
     free((*p)->rows);
     free(*p);
     *p = NULL;
@@ -136,6 +152,34 @@ static bool openjd_on(const struct cv_progress *p)
     return p->mode == CV_PROGRESS_OPENJD && !p->json_lost;
 }
 
+/* A worker's calls go to its parent; once the parent is gone (a write
+ * fails) there is no one to tell. */
+static bool wire_on(const struct cv_progress *p)
+{
+    return p->mode == CV_PROGRESS_WIRE && !p->json_lost;
+}
+
+#define WIRE(p, ...) ((p)->json_lost = !cv_wire_send((p)->json, __VA_ARGS__) || (p)->json_lost)
+
+/* The running job of the worker the events come from. */
+static struct running *running_slot(struct cv_progress *p)
+{
+    size_t w = p->worker > 0 ? (size_t)p->worker : 0;
+    while (p->n_running <= w)
+        CV_PUSH(p->running, p->n_running, p->cap_running, ((struct running){0}));
+    return &p->running[w];
+}
+
+void cv_progress_source(struct cv_progress *p, int worker, int gpu)
+{
+    if (wire_on(p)) {
+        WIRE(p, CV_WIRE_GPU, gpu);
+        return;
+    }
+    p->worker = worker;
+    p->gpu = gpu;
+}
+
 /* A reader that went away (SIGPIPE is ignored, so EPIPE), a full disk: the
  * render goes on, but whoever watches the stream must learn why it stopped. */
 static void flush_machine(struct cv_progress *p)
@@ -163,6 +207,10 @@ static void json_begin(struct cv_progress *p, const char *event, const char *job
         fputs(",\"job\":", p->json);
         cv_json_string(p->json, job);
     }
+    if ((job || p->worker >= 0) && p->gpu >= 0)
+        fprintf(p->json, ",\"gpu\":%d", p->gpu);
+    if (p->worker >= 0)
+        fprintf(p->json, ",\"worker\":%d", p->worker);
 }
 
 static void json_end(struct cv_progress *p)
@@ -188,11 +236,14 @@ static void openjd_line(struct cv_progress *p, const char *kind, const char *fmt
     flush_machine(p);
 }
 
-/* Jobs ended so far plus the share of the one running, over the batch. */
-static void openjd_progress(struct cv_progress *p, double job_percent)
+/* Jobs ended so far plus the shares of those running, over the batch. */
+static void openjd_progress(struct cv_progress *p)
 {
     size_t total = p->n_selected ? p->n_selected : 1;
-    double pct = ((double)p->n_rows + job_percent / 100.0) / (double)total * 100.0;
+    double running = 0;
+    for (size_t i = 0; i < p->n_running; i++)
+        running += p->running[i].job ? p->running[i].percent / 100.0 : 0;
+    double pct = ((double)p->n_rows + running) / (double)total * 100.0;
     int whole = pct < 0 ? 0 : pct > 100 ? 100 : (int)pct;
     if (whole == p->last_openjd)
         return;  /* one line per percent, not per pass */
@@ -220,6 +271,11 @@ static void close_line(struct cv_progress *p)
 void cv_progress_batch_started(struct cv_progress *p, const char *manifest,
                                const char *const *jobs, size_t n_jobs)
 {
+    if (p->mode == CV_PROGRESS_WIRE) {
+        if (wire_on(p))
+            WIRE(p, CV_WIRE_BATCH_STARTED, manifest, jobs, n_jobs);
+        return;
+    }
     p->selected = cv_xcalloc(n_jobs ? n_jobs : 1, sizeof(char *));
     p->reached = cv_xcalloc(n_jobs ? n_jobs : 1, sizeof(bool));
     p->n_selected = n_jobs;
@@ -239,7 +295,7 @@ void cv_progress_batch_started(struct cv_progress *p, const char *manifest,
         json_end(p);
     } else if (openjd_on(p)) {
         openjd_line(p, "status", "%zu job(s) to render", n_jobs);
-        openjd_progress(p, 0);
+        openjd_progress(p);
     }
 }
 
@@ -248,7 +304,9 @@ void cv_progress_phase(struct cv_progress *p, const char *job, enum cv_phase pha
 {
     if (!p)
         return;
-    if (json_on(p)) {
+    if (wire_on(p)) {
+        WIRE(p, CV_WIRE_PHASE, job, (unsigned)phase, what);
+    } else if (json_on(p)) {
         json_begin(p, "phase", job);
         fprintf(p->json, ",\"phase\":\"%s\"", cv_phase_name(phase));
         if (what) {
@@ -257,7 +315,10 @@ void cv_progress_phase(struct cv_progress *p, const char *job, enum cv_phase pha
         }
         json_end(p);
     } else if (openjd_on(p)) {
-        openjd_line(p, "status", "%s%s%s%s%s", job ? job : "", job ? ": " : "",
+        char who[32] = "";  /* each worker of a multi-GPU batch reads and opens its own */
+        if (!job && p->worker >= 0)
+            snprintf(who, sizeof(who), "worker %d: ", p->worker);
+        openjd_line(p, "status", "%s%s%s%s%s%s", who, job ? job : "", job ? ": " : "",
                     cv_phase_name(phase), what ? " " : "", what ? what : "");
     }
 }
@@ -283,6 +344,10 @@ static bool split_located(const char *s, size_t *file_len, unsigned *line, unsig
 
 void cv_progress_error(struct cv_progress *p, const char *lines)
 {
+    if (wire_on(p)) {
+        WIRE(p, CV_WIRE_ERROR, lines);
+        return;
+    }
     if (!json_on(p) && !openjd_on(p))
         return;  /* the log has printed them */
     const char *s = lines ? lines : "";
@@ -316,16 +381,28 @@ void cv_progress_error(struct cv_progress *p, const char *lines)
 void cv_progress_job_started(struct cv_progress *p, const char *job, unsigned index,
                              unsigned total, uint32_t target_spp)
 {
+    if (p->mode == CV_PROGRESS_WIRE) {
+        if (wire_on(p))
+            WIRE(p, CV_WIRE_JOB_STARTED, job, index, total, (unsigned)target_spp);
+        return;
+    }
     mark_reached(p, job);
+    struct running *r = running_slot(p);
+    free(r->job);
+    *r = (struct running){.job = cv_xstrdup(job)};
+    /* the bar and the OpenJD status name the device when several run */
+    char where[48] = "";
+    if (p->worker >= 0)
+        snprintf(where, sizeof(where), " on gpu %d (worker %d)", p->gpu, p->worker);
     if (json_on(p)) {
         json_begin(p, "job_started", job);
         fprintf(p->json, ",\"index\":%u,\"total\":%u,\"target_spp\":%u", index, total, target_spp);
         json_end(p);
     } else if (openjd_on(p)) {
-        openjd_line(p, "status", "job %u/%u: %s", index, total, job);
+        openjd_line(p, "status", "job %u/%u: %s%s", index, total, job, where);
     } else if (p->mode == CV_PROGRESS_BAR) {
         close_line(p);
-        fprintf(p->tty, "[%u/%u] %s\n", index, total, job);
+        fprintf(p->tty, "[%u/%u] %s%s\n", index, total, job, where);
     }
 }
 
@@ -344,6 +421,13 @@ static void human_rate(char *buf, size_t n, double v)
 void cv_progress_update(struct cv_progress *p, const char *job, uint32_t spp, uint32_t target_spp,
                         double rays_per_s, double elapsed_s, double percent, double eta_s)
 {
+    if (p->mode == CV_PROGRESS_WIRE) {
+        if (wire_on(p))
+            WIRE(p, CV_WIRE_UPDATE, job, (unsigned)spp, (unsigned)target_spp, rays_per_s,
+                 elapsed_s, percent, eta_s);
+        return;
+    }
+    running_slot(p)->percent = percent;
     if (json_on(p)) {
         json_begin(p, "progress", job);
         fprintf(p->json,
@@ -354,7 +438,16 @@ void cv_progress_update(struct cv_progress *p, const char *job, uint32_t spp, ui
             fprintf(p->json, ",\"eta_s\":%.1f", eta_s);
         json_end(p);
     } else if (openjd_on(p)) {
-        openjd_progress(p, percent);
+        openjd_progress(p);
+    } else if (p->mode == CV_PROGRESS_BAR && p->worker >= 0) {
+        /* several jobs at once: one line with each worker's */
+        fputs("\r ", p->tty);
+        for (size_t i = 0; i < p->n_running; i++)
+            if (p->running[i].job)
+                fprintf(p->tty, " [%zu] %s %.0f%%", i, p->running[i].job, p->running[i].percent);
+        fputs("   ", p->tty);
+        fflush(p->tty);
+        p->line_open = true;
     } else if (p->mode == CV_PROGRESS_BAR) {
         enum { WIDTH = 30 };
         int fill = (int)(percent / 100.0 * WIDTH);
@@ -374,7 +467,17 @@ void cv_progress_update(struct cv_progress *p, const char *job, uint32_t spp, ui
 
 void cv_progress_job_ended(struct cv_progress *p, const char *job, const struct cv_job_report *r)
 {
+    if (p->mode == CV_PROGRESS_WIRE) {
+        if (wire_on(p))
+            WIRE(p, CV_WIRE_JOB_ENDED, job, (unsigned)r->outcome, (unsigned)r->spp, r->seconds,
+                 r->scene_seconds, r->render_seconds, r->detail, r->outputs, r->n_outputs);
+        return;
+    }
     mark_reached(p, job);
+    struct running *slot = running_slot(p);
+    free(slot->job);
+    slot->job = NULL;
+    slot->percent = 0;
     char *detail = NULL;
     if (r->n_outputs) {
         size_t n = 1;
@@ -420,9 +523,11 @@ void cv_progress_job_ended(struct cv_progress *p, const char *job, const struct 
     } else if (openjd_on(p)) {
         openjd_line(p, "status", "%s: %s%s%s", job, outcome_name(r->outcome),
                     r->detail ? ": " : "", r->detail ? r->detail : "");
-        openjd_progress(p, 0);
+        openjd_progress(p);
     } else if (p->mode == CV_PROGRESS_BAR) {
         close_line(p);
+        if (p->worker >= 0)  /* ends of several workers' jobs interleave */
+            fprintf(p->tty, "  %s", job);
         fprintf(p->tty, "  %s: %u spp in %.1fs%s%s\n", outcome_name(r->outcome), r->spp,
                 r->seconds, detail ? " - " : "", detail ? detail : "");
     }
@@ -430,6 +535,8 @@ void cv_progress_job_ended(struct cv_progress *p, const char *job, const struct 
 
 void cv_progress_summary(struct cv_progress *p)
 {
+    if (p->mode == CV_PROGRESS_WIRE)
+        return;  /* the parent sums up every worker's */
     unsigned counts[4] = {0};
     for (size_t i = 0; i < p->n_rows; i++)
         counts[p->rows[i].outcome]++;

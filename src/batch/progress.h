@@ -19,6 +19,8 @@ enum cv_progress_mode {
     CV_PROGRESS_JSON,
     CV_PROGRESS_NONE,
     CV_PROGRESS_OPENJD,
+    CV_PROGRESS_WIRE,      /* a worker's calls, to its parent (progress_wire.h);
+                            * not a --progress name */
 };
 
 enum cv_job_outcome {
@@ -88,6 +90,14 @@ void cv_progress_job_ended(struct cv_progress *p, const char *job,
 /* Prints the summary table (to the terminal stream unless in json mode,
  * where it becomes a batch_finished object naming the jobs never started). */
 void cv_progress_summary(struct cv_progress *p);
+
+/* Where the next events come from: worker, the worker process of a
+ * multi-GPU batch (batch/workers.h), -1 in a single process; gpu, the EGL
+ * device index, -1 when unknown. Events about a job then carry "gpu" and
+ * "worker" (each when not -1), and so do a worker's batch phases and errors;
+ * a bar or OpenJD status names them. In mode CV_PROGRESS_WIRE the device
+ * goes to the parent. */
+void cv_progress_source(struct cv_progress *p, int worker, int gpu);
 
 /* Appends s to out as a JSON string literal (with quotes). */
 void cv_json_string(FILE *out, const char *s);

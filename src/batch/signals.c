@@ -6,9 +6,17 @@
 #include "batch/signals.h"
 
 static volatile sig_atomic_t received;
+static volatile sig_atomic_t as_worker;
 
 static void on_signal(int sig)
 {
+    if (as_worker) {
+        /* The parent has said it; a second signal ends the parent, and
+         * the kernel then ends its workers (workers.c). */
+        if (!received)
+            received = sig;
+        return;
+    }
     if (received) {
         /* Asked twice: the user means it. Nothing half-written remains,
          * since every output goes through a temporary file. */
@@ -36,6 +44,11 @@ void cv_signals_install(void)
      * stream reports once. */
     sa.sa_handler = SIG_IGN;
     sigaction(SIGPIPE, &sa, NULL);
+}
+
+void cv_signals_as_worker(void)
+{
+    as_worker = 1;
 }
 
 bool cv_signals_interrupted(void)

@@ -9,6 +9,11 @@
 #include <stdbool.h>
 
 void cv_signals_install(void);
+/* In a worker of a multi-GPU batch (workers.h): the first signal stops it
+ * after the pass, quietly (its parent speaks); later ones are ignored, since
+ * a terminal sends each to the parent and its workers alike, and the parent
+ * passes the first one on. */
+void cv_signals_as_worker(void);
 bool cv_signals_interrupted(void);
 /* The signal number received first, 0 when none. */
 int cv_signals_which(void);

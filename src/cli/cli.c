@@ -12,6 +12,7 @@
 #include "base/mem.h"
 #include "batch/batch.h"
 #include "batch/signals.h"
+#include "batch/workers.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "cli/knobs.h"
@@ -56,6 +57,11 @@ static void usage(FILE *out)
           "      --list-gpus         list the GPUs and which one would be used\n"
           "      --list-keys         list the manifest keys: name, type, default, meaning\n"
           "      --gpu=N             use EGL device N (see --list-gpus)\n"
+          "      --gpu=all, --gpu=N,M...\n"
+          "                          spread the jobs over every GPU, or those listed,\n"
+          "                          one worker process each\n"
+          "      --workers=N         N worker processes over the GPUs given (default\n"
+          "                          one per GPU)\n"
           "      --backend=NAME      auto, egl or osmesa\n"
           "  -q, --quiet             only errors\n"
           "  -v, --verbose           debugging detail, OpenGL debug messages included\n"
@@ -74,6 +80,102 @@ static void usage(FILE *out)
           "or scene, 4 no usable GPU, 70 out of memory, 128+N stopped by signal N (130\n"
           "SIGINT, 143 SIGTERM, 129 SIGHUP; partial images written).\n",
           out);
+}
+
+/* The batch's outcomes and their exit statuses (cavalry-batch(1)), both
+ * ways: a multi-GPU batch reads its workers' exit statuses. */
+static const struct {
+    enum cv_batch_status status;
+    int code;
+} exit_codes[] = {
+    {CV_BATCH_OK, CV_EXIT_OK},
+    {CV_BATCH_JOBS_FAILED, CV_EXIT_JOBS_FAILED},
+    {CV_BATCH_INVALID, CV_EXIT_INVALID},
+    {CV_BATCH_NO_GPU, CV_EXIT_NO_GPU},
+};
+
+static int exit_code(enum cv_batch_status status)
+{
+    if (status == CV_BATCH_INTERRUPTED)
+        return CV_EXIT_SIGNAL_BASE + cv_signals_which();
+    for (size_t i = 0; i < CV_ARRAY_SIZE(exit_codes); i++)
+        if (exit_codes[i].status == status)
+            return exit_codes[i].code;
+    return CV_EXIT_JOBS_FAILED;
+}
+
+static bool status_of_exit(int code, enum cv_batch_status *status)
+{
+    if (code > CV_EXIT_SIGNAL_BASE && code < CV_EXIT_SIGNAL_BASE + 64) {
+        *status = CV_BATCH_INTERRUPTED;
+        return true;
+    }
+    for (size_t i = 0; i < CV_ARRAY_SIZE(exit_codes); i++) {
+        if (exit_codes[i].code == code) {
+            *status = exit_codes[i].status;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* --gpu: "all", one index or a comma-separated list (an index may repeat:
+ * two workers on one device). */
+struct gpu_choice {
+    bool all;
+    int list[CV_MAX_WORKERS];
+    size_t n;
+};
+
+static bool parse_gpus(const char *s, struct gpu_choice *g)
+{
+    *g = (struct gpu_choice){0};
+    if (strcmp(s, "all") == 0) {
+        g->all = true;
+        return true;
+    }
+    const char *p = s;
+    do {
+        char *end;
+        if (*p < '0' || *p > '9' || g->n == CV_MAX_WORKERS)
+            return false;
+        unsigned long v = strtoul(p, &end, 10);
+        if (v > 1000 || (*end && *end != ','))
+            return false;
+        g->list[g->n++] = (int)v;
+        p = *end ? end + 1 : end;
+    } while (*p || p[-1] == ',');
+    return g->n > 0;
+}
+
+/* Runs the batch on the devices of --gpu and --workers: in this process
+ * when that is one worker on one device, as without them. */
+static int run_batch(const char *manifest, struct cv_batch_options *o, const struct gpu_choice *g,
+                     unsigned workers, char **argv, int n_options)
+{
+    int gpus[CV_MAX_WORKERS];
+    size_t n = 0;
+    if (g->all)
+        n = (size_t)cv_gpu_all_devices(&o->gpu, gpus, CV_MAX_WORKERS);
+    for (size_t i = 0; i < g->n; i++)
+        gpus[n++] = g->list[i];
+    if (n == 0)
+        gpus[n++] = o->gpu.gpu_index;  /* the default choice, or the one --gpu named */
+    if (!workers)
+        workers = (unsigned)n;
+    if (workers == 1 || o->check_only || o->dry_run) {
+        o->gpu.gpu_index = gpus[0];
+        return exit_code(cv_batch_run(manifest, o));
+    }
+    struct cv_workers_params wp = {
+        .gpus = gpus,
+        .n_gpus = n,
+        .n_workers = workers,
+        .argv = argv,
+        .n_options = n_options,
+        .status_of_exit = status_of_exit,
+    };
+    return exit_code(cv_workers_run(manifest, o, &wp));
 }
 
 /* Every diagnostic, this one too, carries the log's prefix ("error: "). */
@@ -195,7 +297,7 @@ int cv_cli_main(int argc, char **argv)
         OPT_LIST_GPUS = 256, OPT_GPU, OPT_BACKEND, OPT_CHECK, OPT_DRY_RUN, OPT_ONLY, OPT_RESUME,
         OPT_FORCE, OPT_FAIL_FAST, OPT_SHARD_INDEX, OPT_SHARD_COUNT, OPT_TIME_LIMIT, OPT_PROGRESS,
         OPT_STRICT, OPT_DUMP_SCENE, OPT_LIST_KEYS, OPT_SCENE_ROOT, OPT_MERGE, OPT_JSON, OPT_SPP,
-        OPT_RESOLUTION, OPT_OUTPUT_DIR,
+        OPT_RESOLUTION, OPT_OUTPUT_DIR, OPT_WORKERS, OPT_WORKER,
     };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
@@ -221,13 +323,18 @@ int cv_cli_main(int argc, char **argv)
         {"list-gpus", no_argument, NULL, OPT_LIST_GPUS},
         {"list-keys", no_argument, NULL, OPT_LIST_KEYS},
         {"gpu", required_argument, NULL, OPT_GPU},
+        {"workers", required_argument, NULL, OPT_WORKERS},
+        {"worker", required_argument, NULL, OPT_WORKER},
         {"backend", required_argument, NULL, OPT_BACKEND},
         {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},
         {NULL, 0, NULL, 0},
     };
     struct cv_batch_options o = {.gpu = {.gpu_index = -1, .backend = CV_BACKEND_AUTO}};
-    bool list_gpus = false, have_index = false, have_count = false;
+    bool list_gpus = false, have_index = false, have_count = false, worker = false;
+    struct gpu_choice gpus = {0};
+    unsigned workers = 0;
+    int worker_gpu = -1;
     const char *dump = NULL, *merge = NULL;
     int verbosity = 0, c;
     unsigned u;
@@ -316,11 +423,31 @@ int cv_cli_main(int argc, char **argv)
             }
             break;
         case OPT_GPU:
-            if (!parse_uint(optarg, 1000, &u)) {
-                cv_error_log("--gpu wants a device index, not \"%s\"", optarg);
+            if (!parse_gpus(optarg, &gpus)) {
+                cv_error_log("--gpu wants a device index, a list (0,1) or all, not \"%s\"",
+                             optarg);
                 return usage_error();
             }
-            o.gpu.gpu_index = (int)u;
+            /* one device: as before, in this process */
+            o.gpu.gpu_index = gpus.n == 1 ? gpus.list[0] : -1;
+            if (gpus.n == 1)
+                gpus.n = 0;
+            break;
+        case OPT_WORKERS:
+            if (!parse_uint(optarg, CV_MAX_WORKERS, &workers) || !workers) {
+                cv_error_log("--workers wants a number from 1 to %d, not \"%s\"",
+                             CV_MAX_WORKERS, optarg);
+                return usage_error();
+            }
+            break;
+        case OPT_WORKER:  /* internal: a worker of a multi-GPU batch (workers.h) */
+            worker = true;
+            if (strcmp(optarg, "default") == 0)
+                worker_gpu = -1;
+            else if (parse_uint(optarg, 1000, &u))
+                worker_gpu = (int)u;
+            else
+                return usage_error();
             break;
         case OPT_BACKEND:
             if (!parse_backend(optarg, &o.gpu.backend)) {
@@ -405,12 +532,12 @@ int cv_cli_main(int argc, char **argv)
                 o.shard_index, o.shard_count);
         return usage_error();
     }
-    switch (cv_batch_run(argv[optind], &o)) {
-    case CV_BATCH_OK: return CV_EXIT_OK;
-    case CV_BATCH_JOBS_FAILED: return CV_EXIT_JOBS_FAILED;
-    case CV_BATCH_INVALID: return CV_EXIT_INVALID;
-    case CV_BATCH_NO_GPU: return CV_EXIT_NO_GPU;
-    case CV_BATCH_INTERRUPTED: return CV_EXIT_SIGNAL_BASE + cv_signals_which();
+    if (worker) {
+        /* the parent chose the device and shows the progress */
+        o.gpu.gpu_index = worker_gpu;
+        o.progress = CV_PROGRESS_WIRE;
+        o.worker = cv_worker_attach();
+        return exit_code(cv_batch_run(argv[optind], &o));
     }
-    return CV_EXIT_JOBS_FAILED;
+    return run_batch(argv[optind], &o, &gpus, workers, argv, optind - 1);
 }

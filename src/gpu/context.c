@@ -167,8 +167,11 @@ static bool finish(struct cv_gpu *gpu, struct cv_gpu **out, struct cv_error *err
     enable_debug_output();
     gpu->programs = cv_program_cache_create();
     gpu->scratch = cv_buffer_pool_create();
-    cv_info("GPU: %s (%s, OpenGL %s, %s)", gpu->info.renderer, gpu->info.vendor,
-            gpu->info.version, gpu->info.backend);
+    char index[24] = "";  /* tells apart the GPUs of a multi-GPU batch */
+    if (gpu->info.device_index >= 0)
+        snprintf(index, sizeof(index), " %d", gpu->info.device_index);
+    cv_info("GPU: %s (%s, OpenGL %s, %s%s)", gpu->info.renderer, gpu->info.vendor,
+            gpu->info.version, gpu->info.backend, index);
     *out = gpu;
     return true;
 }
@@ -222,6 +225,32 @@ void cv_gpu_destroy(struct cv_gpu **gpu)
         (*gpu)->platform_destroy((*gpu)->platform);
     free(*gpu);
     *gpu = NULL;
+}
+
+int cv_gpu_all_devices(const struct cv_gpu_params *params, int *out, int max)
+{
+    struct cv_gpu_candidate cands[CV_MAX_CANDIDATES];
+    if (params->backend == CV_BACKEND_OSMESA)
+        return 0;
+    int n = cv_egl_candidates(cands, CV_MAX_CANDIDATES), found = 0;
+    /* by CUDA id: insertion into out, few devices */
+    for (int i = 0; i < n; i++) {
+        if (cands[i].index < 0 || cands[i].cuda_id < 0 || found == max)
+            continue;
+        int at = found++;
+        while (at > 0 && cands[out[at - 1]].cuda_id > cands[i].cuda_id) {
+            out[at] = out[at - 1];
+            at--;
+        }
+        out[at] = i;
+    }
+    if (!found)
+        for (int i = 0; i < n && found < max; i++)
+            if (cands[i].index >= 0 && !cands[i].software)
+                out[found++] = i;
+    for (int i = 0; i < found; i++)
+        out[i] = cands[out[i]].index;
+    return found;
 }
 
 bool cv_gpu_list(const struct cv_gpu_params *params, FILE *out, struct cv_error *err)

@@ -71,6 +71,14 @@ void cv_gpu_destroy(struct cv_gpu **gpu);
  * and marks the one `params` would choose. Returns false only when none. */
 bool cv_gpu_list(const struct cv_gpu_params *params, FILE *out, struct cv_error *err);
 
+/* The devices "--gpu all" spreads a batch over, as EGL device indices, in
+ * the order to use them; returns how many (at most max). Where the driver
+ * gives CUDA ids (EGL_NV_device_cuda), the devices that have one, by id, so
+ * that what the driver makes of CUDA_VISIBLE_DEVICES holds; else every
+ * hardware device; else none, and the caller uses the one device that
+ * cv_gpu_create would choose. Opens no context. */
+int cv_gpu_all_devices(const struct cv_gpu_params *params, int *out, int max);
+
 /* Checks an extension of the current context without libepoxy's helpers,
  * which cannot run under OSMesa. */
 bool cv_gl_has_extension(const char *name);

@@ -20,3 +20,6 @@ EXTRA_DIST += tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh
 # --- PNG colour tags by display encoding (issue 24, bug 7) ---
 TESTS += tests/batch/png_tag_test.sh
 EXTRA_DIST += tests/batch/png_tag_test.sh
+# --- multi-GPU batches: --gpu all, --workers (issue 28) ---
+TESTS += tests/batch/workers_test.sh
+EXTRA_DIST += tests/batch/workers_test.sh

@@ -129,6 +129,34 @@ def check_json(path, expect):
             paid = [e for e in events if e["event"] == "job_finished" and e["scene_seconds"] > 0]
             if len(paid) != 1:
                 fail("the scene's time is reported %d times, expected once" % len(paid))
+        elif x.startswith("workers="):
+            # a multi-GPU batch: events from each worker named, and every
+            # event about a job says its worker and device
+            want = sorted(int(w) for w in x[8:].split(","))
+            seen = sorted({e["worker"] for e in events if "worker" in e})
+            if seen != want:
+                fail("events from workers %r, expected %r" % (seen, want))
+            for e in events:
+                if "job" in e and not (isinstance(e.get("worker"), int) and
+                                       isinstance(e.get("gpu"), int)):
+                    fail("job event without worker and gpu: %r" % (e,))
+        elif x == "no_workers":
+            if [e for e in events if "worker" in e]:
+                fail("events name workers in a single process")
+        elif x == "each_once":
+            # every selected job starts once and ends once, but those
+            # batch_finished says never started
+            started = [e for e in events if e["event"] == "batch_started"]
+            if len(started) != 1:
+                fail("%d batch_started events" % len(started))
+            never = finished.get("not_started") or []
+            for job in started[0]["jobs"] if started else []:
+                evs = jobs.get(job, [])
+                n_start = len([e for e in evs if e["event"] == "job_started"])
+                n_end = len([e for e in evs if e["event"] in
+                             ("job_finished", "job_partial", "job_failed", "job_skipped")])
+                if (n_start > 1 or n_end != 1) and not (job in never and n_start + n_end == 0):
+                    fail("job %s: started %d times, ended %d times" % (job, n_start, n_end))
         else:
             fail("unknown expectation %r" % x)
 
