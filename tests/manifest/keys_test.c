@@ -65,6 +65,11 @@ static char *example(const struct cv_key *k)
     case CV_KT_RESOLUTION: return cv_xstrdup("[3, 2]");
     case CV_KT_LOOKAT: return cv_xstrdup("[[0, 0, 0], [0, 0, 1], [0, 1, 0]]");
     case CV_KT_CROP: return cv_xstrdup("[0.25, 0.75, 0, 0.5]");
+    /* a key that is not hashed, as the matrix row is not: its values
+     * enter the hash as the keys they set */
+    case CV_KT_MATRIX: return cv_xstrdup("{formats: [exr, png]}");
+    case CV_KT_ROTATE: return cv_xstrdup("[90, 0, 1, 0]");
+    case CV_KT_LIGHT_SCALES: return cv_xstrdup("{0: 2, 3: 0.5}");
     case CV_KT_SECTION: break;
     }
     return NULL;
