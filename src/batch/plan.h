@@ -13,6 +13,7 @@
 #include "base/error.h"
 #include "color/color_params.h"
 #include "manifest/manifest.h"
+#include "scene/relight.h"
 #include "scene/scene.h"
 #include "trace/render.h"
 
@@ -46,6 +47,11 @@ struct cv_render_plan {
      * reads, of the effective OCIO config for PNG outputs, and Cavalry's
      * version. */
     char settings_hash[17];
+    /* The job's env.* and lights.* overrides, checked against the scene:
+     * applied to its light records per job (scene/relight.h), never by
+     * loading it again. relit false: the scene's lights as they are. */
+    bool relit;
+    struct cv_relight relight;
 };
 
 /* Command-line overrides (cavalry-batch --spp, --resolution, --output-dir),

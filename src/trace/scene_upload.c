@@ -27,9 +27,25 @@ void cv_light_cdf(const float *power, uint32_t n, float *cdf)
         cdf[n - 1] = 1;
 }
 
+/* Each image infinite light's prim: the offset of its distribution in the
+ * environment buffer, in light order (build_env_dists fills the buffer in
+ * the same order). */
+static void env_offsets(const struct cv_scene *s, CvLight *lights)
+{
+    size_t at = 0;
+    for (uint32_t i = 0; i < s->n_lights; i++) {
+        CvLight *l = &lights[i];
+        if (l->type != CV_LIGHT_INFINITE_MAP || l->tex < 0 || (uint32_t)l->tex >= s->n_textures)
+            continue;
+        const CvTexture *t = &s->textures[l->tex];
+        l->prim = (uint32_t)at;
+        at += cv_envmap_dist_floats(t->width, t->height);
+    }
+}
+
 /* Environment-map distributions of the image infinite lights, one float
  * buffer (glsl/shared/envmap.h); each such light's prim becomes its offset
- * in `lights` (a copy). *dist is at least one float. */
+ * in `lights` (a copy; env_offsets). *dist is at least one float. */
 static bool build_env_dists(const struct cv_scene *s, CvLight *lights, float **dist, size_t *n,
                             struct cv_error *err)
 {
@@ -191,6 +207,12 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
 
 void cv_scene_gpu_release(struct cv_scene_gpu *g)
 {
+    if (g->base) {  /* a relit copy owns only these */
+        cv_buffer_destroy(&g->lights);
+        cv_buffer_destroy(&g->light_cdf);
+        memset(g, 0, sizeof(*g));
+        return;
+    }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
@@ -222,4 +244,31 @@ void cv_scene_gpu_destroy(struct cv_scene_gpu **g)
     cv_scene_gpu_release(*g);
     free(*g);
     *g = NULL;
+}
+
+bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
+                          const struct cv_scene *s, const CvLight *lights, const float *power,
+                          struct cv_scene_gpu **out, struct cv_error *err)
+{
+    struct cv_scene_gpu g = *base;
+    g.base = base;
+    g.lights = g.light_cdf = 0;
+    uint32_t n = s->n_lights;
+    CvLight *l = cv_xcalloc(n ? n : 1, sizeof(CvLight));
+    float *cdf = cv_xcalloc(n ? n : 1, sizeof(float));
+    if (n)
+        memcpy(l, lights, n * sizeof(CvLight));
+    env_offsets(s, l);
+    cv_light_cdf(power, n, cdf);
+    bool ok = up(gpu, &g.lights, n * sizeof(CvLight), l, "scene lights (relit)", err) &&
+              up(gpu, &g.light_cdf, n * sizeof(float), cdf, "scene light cdf (relit)", err);
+    free(l);
+    free(cdf);
+    if (!ok) {
+        cv_scene_gpu_release(&g);
+        return false;
+    }
+    *out = cv_xmalloc(sizeof(**out));
+    **out = g;
+    return true;
 }

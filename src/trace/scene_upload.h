@@ -24,6 +24,9 @@ struct cv_scene_gpu {
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
+    /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its
+     * own, every other buffer and the BVH are base's; NULL otherwise. */
+    const struct cv_scene_gpu *base;
 };
 
 /* Light selection CDF: cdf[i] = sum of pmf[0..i] with pmf proportional to
@@ -50,5 +53,14 @@ bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s,
 /* Accepts NULL; clears the pointer. The renderers using it must be
  * destroyed first. */
 void cv_scene_gpu_destroy(struct cv_scene_gpu **g);
+
+/* A copy of base, the upload of s, with its own light records and
+ * light-selection CDF from lights and power (s->n_lights each; a job's
+ * overrides, scene/relight.h); everything else, the BVH included, stays
+ * base's, which must outlive it. Costs an upload of the lights: per job,
+ * not per pass. Destroy with cv_scene_gpu_destroy. */
+bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
+                          const struct cv_scene *s, const CvLight *lights, const float *power,
+                          struct cv_scene_gpu **out, struct cv_error *err);
 
 #endif
