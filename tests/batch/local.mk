@@ -20,3 +20,9 @@ EXTRA_DIST += tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh
 # --- PNG colour tags by display encoding (issue 24, bug 7) ---
 TESTS += tests/batch/png_tag_test.sh
 EXTRA_DIST += tests/batch/png_tag_test.sh
+# --- matrix jobs and light overrides (issue 28) ---
+check_PROGRAMS += tests/batch/exr_scale
+tests_batch_exr_scale_LDADD = $(CV_LIBS)
+TESTS += tests/batch/matrix_test.sh tests/batch/relight_test.sh
+EXTRA_DIST += tests/batch/matrix_test.sh tests/batch/relight_test.sh tests/data/batch/env.pbrt \
+	tests/data/batch/env_turned.pbrt
