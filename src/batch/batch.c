@@ -45,11 +45,13 @@ struct selection {
     size_t n_scenes, cap_scenes;
     size_t *scene_of;            /* per selected job: index into scenes */
     struct cv_render_plan *plans;  /* per selected job */
+    struct cv_env_files env_files; /* env.file images, each loaded once */
 };
 
 static void selection_free(struct selection *p)
 {
     free(p->plans);
+    cv_env_files_clear(&p->env_files);
     for (size_t i = 0; i < p->n_scenes; i++)
         cv_scene_destroy(&p->scenes[i].scene);
     free(p->scenes);
@@ -159,7 +161,10 @@ static bool make_plans(const struct cv_manifest *m, const struct cv_batch_option
         .time_limit = opt->time_limit,
         .check_color = true,
         .stage_times = opt->stage_times,
+        .env_files = &p->env_files,
     };
+    p->env_files.params = (struct cv_scene_load_params){.strict = opt->strict,
+                                                        .root = opt->scene_root};
     bool ok = true;
     char *all = NULL;
     for (size_t k = 0; k < p->n_jobs; k++) {

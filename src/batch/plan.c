@@ -255,10 +255,29 @@ static bool plan_lights(const struct cv_job *job, const struct cv_scene *scene,
     struct cv_relight *r = &p->relight;
     *r = (struct cv_relight){.env_scale = 1};
     const struct cv_job_env *env = &job->env;
-    if ((env->has_scale || env->has_rotate) && !cv_scene_has_env(scene))
-        return fail_at(err, o, job, env->has_scale ? CV_K_ENV_SCALE : CV_K_ENV_ROTATE,
+    if ((env->file || env->has_scale || env->has_rotate) && !cv_scene_has_env(scene))
+        return fail_at(err, o, job,
+                       env->file        ? CV_K_ENV_FILE
+                       : env->has_scale ? CV_K_ENV_SCALE
+                                        : CV_K_ENV_ROTATE,
                        "the scene has no environment light (LightSource \"infinite\") "
                        "to change");
+    if (env->file) {
+        struct cv_error e = {{0}};
+        if (!o->env_files)
+            return fail_at(err, o, job, CV_K_ENV_FILE, "env.file: no image cache in this run");
+        if (!cv_env_files_get(o->env_files, env->file, &r->env, &e))
+            return fail_at(err, o, job, CV_K_ENV_FILE, e.msg);
+        r->env_equal_area = cv_scene_env_equal_area(scene, r->env);
+        const CvTexture *t = &r->env->textures[r->env->lights[0].tex];
+        if (r->env_equal_area && t->width != t->height) {
+            char msg[320];
+            snprintf(msg, sizeof(msg),
+                     "env.file: \"%s\" is %ux%u; the scene's environment is an equal-area "
+                     "map (pbrt-v4), which is square", env->file, t->width, t->height);
+            return fail_at(err, o, job, CV_K_ENV_FILE, msg);
+        }
+    }
     if (env->has_scale)
         r->env_scale = env->scale;
     if (env->has_rotate) {
@@ -279,7 +298,7 @@ static bool plan_lights(const struct cv_job *job, const struct cv_scene *scene,
         }
         r->scales[r->n_scales++] = (struct cv_relight_scale){ls->v[i].light, ls->v[i].scale};
     }
-    p->relit = env->has_scale || env->has_rotate || r->n_scales > 0;
+    p->relit = r->env || env->has_scale || env->has_rotate || r->n_scales > 0;
     return true;
 }
 
@@ -309,6 +328,8 @@ static void plan_hash(const struct cv_job *job, const struct cv_scene *scene,
     h = cv_fnv1a64(h, job->settings_hash, strlen(job->settings_hash));
     for (size_t i = 0; i < scene->n_inputs; i++)
         h = hash_stamp(h, "input", scene->inputs[i]);
+    if (job->env.file)  /* its name is in the job's hash; its contents enter here */
+        h = hash_stamp(h, "env", job->env.file);
     if (job->formats & CV_FORMAT_PNG) {
         const char *cfg = cv_ocio_config_file(job->color.config);
         if (!cfg) {

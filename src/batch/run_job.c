@@ -209,12 +209,15 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     struct cv_scene_gpu *relit = NULL;
     if (plan->relit) {
         uint32_t n = scene->n_lights ? scene->n_lights : 1;
+        const struct cv_scene *env = plan->relight.env;
         CvLight *lights = cv_xcalloc(n, sizeof(CvLight));
         float *power = cv_xcalloc(n, sizeof(float));
-        cv_scene_relight(scene, &plan->relight, lights, power);
-        bool made = cv_scene_gpu_relight(gpu, gs, scene, lights, power, &relit, err);
+        CvTexture *env_tex = env ? cv_xcalloc(env->n_textures, sizeof(CvTexture)) : NULL;
+        cv_scene_relight(scene, &plan->relight, lights, power, env_tex);
+        bool made = cv_scene_gpu_relight(gpu, gs, scene, lights, power, env, env_tex, &relit, err);
         free(lights);
         free(power);
+        free(env_tex);
         if (!made)
             return false;
         gs = relit;

@@ -206,6 +206,9 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                            .max = 1e9, .offset = AT(lights.scale), .has = AT(lights.has_scale),
                            .hash = CV_HASH_OFF_DEFAULT, .def_text = "none",
                            .help = "{LIGHT: factor}: factors on lights named by their index"},
+    [CV_K_ENV_FILE] = {.name = "env.file", .type = CV_KT_STRING, .offset = AT(env.file),
+                       .hash = CV_HASH_OFF_DEFAULT, .def_text = "the scene's",
+                       .help = "image the environment shows instead (relative to the manifest)"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&

@@ -54,6 +54,7 @@ enum cv_key_id {
     CV_K_ENV_ROTATE,
     CV_K_LIGHTS,
     CV_K_LIGHTS_SCALE,
+    CV_K_ENV_FILE,
     CV_K_COUNT
 };
 

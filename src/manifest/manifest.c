@@ -149,6 +149,17 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
     if (scene_ok)
         j->settings_hash = cv_job_settings_hash_stat(j, &st);
 
+    if (j->env.file) {
+        char *path = cv_path_join(dir, j->env.file);
+        struct stat est;
+        if (stat(path, &est) != 0)
+            cv_diag_add(d, at[CV_K_ENV_FILE].line, at[CV_K_ENV_FILE].col,
+                        "%s: environment image \"%s\" not found (%s: %s)", label, j->env.file,
+                        path, strerror(errno));
+        free(j->env.file);
+        j->env.file = path;
+    }
+
     if (j->color.config && !is_ocio_uri(j->color.config)) {
         char *path = cv_path_join(dir, j->color.config);
         struct stat cst;

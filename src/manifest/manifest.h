@@ -62,6 +62,8 @@ struct cv_job_rlpath {
 /* Overrides of the scene's environment (its LightSource "infinite"
  * lights), applied to the loaded scene's light data per job: no reload. */
 struct cv_job_env {
+    char *file;                /* image replacing the environment's: resolved
+                                * path (manifest folder joined); NULL: the scene's */
     bool has_scale, has_rotate;
     float scale;               /* multiplies the environment's radiance, >= 0 */
     float rotate[4];           /* [degrees], then the world-space axis x, y, z, as

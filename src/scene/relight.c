@@ -37,6 +37,45 @@ static void rotation(const float *deg_axis, double R[3][3])
     R[2][2] = a[2] * a[2] + (1 - a[2] * a[2]) * c;
 }
 
+bool cv_scene_env_equal_area(const struct cv_scene *s, const struct cv_scene *env)
+{
+    for (uint32_t i = 0; i < s->n_lights; i++)
+        if (s->lights[i].type == CV_LIGHT_INFINITE_MAP)
+            return (s->lights[i].flags & CV_LIGHTF_EQUAL_AREA) != 0;
+    const CvTexture *t = &env->textures[env->lights[0].tex];
+    return t->width == t->height;
+}
+
+/* Luminance of a map's average: its last mip level (1x1). */
+static double map_average(const struct cv_scene *s, const CvTexture *t)
+{
+    uint64_t last = 0;
+    for (uint32_t w = t->width, h = t->height; w > 1 || h > 1;) {
+        last += (uint64_t)w * h;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    float c[4];
+    cv_scene_texel(s, t, last, c);
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+
+/* Every infinite light shows r->env's image: its type, texture and flags
+ * change; its colour and transform stay, and its power follows the new
+ * map's average. */
+static void swap_env(const struct cv_scene *s, const struct cv_relight *r, CvLight *l,
+                     float *power)
+{
+    const CvLight *el = &r->env->lights[0];
+    double avg_new = map_average(r->env, &r->env->textures[el->tex]);
+    double avg_old = l->type == CV_LIGHT_INFINITE_MAP ? map_average(s, &s->textures[l->tex]) : 1;
+    if (avg_old > 0)
+        *power = (float)(*power * avg_new / avg_old);
+    l->type = CV_LIGHT_INFINITE_MAP;
+    l->tex = (int32_t)(s->n_textures + (uint32_t)el->tex);
+    l->flags = (l->flags & ~CV_LIGHTF_EQUAL_AREA) | (r->env_equal_area ? CV_LIGHTF_EQUAL_AREA : 0);
+}
+
 static void scale_light(CvLight *l, float *power, float k)
 {
     l->L.x *= k;
@@ -46,10 +85,26 @@ static void scale_light(CvLight *l, float *power, float k)
 }
 
 void cv_scene_relight(const struct cv_scene *s, const struct cv_relight *r, CvLight *lights,
-                      float *power)
+                      float *power, CvTexture *env_textures)
 {
     memcpy(lights, s->lights, s->n_lights * sizeof(CvLight));
     memcpy(power, s->light_power, s->n_lights * sizeof(float));
+    if (r->env) {
+        const CvLight *el = &r->env->lights[0];
+        for (uint32_t i = 0; i < r->env->n_textures; i++) {
+            CvTexture *t = &env_textures[i];
+            *t = r->env->textures[i];
+            t->offset += (uint32_t)s->n_texels;
+            if (t->tex_a >= 0)
+                t->tex_a += (int32_t)s->n_textures;
+            if (t->tex_b >= 0)
+                t->tex_b += (int32_t)s->n_textures;
+            if (t->amount_tex >= 0)
+                t->amount_tex += (int32_t)s->n_textures;
+            if ((int32_t)i == el->tex && r->env_equal_area)
+                t->flags = (t->flags & ~CV_TEXF_WRAP_LATLONG) | CV_TEXF_WRAP_OCTAHEDRAL;
+        }
+    }
     double R[3][3];
     if (r->env_rotate)
         rotation(r->rotate, R);
@@ -60,6 +115,8 @@ void cv_scene_relight(const struct cv_scene *s, const struct cv_relight *r, CvLi
                 scale_light(l, &power[i], r->scales[k].scale);
         if (!is_infinite(l))
             continue;
+        if (r->env)
+            swap_env(s, r, l, &power[i]);
         if (r->env_scale != 1)
             scale_light(l, &power[i], r->env_scale);
         if (r->env_rotate) {

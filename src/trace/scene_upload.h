@@ -25,7 +25,9 @@ struct cv_scene_gpu {
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its
-     * own, every other buffer and the BVH are base's; NULL otherwise. */
+     * own, and with a new environment image its textures, texels and
+     * env_dist too; every other buffer and the BVH are base's; NULL
+     * otherwise. */
     const struct cv_scene_gpu *base;
 };
 
@@ -56,11 +58,17 @@ void cv_scene_gpu_destroy(struct cv_scene_gpu **g);
 
 /* A copy of base, the upload of s, with its own light records and
  * light-selection CDF from lights and power (s->n_lights each; a job's
- * overrides, scene/relight.h); everything else, the BVH included, stays
- * base's, which must outlive it. Costs an upload of the lights: per job,
- * not per pass. Destroy with cv_scene_gpu_destroy. */
+ * overrides, scene/relight.h). With env (an environment image,
+ * scene/env_file.h), env_textures (env->n_textures records, as
+ * cv_scene_relight made them) follow the scene's textures and env's texels
+ * the scene's (copied on the GPU), and the environment distributions are
+ * built from env's image. Everything else, the BVH included, stays base's,
+ * which must outlive it. Costs an upload of the lights (and of the image
+ * with its distribution): per job, not per pass. Destroy with
+ * cv_scene_gpu_destroy. */
 bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
                           const struct cv_scene *s, const CvLight *lights, const float *power,
+                          const struct cv_scene *env, const CvTexture *env_textures,
                           struct cv_scene_gpu **out, struct cv_error *err);
 
 #endif

@@ -55,6 +55,8 @@ static char *example(const struct cv_key *k)
             return cv_xstrdup("\"renders/{name}\"");
         if (k == &cv_manifest_keys[CV_K_COLOR_CONFIG])
             return cv_xstrdup("c.ocio");
+        if (k == &cv_manifest_keys[CV_K_ENV_FILE])  /* any file that exists */
+            return cv_xstrdup("t.pbrt");
         return cv_xstrdup("x1");
     case CV_KT_U32: return cv_xasprintf("%.0f", k->max);
     case CV_KT_FLOAT: return cv_xasprintf("%g", (k->min + k->max) / 2);
