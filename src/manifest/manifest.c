@@ -1,7 +1,7 @@
 /* manifest.c: cv_manifest_load and friends (see manifest.h). The flow is
  * parse (libyaml document) -> read the top level, defaults and each job
- * (job_parse.c) -> merge defaults -> resolve paths and check the files they
- * name -> hash. Every stage keeps going after a problem so that one run shows
+ * (job_parse.c) -> expand each job's matrix (matrix.c) -> merge defaults ->
+ * resolve paths and check the files they name -> hash. Every stage keeps going after a problem so that one run shows
  * the user all of them. */
 #include <errno.h>
 #include <stdlib.h>

@@ -1,7 +1,8 @@
 /* manifest.h: the batch manifest (cavalry-manifest(5)), read with libyaml
  * and fully validated before anything renders. A loaded manifest is a list
- * of resolved jobs: `defaults` merged under each job (nested mappings key by
- * key), paths joined to the manifest's folder, outputs templated.
+ * of resolved jobs: each job's matrix expanded into its jobs
+ * (manifest/matrix.h), `defaults` merged under each job (nested mappings key
+ * by key), paths joined to the manifest's folder, outputs templated.
  *
  * Optional render settings carry a has_ flag (or a NULL string): unset
  * means "use what the scene file says". Every key is a row of
