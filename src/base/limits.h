@@ -32,4 +32,12 @@
  * refused before any read. */
 #define CV_MAX_INPUT_BYTES (16LL << 30)
 
+/* Jobs one manifest job may expand into through its matrix: the product of
+ * its lists. Each job is held in memory and planned before any render; a
+ * list of this many stills is a dataset of its own. */
+#define CV_MAX_MATRIX_JOBS 65536u
+
+/* Lights a job's lights.scale may name. */
+#define CV_MAX_LIGHT_SCALES 32u
+
 #endif

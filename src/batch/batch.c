@@ -46,11 +46,13 @@ struct selection {
     size_t n_scenes, cap_scenes;
     size_t *scene_of;            /* per selected job: index into scenes */
     struct cv_render_plan *plans;  /* per selected job */
+    struct cv_env_files env_files; /* env.file images, each loaded once */
 };
 
 static void selection_free(struct selection *p)
 {
     free(p->plans);
+    cv_env_files_clear(&p->env_files);
     for (size_t i = 0; i < p->n_scenes; i++)
         cv_scene_destroy(&p->scenes[i].scene);
     free(p->scenes);
@@ -58,9 +60,12 @@ static void selection_free(struct selection *p)
     free(p->scene_of);
 }
 
-static bool only_matches(const char *pattern, const char *name)
+/* A pattern selects a job by its name; a job expanded from a matrix also
+ * by the name of the job as written, so that --only NAME takes them all. */
+static bool only_matches(const char *pattern, const struct cv_job *job)
 {
-    return fnmatch(pattern, name, 0) == 0;
+    return fnmatch(pattern, job->name, 0) == 0 ||
+           (job->matrix_of && fnmatch(pattern, job->matrix_of, 0) == 0);
 }
 
 /* --only patterns (any may match; each must match some job, or it is
@@ -70,7 +75,7 @@ static bool select_jobs(const struct cv_manifest *m, const struct cv_batch_optio
 {
     for (size_t k = 0; k < opt->n_only; k++) {
         size_t i = 0;
-        while (i < m->n_jobs && !only_matches(opt->only[k], m->jobs[i].name))
+        while (i < m->n_jobs && !only_matches(opt->only[k], &m->jobs[i]))
             i++;
         if (i == m->n_jobs)
             return cv_fail(err, "%s: no job %s \"%s\"", m->path,
@@ -79,7 +84,7 @@ static bool select_jobs(const struct cv_manifest *m, const struct cv_batch_optio
     for (size_t i = 0; i < m->n_jobs; i++) {
         bool wanted = opt->n_only == 0;
         for (size_t k = 0; k < opt->n_only && !wanted; k++)
-            wanted = only_matches(opt->only[k], m->jobs[i].name);
+            wanted = only_matches(opt->only[k], &m->jobs[i]);
         if (!wanted)
             continue;
         if (opt->shard_count && !opt->all_shards &&
@@ -157,7 +162,10 @@ static bool make_plans(const struct cv_manifest *m, const struct cv_batch_option
         .time_limit = opt->time_limit,
         .check_color = true,
         .stage_times = opt->stage_times,
+        .env_files = &p->env_files,
     };
+    p->env_files.params = (struct cv_scene_load_params){.strict = opt->strict,
+                                                        .root = opt->scene_root};
     bool ok = true;
     char *all = NULL;
     for (size_t k = 0; k < p->n_jobs; k++) {
@@ -196,8 +204,15 @@ static void print_plan(const struct cv_manifest *m, const struct selection *p,
         if (c->crop.x != w || c->crop.y != h)
             snprintf(crop, sizeof(crop), " crop %ux%u+%u+%u", c->crop.x, c->crop.y, c->film.z,
                      c->film.w);
-        printf("%s: %s -> %s [%s] %ux%u%s, %u spp%s\n", job->name, job->scene_as_written,
-               job->output, formats, w, h, crop, spp, skip ? " (up to date: skipped)" : "");
+        printf("%s: %s -> %s [%s] %ux%u%s, %u spp", job->name, job->scene_as_written,
+               job->output, formats, w, h, crop, spp);
+        /* an expanded job: "(matrix of shot: seed=3, camera.fov=wide)" */
+        if (job->matrix_of)
+            printf(" (matrix of %s:", job->matrix_of);
+        for (size_t i = 0; job->matrix_of && i < job->n_axes; i++)
+            printf("%s %s=%s", i ? "," : "", cv_manifest_keys[job->axes[i].key].name,
+                   job->axes[i].label);
+        printf("%s%s\n", job->matrix_of ? ")" : "", skip ? " (up to date: skipped)" : "");
     }
 }
 
@@ -242,6 +257,19 @@ static void print_plan_json(const struct cv_manifest *m, const struct selection 
             printf("\"time_limit\":%.3f,", plan->time_limit);
         else
             printf("\"time_limit\":null,");
+        /* the job as written and the label of each matrix value */
+        if (job->matrix_of) {
+            printf("\"matrix_of\":");
+            cv_json_string(stdout, job->matrix_of);
+            printf(",\"matrix\":{");
+            for (size_t i = 0; i < job->n_axes; i++) {
+                printf("%s", i ? "," : "");
+                cv_json_string(stdout, cv_manifest_keys[job->axes[i].key].name);
+                printf(":");
+                cv_json_string(stdout, job->axes[i].label);
+            }
+            printf("},");
+        }
         printf("\"shard\":%u,\"settings_hash\":\"%s\",\"up_to_date\":%s}",
                shard_of(m, opt, p->jobs[k]),
                plan->settings_hash,

@@ -246,6 +246,62 @@ static bool plan_outputs(const struct cv_job *job, const struct cv_scene *scene,
     return ok;
 }
 
+/* env.* and lights.* against the scene: an environment to change, lights
+ * that exist. */
+static bool plan_lights(const struct cv_job *job, const struct cv_scene *scene,
+                        const struct cv_plan_options *o, struct cv_render_plan *p,
+                        struct cv_error *err)
+{
+    struct cv_relight *r = &p->relight;
+    *r = (struct cv_relight){.env_scale = 1};
+    const struct cv_job_env *env = &job->env;
+    if ((env->file || env->has_scale || env->has_rotate) && !cv_scene_has_env(scene))
+        return fail_at(err, o, job,
+                       env->file        ? CV_K_ENV_FILE
+                       : env->has_scale ? CV_K_ENV_SCALE
+                                        : CV_K_ENV_ROTATE,
+                       "the scene has no environment light (LightSource \"infinite\") "
+                       "to change");
+    if (env->file) {
+        struct cv_error e = {{0}};
+        if (!o->env_files)
+            return fail_at(err, o, job, CV_K_ENV_FILE, "env.file: no image cache in this run");
+        if (!cv_env_files_get(o->env_files, env->file, &r->env, &e))
+            return fail_at(err, o, job, CV_K_ENV_FILE, e.msg);
+        r->env_equal_area = cv_scene_env_equal_area(scene, r->env);
+        const CvTexture *t = &r->env->textures[r->env->lights[0].tex];
+        if (r->env_equal_area && t->width != t->height) {
+            char msg[320];
+            snprintf(msg, sizeof(msg),
+                     "env.file: \"%s\" is %ux%u; the scene's environment is an equal-area "
+                     "map (pbrt-v4), which is square", env->file, t->width, t->height);
+            return fail_at(err, o, job, CV_K_ENV_FILE, msg);
+        }
+    }
+    if (env->has_scale)
+        r->env_scale = env->scale;
+    if (env->has_rotate) {
+        r->env_rotate = true;
+        memcpy(r->rotate, env->rotate, sizeof(r->rotate));
+    }
+    const struct cv_light_scales *ls = &job->lights.scale;
+    for (uint32_t i = 0; job->lights.has_scale && i < ls->n; i++) {
+        if (ls->v[i].light >= scene->n_light_sources) {
+            char msg[256];
+            snprintf(msg, sizeof(msg),
+                     "lights.scale: the scene has no light %u: it has %u light directives "
+                     "(LightSource, AreaLightSource), named 0 to %u in file order "
+                     "(cavalry-batch --dump-scene lists them)",
+                     ls->v[i].light, scene->n_light_sources,
+                     scene->n_light_sources ? scene->n_light_sources - 1 : 0);
+            return fail_at(err, o, job, CV_K_LIGHTS_SCALE, msg);
+        }
+        r->scales[r->n_scales++] = (struct cv_relight_scale){ls->v[i].light, ls->v[i].scale};
+    }
+    p->relit = r->env || env->has_scale || env->has_rotate || r->n_scales > 0;
+    return true;
+}
+
 /* One file's size and mtime into hash h; a missing file enters as such. */
 static uint64_t hash_stamp(uint64_t h, const char *what, const char *path)
 {
@@ -272,6 +328,8 @@ static void plan_hash(const struct cv_job *job, const struct cv_scene *scene,
     h = cv_fnv1a64(h, job->settings_hash, strlen(job->settings_hash));
     for (size_t i = 0; i < scene->n_inputs; i++)
         h = hash_stamp(h, "input", scene->inputs[i]);
+    if (job->env.file)  /* its name is in the job's hash; its contents enter here */
+        h = hash_stamp(h, "env", job->env.file);
     if (job->formats & CV_FORMAT_PNG) {
         const char *cfg = cv_ocio_config_file(job->color.config);
         if (!cfg) {
@@ -304,7 +362,8 @@ bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
     if (job->settings_hash)
         plan_hash(job, scene, out);
     return plan_camera(job, scene, o, out, err) && plan_integrator(job, scene, o, out, err) &&
-           plan_color(job, o, out, err) && plan_outputs(job, scene, o, err);
+           plan_lights(job, scene, o, out, err) && plan_color(job, o, out, err) &&
+           plan_outputs(job, scene, o, err);
 }
 
 struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)

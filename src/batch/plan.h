@@ -13,6 +13,8 @@
 #include "base/error.h"
 #include "color/color_params.h"
 #include "manifest/manifest.h"
+#include "scene/env_file.h"
+#include "scene/relight.h"
 #include "scene/scene.h"
 #include "trace/render.h"
 
@@ -23,6 +25,9 @@ struct cv_plan_options {
     bool check_color;            /* open the colour config to check the names: a
                                   * CPU cost per job, paid before any render */
     bool stage_times;            /* time every render stage (trace/render.h) */
+    /* The images of the jobs' env.file, each loaded once for the batch
+     * (scene/env_file.h); NULL: a job with env.file fails its plan. */
+    struct cv_env_files *env_files;
 };
 
 struct cv_render_plan {
@@ -46,6 +51,11 @@ struct cv_render_plan {
      * reads, of the effective OCIO config for PNG outputs, and Cavalry's
      * version. */
     char settings_hash[17];
+    /* The job's env.* and lights.* overrides, checked against the scene:
+     * applied to its light records per job (scene/relight.h), never by
+     * loading it again. relit false: the scene's lights as they are. */
+    bool relit;
+    struct cv_relight relight;
 };
 
 /* Command-line overrides (cavalry-batch --spp, --resolution, --output-dir),

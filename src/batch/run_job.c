@@ -204,9 +204,29 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     memset(res, 0, sizeof(*res));
     struct cv_render_params rp = cv_plan_render_params(plan);
     struct cv_renderer *r = NULL;
+    /* the job's light overrides: its own light records on the shared
+     * upload and BVH (plan.h: relit) */
+    struct cv_scene_gpu *relit = NULL;
+    if (plan->relit) {
+        uint32_t n = scene->n_lights ? scene->n_lights : 1;
+        const struct cv_scene *env = plan->relight.env;
+        CvLight *lights = cv_xcalloc(n, sizeof(CvLight));
+        float *power = cv_xcalloc(n, sizeof(float));
+        CvTexture *env_tex = env ? cv_xcalloc(env->n_textures, sizeof(CvTexture)) : NULL;
+        cv_scene_relight(scene, &plan->relight, lights, power, env_tex);
+        bool made = cv_scene_gpu_relight(gpu, gs, scene, lights, power, env, env_tex, &relit, err);
+        free(lights);
+        free(power);
+        free(env_tex);
+        if (!made)
+            return false;
+        gs = relit;
+    }
     cv_progress_phase(progress, job->name, CV_PHASE_PROGRAM_COMPILE, NULL);
-    if (!cv_renderer_create_shared(gpu, gs, scene, &rp, &r, err))
+    if (!cv_renderer_create_shared(gpu, gs, scene, &rp, &r, err)) {
+        cv_scene_gpu_destroy(&relit);
         return false;
+    }
 
     uint32_t target = plan->spp;
     double limit = plan->time_limit;
@@ -274,6 +294,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         cv_metadata_destroy(&meta);
     }
     cv_renderer_destroy(&r);
+    cv_scene_gpu_destroy(&relit);
     res->seconds = now_seconds() - t0;
     if (!ok)
         cv_error_prefix(err, "job \"%s\"", job->name);

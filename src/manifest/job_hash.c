@@ -83,9 +83,26 @@ static void add_key(struct text *t, const struct cv_job *job, const struct cv_ke
     const void *f = (const char *)job + k->offset;
     /* output settings always hold a value (keys.h: fill_default) */
     bool has = k->fill_default || cv_job_key_set(job, k);
+    /* keys added later: absent when unset, so that older jobs keep their hashes */
+    if (k->hash == CV_HASH_OFF_DEFAULT && !has)
+        return;
     switch (k->type) {
     case CV_KT_SECTION:
+    case CV_KT_MATRIX:   /* its values enter as the keys they set */
         return;
+    case CV_KT_ROTATE: {
+        const float *r = f;
+        add(t, "%s=%.9g,%.9g,%.9g,%.9g\n", k->name, r[0], r[1], r[2], r[3]);
+        break;
+    }
+    case CV_KT_LIGHT_SCALES: {
+        const struct cv_light_scales *ls = f;
+        add(t, "%s=", k->name);
+        for (uint32_t i = 0; i < ls->n; i++)
+            add(t, "%s%u:%.9g", i ? "," : "", (unsigned)ls->v[i].light, ls->v[i].scale);
+        add(t, "\n");
+        break;
+    }
     case CV_KT_STRING:
         add_str(t, k->name, *(char *const *)f);
         break;

@@ -210,6 +210,81 @@ static bool read_crop(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d, f
     return true;
 }
 
+/* env.rotate: [degrees, x, y, z], as pbrt's Rotate. */
+static bool read_rotate(yaml_document_t *doc, yaml_node_t *n, const struct cv_key *k,
+                        struct cv_diag *d, float *out)
+{
+    if (n->type != YAML_SEQUENCE_NODE ||
+        n->data.sequence.items.top - n->data.sequence.items.start != 4) {
+        cv_diag_add(d, cv_yline(n), cv_ycol(n),
+                    "%s: expected [degrees, x, y, z] (as pbrt's Rotate), got %s", k->name,
+                    cv_ykind(n));
+        return false;
+    }
+    yaml_node_item_t *it = n->data.sequence.items.start;
+    double v[4];
+    bool ok = true;
+    for (int i = 0; i < 4; i++)
+        ok &= cv_yread_float(yaml_document_get_node(doc, it[i]), d, k->name, -1e6, 1e6, &v[i]);
+    if (!ok)
+        return false;
+    if (v[1] == 0 && v[2] == 0 && v[3] == 0) {
+        cv_diag_add(d, cv_yline(n), cv_ycol(n), "%s: the axis is zero", k->name);
+        return false;
+    }
+    for (int i = 0; i < 4; i++)
+        out[i] = (float)v[i];
+    return true;
+}
+
+/* lights.scale: {LIGHT: factor}, LIGHT the index of a light directive. */
+static bool read_light_scales(yaml_document_t *doc, yaml_node_t *n, const struct cv_key *k,
+                              struct cv_diag *d, struct cv_light_scales *out)
+{
+    if (n->type != YAML_MAPPING_NODE) {
+        cv_diag_add(d, cv_yline(n), cv_ycol(n),
+                    "%s: expected a mapping of light index to factor ({0: 2}), got %s",
+                    k->name, cv_ykind(n));
+        return false;
+    }
+    struct cv_ypair *pairs;
+    size_t np = cv_ymap_pairs(doc, n, d, &pairs);
+    struct cv_light_scales v = {0};
+    bool ok = true;
+    if (np > CV_MAX_LIGHT_SCALES) {
+        cv_diag_add(d, cv_yline(n), cv_ycol(n), "%s: %zu lights named; at most %u", k->name,
+                    np, CV_MAX_LIGHT_SCALES);
+        ok = false;
+    }
+    for (size_t i = 0; ok && i < np; i++) {
+        const char *name = cv_ykey(&pairs[i]);
+        char *end;
+        unsigned long idx = strtoul(name, &end, 10);
+        if (!(name[0] >= '0' && name[0] <= '9') || *end || idx > INT32_MAX) {
+            cv_diag_add(d, cv_yline(pairs[i].key), cv_ycol(pairs[i].key),
+                        "%s: \"%s\" is not a light: lights are named by their index among "
+                        "the scene's LightSource and AreaLightSource directives (0, 1, ...)",
+                        k->name, name);
+            ok = false;
+            continue;
+        }
+        double x;
+        if (!cv_yread_float(pairs[i].value, d, k->name, k->min, k->max, &x)) {
+            ok = false;
+            continue;
+        }
+        /* kept sorted by light: one spelling for the settings hash */
+        size_t at = v.n++;
+        for (; at > 0 && v.v[at - 1].light > idx; at--)
+            v.v[at] = v.v[at - 1];
+        v.v[at] = (struct cv_light_scale){(uint32_t)idx, (float)x};
+    }
+    free(pairs);
+    if (ok)
+        *out = v;
+    return ok;
+}
+
 /* The pairs of a nested mapping such as `color:`, or NULL after reporting. */
 static size_t sub_pairs(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
                         const char *what, struct cv_ypair **pairs)
@@ -275,6 +350,12 @@ static bool read_value(yaml_document_t *doc, yaml_node_t *v, const struct cv_key
         return read_lookat(doc, v, d, f);
     case CV_KT_CROP:
         return read_crop(doc, v, d, f);
+    case CV_KT_MATRIX:
+        return true; /* expanded by matrix.c */
+    case CV_KT_ROTATE:
+        return read_rotate(doc, v, k, d, f);
+    case CV_KT_LIGHT_SCALES:
+        return read_light_scales(doc, v, k, d, f);
     }
     cv_diag_add(d, cv_yline(v), cv_ycol(v), "%s", msg);
     return false;
@@ -330,6 +411,17 @@ static void read_mapping(yaml_document_t *doc, struct cv_ypair *pairs, size_t np
     }
 }
 
+bool cv_job_read_value(yaml_document_t *doc, yaml_node_t *v, const struct cv_key *k,
+                       struct cv_diag *d, struct cv_job *j)
+{
+    if (!read_value(doc, v, k, d, j))
+        return false;
+    j->at[k - cv_manifest_keys] = pos(v);
+    if (has_flag(j, k))
+        *has_flag(j, k) = true;
+    return true;
+}
+
 void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
                   struct cv_diag *d, struct cv_job_draft *out)
 {
@@ -346,6 +438,9 @@ void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
     struct cv_ypair *pairs;
     size_t np = cv_ymap_pairs(doc, map, d, &pairs);
     read_mapping(doc, pairs, np, NULL, is_defaults, d, &out->job);
+    for (size_t i = 0; i < np; i++)
+        if (!is_defaults && cv_key_find(cv_ykey(&pairs[i])) == &cv_manifest_keys[CV_K_MATRIX])
+            out->matrix = pairs[i].value;
     free(pairs);
 }
 
@@ -362,6 +457,9 @@ static size_t value_size(const struct cv_key *k)
     case CV_KT_RESOLUTION: return 2 * sizeof(uint32_t);
     case CV_KT_LOOKAT: return 9 * sizeof(float);
     case CV_KT_CROP: return 4 * sizeof(float);
+    case CV_KT_ROTATE: return 4 * sizeof(float);
+    case CV_KT_LIGHT_SCALES: return sizeof(struct cv_light_scales);
+    case CV_KT_MATRIX: return sizeof(bool);
     case CV_KT_SECTION:
     case CV_KT_STRING: break;
     }
@@ -414,6 +512,23 @@ void cv_job_fill_defaults(struct cv_job *job)
     }
 }
 
+void cv_job_copy(struct cv_job *dst, const struct cv_job *src)
+{
+    *dst = *src;
+    for (size_t i = 0; i < CV_K_COUNT; i++) {
+        const struct cv_key *k = &cv_manifest_keys[i];
+        char **f = field(dst, k);
+        if (k->type == CV_KT_STRING && *f)
+            *f = cv_xstrdup(*f);
+    }
+    dst->scene = src->scene ? cv_xstrdup(src->scene) : NULL;
+    dst->settings_hash = src->settings_hash ? cv_xstrdup(src->settings_hash) : NULL;
+    dst->matrix_of = src->matrix_of ? cv_xstrdup(src->matrix_of) : NULL;
+    dst->axes = src->n_axes ? cv_xcalloc(src->n_axes, sizeof(*dst->axes)) : NULL;
+    for (size_t i = 0; i < src->n_axes; i++)
+        dst->axes[i] = (struct cv_job_axis){src->axes[i].key, cv_xstrdup(src->axes[i].label)};
+}
+
 void cv_job_free(struct cv_job *job)
 {
     for (size_t i = 0; i < CV_K_COUNT; i++)
@@ -421,5 +536,9 @@ void cv_job_free(struct cv_job *job)
             free(*(char **)field(job, &cv_manifest_keys[i]));
     free(job->scene);
     free(job->settings_hash);
+    free(job->matrix_of);
+    for (size_t i = 0; i < job->n_axes; i++)
+        free(job->axes[i].label);
+    free(job->axes);
     memset(job, 0, sizeof(*job));
 }

@@ -23,12 +23,21 @@ struct cv_ypos {
 struct cv_job_draft {
     struct cv_job job;
     struct cv_ypos at;         /* the job's mapping */
+    yaml_node_t *matrix;       /* its matrix's value (manifest/matrix.h); NULL: none */
 };
 
 /* Reads map into *out (zeroed first). In defaults `name` is not a valid key.
  * Every problem goes to d; the draft keeps whatever was valid. */
 void cv_job_parse(yaml_document_t *doc, yaml_node_t *map, bool is_defaults,
                   struct cv_diag *d, struct cv_job_draft *out);
+
+/* Reads v as the value of row k into j, as if written at k in the job
+ * (a matrix value): sets its has_ flag and where it was written. */
+bool cv_job_read_value(yaml_document_t *doc, yaml_node_t *v, const struct cv_key *k,
+                       struct cv_diag *d, struct cv_job *j);
+
+/* A deep copy of src into dst (strings and matrix labels duplicated). */
+void cv_job_copy(struct cv_job *dst, const struct cv_job *src);
 
 /* Fills everything job did not set from defaults (strings are copied),
  * following each key's merge rule. */

@@ -36,14 +36,23 @@ static bool check_name(const void *value, char *msg, size_t n)
     return true;
 }
 
-/* Only {name} may appear in braces: a typo such as {nmae} would otherwise
- * silently become part of every file name. */
+/* Only {name} and {KEY} of a key the matrix may vary appear in braces: a
+ * typo such as {nmae} would otherwise silently become part of every file
+ * name. Whether the job's matrix has the key is checked when the template
+ * is expanded (manifest.c). */
 static bool check_output(const void *value, char *msg, size_t n)
 {
     const char *s = *(const char *const *)value;
     for (const char *p = strchr(s, '{'); p; p = strchr(p + 1, '{')) {
-        if (strncmp(p, "{name}", 6) != 0) {
-            snprintf(msg, n, "output: \"%s\": only {name} may be written in braces", s);
+        const char *end = strchr(p, '}');
+        char key[64] = "";
+        if (end && (size_t)(end - p - 1) < sizeof(key))
+            snprintf(key, sizeof(key), "%.*s", (int)(end - p - 1), p + 1);
+        const struct cv_key *k = cv_key_find(key);
+        if (strcmp(key, "name") != 0 && !(k && cv_key_in_matrix(k))) {
+            snprintf(msg, n,
+                     "output: \"%s\": only {name} and {KEY} of a key of the job's matrix may "
+                     "be written in braces", s);
             return false;
         }
     }
@@ -180,6 +189,26 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                            .has = AT(rlpath.has_guide), .def = CV_RL_GUIDE_ALL,
                            .def_text = "all", .hash = CV_HASH_OFF_DEFAULT,
                            .help = "guide by all learned radiance or the indirect part"},
+    [CV_K_MATRIX] = {.name = "matrix", .type = CV_KT_MATRIX, .offset = AT(has_matrix),
+                     .has = AT(has_matrix), .merge = CV_MERGE_JOB_ONLY, .def_text = "none",
+                     .help = "expand the job over lists of values of its keys (every combination)"},
+    [CV_K_ENV] = SECTION("env", "overrides of the scene's environment light"),
+    [CV_K_ENV_SCALE] = {.name = "env.scale", .type = CV_KT_FLOAT, .min = 0, .max = 1e9,
+                        .offset = AT(env.scale), .has = AT(env.has_scale),
+                        .hash = CV_HASH_OFF_DEFAULT, .def_text = "1",
+                        .help = "factor on the environment's radiance"},
+    [CV_K_ENV_ROTATE] = {.name = "env.rotate", .type = CV_KT_ROTATE, .offset = AT(env.rotate),
+                         .has = AT(env.has_rotate), .hash = CV_HASH_OFF_DEFAULT,
+                         .def_text = "none",
+                         .help = "[degrees, x, y, z]: turns the environment about a world axis"},
+    [CV_K_LIGHTS] = SECTION("lights", "overrides of the scene's lights"),
+    [CV_K_LIGHTS_SCALE] = {.name = "lights.scale", .type = CV_KT_LIGHT_SCALES, .min = 0,
+                           .max = 1e9, .offset = AT(lights.scale), .has = AT(lights.has_scale),
+                           .hash = CV_HASH_OFF_DEFAULT, .def_text = "none",
+                           .help = "{LIGHT: factor}: factors on lights named by their index"},
+    [CV_K_ENV_FILE] = {.name = "env.file", .type = CV_KT_STRING, .offset = AT(env.file),
+                       .hash = CV_HASH_OFF_DEFAULT, .def_text = "the scene's",
+                       .help = "image the environment shows instead (relative to the manifest)"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&
@@ -199,6 +228,12 @@ const char *cv_key_leaf(const struct cv_key *k)
 {
     const char *dot = strrchr(k->name, '.');
     return dot ? dot + 1 : k->name;
+}
+
+bool cv_key_in_matrix(const struct cv_key *k)
+{
+    size_t id = (size_t)(k - cv_manifest_keys);
+    return k->type != CV_KT_SECTION && k->merge != CV_MERGE_JOB_ONLY && id != CV_K_OUTPUT;
 }
 
 bool cv_key_in(const struct cv_key *k, const struct cv_key *section)
@@ -226,6 +261,9 @@ static const char *type_name(const struct cv_key *k, char *buf, size_t n)
     case CV_KT_RESOLUTION: return "resolution";
     case CV_KT_LOOKAT: return "lookat";
     case CV_KT_CROP: return "crop";
+    case CV_KT_MATRIX: return "mapping of key: list";
+    case CV_KT_ROTATE: return "rotation";
+    case CV_KT_LIGHT_SCALES: return "mapping of light: number";
     case CV_KT_ENUM:
     case CV_KT_BITS: {
         size_t len = 0;

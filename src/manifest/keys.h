@@ -48,6 +48,13 @@ enum cv_key_id {
     CV_K_RLPATH_DIRECTIONS,
     CV_K_RLPATH_MIX,
     CV_K_RLPATH_GUIDE,
+    CV_K_MATRIX,
+    CV_K_ENV,
+    CV_K_ENV_SCALE,
+    CV_K_ENV_ROTATE,
+    CV_K_LIGHTS,
+    CV_K_LIGHTS_SCALE,
+    CV_K_ENV_FILE,
     CV_K_COUNT
 };
 
@@ -64,6 +71,10 @@ enum cv_key_type {
     CV_KT_LOOKAT,      /* float[9]: eye, at, up, as pbrt's LookAt */
     CV_KT_CROP,        /* float[4]: x0, x1, y0, y1, film fractions, as pbrt's
                         * cropwindow; hashed only when set */
+    CV_KT_MATRIX,      /* a mapping of job keys to lists of their values: the
+                        * job is expanded over them (manifest/matrix.h) */
+    CV_KT_ROTATE,      /* float[4]: degrees, then the axis, as pbrt's Rotate */
+    CV_KT_LIGHT_SCALES, /* struct cv_job_light_scales: light index -> factor */
 };
 
 enum cv_key_merge {
@@ -115,6 +126,9 @@ extern const struct cv_key cv_manifest_keys[CV_K_COUNT];
 const struct cv_key *cv_key_find(const char *dotted);
 /* The part after the last dot: "view" of "color.view". */
 const char *cv_key_leaf(const struct cv_key *k);
+/* Whether a job's matrix may vary k: every value key but name, output and
+ * matrix itself (cavalry-manifest(5), "Matrix"). */
+bool cv_key_in_matrix(const struct cv_key *k);
 /* Whether k sits directly in section (NULL: the job's own level). */
 bool cv_key_in(const struct cv_key *k, const struct cv_key *section);
 /* "name<TAB>type<TAB>default<TAB>help" for every key, one a line. */

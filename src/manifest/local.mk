@@ -8,5 +8,6 @@ libcavalry_a_SOURCES += \
 	src/manifest/keys.c src/manifest/keys.h \
 	src/manifest/job_parse.c src/manifest/job_parse.h \
 	src/manifest/job_hash.c src/manifest/job_hash.h \
+	src/manifest/matrix.c src/manifest/matrix.h \
 	src/manifest/manifest.c src/manifest/manifest.h \
 	src/manifest/shard.c src/manifest/shard.h

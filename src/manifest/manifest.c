@@ -1,7 +1,7 @@
 /* manifest.c: cv_manifest_load and friends (see manifest.h). The flow is
  * parse (libyaml document) -> read the top level, defaults and each job
- * (job_parse.c) -> merge defaults -> resolve paths and check the files they
- * name -> hash. Every stage keeps going after a problem so that one run shows
+ * (job_parse.c) -> expand each job's matrix (matrix.c) -> merge defaults ->
+ * resolve paths and check the files they name -> hash. Every stage keeps going after a problem so that one run shows
  * the user all of them. */
 #include <errno.h>
 #include <stdlib.h>
@@ -17,6 +17,7 @@
 #include "manifest/job_parse.h"
 #include "manifest/key_set.h"
 #include "manifest/manifest.h"
+#include "manifest/matrix.h"
 #include "manifest/yaml_scan.h"
 #include "manifest/yaml_view.h"
 
@@ -53,22 +54,43 @@ static void syntax_error(yaml_parser_t *p, const char *data, size_t len, struct 
     }
 }
 
-static char *expand_output(const char *tmpl, const char *name)
+/* The label that {key} stands for in job's output template: the job's
+ * name, or the label of its value of that matrix key; NULL when the job's
+ * matrix has no such key. */
+static const char *template_value(const struct cv_job *j, const char *key, size_t len)
 {
-    size_t n = 0, nl = strlen(name);
-    for (const char *p = strstr(tmpl, "{name}"); p; p = strstr(p + 6, "{name}"))
-        n++;
-    char *out = cv_xmalloc(strlen(tmpl) + n * nl + 1), *o = out;
-    for (const char *p = tmpl; *p;) {
-        if (!strncmp(p, "{name}", 6)) {
-            memcpy(o, name, nl);
-            o += nl;
-            p += 6;
-        } else {
-            *o++ = *p++;
-        }
+    if (len == 4 && !strncmp(key, "name", 4))
+        return j->name ? j->name : "";
+    for (size_t i = 0; i < j->n_axes; i++) {
+        const char *k = cv_manifest_keys[j->axes[i].key].name;
+        if (strlen(k) == len && !strncmp(k, key, len))
+            return j->axes[i].label;
     }
-    *o = '\0';
+    return NULL;
+}
+
+/* The output template with {name} and each {KEY} of the job's matrix
+ * replaced (keys.c checked the braces' spelling); NULL with the first
+ * placeholder the job cannot fill in *missing. */
+static char *expand_output(const char *tmpl, const struct cv_job *j, char *missing, size_t n)
+{
+    size_t cap = strlen(tmpl) + 1, len = 0;
+    char *out = cv_xmalloc(cap);
+    for (const char *p = tmpl; *p;) {
+        const char *end = *p == '{' ? strchr(p, '}') : NULL;
+        const char *v = end ? template_value(j, p + 1, (size_t)(end - p - 1)) : NULL;
+        if (end && !v) {
+            snprintf(missing, n, "%.*s", (int)(end - p + 1), p);
+            free(out);
+            return NULL;
+        }
+        size_t add = v ? strlen(v) : 1;
+        out = cv_xgrow(out, &cap, len + add + 1, 1);
+        memcpy(out + len, v ? v : p, add);
+        len += add;
+        p = v ? end + 1 : p + 1;
+    }
+    out[len] = '\0';
     return out;
 }
 
@@ -93,7 +115,15 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
     cv_job_fill_defaults(j);
 
     const char *tmpl = j->output ? j->output : cv_manifest_keys[CV_K_OUTPUT].def_text;
-    char *expanded = expand_output(tmpl, j->name ? j->name : "");
+    char missing[80];
+    char *expanded = expand_output(tmpl, j, missing, sizeof(missing));
+    if (!expanded) {
+        const struct cv_key_at *oat = &at[CV_K_OUTPUT];
+        cv_diag_add(d, oat->line ? oat->line : dr->at.line, oat->line ? oat->col : dr->at.col,
+                    "%s: output \"%s\": %s is not a key of the job's matrix", label, tmpl,
+                    missing);
+        expanded = cv_xstrdup(tmpl);
+    }
     free(j->output);
     j->output = cv_path_join(dir, expanded);
     free(expanded);
@@ -118,6 +148,17 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
     }
     if (scene_ok)
         j->settings_hash = cv_job_settings_hash_stat(j, &st);
+
+    if (j->env.file) {
+        char *path = cv_path_join(dir, j->env.file);
+        struct stat est;
+        if (stat(path, &est) != 0)
+            cv_diag_add(d, at[CV_K_ENV_FILE].line, at[CV_K_ENV_FILE].col,
+                        "%s: environment image \"%s\" not found (%s: %s)", label, j->env.file,
+                        path, strerror(errno));
+        free(j->env.file);
+        j->env.file = path;
+    }
 
     if (j->color.config && !is_ocio_uri(j->color.config)) {
         char *path = cv_path_join(dir, j->color.config);
@@ -232,12 +273,20 @@ static size_t read_document(yaml_document_t *doc, yaml_node_t *root, struct cv_d
         cv_diag_add(d, cv_yline(list), cv_ycol(list), "jobs: the list is empty");
         return 0;
     }
-    *jobs = cv_xcalloc(n, sizeof(**jobs));
+    /* a job with a matrix becomes its expansions (manifest/matrix.h) */
+    size_t count = 0, cap = 0;
     for (size_t i = 0; i < n; i++) {
         yaml_node_t *item = yaml_document_get_node(doc, list->data.sequence.items.start[i]);
-        cv_job_parse(doc, item, false, d, &(*jobs)[i]);
+        struct cv_job_draft dr;
+        cv_job_parse(doc, item, false, d, &dr);
+        if (dr.matrix) {
+            cv_matrix_expand(doc, &dr, d, jobs, &count, &cap);
+            cv_job_free(&dr.job);
+        } else {
+            CV_PUSH(*jobs, count, cap, dr);
+        }
     }
-    return n;
+    return count;
 }
 
 /* Parses data (owned: freed here) read from path. */

@@ -1,7 +1,8 @@
 /* manifest.h: the batch manifest (cavalry-manifest(5)), read with libyaml
  * and fully validated before anything renders. A loaded manifest is a list
- * of resolved jobs: `defaults` merged under each job (nested mappings key by
- * key), paths joined to the manifest's folder, outputs templated.
+ * of resolved jobs: each job's matrix expanded into its jobs
+ * (manifest/matrix.h), `defaults` merged under each job (nested mappings key
+ * by key), paths joined to the manifest's folder, outputs templated.
  *
  * Optional render settings carry a has_ flag (or a NULL string): unset
  * means "use what the scene file says". Every key is a row of
@@ -16,6 +17,7 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "base/limits.h"
 #include "manifest/enums.h"
 #include "manifest/keys.h"
 
@@ -58,6 +60,39 @@ struct cv_job_rlpath {
     enum cv_rl_guide guide;    /* default CV_RL_GUIDE_ALL */
 };
 
+/* Overrides of the scene's environment (its LightSource "infinite"
+ * lights), applied to the loaded scene's light data per job: no reload. */
+struct cv_job_env {
+    char *file;                /* image replacing the environment's: resolved
+                                * path (manifest folder joined); NULL: the scene's */
+    bool has_scale, has_rotate;
+    float scale;               /* multiplies the environment's radiance, >= 0 */
+    float rotate[4];           /* [degrees], then the world-space axis x, y, z, as
+                                * pbrt's Rotate, applied after the scene's transform */
+};
+
+/* Per-light factors on the scene's light sources, each named by its index
+ * among the scene's LightSource and AreaLightSource directives in the order
+ * they are read (cavalry-manifest(5), "Lights"). */
+struct cv_light_scales {
+    uint32_t n;
+    struct cv_light_scale {
+        uint32_t light;        /* index of the light directive, from 0 */
+        float scale;           /* >= 0 */
+    } v[CV_MAX_LIGHT_SCALES];  /* in the order written, each light once */
+};
+
+struct cv_job_lights {
+    bool has_scale;
+    struct cv_light_scales scale;
+};
+
+/* One matrix key of an expanded job (manifest/matrix.h). */
+struct cv_job_axis {
+    enum cv_key_id key;
+    char *label;               /* the value's label, [A-Za-z0-9._-]+ */
+};
+
 struct cv_job {
     char *name;                /* unique in the manifest, [A-Za-z0-9._-]+ */
     unsigned line, col;        /* 1-based position of the job in the manifest */
@@ -89,6 +124,16 @@ struct cv_job {
     struct cv_job_png png;
     struct cv_job_camera camera;
     struct cv_job_rlpath rlpath;
+    bool has_matrix;           /* written with a matrix (then it is one of its
+                                * expansions, with axes) */
+    struct cv_job_env env;
+    struct cv_job_lights lights;
+    /* A job expanded from a matrix: the name of the job as written and,
+     * per matrix key in written order, the label of its value; NULL and 0
+     * for other jobs. Owned. */
+    char *matrix_of;
+    struct cv_job_axis *axes;
+    size_t n_axes;
 
     /* Where each key's value was written (in the job, or in defaults for
      * what the job took from there); {0, 0} for keys not given. */

@@ -227,10 +227,28 @@ uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power)
     struct cv_scene *s = b->s;
     size_t cap = b->cap_l, n = s->n_lights;
     CV_PUSH(s->lights, n, b->cap_l, *l);
-    if (cap != b->cap_l)
+    if (cap != b->cap_l) {
         s->light_power = cv_xrealloc(s->light_power, b->cap_l * sizeof(float));
+        s->light_source = cv_xrealloc(s->light_source, b->cap_l * sizeof(uint32_t));
+    }
     s->light_power[s->n_lights] = power;
+    s->light_source[s->n_lights] = b->light_source;
     s->n_lights = (uint32_t)n;
+    return (uint32_t)(n - 1);
+}
+
+uint32_t cv_b_light_source(struct cv_builder *b, const char *type, bool area,
+                           const struct cv_loc *loc)
+{
+    struct cv_scene *s = b->s;
+    size_t n = s->n_light_sources;
+    struct cv_light_source ls = {
+        .type = cv_xstrdup(type),
+        .at = cv_xasprintf("%s:%d:%d", loc->file, loc->line, loc->col),
+        .area = area,
+    };
+    CV_PUSH(s->light_sources, n, b->cap_light_sources, ls);
+    s->n_light_sources = (uint32_t)n;
     return (uint32_t)(n - 1);
 }
 
@@ -374,6 +392,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
                     L[c] *= a->power / k;
         }
         double y = luminance(L);
+        b->light_source = a->source;
         for (size_t i = nt0; i < need_t; i++) {
             double area = tri_area(V, &T[i]);
             CvLight l;
@@ -466,12 +485,16 @@ static void order_lights(struct cv_scene *s)
                 to[i] = k++;
     CvLight *l = cv_xmalloc(n * sizeof(CvLight));
     float *pw = cv_xmalloc(n * sizeof(float));
+    uint32_t *src = cv_xmalloc(n * sizeof(uint32_t));
     for (uint32_t i = 0; i < n; i++) {
         l[to[i]] = s->lights[i];
         pw[to[i]] = s->light_power[i];
+        src[to[i]] = s->light_source[i];
     }
     memcpy(s->lights, l, n * sizeof(CvLight));
     memcpy(s->light_power, pw, n * sizeof(float));
+    memcpy(s->light_source, src, n * sizeof(uint32_t));
+    free(src);
     for (uint32_t t = 0; t < s->n_triangles; t++)
         if (s->tri_light[t] >= 0)
             s->tri_light[t] = (int32_t)to[s->tri_light[t]];

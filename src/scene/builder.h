@@ -26,6 +26,7 @@ struct cv_area_state {
     double power;        /* v4 "power" (watts), <= 0 when absent */
     bool twosided;
     int tex;             /* emission texture or -1 */
+    uint32_t source;     /* its directive (cv_scene.light_sources) */
 };
 
 struct cv_gstate {
@@ -106,6 +107,8 @@ struct cv_builder {
     char *root;                  /* real path every file read must lie in; NULL: any */
     char **paths;                /* every file read, kept for locations */
     size_t n_paths, cap_paths;
+    uint32_t light_source;       /* the directive of the lights added next */
+    size_t cap_light_sources;
 };
 
 /* Reports a warning with location; false (err set) when strict. */
@@ -128,6 +131,9 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
 uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);
 int cv_b_add_texture(struct cv_builder *b, const CvTexture *t);
 uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power);
+/* Records a light directive (scene.h: light_sources); returns its index. */
+uint32_t cv_b_light_source(struct cv_builder *b, const char *type, bool area,
+                           const struct cv_loc *loc);
 /* A file named in the scene: relative to the folder of the file that names
  * it (dir); failing that, relative to the top-level file's folder, which is
  * what pbrt itself does for nested includes. Newly allocated. NULL, with

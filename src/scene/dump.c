@@ -164,6 +164,14 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
         v4(o, "dir", l->direction);
         fprintf(o, " power %.6g\n", s->light_power[i]);
     }
+    /* the names a job's lights.scale uses: index, type, lights made */
+    for (uint32_t k = 0; k < s->n_light_sources; k++) {
+        unsigned made = 0;
+        for (uint32_t i = 0; i < s->n_lights; i++)
+            made += s->light_source[i] == k;
+        fprintf(o, "  light-source %u %s%s lights %u\n", k,
+                s->light_sources[k].area ? "area " : "", s->light_sources[k].type, made);
+    }
     unsigned lit = 0;
     for (uint32_t t = 0; t < s->n_triangles; t++)
         lit += s->tri_light[t] >= 0;

@@ -53,6 +53,7 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
                 const struct cv_loc *loc, const char *dir, struct cv_error *err)
 {
     const struct cv_mat4 *M = &b->gs.ctm;
+    b->light_source = cv_b_light_source(b, type, false, loc);
     CvLight l;
     memset(&l, 0, sizeof(l));
     l.tex = -1;
@@ -184,6 +185,8 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
 bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *ps,
                      const struct cv_loc *loc, const char *dir, struct cv_error *err)
 {
+    /* every directive is counted, supported or not: the indices are the file's */
+    uint32_t source = cv_b_light_source(b, type, true, loc);
     if (strcmp(type, "diffuse") != 0) {
         for (size_t i = 0; i < ps->n; i++)
             ps->v[i].used = true;
@@ -192,6 +195,7 @@ bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *p
     struct cv_area_state *a = &b->gs.area;
     memset(a, 0, sizeof(*a));
     a->tex = -1;
+    a->source = source;
     if (!light_color(b, ps, "L", dir, a->L, err))
         return false;
     a->twosided = cv_params_bool(ps, "twosided", false);

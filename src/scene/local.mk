@@ -15,6 +15,8 @@ libcavalry_a_SOURCES += \
 	src/scene/exr_image.cpp src/scene/exr_image.h \
 	src/scene/texture.c \
 	src/scene/lights.c \
+	src/scene/relight.c src/scene/relight.h \
+	src/scene/env_file.c src/scene/env_file.h \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
 	src/scene/filter.c src/scene/filter.h \

@@ -23,6 +23,12 @@ static void scene_free(struct cv_scene *s)
     free(s->texels);
     free(s->lights);
     free(s->light_power);
+    for (uint32_t i = 0; i < s->n_light_sources; i++) {
+        free(s->light_sources[i].type);
+        free(s->light_sources[i].at);
+    }
+    free(s->light_sources);
+    free(s->light_source);
     free(s->settings.integrator);
     free(s->settings.integrator_at);
     free(s->settings.sampler);

@@ -91,6 +91,17 @@ struct cv_scene {
     char **inputs;
     size_t n_inputs, cap_inputs;
     unsigned warnings;               /* warnings emitted while loading */
+    /* The light directives (LightSource, AreaLightSource) in the order they
+     * are read, Includes in place: a job's lights.scale names a light by
+     * its index here. light_source[i]: the directive lights[i] came from
+     * (an area light's every triangle has its directive's). */
+    struct cv_light_source {
+        char *type;                  /* "point", "infinite", "diffuse", ... as written */
+        char *at;                    /* "file:line:col" of the directive */
+        bool area;                   /* AreaLightSource */
+    } *light_sources;
+    uint32_t n_light_sources;
+    uint32_t *light_source;          /* per light, parallel to lights */
 };
 
 struct cv_scene_load_params {

@@ -7,6 +7,7 @@
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
+#include "gpu/gl_check.h"
 #include "gpu/memory.h"
 #include "gpu/storage.h"
 #include "glsl/shared/envmap.h"
@@ -27,9 +28,25 @@ void cv_light_cdf(const float *power, uint32_t n, float *cdf)
         cdf[n - 1] = 1;
 }
 
+/* Each image infinite light's prim: the offset of its distribution in the
+ * environment buffer, in light order (build_env_dists fills the buffer in
+ * the same order). */
+static void env_offsets(const struct cv_scene *s, CvLight *lights)
+{
+    size_t at = 0;
+    for (uint32_t i = 0; i < s->n_lights; i++) {
+        CvLight *l = &lights[i];
+        if (l->type != CV_LIGHT_INFINITE_MAP || l->tex < 0 || (uint32_t)l->tex >= s->n_textures)
+            continue;
+        const CvTexture *t = &s->textures[l->tex];
+        l->prim = (uint32_t)at;
+        at += cv_envmap_dist_floats(t->width, t->height);
+    }
+}
+
 /* Environment-map distributions of the image infinite lights, one float
  * buffer (glsl/shared/envmap.h); each such light's prim becomes its offset
- * in `lights` (a copy). *dist is at least one float. */
+ * in `lights` (a copy; env_offsets). *dist is at least one float. */
 static bool build_env_dists(const struct cv_scene *s, CvLight *lights, float **dist, size_t *n,
                             struct cv_error *err)
 {
@@ -191,6 +208,15 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
 
 void cv_scene_gpu_release(struct cv_scene_gpu *g)
 {
+    if (g->base) {  /* a relit copy owns only what differs from its base */
+        GLuint *own[] = {&g->lights, &g->light_cdf, &g->textures, &g->texels, &g->env_dist};
+        const GLuint theirs[] = {0, 0, g->base->textures, g->base->texels, g->base->env_dist};
+        for (size_t i = 0; i < CV_ARRAY_SIZE(own); i++)
+            if (*own[i] != theirs[i])
+                cv_buffer_destroy(own[i]);
+        memset(g, 0, sizeof(*g));
+        return;
+    }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
@@ -222,4 +248,75 @@ void cv_scene_gpu_destroy(struct cv_scene_gpu **g)
     cv_scene_gpu_release(*g);
     free(*g);
     *g = NULL;
+}
+
+/* The relit copy's new environment: the scene's textures then env's, the
+ * scene's texels then env's, and the distributions of env's image. */
+static bool upload_env(struct cv_gpu *gpu, const struct cv_scene *s, CvLight *lights,
+                       const struct cv_scene *env, const CvTexture *env_textures,
+                       struct cv_scene_gpu *g, struct cv_error *err)
+{
+    uint32_t nt = s->n_textures + env->n_textures;
+    CvTexture *tex = cv_xcalloc(nt, sizeof(CvTexture));
+    if (s->n_textures)
+        memcpy(tex, s->textures, s->n_textures * sizeof(CvTexture));
+    memcpy(tex + s->n_textures, env_textures, env->n_textures * sizeof(CvTexture));
+    /* the distributions read env's texels: a view where the relit lights'
+     * textures are env's own records (their own offsets) */
+    CvTexture *local = cv_xcalloc(nt, sizeof(CvTexture));
+    memcpy(local + s->n_textures, env->textures, env->n_textures * sizeof(CvTexture));
+    struct cv_scene view = {.n_lights = s->n_lights, .textures = local, .n_textures = nt,
+                            .texels = env->texels, .n_texels = env->n_texels};
+    float *dist = NULL;
+    size_t n_dist = 0;
+    bool ok = build_env_dists(&view, lights, &dist, &n_dist, err);
+    free(local);
+    size_t base_bytes = (size_t)s->n_texels * 8, env_bytes = (size_t)env->n_texels * 8;
+    ok = ok && up(gpu, &g->textures, nt * sizeof(CvTexture), tex, "scene textures (relit)", err) &&
+         up(gpu, &g->texels, base_bytes + env_bytes, NULL, "scene texels (relit)", err) &&
+         up(gpu, &g->env_dist, n_dist * sizeof(float), dist, "environment distributions (relit)",
+            err);
+    if (ok) {
+        /* the scene's texels stay on the GPU: copied there, not uploaded again */
+        if (base_bytes)
+            glCopyNamedBufferSubData(g->base->texels, g->texels, 0, 0, (GLsizeiptr)base_bytes);
+        glNamedBufferSubData(g->texels, (GLintptr)base_bytes, (GLsizeiptr)env_bytes, env->texels);
+        ok = cv_gl_check(err, "cv_scene_gpu_relight: copying the texels");
+    }
+    free(tex);
+    free(dist);
+    g->has_textures = true;
+    return ok;
+}
+
+bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
+                          const struct cv_scene *s, const CvLight *lights, const float *power,
+                          const struct cv_scene *env, const CvTexture *env_textures,
+                          struct cv_scene_gpu **out, struct cv_error *err)
+{
+    struct cv_scene_gpu g = *base;
+    g.base = base;
+    g.lights = g.light_cdf = 0;
+    uint32_t n = s->n_lights;
+    CvLight *l = cv_xcalloc(n ? n : 1, sizeof(CvLight));
+    float *cdf = cv_xcalloc(n ? n : 1, sizeof(float));
+    if (n)
+        memcpy(l, lights, n * sizeof(CvLight));
+    bool ok = true;
+    if (env)
+        ok = upload_env(gpu, s, l, env, env_textures, &g, err);  /* sets the maps' prim */
+    else
+        env_offsets(s, l);
+    cv_light_cdf(power, n, cdf);
+    ok = ok && up(gpu, &g.lights, n * sizeof(CvLight), l, "scene lights (relit)", err) &&
+         up(gpu, &g.light_cdf, n * sizeof(float), cdf, "scene light cdf (relit)", err);
+    free(l);
+    free(cdf);
+    if (!ok) {
+        cv_scene_gpu_release(&g);
+        return false;
+    }
+    *out = cv_xmalloc(sizeof(**out));
+    **out = g;
+    return true;
 }

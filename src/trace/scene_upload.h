@@ -24,6 +24,11 @@ struct cv_scene_gpu {
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
+    /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its
+     * own, and with a new environment image its textures, texels and
+     * env_dist too; every other buffer and the BVH are base's; NULL
+     * otherwise. */
+    const struct cv_scene_gpu *base;
 };
 
 /* Light selection CDF: cdf[i] = sum of pmf[0..i] with pmf proportional to
@@ -50,5 +55,20 @@ bool cv_scene_gpu_create(struct cv_gpu *gpu, const struct cv_scene *s,
 /* Accepts NULL; clears the pointer. The renderers using it must be
  * destroyed first. */
 void cv_scene_gpu_destroy(struct cv_scene_gpu **g);
+
+/* A copy of base, the upload of s, with its own light records and
+ * light-selection CDF from lights and power (s->n_lights each; a job's
+ * overrides, scene/relight.h). With env (an environment image,
+ * scene/env_file.h), env_textures (env->n_textures records, as
+ * cv_scene_relight made them) follow the scene's textures and env's texels
+ * the scene's (copied on the GPU), and the environment distributions are
+ * built from env's image. Everything else, the BVH included, stays base's,
+ * which must outlive it. Costs an upload of the lights (and of the image
+ * with its distribution): per job, not per pass. Destroy with
+ * cv_scene_gpu_destroy. */
+bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
+                          const struct cv_scene *s, const CvLight *lights, const float *power,
+                          const struct cv_scene *env, const CvTexture *env_textures,
+                          struct cv_scene_gpu **out, struct cv_error *err);
 
 #endif

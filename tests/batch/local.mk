@@ -23,3 +23,9 @@ EXTRA_DIST += tests/batch/png_tag_test.sh
 # --- multi-GPU batches: --gpu all, --workers (issue 28) ---
 TESTS += tests/batch/workers_test.sh
 EXTRA_DIST += tests/batch/workers_test.sh
+# --- matrix jobs and light overrides (issue 28) ---
+check_PROGRAMS += tests/batch/exr_scale
+tests_batch_exr_scale_LDADD = $(CV_LIBS)
+TESTS += tests/batch/matrix_test.sh tests/batch/relight_test.sh
+EXTRA_DIST += tests/batch/matrix_test.sh tests/batch/relight_test.sh tests/data/batch/env.pbrt \
+	tests/data/batch/env_turned.pbrt tests/data/batch/gray.pfm tests/data/batch/wide.pfm

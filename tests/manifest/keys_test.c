@@ -55,6 +55,8 @@ static char *example(const struct cv_key *k)
             return cv_xstrdup("\"renders/{name}\"");
         if (k == &cv_manifest_keys[CV_K_COLOR_CONFIG])
             return cv_xstrdup("c.ocio");
+        if (k == &cv_manifest_keys[CV_K_ENV_FILE])  /* any file that exists */
+            return cv_xstrdup("t.pbrt");
         return cv_xstrdup("x1");
     case CV_KT_U32: return cv_xasprintf("%.0f", k->max);
     case CV_KT_FLOAT: return cv_xasprintf("%g", (k->min + k->max) / 2);
@@ -65,6 +67,11 @@ static char *example(const struct cv_key *k)
     case CV_KT_RESOLUTION: return cv_xstrdup("[3, 2]");
     case CV_KT_LOOKAT: return cv_xstrdup("[[0, 0, 0], [0, 0, 1], [0, 1, 0]]");
     case CV_KT_CROP: return cv_xstrdup("[0.25, 0.75, 0, 0.5]");
+    /* a key that is not hashed, as the matrix row is not: its values
+     * enter the hash as the keys they set */
+    case CV_KT_MATRIX: return cv_xstrdup("{formats: [exr, png]}");
+    case CV_KT_ROTATE: return cv_xstrdup("[90, 0, 1, 0]");
+    case CV_KT_LIGHT_SCALES: return cv_xstrdup("{0: 2, 3: 0.5}");
     case CV_KT_SECTION: break;
     }
     return NULL;

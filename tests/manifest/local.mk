@@ -25,3 +25,7 @@ EXTRA_DIST += tests/manifest/man_lint_test.sh tests/manifest/fuzz_manifest_test.
 	tests/data/manifest/err_many.yaml \
 	tests/data/manifest/scenes/tiny.pbrt \
 	tests/data/manifest/scenes/other.pbrt
+# --- a job's matrix (issue 28) ---
+check_PROGRAMS += tests/manifest/matrix_test
+TESTS += tests/manifest/matrix_test
+tests_manifest_matrix_test_LDADD = $(CV_LIBS)

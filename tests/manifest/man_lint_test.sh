@@ -17,6 +17,9 @@ fi
 # each has an .It entry (a nested key after its section's), each name of an
 # enum or list appears, and an integer range is the page's range.
 line_of() { grep -n -E "^\.It Cm $1( |\$)" "$page" | head -n 1 | cut -d: -f1; }
+# the first entry of $1 after line $2: a leaf such as "scale" may be a key
+# of several sections
+line_after() { grep -n -E "^\.It Cm $1( |\$)" "$page" | cut -d: -f1 | awk -v from="$2" '$1 > from { print; exit }'; }
 "$CAVALRY_BATCH" --list-keys >"$tmp/keys"
 n_keys=$(wc -l <"$tmp/keys")
 check "--list-keys lists the keys ($n_keys)" test "$n_keys" -gt 20
@@ -29,6 +32,7 @@ while IFS="$tab" read -r key type default help; do
     at=$(line_of "$leaf")
     if [ "$leaf" != "$key" ]; then
         section=$(line_of "${key%.*}")
+        at=$(line_after "$leaf" "${section:-0}")
         check "documents $key" test -n "$at" -a -n "$section" -a "${at:-0}" -gt "${section:-0}"
     else
         check "documents $key" test -n "$at"

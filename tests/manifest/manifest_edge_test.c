@@ -114,7 +114,7 @@ int main(void)
           "version: 1\ndefaults: {scene: s.pbrt, output: same}\njobs:\n  - name: a\n  - name: b\n",
           "m.yaml:2:35: job \"b\": output \"");
     fails("unknown placeholder in output", HEAD "  - {name: a, scene: s.pbrt, output: \"o/{nmae}\"}\n",
-          "only {name} may be written in braces");
+          "only {name} and {KEY} of a key of the job's matrix may be written in braces");
     fails("output naming a folder", HEAD "  - {name: a, scene: s.pbrt, output: out/}\n",
           "output: \"out/\" names a folder");
     fails("quoted number", HEAD "  - {name: a, scene: s.pbrt, spp: \"64\"}\n",
