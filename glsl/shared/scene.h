@@ -47,6 +47,8 @@ CV_CHECK_SIZE(CvTriangle, 16);
 #define CV_FILTER_ID_BOX 0u
 #define CV_FILTER_ID_TRIANGLE 1u
 #define CV_FILTER_ID_GAUSSIAN 2u
+#define CV_FILTER_ID_MITCHELL 3u
+#define CV_FILTER_ID_SINC 4u
 
 #define CV_TEX_CONSTANT 0u     /* value_a */
 #define CV_TEX_IMAGE 1u        /* texels[offset..], width x height, mip chain */

@@ -1,33 +1,11 @@
 // glsl/trace/camera.glsl: camera rays by the conventions of CvCamera
-// (glsl/shared/scene.h) and the pixel filter by importance sampling: the
-// sample offset is distributed as the filter, so every sample weighs 1.
+// (glsl/shared/scene.h); the pixel filter's offsets come from filter.glsl.
 #ifndef CV_TRACE_CAMERA_GLSL
 #define CV_TRACE_CAMERA_GLSL
 
 #include "../lib/sampling.glsl"
 #include "../shared/scene.h"
-
-float cv_filter_table(bool y_axis, uint i)
-{
-    vec4 v = y_axis ? u_pass.filter_y[i >> 2] : u_pass.filter_x[i >> 2];
-    return v[i & 3u];
-}
-
-// Offset in pixels along one axis for a uniform u.
-float cv_filter_offset(float u, float radius, bool y_axis)
-{
-    uint type = u_pass.filter_type;
-    if (type == CV_FILTER_ID_TRIANGLE)
-        return u < 0.5 ? radius * (sqrt(2.0 * u) - 1.0) : radius * (1.0 - sqrt(2.0 - 2.0 * u));
-    if (type == CV_FILTER_ID_GAUSSIAN) {
-        // tabulated inverse CDF of the truncated Gaussian on [0,1] -> [-1,1]
-        float x = u * float(CV_FILTER_TABLE);
-        uint i = min(uint(x), uint(CV_FILTER_TABLE) - 1u);
-        float a = cv_filter_table(y_axis, i), b = cv_filter_table(y_axis, i + 1u);
-        return radius * (2.0 * mix(a, b, x - float(i)) - 1.0);
-    }
-    return radius * (2.0 * u - 1.0);
-}
+#include "filter.glsl"
 
 // Raster position (full film pixels) to a world-space ray.
 void cv_camera_ray(vec2 raster, vec2 u_lens, out vec3 o, out vec3 d)

@@ -78,6 +78,9 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     s->settings.filter_radius[0] = s->settings.filter_radius[1] =
         cv_filter_info(CV_FILTER_DEFAULT)->radius;
     s->settings.filter_sigma = CV_FILTER_GAUSSIAN_SIGMA;
+    s->settings.filter_b = CV_FILTER_MITCHELL_B;
+    s->settings.filter_c = CV_FILTER_MITCHELL_C;
+    s->settings.filter_tau = CV_FILTER_SINC_TAU;
     s->settings.exposure = 1;
     s->settings.crop[1] = s->settings.crop[3] = 1;
 }

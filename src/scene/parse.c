@@ -631,6 +631,13 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         st->filter_radius[0] = (float)cv_params_float(&ps, "xradius", cv_params_float(&ps, "xwidth", def));
         st->filter_radius[1] = (float)cv_params_float(&ps, "yradius", cv_params_float(&ps, "ywidth", def));
         st->filter_sigma = (float)cv_params_float(&ps, "sigma", CV_FILTER_GAUSSIAN_SIGMA);
+        st->filter_b = (float)cv_params_float(&ps, "B", CV_FILTER_MITCHELL_B);
+        st->filter_c = (float)cv_params_float(&ps, "C", CV_FILTER_MITCHELL_C);
+        st->filter_tau = (float)cv_params_float(&ps, "tau", CV_FILTER_SINC_TAU);
+        if (ok && !(st->filter_radius[0] > 0 && st->filter_radius[1] > 0 && st->filter_sigma > 0 &&
+              st->filter_tau > 0))
+            ok = cv_fail(err, "%s:%d:%d: PixelFilter radii, sigma and tau must be positive",
+                         loc.file, loc.line, loc.col);
         cv_params_float(&ps, "alpha", 0);
         ok = ok && cv_b_check_unused(b, &ps, "PixelFilter", err);
     } else if (IS(Integrator)) {

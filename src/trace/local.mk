@@ -7,7 +7,7 @@ libcavalry_a_SOURCES += \
 
 GLSL_FILES += \
 	glsl/shared/trace.h \
-	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
+	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl glsl/trace/filter.glsl \
 	glsl/trace/geometry.glsl glsl/trace/tracing.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
 	glsl/trace/surface_inputs.glsl glsl/trace/path_vertex.glsl glsl/trace/shade_queue.glsl \
