@@ -188,7 +188,20 @@ CV_STRUCT(CvPassParams) {
     CV_UINT paths_per_pixel;   /* slots per pixel (K) */
     CV_UINT camera_rays;   /* camera rays the pass's generate stage writes */
     CV_UINT pad;
+    /* The camera's motion (src/trace/camera_motion.h), pbrt-v4's
+     * AnimatedTransform of camera to world: each end's transform split
+     * into translation T, rotation R (a unit quaternion x, y, z, w; R[1]
+     * on R[0]'s side) and scale-shear S (3x3, rows), interpolated per
+     * camera ray at its time. cam_time: x, y shutter open, close; z, w
+     * the transforms' start, end times. cam_moves: 0 for a still camera
+     * (cam_to_world alone then). */
+    cv_vec4 cam_time;
+    cv_uvec4 cam_moves;    /* x: 0 or 1 */
+    cv_vec4 cam_T[2];
+    cv_vec4 cam_R[2];
+    cv_vec4 cam_S[6];      /* rows of S[0], then of S[1] */
 } CV_END(CvPassParams)
-CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_CELLS / 4 + 1) + CV_FILTER_CELLS / 64 + 1));
+CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_CELLS / 4 + 1) + CV_FILTER_CELLS / 64 + 1 +
+                                  12));
 
 #endif

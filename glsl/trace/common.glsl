@@ -73,6 +73,10 @@ void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray
 #define CV_PAIR_BSDF_UC 1u    // x: BSDF lobe, y: material mix
 #define CV_PAIR_LIGHT_U2 2u   // light position
 #define CV_PAIR_LIGHT_UC 3u   // x: light choice, y: roulette
+// The camera ray's time (x; a moving camera's only): a pair past any
+// bounce's, so that it moved no other dimension. Pairs are only hashed into
+// their scramble (sampler.glsl): any number is a pair of its own.
+#define CV_PAIR_CAMERA_TIME 0x7fffffffu
 
 // x moved to the next float in the direction of s's sign (s 0: x).
 float cv_float_away(float x, float s)

@@ -28,8 +28,11 @@ CvRayItem cv_camera_sample(uint path, uint sample_index)
     vec2 ul = cv_sample_2d(film_pixel, sample_index, 1u, seed, sampler);
     float w;
     vec2 raster = vec2(px) + 0.5 + cv_filter_sample(uf, w);
+    float ut = u_pass.cam_moves.x != 0u
+                   ? cv_sample_2d(film_pixel, sample_index, CV_PAIR_CAMERA_TIME, seed, sampler).x
+                   : 0.0;
     vec3 o, d;
-    cv_camera_ray(raster, ul, o, d);
+    cv_camera_ray(raster, ul, ut, o, d);
     CvRayItem r;
     r.o = vec4(o, float(path));
     r.d = vec4(d, 0.0);

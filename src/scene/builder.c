@@ -58,12 +58,15 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     memset(b, 0, sizeof(*b));
     b->s = s;
     b->strict = strict;
-    b->gs.ctm = cv_mat4_identity();
+    b->gs.ctm = b->gs.ctm_end = cv_mat4_identity();
+    b->gs.active = CV_XFORM_START | CV_XFORM_END;
+    b->transform_times[1] = 1;
+    b->shutter[1] = 1;
     b->gs.material = -1;
     b->gs.area.tex = -1;
     b->cur_object = -1;
     b->default_material = -1;
-    b->camera_to_world = cv_mat4_identity();
+    b->camera_to_world = b->camera_to_world_end = cv_mat4_identity();
     b->fov = 90;
     b->focaldistance = 1e6;
     b->xres = 1280;

@@ -1,6 +1,7 @@
 # src/trace: the wavefront path tracer (host side; shaders in glsl/trace).
 libcavalry_a_SOURCES += \
 	src/trace/filter_table.c src/trace/filter_table.h \
+	src/trace/camera_motion.c src/trace/camera_motion.h \
 	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/render.c src/trace/render.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h

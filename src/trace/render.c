@@ -25,6 +25,7 @@
 #include "gpu/program.h"
 #include "gpu/storage.h"
 #include "gpu/timer.h"
+#include "trace/camera_motion.h"
 #include "trace/filter_table.h"
 #include "trace/integrator.h"
 #include "trace/render.h"
@@ -134,6 +135,7 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     u->focal_distance = c->lens.y;
     u->tan_half_fov = c->lens.z;
     u->orthographic = c->type == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f;
+    cv_camera_motion_setup(c, u);
 }
 
 static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok,

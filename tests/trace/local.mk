@@ -72,8 +72,9 @@ tests_trace_oracle_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/oracle
 # --- end of oracle tests ---
 # --- pixel filters and camera (branch filmcam) ---
-check_PROGRAMS += tests/trace/filter_sample_test
-TESTS += tests/trace/filter_sample_test
+check_PROGRAMS += tests/trace/filter_sample_test tests/trace/camera_motion_test
+TESTS += tests/trace/filter_sample_test tests/trace/camera_motion_test
 tests_trace_filter_sample_test_LDADD = $(CV_LIBS)
+tests_trace_camera_motion_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += glsl/trace/test/filter_probe.comp
 # --- end of pixel filters and camera ---
