@@ -170,7 +170,7 @@ CV_STRUCT(CvPassParams) {
     CV_UINT max_depth;
     cv_uvec4 film;         /* x, y: full film resolution; z, w: crop origin */
     CV_UINT iteration;     /* its parity picks the ray queue halves */
-    CV_UINT filter_type;   /* CV_FILTER_* (glsl/trace/camera.glsl) */
+    CV_UINT filter_type;   /* CV_FILTER_ID_* (glsl/trace/filter.glsl) */
     CV_UINT n_lights;
     CV_UINT end_sample;    /* the pass's end sample (exclusive) */
     cv_vec4 pixel_filter;        /* x, y: filter radius; z, w: cells of the tabulated

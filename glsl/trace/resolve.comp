@@ -1,9 +1,10 @@
 #version 450
-// glsl/trace/resolve.comp: the film as linear RGB (radiance sum / weight
-// sum, as pbrt-v4's RGBFilm divides; a filter's negative lobes may make
-// either negative; alpha 1), one vec4 per pixel of the crop, row-major, top row first; a
-// pixel's sums are those of its K path slots, added in slot order so the
-// result does not depend on how the render was split into passes.
+// glsl/trace/resolve.comp: the film as linear RGB (radiance sum over
+// weight sum, as pbrt-v4's RGBFilm divides; a filter's negative lobes may
+// make either negative; alpha 1), one vec4 per pixel of the crop,
+// row-major, top row first; a pixel's sums are those of its K path slots,
+// added in slot order so the result does not depend on how the render was
+// split into passes.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"

@@ -14,8 +14,8 @@
 #include "glsl/shared/trace.h"
 #include "scene/scene.h"
 
-/* Cells of the table on an axis of radius r [pixels]: 0 for a filter
- * sampled in closed form. */
+/* Cells of the table along `axis` (0: x, 1: y): 32 a pixel of radius, 1
+ * to CV_FILTER_CELLS; 0 for a filter sampled in closed form. */
 unsigned cv_filter_cells(const struct cv_render_settings *st, int axis);
 
 /* Fills the filter fields of the pass constants (filter_type,
