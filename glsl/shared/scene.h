@@ -47,6 +47,8 @@ CV_CHECK_SIZE(CvTriangle, 16);
 #define CV_FILTER_ID_BOX 0u
 #define CV_FILTER_ID_TRIANGLE 1u
 #define CV_FILTER_ID_GAUSSIAN 2u
+#define CV_FILTER_ID_MITCHELL 3u
+#define CV_FILTER_ID_SINC 4u
 
 #define CV_TEX_CONSTANT 0u     /* value_a */
 #define CV_TEX_IMAGE 1u        /* texels[offset..], width x height, mip chain */
@@ -187,7 +189,13 @@ CV_STRUCT(CvCamera) {
     cv_uvec4 crop;        /* crop size x, y (pixels rendered); z, w: 0 */
     CV_UINT type;         /* CV_CAMERA_* */
     CV_UINT pad[3];
+    /* Motion over the shutter: to_world_end at the end time, to_world at
+     * the start time (pbrt's ActiveTransform / TransformTimes); equal rows
+     * for a camera that does not move. time: x, y shutter open, close;
+     * z, w the transforms' start, end times. */
+    cv_vec4 to_world_end[3];
+    cv_vec4 time;
 } CV_END(CvCamera)
-CV_CHECK_SIZE(CvCamera, 128);
+CV_CHECK_SIZE(CvCamera, 192);
 
 #endif

@@ -139,13 +139,15 @@ CV_STRUCT(CvShadowItem) {
 CV_CHECK_SIZE(CvShadowItem, 48);
 
 /* A path slot's sums over its samples (a pixel's are the sum of its K
- * slots'). L.rgb: radiance; L.w: filter weight (1 per
- * sample: filter importance sampling). AOVs (divide by L.w), written only
+ * slots'), each sample weighted by its filter weight w (+1 or -1:
+ * trace/filter.glsl), as pbrt-v4's film weighs by f / pdf. L.rgb:
+ * radiance; L.w: the weights' sum. AOVs (divide by L.w), written only
  * when the renderer keeps them: albedo.rgb: albedo at the first
  * non-specular hit; albedo.w: camera distance to the first hit (0 when the
  * ray escaped); normal.xyz: shading normal at the first hit. normal.w: the
- * sample index of the slot's path in flight (a float holding the integer,
- * as CvRayItem.o.w; the host keeps sample counts below 2^24). */
+ * sample index of the slot's path in flight plus 1, times its filter
+ * weight (a float holding the integer, as CvRayItem.o.w; the host keeps
+ * sample counts below 2^24). */
 CV_STRUCT(CvFilmPixel) {
     cv_vec4 L;
     cv_vec4 albedo;
@@ -156,7 +158,9 @@ CV_CHECK_SIZE(CvFilmPixel, 48);
 /* Per-pass constants, in a uniform block at binding 0 (std140: every row
  * of four scalars below fills one 16-byte row, as a vec4 would). */
 #define CV_UBO_PASS 0
-#define CV_FILTER_TABLE 64
+/* Cells of a tabulated pixel filter (trace/filter_table.h) on each axis, at
+ * most: pbrt-v4's 32 a pixel of radius up to a radius of 8. */
+#define CV_FILTER_CELLS 256
 CV_STRUCT(CvPassParams) {
     CV_UINT n_pixels;      /* pixels in the crop */
     CV_UINT crop_w, crop_h;
@@ -166,23 +170,38 @@ CV_STRUCT(CvPassParams) {
     CV_UINT max_depth;
     cv_uvec4 film;         /* x, y: full film resolution; z, w: crop origin */
     CV_UINT iteration;     /* its parity picks the ray queue halves */
-    CV_UINT filter_type;   /* CV_FILTER_* (glsl/trace/camera.glsl) */
+    CV_UINT filter_type;   /* CV_FILTER_ID_* (glsl/trace/filter.glsl) */
     CV_UINT n_lights;
     CV_UINT end_sample;    /* the pass's end sample (exclusive) */
-    cv_vec4 pixel_filter;        /* x, y: filter radius; z: gaussian sigma */
+    cv_vec4 pixel_filter;        /* x, y: filter radius; z, w: cells of the tabulated
+                                  * filter on x, y (floats holding integers) */
     cv_vec4 cam_to_world[3];
     cv_vec4 screen;
     CV_FLOAT lens_radius;
     CV_FLOAT focal_distance;
     CV_FLOAT tan_half_fov;
     CV_FLOAT orthographic; /* 1: orthographic, 0: perspective */
-    cv_vec4 filter_x[CV_FILTER_TABLE / 4 + 1]; /* gaussian inverse CDF over [0,1], x axis (65 values, padded) */
-    cv_vec4 filter_y[CV_FILTER_TABLE / 4 + 1];
+    cv_vec4 filter_x[CV_FILTER_CELLS / 4 + 1]; /* CDF of |f| over the x cells (cells + 1 values) */
+    cv_vec4 filter_y[CV_FILTER_CELLS / 4 + 1];
+    cv_uvec4 filter_neg[2][CV_FILTER_CELLS / 128]; /* [axis]: bit k set where f < 0 in cell k */
     CV_UINT n_paths;       /* path slots (the queues' capacity) */
     CV_UINT paths_per_pixel;   /* slots per pixel (K) */
     CV_UINT camera_rays;   /* camera rays the pass's generate stage writes */
     CV_UINT pad;
+    /* The camera's motion (src/trace/camera_motion.h), pbrt-v4's
+     * AnimatedTransform of camera to world: each end's transform split
+     * into translation T, rotation R (a unit quaternion x, y, z, w; R[1]
+     * on R[0]'s side) and scale-shear S (3x3, rows), interpolated per
+     * camera ray at its time. cam_time: x, y shutter open, close; z, w
+     * the transforms' start, end times. cam_moves: 0 for a still camera
+     * (cam_to_world alone then). */
+    cv_vec4 cam_time;
+    cv_uvec4 cam_moves;    /* x: 0 or 1 */
+    cv_vec4 cam_T[2];
+    cv_vec4 cam_R[2];
+    cv_vec4 cam_S[6];      /* rows of S[0], then of S[1] */
 } CV_END(CvPassParams)
-CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_TABLE / 4 + 1) + 1));
+CV_CHECK_SIZE(CvPassParams, 16 * (4 + 1 + 3 + 2 + 2 * (CV_FILTER_CELLS / 4 + 1) + CV_FILTER_CELLS / 64 + 1 +
+                                  12));
 
 #endif

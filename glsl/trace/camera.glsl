@@ -1,36 +1,57 @@
 // glsl/trace/camera.glsl: camera rays by the conventions of CvCamera
-// (glsl/shared/scene.h) and the pixel filter by importance sampling: the
-// sample offset is distributed as the filter, so every sample weighs 1.
+// (glsl/shared/scene.h); the pixel filter's offsets come from filter.glsl.
 #ifndef CV_TRACE_CAMERA_GLSL
 #define CV_TRACE_CAMERA_GLSL
 
 #include "../lib/sampling.glsl"
 #include "../shared/scene.h"
+#include "filter.glsl"
 
-float cv_filter_table(bool y_axis, uint i)
+// A vector v rotated by the unit quaternion q (x, y, z, w).
+vec3 cv_quat_rotate(vec4 q, vec3 v)
 {
-    vec4 v = y_axis ? u_pass.filter_y[i >> 2] : u_pass.filter_x[i >> 2];
-    return v[i & 3u];
+    return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v);
 }
 
-// Offset in pixels along one axis for a uniform u.
-float cv_filter_offset(float u, float radius, bool y_axis)
+float cv_sin_x_over_x(float x) { return 1.0 - x * x / 6.0 == 1.0 ? 1.0 : sin(x) / x; }
+
+// pbrt-v4's Slerp, with the angle between q0 and q1 taken as pbrt-v4's
+// AngleBetween does (no acos of a dot product near 1).
+vec4 cv_quat_slerp(float t, vec4 q0, vec4 q1)
 {
-    uint type = u_pass.filter_type;
-    if (type == CV_FILTER_ID_TRIANGLE)
-        return u < 0.5 ? radius * (sqrt(2.0 * u) - 1.0) : radius * (1.0 - sqrt(2.0 - 2.0 * u));
-    if (type == CV_FILTER_ID_GAUSSIAN) {
-        // tabulated inverse CDF of the truncated Gaussian on [0,1] -> [-1,1]
-        float x = u * float(CV_FILTER_TABLE);
-        uint i = min(uint(x), uint(CV_FILTER_TABLE) - 1u);
-        float a = cv_filter_table(y_axis, i), b = cv_filter_table(y_axis, i + 1u);
-        return radius * (2.0 * mix(a, b, x - float(i)) - 1.0);
+    float theta = dot(q0, q1) < 0.0 ? 3.14159265 - 2.0 * asin(min(length(q0 + q1) / 2.0, 1.0))
+                                    : 2.0 * asin(min(length(q1 - q0) / 2.0, 1.0));
+    float s = cv_sin_x_over_x(theta);
+    vec4 q = q0 * ((1.0 - t) * cv_sin_x_over_x((1.0 - t) * theta) / s) +
+             q1 * (t * cv_sin_x_over_x(t * theta) / s);
+    return normalize(q);
+}
+
+// Camera space to world space at the time of sample u_time (a point when
+// w is 1, a direction when 0): cam_to_world for a still camera; for a
+// moving one pbrt-v4's AnimatedTransform at time lerp(u_time, shutter
+// open, close) clamped to the transforms' times (CvPassParams.cam_*).
+vec3 cv_camera_to_world(vec3 v, float w, float u_time)
+{
+    if (u_pass.cam_moves.x == 0u) {
+        mat3 r = transpose(mat3(u_pass.cam_to_world[0].xyz, u_pass.cam_to_world[1].xyz,
+                                u_pass.cam_to_world[2].xyz)); // the rows
+        return r * v + w * vec3(u_pass.cam_to_world[0].w, u_pass.cam_to_world[1].w,
+                                u_pass.cam_to_world[2].w);
     }
-    return radius * (2.0 * u - 1.0);
+    vec4 tm = u_pass.cam_time;
+    float time = mix(tm.x, tm.y, u_time);
+    float dt = time <= tm.z ? 0.0 : time >= tm.w ? 1.0 : (time - tm.z) / (tm.w - tm.z);
+    vec3 sv = vec3(dot(mix(u_pass.cam_S[0].xyz, u_pass.cam_S[3].xyz, dt), v),
+                   dot(mix(u_pass.cam_S[1].xyz, u_pass.cam_S[4].xyz, dt), v),
+                   dot(mix(u_pass.cam_S[2].xyz, u_pass.cam_S[5].xyz, dt), v));
+    vec3 rv = cv_quat_rotate(cv_quat_slerp(dt, u_pass.cam_R[0], u_pass.cam_R[1]), sv);
+    return rv + w * mix(u_pass.cam_T[0].xyz, u_pass.cam_T[1].xyz, dt);
 }
 
-// Raster position (full film pixels) to a world-space ray.
-void cv_camera_ray(vec2 raster, vec2 u_lens, out vec3 o, out vec3 d)
+// Raster position (full film pixels) to a world-space ray, at the time of
+// the uniform u_time (unused by a still camera).
+void cv_camera_ray(vec2 raster, vec2 u_lens, float u_time, out vec3 o, out vec3 d)
 {
     vec4 s = u_pass.screen;
     vec2 film = vec2(u_pass.film.xy);
@@ -51,11 +72,8 @@ void cv_camera_ray(vec2 raster, vec2 u_lens, out vec3 o, out vec3 d)
         oc = vec3(oc.xy + pl, 0.0);
         dc = normalize(pf - oc);
     }
-    mat3 r = mat3(u_pass.cam_to_world[0].xyz, u_pass.cam_to_world[1].xyz,
-                  u_pass.cam_to_world[2].xyz); // columns are the rows: use transpose
-    r = transpose(r);
-    o = r * oc + vec3(u_pass.cam_to_world[0].w, u_pass.cam_to_world[1].w, u_pass.cam_to_world[2].w);
-    d = normalize(r * dc);
+    o = cv_camera_to_world(oc, 1.0, u_time);
+    d = normalize(cv_camera_to_world(dc, 0.0, u_time));
 }
 
 #endif

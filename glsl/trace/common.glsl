@@ -28,8 +28,10 @@ uint cv_ray_flags(CvRayItem r) { return uint(r.beta.w) & CV_RAYF_MASK; }
 uint cv_ray_depth(CvRayItem r) { return uint(r.beta.w) >> CV_RAYF_DEPTH_SHIFT; }
 float cv_ray_meta(uint flags, uint depth) { return float(flags | (depth << CV_RAYF_DEPTH_SHIFT)); }
 
-// The sample index of the path in flight in slot `path` (trace.h).
-uint cv_path_sample(uint path) { return uint(film[path].normal.w); }
+// The sample index of the path in flight in slot `path`, and its filter
+// weight (trace.h: CvFilmPixel.normal.w).
+uint cv_path_sample(uint path) { return uint(abs(film[path].normal.w)) - 1u; }
+float cv_path_weight(uint path) { return film[path].normal.w < 0.0 ? -1.0 : 1.0; }
 // The crop pixel that path slot `path` belongs to.
 uint cv_path_pixel(uint path) { return path % u_pass.n_pixels; }
 // The full film's pixel index of crop pixel i: what keys every random
@@ -71,6 +73,10 @@ void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray
 #define CV_PAIR_BSDF_UC 1u    // x: BSDF lobe, y: material mix
 #define CV_PAIR_LIGHT_U2 2u   // light position
 #define CV_PAIR_LIGHT_UC 3u   // x: light choice, y: roulette
+// The camera ray's time (x; a moving camera's only): a pair past any
+// bounce's, so that it moved no other dimension. Pairs are only hashed into
+// their scramble (sampler.glsl): any number is a pair of its own.
+#define CV_PAIR_CAMERA_TIME 0x7fffffffu
 
 // x moved to the next float in the direction of s's sign (s 0: x).
 float cv_float_away(float x, float s)
@@ -150,13 +156,13 @@ bool cv_finite3(vec3 v)
     return !(any(isnan(v)) || any(isinf(v)));
 }
 
-// Adds radiance to a path slot's film entry. Each slot has one path in
-// flight and each stage touches a path once, so the stages need no atomics
-// here.
+// Adds radiance to a path slot's film entry, weighted by the filter
+// weight of its sample. Each slot has one path in flight and each stage
+// touches a path once, so the stages need no atomics here.
 void cv_film_add(uint path, vec3 L)
 {
     if (cv_finite3(L) && cv_max3(L) > 0.0)
-        film[path].L.rgb += L;
+        film[path].L.rgb += cv_path_weight(path) * L;
 }
 
 #endif

@@ -68,12 +68,14 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     cv_strategy_begin(g, sf, wo, b, delta);
 
 #ifdef CV_AOVS
+    // weighted by the sample's filter weight, as radiance (cv_film_add)
+    float aov_w = cv_path_weight(path);
     if (depth == 0u) {
-        film[path].normal.xyz += sf.ns;
-        film[path].albedo.w += h.t;
+        film[path].normal.xyz += aov_w * sf.ns;
+        film[path].albedo.w += aov_w * h.t;
     }
     if (!delta && (flags & CV_RAYF_ALBEDO_DONE) == 0u) {
-        film[path].albedo.rgb += cv_bsdf_albedo(b);
+        film[path].albedo.rgb += aov_w * cv_bsdf_albedo(b);
         flags |= CV_RAYF_ALBEDO_DONE;
     }
 #endif

@@ -1,5 +1,6 @@
 // glsl/trace/regenerate.glsl: camera rays, one per pixel sample; each sample
-// adds weight 1 to its path slot's film entry (filter importance sampling).
+// adds its filter weight (+1 or -1, filter.glsl) to its path slot's film
+// entry, and every radiance or AOV value the path adds is weighted by it.
 // The pass's first samples come from trace/generate.comp; every later one
 // from the stage that ends the slot's previous path (intersect or escaped
 // for a miss, shade otherwise: path regeneration, trace.h), which queues
@@ -14,8 +15,8 @@
 #include "camera.glsl"
 
 // Sample `sample_index` of the pixel of path slot `path`: its camera ray;
-// the slot's film entry counts the sample and records it as the path in
-// flight.
+// the slot's film entry counts the sample's weight and records it, with
+// the weight, as the path in flight.
 CvRayItem cv_camera_sample(uint path, uint sample_index)
 {
     uint i = cv_path_pixel(path), cw = u_pass.crop_w;
@@ -25,17 +26,19 @@ CvRayItem cv_camera_sample(uint path, uint sample_index)
     uint sampler = u_pass.sampler;
     vec2 uf = cv_sample_2d(film_pixel, sample_index, 0u, seed, sampler);
     vec2 ul = cv_sample_2d(film_pixel, sample_index, 1u, seed, sampler);
-    vec2 raster = vec2(px) + 0.5 +
-                  vec2(cv_filter_offset(uf.x, u_pass.pixel_filter.x, false),
-                       cv_filter_offset(uf.y, u_pass.pixel_filter.y, true));
+    float w;
+    vec2 raster = vec2(px) + 0.5 + cv_filter_sample(uf, w);
+    float ut = u_pass.cam_moves.x != 0u
+                   ? cv_sample_2d(film_pixel, sample_index, CV_PAIR_CAMERA_TIME, seed, sampler).x
+                   : 0.0;
     vec3 o, d;
-    cv_camera_ray(raster, ul, o, d);
+    cv_camera_ray(raster, ul, ut, o, d);
     CvRayItem r;
     r.o = vec4(o, float(path));
     r.d = vec4(d, 0.0);
     r.beta = vec4(1.0, 1.0, 1.0, cv_ray_meta(0u, 0u));
-    film[path].L.w += 1.0;
-    film[path].normal.w = float(sample_index);
+    film[path].L.w += w;
+    film[path].normal.w = w * (float(sample_index) + 1.0);
     return r;
 }
 

@@ -58,12 +58,15 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     memset(b, 0, sizeof(*b));
     b->s = s;
     b->strict = strict;
-    b->gs.ctm = cv_mat4_identity();
+    b->gs.ctm = b->gs.ctm_end = cv_mat4_identity();
+    b->gs.active = CV_XFORM_START | CV_XFORM_END;
+    b->transform_times[1] = 1;
+    b->shutter[1] = 1;
     b->gs.material = -1;
     b->gs.area.tex = -1;
     b->cur_object = -1;
     b->default_material = -1;
-    b->camera_to_world = cv_mat4_identity();
+    b->camera_to_world = b->camera_to_world_end = cv_mat4_identity();
     b->fov = 90;
     b->focaldistance = 1e6;
     b->xres = 1280;
@@ -78,6 +81,9 @@ void cv_b_init(struct cv_builder *b, struct cv_scene *s, bool strict)
     s->settings.filter_radius[0] = s->settings.filter_radius[1] =
         cv_filter_info(CV_FILTER_DEFAULT)->radius;
     s->settings.filter_sigma = CV_FILTER_GAUSSIAN_SIGMA;
+    s->settings.filter_b = CV_FILTER_MITCHELL_B;
+    s->settings.filter_c = CV_FILTER_MITCHELL_C;
+    s->settings.filter_tau = CV_FILTER_SINC_TAU;
     s->settings.exposure = 1;
     s->settings.crop[1] = s->settings.crop[3] = 1;
 }

@@ -35,9 +35,15 @@ struct cv_gstate {
     int material;        /* index into scene materials, -1: default */
     struct cv_area_state area;
     bool transform_only; /* pushed by TransformBegin */
-    bool end_only;       /* ActiveTransform EndTime: transforms do not touch
-                          * the shutter-open transform we render with */
+    /* pbrt's two transforms: ctm at the start time, ctm_end at the end time
+     * (TransformTimes); transform directives change those that `active`
+     * (ActiveTransform) names. Geometry and lights use ctm: only the
+     * camera moves (a differing ctm_end elsewhere warns). */
+    struct cv_mat4 ctm_end;
+    unsigned active;     /* CV_XFORM_START | CV_XFORM_END */
 };
+#define CV_XFORM_START 1u
+#define CV_XFORM_END 2u
 
 /* A mesh in object space handed to cv_b_emit_mesh; arrays are borrowed. */
 struct cv_mesh {
@@ -64,7 +70,7 @@ struct cv_object {
 
 struct cv_coordsys {
     char *name;
-    struct cv_mat4 m;
+    struct cv_mat4 m, m_end;     /* at the start and end times */
 };
 
 struct cv_builder {
@@ -91,7 +97,9 @@ struct cv_builder {
     bool strict;
     bool world;                  /* after WorldBegin */
     bool camera_set;
-    struct cv_mat4 camera_to_world;
+    struct cv_mat4 camera_to_world, camera_to_world_end;
+    double transform_times[2];   /* TransformTimes start, end */
+    double shutter[2];           /* the camera's shutteropen, shutterclose */
     /* camera and film parameters, applied when the scene is finished */
     uint32_t cam_type;
     double fov, lensradius, focaldistance, frameaspect, screen[4];

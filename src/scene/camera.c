@@ -16,20 +16,22 @@ bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
 {
     if (b->camera_set && !cv_b_warn(b, err, loc, "second Camera replaces the first"))
         return false;
-    struct cv_mat4 inv;
-    if (!cv_mat4_inverse(&b->gs.ctm, &inv))
+    struct cv_mat4 inv, inv_end;
+    if (!cv_mat4_inverse(&b->gs.ctm, &inv) || !cv_mat4_inverse(&b->gs.ctm_end, &inv_end))
         return cv_fail(err, "%s:%d:%d: the camera transform is singular", loc->file, loc->line, loc->col);
     b->camera_to_world = inv;
+    b->camera_to_world_end = inv_end;
     b->camera_set = true;
     size_t i;
     for (i = 0; i < b->n_coordsys; i++)
         if (strcmp(b->coordsys[i].name, "camera") == 0)
             break;
     if (i == b->n_coordsys) {
-        struct cv_coordsys c = {cv_xstrdup("camera"), inv};
+        struct cv_coordsys c = {cv_xstrdup("camera"), inv, inv_end};
         CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
     } else {
         b->coordsys[i].m = inv;
+        b->coordsys[i].m_end = inv_end;
     }
     if (strcmp(type, "perspective") == 0) {
         b->cam_type = CV_CAMERA_PERSPECTIVE;
@@ -53,6 +55,15 @@ bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
     b->frameaspect = cv_params_float(ps, "frameaspectratio", -1);
     b->has_screen = cv_params_floats(ps, "screenwindow", b->screen, 4);
     double open = cv_params_float(ps, "shutteropen", 0), close = cv_params_float(ps, "shutterclose", 1);
+    if (close < open) { /* pbrt-v4 swaps them too */
+        double t = open;
+        open = close;
+        close = t;
+        if (!cv_b_warn(b, err, loc, "shutterclose is before shutteropen; swapped"))
+            return false;
+    }
+    b->shutter[0] = open;
+    b->shutter[1] = close;
     b->exposure_time = close - open;
     return true;
 }
@@ -95,9 +106,15 @@ void cv_b_finish_camera(struct cv_builder *b)
     struct cv_scene *s = b->s;
     CvCamera *c = &s->camera;
     memset(c, 0, sizeof(*c));
-    for (int r = 0; r < 3; r++)
-        c->to_world[r] = (cv_vec4){(float)b->camera_to_world.m[r][0], (float)b->camera_to_world.m[r][1],
-                                   (float)b->camera_to_world.m[r][2], (float)b->camera_to_world.m[r][3]};
+    const struct cv_mat4 *m0 = &b->camera_to_world, *m1 = &b->camera_to_world_end;
+    for (int r = 0; r < 3; r++) {
+        c->to_world[r] = (cv_vec4){(float)m0->m[r][0], (float)m0->m[r][1], (float)m0->m[r][2],
+                                   (float)m0->m[r][3]};
+        c->to_world_end[r] = (cv_vec4){(float)m1->m[r][0], (float)m1->m[r][1], (float)m1->m[r][2],
+                                       (float)m1->m[r][3]};
+    }
+    c->time = (cv_vec4){(float)b->shutter[0], (float)b->shutter[1], (float)b->transform_times[0],
+                        (float)b->transform_times[1]};
     double aspect = b->frameaspect > 0 ? b->frameaspect : (double)b->xres / b->yres;
     if (b->has_screen)
         c->screen = (cv_vec4){(float)b->screen[0], (float)b->screen[1], (float)b->screen[2],

@@ -47,7 +47,7 @@ bool cv_camera_world_to_ndc(const CvCamera *cam, float out[16])
     double t = cam->lens.z, dx = xmax - xmin, dy = ymax - ymin;
     struct cv_mat4 proj;
     memset(&proj, 0, sizeof(proj));
-    if (cam->crop.z == CV_CAMERA_ORTHOGRAPHIC) {
+    if (cam->type == CV_CAMERA_ORTHOGRAPHIC) {
         proj.m[0][0] = 1 / dx;
         proj.m[0][3] = -xmin / dx;
         proj.m[1][1] = -1 / dy;

@@ -60,7 +60,7 @@ bool cv_camera_look_at(CvCamera *cam, const double eye[3], const double at[3],
     if (!cv_mat4_look_at(eye, at, up, &w2c) || !cv_mat4_inverse(&w2c, &c2w))
         return false;
     for (int r = 0; r < 3; r++)
-        cam->to_world[r] = (cv_vec4){(float)c2w.m[r][0], (float)c2w.m[r][1],
-                                     (float)c2w.m[r][2], (float)c2w.m[r][3]};
+        cam->to_world[r] = cam->to_world_end[r] = (cv_vec4){
+            (float)c2w.m[r][0], (float)c2w.m[r][1], (float)c2w.m[r][2], (float)c2w.m[r][3]};
     return true;
 }

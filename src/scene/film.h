@@ -34,7 +34,8 @@ float cv_camera_fov_scale(double fov_deg);
 bool cv_camera_fit_film(CvCamera *cam, const double crop[4], uint32_t w, uint32_t h);
 
 /* Places cam as pbrt's LookAt would at the Camera directive: eye, looking
- * at `at`, with `up` up. False when eye == at or up is parallel to the
+ * at `at`, with `up` up, still over the whole shutter (any motion of the
+ * scene's camera is dropped). False when eye == at or up is parallel to the
  * viewing direction; cam is then unchanged. */
 bool cv_camera_look_at(CvCamera *cam, const double eye[3], const double at[3],
                        const double up[3]);

@@ -289,14 +289,30 @@ static void pop_file(struct parser *p)
 
 static void apply(struct cv_builder *b, struct cv_mat4 m)
 {
-    if (!b->gs.end_only)
+    if (b->gs.active & CV_XFORM_START)
         b->gs.ctm = cv_mat4_mul(&b->gs.ctm, &m);
+    if (b->gs.active & CV_XFORM_END)
+        b->gs.ctm_end = cv_mat4_mul(&b->gs.ctm_end, &m);
 }
 
 static void set_ctm(struct cv_builder *b, struct cv_mat4 m)
 {
-    if (!b->gs.end_only)
+    if (b->gs.active & CV_XFORM_START)
         b->gs.ctm = m;
+    if (b->gs.active & CV_XFORM_END)
+        b->gs.ctm_end = m;
+}
+
+/* Objects do not move in Cavalry: a shape, light or instance whose start
+ * and end transforms differ is placed at its start transform, with a
+ * warning at its directive. */
+static bool warn_animated(struct cv_builder *b, const struct cv_loc *loc, const char *what,
+                          struct cv_error *err)
+{
+    if (memcmp(&b->gs.ctm, &b->gs.ctm_end, sizeof(b->gs.ctm)) == 0)
+        return true;
+    return cv_b_warn(b, err, loc, "animated transform: %s motion blur is not rendered; the %s "
+                     "is taken at its start time", what, what);
 }
 
 static bool attr_push(struct cv_builder *b, bool transform_only, const struct cv_loc *loc)
@@ -327,9 +343,11 @@ static bool attr_pop(struct cv_builder *b, bool transform_only, const struct cv_
                        l->line, l->col))
             return false;
     }
-    if (transform_only)
+    if (transform_only) {
         b->gs.ctm = g->ctm;
-    else
+        b->gs.ctm_end = g->ctm_end;
+        b->gs.active = g->active;
+    } else
         b->gs = *g;
     b->n_stack--;
     return true;
@@ -515,15 +533,18 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
                 break;
         if (IS(CoordinateSystem)) {
             if (i == b->n_coordsys) {
-                struct cv_coordsys c = {cv_xstrdup(name), b->gs.ctm};
+                struct cv_coordsys c = {cv_xstrdup(name), b->gs.ctm, b->gs.ctm_end};
                 CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
             } else {
                 b->coordsys[i].m = b->gs.ctm;
+                b->coordsys[i].m_end = b->gs.ctm_end;
             }
         } else if (i == b->n_coordsys) {
             ok = cv_b_warn(b, err, &loc, "unknown coordinate system \"%s\"", name);
         } else {
-            set_ctm(b, b->coordsys[i].m);
+            /* pbrt-v4 sets both transforms, whichever are active */
+            b->gs.ctm = b->coordsys[i].m;
+            b->gs.ctm_end = b->coordsys[i].m_end;
         }
     } else if (IS(ActiveTransform)) {
         struct cv_token t;
@@ -533,15 +554,17 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             !(cv_token_is(&t, "StartTime") || cv_token_is(&t, "EndTime") || cv_token_is(&t, "All")))
             return cv_fail(err, "%s:%d:%d: ActiveTransform expects StartTime, EndTime or All",
                            t.file, t.line, t.col);
-        /* Motion blur is not rendered: the scene is taken at shutter open,
-         * so EndTime-only transforms are dropped. */
-        b->gs.end_only = cv_token_is(&t, "EndTime");
-        if (!cv_token_is(&t, "All"))
-            ok = cv_b_warn(b, err, &loc, "ActiveTransform %.*s: motion blur is not supported; "
-                           "the scene is taken at shutter open", (int)t.len, t.text);
+        b->gs.active = cv_token_is(&t, "StartTime") ? CV_XFORM_START
+                       : cv_token_is(&t, "EndTime") ? CV_XFORM_END
+                                                    : CV_XFORM_START | CV_XFORM_END;
     } else if (IS(TransformTimes)) {
         if (!read_numbers(p, d, v, 2, err))
             return false;
+        if (!(v[0] <= v[1]))
+            return cv_fail(err, "%s:%d:%d: TransformTimes: the start time is after the end time",
+                           loc.file, loc.line, loc.col);
+        b->transform_times[0] = v[0];
+        b->transform_times[1] = v[1];
     } else if (IS(ReverseOrientation)) {
         b->gs.reverse = !b->gs.reverse;
     } else if (IS(AttributeBegin) || IS(TransformBegin)) {
@@ -585,9 +608,9 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         b->world = true;
         /* pbrt: the camera's named coordinate system, then the world starts
          * with the identity transform. */
-        b->gs.ctm = cv_mat4_identity();
-        b->gs.end_only = false;
-        struct cv_coordsys c = {cv_xstrdup("world"), cv_mat4_identity()};
+        b->gs.ctm = b->gs.ctm_end = cv_mat4_identity();
+        b->gs.active = CV_XFORM_START | CV_XFORM_END;
+        struct cv_coordsys c = {cv_xstrdup("world"), cv_mat4_identity(), cv_mat4_identity()};
         CV_PUSH(b->coordsys, b->n_coordsys, b->cap_coordsys, c);
     } else if (IS(WorldEnd)) {
         /* v3: end of scene; nothing to do. */
@@ -631,6 +654,13 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         st->filter_radius[0] = (float)cv_params_float(&ps, "xradius", cv_params_float(&ps, "xwidth", def));
         st->filter_radius[1] = (float)cv_params_float(&ps, "yradius", cv_params_float(&ps, "ywidth", def));
         st->filter_sigma = (float)cv_params_float(&ps, "sigma", CV_FILTER_GAUSSIAN_SIGMA);
+        st->filter_b = (float)cv_params_float(&ps, "B", CV_FILTER_MITCHELL_B);
+        st->filter_c = (float)cv_params_float(&ps, "C", CV_FILTER_MITCHELL_C);
+        st->filter_tau = (float)cv_params_float(&ps, "tau", CV_FILTER_SINC_TAU);
+        if (ok && !(st->filter_radius[0] > 0 && st->filter_radius[1] > 0 && st->filter_sigma > 0 &&
+              st->filter_tau > 0))
+            ok = cv_fail(err, "%s:%d:%d: PixelFilter radii, sigma and tau must be positive",
+                         loc.file, loc.line, loc.col);
         cv_params_float(&ps, "alpha", 0);
         ok = ok && cv_b_check_unused(b, &ps, "PixelFilter", err);
     } else if (IS(Integrator)) {
@@ -657,7 +687,8 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             goto fail;
         attrs_apply(p, "shape", &ps);
         dir = dir_of(p, d);
-        ok = cv_b_shape(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "Shape", err);
+        ok = warn_animated(b, &loc, "object", err) && cv_b_shape(b, type, &ps, &loc, dir, err) &&
+             cv_b_check_unused(b, &ps, "Shape", err);
     } else if (IS(Material)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
@@ -714,7 +745,8 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             goto fail;
         attrs_apply(p, "light", &ps);
         dir = dir_of(p, d);
-        ok = cv_b_light(b, type, &ps, &loc, dir, err) && cv_b_check_unused(b, &ps, "LightSource", err);
+        ok = warn_animated(b, &loc, "light", err) && cv_b_light(b, type, &ps, &loc, dir, err) &&
+             cv_b_check_unused(b, &ps, "LightSource", err);
     } else if (IS(AreaLightSource)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
@@ -769,7 +801,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (found < 0 || found == b->cur_object)
             ok = cv_fail(err, "%s:%d:%d: unknown object \"%s\"", loc.file, loc.line, loc.col, name);
         else
-            ok = cv_b_instance(b, found, &loc, err);
+            ok = warn_animated(b, &loc, "object", err) && cv_b_instance(b, found, &loc, err);
     } else if (IS(Include) || IS(Import)) {
         if (!expect_string(p, d, &name, err))
             return false;

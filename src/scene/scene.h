@@ -17,6 +17,8 @@ enum cv_filter_type {
     CV_FILTER_BOX = CV_FILTER_ID_BOX,
     CV_FILTER_TRIANGLE = CV_FILTER_ID_TRIANGLE,
     CV_FILTER_GAUSSIAN = CV_FILTER_ID_GAUSSIAN,
+    CV_FILTER_MITCHELL = CV_FILTER_ID_MITCHELL,
+    CV_FILTER_SINC = CV_FILTER_ID_SINC,
     CV_FILTER_COUNT
 };
 
@@ -38,6 +40,8 @@ struct cv_render_settings {
     enum cv_filter_type filter;
     float filter_radius[2];          /* [pixels] */
     float filter_sigma;              /* gaussian */
+    float filter_b, filter_c;        /* mitchell */
+    float filter_tau;                /* sinc (Lanczos) */
     float exposure;                  /* film iso/exposure scale folded in, 1 by default */
 };
 

@@ -1,13 +1,14 @@
 # src/trace: the wavefront path tracer (host side; shaders in glsl/trace).
 libcavalry_a_SOURCES += \
 	src/trace/filter_table.c src/trace/filter_table.h \
+	src/trace/camera_motion.c src/trace/camera_motion.h \
 	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/render.c src/trace/render.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h
 
 GLSL_FILES += \
 	glsl/shared/trace.h \
-	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl \
+	glsl/trace/common.glsl glsl/trace/sampler.glsl glsl/trace/camera.glsl glsl/trace/filter.glsl \
 	glsl/trace/geometry.glsl glsl/trace/tracing.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
 	glsl/trace/surface_inputs.glsl glsl/trace/path_vertex.glsl glsl/trace/shade_queue.glsl \

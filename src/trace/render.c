@@ -25,7 +25,7 @@
 #include "gpu/program.h"
 #include "gpu/storage.h"
 #include "gpu/timer.h"
-#include "scene/filter.h"
+#include "trace/camera_motion.h"
 #include "trace/filter_table.h"
 #include "trace/integrator.h"
 #include "trace/render.h"
@@ -135,23 +135,7 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     u->focal_distance = c->lens.y;
     u->tan_half_fov = c->lens.z;
     u->orthographic = c->type == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f;
-}
-
-static void setup_filter(struct cv_renderer *r, const struct cv_render_settings *st)
-{
-    CvPassParams *u = &r->pass;
-    const struct cv_filter_info *fi = cv_filter_info(st->filter);
-    float rx = st->filter_radius[0] > 0 ? st->filter_radius[0] : fi->radius;
-    float ry = st->filter_radius[1] > 0 ? st->filter_radius[1] : fi->radius;
-    u->filter_type = fi->type;
-    u->pixel_filter = (cv_vec4){rx, ry, st->filter_sigma, 0};
-    float tx[CV_FILTER_TABLE + 4] = {0}, ty[CV_FILTER_TABLE + 4] = {0};
-    if (fi->type == CV_FILTER_GAUSSIAN) {
-        cv_gaussian_filter_table(rx, st->filter_sigma, tx, CV_FILTER_TABLE);
-        cv_gaussian_filter_table(ry, st->filter_sigma, ty, CV_FILTER_TABLE);
-    }
-    memcpy(u->filter_x, tx, sizeof(u->filter_x));
-    memcpy(u->filter_y, ty, sizeof(u->filter_y));
+    cv_camera_motion_setup(c, u);
 }
 
 static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok,
@@ -260,7 +244,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->aovs = p->aovs;
     r->max_depth = p->max_depth ? p->max_depth : scene->settings.max_depth;
     setup_camera(r, scene, p);
-    setup_filter(r, &scene->settings);
+    cv_filter_setup(&scene->settings, &r->pass);
     if ((uint64_t)r->crop_w * r->crop_h > CV_MAX_FILM_PIXELS) {
         uint32_t w = r->crop_w, h = r->crop_h;
         free(r);
@@ -608,7 +592,7 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
             aov[i].normal.y += f->normal.y;
             aov[i].normal.z += f->normal.z;
         }
-        float w = aov[i].L.w, inv = w > 0 ? 1 / w : 0;
+        float w = aov[i].L.w, inv = w != 0 ? 1 / w : 0;
         if (albedo3) {
             albedo3[3 * i + 0] = aov[i].albedo.x * inv;
             albedo3[3 * i + 1] = aov[i].albedo.y * inv;

@@ -28,7 +28,7 @@ static CvCamera camera(uint32_t type, const double crop[4])
     CvCamera c = {0};
     c.screen = cv_film_default_screen(16.0 / 12.0);
     c.lens.z = cv_camera_fov_scale(45);
-    c.crop.z = type;
+    c.type = type;
     cv_camera_fit_film(&c, crop, 16, 12);
     static const double eye[3] = {2, 0, 0}, at[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     cv_camera_look_at(&c, eye, at, up);

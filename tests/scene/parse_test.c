@@ -491,6 +491,54 @@ static void test_params(void)
           "main.pbrt:1:37: Camera: parameter \"float foo\" unused", "--strict");
 }
 
+/* Camera motion (ActiveTransform, TransformTimes, the shutter) reaches
+ * CvCamera; objects that would move are taken at their start transform
+ * with a warning at their directive. */
+static void test_motion(void)
+{
+    struct cv_scene *s = ok_load(
+        "TransformTimes 0.25 0.75\nActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n"
+        "Camera \"perspective\" \"float shutteropen\" 0.1 \"float shutterclose\" 0.9\nWorldBegin\n" TRI,
+        "a camera moving over the shutter");
+    if (s) {
+        const CvCamera *c = &s->camera;
+        tap_ok(c->to_world[0].w == 0 && c->to_world_end[0].w == -1 && c->to_world_end[0].x == 1,
+               "end transform: the camera moved to x = -1 (%g)", c->to_world_end[0].w);
+        tap_ok(c->time.x == 0.1f && c->time.y == 0.9f && c->time.z == 0.25f && c->time.w == 0.75f,
+               "shutter 0.1-0.9, transform times 0.25-0.75");
+        tap_ok(s->warnings == 0, "a moving camera does not warn (%u)", s->warnings);
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("ActiveTransform StartTime\nTranslate 0 1 0\nActiveTransform All\nRotate 90 0 0 1\n"
+                "Camera \"perspective\"\nWorldBegin\n" TRI,
+                "StartTime transforms");
+    if (s) {
+        const CvCamera *c = &s->camera;
+        /* camera to world at the start: (T(0,1,0) Rz(90))^-1 = Rz(-90)
+         * T(0,-1,0), origin (-1, 0, 0); at the end Rz(-90) */
+        tap_ok(near(c->to_world[0].w, -1, 1e-6) && c->to_world_end[0].w == 0 &&
+                   near(c->to_world[0].y, 1, 1e-6) && near(c->to_world_end[0].y, 1, 1e-6),
+               "StartTime moves the start alone; All rotates both");
+        tap_ok(c->time.x == 0 && c->time.y == 1 && c->time.z == 0 && c->time.w == 1,
+               "pbrt-v4's default shutter and transform times are 0 and 1");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\nCamera \"perspective\"\n"
+                "WorldBegin\nAttributeBegin\nCoordSysTransform \"camera\"\n" TRI "AttributeEnd\n" TRI,
+                "a shape in the moving camera's space");
+    tap_ok(s && s->warnings == 1 && vpos(s, 0, 0, 0, 0), "warns once, taken at the start (%u)",
+           s ? s->warnings : 0);
+    cv_scene_destroy(&s);
+    fails("WorldBegin\nActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n" TRI, true,
+          "main.pbrt:5:1: animated transform: object motion blur is not rendered", "--strict");
+    fails("TransformTimes 1 0\n", false, "main.pbrt:1:1: TransformTimes: the start time is after", "");
+    s = ok_load("Camera \"perspective\" \"float shutteropen\" 1 \"float shutterclose\" 0.5\nWorldBegin\n",
+                "shutterclose before shutteropen");
+    tap_ok(s && s->warnings == 1 && s->camera.time.x == 0.5f && s->camera.time.y == 1,
+           "swapped, with a warning");
+    cv_scene_destroy(&s);
+}
+
 static void test_more(void)
 {
     unsigned char px[2 * 2 * 3] = {128, 128, 255, 128, 128, 255, 128, 128, 255, 128, 128, 255};
@@ -507,7 +555,8 @@ static void test_more(void)
         tap_ok(m->roughness_u_tex >= 0 && m->roughness_v_tex == m->roughness_u_tex &&
                (m->flags & CV_MATF_REMAP_ROUGHNESS), "textured roughness is remapped per lookup");
         tap_ok(m->normal_tex >= 0 && !(s->textures[m->normal_tex].flags & CV_TEXF_SRGB), "normal map is linear");
-        tap_ok(s->warnings == 2, "motion blur and the redefined material warn (%u)", s->warnings);
+        tap_ok(s->warnings == 3, "the moving light and shape and the redefined material warn (%u)",
+               s->warnings);
         tap_ok(near(lum(s->lights[0].L), 2, 2e-3), "v3 blackbody [T scale]");
         tap_ok(vpos(s, 0, 0, 0, 0), "EndTime transforms do not move the shutter-open scene");
     }
@@ -608,6 +657,7 @@ int main(void)
     test_lights();
     test_params();
     test_more();
+    test_motion();
     test_include();
     test_errors();
     th_cleanup();

@@ -71,3 +71,10 @@ tests_trace_oracle_test_LDADD = $(CV_LIBS)
 # scenes (nee_test's too), their pbrt-v4 references and the generator
 EXTRA_DIST += tests/data/trace/oracle
 # --- end of oracle tests ---
+# --- pixel filters and camera (branch filmcam) ---
+check_PROGRAMS += tests/trace/filter_sample_test tests/trace/camera_motion_test
+TESTS += tests/trace/filter_sample_test tests/trace/camera_motion_test
+tests_trace_filter_sample_test_LDADD = $(CV_LIBS)
+tests_trace_camera_motion_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += glsl/trace/test/filter_probe.comp
+# --- end of pixel filters and camera ---

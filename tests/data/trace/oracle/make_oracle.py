@@ -239,5 +239,79 @@ def main():
           + deep_bvh() + "AttributeEnd\n")
 
 
+# Camera and film (branch filmcam): scenes of emitters alone (maxdepth 1,
+# black emitters), so that every pixel is the filter-, lens- or
+# shutter-weighted coverage of bright geometry and nothing else.
+CAMERA_HEADER = """# %s: %s
+# Made by make_oracle.py; reference: %s.exr (pbrt-v4, see README).
+%s
+Sampler "zsobol" "integer pixelsamples" [ 64 ]
+Integrator "path" "integer maxdepth" [ 1 ]
+Film "rgb" "integer xresolution" [ %d ] "integer yresolution" [ %d ]
+  "string sensor" "cie1931" "string filename" "%s.exr"
+PixelFilter %s
+WorldBegin
+"""
+
+
+def emitter(quads, L=4):
+    """Black one-sided emitters facing -z (the cameras look along +z):
+    quads are (x0, x1, y0, y1, z)."""
+    idx, p, n = [], [], []
+    for x0, x1, y0, y1, z in quads:
+        b = len(p) // 3
+        p += [x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z]
+        n += [0, 0, -1] * 4
+        idx += [b, b + 1, b + 2, b, b + 2, b + 3]
+    return ('AttributeBegin\n  AreaLightSource "diffuse" "rgb L" [ %g %g %g ]\n'
+            '  Material "diffuse" "rgb reflectance" [ 0 0 0 ]\n  ' % (L, L, L)
+            + mesh(idx, p, n).replace("\n", "\n  ").rstrip() + "\nAttributeEnd\n")
+
+
+def camera_scene(name, what, camera, pixel_filter, body):
+    with open(os.path.join(HERE, name + ".pbrt"), "w") as out:
+        out.write(CAMERA_HEADER % (name + ".pbrt", what, name, camera, RES, RES, name,
+                                   pixel_filter) + body)
+
+
+# Two lines one pixel wide (2/32 of the orthographic screen [-1, 1]): a
+# vertical one over columns 11.2 to 12.2 and a horizontal one, nearer the
+# camera, over rows 9.72 to 10.72 (oracle_test.c's line regions lie beside
+# them): each pixel near a line is the filter's integral over the line.
+LINES = emitter([(-0.3, -0.3 + 1 / 16, -2, 2, 0), (-2, 2, 0.33, 0.33 + 1 / 16, -0.1)])
+ORTHO = "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"orthographic\""
+
+
+def checker(n, size, z=0.0):
+    """The bright squares of an n x n checker of side `size`, centred on the
+    origin in the plane z."""
+    h = n * size / 2
+    return [(-h + i * size, -h + (i + 1) * size, -h + j * size, -h + (j + 1) * size, z)
+            for j in range(n) for i in range(n) if (i + j) % 2 == 0]
+
+
+def tilted_checker():
+    """An 8 x 8 checker of side 0.5 about the origin, tilted 50 degrees about
+    x (its top away from the camera)."""
+    return ("AttributeBegin\n  Rotate -50 1 0 0\n" + emitter(checker(8, 0.5)).replace("\n", "\n  ").rstrip()
+            + "\nAttributeEnd\n")
+
+
+def camera_main():
+    camera_scene("filter_mitchell", "thin bright lines through pbrt-v4's default Mitchell filter",
+                 ORTHO, '"mitchell"', LINES)
+    camera_scene("filter_sinc", "thin bright lines through a Lanczos (sinc) filter, radius 3, tau 2",
+                 ORTHO, '"sinc" "float xradius" [ 3 ] "float yradius" [ 3 ] "float tau" [ 2 ]', LINES)
+    camera_scene("camera_dof", "thin lens (radius 0.5) focused at 5 on a tilted checker",
+                 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective" "float fov" [ 30 ]\n'
+                 '  "float lensradius" [ 0.5 ] "float focaldistance" [ 5 ]', '"box"', tilted_checker())
+    camera_scene("camera_motion", "camera moving 0.3 right and rolling 8 degrees over the shutter,"
+                 " before a checker",
+                 'LookAt 0 0 -5  0 0 0  0 1 0\nActiveTransform EndTime\nRotate 8 0 0 1\n'
+                 'Translate -0.3 0 0\nActiveTransform All\n'
+                 'Camera "perspective" "float fov" [ 30 ]', '"box"', emitter(checker(8, 0.3)))
+
+
 if __name__ == "__main__":
     main()
+    camera_main()
