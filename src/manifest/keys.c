@@ -180,6 +180,10 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                            .has = AT(rlpath.has_guide), .def = CV_RL_GUIDE_ALL,
                            .def_text = "all", .hash = CV_HASH_OFF_DEFAULT,
                            .help = "guide by all learned radiance or the indirect part"},
+    [CV_K_ALPHA] = {.name = "alpha", .type = CV_KT_BOOL, .offset = AT(alpha),
+                    .has = AT(has_alpha), OUTPUT_SETTING, .def = 0, .def_text = "false",
+                    .hash = CV_HASH_OFF_DEFAULT,
+                    .help = "alpha from coverage; the environment seen directly is transparent"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&

@@ -20,3 +20,8 @@ EXTRA_DIST += tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh
 # --- PNG colour tags by display encoding (issue 24, bug 7) ---
 TESTS += tests/batch/png_tag_test.sh
 EXTRA_DIST += tests/batch/png_tag_test.sh
+# --- alpha, ID AOVs and Cryptomatte (issue 28) ---
+check_PROGRAMS += tests/batch/matte_probe
+tests_batch_matte_probe_LDADD = $(CV_LIBS)
+TESTS += tests/batch/mattes_test.sh
+EXTRA_DIST += tests/batch/mattes_test.sh tests/data/batch/mattes.pbrt tests/data/batch/mattes.yaml
