@@ -27,8 +27,8 @@ check "its colour is premultiplied: below the covered pixel's" \
     awk -v e="$(v out/m.exr 0 2 B)" -v c="$(v out/m.exr 1 2 B)" 'BEGIN { exit !(c > 0 && e != "" && e < 0.8 * c) }'
 check "without alpha: A is 1 on the background" test "$(v out/opaque.exr 3 0 A)" = 1
 check "without alpha: the environment is seen" within out/opaque.exr 3 0 G 0.99 1.01
-check "alpha leaves the covered pixels' colour as it is" \
-    test "$(v out/m.exr 2 2 R)" = "$(v out/opaque.exr 2 2 R)"
+same() { a=$(v "$1" "$3" "$4" "$5") && b=$(v "$2" "$3" "$4" "$5") && test -n "$a" -a "$a" = "$b"; }
+check "alpha leaves the covered pixels' colour as it is" same out/m.exr out/opaque.exr 2 2 R
 
 # PNG: RGBA, straight colour
 check_out "png pixels" bg.txt "$probe" png out/m.png 3 0
@@ -39,8 +39,7 @@ check_out "png edge" edge.txt "$probe" png out/m.png 0 2
 check "png edge alpha about half" holds '{ ok = $4 > 90 && $4 < 165 }' edge.txt
 check "png edge colour straight: as the covered pixel's" \
     holds "{ ok = \$3 >= $(cut -d' ' -f3 in.txt) - 3 && \$3 <= $(cut -d' ' -f3 in.txt) + 3 }" edge.txt
-check_out "opaque png" op.txt sh -c "'$probe' png out/opaque.png 0 0 2>&1 || true"
-check "without alpha the png stays RGB" grep -q "not 8-bit RGBA" op.txt
+check "without alpha the png stays RGB" sh -c "'$probe' png out/opaque.png 0 0 2>&1 | grep -q 'not 8-bit RGBA'"
 
 # ID AOVs: 1 + index of sample 0's first hit; names in the header
 check "object_id: 0 on the background" test "$(v out/m.exr 3 0 object_id.id)" = 0
