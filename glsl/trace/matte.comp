@@ -6,11 +6,10 @@
 // path in flight, so one invocation at most touches a slot's words: no
 // atomics. Camera rays that escape add nothing (coverage 0).
 #include "shared/trace.h"
-#include "shared/scene.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
+#include "../bvh/mesh_buffers.glsl"
 
-layout(std430, binding = CV_BIND_TRIANGLES) readonly buffer CvMatteTriangles { CvTriangle tris[]; };
 layout(std430, binding = CV_BIND_TRI_OBJECT) readonly buffer CvMatteObjects { uint tri_object[]; };
 layout(std430, binding = CV_BIND_MATTE) buffer CvMatte { uint matte[]; };
 
@@ -51,7 +50,7 @@ void main()
     uint path = uint(r.o.w);
     uint base = path * CV_MATTE_STRIDE;
     uint object = tri_object[h.prim] + 1u;
-    uint material = (tris[h.prim].idx.w & CV_TRI_MATERIAL_MASK) + 1u;
+    uint material = (cv_triangles[h.prim].idx.w & CV_TRI_MATERIAL_MASK) + 1u;
     cv_matte_add(base + CV_MATTE_COVERAGE, CV_MATTE_SAMPLE_WEIGHT);
     if (cv_path_sample(path) == 0u) {
         matte[base + CV_MATTE_OBJECT_ID] = object;
