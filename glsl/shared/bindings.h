@@ -29,6 +29,9 @@
 /* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
  * the stage-private range so no stage's own buffers displace it. */
 #define CV_BIND_BVH_TRIS 26
+/* uint[]: each triangle's ID-matte object (src/scene/scene.h), read only
+ * by trace/matte.comp; above the stage-private range, as CV_BIND_BVH_TRIS */
+#define CV_BIND_TRI_OBJECT 27
 
 /* 10 and above (but 26): stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10
@@ -44,6 +47,9 @@
  * src/trace/envmap_dist.h), bound with the scene */
 #define CV_BIND_ENV_DIST (CV_BIND_STAGE0 + 5)
 #define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 6)  /* vec4[n]: resolve output */
+/* uint[n * CV_MATTE_WORDS]: coverage and ID mattes per path slot
+ * (glsl/shared/trace.h), only with alpha or ID AOVs */
+#define CV_BIND_MATTE (CV_BIND_STAGE0 + 7)
 
 /* ---- Exclusive prefix scan (src/bvh/scan.c; glsl/bvh/scan_*.comp) ---- */
 #define CV_BIND_SCAN_DATA (CV_BIND_STAGE0 + 0)   /* uint[]: summed in place */

@@ -155,6 +155,31 @@ CV_STRUCT(CvFilmPixel) {
 } CV_END(CvFilmPixel)
 CV_CHECK_SIZE(CvFilmPixel, 48);
 
+/* Coverage and ID mattes, per path slot, for a job with alpha or ID AOVs
+ * (CV_BIND_MATTE; trace/matte.comp writes them at each camera ray's first
+ * hit): CV_MATTE_STRIDE uints a slot (the host defines it: CV_MATTE_WORDS
+ * without Cryptomatte, CV_MATTE_WORDS_CRYPTO with it), slot s from
+ * s * CV_MATTE_STRIDE on, all starting at 0:
+ * - [CV_MATTE_COVERAGE]: the filter weight of the slot's camera rays that
+ *   hit a surface (float bits; against CvFilmPixel.L.w: alpha);
+ * - [CV_MATTE_OBJECT_ID], [CV_MATTE_MATERIAL_ID]: 1 + the object and the
+ *   material at the first hit of the pixel's sample 0 (in slot 0 of the
+ *   pixel), 0 where it escaped: the ID AOVs, one sample unfiltered, as
+ *   Cycles' IndexOB and IndexMA;
+ * - from CV_MATTE_CRYPTO_OBJECT and CV_MATTE_CRYPTO_MATERIAL, CV_MATTE_RANK
+ *   pairs (1 + id, summed filter weight as float bits), in the order the
+ *   ids were first met; an id met with every pair taken loses that
+ *   sample's weight, as in Cycles. The host merges a pixel's slots and
+ *   ranks the ids by weight (src/trace/matte_read.c). */
+#define CV_MATTE_COVERAGE 0u
+#define CV_MATTE_OBJECT_ID 1u
+#define CV_MATTE_MATERIAL_ID 2u
+#define CV_MATTE_WORDS 4u
+#define CV_MATTE_RANK 6u    /* Cryptomatte's default depth: 3 RGBA layers */
+#define CV_MATTE_CRYPTO_OBJECT CV_MATTE_WORDS
+#define CV_MATTE_CRYPTO_MATERIAL (CV_MATTE_WORDS + 2u * CV_MATTE_RANK)
+#define CV_MATTE_WORDS_CRYPTO (CV_MATTE_WORDS + 4u * CV_MATTE_RANK)
+
 /* Per-pass constants, in a uniform block at binding 0 (std140: every row
  * of four scalars below fills one 16-byte row, as a vec4 would). */
 #define CV_UBO_PASS 0

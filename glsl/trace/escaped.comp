@@ -10,6 +10,9 @@
 // (rlpath/guide.glsl); otherwise a miss has nothing to add and the
 // intersect stage regenerates its slot itself. The host defines
 // CV_NO_ENV, as for every stage, when the scene has no environment light.
+// With CV_FILM_TRANSPARENT (a job with alpha) the environment seen directly
+// by a camera ray adds nothing: alpha 0 and no colour, as Cycles' film
+// transparency; it still lights the scene and is seen in reflections.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -49,6 +52,10 @@ void main()
 #endif
 #ifndef CV_NO_ENV
         vec3 Le = cv_env_Le(r.d.xyz);
+#ifdef CV_FILM_TRANSPARENT
+        if (cv_ray_depth(r) == 0u)
+            Le = vec3(0.0);
+#endif
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;
             if (cv_ray_depth(r) > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u &&

@@ -2,6 +2,7 @@
 libcavalry_a_SOURCES += \
 	src/batch/batch.c src/batch/batch.h \
 	src/batch/job_lock.c src/batch/job_lock.h \
+	src/batch/matte_layers.c src/batch/matte_layers.h \
 	src/batch/pass_size.c src/batch/pass_size.h \
 	src/batch/plan.c src/batch/plan.h \
 	src/batch/progress.c src/batch/progress.h \

@@ -13,6 +13,7 @@
 #include "base/file.h"
 #include "base/log.h"
 #include "base/mem.h"
+#include "batch/matte_layers.h"
 #include "batch/pass_size.h"
 #include "batch/plan.h"
 #include "batch/run_job.h"
@@ -101,8 +102,9 @@ void cv_job_result_clear(struct cv_job_result *r)
     r->n_outputs = 0;
 }
 
-static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, uint32_t w,
-                      uint32_t h, const struct cv_metadata *meta, struct cv_progress *progress,
+static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan,
+                      const struct cv_scene *scene, uint32_t w, uint32_t h,
+                      const struct cv_metadata *meta, struct cv_progress *progress,
                       struct cv_job_result *res, struct cv_error *err)
 {
     const struct cv_job *job = plan->job;
@@ -112,7 +114,9 @@ static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, 
     float *normal = job->aovs & CV_AOV_NORMAL ? cv_xmalloc(n * 3 * sizeof(float)) : NULL;
     float *depth = job->aovs & CV_AOV_DEPTH ? cv_xmalloc(n * sizeof(float)) : NULL;
     bool ok = cv_renderer_read(r, rgba, albedo, normal, depth, err);
-    struct cv_image_layer layers[3];
+    struct cv_matte_layers mattes = {0};
+    ok = ok && cv_matte_layers_make(r, scene, job->aovs, &mattes, err);
+    struct cv_image_layer layers[3 + CV_MATTE_MAX_LAYERS];
     size_t n_layers = 0;
     if (albedo)
         layers[n_layers++] = (struct cv_image_layer){
@@ -124,6 +128,8 @@ static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, 
         layers[n_layers++] = (struct cv_image_layer){
             .name = NULL, .n_channels = 1, .channels = {"Z"}, .data = depth,
             .pixel = CV_EXR_PIXEL_FLOAT};
+    for (size_t i = 0; ok && i < mattes.n_layers; i++)
+        layers[n_layers++] = mattes.layers[i];
     char *path = cv_job_output_path(job, "exr");
     if (ok) {
         cv_progress_phase(progress, job->name, CV_PHASE_WRITE, path);
@@ -141,11 +147,13 @@ static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan, 
                                     .layers = layers,
                                     .n_layers = n_layers,
                                     .meta = meta,
+                                    .meta_exr = mattes.meta,
                                 },
                           err);
     }
     if (ok)
         note_written(res, path);
+    cv_matte_layers_free(&mattes);
     free(path);
     free(rgba);
     free(albedo);
@@ -165,22 +173,25 @@ static bool write_png(struct cv_gpu *gpu, struct cv_renderer *r, const struct cv
     if (!cv_color_pass_create(gpu, &plan->color, &pass, err))
         return false;
     size_t n = (size_t)w * h;
-    const struct cv_buf *linear = cv_renderer_resolve(r, err);
+    const struct cv_buf *linear = cv_renderer_resolve_display(r, err);
     float *px = cv_xmalloc(n * 4 * sizeof(float));
     bool ok = linear && cv_color_pass_run(pass, linear, w, h, px, err);
     char *path = cv_job_output_path(job, "png");
     if (ok) {
         cv_metadata_set_string(meta, "cavalry.colour", cv_color_pass_description(pass));
         cv_metadata_set_string(meta, "cavalry.ocioConfig", cv_color_pass_config_source(pass));
-        /* Alpha is 1 everywhere: write RGB. */
-        for (size_t i = 0; i < n; i++)
-            memmove(&px[i * 3], &px[i * 4], 3 * sizeof(float));
+        /* Without alpha it is 1 everywhere: write RGB. With it, RGBA with
+         * straight colour (cv_renderer_resolve_display: the alpha divided
+         * out before the view transform, as Blender writes PNG). */
+        if (!job->alpha)
+            for (size_t i = 0; i < n; i++)
+                memmove(&px[i * 3], &px[i * 4], 3 * sizeof(float));
         cv_progress_phase(progress, job->name, CV_PHASE_WRITE, path);
         ok = cv_png_write(path, &(struct cv_png_params){
                                     .pixels = px,
                                     .width = w,
                                     .height = h,
-                                    .channels = 3,
+                                    .channels = job->alpha ? 4 : 3,
                                     .bit_depth = job->png.bits,
                                     .encoding = cv_color_pass_encoding(pass),
                                     .meta = meta,
@@ -288,7 +299,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         res->seconds = now_seconds() - t0;
         struct cv_metadata *meta = job_metadata(gpu, plan, res);
         if (job->formats & CV_FORMAT_EXR)
-            ok = write_exr(r, plan, w, h, meta, progress, res, err);
+            ok = write_exr(r, plan, scene, w, h, meta, progress, res, err);
         if (ok && (job->formats & CV_FORMAT_PNG))
             ok = write_png(gpu, r, plan, w, h, meta, progress, res, err);
         cv_metadata_destroy(&meta);

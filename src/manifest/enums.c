@@ -10,7 +10,8 @@ static const char *const compressions[] = {"zip", "none", "zips", "piz", "rle", 
 static const char *const manifest_compressions[] = {"none", "zip", "piz", "dwaa"};
 static const char *const guides[] = {"all", "indirect"};
 static const char *const formats[] = {"exr", "png"};
-static const char *const aovs[] = {"albedo", "normal", "depth"};
+static const char *const aovs[] = {"albedo",    "normal",        "depth",          "object_id",
+                                   "material_id", "crypto_object", "crypto_material"};
 
 _Static_assert(CV_ARRAY_SIZE(integrators) == CV_INTEGRATOR_COUNT, "one name per integrator");
 _Static_assert(CV_ARRAY_SIZE(guides) == CV_RL_GUIDE_COUNT, "one name per rlpath guide");

@@ -42,6 +42,10 @@ enum cv_aov_bits {
     CV_AOV_ALBEDO = 1u << 0,
     CV_AOV_NORMAL = 1u << 1,
     CV_AOV_DEPTH = 1u << 2,
+    CV_AOV_OBJECT_ID = 1u << 3,       /* first hit's object, sample 0 (scene.h) */
+    CV_AOV_MATERIAL_ID = 1u << 4,
+    CV_AOV_CRYPTO_OBJECT = 1u << 5,   /* Cryptomatte layers CryptoObject00.. */
+    CV_AOV_CRYPTO_MATERIAL = 1u << 6, /* CryptoMaterial00.. */
 };
 
 /* A table of names: names[i] is value i (for bit sets: bit 1 << i). */

@@ -116,6 +116,8 @@ static void add_key(struct text *t, const struct cv_job *job, const struct cv_ke
         add_float(t, k->name, has, *(const double *)f);
         break;
     case CV_KT_BOOL:
+        if (k->hash == CV_HASH_OFF_DEFAULT && *(const bool *)f == (k->def != 0))
+            break;
         if (has)
             add(t, "%s=%d\n", k->name, *(const bool *)f);
         else

@@ -209,6 +209,10 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
     [CV_K_ENV_FILE] = {.name = "env.file", .type = CV_KT_STRING, .offset = AT(env.file),
                        .hash = CV_HASH_OFF_DEFAULT, .def_text = "the scene's",
                        .help = "image the environment shows instead (relative to the manifest)"},
+    [CV_K_ALPHA] = {.name = "alpha", .type = CV_KT_BOOL, .offset = AT(alpha),
+                    .has = AT(has_alpha), OUTPUT_SETTING, .def = 0, .def_text = "false",
+                    .hash = CV_HASH_OFF_DEFAULT,
+                    .help = "alpha from coverage; the environment seen directly is transparent"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&

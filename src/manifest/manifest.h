@@ -102,6 +102,8 @@ struct cv_job {
     bool has_formats, has_aovs;
     unsigned formats;          /* CV_FORMAT_* bits, never 0; default CV_FORMAT_EXR */
     unsigned aovs;             /* CV_AOV_* bits; default 0 */
+    bool has_alpha;
+    bool alpha;                /* alpha from coverage, transparent background; default false */
 
     bool has_resolution;
     uint32_t width, height;    /* [pixels] */

@@ -177,8 +177,10 @@ static bool set_attributes(exr_context_t ctxt, struct writer *w, const struct cv
         rv = exr_attr_set_string(ctxt, 0, "software", PACKAGE_NAME " " PACKAGE_VERSION);
     if (rv != EXR_ERR_SUCCESS)
         return fail_exr(w, path, "setting attributes", rv, err);
-    for (size_t i = 0; p->meta && i < p->meta->len; i++) {
-        const struct cv_meta_entry *e = &p->meta->entries[i];
+    size_t n_meta = p->meta ? p->meta->len : 0, n_exr = p->meta_exr ? p->meta_exr->len : 0;
+    for (size_t i = 0; i < n_meta + n_exr; i++) {
+        const struct cv_meta_entry *e =
+            i < n_meta ? &p->meta->entries[i] : &p->meta_exr->entries[i - n_meta];
         switch (e->type) {
         case CV_META_STRING:
             rv = exr_attr_set_string(ctxt, 0, e->key, e->v.s);

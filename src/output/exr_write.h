@@ -48,6 +48,7 @@ struct cv_exr_params {
     const struct cv_image_layer *layers; /* n_layers of them, may be NULL */
     size_t n_layers;
     const struct cv_metadata *meta; /* may be NULL */
+    const struct cv_metadata *meta_exr; /* more attributes, for the EXR alone (Cryptomatte's); may be NULL */
     struct cv_write_limit *write_limit; /* NULL; tests: a disk that fills up */
 };
 

@@ -6,4 +6,5 @@ libcavalry_a_SOURCES += \
 	src/output/exr_read.c src/output/exr_read.h \
 	src/output/exr_merge.c src/output/exr_merge.h \
 	src/output/png_write.c src/output/png_write.h \
-	src/output/png_read.c src/output/png_read.h
+	src/output/png_read.c src/output/png_read.h \
+	src/output/cryptomatte.c src/output/cryptomatte.h

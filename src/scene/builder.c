@@ -213,9 +213,12 @@ uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char
     struct cv_scene *s = b->s;
     size_t cap = b->cap_m, n = s->n_materials;
     CV_PUSH(s->materials, n, b->cap_m, *m);
-    if (cap != b->cap_m)
+    if (cap != b->cap_m) {
         s->material_names = cv_xrealloc(s->material_names, b->cap_m * sizeof(char *));
+        s->material_at = cv_xrealloc(s->material_at, b->cap_m * sizeof(char *));
+    }
     s->material_names[s->n_materials] = name ? cv_xstrdup(name) : NULL;
+    s->material_at[s->n_materials] = NULL;
     s->n_materials = (uint32_t)n;
     return (uint32_t)(n - 1);
 }
@@ -292,6 +295,29 @@ static double luminance(const double rgb[3])
     return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
 }
 
+/* "file:line" with the file's base name: a name for what a directive made */
+static char *loc_name(const struct cv_loc *loc)
+{
+    const char *slash = strrchr(loc->file, '/');
+    return cv_xasprintf("%s:%d", slash ? slash + 1 : loc->file, loc->line);
+}
+
+void cv_b_material_at(struct cv_builder *b, int index, const struct cv_loc *loc)
+{
+    struct cv_scene *s = b->s;
+    if (index < 0 || (uint32_t)index >= s->n_materials || s->material_at[index])
+        return;
+    s->material_at[index] = loc_name(loc);
+}
+
+uint32_t cv_b_add_object(struct cv_builder *b, const char *name)
+{
+    struct cv_scene *s = b->s;
+    size_t n = s->n_objects;
+    CV_PUSH(s->object_names, n, b->cap_object_names, cv_xstrdup(name));
+    return s->n_objects++;
+}
+
 bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct cv_loc *loc,
                     struct cv_error *err)
 {
@@ -333,8 +359,10 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
         size_t cap_t = b->cap_t;
         s->vertices = cv_xgrow(s->vertices, &b->cap_v, need_v, sizeof(CvVertex));
         s->triangles = cv_xgrow(s->triangles, &b->cap_t, need_t, sizeof(CvTriangle));
-        if (cap_t != b->cap_t)
+        if (cap_t != b->cap_t) {
             s->tri_light = cv_xrealloc(s->tri_light, b->cap_t * sizeof(int32_t));
+            s->tri_object = cv_xrealloc(s->tri_object, b->cap_t * sizeof(uint32_t));
+        }
         V = s->vertices;
         T = s->triangles;
     }
@@ -384,6 +412,14 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
     s->n_triangles = (uint32_t)need_t;
     for (size_t i = nt0; i < need_t; i++)
         s->tri_light[i] = -1;
+    uint32_t object = m->object;
+    if (!object) {
+        char *at = m->name ? NULL : loc_name(loc);
+        object = cv_b_add_object(b, m->name ? m->name : at) + 1;
+        free(at);
+    }
+    for (size_t i = nt0; i < need_t; i++)
+        s->tri_object[i] = object - 1;
     if (b->gs.area.on) {
         const struct cv_area_state *a = &b->gs.area;
         double L[3] = {a->L[0], a->L[1], a->L[2]};
@@ -448,7 +484,9 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
     struct cv_gstate saved = b->gs;
     b->gs.reverse = false;
     b->gs.area.on = false;
-    struct cv_mesh m = {o->nv, o->nt, P, N, uv, idx, false};
+    if (!o->matte_object && b->cur_object < 0)
+        o->matte_object = cv_b_add_object(b, o->name) + 1;
+    struct cv_mesh m = {o->nv, o->nt, P, N, uv, idx, false, o->name, o->matte_object};
     size_t nt0 = b->s->n_triangles;
     bool ok = cv_b_emit_mesh(b, &m, loc, err);
     b->gs = saved;

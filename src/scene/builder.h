@@ -53,6 +53,8 @@ struct cv_mesh {
     const float *uv;       /* 2 per vertex or NULL */
     const uint32_t *idx;   /* 3 per triangle, all < n_verts (checked by caller) */
     bool analytic;         /* tessellated quadric: N flips on handedness too (pbrt) */
+    const char *name;      /* the object's name for ID mattes (scene.h); NULL: "file:line" */
+    uint32_t object;       /* 1 + an object id made before (instances); 0: a new object */
 };
 
 struct cv_named {
@@ -66,6 +68,7 @@ struct cv_object {
     size_t nv, cap_v;
     CvTriangle *t;
     size_t nt, cap_t;
+    uint32_t matte_object;  /* 1 + its object id in the scene (scene.h); 0 before an instance */
 };
 
 struct cv_coordsys {
@@ -76,6 +79,7 @@ struct cv_coordsys {
 struct cv_builder {
     struct cv_scene *s;
     size_t cap_v, cap_t, cap_m, cap_tex, cap_texel, cap_l;
+    size_t cap_object_names;
 
     struct cv_gstate gs;
     struct cv_gstate *stack;
@@ -137,6 +141,10 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
 /* Copies object `index` with the current transform (flattened instancing). */
 bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err);
 uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);
+/* Records where material `index` was made ("file:line", for ID mattes). */
+void cv_b_material_at(struct cv_builder *b, int index, const struct cv_loc *loc);
+/* A new ID-matte object (scene.h) named `name`; its id. */
+uint32_t cv_b_add_object(struct cv_builder *b, const char *name);
 int cv_b_add_texture(struct cv_builder *b, const CvTexture *t);
 uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power);
 /* Records a light directive (scene.h: light_sources); returns its index. */

@@ -697,8 +697,10 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         int idx;
         ok = cv_b_material(b, type, NULL, &ps, &loc, dir, err, &idx) &&
              cv_b_check_unused(b, &ps, "Material", err);
-        if (ok)
+        if (ok) {
             b->gs.material = idx;
+            cv_b_material_at(b, idx, &loc);
+        }
     } else if (IS(MakeNamedMaterial)) {
         if (!typed(p, d, &name, &ps, err))
             goto fail;
@@ -713,6 +715,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             ok = cv_b_material(b, ty, name, &ps, &loc, dir, err, &idx) &&
                  cv_b_check_unused(b, &ps, "MakeNamedMaterial", err);
             if (ok) {
+                cv_b_material_at(b, idx, &loc);
                 if (cv_b_lookup(b->materials_named, b->n_materials_named, name) >= 0)
                     ok = cv_b_warn(b, err, &loc, "named material \"%s\" redefined", name);
                 cv_b_set_named(&b->materials_named, &b->n_materials_named,

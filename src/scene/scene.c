@@ -15,9 +15,16 @@ static void scene_free(struct cv_scene *s)
     free(s->vertices);
     free(s->triangles);
     free(s->tri_light);
-    for (uint32_t i = 0; i < s->n_materials; i++)
+    free(s->tri_object);
+    for (uint32_t i = 0; i < s->n_objects; i++)
+        free(s->object_names[i]);
+    free(s->object_names);
+    for (uint32_t i = 0; i < s->n_materials; i++) {
         free(s->material_names[i]);
+        free(s->material_at ? s->material_at[i] : NULL);
+    }
     free(s->material_names);
+    free(s->material_at);
     free(s->materials);
     free(s->textures);
     free(s->texels);

@@ -74,6 +74,18 @@ struct cv_scene {
     CvMaterial *materials;
     uint32_t n_materials;
     char **material_names;           /* per material: name for reports, may be NULL entries */
+    char **material_at;              /* per material: "file:line" of its directive, or NULL */
+
+    /* ID mattes (object IDs, Cryptomatte): each triangle's object, an
+     * index into object_names. An object is one Shape directive outside
+     * ObjectBegin, named by its PLY file as written (plymesh) or by
+     * "file:line" of the directive (file: the base name); or an ObjectBegin
+     * definition, named by its name, whose instances all share it (as
+     * Blender's instances of one object share its Cryptomatte ID). Names
+     * may repeat (one PLY file used twice). */
+    uint32_t *tri_object;
+    char **object_names;
+    uint32_t n_objects;
 
     CvTexture *textures;
     uint32_t n_textures;

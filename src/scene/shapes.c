@@ -524,6 +524,9 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
         m.uv = g.uv;
         m.idx = g.idx;
         m.analytic = analytic;
+        /* exporters write one PLY file per object of the DCC's scene */
+        if (strcmp(type, "plymesh") == 0)
+            m.name = cv_params_string(ps, "filename", NULL);
         ok = cv_b_emit_mesh(b, &m, loc, err);
     }
     geo_free(&g);

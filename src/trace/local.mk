@@ -15,7 +15,7 @@ GLSL_FILES += \
 	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
 	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
-	glsl/trace/resolve.comp glsl/trace/test/sampler_probe.comp
+	glsl/trace/resolve.comp glsl/trace/matte.comp glsl/trace/test/sampler_probe.comp
 # ---- bsdf / light sampling (branch bsdf) ----
 GLSL_FILES += \
 	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \

@@ -45,6 +45,8 @@ enum stage {
     ST_SHADE_B,
     ST_SHADOW,
     ST_RESOLVE,
+    ST_MATTE,             /* only for alpha and ID AOVs (matte.comp) */
+    ST_RESOLVE_STRAIGHT,  /* only for alpha: un-premultiplied, for the colour stage */
     ST_COUNT
 };
 
@@ -69,10 +71,13 @@ struct cv_renderer {
     uint32_t max_depth;
     bool aovs;
     bool escaped_stage;            /* misses go through escaped.comp */
+    bool alpha;                    /* film transparency (render.h) */
+    uint32_t matte_stride;         /* uints a slot in `matte` (glsl/shared/trace.h); 0: none */
     uint32_t spp_done;
     uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
     GLuint ubo, queues, rays, hits, shadow, film;
+    GLuint matte;                  /* coverage and ID mattes, with matte_stride */
     struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
@@ -93,6 +98,7 @@ struct cv_renderer {
 
 static const char *const stage_names[ST_COUNT] = {
     "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve",
+    "matte",    "resolve-straight",
 };
 
 static const char *const pass_names[1] = {"pass"};
@@ -111,7 +117,8 @@ static void prof_end(struct cv_renderer *r)
 /* The shade stages' files come from the integrator (NULL here). */
 static const char *const stage_files[ST_COUNT] = {
     "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
-    NULL,                  "trace/shadow.comp",    "trace/resolve.comp",
+    NULL,                  "trace/shadow.comp",    "trace/resolve.comp", "trace/matte.comp",
+    "trace/resolve.comp",
 };
 
 /* The film and camera: the plan's (p->camera), else the scene's. */
@@ -242,6 +249,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
     r->aovs = p->aovs;
+    r->alpha = p->alpha;
+    if (p->alpha || p->id_mattes || p->cryptomatte)
+        r->matte_stride = p->cryptomatte ? CV_MATTE_WORDS_CRYPTO : CV_MATTE_WORDS;
     r->max_depth = p->max_depth ? p->max_depth : scene->settings.max_depth;
     setup_camera(r, scene, p);
     cv_filter_setup(&scene->settings, &r->pass);
@@ -314,8 +324,17 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
      * integrator asks for it; otherwise the intersect stage starts their
      * pixels' next samples itself (intersect.comp). */
     r->escaped_stage = ops->escaped_stage || r->scene->has_env;
-    const char *escaped[MAX_SCENE_DEFINES + 2];
-    defines_plus(escaped, defines, nd, ops->escaped_define, NULL);
+    const char *escaped[MAX_SCENE_DEFINES + 3];
+    defines_plus(escaped, defines, nd, ops->escaped_define,
+                 r->alpha ? "CV_FILM_TRANSPARENT" : NULL);
+    /* the matte stages: the slot layout, and what the job asked for */
+    char stride[32];
+    snprintf(stride, sizeof(stride), "CV_MATTE_STRIDE=%uu", r->matte_stride);
+    const char *matte[] = {stride, p->cryptomatte ? "CV_CRYPTO" : NULL, NULL};
+    const char *resolve_d[MAX_SCENE_DEFINES + 3], *straight[MAX_SCENE_DEFINES + 5];
+    defines_plus(resolve_d, defines, nd, r->alpha ? "CV_FILM_TRANSPARENT" : NULL,
+                 r->alpha ? stride : NULL);
+    defines_plus(straight, resolve_d, nd + (r->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
     const char *intersect[MAX_SCENE_DEFINES + 3];
     defines_plus(intersect, defines, nd, "CV_HIT_BINS",
@@ -334,7 +353,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             file = ops->file[k];
             d = shade[k];
         }
-        if (s == ST_ESCAPED && !r->escaped_stage)
+        if ((s == ST_ESCAPED && !r->escaped_stage) || (s == ST_MATTE && !r->matte_stride) ||
+            (s == ST_RESOLVE_STRAIGHT && !r->alpha))
             continue;
         if (s == ST_GENERATE)
             d = no_defines;
@@ -342,6 +362,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             d = escaped;
         else if (s == ST_INTERSECT)
             d = intersect;
+        else if (s == ST_MATTE)
+            d = matte;
+        else if (s == ST_RESOLVE)
+            d = resolve_d;
+        else if (s == ST_RESOLVE_STRAIGHT)
+            d = straight;
         struct cv_program *pr = cv_program_get(gpu, file, d, err);
         if (pr)
             r->prog[s] = *pr;
@@ -377,6 +403,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
     r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
+    if (r->matte_stride)
+        r->matte = make(gpu, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
     if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){
                                                       .size = (size_t)r->n_pixels * 4 * sizeof(float),
                                                       .storable = true, .host_readable = true,
@@ -408,6 +436,8 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->hits, CV_BIND_HITS);
     cv_buffer_bind(r->shadow, CV_BIND_SHADOW);
     cv_buffer_bind(r->film, CV_BIND_FILM);
+    if (r->matte)
+        cv_buffer_bind(r->matte, CV_BIND_MATTE);
     cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
     if (r->ops->bind)
@@ -438,6 +468,9 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);
+    /* reads the hits before the shade stages move on from them */
+    if (r->matte)
+        stage_indirect(r, ST_MATTE, CV_ARGS_HITS_ALL);
     /* The shade programs share no data (integrator.h), so only the last
      * is followed by a barrier and they may overlap. */
     const struct cv_integrator_ops *ops = r->ops;
@@ -553,14 +586,24 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     return cv_gl_check(err, "reading render counters");
 }
 
-const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
+static const struct cv_buf *resolve(struct cv_renderer *r, int stage, struct cv_error *err)
 {
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
     bind_all(r);
-    cv_program_dispatch_1d(&r->prog[ST_RESOLVE], r->n_pixels);
+    cv_program_dispatch_1d(&r->prog[stage], r->n_pixels);
     if (!cv_gl_check(err, "resolving the film"))
         return NULL;
     return r->resolved;
+}
+
+const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err)
+{
+    return resolve(r, ST_RESOLVE, err);
+}
+
+const struct cv_buf *cv_renderer_resolve_display(struct cv_renderer *r, struct cv_error *err)
+{
+    return resolve(r, r->alpha ? ST_RESOLVE_STRAIGHT : ST_RESOLVE, err);
 }
 
 bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float *normal3,
@@ -612,6 +655,37 @@ bool cv_renderer_read(struct cv_renderer *r, float *rgba, float *albedo3, float 
     return ok;
 }
 
+bool cv_renderer_read_matte_slots(struct cv_renderer *r, struct cv_matte_slots *out,
+                                  struct cv_error *err)
+{
+    memset(out, 0, sizeof(*out));
+    if (!r->matte)
+        return cv_fail(err, "mattes requested from a renderer made without them");
+    size_t n = r->n_paths;
+    out->stride = r->matte_stride;
+    out->slots_per_pixel = r->paths_per_pixel;
+    out->n_pixels = r->n_pixels;
+    out->words = cv_xmalloc(n * r->matte_stride * sizeof(uint32_t));
+    out->weight = cv_xmalloc(n * sizeof(float));
+    CvFilmPixel *film = cv_xmalloc(n * sizeof(CvFilmPixel));
+    bool ok = cv_buffer_read(r->matte, 0, n * r->matte_stride * sizeof(uint32_t), out->words,
+                             err) &&
+              cv_buffer_read(r->film, 0, n * sizeof(CvFilmPixel), film, err);
+    for (size_t i = 0; ok && i < n; i++)
+        out->weight[i] = film[i].L.w;
+    free(film);
+    if (!ok)
+        cv_matte_slots_free(out);
+    return ok;
+}
+
+void cv_matte_slots_free(struct cv_matte_slots *m)
+{
+    free(m->words);
+    free(m->weight);
+    memset(m, 0, sizeof(*m));
+}
+
 void cv_renderer_destroy(struct cv_renderer **rp)
 {
     if (!rp || !*rp)
@@ -629,7 +703,8 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     cv_gpu_timer_destroy(&r->stages);
     cv_gpu_timer_destroy(&r->passes);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
-                      &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts};
+                      &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts,
+                      &r->matte};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);

@@ -26,6 +26,12 @@ struct cv_render_params {
     uint64_t seed;               /* job seed: same seed, same image */
     enum cv_integrator integrator;  /* CV_INTEGRATOR_PATH by default */
     bool aovs;                   /* keep albedo, normal and depth per pixel */
+    /* Film transparency (a job's alpha): coverage of camera rays that hit a
+     * surface is the resolved alpha, and the environment seen directly adds
+     * nothing to the colour (Cycles' transparent film). */
+    bool alpha;
+    bool id_mattes;              /* keep the object and material of sample 0's first hit */
+    bool cryptomatte;            /* keep ranked (id, weight) pairs per pixel */
     enum { CV_SAMPLER_SOBOL, CV_SAMPLER_INDEPENDENT } sampler;
     /* rlpath only (grid and directions 0, a negative mix: the default, see
      * trace/rlpath.h): cells along the scene's longest axis, direction bins
@@ -121,6 +127,25 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
  * error. */
 struct cv_buf;
 const struct cv_buf *cv_renderer_resolve(struct cv_renderer *r, struct cv_error *err);
+
+/* The same for the colour stage: with alpha, colour with the alpha divided
+ * out (straight, as PNG stores it; black where alpha is 0); otherwise
+ * cv_renderer_resolve's. */
+const struct cv_buf *cv_renderer_resolve_display(struct cv_renderer *r, struct cv_error *err);
+
+/* The matte words of every path slot (glsl/shared/trace.h: CV_MATTE_*),
+ * stride uints a slot, and each slot's filter weight; slot s belongs to
+ * crop pixel s % n_pixels. For renderers made with alpha, id_mattes or
+ * cryptomatte. Reads back from the GPU: once per job. Free with
+ * cv_matte_slots_free. */
+struct cv_matte_slots {
+    uint32_t *words;
+    float *weight;
+    uint32_t stride, slots_per_pixel, n_pixels;
+};
+bool cv_renderer_read_matte_slots(struct cv_renderer *r, struct cv_matte_slots *out,
+                                  struct cv_error *err);
+void cv_matte_slots_free(struct cv_matte_slots *m);
 
 /* CPU copies: rgba 4 floats per pixel; albedo3 and normal3 3 floats, depth1
  * one (camera distance to the first hit, 0 where the ray escaped); the AOV

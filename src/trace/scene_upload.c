@@ -158,6 +158,9 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
            "scene triangles", err) &&
         up(gpu, &g.tri_light, s->n_triangles * sizeof(int32_t), s->tri_light,
            "scene triangle lights", err) &&
+        /* NULL (a scene made by hand): object 0 everywhere */
+        up(gpu, &g.tri_object, s->n_triangles * sizeof(uint32_t), s->tri_object,
+           "scene triangle objects", err) &&
         up(gpu, &g.materials, s->n_materials * sizeof(CvMaterial), s->materials,
            "scene materials", err) &&
         up(gpu, &g.textures, s->n_textures * sizeof(CvTexture), s->textures, "scene textures",
@@ -202,6 +205,7 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->lights, CV_BIND_LIGHTS);
     cv_buffer_bind(g->light_cdf, CV_BIND_LIGHT_CDF);
     cv_buffer_bind(g->env_dist, CV_BIND_ENV_DIST);
+    cv_buffer_bind(g->tri_object, CV_BIND_TRI_OBJECT);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -218,7 +222,8 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
         return;
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
-                   &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist};
+                   &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
+                   &g->tri_object};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;

@@ -29,3 +29,8 @@ tests_batch_exr_scale_LDADD = $(CV_LIBS)
 TESTS += tests/batch/matrix_test.sh tests/batch/relight_test.sh
 EXTRA_DIST += tests/batch/matrix_test.sh tests/batch/relight_test.sh tests/data/batch/env.pbrt \
 	tests/data/batch/env_turned.pbrt tests/data/batch/gray.pfm tests/data/batch/wide.pfm
+# --- alpha, ID AOVs and Cryptomatte (issue 28) ---
+check_PROGRAMS += tests/batch/matte_probe
+tests_batch_matte_probe_LDADD = $(CV_LIBS)
+TESTS += tests/batch/mattes_test.sh
+EXTRA_DIST += tests/batch/mattes_test.sh tests/data/batch/mattes.pbrt tests/data/batch/mattes.yaml

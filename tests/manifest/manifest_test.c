@@ -168,7 +168,7 @@ static void check_error(const char *name, const char *const *want, size_t n_want
 
 #define JOB_KEYS                                                                      \
     "name, scene, output, formats, resolution, crop, spp, time_limit, integrator, max_depth, " \
-    "seed, color, aovs, exr, png, camera, rlpath, matrix, env, lights"
+    "seed, color, aovs, exr, png, camera, rlpath, matrix, env, lights, alpha"
 
 int main(void)
 {
@@ -200,7 +200,7 @@ int main(void)
     CHECK_ERROR("err_many.yaml",
                 "5:3: unknown key \"colour\" in defaults; valid keys: scene, output, formats, "
                 "resolution, crop, spp, time_limit, integrator, max_depth, seed, color, aovs, exr, "
-                "png, camera, rlpath, env, lights (did you mean \"color\"?)",
+                "png, camera, rlpath, env, lights, alpha (did you mean \"color\"?)",
                 "8:17: integrator: expected one of path, rlpath, got \"bidir\"",
                 "9:5: job 2: missing required key \"name\"",
                 "10:11: name: \"b c\" has ' '; job names use only letters, digits, '.', '_' "

@@ -14,3 +14,6 @@ tests_output_png_read_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/output/exr_read_test
 TESTS += tests/output/exr_read_test
 tests_output_exr_read_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/output/cryptomatte_test
+TESTS += tests/output/cryptomatte_test
+tests_output_cryptomatte_test_LDADD = $(CV_LIBS)
