@@ -32,6 +32,7 @@ struct cv_batch_options {
     enum cv_progress_mode progress;
     const struct cv_bvh_params *bvh;  /* the scenes' BVH builds; NULL: defaults */
     bool stage_times;              /* time every render stage (trace/render.h) */
+    bool serial_compile;           /* no compiling ahead (gpu/program.h) */
 };
 
 enum cv_batch_status {
