@@ -324,6 +324,18 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     }
 }
 
+/* Requests the stages' programs and the integrator's own. */
+static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
+                        const struct stage_programs *sp)
+{
+    for (int s = 0; s < ST_COUNT; s++)
+        if (sp->file[s])
+            cv_program_request(gpu, sp->file[s], sp->defines[s]);
+    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    if (ops->prefetch)
+        ops->prefetch(gpu, p, sp->scene_defines);
+}
+
 void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
                           const struct cv_render_params *p)
 {
@@ -331,9 +343,7 @@ void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
     cv_scene_gpu_features(scene, &features);
     struct stage_programs sp;
     stage_programs(&features, p, &sp);
-    for (int s = 0; s < ST_COUNT; s++)
-        if (sp.file[s])
-            cv_program_request(gpu, sp.file[s], sp.defines[s]);
+    request_all(gpu, p, &sp);
 }
 
 bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs,
@@ -397,9 +407,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     stage_programs(gs, p, &sp);
     /* all requested before the first is waited for: the driver compiles
      * them side by side (gpu/program.h) */
-    for (int s = 0; s < ST_COUNT; s++)
-        if (sp.file[s])
-            cv_program_request(gpu, sp.file[s], sp.defines[s]);
+    request_all(gpu, p, &sp);
     for (int s = 0; s < ST_COUNT; s++) {
         if (!sp.file[s])
             continue;
