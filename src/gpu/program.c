@@ -17,6 +17,14 @@
  * as line f * CV_GLSL_LINE_STRIDE + l. */
 #define CV_GLSL_LINE_STRIDE 100000
 
+/* Where one program's build time went, in milliseconds of the calling
+ * thread (with parallel compilation, compile and link only hand the work
+ * over and `wait` is the time its first use blocked). */
+struct program_times {
+    double requested_at_ms;   /* monotonic clock */
+    double assemble_ms, load_ms, compile_ms, link_ms, wait_ms, store_ms;
+};
+
 /* A program between its request and its first use: the driver may still
  * be compiling it in its own threads. */
 struct pending {
@@ -38,7 +46,7 @@ struct cache_entry {
     bool from_disk;
     bool used;                    /* got by cv_program_get at least once */
     bool accounted;               /* counted in the stats */
-    struct cv_program_times times;
+    struct program_times times;
 };
 
 struct cv_program_cache {
@@ -568,7 +576,7 @@ static void complete(struct cv_program_cache *c, struct cache_entry *e)
 /* One debug line a program and the totals of cv_program_build_stats. */
 static void account(struct cv_program_cache *c, struct cache_entry *e)
 {
-    const struct cv_program_times *t = &e->times;
+    const struct program_times *t = &e->times;
     double own = t->assemble_ms + t->load_ms + t->compile_ms + t->link_ms + t->wait_ms +
                  t->store_ms;
     double since = now_ms() - t->requested_at_ms;

@@ -33,14 +33,6 @@ struct cv_program {
     char *path;
 };
 
-/* Where one program's build time went, in milliseconds of the calling
- * thread (with parallel compilation, compile and link only hand the work
- * over and `wait` is the time its first use blocked). */
-struct cv_program_times {
-    double requested_at_ms;   /* monotonic clock */
-    double assemble_ms, load_ms, compile_ms, link_ms, wait_ms, store_ms;
-};
-
 /* Totals over this context's programs (cv_program_build_stats). */
 struct cv_program_build_stats {
     bool parallel;            /* builds are requested ahead (see above) */
