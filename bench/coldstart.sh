@@ -8,7 +8,8 @@
 #
 # usage: bench/coldstart.sh [--binary PATH] [--repeat K] [--spp N]
 #                           [--size WxH] [--modes "parallel serial warm"]
-#                           [--work DIR] [--out FILE] [scenes...]
+#                           [--integrator path|rlpath] [--work DIR]
+#                           [--out FILE] [scenes...]
 #   --binary PATH  cavalry_bench (default: next to this script, then
 #                  ./bench/cavalry_bench)
 #   --repeat K     runs per scene and mode (default 5); medians are printed
@@ -21,6 +22,7 @@
 #                  first use, which times each program's own compile), warm
 #                  (a second run on the cache folder the cold run filled).
 #                  Default: "parallel serial warm".
+#   --integrator I path (default) or rlpath
 #   --work DIR     records, logs and summaries (default bench/out/coldstart)
 #   scenes         .pbrt files (default: cornell-box, coffee, veach-ajar and
 #                  killeroo-coated-gold from ../shared/scenes where present)
@@ -39,6 +41,7 @@ repeat=5
 spp=1
 size=
 modes="parallel serial warm"
+integrator=path
 work=
 out=
 scenes=
@@ -50,6 +53,7 @@ while [ $# -gt 0 ]; do
     --spp) spp=$2; shift 2 ;;
     --size) size=$2; shift 2 ;;
     --modes) modes=$2; shift 2 ;;
+    --integrator) integrator=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
@@ -80,8 +84,8 @@ if [ -z "$scenes" ]; then
         fi
     done
 fi
-size_args=
-[ -z "$size" ] || size_args="--width ${size%x*} --height ${size#*x}"
+size_args="--integrator $integrator"
+[ -z "$size" ] || size_args="$size_args --width ${size%x*} --height ${size#*x}"
 
 # The drivers' own caches stay off in every mode: only Cavalry's folder
 # differs between cold and warm.

@@ -93,8 +93,10 @@ int main(void)
     tap_ok(st.unused == (st.parallel ? 1u : 0u),
            "one program requested and never got (%u)", st.unused);
     tap_ok(st.failed == failed0 + 2, "two more failed builds counted (%u)", st.failed - failed0);
-    tap_ok(st.compiled >= 1 && st.slowest[0] && st.build_ms >= st.slowest_ms,
-           "totals: %u compiled, %.1f ms, slowest %s", st.compiled, st.build_ms, st.slowest);
+    /* the suite's disk cache may hold good.comp from an earlier run */
+    tap_ok(st.compiled + st.cache_hits >= 1 && st.slowest[0] && st.build_ms >= st.slowest_ms,
+           "totals: %u compiled, %u from the disk cache, %.1f ms, slowest %s", st.compiled,
+           st.cache_hits, st.build_ms, st.slowest);
     cv_gpu_destroy(&gpu);
 
     /* The same without compiling ahead: requests do nothing. */
