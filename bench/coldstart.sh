@@ -11,7 +11,8 @@
 #                           [--integrator path|rlpath] [--work DIR]
 #                           [--out FILE] [scenes...]
 #   --binary PATH  cavalry_bench (default: next to this script, then
-#                  ./bench/cavalry_bench)
+#                  ./bench/cavalry_bench); an older build's (a baseline)
+#                  gives the time to the first pass without program.* keys
 #   --repeat K     runs per scene and mode (default 5); medians are printed
 #   --spp N        samples per pixel of the render (default 1: the first
 #                  pass is what is timed)
@@ -84,6 +85,10 @@ if [ -z "$scenes" ]; then
         fi
     done
 fi
+# An older cavalry_bench (before the program log, e.g. f42fcef for a
+# baseline) takes no -v: its records lack program.* and the costliest list.
+verbose=
+"$binary" --help 2>/dev/null | grep -q -- '\[-v\]' && verbose=-v
 size_args="--integrator $integrator"
 [ -z "$size" ] || size_args="$size_args --width ${size%x*} --height ${size#*x}"
 
@@ -103,7 +108,7 @@ run() {
     [ "$1" != serial ] || par=0
     # shellcheck disable=SC2086
     CAVALRY_CACHE_DIR=$4 CAVALRY_PARALLEL_COMPILE=$par \
-        "$binary" -v --bench "$2" --spp "$spp" $size_args --repeat 1 --json \
+        "$binary" $verbose --bench "$2" --spp "$spp" $size_args --repeat 1 --json \
         >> "$work/$1.jsonl" 2> "$log" ||
         echo "coldstart.sh: $1 run of $2 failed: $(tail -n 1 "$log")" >&2
 }
