@@ -25,6 +25,7 @@
 #include "base/mem.h"
 #include "bench/bench.h"
 #include "gpu/context.h"
+#include "gpu/program.h"
 #include "output/exr_read.h"
 #include "scene/scene.h"
 
@@ -42,7 +43,7 @@ static void usage(FILE *f)
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
           "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
           "                     [--rl-guide all|indirect] [--seed S]\n"
-          "                     [--paths-per-pixel N] [--pass-spp N] [--no-gpu]\n"
+          "                     [--paths-per-pixel N] [--pass-spp N] [--no-gpu] [-v]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
@@ -161,6 +162,7 @@ static bool bench_once(const struct opts *o, unsigned rep, struct cv_gpu **gpu,
             return false;
         }
         bench_num(&r, "gpu.create_ms", bench_now_ms() - t0);
+        cv_program_set_serial(*gpu, o->knobs.serial_compile);
     }
     if (*gpu) {
         record_gpu(&r, *gpu);
@@ -222,6 +224,8 @@ int main(int argc, char **argv)
             mode = M_BENCH, o.scene = argv[++i];
         } else if (!strcmp(a, "--converge") && has) {
             mode = M_CONVERGE, o.scene = argv[++i];
+        } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {
+            cv_log_set_level(CV_LOG_DEBUG);
         } else if (!strcmp(a, "--summarize")) {
             mode = M_SUMMARIZE;
         } else if (!strcmp(a, "--relmse")) {

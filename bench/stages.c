@@ -17,6 +17,7 @@
 #include "batch/pass_size.h"
 #include "bench/bench.h"
 #include "gpu/buffer.h"
+#include "gpu/program.h"
 
 #if defined(__has_include)
 #if __has_include("bvh/bvh.h")
@@ -117,6 +118,31 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     return cv_renderer_create(gpu, scene, &rp, out, err);
 }
 
+/* Where program builds took the time up to the first pass (gpu/program.h):
+ * what a cold start spends that a warm one does not. */
+static void record_programs(const struct cv_gpu *gpu, struct bench_record *r)
+{
+    struct cv_program_build_stats b;
+    struct cv_program_disk_stats d;
+    cv_program_build_stats(gpu, &b);
+    cv_program_cache_stats(gpu, &d);
+    bench_num(r, "program.parallel", b.parallel);
+    bench_num(r, "program.build_ms", b.build_ms);
+    bench_num(r, "program.assemble_ms", b.assemble_ms);
+    bench_num(r, "program.cache_lookup_ms", b.load_ms);
+    bench_num(r, "program.compile_ms", b.compile_ms);
+    bench_num(r, "program.link_ms", b.link_ms);
+    bench_num(r, "program.wait_ms", b.wait_ms);
+    bench_num(r, "program.store_ms", b.store_ms);
+    bench_num(r, "program.compiled", b.compiled);
+    bench_num(r, "program.cache_hits", b.cache_hits);
+    bench_num(r, "program.requested", b.requested);
+    bench_num(r, "program.unused", b.unused);
+    bench_num(r, "program.disk_cache", d.enabled);
+    bench_str(r, "program.slowest", b.slowest);
+    bench_num(r, "program.slowest_ms", b.slowest_ms);
+}
+
 static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
                            const struct bench_run_params *p, struct bench_record *r,
                            struct cv_error *err)
@@ -143,6 +169,7 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
     if (ok) {
         bench_num(r, "render.first_pass_from_start_ms", bench_now_ms());
         bench_num(r, "render.first_pass_gpu_ms", c1.gpu_ms);
+        record_programs(gpu, r);
         bench_gpu_memory_sample(gpu);
     }
     /* The rest in passes sized as cavalry-batch sizes them, or of pass_spp

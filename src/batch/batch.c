@@ -18,6 +18,7 @@
 #include "batch/run_job.h"
 #include "batch/signals.h"
 #include "batch/workers.h"
+#include "gpu/program.h"
 #include "manifest/manifest.h"
 #include "manifest/shard.h"
 #include "scene/scene.h"
@@ -354,6 +355,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
         goto done;
     }
     cv_progress_source(progress, -1, gpu->info.device_index);
+    cv_program_set_serial(gpu, opt->serial_compile);
     unsigned failed = 0;
     /* In manifest order; a worker of a multi-GPU batch gets its jobs from
      * the parent instead (workers.h), still in that order. */
@@ -393,6 +395,9 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                 cv_error_prefix(&jerr, "job \"%s\": ", job->name);
             } else if (!ls->gpu_scene) {
                 cv_progress_phase(progress, job->name, CV_PHASE_BVH_BUILD, ls->path);
+                /* the driver compiles the job's programs during the build */
+                struct cv_render_params rp = cv_plan_render_params(&sel.plans[k]);
+                cv_renderer_prefetch(gpu, ls->scene, &rp);
                 bool built = cv_scene_gpu_create(gpu, ls->scene, opt->bvh, &ls->gpu_scene, &jerr);
                 scene_seconds = ls->load_seconds + (now_seconds() - t0);
                 if (!built) {

@@ -35,6 +35,7 @@ struct cv_batch_options {
     bool stage_times;              /* time every render stage (trace/render.h) */
     struct cv_worker_link *worker; /* a worker of a multi-GPU batch: jobs and events
                                     * go through its parent (workers.h); NULL: none */
+    bool serial_compile;           /* no compiling ahead (gpu/program.h) */
 };
 
 enum cv_batch_status {

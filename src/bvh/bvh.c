@@ -219,29 +219,54 @@ GLuint cv_bvh_leaf_tris_create(struct cv_gpu *gpu, GLuint vertices, GLuint trian
     return tris;
 }
 
+/* The phases' programs and their defines for params p, over split
+ * references or not: one home for run_phases and cv_bvh_prefetch. Holds
+ * pointers into itself: not to be copied. */
+enum { PHASE_BOUNDS, PHASE_MORTON, PHASE_HIER, PHASE_REFIT, PHASE_TREELET, PHASE_LAYOUT,
+       PHASE_EMIT, PHASE_PROGRAMS };
+static const char *const phase_files[PHASE_PROGRAMS] = {
+    "bvh/bounds.comp", "bvh/morton.comp", "bvh/hierarchy.comp", "bvh/refit.comp",
+    "bvh/treelet.comp", "bvh/layout.comp", "bvh/emit.comp"};
+struct phase_programs {
+    char tdef[32];
+    const char *bounds[2], *morton[3], *key[2], *refit[2], *treelet[3];
+    const char *const *defs[PHASE_PROGRAMS];
+};
+
+static void phase_programs(const struct cv_bvh_params *p, bool split, struct phase_programs *pp)
+{
+    snprintf(pp->tdef, sizeof(pp->tdef), "TREELET_SIZE=%d", p->treelet_size);
+    /* Over split references, bounds and keys come from their boxes. */
+    const char *from = split ? "FROM_BOXES" : NULL;
+    const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
+    const char *key64 = MORTON_BITS > 32 ? "KEY64" : NULL;
+    pp->bounds[0] = from, pp->bounds[1] = NULL;
+    pp->refit[0] = nc, pp->refit[1] = NULL;
+    pp->key[0] = key64, pp->key[1] = NULL;
+    pp->morton[0] = from, pp->morton[1] = key64, pp->morton[2] = NULL;
+    pp->treelet[0] = pp->tdef, pp->treelet[1] = nc, pp->treelet[2] = NULL;
+    const char *const *defs[PHASE_PROGRAMS] = {pp->bounds, pp->morton, pp->key, pp->refit,
+                                              pp->treelet, NULL, NULL};
+    memcpy(pp->defs, defs, sizeof(defs));
+}
+
+/* leaf_tris_scatter's */
+static const char *const leaf_scatter_defs[] = {"SCATTER", NULL};
+
 static bool run_phases(struct build *b, const struct cv_bvh_params *p, GLuint vertices,
                        GLuint triangles, struct cv_error *err)
 {
     uint32_t n = b->n;
-    char tdef[32];
-    snprintf(tdef, sizeof(tdef), "TREELET_SIZE=%d", p->treelet_size);
-    /* Over split references, bounds and keys come from their boxes. */
-    const char *from = b->split ? "FROM_BOXES" : NULL;
-    const char *bounds_defs[] = {from, NULL};
-    const char *nc = p->collapse_leaves ? NULL : "CV_BVH_NO_COLLAPSE";
-    const char *refit_defs[] = {nc, NULL};
-    const char *key_defs[] = {MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
-    const char *morton_defs[] = {from, MORTON_BITS > 32 ? "KEY64" : NULL, NULL};
-    const char *treelet_defs[] = {tdef, nc, NULL};
-    struct cv_program *bounds, *morton, *hier, *refit, *treelet, *layout, *emit;
-    if (!(bounds = cv_program_get(b->gpu, "bvh/bounds.comp", bounds_defs, err)) ||
-        !(morton = cv_program_get(b->gpu, "bvh/morton.comp", morton_defs, err)) ||
-        !(hier = cv_program_get(b->gpu, "bvh/hierarchy.comp", key_defs, err)) ||
-        !(refit = cv_program_get(b->gpu, "bvh/refit.comp", refit_defs, err)) ||
-        !(treelet = cv_program_get(b->gpu, "bvh/treelet.comp", treelet_defs, err)) ||
-        !(layout = cv_program_get(b->gpu, "bvh/layout.comp", NULL, err)) ||
-        !(emit = cv_program_get(b->gpu, "bvh/emit.comp", NULL, err)))
-        return false;
+    struct phase_programs pp;
+    phase_programs(p, b->split != NULL, &pp);
+    struct cv_program *prog[PHASE_PROGRAMS];
+    for (int i = 0; i < PHASE_PROGRAMS; i++)
+        if (!(prog[i] = cv_program_get(b->gpu, phase_files[i], pp.defs[i], err)))
+            return false;
+    struct cv_program *bounds = prog[PHASE_BOUNDS], *morton = prog[PHASE_MORTON],
+                      *hier = prog[PHASE_HIER], *refit = prog[PHASE_REFIT],
+                      *treelet = prog[PHASE_TREELET], *layout = prog[PHASE_LAYOUT],
+                      *emit = prog[PHASE_EMIT];
 
     /* Pooled buffers hold whatever their last user left. */
     cv_buffer_zero(b->info);
@@ -417,11 +442,10 @@ static bool leaf_tris_scatter(struct build *b, struct cv_bvh *bvh, uint32_t wind
 {
     if (window == 0)
         window = LEAF_TRIS_WINDOW;
-    const char *defs[] = {"SCATTER", NULL};
     struct cv_program *slots, *scatter;
     uint32_t n = b->n;
     if (!(slots = cv_program_get(b->gpu, "bvh/leaf_slots.comp", NULL, err)) ||
-        !(scatter = cv_program_get(b->gpu, "bvh/leaf_tris.comp", defs, err)) ||
+        !(scatter = cv_program_get(b->gpu, "bvh/leaf_tris.comp", leaf_scatter_defs, err)) ||
         !cv_gpu_storage_fits(b->gpu, leaf_tris_bytes(n), "bvh leaf triangles", err) ||
         !(bvh->tris = own_buffer(bvh, leaf_tris_bytes(n), &bvh->tris_bytes, "bvh leaf triangles",
                                  err)))
@@ -570,13 +594,40 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
     return cv_gl_check(err, "finishing the BVH");
 }
 
+/* params, else the defaults, with the treelet size's 0 resolved */
+static struct cv_bvh_params resolved_params(const struct cv_bvh_params *params)
+{
+    struct cv_bvh_params p = params ? *params : cv_bvh_default_params();
+    if (p.treelet_size == 0)
+        p.treelet_size = 7;
+    return p;
+}
+
+void cv_bvh_prefetch(struct cv_gpu *gpu, const struct cv_bvh_params *params)
+{
+    struct cv_bvh_params p = resolved_params(params);
+    /* Whether splitting adds references shows only on the GPU: with a
+     * budget, both variants of the phases that read them. */
+    for (int split = 0; split <= (p.split_budget > 0); split++) {
+        struct phase_programs pp;
+        phase_programs(&p, split, &pp);
+        for (int i = 0; i < PHASE_PROGRAMS; i++)
+            cv_program_request(gpu, phase_files[i], pp.defs[i]);
+    }
+    if (p.split_budget > 0)
+        cv_bvh_split_prefetch(gpu);
+    cv_radix_sort_prefetch(gpu, MORTON_BITS);
+    cv_scan_prefetch(gpu);
+    cv_bvh_widen_prefetch(gpu);
+    cv_program_request(gpu, "bvh/leaf_slots.comp", NULL);
+    cv_program_request(gpu, "bvh/leaf_tris.comp", leaf_scatter_defs);
+}
+
 bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_t n_triangles,
                   const struct cv_bvh_params *params, struct cv_bvh **out, struct cv_error *err)
 {
     *out = NULL;
-    struct cv_bvh_params p = params ? *params : cv_bvh_default_params();
-    if (p.treelet_size == 0)
-        p.treelet_size = 7;
+    struct cv_bvh_params p = resolved_params(params);
     if (p.treelet_size < 3 || p.treelet_size > 8)
         return cv_fail(err, "BVH treelet size %d is outside 3..8", p.treelet_size);
     if (p.treelet_rounds < 0 || p.treelet_rounds > 32)
@@ -592,6 +643,7 @@ bool cv_bvh_build(struct cv_gpu *gpu, GLuint vertices, GLuint triangles, uint32_
     if (n_triangles < 2) {
         ok = build_trivial(bvh, vertices, triangles, n_triangles, p.keep_binary, err);
     } else {
+        cv_bvh_prefetch(gpu, &p);
         struct build b = {.gpu = gpu, .n = n_triangles};
         ok = build_full(bvh, &b, &p, vertices, triangles, err);
         build_free(&b);

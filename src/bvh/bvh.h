@@ -95,6 +95,12 @@ static inline double cv_bvh_phase_ms(const struct cv_bvh_stats *s, const struct 
 
 struct cv_bvh;
 
+/* Starts compiling every program a build with params (NULL: defaults)
+ * runs (gpu/program.h: cv_program_request), so the driver compiles them
+ * side by side; cv_bvh_build calls it, and a caller that knows the
+ * parameters earlier (before the scene is parsed) may too. */
+void cv_bvh_prefetch(struct cv_gpu *gpu, const struct cv_bvh_params *params);
+
 /* Builds over n_triangles CvTriangle of `triangles` indexing CvVertex of
  * `vertices` (glsl/shared/scene.h); the caller keeps both buffers alive and
  * unchanged while the BVH is used. params NULL: defaults. Changes buffer

@@ -93,6 +93,27 @@ struct cv_radix_sort *cv_radix_sort_create(struct cv_gpu *gpu, uint32_t max_n, i
     return rs;
 }
 
+/* The sort's three programs and their defines for keys of `bits` (rdef:
+ * 32 bytes, defs: 3 entries), shared by the run and the prefetch. */
+static const char *const radix_files[3] = {"bvh/radix_count.comp", "bvh/radix_spine.comp",
+                                           "bvh/radix_scatter.comp"};
+static void radix_defines(int bits, char *rdef, const char **defs)
+{
+    snprintf(rdef, 32, "RADIX_BITS=%d", RADIX_BITS);
+    defs[0] = rdef;
+    defs[1] = bits > 32 ? "KEY64" : NULL;
+    defs[2] = NULL;
+}
+
+void cv_radix_sort_prefetch(struct cv_gpu *gpu, int bits)
+{
+    char rdef[32];
+    const char *defs[3];
+    radix_defines(bits, rdef, defs);
+    for (int i = 0; i < 3; i++)
+        cv_program_request(gpu, radix_files[i], defs);
+}
+
 bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint32_t n,
                        int bits, struct cv_error *err)
 {
@@ -101,15 +122,15 @@ bool cv_radix_sort_run(struct cv_radix_sort *rs, GLuint keys, GLuint vals, uint3
     if (bits < 1 || bits > rs->max_bits)
         return cv_fail(err, "radix sort of %d-bit keys, scratch made for %d", bits, rs->max_bits);
     char rdef[32];
-    snprintf(rdef, sizeof(rdef), "RADIX_BITS=%d", RADIX_BITS);
-    const char *defs[] = {rdef, bits > 32 ? "KEY64" : NULL, NULL};
+    const char *defs[3];
+    radix_defines(bits, rdef, defs);
     size_t words = bits > 32 ? 2 : 1;
     if (n < 2)
         return true;
     struct cv_program *count, *spine, *scatter;
-    if (!(count = cv_program_get(rs->gpu, "bvh/radix_count.comp", defs, err)) ||
-        !(spine = cv_program_get(rs->gpu, "bvh/radix_spine.comp", defs, err)) ||
-        !(scatter = cv_program_get(rs->gpu, "bvh/radix_scatter.comp", defs, err)))
+    if (!(count = cv_program_get(rs->gpu, radix_files[0], defs, err)) ||
+        !(spine = cv_program_get(rs->gpu, radix_files[1], defs, err)) ||
+        !(scatter = cv_program_get(rs->gpu, radix_files[2], defs, err)))
         return false;
     int passes = (bits + RADIX_BITS - 1) / RADIX_BITS;
     uint32_t tiles = block_tiles(n), blocks = n_blocks(n);

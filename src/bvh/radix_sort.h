@@ -29,4 +29,8 @@ uint64_t cv_radix_sort_bytes(const struct cv_radix_sort *rs);
 /* Accepts NULL; clears the pointer. */
 void cv_radix_sort_destroy(struct cv_radix_sort **rs);
 
+/* Starts compiling the programs of a sort of `bits`-bit keys
+ * (gpu/program.h: cv_program_request). */
+void cv_radix_sort_prefetch(struct cv_gpu *gpu, int bits);
+
 #endif

@@ -47,12 +47,20 @@ struct cv_scan *cv_scan_create(struct cv_gpu *gpu, uint32_t max_n, struct cv_err
     return scan;
 }
 
+static const char *const scan_files[2] = {"bvh/scan_block.comp", "bvh/scan_add.comp"};
+
+void cv_scan_prefetch(struct cv_gpu *gpu)
+{
+    for (int i = 0; i < 2; i++)
+        cv_program_request(gpu, scan_files[i], NULL);
+}
+
 static bool scan_level(struct cv_scan *scan, GLuint buf, uint32_t n, int level,
                        struct cv_error *err)
 {
     struct cv_program *block, *add;
-    if (!(block = cv_program_get(scan->gpu, "bvh/scan_block.comp", NULL, err)) ||
-        !(add = cv_program_get(scan->gpu, "bvh/scan_add.comp", NULL, err)))
+    if (!(block = cv_program_get(scan->gpu, scan_files[0], NULL, err)) ||
+        !(add = cv_program_get(scan->gpu, scan_files[1], NULL, err)))
         return false;
     if (level >= scan->n_levels)
         return cv_fail(err, "scan: more elements than the scratch was made for");

@@ -24,4 +24,7 @@ uint64_t cv_scan_bytes(const struct cv_scan *scan);
 /* Accepts NULL; clears the pointer. */
 void cv_scan_destroy(struct cv_scan **scan);
 
+/* Starts compiling the scan's programs (gpu/program.h: cv_program_request). */
+void cv_scan_prefetch(struct cv_gpu *gpu);
+
 #endif

@@ -80,15 +80,27 @@ struct cv_bvh_split *cv_bvh_split_create(struct cv_gpu *gpu, uint32_t n, uint32_
     return s;
 }
 
+/* The splitter's programs: the scene box, priorities, their sum, the
+ * counts, then emit and remap where references were added. */
+static const char *const box_defs[] = {"SCENE_BOX", NULL};
+static const char *const split_files[6] = {"bvh/bounds.comp", "bvh/split_priority.comp",
+                                           "bvh/split_sum.comp", "bvh/split_count.comp",
+                                           "bvh/split_emit.comp", "bvh/split_remap.comp"};
+
+void cv_bvh_split_prefetch(struct cv_gpu *gpu)
+{
+    for (int i = 0; i < 6; i++)
+        cv_program_request(gpu, split_files[i], i == 0 ? box_defs : NULL);
+}
+
 bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangles,
                         uint32_t *n_refs, struct cv_error *err)
 {
-    const char *box_defs[] = {"SCENE_BOX", NULL};
     struct cv_program *box, *prio, *sum, *count;
-    if (!(box = cv_program_get(s->gpu, "bvh/bounds.comp", box_defs, err)) ||
-        !(prio = cv_program_get(s->gpu, "bvh/split_priority.comp", NULL, err)) ||
-        !(sum = cv_program_get(s->gpu, "bvh/split_sum.comp", NULL, err)) ||
-        !(count = cv_program_get(s->gpu, "bvh/split_count.comp", NULL, err)))
+    if (!(box = cv_program_get(s->gpu, split_files[0], box_defs, err)) ||
+        !(prio = cv_program_get(s->gpu, split_files[1], NULL, err)) ||
+        !(sum = cv_program_get(s->gpu, split_files[2], NULL, err)) ||
+        !(count = cv_program_get(s->gpu, split_files[3], NULL, err)))
         return false;
     uint32_t n = s->n, g0 = (n + 255) / 256;
     cv_buffer_bind(vertices, CV_BIND_VERTICES);
@@ -128,7 +140,7 @@ bool cv_bvh_split_count(struct cv_bvh_split *s, GLuint vertices, GLuint triangle
 
 bool cv_bvh_split_emit(struct cv_bvh_split *s, GLuint boxes, struct cv_error *err)
 {
-    struct cv_program *emit = cv_program_get(s->gpu, "bvh/split_emit.comp", NULL, err);
+    struct cv_program *emit = cv_program_get(s->gpu, split_files[4], NULL, err);
     if (!emit)
         return false;
     cv_buffer_bind(s->bounds, CV_BIND_SPLIT_BOUNDS);
@@ -144,7 +156,7 @@ bool cv_bvh_split_emit(struct cv_bvh_split *s, GLuint boxes, struct cv_error *er
 
 bool cv_bvh_split_remap(struct cv_bvh_split *s, GLuint prims, struct cv_error *err)
 {
-    struct cv_program *remap = cv_program_get(s->gpu, "bvh/split_remap.comp", NULL, err);
+    struct cv_program *remap = cv_program_get(s->gpu, split_files[5], NULL, err);
     if (!remap)
         return false;
     cv_buffer_bind(s->ref_tris, CV_BIND_SPLIT_REF_TRIS);

@@ -57,4 +57,8 @@ uint64_t cv_bvh_split_bytes(const struct cv_bvh_split *split);
 /* Accepts NULL; clears the pointer. */
 void cv_bvh_split_destroy(struct cv_bvh_split **split);
 
+/* Starts compiling the splitter's programs (gpu/program.h:
+ * cv_program_request). */
+void cv_bvh_split_prefetch(struct cv_gpu *gpu);
+
 #endif

@@ -14,12 +14,21 @@ static void bind_all(const struct cv_bvh_widen *w)
     cv_buffer_bind(w->need, CV_BIND_WIDEN_NEED);
 }
 
+static const char *const widen_files[3] = {"bvh/widen_next.comp", "bvh/widen_level.comp",
+                                           "bvh/widen_emit.comp"};
+
+void cv_bvh_widen_prefetch(struct cv_gpu *gpu)
+{
+    for (int i = 0; i < 3; i++)
+        cv_program_request(gpu, widen_files[i], NULL);
+}
+
 bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_WORDS],
                        struct cv_error *err)
 {
     struct cv_program *next, *level;
-    if (!(next = cv_program_get(w->gpu, "bvh/widen_next.comp", NULL, err)) ||
-        !(level = cv_program_get(w->gpu, "bvh/widen_level.comp", NULL, err)))
+    if (!(next = cv_program_get(w->gpu, widen_files[0], NULL, err)) ||
+        !(level = cv_program_get(w->gpu, widen_files[1], NULL, err)))
         return false;
     GLint64 queue_bytes = 0;
     glGetNamedBufferParameteri64v(w->queue, GL_BUFFER_SIZE, &queue_bytes);
@@ -57,7 +66,7 @@ bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_
 bool cv_bvh_widen_emit(const struct cv_bvh_widen *w, struct cv_scan *scan, uint32_t n_bin,
                        uint32_t n_wide, GLuint out, struct cv_error *err)
 {
-    struct cv_program *emit = cv_program_get(w->gpu, "bvh/widen_emit.comp", NULL, err);
+    struct cv_program *emit = cv_program_get(w->gpu, widen_files[2], NULL, err);
     if (!emit || !cv_scan_exclusive(scan, w->flags, n_bin, err))
         return false;
     bind_all(w);

@@ -54,4 +54,8 @@ bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_
 bool cv_bvh_widen_emit(const struct cv_bvh_widen *w, struct cv_scan *scan, uint32_t n_bin,
                        uint32_t n_wide, GLuint out, struct cv_error *err);
 
+/* Starts compiling the programs of find and emit (gpu/program.h:
+ * cv_program_request). */
+void cv_bvh_widen_prefetch(struct cv_gpu *gpu);
+
 #endif

@@ -75,6 +75,7 @@ static void usage(FILE *out)
           "  CAVALRY_BVH_ROUNDS      treelet restructuring rounds, 0 to 32 (default 3)\n"
           "  CAVALRY_BVH_SPLIT       triangle splitting budget, 0 to 4 (default 0.3)\n"
           "  CAVALRY_STAGE_TIMES     time every render stage (diagnostic; slower)\n"
+          "  CAVALRY_PARALLEL_COMPILE  0: compile GPU programs one at a time (diagnostic)\n"
           "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
           "or scene, 4 no usable GPU, 70 out of memory, 128+N stopped by signal N (130\n"
@@ -473,6 +474,7 @@ int cv_cli_main(int argc, char **argv)
     struct cv_knobs knobs = cv_knobs_from_environment();
     o.bvh = &knobs.bvh;
     o.stage_times = knobs.stage_times;
+    o.serial_compile = knobs.serial_compile;
     if (list_gpus) {
         struct cv_error err = {{0}};
         if (!cv_gpu_list(&o.gpu, stdout, &err)) {

@@ -30,5 +30,7 @@ struct cv_knobs cv_knobs_from_environment(void)
     k.bvh.treelet_rounds = (int)rounds;
     const char *times = getenv("CAVALRY_STAGE_TIMES");
     k.stage_times = times && *times && strcmp(times, "0") != 0;
+    const char *parallel = getenv("CAVALRY_PARALLEL_COMPILE");
+    k.serial_compile = parallel && strcmp(parallel, "0") == 0;
     return k;
 }

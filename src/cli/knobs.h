@@ -14,6 +14,9 @@ struct cv_knobs {
      * treelet_rounds and CAVALRY_BVH_SPLIT (0 to 4) as split_budget */
     struct cv_bvh_params bvh;
     bool stage_times;   /* CAVALRY_STAGE_TIMES set, not empty and not "0" */
+    /* CAVALRY_PARALLEL_COMPILE=0: programs are compiled one at a time at
+     * first use (gpu/program.h), which times each one's compile alone */
+    bool serial_compile;
 };
 
 /* Reads the knobs; a value that is not a number in its range is warned

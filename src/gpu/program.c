@@ -2,6 +2,7 @@
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "base/log.h"
 #include "base/mem.h"
@@ -16,19 +17,50 @@
  * as line f * CV_GLSL_LINE_STRIDE + l. */
 #define CV_GLSL_LINE_STRIDE 100000
 
+/* Where one program's build time went, in milliseconds of the calling
+ * thread (with parallel compilation, compile and link only hand the work
+ * over and `wait` is the time its first use blocked). */
+struct program_times {
+    double requested_at_ms;   /* monotonic clock */
+    double assemble_ms, load_ms, compile_ms, link_ms, wait_ms, store_ms;
+};
+
+/* A program between its request and its first use: the driver may still
+ * be compiling it in its own threads. */
+struct pending {
+    GLuint shader, program;
+    char *src;                /* assembled: the disk cache's key */
+    char **names;             /* file table for log mapping */
+    bool parallel;            /* submitted without status queries */
+};
+
 /* Programs are allocated one by one: callers keep the pointers while the
  * cache grows. */
 struct cache_entry {
     char *key;
+    char *path;
+    char *label;                  /* path and defines, for logs */
     struct cv_program *prog;
+    struct pending *pending;      /* non-NULL: submitted, not yet waited for */
+    char *error;                  /* a failed build, reported at each use */
+    bool from_disk;
+    bool used;                    /* got by cv_program_get at least once */
+    bool accounted;               /* counted in the stats */
+    struct program_times times;
 };
 
 struct cv_program_cache {
     struct cache_entry *entries;
     size_t n, cap;
     /* Opened at the first request, when the context is current. */
+    bool opened;
     struct cv_program_disk_cache *disk;
+    bool parallel;                /* requests compile ahead in the driver's threads */
+    bool serial;                  /* cv_program_set_serial: never ahead */
+    struct cv_program_build_stats stats;
 };
+
+static void free_pending(struct pending **pd);
 
 struct cv_program_cache *cv_program_cache_create(void)
 {
@@ -41,9 +73,13 @@ void cv_program_cache_destroy(struct cv_program_cache **cache)
         return;
     for (size_t i = 0; i < (*cache)->n; i++) {
         struct cache_entry *e = &(*cache)->entries[i];
+        free_pending(&e->pending);
         if (e->prog->id)
             glDeleteProgram(e->prog->id);
         free(e->key);
+        free(e->path);
+        free(e->label);
+        free(e->error);
         free(e->prog->path);
         free(e->prog);
     }
@@ -351,6 +387,13 @@ char *cv_glsl_map_log(const char *log, char *const *names)
 
 /* ---- compiling --------------------------------------------------------- */
 
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
 static char *shader_log(GLuint sh)
 {
     GLint len = 0;
@@ -371,7 +414,8 @@ static char *program_log(GLuint prog)
     return log;
 }
 
-/* Fills out from a linked program. */
+/* Fills out from a linked program. Reads the program's state: with
+ * parallel compilation this waits for the driver's threads. */
 static void adopt(GLuint prog, const char *path, struct cv_program *out)
 {
     GLint size[3] = {1, 1, 1};
@@ -383,78 +427,187 @@ static void adopt(GLuint prog, const char *path, struct cv_program *out)
     glObjectLabel(GL_PROGRAM, prog, -1, path);
 }
 
-static bool build(struct cv_program_disk_cache *disk, const char *path,
-                  const char *const *defines, const struct cv_glsl_splice *splice,
-                  struct cv_program *out, struct cv_error *err)
+/* Reads the outcome of a compile and link started by submit(): a status
+ * query, which waits for the driver's threads when parallel compilation is
+ * on. Deletes the shader; on failure the program too. */
+static bool finish(struct cache_entry *e, struct cv_error *err)
 {
-    char *src, **names;
-    if (!assemble(path, defines, splice, &src, &names, err))
-        return false;
-    GLuint cached = cv_program_disk_cache_load(disk, src, path);
-    if (cached) {
-        adopt(cached, path, out);
-        free(src);
-        free_names(names);
-        if (cv_gl_check(err, "loading glsl/%s from the program cache", path))
-            return true;
-        glDeleteProgram(cached);
-        free(out->path);
-        *out = (struct cv_program){0};
-        return false;
-    }
-    GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-    const GLchar *srcs[1] = {src};
-    glShaderSource(sh, 1, srcs, NULL);
-    glCompileShader(sh);
+    struct pending *pd = e->pending;
     GLint status = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &status);
-    char *raw = shader_log(sh);
-    char *log = cv_glsl_map_log(raw, names);
-    free(raw);
     bool ok = true;
-    if (!status) {
-        ok = cv_fail(err, "compiling glsl/%s failed:\n%s", path, log);
+    double t0 = now_ms();
+    glGetProgramiv(pd->program, GL_LINK_STATUS, &status);
+    double t1 = now_ms();
+    GLint compiled = 0;
+    glGetShaderiv(pd->shader, GL_COMPILE_STATUS, &compiled);
+    char *raw = shader_log(pd->shader);
+    char *log = cv_glsl_map_log(raw, pd->names);
+    free(raw);
+    if (!compiled) {
+        ok = cv_fail(err, "compiling glsl/%s failed:\n%s", e->path, log);
+    } else if (!status) {
+        char *plog = program_log(pd->program);
+        char *mapped = cv_glsl_map_log(plog, pd->names);
+        ok = cv_fail(err, "linking glsl/%s failed:\n%s", e->path, mapped);
+        free(plog);
+        free(mapped);
     } else {
         if (log[0])
-            cv_debug("glsl/%s compiler log:\n%s", path, log);
-        GLuint prog = glCreateProgram();
-        if (cv_program_disk_cache_enabled(disk))
-            glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
-        glAttachShader(prog, sh);
-        glLinkProgram(prog);
-        glGetProgramiv(prog, GL_LINK_STATUS, &status);
-        if (!status) {
-            char *plog = program_log(prog);
-            char *mapped = cv_glsl_map_log(plog, names);
-            ok = cv_fail(err, "linking glsl/%s failed:\n%s", path, mapped);
-            free(plog);
-            free(mapped);
-            glDeleteProgram(prog);
-        } else {
-            adopt(prog, path, out);
-        }
+            cv_debug("glsl/%s compiler log:\n%s", e->path, log);
+        adopt(pd->program, e->path, e->prog);
+        pd->program = 0;   /* the entry's now */
     }
-    glDeleteShader(sh);
-    ok = ok && cv_gl_check(err, "building glsl/%s", path);
-    /* Only after the check: the store reads glGetError for its own calls. */
-    if (ok)
-        cv_program_disk_cache_store(disk, src, out->id, path);
     free(log);
-    free(src);
-    free_names(names);
+    glDeleteShader(pd->shader);
+    pd->shader = 0;
+    if (!ok) {
+        glDeleteProgram(pd->program);
+        pd->program = 0;
+    }
+    e->times.wait_ms += t1 - t0;
     return ok;
 }
 
-struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
-                                  const char *const *defines, struct cv_error *err)
+/* Starts compiling and linking pd->src. Without parallel compilation each
+ * call returns when its work is done, so compile and link are timed apart;
+ * with it they return at once and the cost shows at finish(). */
+static void submit(struct cv_program_disk_cache *disk, struct cache_entry *e)
 {
-    return cv_program_get_spliced(gpu, path, defines, NULL, err);
+    struct pending *pd = e->pending;
+    double t0 = now_ms();
+    pd->shader = glCreateShader(GL_COMPUTE_SHADER);
+    const GLchar *srcs[1] = {pd->src};
+    glShaderSource(pd->shader, 1, srcs, NULL);
+    glCompileShader(pd->shader);
+    if (!pd->parallel) {
+        /* The status query is what waits for a driver that compiles lazily. */
+        GLint status = 0;
+        glGetShaderiv(pd->shader, GL_COMPILE_STATUS, &status);
+    }
+    double t1 = now_ms();
+    pd->program = glCreateProgram();
+    if (cv_program_disk_cache_enabled(disk))
+        glProgramParameteri(pd->program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+    glAttachShader(pd->program, pd->shader);
+    glLinkProgram(pd->program);
+    if (!pd->parallel) {
+        GLint status = 0;
+        glGetProgramiv(pd->program, GL_LINK_STATUS, &status);
+    }
+    double t2 = now_ms();
+    e->times.compile_ms += t1 - t0;
+    e->times.link_ms += t2 - t1;
 }
 
-struct cv_program *cv_program_get_spliced(struct cv_gpu *gpu, const char *path,
-                                          const char *const *defines,
-                                          const struct cv_glsl_splice *splice,
-                                          struct cv_error *err)
+static void free_pending(struct pending **pd)
+{
+    if (!*pd)
+        return;
+    if ((*pd)->shader)
+        glDeleteShader((*pd)->shader);
+    if ((*pd)->program)
+        glDeleteProgram((*pd)->program);
+    free((*pd)->src);
+    free_names((*pd)->names);
+    free(*pd);
+    *pd = NULL;
+}
+
+/* First half of a build: assembly, then the disk cache, else a compile and
+ * link handed to the driver. A failure is kept in the entry for its first
+ * use. */
+static void start(struct cv_program_cache *c, struct cache_entry *e,
+                  const char *const *defines, const struct cv_glsl_splice *splice)
+{
+    double t0 = now_ms();
+    e->times.requested_at_ms = t0;
+    char *src, **names;
+    struct cv_error err = {{0}};
+    bool ok = assemble(e->path, defines, splice, &src, &names, &err);
+    double t1 = now_ms();
+    e->times.assemble_ms = t1 - t0;
+    if (!ok) {
+        e->error = cv_xstrdup(err.msg);
+        return;
+    }
+    GLuint cached = cv_program_disk_cache_load(c->disk, src, e->path);
+    e->times.load_ms = now_ms() - t1;
+    if (cached) {
+        adopt(cached, e->path, e->prog);
+        e->from_disk = true;
+        if (!cv_gl_check(&err, "loading glsl/%s from the program cache", e->path)) {
+            glDeleteProgram(cached);
+            free(e->prog->path);
+            *e->prog = (struct cv_program){0};
+            e->error = cv_xstrdup(err.msg);
+        }
+        free(src);
+        free_names(names);
+        return;
+    }
+    e->pending = cv_xcalloc(1, sizeof(*e->pending));
+    e->pending->src = src;
+    e->pending->names = names;
+    e->pending->parallel = c->parallel;
+    submit(c->disk, e);
+}
+
+/* Second half: waits for the driver, checks, stores the binary. */
+static void complete(struct cv_program_cache *c, struct cache_entry *e)
+{
+    struct cv_error errv = {{0}}, *err = &errv;
+    bool ok = finish(e, err);
+    ok = ok && cv_gl_check(err, "building glsl/%s", e->path);
+    double t0 = now_ms();
+    /* Only after the check: the store reads glGetError for its own calls. */
+    if (ok)
+        cv_program_disk_cache_store(c->disk, e->pending->src, e->prog->id, e->path);
+    e->times.store_ms = now_ms() - t0;
+    if (!ok) {
+        if (e->prog->id)
+            glDeleteProgram(e->prog->id);
+        free(e->prog->path);
+        *e->prog = (struct cv_program){0};
+        e->error = cv_xstrdup(err->msg);
+    }
+    free_pending(&e->pending);
+}
+
+/* One debug line a program and the totals of cv_program_build_stats. */
+static void account(struct cv_program_cache *c, struct cache_entry *e)
+{
+    const struct program_times *t = &e->times;
+    double own = t->assemble_ms + t->load_ms + t->compile_ms + t->link_ms + t->wait_ms +
+                 t->store_ms;
+    double since = now_ms() - t->requested_at_ms;
+    struct cv_program_build_stats *s = &c->stats;
+    s->build_ms += own;
+    s->assemble_ms += t->assemble_ms;
+    s->compile_ms += t->compile_ms;
+    s->link_ms += t->link_ms;
+    s->wait_ms += t->wait_ms;
+    s->store_ms += t->store_ms;
+    s->load_ms += t->load_ms;
+    if (e->error)
+        s->failed++;
+    else if (e->from_disk)
+        s->cache_hits++;
+    else
+        s->compiled++;
+    if (own > s->slowest_ms) {
+        s->slowest_ms = own;
+        snprintf(s->slowest, sizeof(s->slowest), "%s", e->label);
+    }
+    cv_debug("program glsl/%s: %s: assemble %.1f ms, cache lookup %.1f ms, compile %.1f ms, "
+             "link %.1f ms, wait %.1f ms, store %.1f ms; first used %.1f ms after its request",
+             e->label, e->error ? "failed" : e->from_disk ? "cache hit" : "compiled",
+             t->assemble_ms, t->load_ms, t->compile_ms, t->link_ms, t->wait_ms, t->store_ms,
+             since);
+}
+
+/* The in-memory key: path, defines, splice. */
+static char *entry_key(const char *path, const char *const *defines,
+                       const struct cv_glsl_splice *splice)
 {
     struct strbuf key = {0};
     sb_add(&key, path, strlen(path));
@@ -469,24 +622,145 @@ struct cv_program *cv_program_get_spliced(struct cv_gpu *gpu, const char *path,
         sb_add(&key, "\n", 1);
         sb_add(&key, splice->text, strlen(splice->text));
     }
-    struct cv_program_cache *c = gpu->programs;
-    for (size_t i = 0; i < c->n; i++) {
-        if (strcmp(c->entries[i].key, key.s) == 0) {
-            free(key.s);
-            return c->entries[i].prog;
-        }
+    return key.s;
+}
+
+/* "path [A B=1]" for logs. */
+static char *entry_label(const char *path, const char *const *defines,
+                         const struct cv_glsl_splice *splice)
+{
+    struct strbuf b = {0};
+    sb_add(&b, path, strlen(path));
+    for (const char *const *d = defines; d && *d; d++) {
+        sb_add(&b, d == defines ? " [" : " ", d == defines ? 2 : 1);
+        sb_add(&b, *d, strlen(*d));
+        if (!d[1])
+            sb_add(&b, "]", 1);
     }
-    if (!c->disk)
-        c->disk = cv_program_disk_cache_open(&gpu->info);
-    struct cv_program prog = {0};
-    if (!build(c->disk, path, defines, splice, &prog, err)) {
-        free(key.s);
+    if (splice)
+        sb_add(&b, " (spliced)", 10);
+    return b.s;
+}
+
+/* Opens the disk cache and picks the compile mode at the first request,
+ * when the context is current. */
+static void open_cache(struct cv_gpu *gpu)
+{
+    struct cv_program_cache *c = gpu->programs;
+    if (c->opened)
+        return;
+    c->opened = true;
+    c->disk = cv_program_disk_cache_open(&gpu->info);
+    bool khr = cv_gl_has_extension("GL_KHR_parallel_shader_compile");
+    bool arb = !khr && cv_gl_has_extension("GL_ARB_parallel_shader_compile");
+    c->parallel = !c->serial && (khr || arb);
+    if (c->parallel) {
+        /* as many threads as the driver will use */
+        if (khr)
+            glMaxShaderCompilerThreadsKHR(0xffffffffu);
+        else
+            glMaxShaderCompilerThreadsARB(0xffffffffu);
+        glGetError();
+    }
+    c->stats.parallel = c->parallel;
+    cv_debug("programs: %s compilation (%s)", c->parallel ? "parallel" : "serial",
+             khr ? "GL_KHR_parallel_shader_compile"
+                 : arb ? "GL_ARB_parallel_shader_compile"
+                       : "the driver has no parallel_shader_compile extension");
+}
+
+static struct cache_entry *find(struct cv_program_cache *c, const char *key)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (strcmp(c->entries[i].key, key) == 0)
+            return &c->entries[i];
+    return NULL;
+}
+
+static struct cache_entry *add(struct cv_program_cache *c, char *key, const char *path,
+                               const char *const *defines, const struct cv_glsl_splice *splice)
+{
+    struct cache_entry e = {.key = key, .prog = cv_xcalloc(1, sizeof(struct cv_program)),
+                            .path = cv_xstrdup(path),
+                            .label = entry_label(path, defines, splice)};
+    CV_PUSH(c->entries, c->n, c->cap, e);
+    return &c->entries[c->n - 1];
+}
+
+void cv_program_request_spliced(struct cv_gpu *gpu, const char *path,
+                                const char *const *defines,
+                                const struct cv_glsl_splice *splice)
+{
+    open_cache(gpu);
+    struct cv_program_cache *c = gpu->programs;
+    if (!c->parallel)
+        return;   /* built at first use, as without requests */
+    char *key = entry_key(path, defines, splice);
+    if (find(c, key)) {
+        free(key);
+        return;
+    }
+    struct cache_entry *e = add(c, key, path, defines, splice);
+    c->stats.requested++;
+    start(c, e, defines, splice);
+    if (!e->pending)
+        e->accounted = true, account(c, e);
+}
+
+void cv_program_request(struct cv_gpu *gpu, const char *path, const char *const *defines)
+{
+    cv_program_request_spliced(gpu, path, defines, NULL);
+}
+
+struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
+                                  const char *const *defines, struct cv_error *err)
+{
+    return cv_program_get_spliced(gpu, path, defines, NULL, err);
+}
+
+struct cv_program *cv_program_get_spliced(struct cv_gpu *gpu, const char *path,
+                                          const char *const *defines,
+                                          const struct cv_glsl_splice *splice,
+                                          struct cv_error *err)
+{
+    open_cache(gpu);
+    struct cv_program_cache *c = gpu->programs;
+    char *key = entry_key(path, defines, splice);
+    struct cache_entry *e = find(c, key);
+    if (e) {
+        free(key);
+    } else {
+        e = add(c, key, path, defines, splice);
+        start(c, e, defines, splice);
+    }
+    if (e->pending)
+        complete(c, e);
+    if (!e->used) {
+        e->used = true;
+        if (!e->accounted)
+            e->accounted = true, account(c, e);
+    }
+    if (e->error) {
+        cv_fail(err, "%s", e->error);
         return NULL;
     }
-    struct cache_entry e = {.key = key.s, .prog = cv_xmalloc(sizeof(prog))};
-    *e.prog = prog;
-    CV_PUSH(c->entries, c->n, c->cap, e);
-    return e.prog;
+    return e->prog;
+}
+
+void cv_program_build_stats(const struct cv_gpu *gpu, struct cv_program_build_stats *out)
+{
+    static const struct cv_program_build_stats none = {0};
+    *out = gpu && gpu->programs ? gpu->programs->stats : none;
+    if (!gpu || !gpu->programs)
+        return;
+    out->unused = 0;
+    for (size_t i = 0; i < gpu->programs->n; i++)
+        out->unused += !gpu->programs->entries[i].used;
+}
+
+void cv_program_set_serial(struct cv_gpu *gpu, bool serial)
+{
+    gpu->programs->serial = serial;
 }
 
 void cv_program_dispatch(const struct cv_program *prog, uint32_t n_x, uint32_t n_y, uint32_t n_z)

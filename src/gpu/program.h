@@ -5,7 +5,16 @@
  * so a batch compiles each once, and their linked binaries on disk (see
  * program_disk_cache.h: $CAVALRY_CACHE_DIR, else $XDG_CACHE_HOME/cavalry,
  * else ~/.cache/cavalry), so the next process on the machine need not
- * compile at all. */
+ * compile at all.
+ *
+ * A build has two halves: a request (assembly, the disk cache, then compile
+ * and link handed to the driver) and the first use (cv_program_get: the
+ * status query, which waits for the driver, and the binary's store). Where
+ * the driver has GL_KHR_parallel_shader_compile (or the ARB one), a stage
+ * requests every program it will need before it gets the first, so the
+ * driver compiles them side by side in its threads, and while the CPU
+ * goes on with other work. Elsewhere a request does nothing and
+ * cv_program_get builds synchronously. */
 #ifndef CV_GPU_PROGRAM_H
 #define CV_GPU_PROGRAM_H
 
@@ -24,6 +33,20 @@ struct cv_program {
     char *path;
 };
 
+/* Totals over this context's programs (cv_program_build_stats). */
+struct cv_program_build_stats {
+    bool parallel;            /* builds are requested ahead (see above) */
+    unsigned requested;       /* cv_program_request calls that started a build */
+    unsigned compiled;        /* built from source (counted at first use) */
+    unsigned cache_hits;      /* loaded from the disk cache */
+    unsigned failed;          /* builds that failed (counted at first use) */
+    unsigned unused;          /* requested, not (yet) got */
+    double build_ms;          /* sum over programs of the calling thread's time */
+    double assemble_ms, load_ms, compile_ms, link_ms, wait_ms, store_ms;
+    char slowest[192];        /* "path [defines]" of the costliest build */
+    double slowest_ms;
+};
+
 struct cv_program_cache *cv_program_cache_create(void);
 void cv_program_cache_destroy(struct cv_program_cache **cache);
 
@@ -32,6 +55,19 @@ void cv_program_cache_destroy(struct cv_program_cache **cache);
  * The program stays owned by the cache. */
 struct cv_program *cv_program_get(struct cv_gpu *gpu, const char *path,
                                   const char *const *defines, struct cv_error *err);
+
+/* Starts building the program cv_program_get(gpu, path, defines) will
+ * return, without waiting for the driver. Any failure is kept and reported
+ * by that cv_program_get; a program requested and never got is no error.
+ * Does nothing without parallel compilation or when the program is known. */
+void cv_program_request(struct cv_gpu *gpu, const char *path, const char *const *defines);
+
+/* The totals so far; unused counts requests not (yet) followed by a get. */
+void cv_program_build_stats(const struct cv_gpu *gpu, struct cv_program_build_stats *out);
+
+/* true: no request starts a build (the knob CAVALRY_PARALLEL_COMPILE=0,
+ * to measure each program's own compile time). Call before any program. */
+void cv_program_set_serial(struct cv_gpu *gpu, bool serial);
 
 /* Generated GLSL spliced into a file: the line of glsl/<path> that begins
  * with `marker` is replaced by `text`, whose lines logs name as the file
@@ -49,6 +85,11 @@ struct cv_program *cv_program_get_spliced(struct cv_gpu *gpu, const char *path,
                                           const char *const *defines,
                                           const struct cv_glsl_splice *splice,
                                           struct cv_error *err);
+
+/* cv_program_request for cv_program_get_spliced. */
+void cv_program_request_spliced(struct cv_gpu *gpu, const char *path,
+                                const char *const *defines,
+                                const struct cv_glsl_splice *splice);
 
 /* The disk cache's counts for this context (all zero and enabled false
  * before the first cv_program_get, or when the cache is off). */

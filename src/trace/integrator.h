@@ -57,6 +57,11 @@ struct cv_integrator_ops {
     void (*after_shade)(const void *state);
     const char *after_shade_name;
     void (*destroy)(void **state);
+    /* May be NULL. Requests the programs create will get, with the scene's
+     * defines, so the driver compiles them beside the renderer's own
+     * (gpu/program.h: cv_program_request). */
+    void (*prefetch)(struct cv_gpu *gpu, const struct cv_render_params *p,
+                     const char *const *defines);
 };
 
 /* The operations of integrator id (CV_RENDER_*); NULL for an unknown id. */

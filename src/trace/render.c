@@ -213,6 +213,7 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
     /* bad parameters fail before the upload and BVH build */
     if (!check_params(scene, p, err))
         return false;
+    cv_renderer_prefetch(gpu, scene, p);
     struct cv_scene_gpu *gs = NULL;
     if (!cv_scene_gpu_create(gpu, scene, p->bvh, &gs, err)) {
         cv_error_prefix(err, "uploading the scene: ");
@@ -239,6 +240,132 @@ static void defines_plus(const char **out, const char *const *defines, int nd, c
     out[nd] = NULL;
 }
 
+/* the scene's defines, then a stage's own (defines_plus) and the NULL */
+enum { MAX_SCENE_DEFINES = 12 };
+
+/* The stage programs a render of gs with p runs: file and defines by stage
+ * (file NULL: the stage has none, or the integrator's create makes it).
+ * One home for the choice, for cv_renderer_create_shared and for
+ * cv_renderer_prefetch. */
+struct stage_programs {
+    const char *scene_defines[MAX_SCENE_DEFINES + 1];
+    const char *file[ST_COUNT];
+    const char *const *defines[ST_COUNT];
+    const char *escaped[MAX_SCENE_DEFINES + 3];
+    const char *intersect[MAX_SCENE_DEFINES + 3];
+    const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 2];
+    char stride[32];  /* CV_MATTE_STRIDE=N */
+    const char *matte[3];
+    const char *resolve[MAX_SCENE_DEFINES + 3];
+    const char *straight[MAX_SCENE_DEFINES + 5];
+};
+
+/* Words per path slot of the matte stage (trace.h), 0 when the job asks
+ * for neither alpha nor ID mattes. */
+static uint32_t matte_words(const struct cv_render_params *p)
+{
+    if (!p->alpha && !p->id_mattes && !p->cryptomatte)
+        return 0;
+    return p->cryptomatte ? CV_MATTE_WORDS_CRYPTO : CV_MATTE_WORDS;
+}
+
+static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render_params *p,
+                           struct stage_programs *sp)
+{
+    static const char *const no_defines[1] = {NULL};
+    memset(sp, 0, sizeof(*sp));
+    const char **defines = sp->scene_defines;
+    int nd = 0;
+    if (gs->empty)
+        defines[nd++] = "CV_EMPTY_SCENE";
+    if (p->aovs)
+        defines[nd++] = "CV_AOVS";
+    if (gs->has_alpha)
+        defines[nd++] = "CV_HAS_ALPHA";
+    if (gs->basic_materials)
+        defines[nd++] = "CV_BSDF_BASIC";
+    /* Code for what the scene lacks stays out of the kernels: the texture
+     * loops' arrays live in local memory and take registers, which made the
+     * shade stages several times slower on scenes without textures
+     * (bench/RESULTS.md, "Figures behind the code"). */
+    if (!gs->has_env)
+        defines[nd++] = "CV_NO_ENV";
+    if (!gs->has_textures)
+        defines[nd++] = "CV_NO_TEXTURES";
+    /* a tree deeper than the default stack allows is traced with a larger
+     * one (bvh/bvh.h) */
+    if (cv_bvh_stack_define(gs->bvh))
+        defines[nd++] = cv_bvh_stack_define(gs->bvh);
+    defines[nd] = NULL;
+    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    bool escaped_stage = ops->escaped_stage || gs->has_env;
+    defines_plus(sp->escaped, defines, nd, ops->escaped_define,
+                 p->alpha ? "CV_FILM_TRANSPARENT" : NULL);
+    /* the matte stages: the slot layout, and what the job asked for */
+    uint32_t words = matte_words(p);
+    snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
+    sp->matte[0] = sp->stride;
+    sp->matte[1] = p->cryptomatte ? "CV_CRYPTO" : NULL;
+    defines_plus(sp->resolve, defines, nd, p->alpha ? "CV_FILM_TRANSPARENT" : NULL,
+                 p->alpha ? sp->stride : NULL);
+    defines_plus(sp->straight, sp->resolve, nd + (p->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
+    /* hits binned by material for the shade stages (intersect.comp) */
+    defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS",
+                 escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
+    for (int k = 0; k < ops->n_shade; k++)
+        defines_plus(sp->shade[k], defines, nd, ops->define[k], NULL);
+    for (int s = 0; s < ST_COUNT; s++) {
+        const char *file = stage_files[s];
+        const char *const *d = defines;
+        if (s == ST_SHADE || s == ST_SHADE_B) {
+            int k = s - ST_SHADE;
+            if (k >= ops->n_shade || !ops->file[k])
+                continue;
+            file = ops->file[k];
+            d = sp->shade[k];
+        }
+        if ((s == ST_ESCAPED && !escaped_stage) || (s == ST_MATTE && !words) ||
+            (s == ST_RESOLVE_STRAIGHT && !p->alpha))
+            continue;
+        if (s == ST_GENERATE)
+            d = no_defines;
+        else if (s == ST_ESCAPED)
+            d = sp->escaped;
+        else if (s == ST_INTERSECT)
+            d = sp->intersect;
+        else if (s == ST_MATTE)
+            d = sp->matte;
+        else if (s == ST_RESOLVE)
+            d = sp->resolve;
+        else if (s == ST_RESOLVE_STRAIGHT)
+            d = sp->straight;
+        sp->file[s] = file;
+        sp->defines[s] = d;
+    }
+}
+
+/* Requests the stages' programs and the integrator's own. */
+static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
+                        const struct stage_programs *sp)
+{
+    for (int s = 0; s < ST_COUNT; s++)
+        if (sp->file[s])
+            cv_program_request(gpu, sp->file[s], sp->defines[s]);
+    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    if (ops->prefetch)
+        ops->prefetch(gpu, p, sp->scene_defines);
+}
+
+void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
+                          const struct cv_render_params *p)
+{
+    struct cv_scene_gpu features = {0};
+    cv_scene_gpu_features(scene, &features);
+    struct stage_programs sp;
+    stage_programs(&features, p, &sp);
+    request_all(gpu, p, &sp);
+}
+
 bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs,
                                const struct cv_scene *scene, const struct cv_render_params *p,
                                struct cv_renderer **out, struct cv_error *err)
@@ -250,8 +377,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->gpu = gpu;
     r->aovs = p->aovs;
     r->alpha = p->alpha;
-    if (p->alpha || p->id_mattes || p->cryptomatte)
-        r->matte_stride = p->cryptomatte ? CV_MATTE_WORDS_CRYPTO : CV_MATTE_WORDS;
+    r->matte_stride = matte_words(p);
     r->max_depth = p->max_depth ? p->max_depth : scene->settings.max_depth;
     setup_camera(r, scene, p);
     cv_filter_setup(&scene->settings, &r->pass);
@@ -293,82 +419,21 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     r->scene = gs;
 
-    /* the scene's defines, then a stage's own (defines_plus) and the NULL */
-    enum { MAX_SCENE_DEFINES = 12 };
-    const char *defines[MAX_SCENE_DEFINES + 1];
-    int nd = 0;
-    if (r->scene->empty)
-        defines[nd++] = "CV_EMPTY_SCENE";
-    if (r->aovs)
-        defines[nd++] = "CV_AOVS";
-    if (r->scene->has_alpha)
-        defines[nd++] = "CV_HAS_ALPHA";
-    if (r->scene->basic_materials)
-        defines[nd++] = "CV_BSDF_BASIC";
-    /* Code for what the scene lacks stays out of the kernels: the texture
-     * loops' arrays live in local memory and take registers, which made the
-     * shade stages several times slower on scenes without textures
-     * (bench/RESULTS.md, "Figures behind the code"). */
-    if (!r->scene->has_env)
-        defines[nd++] = "CV_NO_ENV";
-    if (!r->scene->has_textures)
-        defines[nd++] = "CV_NO_TEXTURES";
-    /* a tree deeper than the default stack allows is traced with a larger
-     * one (bvh/bvh.h) */
-    if (cv_bvh_stack_define(r->scene->bvh))
-        defines[nd++] = cv_bvh_stack_define(r->scene->bvh);
-    defines[nd] = NULL;
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
     /* Misses need an escaped stage for an environment light or where the
      * integrator asks for it; otherwise the intersect stage starts their
      * pixels' next samples itself (intersect.comp). */
     r->escaped_stage = ops->escaped_stage || r->scene->has_env;
-    const char *escaped[MAX_SCENE_DEFINES + 3];
-    defines_plus(escaped, defines, nd, ops->escaped_define,
-                 r->alpha ? "CV_FILM_TRANSPARENT" : NULL);
-    /* the matte stages: the slot layout, and what the job asked for */
-    char stride[32];
-    snprintf(stride, sizeof(stride), "CV_MATTE_STRIDE=%uu", r->matte_stride);
-    const char *matte[] = {stride, p->cryptomatte ? "CV_CRYPTO" : NULL, NULL};
-    const char *resolve_d[MAX_SCENE_DEFINES + 3], *straight[MAX_SCENE_DEFINES + 5];
-    defines_plus(resolve_d, defines, nd, r->alpha ? "CV_FILM_TRANSPARENT" : NULL,
-                 r->alpha ? stride : NULL);
-    defines_plus(straight, resolve_d, nd + (r->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
-    /* hits binned by material for the shade stages (intersect.comp) */
-    const char *intersect[MAX_SCENE_DEFINES + 3];
-    defines_plus(intersect, defines, nd, "CV_HIT_BINS",
-                 r->escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
-    const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 2];
-    for (int k = 0; k < ops->n_shade; k++)
-        defines_plus(shade[k], defines, nd, ops->define[k], NULL);
-    const char *const no_defines[1] = {NULL};
+    struct stage_programs sp;
+    stage_programs(gs, p, &sp);
+    /* all requested before the first is waited for: the driver compiles
+     * them side by side (gpu/program.h) */
+    request_all(gpu, p, &sp);
     for (int s = 0; s < ST_COUNT; s++) {
-        const char *file = stage_files[s];
-        const char *const *d = defines;
-        if (s == ST_SHADE || s == ST_SHADE_B) {
-            int k = s - ST_SHADE;
-            if (k >= ops->n_shade || !ops->file[k])
-                continue;   /* none, or the integrator's create makes it */
-            file = ops->file[k];
-            d = shade[k];
-        }
-        if ((s == ST_ESCAPED && !r->escaped_stage) || (s == ST_MATTE && !r->matte_stride) ||
-            (s == ST_RESOLVE_STRAIGHT && !r->alpha))
+        if (!sp.file[s])
             continue;
-        if (s == ST_GENERATE)
-            d = no_defines;
-        else if (s == ST_ESCAPED)
-            d = escaped;
-        else if (s == ST_INTERSECT)
-            d = intersect;
-        else if (s == ST_MATTE)
-            d = matte;
-        else if (s == ST_RESOLVE)
-            d = resolve_d;
-        else if (s == ST_RESOLVE_STRAIGHT)
-            d = straight;
-        struct cv_program *pr = cv_program_get(gpu, file, d, err);
+        struct cv_program *pr = cv_program_get(gpu, sp.file[s], sp.defines[s], err);
         if (pr)
             r->prog[s] = *pr;
         if (!pr) {
@@ -376,6 +441,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             return false;
         }
     }
+    const char *const *defines = sp.scene_defines;
 
     if (ops->create) {
         struct cv_integrator_setup setup = {

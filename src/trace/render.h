@@ -88,6 +88,14 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
                                const struct cv_scene *scene, const struct cv_render_params *p,
                                struct cv_renderer **out, struct cv_error *err);
 
+/* Starts compiling the stage programs a render of scene with p will use
+ * (gpu/program.h: cv_program_request), before its upload and BVH build, so
+ * the driver compiles while they run. A BVH that needs a deeper traversal
+ * stack is traced with programs compiled at create. Nothing to fail: errors
+ * show at create. */
+void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
+                          const struct cv_render_params *p);
+
 /* Adds spp samples per pixel, continuing the pixel sample sequences where the
  * last pass stopped. Queues GPU work only. */
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err);

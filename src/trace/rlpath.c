@@ -116,6 +116,20 @@ GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct
     return tex;
 }
 
+/* The shade program is built with the scene's defines, the rebuild with
+ * these. */
+static const char *const rebuild_indirect[2] = {"CV_RL_GUIDE_INDIRECT", NULL};
+static const char *const *rebuild_defines(bool guide_indirect)
+{
+    return guide_indirect ? rebuild_indirect : NULL;
+}
+
+static void rlpath_prefetch(struct cv_gpu *gpu, const char *const *defines, bool guide_indirect)
+{
+    cv_program_request(gpu, "trace/rlpath/shade.comp", defines);
+    cv_program_request(gpu, "trace/rlpath/rebuild.comp", rebuild_defines(guide_indirect));
+}
+
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
                       const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
                       struct cv_error *err)
@@ -123,11 +137,12 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
     rl->n_paths = n_paths;
+    rlpath_prefetch(gpu, defines, guide_indirect);
     struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
     if (p)
         rl->shade = *p;
-    const char *rebuild_defs[2] = {guide_indirect ? "CV_RL_GUIDE_INDIRECT" : NULL, NULL};
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp", rebuild_defs, err)))
+    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp",
+                                 rebuild_defines(guide_indirect), err)))
         rl->rebuild = *p;
     if (!p) {
         cv_rlpath_destroy(&rl);
@@ -245,6 +260,12 @@ static void ops_after_shade(const void *state)
     cv_rlpath_update(state);
 }
 
+static void ops_prefetch(struct cv_gpu *gpu, const struct cv_render_params *p,
+                         const char *const *defines)
+{
+    rlpath_prefetch(gpu, defines, p->rl_guide_indirect);
+}
+
 static void ops_destroy(void **state)
 {
     struct cv_rlpath *rl = *state;
@@ -262,4 +283,5 @@ const struct cv_integrator_ops cv_rlpath_ops = {
     .after_shade = ops_after_shade,
     .after_shade_name = "rlpath-rebuild",
     .destroy = ops_destroy,
+    .prefetch = ops_prefetch,
 };

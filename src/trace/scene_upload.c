@@ -119,26 +119,32 @@ static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
     }
 }
 
+void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
+{
+    for (uint32_t i = 0; i < s->n_lights; i++)
+        if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
+            g->has_env = true;
+    g->has_textures = s->n_textures > 0;
+    g->basic_materials = true;
+    for (uint32_t i = 0; i < s->n_materials; i++) {
+        const CvMaterial *m = &s->materials[i];
+        if (m->alpha_tex >= 0 || m->alpha < 1 || m->type == CV_MAT_INTERFACE)
+            g->has_alpha = true;
+        if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
+            m->displacement_tex >= 0 || m->normal_tex >= 0)
+            g->basic_materials = false;
+    }
+    if (g->has_alpha)
+        g->basic_materials = false;
+    g->empty = s->n_triangles == 0;
+}
+
 bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
                      const struct cv_bvh_params *bvh, struct cv_scene_gpu *out,
                      struct cv_error *err)
 {
     struct cv_scene_gpu g = {.gpu = gpu};
-    for (uint32_t i = 0; i < s->n_lights; i++)
-        if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
-            g.has_env = true;
-    g.has_textures = s->n_textures > 0;
-    g.basic_materials = true;
-    for (uint32_t i = 0; i < s->n_materials; i++) {
-        const CvMaterial *m = &s->materials[i];
-        if (m->alpha_tex >= 0 || m->alpha < 1 || m->type == CV_MAT_INTERFACE)
-            g.has_alpha = true;
-        if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
-            m->displacement_tex >= 0 || m->normal_tex >= 0)
-            g.basic_materials = false;
-    }
-    if (g.has_alpha)
-        g.basic_materials = false;
+    cv_scene_gpu_features(s, &g);
     float *cdf = cv_xcalloc(s->n_lights ? s->n_lights : 1, sizeof(float));
     cv_light_cdf(s->light_power, s->n_lights, cdf);
     CvLight *lights = cv_xcalloc(s->n_lights ? s->n_lights : 1, sizeof(CvLight));
@@ -176,7 +182,6 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
-    g.empty = s->n_triangles == 0;
     struct cv_bvh_params bp = bvh ? *bvh : cv_bvh_default_params();
     /* tests count this line to check that a batch builds each scene's BVH
      * once, and read the knobs that reached the build */

@@ -36,6 +36,10 @@ struct cv_scene_gpu {
  * power (uniform when no light has power); cdf[n-1] = 1. Exposed for tests. */
 void cv_light_cdf(const float *power, uint32_t n, float *cdf);
 
+/* Sets g's feature flags (has_env ... basic_materials, empty) from s: what
+ * cv_scene_upload sets, without touching the GPU. */
+void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g);
+
 /* bvh: the BVH build's parameters; NULL: cv_bvh_default_params(). */
 bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
                      const struct cv_bvh_params *bvh, struct cv_scene_gpu *out,

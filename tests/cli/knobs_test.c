@@ -1,8 +1,9 @@
 /* knobs_test.c: cavalry-batch's knobs come from the environment in one
  * place (cli/knobs.c): CAVALRY_BVH_ROUNDS and CAVALRY_BVH_SPLIT set the BVH
  * build's treelet rounds and split budget, CAVALRY_STAGE_TIMES turns on the
- * stage timer; a bad value is ignored (with a warning). The library's own
- * defaults read no environment. */
+ * stage timer, CAVALRY_PARALLEL_COMPILE=0 turns compiling ahead off; a bad
+ * value is ignored (with a warning). The library's own defaults read no
+ * environment. */
 #include <stdlib.h>
 
 #include "bvh/bvh.h"
@@ -59,10 +60,24 @@ static void check_stage_times(void)
            "CAVALRY_STAGE_TIMES: unset %d, empty %d, 0 %d, 1 %d", unset, empty, zero, one);
 }
 
+static void check_parallel_compile(void)
+{
+    unsetenv("CAVALRY_PARALLEL_COMPILE");
+    bool unset = cv_knobs_from_environment().serial_compile;
+    setenv("CAVALRY_PARALLEL_COMPILE", "1", 1);
+    bool one = cv_knobs_from_environment().serial_compile;
+    setenv("CAVALRY_PARALLEL_COMPILE", "0", 1);
+    bool zero = cv_knobs_from_environment().serial_compile;
+    unsetenv("CAVALRY_PARALLEL_COMPILE");
+    tap_ok(!unset && !one && zero, "CAVALRY_PARALLEL_COMPILE: serial when unset %d, 1 %d, 0 %d",
+           unset, one, zero);
+}
+
 int main(void)
 {
     check_rounds();
     check_split();
     check_stage_times();
+    check_parallel_compile();
     return tap_done();
 }

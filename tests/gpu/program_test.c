@@ -1,6 +1,9 @@
 /* program_test.c: the GLSL loader. Includes resolve with their line numbers,
  * driver logs of both styles map back to glsl/<file>:<line>, and a broken
- * shader's error names its file and line when compiled by the real driver. */
+ * shader's error names its file and line when compiled by the real driver.
+ * Requests (compiling ahead, gpu/program.h): a program requested and never
+ * got is no error, a failure is reported at the first get with its
+ * file:line, and the build statistics count what happened. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -57,6 +60,53 @@ int main(void)
     tap_ok(strstr(err.msg, "glsl/inc/bad.glsl:4") != NULL && !strstr(err.msg, "broken.comp:4"),
            "every error line names glsl/inc/bad.glsl:4");
     tap_diag("%s", err.msg);
+
+    struct cv_program_build_stats st;
+    cv_program_build_stats(gpu, &st);
+    tap_diag("%s compilation", st.parallel ? "parallel" : "serial");
+    unsigned failed0 = st.failed;
+    const char *prefetched[] = {"PREFETCHED", NULL};
+    const char *never[] = {"NEVER_USED", NULL};
+    cv_program_request(gpu, "good.comp", NULL);
+    cv_program_request(gpu, "broken.comp", prefetched);
+    cv_program_request(gpu, "missing.comp", NULL);
+    cv_program_request(gpu, "good.comp", never);
+    cv_program_build_stats(gpu, &st);
+    tap_ok(st.unused == (st.parallel ? 4u : 0u) && st.requested == st.unused,
+           "four requests, none got yet: no error (requested %u, unused %u)", st.requested,
+           st.unused);
+    err.msg[0] = '\0';
+    p = cv_program_get(gpu, "good.comp", NULL, &err);
+    tap_ok(p && p->local_size[0] == 8, "a requested program is got: %s", p ? "" : err.msg);
+    tap_ok(p == cv_program_get(gpu, "good.comp", NULL, &err), "and got again from memory");
+    p = cv_program_get(gpu, "broken.comp", prefetched, &err);
+    tap_ok(p == NULL && strstr(err.msg, "glsl/inc/bad.glsl:4") != NULL,
+           "a requested broken program fails at its get, naming glsl/inc/bad.glsl:4");
+    err.msg[0] = '\0';
+    p = cv_program_get(gpu, "broken.comp", prefetched, &err);
+    tap_ok(p == NULL && strstr(err.msg, "glsl/inc/bad.glsl:4") != NULL,
+           "and at every later get");
+    p = cv_program_get(gpu, "missing.comp", NULL, &err);
+    tap_ok(p == NULL && strstr(err.msg, "missing.comp") != NULL,
+           "a requested missing file fails at its get: %s", err.msg);
+    cv_program_build_stats(gpu, &st);
+    tap_ok(st.unused == (st.parallel ? 1u : 0u),
+           "one program requested and never got (%u)", st.unused);
+    tap_ok(st.failed == failed0 + 2, "two more failed builds counted (%u)", st.failed - failed0);
+    /* the suite's disk cache may hold good.comp from an earlier run */
+    tap_ok(st.compiled + st.cache_hits >= 1 && st.slowest[0] && st.build_ms >= st.slowest_ms,
+           "totals: %u compiled, %u from the disk cache, %.1f ms, slowest %s", st.compiled,
+           st.cache_hits, st.build_ms, st.slowest);
+    cv_gpu_destroy(&gpu);
+
+    /* The same without compiling ahead: requests do nothing. */
+    gpu = test_gpu_open(CV_BACKEND_AUTO);
+    cv_program_set_serial(gpu, true);
+    cv_program_request(gpu, "good.comp", NULL);
+    cv_program_build_stats(gpu, &st);
+    tap_ok(!st.parallel && st.requested == 0 && st.unused == 0, "serial: a request does nothing");
+    p = cv_program_get(gpu, "good.comp", NULL, &err);
+    tap_ok(p && p->local_size[0] == 8, "serial: built at its get");
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

@@ -18,7 +18,11 @@
 // material alone, textures and bump and normal maps included: every
 // material passed in must be CV_MAT_DIFFUSE (the shade stage of the
 // diffuse bin, trace/shade.comp). Type switches then fold to one case, so
-// the other lobes' code and registers drop out of the kernel.
+// the other lobes' code and registers drop out of the kernel; the entry
+// points skip their switches in the preprocessor as well, because Mesa's
+// GLSL compiler inlines every case's callee (the coated walk too) before it
+// folds a switch on a constant, which made the diffuse kernel cost nearly
+// as much compile time as the full one (bench/RESULTS.md).
 #ifndef CV_BSDF_BSDF_GLSL
 #define CV_BSDF_BSDF_GLSL
 
@@ -311,6 +315,9 @@ bool cv_bsdf_mirrored(CvBsdf b)
 
 vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
 {
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    return cv_diffuse_f(b.c0, wo, wi);
+#else
     if (cv_bsdf_mirrored(b) && wo.z < 0.0) {
         wo.z = -wo.z;
         wi.z = -wi.z;
@@ -332,10 +339,14 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
     default:
         return vec3(0.0);
     }
+#endif
 }
 
 float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
 {
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    return cv_diffuse_pdf(wo, wi);
+#else
     if (cv_bsdf_mirrored(b) && wo.z < 0.0) {
         wo.z = -wo.z;
         wi.z = -wi.z;
@@ -357,6 +368,7 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
     default:
         return 0.0;
     }
+#endif
 }
 
 vec3 cv_bsdf_f(CvBsdf b, vec3 wo, vec3 wi)
@@ -378,6 +390,9 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         wo.z = -wo.z;
     bool ok = false;
     s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    ok = cv_diffuse_sample(b.c0, wo, u, s);
+#else
     switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
         ok = cv_diffuse_sample(b.c0, wo, u, s);
@@ -411,6 +426,7 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
     default:
         break;
     }
+#endif
     if (!ok || !(s.pdf > 0.0) || any(isnan(s.f)) || any(isinf(s.f)))
         return false;
     if (flip)
