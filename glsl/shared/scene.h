@@ -107,10 +107,16 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_MIX 8u                  /* mix_a, mix_b by amount */
 #define CV_MAT_INTERFACE 9u            /* no surface: rays pass through */
 #define CV_MAT_PLASTIC 10u             /* v3 plastic: Kd in reflectance, Ks in specular, roughness */
+#define CV_MAT_HAIR 11u                /* hair: reflectance.rgb (see CV_MATF_HAIR_*), eta.x, roughness = beta_m, beta_n, alpha (degrees) */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */
 #define CV_MATF_TWO_SIDED (1u << 2)
+/* Which colour a hair material's reflectance.rgb holds (pbrt-v4's order:
+ * sigma_a wins over reflectance, reflectance over the melanins): */
+#define CV_MATF_HAIR_SIGMA_A (1u << 3)     /* absorption sigma_a (per radius) */
+#define CV_MATF_HAIR_REFLECTANCE (1u << 4) /* colour, turned into sigma_a over beta_n */
+                                           /* neither: (eumelanin, pheomelanin, -) */
 
 CV_STRUCT(CvMaterial) {
     CV_UINT type;

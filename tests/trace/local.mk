@@ -71,3 +71,8 @@ tests_trace_oracle_test_LDADD = $(CV_LIBS)
 # scenes (nee_test's too), their pbrt-v4 references and the generator
 EXTRA_DIST += tests/data/trace/oracle
 # --- end of oracle tests ---
+# --- hair BSDF and curves (issue 27 item 2) ---
+check_PROGRAMS += tests/trace/bsdf_hair_test
+TESTS += tests/trace/bsdf_hair_test
+tests_trace_bsdf_hair_test_LDADD = $(CV_LIBS)
+# --- end of hair and curves ---
