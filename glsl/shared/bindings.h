@@ -29,6 +29,9 @@
 /* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
  * the stage-private range so no stage's own buffers displace it. */
 #define CV_BIND_BVH_TRIS 26
+/* vec4[]: the curves and their tree (glsl/bvh/curves.glsl, src/bvh/curve_bvh.c);
+ * bound only where the scene has curves (CV_HAS_CURVES) */
+#define CV_BIND_CURVES 27
 
 /* 10 and above (but 26): stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -42,10 +42,10 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     uint depth = cv_ray_depth(r);
     vec3 beta = r.beta.rgb;
     vec3 wo = -r.d.xyz;
-    CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+    CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
     bool front = dot(wo, sf.ng) > 0.0;
 
-    int light = cv_tri_light[h.prim];
+    int light = (h.prim & CV_PRIM_CURVE) != 0u ? -1 : cv_tri_light[h.prim];  // curves emit nothing
     if (light >= 0) {
         vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
         cv_strategy_emitted(g, Le, flags);

@@ -1,7 +1,7 @@
 # src/bvh: GPU BVH build (LBVH + treelet restructuring) and traversal GLSL.
 libcavalry_a_SOURCES += \
 	src/bvh/bounds.c src/bvh/bounds.h \
-	src/bvh/bvh.c src/bvh/bvh.h \
+	src/bvh/bvh.c src/bvh/bvh.h src/bvh/curve_bvh.c src/bvh/curve_bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
 	src/bvh/scan.c src/bvh/scan.h \
 	src/bvh/scratch.c src/bvh/scratch.h \

@@ -15,6 +15,7 @@ static void scene_free(struct cv_scene *s)
     free(s->vertices);
     free(s->triangles);
     free(s->tri_light);
+    free(s->curves);
     for (uint32_t i = 0; i < s->n_materials; i++)
         free(s->material_names[i]);
     free(s->material_names);

@@ -36,4 +36,4 @@ GLSL_FILES += glsl/shared/rlpath.h \
 	glsl/trace/rlpath/rebuild.comp
 # --- end of rlpath ---
 # --- hair BSDF and curves (issue 27 item 2) ---
-GLSL_FILES += glsl/trace/bsdf/hair.glsl
+GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl

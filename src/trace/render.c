@@ -323,6 +323,11 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
      * one (bvh/bvh.h) */
     if (cv_bvh_stack_define(r->scene->bvh))
         defines[nd++] = cv_bvh_stack_define(r->scene->bvh);
+    /* curves: their own tree beside the triangles' (glsl/bvh/curves.glsl) */
+    if (r->scene->has_curves)
+        defines[nd++] = "CV_HAS_CURVES";
+    if (r->scene->has_curves && r->scene->no_triangles)
+        defines[nd++] = "CV_NO_TRIANGLES";
     defines[nd] = NULL;
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
