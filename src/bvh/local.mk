@@ -23,4 +23,4 @@ GLSL_FILES += \
 	glsl/bvh/widen.glsl glsl/bvh/widen_next.comp glsl/bvh/widen_level.comp \
 	glsl/bvh/widen_emit.comp \
 	glsl/bvh/mesh_buffers.glsl glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
-	glsl/bvh/rays_test.comp
+	glsl/bvh/rays_test.comp glsl/bvh/curves_test.comp
