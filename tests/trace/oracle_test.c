@@ -66,6 +66,9 @@ static const struct oracle_scene scenes[] = {
     {"huge_plane", NULL},
     {"deep_bvh", NULL},
     {"nee_area_env", NULL},
+    /* issue 27: curve shapes (flat, cylinder, ribbon) and the hair BSDF */
+    {"curve_diffuse", NULL},
+    {"curve_hair", NULL},
 };
 
 /* Channel-averaged mean of the pixels [x0, x1) x [y0, y1); stride: floats
