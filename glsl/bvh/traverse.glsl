@@ -35,6 +35,12 @@ struct CvHit {
     float b2;   // barycentric weight of v2
 };
 
+#ifdef CV_HAS_CURVES
+// Curves (prim CV_PRIM_CURVE | index, b1 = u, b2 = v) in their own tree,
+// walked after the triangles' by the two queries below.
+#include "curves.glsl"
+#endif
+
 // Zero direction components become tiny ones of the same sign, so slabs
 // never compute 0 * inf.
 vec3 cv_bvh_safe_inv(vec3 d)
@@ -328,8 +334,16 @@ void cv_bvh_any_run(inout CvBvhWalk w)
 bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
 {
     CvBvhWalk w;
+#ifdef CV_NO_TRIANGLES
+    // a scene of curves alone has no triangle tree bound
+    w.hit = CvHit(tmax, 0xffffffffu, 0.0, 0.0);
+#else
     cv_bvh_begin(o, d, tmin, tmax, w);
     cv_bvh_closest_run(w);
+#endif
+#ifdef CV_HAS_CURVES
+    cv_curves_walk(o, d, tmin, false, w.hit.t, w.hit.prim, w.hit.b1, w.hit.b2);
+#endif
     hit = w.hit;
     return hit.prim != 0xffffffffu;
 }
@@ -337,8 +351,16 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
 bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
 {
     CvBvhWalk w;
+#ifdef CV_NO_TRIANGLES
+    w.hit = CvHit(tmax, 0xffffffffu, 0.0, 0.0);
+#else
     cv_bvh_begin(o, d, tmin, tmax, w);
     cv_bvh_any_run(w);
+#endif
+#ifdef CV_HAS_CURVES
+    if (w.hit.prim == 0xffffffffu)
+        cv_curves_walk(o, d, tmin, true, w.hit.t, w.hit.prim, w.hit.b1, w.hit.b2);
+#endif
     return w.hit.prim != 0xffffffffu;
 }
 

@@ -32,6 +32,10 @@
 /* uint[]: each triangle's ID-matte object (src/scene/scene.h), read only
  * by trace/matte.comp; above the stage-private range, as CV_BIND_BVH_TRIS */
 #define CV_BIND_TRI_OBJECT 27
+/* vec4[]: the curves and their tree (glsl/bvh/curves.glsl, src/bvh/curve_bvh.c);
+ * bound only where the scene has curves (CV_HAS_CURVES); above the
+ * stage-private range */
+#define CV_BIND_CURVES 28
 
 /* 10 and above (but 26): stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

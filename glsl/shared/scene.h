@@ -40,6 +40,31 @@ CV_STRUCT(CvTriangle) {
 } CV_END(CvTriangle)
 CV_CHECK_SIZE(CvTriangle, 16);
 
+/* ---- curves ------------------------------------------------------------ */
+
+/* pbrt-v4's curve shape as cubic Bezier pieces (bspline and quadratic
+ * input converted on import, src/scene/curves.c), each piece split into
+ * 2^splitdepth primitives over [u_min, u_max] of its u. A hit on one is
+ * prim = CV_PRIM_CURVE | curve index, with b1 = u and b2 = v (across the
+ * width, 0..1) in place of the barycentrics (glsl/bvh/curves.glsl). */
+#define CV_CURVE_FLAT 0u     /* a ribbon facing the ray */
+#define CV_CURVE_CYLINDER 1u /* facing the ray, its normal bent across the width */
+#define CV_CURVE_RIBBON 2u   /* oriented by the normals n0, n1 */
+#define CV_PRIM_CURVE 0x80000000u
+
+/* cp[k].xyz: the piece's control points (render space); cp[0].w, cp[1].w:
+ * width at u 0 and 1; cp[2].w, cp[3].w: u_min, u_max. n0, n1: ribbon
+ * normals at u 0 and 1, n0.w the angle between them, n1.w 1 / its sine.
+ * info.x: material word as a triangle's (material, CV_TRI_REVERSE);
+ * info.y: CV_CURVE_*. */
+CV_STRUCT(CvCurve) {
+    cv_vec4 cp[4];
+    cv_vec4 n0;
+    cv_vec4 n1;
+    cv_uvec4 info;
+} CV_END(CvCurve)
+CV_CHECK_SIZE(CvCurve, 112);
+
 /* ---- textures ---------------------------------------------------------- */
 
 /* Pixel filters the renderer samples (src/scene/filter.h names them and
@@ -109,10 +134,16 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_MIX 8u                  /* mix_a, mix_b by amount */
 #define CV_MAT_INTERFACE 9u            /* no surface: rays pass through */
 #define CV_MAT_PLASTIC 10u             /* v3 plastic: Kd in reflectance, Ks in specular, roughness */
+#define CV_MAT_HAIR 11u                /* hair: reflectance.rgb (see CV_MATF_HAIR_*), eta.x, roughness = beta_m, beta_n, alpha (degrees) */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */
 #define CV_MATF_TWO_SIDED (1u << 2)
+/* Which colour a hair material's reflectance.rgb holds (pbrt-v4's order:
+ * sigma_a wins over reflectance, reflectance over the melanins): */
+#define CV_MATF_HAIR_SIGMA_A (1u << 3)     /* absorption sigma_a (per radius) */
+#define CV_MATF_HAIR_REFLECTANCE (1u << 4) /* colour, turned into sigma_a over beta_n */
+                                           /* neither: (eumelanin, pheomelanin, -) */
 
 CV_STRUCT(CvMaterial) {
     CV_UINT type;

@@ -5,6 +5,9 @@
 #define CV_TRACE_GEOMETRY_GLSL
 
 #include "../bvh/mesh_buffers.glsl"
+#ifdef CV_HAS_CURVES
+#include "../bvh/curves.glsl"
+#endif
 
 struct CvSurface {
     vec3 p;
@@ -63,6 +66,39 @@ CvSurface cv_surface(uint prim, float b1, float b2)
     s.ng = ng;
     s.dpdu = dpdu;
     return s;
+}
+
+// The material word (material, CV_TRI_* flags) of a hit's primitive.
+uint cv_prim_word(uint prim)
+{
+#ifdef CV_HAS_CURVES
+    if ((prim & CV_PRIM_CURVE) != 0u)
+        return cv_curve_at(prim & ~CV_PRIM_CURVE).info.x;
+#endif
+    return cv_triangles[prim].idx.w;
+}
+
+// The surface at hit (prim, b1, b2, t) of ray o + t d: a triangle's
+// (cv_surface), or a curve's, whose frame depends on the ray
+// (cv_curve_frame; uv = (u, v), v across the width).
+CvSurface cv_surface_ray(uint prim, float b1, float b2, vec3 o, vec3 d, float t)
+{
+#ifdef CV_HAS_CURVES
+    if ((prim & CV_PRIM_CURVE) != 0u) {
+        CvSurface s;
+        vec3 n;
+        uint word;
+        cv_curve_frame(prim & ~CV_PRIM_CURVE, b1, b2, d, s.dpdu, n, s.p_err, word);
+        s.p = o + t * d;
+        s.ng = n;
+        s.ns = n;
+        s.uv = vec2(b1, b2);
+        s.material = word & CV_TRI_MATERIAL_MASK;
+        s.flags = word & ~CV_TRI_MATERIAL_MASK;
+        return s;
+    }
+#endif
+    return cv_surface(prim, b1, b2);
 }
 
 // Origin of a ray leaving surface s in direction w: off the surface on w's

@@ -44,8 +44,8 @@ void main()
 #endif
 #ifdef CV_HAS_ALPHA
         for (uint k = 0u; hit && k < 64u; k++) {
-            uint word = cv_triangles[h.prim].idx.w;
-            CvSurface s = cv_surface(h.prim, h.b1, h.b2);
+            uint word = cv_prim_word(h.prim);
+            CvSurface s = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
             // keyed by film pixel, not slot: the same paths whatever K
             // and whatever the crop
             uint path = uint(r.o.w);
@@ -76,7 +76,7 @@ void main()
     // everything else, written from the queue's end.
     bool bin_b = false;
     if (valid && hit)
-        bin_b = materials[cv_triangles[h.prim].idx.w & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
+        bin_b = materials[cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
     uvec3 s3 = cv_queue_slots3(bvec3(valid && hit && !bin_b, valid && hit && bin_b, miss_push),
                                uvec3(CV_Q_HITS, CV_Q_HITS_B, miss_queue));
     uvec2 slot = uvec2(bin_b ? cv_capacity() - 1u - s3.y : s3.x, s3.z);

@@ -29,6 +29,28 @@
 #ifndef CV_TRACE_PATH_VERTEX_GLSL
 #define CV_TRACE_PATH_VERTEX_GLSL
 
+// Where next-event estimation samples lights from: the surface point, but
+// on a curve pbrt-v4's place, the point a ray towards wo would leave from
+// (towards -wo for a BSDF that only transmits): pbrt-v4 nudges every
+// light sample so, which on a curve is a width away rather than a
+// rounding error.
+vec3 cv_light_sample_point(CvSurface sf, CvBsdf b, vec3 wo, uint prim)
+{
+#ifdef CV_HAS_CURVES
+    if ((prim & CV_PRIM_CURVE) != 0u) {
+#ifdef CV_BSDF_BASIC
+        bool transmits = false;  // diffuse and mirror
+#else
+        uint t = CV_BSDF_TYPE(b);
+        bool transmits = t == CV_MAT_DIELECTRIC || t == CV_MAT_THIN_DIELECTRIC || t == CV_MAT_DIFFUSE_TRANSMISSION;
+#endif
+        if (!transmits)
+            return cv_spawn_origin(sf, wo);
+    }
+#endif
+    return sf.p;
+}
+
 // Shades hit h of ray r with strategy g; what it queues comes back in the
 // out parameters, so that main() can take queue slots in uniform control
 // flow (shade_queue.glsl).
@@ -42,10 +64,10 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     uint depth = cv_ray_depth(r);
     vec3 beta = r.beta.rgb;
     vec3 wo = -r.d.xyz;
-    CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+    CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
     bool front = dot(wo, sf.ng) > 0.0;
 
-    int light = cv_tri_light[h.prim];
+    int light = (h.prim & CV_PRIM_CURVE) != 0u ? -1 : cv_tri_light[h.prim];  // curves emit nothing
     if (light >= 0) {
         vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
         cv_strategy_emitted(g, Le, flags);
@@ -84,7 +106,8 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
 
     if (!delta && cv_n_lights() > 0u) {
         CvLightSample ls;
-        if (cv_light_sample(sf.p, sf.ns, vec3(u_lc.x, u_light), ls) && cv_max3(ls.L) > 0.0) {
+        if (cv_light_sample(cv_light_sample_point(sf, b, wo, h.prim), sf.ns, vec3(u_lc.x, u_light), ls) &&
+            cv_max3(ls.L) > 0.0) {
             vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
             if (cv_max3(f) > 0.0) {
                 float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, cv_strategy_pdf(g, b, wo, ls.wi));

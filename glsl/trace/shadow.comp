@@ -25,8 +25,8 @@ void main()
             cv_film_add(path, s.L.rgb);
             return;
         }
-        uint word = cv_triangles[h.prim].idx.w;
-        CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+        uint word = cv_prim_word(h.prim);
+        CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, s.o.xyz, s.d.xyz, h.t);
         float u = cv_u32_to_unit(
             cv_hash4(cv_film_pixel(cv_path_pixel(path)), uint(s.L.w), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, sf.uv, u))

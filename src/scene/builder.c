@@ -280,6 +280,8 @@ static uint32_t current_material(struct cv_builder *b)
     return (uint32_t)b->default_material;
 }
 
+uint32_t cv_b_current_material(struct cv_builder *b) { return current_material(b); }
+
 static double tri_area(const CvVertex *v, const CvTriangle *t)
 {
     const cv_vec4 *a = &v[t->idx.x].pos_u, *bb = &v[t->idx.y].pos_u, *c = &v[t->idx.z].pos_u;
@@ -560,9 +562,21 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
                 hi[c] = p[c];
         }
     }
+    for (size_t i = 0; i < s->n_curves; i++) {
+        /* control points bound the piece; half the widest width around them */
+        const CvCurve *cu = &s->curves[i];
+        double r = 0.5 * fmax(cu->cp[0].w, cu->cp[1].w);
+        for (int k = 0; k < 4; k++) {
+            const float *p = &cu->cp[k].x;
+            for (int c = 0; c < 3; c++) {
+                lo[c] = fmin(lo[c], p[c] - r);
+                hi[c] = fmax(hi[c], p[c] + r);
+            }
+        }
+    }
     for (int c = 0; c < 3; c++) {
-        s->bounds_min[c] = s->n_vertices ? (float)lo[c] : 0;
-        s->bounds_max[c] = s->n_vertices ? (float)hi[c] : 0;
+        s->bounds_min[c] = s->n_vertices || s->n_curves ? (float)lo[c] : 0;
+        s->bounds_max[c] = s->n_vertices || s->n_curves ? (float)hi[c] : 0;
     }
     /* Distant and infinite lights scale with the scene's bounding sphere. */
     double r = 0;

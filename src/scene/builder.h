@@ -80,6 +80,7 @@ struct cv_builder {
     struct cv_scene *s;
     size_t cap_v, cap_t, cap_m, cap_tex, cap_texel, cap_l;
     size_t cap_object_names;
+    size_t cap_curves;
 
     struct cv_gstate gs;
     struct cv_gstate *stack;
@@ -166,6 +167,10 @@ int cv_b_lookup(const struct cv_named *v, size_t n, const char *name);
 void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *name, int index);
 
 /* Directives (see the files named). */
+/* Shape "curve" with the current transform and material (curves.c). */
+bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, struct cv_error *err);
+/* The material index new shapes get (pbrt's default diffuse made on first use). */
+uint32_t cv_b_current_material(struct cv_builder *b);
 bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
                 const struct cv_loc *loc, const char *dir, struct cv_error *err);  /* shapes.c */
 bool cv_b_material(struct cv_builder *b, const char *type, const char *name,

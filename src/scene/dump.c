@@ -12,7 +12,7 @@ static const char *mat_type(uint32_t t)
 {
     static const char *const n[] = {"diffuse", "conductor", "dielectric", "thindielectric",
                                     "mirror", "coateddiffuse", "coatedconductor",
-                                    "diffusetransmission", "mix", "interface", "plastic"};
+                                    "diffusetransmission", "mix", "interface", "plastic", "hair"};
     return t < sizeof(n) / sizeof(n[0]) ? n[t] : "?";
 }
 
@@ -71,6 +71,8 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
     fprintf(o, " film=(%u %u %u %u) crop=(%u %u)\n", c->film.x, c->film.y, c->film.z, c->film.w,
             c->crop.x, c->crop.y);
     fprintf(o, "vertices %u\ntriangles %u\n", s->n_vertices, s->n_triangles);
+    if (s->n_curves)
+        fprintf(o, "curves %u\n", s->n_curves);
     fprintf(o, "bounds %.6g %.6g %.6g  %.6g %.6g %.6g\n", s->bounds_min[0], s->bounds_min[1],
             s->bounds_min[2], s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]);
     uint64_t h = 1469598103934665603ull;

@@ -7,7 +7,7 @@ libcavalry_a_SOURCES += \
 	src/scene/builder.c src/scene/builder.h \
 	src/scene/transform.c src/scene/transform.h \
 	src/scene/ply.c src/scene/ply.h \
-	src/scene/shapes.c \
+	src/scene/shapes.c src/scene/curves.c \
 	src/scene/materials.c \
 	src/scene/spectrum.c \
 	src/scene/image.c src/scene/image.h \

@@ -124,6 +124,64 @@ static bool conductor(struct cv_builder *b, struct cv_params *ps, const char *pr
     return true;
 }
 
+/* pbrt-v4's HairMaterial. The colour comes from sigma_a if given, else
+ * reflectance, else the melanin concentrations (eumelanin 1.3 when none of
+ * the three is given); the losers are reported as pbrt-v4 does. beta_m,
+ * beta_n, alpha and the melanins are constants here. */
+static bool hair(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, const char *dir,
+                 CvMaterial *m, struct cv_error *err)
+{
+    bool has_sigma = cv_params_find(ps, "sigma_a") != NULL, has_refl = cv_params_find(ps, "reflectance") != NULL;
+    bool has_eu = cv_params_find(ps, "eumelanin") != NULL, has_pheo = cv_params_find(ps, "pheomelanin") != NULL;
+    double rgb[3] = {0, 0, 0};
+    int tex = -1;
+    m->type = CV_MAT_HAIR;
+    if (has_sigma) {
+        if (!cv_b_color_tex(b, ps, "sigma_a", CV_SPEC_UNBOUNDED, dir, rgb, &tex, err))
+            return false;
+        m->flags |= CV_MATF_HAIR_SIGMA_A;
+    } else if (has_refl) {
+        if (!cv_b_color_tex(b, ps, "reflectance", CV_SPEC_REFLECTANCE, dir, rgb, &tex, err))
+            return false;
+        m->flags |= CV_MATF_HAIR_REFLECTANCE;
+    }
+    const char *loser = has_sigma && has_refl ? "reflectance" : NULL;
+    if ((has_sigma || has_refl) && (has_eu || has_pheo))
+        loser = has_eu ? "eumelanin" : "pheomelanin";
+    if (loser && !cv_b_warn(b, err, loc, "hair: ignoring \"%s\" since \"%s\" was given", loser,
+                            has_sigma ? "sigma_a" : "reflectance"))
+        return false;
+    /* constants: name, default, where it goes */
+    struct { const char *name; double def; float *dst; } k[] = {
+        {"eumelanin", has_eu || has_pheo ? 0 : 1.3, &m->reflectance.x},
+        {"pheomelanin", 0, &m->reflectance.y},
+        {"beta_m", 0.3, &m->roughness.x},
+        {"beta_n", 0.3, &m->roughness.y},
+        {"alpha", 2, &m->roughness.z},
+    };
+    m->reflectance = v4(rgb, 0);
+    m->reflectance_tex = tex;
+    for (size_t i = 0; i < CV_ARRAY_SIZE(k); i++) {
+        double v = k[i].def;
+        int t = -1;
+        if (!cv_b_float_tex(b, ps, k[i].name, &v, &t, err))
+            return false;
+        if (t >= 0) {
+            v = k[i].def;
+            if (!cv_b_warn(b, err, loc, "hair: a texture for \"%s\" is not supported; %g used", k[i].name, v))
+                return false;
+        }
+        if (i < 2 && (has_sigma || has_refl))
+            continue;  /* the melanins lost */
+        *k[i].dst = (float)v;
+    }
+    double eta = 1.55;
+    if (!cv_b_float_tex(b, ps, "eta", &eta, &m->eta_tex, err))
+        return false;
+    m->eta = (cv_vec4){(float)eta, (float)eta, (float)eta, 0};
+    return true;
+}
+
 bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
                    struct cv_params *ps, const struct cv_loc *loc, const char *dir,
                    struct cv_error *err, int *out)
@@ -279,6 +337,9 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
             if (!cv_b_warn(b, err, loc, "translucent: rendered as diffuse transmission (Ks ignored)"))
                 return false;
         }
+    } else if (strcmp(type, "hair") == 0) {
+        if (!hair(b, ps, loc, dir, &m, err))
+            return false;
     } else if (strcmp(type, "mix") == 0) {
         m.type = CV_MAT_MIX;
         double amount = 0.5;

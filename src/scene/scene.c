@@ -16,6 +16,7 @@ static void scene_free(struct cv_scene *s)
     free(s->triangles);
     free(s->tri_light);
     free(s->tri_object);
+    free(s->curves);
     for (uint32_t i = 0; i < s->n_objects; i++)
         free(s->object_names[i]);
     free(s->object_names);

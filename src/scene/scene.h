@@ -70,6 +70,8 @@ struct cv_scene {
     CvTriangle *triangles;
     uint32_t n_triangles;
     int32_t *tri_light;              /* per triangle: light index or -1 */
+    CvCurve *curves;                 /* curve primitives (src/scene/curves.c) */
+    uint32_t n_curves;
 
     CvMaterial *materials;
     uint32_t n_materials;

@@ -511,6 +511,10 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
         ok = heightfield(b, ps, loc, &g, err);
     } else if (strcmp(type, "loopsubdiv") == 0) {
         ok = loop_subdivide(b, ps, loc, &g, err);
+    } else if (strcmp(type, "curve") == 0) {
+        ok = cv_b_curve(b, ps, loc, err);
+        if (ok && b->gs.area.on)
+            ok = cv_b_warn(b, err, loc, "curves do not emit light (as in pbrt-v4); the area light is ignored");
     } else {
         for (size_t i = 0; i < ps->n; i++)
             ps->v[i].used = true;

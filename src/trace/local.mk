@@ -36,3 +36,5 @@ GLSL_FILES += glsl/shared/rlpath.h \
 	glsl/trace/rlpath/test_sample.comp \
 	glsl/trace/rlpath/rebuild.comp
 # --- end of rlpath ---
+# --- hair BSDF and curves (issue 27 item 2) ---
+GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl

@@ -296,6 +296,11 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * one (bvh/bvh.h) */
     if (cv_bvh_stack_define(gs->bvh))
         defines[nd++] = cv_bvh_stack_define(gs->bvh);
+    /* curves: their own tree beside the triangles' (glsl/bvh/curves.glsl) */
+    if (gs->has_curves)
+        defines[nd++] = "CV_HAS_CURVES";
+    if (gs->has_curves && gs->no_triangles)
+        defines[nd++] = "CV_NO_TRIANGLES";
     defines[nd] = NULL;
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     bool escaped_stage = ops->escaped_stage || gs->has_env;

@@ -4,6 +4,7 @@
 
 #include "base/log.h"
 #include "base/mem.h"
+#include "bvh/curve_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
@@ -136,7 +137,9 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     }
     if (g->has_alpha)
         g->basic_materials = false;
-    g->empty = s->n_triangles == 0;
+    g->empty = s->n_triangles == 0 && s->n_curves == 0;
+    g->has_curves = s->n_curves > 0;
+    g->no_triangles = s->n_triangles == 0;
 }
 
 bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
@@ -182,14 +185,24 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
+    if (g.has_curves) {
+        size_t n4;
+        float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
+        ok = up(gpu, &g.curves, n4 * 16, packed, "scene curves", err);
+        free(packed);
+        if (!ok) {
+            cv_scene_gpu_release(&g);
+            return false;
+        }
+    }
     struct cv_bvh_params bp = bvh ? *bvh : cv_bvh_default_params();
     /* tests count this line to check that a batch builds each scene's BVH
      * once, and read the knobs that reached the build */
-    if (!g.empty)
+    if (s->n_triangles)
         cv_debug("building BVH for %s (%u triangles, %d treelet rounds, split budget %g)",
                  s->path ? s->path : "scene", s->n_triangles, bp.treelet_rounds,
                  bp.split_budget);
-    if (!g.empty && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, &bp, &g.bvh, err)) {
+    if (s->n_triangles && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, &bp, &g.bvh, err)) {
         cv_error_prefix(err, "building the BVH: ");
         cv_scene_gpu_release(&g);
         return false;
@@ -211,6 +224,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->light_cdf, CV_BIND_LIGHT_CDF);
     cv_buffer_bind(g->env_dist, CV_BIND_ENV_DIST);
     cv_buffer_bind(g->tri_object, CV_BIND_TRI_OBJECT);
+    if (g->curves)
+        cv_buffer_bind(g->curves, CV_BIND_CURVES);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -228,7 +243,7 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
-                   &g->tri_object};
+                   &g->tri_object, &g->curves};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;

@@ -21,7 +21,10 @@ struct cv_scene_gpu {
     bool has_env;     /* an infinite light exists */
     bool has_alpha;   /* some material has an alpha cut-out */
     bool has_textures; /* the texture table is not empty */
-    bool empty;       /* no triangles: no BVH, nothing to hit */
+    bool empty;       /* no triangles and no curves: nothing to hit */
+    GLuint curves;    /* the curves and their tree (src/bvh/curve_bvh.h), or 0 */
+    bool has_curves;  /* compile the stages with CV_HAS_CURVES */
+    bool no_triangles; /* curves only: no triangle BVH (CV_NO_TRIANGLES) */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */

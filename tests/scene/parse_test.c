@@ -271,6 +271,41 @@ static void test_materials(void)
     cv_scene_destroy(&s);
 }
 
+/* pbrt-v4's hair material: defaults, and which colour parameter wins. */
+static void test_hair_material(void)
+{
+    struct cv_scene *s = ok_load(
+        "WorldBegin\n"
+        "MakeNamedMaterial \"a\" \"string type\" \"hair\"\n"
+        "MakeNamedMaterial \"b\" \"string type\" \"hair\" \"rgb sigma_a\" [0.1 0.2 0.3] \"rgb reflectance\" [0.5 0.5 0.5]"
+        " \"float beta_m\" 0.2 \"float beta_n\" 0.4 \"float alpha\" 3 \"float eta\" 1.6\n"
+        "MakeNamedMaterial \"c\" \"string type\" \"hair\" \"rgb reflectance\" [0.6 0.4 0.2] \"float eumelanin\" 2\n"
+        "MakeNamedMaterial \"d\" \"string type\" \"hair\" \"float pheomelanin\" 0.7\n"
+        "NamedMaterial \"a\"\n" TRI,
+        "hair materials");
+    if (s) {
+        const CvMaterial *m = s->materials;
+        const char *log = th_log_text();
+        tap_ok(s->n_materials == 4 && m[0].type == CV_MAT_HAIR && m[0].flags == 0 &&
+                   near(m[0].reflectance.x, 1.3, 1e-6) && near(m[0].reflectance.y, 0, 1e-6) &&
+                   near(m[0].roughness.x, 0.3, 1e-6) && near(m[0].roughness.y, 0.3, 1e-6) &&
+                   near(m[0].roughness.z, 2, 1e-6) && near(m[0].eta.x, 1.55, 1e-6),
+               "hair defaults: eumelanin 1.3, beta_m 0.3, beta_n 0.3, alpha 2, eta 1.55");
+        tap_ok((m[1].flags & CV_MATF_HAIR_SIGMA_A) && near(m[1].reflectance.z, 0.3, 1e-6) &&
+                   near(m[1].roughness.x, 0.2, 1e-6) && near(m[1].roughness.y, 0.4, 1e-6) &&
+                   near(m[1].roughness.z, 3, 1e-6) && near(m[1].eta.x, 1.6, 1e-6) &&
+                   strstr(log, "hair: ignoring \"reflectance\" since \"sigma_a\"") != NULL,
+               "hair: sigma_a wins over reflectance, with a warning");
+        tap_ok((m[2].flags & CV_MATF_HAIR_REFLECTANCE) && near(m[2].reflectance.x, 0.6, 1e-3) &&
+                   strstr(log, "hair: ignoring \"eumelanin\" since \"reflectance\"") != NULL,
+               "hair: reflectance wins over the melanins, with a warning");
+        tap_ok(m[3].flags == 0 && near(m[3].reflectance.x, 0, 1e-6) && near(m[3].reflectance.y, 0.7, 1e-6),
+               "hair: pheomelanin alone leaves eumelanin 0");
+        tap_ok(strstr(log, "not supported; using diffuse") == NULL, "hair: no longer diffuse 0.5");
+    }
+    cv_scene_destroy(&s);
+}
+
 static void write_tga(const char *rel, int w, int h, const unsigned char *rgb)
 {
     unsigned char hdr[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, (unsigned char)w, 0, (unsigned char)h, 0, 24, 0x20};
@@ -653,6 +688,7 @@ int main(void)
     test_settings();
     test_shapes();
     test_materials();
+    test_hair_material();
     test_textures();
     test_lights();
     test_params();

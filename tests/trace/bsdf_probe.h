@@ -20,6 +20,7 @@ struct probe {
     GLuint materials, textures, texels, in, out;
     size_t cap_in, cap_out;
     float ng[3], ns[3], dpdu[3];
+    float uv[2];  /* the shading point's uv (hair: v gives h); 0.5, 0.5 from probe_open */
 };
 
 static CvMaterial probe_material(unsigned type)
@@ -41,6 +42,7 @@ static void probe_frame(struct probe *p, const float ng[3], const float ns[3], c
     memcpy(p->ng, ng, sizeof(p->ng));
     memcpy(p->ns, ns, sizeof(p->ns));
     memcpy(p->dpdu, dpdu, sizeof(p->dpdu));
+    p->uv[0] = p->uv[1] = 0.5f;
 }
 
 /* Like probe_open with the given texture table and texels (uvec2 each). */
@@ -121,7 +123,7 @@ static bool probe_run(struct probe *p, unsigned mode, unsigned material, const f
     glUniform3f(glGetUniformLocation(id, "u_ng"), p->ng[0], p->ng[1], p->ng[2]);
     glUniform3f(glGetUniformLocation(id, "u_ns"), p->ns[0], p->ns[1], p->ns[2]);
     glUniform3f(glGetUniformLocation(id, "u_dpdu"), p->dpdu[0], p->dpdu[1], p->dpdu[2]);
-    glUniform2f(glGetUniformLocation(id, "u_uv"), 0.5f, 0.5f);
+    glUniform2f(glGetUniformLocation(id, "u_uv"), p->uv[0], p->uv[1]);
     cv_program_dispatch_1d(p->prog, n);
     return cv_buffer_read(p->out, 0, out_bytes, out, err);
 }

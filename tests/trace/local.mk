@@ -78,3 +78,8 @@ tests_trace_filter_sample_test_LDADD = $(CV_LIBS)
 tests_trace_camera_motion_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += glsl/trace/test/filter_probe.comp
 # --- end of pixel filters and camera ---
+# --- hair BSDF and curves (issue 27 item 2) ---
+check_PROGRAMS += tests/trace/bsdf_hair_test
+TESTS += tests/trace/bsdf_hair_test
+tests_trace_bsdf_hair_test_LDADD = $(CV_LIBS)
+# --- end of hair and curves ---

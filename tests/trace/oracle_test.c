@@ -112,6 +112,9 @@ static const struct oracle_scene scenes[] = {
     {"filter_sinc", NULL},
     {"camera_dof", NULL},
     {"camera_motion", NULL},
+    /* issue 27: curve shapes (flat, cylinder, ribbon) and the hair BSDF */
+    {"curve_diffuse", NULL},
+    {"curve_hair", NULL},
 };
 
 /* Channel-averaged mean of the pixels [x0, x1) x [y0, y1); stride: floats

@@ -36,6 +36,7 @@
 #include "dielectric.glsl"
 #include "layered.glsl"
 #include "plastic.glsl"
+#include "hair.glsl"
 #include "texture.glsl"
 
 // ng: geometric normal as stored (oriented by CV_TRI_REVERSE); ns: shading
@@ -50,6 +51,7 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 //  COATED_CONDUCTOR eta (coat), alpha.xy (coat), alpha.zw (base), c0/c1 = base eta/k over coat eta,
 //    thickness, medium, walk
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
+//  HAIR c0 = sigma_a, eta, alpha = (beta_m, beta_n, scale tilt in degrees, h across the fibre)
 struct CvBsdf {
     uint type;  // read through CV_BSDF_TYPE
     uint material;
@@ -267,6 +269,16 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.c0 = clamp(refl, 0.0, 1.0);
         b.c1 = clamp(spec, 0.0, 1.0);
         b.alpha.xy = alpha;
+    } else if (b.type == CV_MAT_HAIR) {
+        // pbrt-v4's HairMaterial: h from v across the curve's width
+        b.eta = eta > 0.0 ? eta : 1.55;
+        b.alpha = vec4(max(m.roughness.xy, vec2(0.01)), m.roughness.z, clamp(2.0 * uv.y - 1.0, -1.0, 1.0));
+        if ((m.flags & CV_MATF_HAIR_SIGMA_A) != 0u)
+            b.c0 = max(refl, vec3(0.0));
+        else if ((m.flags & CV_MATF_HAIR_REFLECTANCE) != 0u)
+            b.c0 = cv_hair_sigma_a_from_reflectance(clamp(refl, 0.0, 1.0), b.alpha.y);
+        else
+            b.c0 = cv_hair_sigma_a_from_melanin(refl.x, refl.y);
     }
 #endif
     return b;
@@ -306,6 +318,11 @@ CvLayered cv_bsdf_layered(CvBsdf b)
     return L;
 }
 
+CvHair cv_bsdf_hair(CvBsdf b)
+{
+    return cv_hair_make(b.alpha.w, b.eta, b.c0, b.alpha.x, b.alpha.y, b.alpha.z);
+}
+
 // Two-sided layered lobes work with wo on +z.
 bool cv_bsdf_mirrored(CvBsdf b)
 {
@@ -336,6 +353,8 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_difftrans_f(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
         return cv_plastic_f(b.c0, b.c1, b.alpha.xy, wo, wi);
+    case CV_MAT_HAIR:
+        return cv_hair_f(cv_bsdf_hair(b), wo, wi);
     default:
         return vec3(0.0);
     }
@@ -365,6 +384,8 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
         return cv_plastic_pdf(b.c0, b.c1, b.alpha.xy, wo, wi);
+    case CV_MAT_HAIR:
+        return cv_hair_pdf(cv_bsdf_hair(b), wo, wi);
     default:
         return 0.0;
     }
@@ -422,6 +443,9 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         break;
     case CV_MAT_PLASTIC:
         ok = cv_plastic_sample(b.c0, b.c1, b.alpha.xy, wo, uc, u, s);
+        break;
+    case CV_MAT_HAIR:
+        ok = cv_hair_sample(cv_bsdf_hair(b), wo, uc, u, s);
         break;
     default:
         break;
@@ -498,6 +522,8 @@ vec3 cv_bsdf_albedo(CvBsdf b)
         return clamp(b.c0 + b.c1, 0.0, 1.0);
     case CV_MAT_PLASTIC:
         return clamp(b.c0 + b.c1, 0.0, 1.0);
+    case CV_MAT_HAIR:
+        return exp(-2.0 * b.c0);  // straight through the fibre (h 0, theta 0): its colour
     default:
         return vec3(0.0);
     }

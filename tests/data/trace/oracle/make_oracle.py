@@ -201,6 +201,48 @@ def deep_bvh():
     return mesh(idx, p)
 
 
+# Curves (issue 27): thick strands (covering most of the image) where the sphere
+# stands elsewhere, lit from
+# above (the lamp) and from the +x side (the distant light), which tells the
+# two sides of a cylinder's bent normal apart.
+CURVE_LIGHTS = ENV_CONST.replace("0.5 0.5 0.5", "0.3 0.3 0.3") + AREA_LAMP + DISTANT + FLOOR
+
+
+def strand(x, kind, basis, degree, width, extra=""):
+    """A wavy strand rising from the floor at x, as a curve of the given kind."""
+    n = {("bspline", 3): 7, ("bezier", 3): 7, ("bezier", 2): 5}[(basis, degree)]
+    p = []
+    for i in range(n):
+        t = i / (n - 1)
+        p += [x + 0.35 * math.sin(5 * t), 0.15 + 2.0 * t, 0.3 * math.cos(4 * t)]
+    return ('Shape "curve" "string type" "%s" "string basis" "%s" "integer degree" %d\n'
+            '  "point3 P" [ %s ]\n  %s%s\n' % (kind, basis, degree, fmt(p), width, extra))
+
+
+def curve_scenes():
+    diffuse = 'Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]'
+    scene("curve_diffuse", "diffuse curves: cylinder (b-spline), flat (Bezier, tapering), ribbon "
+          "(quadratic Bezier, turning normals)",
+          CURVE_LIGHTS + "AttributeBegin\n  " + diffuse + "\n"
+          + strand(-1.15, "cylinder", "bspline", 3, '"float width" [ 0.8 ]')
+          + strand(0.0, "flat", "bezier", 3, '"float width0" [ 0.9 ] "float width1" [ 0.4 ]')
+          + strand(1.15, "ribbon", "bezier", 2, '"float width" [ 0.8 ]',
+                   ' "normal N" [ 0.3 0 -1  -0.6 0.2 -1  0.2 0 -1 ]')
+          + "AttributeEnd\n")
+    scene("curve_hair", "hair on thick curves: cylinder b-splines of eumelanin 0.3 and of reflectance "
+          "(0.8 0.5 0.3), a flat Bezier of sigma_a (0.2 0.4 0.8), beta_m 0.25, beta_n 0.4",
+          CURVE_LIGHTS
+          + 'AttributeBegin\n  Material "hair" "float eumelanin" [ 0.3 ] "float beta_m" [ 0.25 ]'
+          ' "float beta_n" [ 0.4 ]\n'
+          + strand(-1.15, "cylinder", "bspline", 3, '"float width" [ 0.8 ]') + "AttributeEnd\n"
+          + 'AttributeBegin\n  Material "hair" "rgb reflectance" [ 0.8 0.5 0.3 ] "float beta_m" [ 0.25 ]'
+          ' "float beta_n" [ 0.4 ]\n'
+          + strand(0.0, "cylinder", "bspline", 3, '"float width" [ 0.8 ]') + "AttributeEnd\n"
+          + 'AttributeBegin\n  Material "hair" "rgb sigma_a" [ 0.2 0.4 0.8 ] "float beta_m" [ 0.25 ]'
+          ' "float beta_n" [ 0.4 ]\n'
+          + strand(1.15, "flat", "bezier", 3, '"float width" [ 0.8 ]') + "AttributeEnd\n")
+
+
 def main():
     with open(os.path.join(HERE, "sphere.pbrt"), "w") as out:
         out.write(sphere_include())
@@ -237,6 +279,7 @@ def main():
     scene("deep_bvh", "1200 triangles shrinking geometrically (a deep BVH) over the floor",
           ENV_CONST + AREA_LAMP + FLOOR + 'AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
           + deep_bvh() + "AttributeEnd\n")
+    curve_scenes()
 
 
 # Camera and film (branch filmcam): scenes of emitters alone (maxdepth 1,

@@ -1,0 +1,159 @@
+/* curve_bvh.c: the curves' binary BVH (curve_bvh.h). */
+#include "bvh/curve_bvh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/mem.h"
+#include "glsl/shared/bvh.h"
+
+static double blossom(const double p[4], double a, double b, double c)
+{
+    double q0 = p[0] + a * (p[1] - p[0]), q1 = p[1] + a * (p[2] - p[1]), q2 = p[2] + a * (p[3] - p[2]);
+    double r0 = q0 + b * (q1 - q0), r1 = q1 + b * (q2 - q1);
+    return r0 + c * (r1 - r0);
+}
+
+void cv_curve_box(const CvCurve *c, float lo[3], float hi[3])
+{
+    double u0 = c->cp[2].w, u1 = c->cp[3].w;
+    double w0 = c->cp[0].w + u0 * (c->cp[1].w - c->cp[0].w), w1 = c->cp[0].w + u1 * (c->cp[1].w - c->cp[0].w);
+    double r = 0.5 * fmax(w0, w1);
+    for (int a = 0; a < 3; a++) {
+        double p[4] = {(&c->cp[0].x)[a], (&c->cp[1].x)[a], (&c->cp[2].x)[a], (&c->cp[3].x)[a]};
+        double q[4] = {blossom(p, u0, u0, u0), blossom(p, u0, u0, u1), blossom(p, u0, u1, u1),
+                       blossom(p, u1, u1, u1)};
+        double l = fmin(fmin(q[0], q[1]), fmin(q[2], q[3])), h = fmax(fmax(q[0], q[1]), fmax(q[2], q[3]));
+        /* a float ulp outwards beside the width: the box must hold the piece */
+        lo[a] = nextafterf((float)(l - r), -INFINITY);
+        hi[a] = nextafterf((float)(h + r), INFINITY);
+    }
+}
+
+struct build {
+    float (*lo)[3], (*hi)[3];
+    uint32_t *order;
+    float *out;     /* vec4s */
+    uint32_t n_nodes;
+};
+
+struct keyed {
+    float key;
+    uint32_t index;
+};
+
+/* by centre, ties by index: one order whatever qsort does */
+static int cmp_keyed(const void *a, const void *b)
+{
+    const struct keyed *x = a, *y = b;
+    return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->index > y->index) - (x->index < y->index);
+}
+
+static void range_box(const struct build *b, uint32_t first, uint32_t count, float lo[3], float hi[3])
+{
+    for (int a = 0; a < 3; a++) {
+        lo[a] = INFINITY;
+        hi[a] = -INFINITY;
+    }
+    for (uint32_t k = first; k < first + count; k++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = fminf(lo[a], b->lo[b->order[k]][a]);
+            hi[a] = fmaxf(hi[a], b->hi[b->order[k]][a]);
+        }
+}
+
+/* A child slot of node `node` (side 0 left, 1 right) over order[first..+count). */
+static void set_child(struct build *b, uint32_t node, int side, const float lo[3], const float hi[3], int32_t word,
+                      int32_t count)
+{
+    float *v = b->out + 4 * (1 + 4 * (size_t)node + 2 * side);
+    v[0] = lo[0];
+    v[1] = lo[1];
+    v[2] = lo[2];
+    memcpy(&v[3], &word, 4);
+    v[4] = hi[0];
+    v[5] = hi[1];
+    v[6] = hi[2];
+    memcpy(&v[7], &count, 4);
+}
+
+/* Fills node `node` for order[first..+count), count > CV_CURVE_LEAF or the root. */
+static void build_node(struct build *b, uint32_t node, uint32_t first, uint32_t count)
+{
+    uint32_t half[2] = {count / 2, count - count / 2};
+    if (count > 1) {
+        float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (uint32_t k = first; k < first + count; k++)
+            for (int a = 0; a < 3; a++) {
+                float c = 0.5f * (b->lo[b->order[k]][a] + b->hi[b->order[k]][a]);
+                clo[a] = fminf(clo[a], c);
+                chi[a] = fmaxf(chi[a], c);
+            }
+        int axis = 0;
+        for (int a = 1; a < 3; a++)
+            if (chi[a] - clo[a] > chi[axis] - clo[axis])
+                axis = a;
+        struct keyed *k = cv_xcalloc(count, sizeof(*k));
+        for (uint32_t i = 0; i < count; i++) {
+            uint32_t c = b->order[first + i];
+            k[i] = (struct keyed){b->lo[c][axis] + b->hi[c][axis], c};
+        }
+        qsort(k, count, sizeof(*k), cmp_keyed);
+        for (uint32_t i = 0; i < count; i++)
+            b->order[first + i] = k[i].index;
+        free(k);
+    } else {
+        half[0] = count;
+        half[1] = 0;
+    }
+    uint32_t start = first;
+    for (int side = 0; side < 2; side++) {
+        uint32_t c = half[side];
+        float lo[3], hi[3];
+        if (c == 0) {
+            float e[3] = {(float)CV_BVH_EMPTY, (float)CV_BVH_EMPTY, (float)CV_BVH_EMPTY},
+                  f[3] = {-(float)CV_BVH_EMPTY, -(float)CV_BVH_EMPTY, -(float)CV_BVH_EMPTY};
+            set_child(b, node, side, e, f, 0, 0);
+            continue;
+        }
+        range_box(b, start, c, lo, hi);
+        if (c <= CV_CURVE_LEAF) {
+            set_child(b, node, side, lo, hi, (int32_t)start, (int32_t)c);
+        } else {
+            uint32_t child = b->n_nodes++;
+            set_child(b, node, side, lo, hi, (int32_t)child, 0);
+            build_node(b, child, start, c);
+        }
+        start += c;
+    }
+}
+
+float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, size_t *n_vec4)
+{
+    struct build b = {0};
+    b.lo = cv_xcalloc(n, sizeof(*b.lo));
+    b.hi = cv_xcalloc(n, sizeof(*b.hi));
+    b.order = cv_xcalloc(n, sizeof(uint32_t));
+    for (uint32_t i = 0; i < n; i++) {
+        cv_curve_box(&curves[i], b.lo[i], b.hi[i]);
+        b.order[i] = i;
+    }
+    /* a binary tree of leaves of 1..CV_CURVE_LEAF curves has fewer than n nodes */
+    size_t max_nodes = n > 1 ? n : 1;
+    size_t curve_base = 1 + 4 * max_nodes;
+    b.out = cv_xcalloc((curve_base + 7 * (size_t)n) * 4, sizeof(float));
+    b.n_nodes = 1;
+    build_node(&b, 0, 0, n);
+    /* the nodes used, then the curves in leaf order right after them */
+    curve_base = 1 + 4 * (size_t)b.n_nodes;
+    uint32_t hdr[4] = {b.n_nodes, n, (uint32_t)curve_base, 0};
+    memcpy(b.out, hdr, sizeof(hdr));
+    for (uint32_t k = 0; k < n; k++)
+        memcpy(b.out + 4 * (curve_base + 7 * (size_t)k), &curves[b.order[k]], sizeof(CvCurve));
+    *n_vec4 = curve_base + 7 * (size_t)n;
+    free(b.lo);
+    free(b.hi);
+    free(b.order);
+    return b.out;
+}

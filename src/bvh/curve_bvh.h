@@ -1,0 +1,27 @@
+/* curve_bvh.h: the curves' own binary BVH, built on the host: curves are
+ * few beside triangles (a strand is tens of primitives), and their boxes
+ * need the Bezier pieces, which the triangle build on the GPU does not
+ * know. The result is the one vec4 array glsl/bvh/curves.glsl reads. */
+#ifndef CV_BVH_CURVE_BVH_H
+#define CV_BVH_CURVE_BVH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "glsl/shared/scene.h"
+
+/* Most curves per leaf. */
+#define CV_CURVE_LEAF 4
+
+/* The packed buffer for n >= 1 curves (layout: glsl/bvh/curves.glsl):
+ * header, binary nodes (median splits of the boxes' centres along their
+ * widest axis, at most CV_CURVE_LEAF curves a leaf), the curves in leaf
+ * order. *n_vec4 gets its length in vec4s; the caller frees it. The tree's
+ * depth stays below glsl/bvh/curves.glsl's stack (log2 of n). */
+float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, size_t *n_vec4);
+
+/* Box of curve c: its piece's control points over [u_min, u_max], grown
+ * by half the wider end's width. */
+void cv_curve_box(const CvCurve *c, float lo[3], float hi[3]);
+
+#endif

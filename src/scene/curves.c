@@ -1,0 +1,176 @@
+/* curves.c: pbrt-v4's Shape "curve" onto CvCurve: bezier and bspline
+ * bases of degree 2 and 3 become cubic Bezier pieces (quadratics raised to
+ * cubics, uniform b-splines blossomed to Bezier points, as pbrt-v4's
+ * Curve::Create), the widths interpolated per piece, each piece split into
+ * 2^splitdepth primitives over its u range. Control points go to render
+ * space; widths scale with the transform's mean scale (pbrt-v4 intersects
+ * in object space, which is the same for uniform scales). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "base/mem.h"
+#include "scene/builder.h"
+
+static void lerp3(double t, const double a[3], const double b[3], double out[3])
+{
+    for (int c = 0; c < 3; c++)
+        out[c] = (1 - t) * a[c] + t * b[c];
+}
+
+/* The cubic Bezier points of piece `seg` from the input points cp. */
+static void piece(const double *cp, int seg, int degree, bool bspline, double out[4][3])
+{
+    if (!bspline) {
+        const double *p = cp + 3 * (size_t)seg * degree;
+        if (degree == 3) {
+            memcpy(out, p, 12 * sizeof(double));
+        } else {
+            memcpy(out[0], p, 3 * sizeof(double));
+            lerp3(2.0 / 3, p, p + 3, out[1]);
+            lerp3(1.0 / 3, p + 3, p + 6, out[2]);
+            memcpy(out[3], p + 6, 3 * sizeof(double));
+        }
+        return;
+    }
+    const double *p = cp + 3 * (size_t)seg;
+    if (degree == 2) {
+        double q[3][3];
+        lerp3(0.5, p, p + 3, q[0]);
+        memcpy(q[1], p + 3, 3 * sizeof(double));
+        lerp3(0.5, p + 3, p + 6, q[2]);
+        memcpy(out[0], q[0], 3 * sizeof(double));
+        lerp3(2.0 / 3, q[0], q[1], out[1]);
+        lerp3(1.0 / 3, q[1], q[2], out[2]);
+        memcpy(out[3], q[2], 3 * sizeof(double));
+        return;
+    }
+    double p122[3], p223[3], p233[3], p334[3];
+    lerp3(2.0 / 3, p, p + 3, p122);
+    lerp3(1.0 / 3, p + 3, p + 6, p223);
+    lerp3(2.0 / 3, p + 3, p + 6, p233);
+    lerp3(1.0 / 3, p + 6, p + 9, p334);
+    lerp3(0.5, p122, p223, out[0]);
+    memcpy(out[1], p223, 3 * sizeof(double));
+    memcpy(out[2], p233, 3 * sizeof(double));
+    lerp3(0.5, p233, p334, out[3]);
+}
+
+static void normalize3(double v[3])
+{
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0)
+        for (int c = 0; c < 3; c++)
+            v[c] /= l;
+}
+
+bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, struct cv_error *err)
+{
+    struct cv_scene *s = b->s;
+    double width = cv_params_float(ps, "width", 1);
+    double w0 = cv_params_float(ps, "width0", width), w1 = cv_params_float(ps, "width1", width);
+    int degree = cv_params_int(ps, "degree", 3);
+    const char *basis = cv_params_string(ps, "basis", "bezier");
+    const char *type = cv_params_string(ps, "type", "flat");
+    int split = cv_params_int(ps, "splitdepth", 3);
+    struct cv_param *P = cv_params_array(ps, "P");
+    struct cv_param *N = cv_params_array(ps, "N");
+#define FAIL(...) cv_fail(err, "%s:%d:%d: curve: " __VA_ARGS__)
+    if (degree != 2 && degree != 3)
+        return FAIL("degree %d: only 2 and 3 are supported", loc->file, loc->line, loc->col, degree);
+    bool bspline = strcmp(basis, "bspline") == 0;
+    if (!bspline && strcmp(basis, "bezier") != 0)
+        return FAIL("basis \"%s\": only \"bezier\" and \"bspline\" are supported", loc->file, loc->line,
+                    loc->col, basis);
+    uint32_t ctype;
+    if (strcmp(type, "flat") == 0) {
+        ctype = CV_CURVE_FLAT;
+    } else if (strcmp(type, "cylinder") == 0) {
+        ctype = CV_CURVE_CYLINDER;
+    } else if (strcmp(type, "ribbon") == 0) {
+        ctype = CV_CURVE_RIBBON;
+    } else {
+        ctype = CV_CURVE_CYLINDER;
+        if (!cv_b_warn(b, err, loc, "curve: unknown type \"%s\"; \"cylinder\" used (as pbrt-v4)", type))
+            return false;
+    }
+    if (!P || P->n_nums % 3 != 0)
+        return FAIL("needs \"point3 P\"", loc->file, loc->line, loc->col);
+    long ncp = (long)(P->n_nums / 3), nseg;
+    if (!bspline) {
+        if (ncp < degree + 1 || (ncp - 1 - degree) % degree != 0)
+            return FAIL("%ld control points: the degree %d Bezier basis needs %d + n * %d", loc->file, loc->line,
+                        loc->col, ncp, degree, degree + 1, degree);
+        nseg = (ncp - 1) / degree;
+    } else {
+        if (ncp < degree + 1)
+            return FAIL("%ld control points: the degree %d b-spline basis needs at least %d", loc->file,
+                        loc->line, loc->col, ncp, degree, degree + 1);
+        nseg = ncp - degree;
+    }
+    if (N && ctype != CV_CURVE_RIBBON) {
+        if (!cv_b_warn(b, err, loc, "curve: normals \"N\" are only used by \"ribbon\" curves"))
+            return false;
+        N = NULL;
+    } else if (ctype == CV_CURVE_RIBBON && (!N || N->n_nums != 3 * (size_t)(nseg + 1))) {
+        return FAIL("ribbon curves need %ld normals \"N\" (one per piece end)", loc->file, loc->line, loc->col,
+                    nseg + 1);
+    }
+    if (split < 0 || split > 10)
+        return FAIL("splitdepth %d outside 0..10", loc->file, loc->line, loc->col, split);
+    if (b->cur_object >= 0)
+        return cv_b_warn(b, err, loc, "curves inside object definitions are not rendered; skipped");
+
+    uint32_t mat = cv_b_current_material(b);
+    const struct cv_mat4 *M = &b->gs.ctm;
+    struct cv_mat4 inv;
+    cv_mat4_inverse(M, &inv);
+    bool swaps = cv_mat4_det3(M) < 0;
+    double scale = cbrt(fabs(cv_mat4_det3(M)));
+    uint32_t word = mat | (b->gs.reverse != swaps ? CV_TRI_REVERSE : 0u);
+
+    size_t per = (size_t)1 << split, need = s->n_curves + (size_t)nseg * per;
+    if (need > CV_PRIM_CURVE)
+        return FAIL("more than 2^31 curve primitives", loc->file, loc->line, loc->col);
+    s->curves = cv_xgrow(s->curves, &b->cap_curves, need, sizeof(CvCurve));
+    for (long seg = 0; seg < nseg; seg++) {
+        double bz[4][3];
+        piece(P->nums, (int)seg, degree, bspline, bz);
+        CvCurve c;
+        memset(&c, 0, sizeof(c));
+        for (int k = 0; k < 4; k++) {
+            double w[3];
+            cv_mat4_point(M, bz[k], w);
+            c.cp[k] = (cv_vec4){(float)w[0], (float)w[1], (float)w[2], 0};
+            if (!isfinite(c.cp[k].x) || !isfinite(c.cp[k].y) || !isfinite(c.cp[k].z))
+                return FAIL("control points are not finite after the transform", loc->file, loc->line, loc->col);
+        }
+        double t0 = (double)seg / nseg, t1 = (double)(seg + 1) / nseg;
+        c.cp[0].w = (float)(((1 - t0) * w0 + t0 * w1) * scale);
+        c.cp[1].w = (float)(((1 - t1) * w0 + t1 * w1) * scale);
+        if (N) {
+            double n[2][3];
+            for (int k = 0; k < 2; k++) {
+                double o[3] = {N->nums[3 * (seg + k)], N->nums[3 * (seg + k) + 1], N->nums[3 * (seg + k) + 2]};
+                cv_mat4_normal(&inv, o, n[k]);
+                normalize3(n[k]);
+            }
+            double d = n[0][0] * n[1][0] + n[0][1] * n[1][1] + n[0][2] * n[1][2];
+            /* pbrt-v4's AngleBetween, robust near 0 and pi */
+            double e[3] = {n[0][0] - n[1][0], n[0][1] - n[1][1], n[0][2] - n[1][2]},
+                   f[3] = {n[0][0] + n[1][0], n[0][1] + n[1][1], n[0][2] + n[1][2]};
+            double angle = d < 0 ? M_PI - 2 * asin(fmin(1, sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 2))
+                                 : 2 * asin(fmin(1, sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / 2));
+            c.n0 = (cv_vec4){(float)n[0][0], (float)n[0][1], (float)n[0][2], (float)angle};
+            c.n1 = (cv_vec4){(float)n[1][0], (float)n[1][1], (float)n[1][2], angle > 0 ? (float)(1 / sin(angle)) : 0};
+        }
+        c.info = (cv_uvec4){word, ctype, 0, 0};
+        for (size_t k = 0; k < per; k++) {
+            c.cp[2].w = (float)((double)k / per);
+            c.cp[3].w = (float)((double)(k + 1) / per);
+            s->curves[s->n_curves++] = c;
+        }
+    }
+#undef FAIL
+    return true;
+}

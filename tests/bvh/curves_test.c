@@ -1,0 +1,335 @@
+/* curves_test.c: curve shapes from the scene file to the GPU hit
+ * (src/scene/curves.c, src/bvh/curve_bvh.c, glsl/bvh/curves.glsl):
+ * - the tree walk equals the brute force over every curve, bit for bit
+ *   (t, primitive, u, v; any-hit too) on random strands of every type and
+ *   basis, for rays aimed at them and rays at random;
+ * - a straight curve against what its shape must give: hits exactly within
+ *   half the width of its axis, t at the axis, u along it, v across it; a
+ *   cylinder's normal turned across the width as pbrt-v4 turns it (by an
+ *   angle linear in v, on the far side: its flat normal faces away from
+ *   the ray), a flat one's along
+ *   the ray, a ribbon's width shrunk by the cosine of its normal to the ray;
+ * - the scene conversions: bspline and quadratic pieces, splitdepth,
+ *   widths per piece, errors for malformed input.
+ * Fixed seeds. */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh/curve_bvh.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/program.h"
+#include "scene/scene.h"
+#include "tests/gpu/gpu_test_util.h"
+
+static uint64_t rng = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static struct cv_scene *load(const char *text, struct cv_error *err)
+{
+    struct cv_scene *s = NULL;
+    struct cv_scene_load_params p = {.strict = false};
+    if (!cv_scene_load_string("/tmp/curves_test.pbrt", text, strlen(text), &p, &s, err))
+        return NULL;
+    return s;
+}
+
+struct run {
+    uint32_t *out;  /* 16 words per ray (curves_test.comp) */
+    uint32_t n;
+};
+
+static bool trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n, struct run *r,
+                  struct cv_error *err)
+{
+    size_t n4;
+    float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
+    GLuint cb = cv_buffer_create(n4 * 16, packed, "curves", err);
+    free(packed);
+    GLuint rb = cv_buffer_create((size_t)n * 32, rays, "rays", err);
+    GLuint ob = cv_buffer_create((size_t)n * 64, NULL, "results", err);
+    struct cv_program *p = cb && rb && ob ? cv_program_get(gpu, "bvh/curves_test.comp", NULL, err) : NULL;
+    bool ok = p != NULL;
+    if (ok) {
+        cv_buffer_bind(cb, CV_BIND_CURVES);
+        cv_buffer_bind(rb, CV_BIND_PROBE_IN);
+        cv_buffer_bind(ob, CV_BIND_PROBE_OUT);
+        glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_rays"), n);
+        cv_program_dispatch_1d(p, n);
+        r->out = malloc((size_t)n * 64);
+        r->n = n;
+        ok = cv_buffer_read(ob, 0, (size_t)n * 64, r->out, err);
+    }
+    cv_buffer_destroy(&cb);
+    cv_buffer_destroy(&rb);
+    cv_buffer_destroy(&ob);
+    return ok;
+}
+
+static float fbits(uint32_t u)
+{
+    float f;
+    memcpy(&f, &u, 4);
+    return f;
+}
+
+static void set_ray(float *r, const double o[3], const double d[3], double tmin, double tmax)
+{
+    for (int k = 0; k < 3; k++) {
+        r[k] = (float)o[k];
+        r[4 + k] = (float)d[k];
+    }
+    r[3] = (float)tmin;
+    r[7] = (float)tmax;
+}
+
+/* ---- walk against brute force on random strands ---- */
+static void test_random(struct cv_gpu *gpu)
+{
+    static const char *types[] = {"flat", "cylinder", "ribbon"};
+    static const char *bases[] = {"bspline", "bezier"};
+    size_t cap = 1 << 20, len = 0;
+    char *text = malloc(cap);
+    len += (size_t)snprintf(text + len, cap - len, "WorldBegin\n");
+    int n_strands = 36;
+    double aim[64][3];
+    int n_aim = 0;
+    for (int sidx = 0; sidx < n_strands; sidx++) {
+        const char *type = types[sidx % 3], *basis = bases[(sidx / 3) % 2];
+        int degree = (sidx / 6) % 2 ? 2 : 3;
+        int ncp = strcmp(basis, "bezier") == 0 ? 1 + degree * 3 : 7;
+        double base[3] = {rnd() * 4 - 2, rnd() * 4 - 2, rnd() * 4 - 2};
+        len += (size_t)snprintf(text + len, cap - len,
+                                "Shape \"curve\" \"string type\" \"%s\" \"string basis\" \"%s\" \"integer degree\" %d"
+                                " \"float width0\" %g \"float width1\" %g \"integer splitdepth\" %d \"point3 P\" [",
+                                type, basis, degree, 0.05 + 0.2 * rnd(), 0.01 + 0.1 * rnd(), sidx % 4);
+        double p[3] = {base[0], base[1], base[2]};
+        for (int k = 0; k < ncp; k++) {
+            for (int c = 0; c < 3; c++)
+                p[c] += rnd() * 0.8 - 0.4;
+            len += (size_t)snprintf(text + len, cap - len, " %.6f %.6f %.6f", p[0], p[1], p[2]);
+            if (n_aim < 64 && k == ncp / 2)
+                memcpy(aim[n_aim++], p, sizeof(p));
+        }
+        len += (size_t)snprintf(text + len, cap - len, " ]");
+        if (strcmp(type, "ribbon") == 0) {
+            int nseg = strcmp(basis, "bezier") == 0 ? (ncp - 1) / degree : ncp - degree;
+            len += (size_t)snprintf(text + len, cap - len, " \"normal N\" [");
+            for (int k = 0; k <= nseg; k++)
+                len += (size_t)snprintf(text + len, cap - len, " %.4f %.4f %.4f", rnd() - 0.5, rnd() - 0.5, 0.5 + rnd());
+            len += (size_t)snprintf(text + len, cap - len, " ]");
+        }
+        len += (size_t)snprintf(text + len, cap - len, "\n");
+    }
+    struct cv_error err = {{0}};
+    struct cv_scene *s = load(text, &err);
+    free(text);
+    if (!tap_ok(s != NULL && s->n_curves > 0, "random strands load (%u primitives)%s%s", s ? s->n_curves : 0,
+                s ? "" : ": ", s ? "" : err.msg))
+        return;
+    uint32_t n = 8192;
+    float *rays = calloc((size_t)n * 8, sizeof(float));
+    for (uint32_t i = 0; i < n; i++) {
+        double o[3] = {rnd() * 10 - 5, rnd() * 10 - 5, rnd() * 10 - 5}, d[3];
+        if (i % 4 != 3) {
+            /* towards a control point of a strand, jittered by about a width */
+            const double *a = aim[i % n_aim];
+            for (int c = 0; c < 3; c++)
+                d[c] = a[c] + (rnd() - 0.5) * 0.6 - o[c];
+        } else {
+            for (int c = 0; c < 3; c++)
+                d[c] = rnd() - 0.5;
+        }
+        /* some rays start inside the strands' region, some end early */
+        double tmin = i % 5 == 0 ? 0.3 : 0, tmax = i % 7 == 0 ? 0.6 : 1e30;
+        set_ray(rays + 8 * i, o, d, tmin, tmax);
+    }
+    struct run r = {0};
+    if (!tap_ok(trace(gpu, s, rays, n, &r, &err), "GPU run: %s", err.msg)) {
+        cv_scene_destroy(&s);
+        free(rays);
+        return;
+    }
+    uint32_t hits = 0, diff = 0, any_diff = 0, any_wrong = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const uint32_t *o = r.out + 16 * i;
+        if (o[1] != 0xffffffffu)
+            hits++;
+        if (memcmp(o, o + 4, 16) != 0) {
+            if (diff < 3)
+                tap_diag("ray %u: walk t %.9g prim %x u %.9g v %.9g, brute t %.9g prim %x u %.9g v %.9g", i,
+                         fbits(o[0]), o[1], fbits(o[2]), fbits(o[3]), fbits(o[4]), o[5], fbits(o[6]), fbits(o[7]));
+            diff++;
+        }
+        if (o[8] != o[9])
+            any_diff++;
+        if (o[8] != (o[5] != 0xffffffffu))
+            any_wrong++;
+    }
+    tap_ok(hits > n / 8, "rays hit the strands (%u of %u)", hits, n);
+    tap_ok(diff == 0, "closest hit through the curve tree equals the brute force (%u of %u differ)", diff, n);
+    tap_ok(any_diff == 0 && any_wrong == 0,
+           "any-hit through the tree equals the brute force (%u differ) and the closest query (%u differ)", any_diff,
+           any_wrong);
+    free(r.out);
+    free(rays);
+    cv_scene_destroy(&s);
+}
+
+/* ---- a straight curve along x, seen from +z ---- */
+static void test_straight(struct cv_gpu *gpu)
+{
+    static const char *const kinds[] = {"flat", "cylinder", "ribbon"};
+    for (int kind = 0; kind < 3; kind++) {
+        char text[512];
+        /* ribbon: normal tilted 60 degrees from the ray (towards +y): width halves */
+        snprintf(text, sizeof(text),
+                 "WorldBegin\nShape \"curve\" \"string type\" \"%s\" \"point3 P\" [-1 0 0 -0.3333333 0 0 0.3333333 0 0 "
+                 "1 0 0] \"float width\" 0.2 %s\n",
+                 kinds[kind], kind == 2 ? "\"normal N\" [0 0.8660254 0.5 0 0.8660254 0.5]" : "");
+        struct cv_error err = {{0}};
+        struct cv_scene *s = load(text, &err);
+        if (!tap_ok(s && s->n_curves == 8, "%s straight curve loads (%u primitives)%s", kinds[kind],
+                    s ? s->n_curves : 0, s ? "" : err.msg))
+            continue;
+        double half = kind == 2 ? 0.05 : 0.1;
+        uint32_t n = 1024;
+        float *rays = calloc((size_t)n * 8, sizeof(float));
+        double *off = calloc(n, sizeof(double)), *xs = calloc(n, sizeof(double));
+        for (uint32_t i = 0; i < n; i++) {
+            xs[i] = -0.95 + 1.9 * rnd();
+            off[i] = (rnd() * 2 - 1) * half * 1.3;
+            double o[3] = {xs[i], off[i], 5}, d[3] = {0, 0, -1};
+            set_ray(rays + 8 * i, o, d, 0, 1e30);
+        }
+        struct run r = {0};
+        if (!tap_ok(trace(gpu, s, rays, n, &r, &err), "GPU run: %s", err.msg)) {
+            cv_scene_destroy(&s);
+            continue;
+        }
+        uint32_t wrong_hit = 0, bad_t = 0, bad_u = 0, bad_v = 0, bad_n = 0, hits = 0;
+        double worst_v = 0, worst_n = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            const uint32_t *o = r.out + 16 * i;
+            bool hit = o[1] != 0xffffffffu;
+            double a = fabs(off[i]);
+            /* a margin of float rounding at the edge */
+            if (fabs(a - half) > 1e-5 && hit != (a < half))
+                wrong_hit++;
+            if (!hit)
+                continue;
+            hits++;
+            float t = fbits(o[0]), u = fbits(o[2]), v = fbits(o[3]);
+            if (fabs(t - 5) > 1e-5)
+                bad_t++;
+            /* u: the piece's own parameter, pieces of 1/8 (splitdepth 3) */
+            if (fabs(u - (xs[i] + 1) / 2) > 1e-4)
+                bad_u++;
+            double dv = fabs(fabs(v - 0.5) - a / (2 * half));
+            worst_v = fmax(worst_v, dv);
+            if (dv > 1e-4)
+                bad_v++;
+            double nx = fbits(o[12]), ny = fbits(o[13]), nz = fbits(o[14]), dn;
+            if (kind == 0) {
+                dn = 1 - fabs(nz);  /* faces the ray */
+            } else if (kind == 1) {
+                /* pbrt-v4's tube: turned from the flat normal by an angle
+                 * linear in the offset, 90 degrees at the edges, on the
+                 * side away from the ray (its flat normal faces away too) */
+                double ang = M_PI / 2 * off[i] / half;
+                dn = 1 - fabs(ny * sin(ang) - nz * cos(ang));
+            } else {
+                dn = 1 - fabs(ny * 0.8660254 + nz * 0.5);
+            }
+            dn = fmax(dn, fabs(nx));
+            worst_n = fmax(worst_n, dn);
+            if (dn > 1e-3)
+                bad_n++;
+        }
+        tap_ok(wrong_hit == 0 && hits > n / 2,
+               "%s: hit exactly within %.2f of the axis (%u wrong of %u, %u hits)", kinds[kind], half, wrong_hit, n,
+               hits);
+        tap_ok(bad_t == 0 && bad_u == 0, "%s: t at the axis, u along it (%u, %u off)", kinds[kind], bad_t, bad_u);
+        tap_ok(bad_v == 0, "%s: |v - 0.5| = offset / width (worst %.2g)", kinds[kind], worst_v);
+        tap_ok(bad_n == 0, "%s: normal %s (worst 1 - |cos| %.2g)", kinds[kind],
+               kind == 0 ? "faces the ray" : kind == 1 ? "of a round tube" : "the ribbon's", worst_n);
+        free(r.out);
+        free(rays);
+        free(off);
+        free(xs);
+        cv_scene_destroy(&s);
+    }
+}
+
+/* ---- conversions on the host ---- */
+static bool near3(const cv_vec4 *v, double x, double y, double z)
+{
+    return fabs(v->x - x) < 1e-5 && fabs(v->y - y) < 1e-5 && fabs(v->z - z) < 1e-5;
+}
+
+static void test_conversions(void)
+{
+    struct cv_error err = {{0}};
+    struct cv_scene *s = load("WorldBegin\nShape \"curve\" \"string basis\" \"bspline\" \"point3 P\" "
+                              "[0 0 0 3 0 0 6 6 0 9 0 0 12 0 0] \"float width0\" 1 \"float width1\" 0.5 "
+                              "\"integer splitdepth\" 1\n",
+                              &err);
+    if (tap_ok(s && s->n_curves == 4, "cubic bspline of 5 points: 2 pieces x 2 (%u)", s ? s->n_curves : 0)) {
+        const CvCurve *c = s->curves;
+        /* the first piece's Bezier points: (p0 + 4 p1 + p2) / 6, (2 p1 + p2) / 3, (p1 + 2 p2) / 3, (p1 + 4 p2 + p3) / 6 */
+        tap_ok(near3(&c[0].cp[0], 3, 1, 0) && near3(&c[0].cp[1], 4, 2, 0) && near3(&c[0].cp[2], 5, 4, 0) &&
+                   near3(&c[0].cp[3], 6, 4, 0),
+               "bspline blossomed to Bezier points");
+        tap_ok(fabs(c[0].cp[0].w - 1) < 1e-6 && fabs(c[0].cp[1].w - 0.75) < 1e-6 && fabs(c[2].cp[0].w - 0.75) < 1e-6 &&
+                   fabs(c[2].cp[1].w - 0.5) < 1e-6,
+               "widths interpolated per piece");
+        tap_ok(c[0].cp[2].w == 0 && c[0].cp[3].w == 0.5f && c[1].cp[2].w == 0.5f && c[1].cp[3].w == 1,
+               "splitdepth 1: two u ranges per piece");
+        tap_ok(near3(&c[3].cp[3], 9, 1, 0), "last piece ends at (p2 + 4 p3 + p4) / 6");
+    }
+    cv_scene_destroy(&s);
+    s = load("WorldBegin\nShape \"curve\" \"integer degree\" 2 \"point3 P\" [0 0 0 3 3 0 6 0 0 9 9 0 12 0 0]"
+             " \"integer splitdepth\" 0\n",
+             &err);
+    if (tap_ok(s && s->n_curves == 2, "quadratic Bezier of 5 points: 2 pieces (%u)", s ? s->n_curves : 0))
+        tap_ok(near3(&s->curves[0].cp[1], 2, 2, 0) && near3(&s->curves[0].cp[2], 4, 2, 0) &&
+                   near3(&s->curves[1].cp[0], 6, 0, 0),
+               "quadratic raised to cubic");
+    cv_scene_destroy(&s);
+    static const struct {
+        const char *text, *expect;
+    } bad[] = {
+        {"Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0 4 0 0]", "the degree 3 Bezier basis needs 4 + n * 3"},
+        {"Shape \"curve\" \"integer degree\" 4 \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]", "degree 4"},
+        {"Shape \"curve\" \"string basis\" \"catmull\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]", "basis \"catmull\""},
+        {"Shape \"curve\" \"string type\" \"ribbon\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]", "ribbon curves need 2 normals"},
+    };
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+        char text[512];
+        snprintf(text, sizeof(text), "WorldBegin\n%s\n", bad[i].text);
+        struct cv_error e = {{0}};
+        s = load(text, &e);
+        tap_ok(!s && strstr(e.msg, bad[i].expect) && strstr(e.msg, ":2:1: curve:"), "error: %s", e.msg);
+        cv_scene_destroy(&s);
+    }
+}
+
+int main(void)
+{
+    test_conversions();
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    test_straight(gpu);
+    test_random(gpu);
+    cv_gpu_destroy(&gpu);
+    return tap_done();
+}
