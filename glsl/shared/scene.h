@@ -56,7 +56,8 @@ CV_CHECK_SIZE(CvTriangle, 16);
  * width at u 0 and 1; cp[2].w, cp[3].w: u_min, u_max. n0, n1: ribbon
  * normals at u 0 and 1, n0.w the angle between them, n1.w 1 / its sine.
  * info.x: material word as a triangle's (material, CV_TRI_REVERSE);
- * info.y: CV_CURVE_*. */
+ * info.y: CV_CURVE_*; info.z: its ID-matte object (scene.h tri_object's
+ * numbering). */
 CV_STRUCT(CvCurve) {
     cv_vec4 cp[4];
     cv_vec4 n0;

@@ -9,6 +9,7 @@
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "../bvh/mesh_buffers.glsl"
+#include "../bvh/curves.glsl"
 
 layout(std430, binding = CV_BIND_TRI_OBJECT) readonly buffer CvMatteObjects { uint tri_object[]; };
 layout(std430, binding = CV_BIND_MATTE) buffer CvMatte { uint matte[]; };
@@ -46,8 +47,19 @@ void main()
         return;
     uint path = uint(r.o.w);
     uint base = path * CV_MATTE_STRIDE;
-    uint object = tri_object[h.prim] + 1u;
-    uint material = (cv_triangles[h.prim].idx.w & CV_TRI_MATERIAL_MASK) + 1u;
+    uint object, word;
+#ifdef CV_HAS_CURVES
+    if ((h.prim & CV_PRIM_CURVE) != 0u) {
+        uvec4 info = cv_curve_at(h.prim & ~CV_PRIM_CURVE).info;
+        object = info.z + 1u;
+        word = info.x;
+    } else
+#endif
+    {
+        object = tri_object[h.prim] + 1u;
+        word = cv_triangles[h.prim].idx.w;
+    }
+    uint material = (word & CV_TRI_MATERIAL_MASK) + 1u;
     float w = cv_path_weight(path);
     cv_matte_add(base + CV_MATTE_COVERAGE, w);
     if (cv_path_sample(path) == 0u) {

@@ -312,6 +312,14 @@ void cv_b_material_at(struct cv_builder *b, int index, const struct cv_loc *loc)
     s->material_at[index] = loc_name(loc);
 }
 
+uint32_t cv_b_add_object_at(struct cv_builder *b, const struct cv_loc *loc)
+{
+    char *at = loc_name(loc);
+    uint32_t id = cv_b_add_object(b, at);
+    free(at);
+    return id;
+}
+
 uint32_t cv_b_add_object(struct cv_builder *b, const char *name)
 {
     struct cv_scene *s = b->s;
@@ -416,9 +424,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
         s->tri_light[i] = -1;
     uint32_t object = m->object;
     if (!object) {
-        char *at = m->name ? NULL : loc_name(loc);
-        object = cv_b_add_object(b, m->name ? m->name : at) + 1;
-        free(at);
+        object = (m->name ? cv_b_add_object(b, m->name) : cv_b_add_object_at(b, loc)) + 1;
     }
     for (size_t i = nt0; i < need_t; i++)
         s->tri_object[i] = object - 1;

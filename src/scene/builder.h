@@ -146,6 +146,8 @@ uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char
 void cv_b_material_at(struct cv_builder *b, int index, const struct cv_loc *loc);
 /* A new ID-matte object (scene.h) named `name`; its id. */
 uint32_t cv_b_add_object(struct cv_builder *b, const char *name);
+/* The same, named "file:line" after the directive at loc. */
+uint32_t cv_b_add_object_at(struct cv_builder *b, const struct cv_loc *loc);
 int cv_b_add_texture(struct cv_builder *b, const CvTexture *t);
 uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power);
 /* Records a light directive (scene.h: light_sources); returns its index. */

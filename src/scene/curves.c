@@ -128,6 +128,8 @@ bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc 
     bool swaps = cv_mat4_det3(M) < 0;
     double scale = cbrt(fabs(cv_mat4_det3(M)));
     uint32_t word = mat | (b->gs.reverse != swaps ? CV_TRI_REVERSE : 0u);
+    /* one ID-matte object per Shape directive, as a triangle mesh's */
+    uint32_t object = cv_b_add_object_at(b, loc);
 
     size_t per = (size_t)1 << split, need = s->n_curves + (size_t)nseg * per;
     if (need > CV_PRIM_CURVE)
@@ -164,7 +166,7 @@ bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc 
             c.n0 = (cv_vec4){(float)n[0][0], (float)n[0][1], (float)n[0][2], (float)angle};
             c.n1 = (cv_vec4){(float)n[1][0], (float)n[1][1], (float)n[1][2], angle > 0 ? (float)(1 / sin(angle)) : 0};
         }
-        c.info = (cv_uvec4){word, ctype, 0, 0};
+        c.info = (cv_uvec4){word, ctype, object, 0};
         for (size_t k = 0; k < per; k++) {
             c.cp[2].w = (float)((double)k / per);
             c.cp[3].w = (float)((double)(k + 1) / per);

@@ -255,7 +255,7 @@ struct stage_programs {
     const char *intersect[MAX_SCENE_DEFINES + 3];
     const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 2];
     char stride[32];  /* CV_MATTE_STRIDE=N */
-    const char *matte[3];
+    const char *matte[MAX_SCENE_DEFINES + 3];
     const char *resolve[MAX_SCENE_DEFINES + 3];
     const char *straight[MAX_SCENE_DEFINES + 5];
 };
@@ -309,8 +309,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* the matte stages: the slot layout, and what the job asked for */
     uint32_t words = matte_words(p);
     snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
-    sp->matte[0] = sp->stride;
-    sp->matte[1] = p->cryptomatte ? "CV_CRYPTO" : NULL;
+    defines_plus(sp->matte, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
     defines_plus(sp->resolve, defines, nd, p->alpha ? "CV_FILM_TRANSPARENT" : NULL,
                  p->alpha ? sp->stride : NULL);
     defines_plus(sp->straight, sp->resolve, nd + (p->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
