@@ -29,8 +29,10 @@
 /* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
  * the stage-private range so no stage's own buffers displace it. */
 #define CV_BIND_BVH_TRIS 26
+/* CvMedium[]: participating media (glsl/shared/medium.h), with the scene. */
+#define CV_BIND_MEDIA 27
 
-/* 10 and above (but 26): stage-private, named below per stage. */
+/* 10 and above (but 26, 27): stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10
 
 /* ---- Path tracer (src/trace/render.c, glsl/trace; glsl/shared/trace.h
@@ -44,6 +46,9 @@
  * src/trace/envmap_dist.h), bound with the scene */
 #define CV_BIND_ENV_DIST (CV_BIND_STAGE0 + 5)
 #define CV_BIND_RESOLVED (CV_BIND_STAGE0 + 6)  /* vec4[n]: resolve output */
+/* vec4[n]: volpath's channel ratios of each path slot's path
+ * (glsl/trace/medium/track.glsl) */
+#define CV_BIND_MEDIUM_PATHS (CV_BIND_STAGE0 + 7)
 
 /* ---- Exclusive prefix scan (src/bvh/scan.c; glsl/bvh/scan_*.comp) ---- */
 #define CV_BIND_SCAN_DATA (CV_BIND_STAGE0 + 0)   /* uint[]: summed in place */

@@ -84,29 +84,45 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
 }
 
 /* The manifest's integrator, else the scene's where Cavalry has it, else
- * path: the scene's is then reported (an error with --strict). */
+ * the one that renders the same image: volpath in a scene with
+ * participating media (pbrt-v4's default, and what its bdpt and sppm
+ * converge to there), else path; the scene's is then reported (an error
+ * with --strict). pbrt-v4's path ignores media: so does Cavalry's, with a
+ * warning. */
 static bool plan_integrator(const struct cv_job *job, const struct cv_scene *scene,
                             const struct cv_plan_options *o, struct cv_render_plan *p,
                             struct cv_error *err)
 {
-    p->integrator = CV_INTEGRATOR_PATH;
+    bool media = scene->n_media > 0;
+    enum cv_integrator fallback = media ? CV_INTEGRATOR_VOLPATH : CV_INTEGRATOR_PATH;
+    const char *asked = scene->settings.integrator;
+    const char *at = scene->settings.integrator_at ? scene->settings.integrator_at
+                                                   : scene->path;
+    p->integrator = fallback;
     p->substituted = NULL;
     if (job->has_integrator) {
         p->integrator = job->integrator;
-        return true;
+    } else if (asked) {
+        int id = cv_name_find(&cv_integrator_names, asked);
+        if (id >= 0) {
+            p->integrator = (enum cv_integrator)id;
+        } else {
+            p->substituted = asked;
+            const char *with = cv_integrator_name(fallback);
+            if (o->strict)
+                return cv_fail(err, "%s: integrator \"%s\" is not supported (--strict): job "
+                                    "\"%s\" would render with \"%s\" (%s:%u:%u; set integrator "
+                                    "there)", at, asked, job->name, with, o->manifest_path,
+                               job->line, job->col);
+            cv_warn("%s: integrator \"%s\" is not supported: job \"%s\" renders with \"%s\"",
+                    at, asked, job->name, with);
+        }
     }
-    const char *asked = scene->settings.integrator;
-    if (!asked || strcmp(asked, cv_integrator_name(CV_INTEGRATOR_PATH)) == 0)
-        return true;
-    p->substituted = asked;
-    const char *at = scene->settings.integrator_at ? scene->settings.integrator_at
-                                                   : scene->path;
-    if (o->strict)
-        return cv_fail(err, "%s: integrator \"%s\" is not supported (--strict): job \"%s\" "
-                            "would render with \"path\" (%s:%u:%u; set integrator there)",
-                       at, asked, job->name, o->manifest_path, job->line, job->col);
-    cv_warn("%s: integrator \"%s\" is not supported: job \"%s\" renders with \"path\"", at,
-            asked, job->name);
+    if (media && p->integrator != CV_INTEGRATOR_VOLPATH)
+        cv_warn("%s: the scene has participating media, which integrator \"%s\" ignores (as "
+                "pbrt-v4's path does): job \"%s\"; use \"volpath\" to render them",
+                job->has_integrator ? o->manifest_path : at,
+                cv_integrator_name(p->integrator), job->name);
     return true;
 }
 

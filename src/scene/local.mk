@@ -14,6 +14,7 @@ libcavalry_a_SOURCES += \
 	src/scene/exr_image.cpp src/scene/exr_image.h \
 	src/scene/texture.c \
 	src/scene/lights.c \
+	src/scene/media.c \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
 	src/scene/filter.c src/scene/filter.h \

@@ -22,6 +22,7 @@ static void scene_free(struct cv_scene *s)
     free(s->textures);
     free(s->texels);
     free(s->lights);
+    free(s->media);
     free(s->light_power);
     free(s->settings.integrator);
     free(s->settings.integrator_at);

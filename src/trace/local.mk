@@ -35,3 +35,8 @@ GLSL_FILES += glsl/shared/rlpath.h \
 	glsl/trace/rlpath/test_sample.comp \
 	glsl/trace/rlpath/rebuild.comp
 # --- end of rlpath ---
+
+# --- participating media (volpath) ---
+GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
+	glsl/trace/medium/vertex.glsl
+# --- end of participating media ---

@@ -73,6 +73,8 @@ struct cv_renderer {
     uint64_t iterations;           /* over all passes, for the counters */
     CvPassParams pass;
     GLuint ubo, queues, rays, hits, shadow, film;
+    GLuint medium_paths;           /* volpath's channel ratios per path slot (0: no media) */
+    bool media;                    /* the stages track media (CV_MEDIA) */
     struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
@@ -323,9 +325,16 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
      * one (bvh/bvh.h) */
     if (cv_bvh_stack_define(r->scene->bvh))
         defines[nd++] = cv_bvh_stack_define(r->scene->bvh);
-    defines[nd] = NULL;
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
+    /* media are tracked by an integrator that renders them, in a scene
+     * that has them; camera rays start in the camera's medium */
+    if (ops->media && r->scene->has_media) {
+        r->media = true;
+        defines[nd++] = "CV_MEDIA";
+        r->pass.camera_medium = scene->camera_medium;
+    }
+    defines[nd] = NULL;
     /* Misses need an escaped stage for an environment light or where the
      * integrator asks for it; otherwise the intersect stage starts their
      * pixels' next samples itself (intersect.comp). */
@@ -393,6 +402,14 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
     r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
+    if (r->media && ok) {
+        /* starts cleared: no slot's ratios belong to a path yet (track.glsl) */
+        float *zero = cv_xcalloc(n, 4 * sizeof(float));
+        r->medium_paths = make(gpu, n * 4 * sizeof(float), "trace medium paths", &ok, err);
+        if (ok)
+            glNamedBufferSubData(r->medium_paths, 0, (GLsizeiptr)(n * 4 * sizeof(float)), zero);
+        free(zero);
+    }
     if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){
                                                       .size = (size_t)r->n_pixels * 4 * sizeof(float),
                                                       .storable = true, .host_readable = true,
@@ -424,6 +441,8 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->hits, CV_BIND_HITS);
     cv_buffer_bind(r->shadow, CV_BIND_SHADOW);
     cv_buffer_bind(r->film, CV_BIND_FILM);
+    if (r->medium_paths)
+        cv_buffer_bind(r->medium_paths, CV_BIND_MEDIUM_PATHS);
     cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
     if (r->ops->bind)
@@ -645,7 +664,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     cv_gpu_timer_destroy(&r->stages);
     cv_gpu_timer_destroy(&r->passes);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
-                      &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts};
+                      &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts, &r->medium_paths};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);

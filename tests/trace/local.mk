@@ -71,3 +71,9 @@ tests_trace_oracle_test_LDADD = $(CV_LIBS)
 # scenes (nee_test's too), their pbrt-v4 references and the generator
 EXTRA_DIST += tests/data/trace/oracle
 # --- end of oracle tests ---
+# --- participating media (volpath; glsl/trace/medium) ---
+check_PROGRAMS += tests/trace/medium_furnace_test
+TESTS += tests/trace/medium_furnace_test
+tests_trace_medium_furnace_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
+# --- end of participating media ---
