@@ -38,5 +38,5 @@ GLSL_FILES += glsl/shared/rlpath.h \
 
 # --- participating media (volpath) ---
 GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
-	glsl/trace/medium/vertex.glsl
+	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp
 # --- end of participating media ---

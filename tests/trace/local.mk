@@ -75,5 +75,8 @@ EXTRA_DIST += tests/data/trace/oracle
 check_PROGRAMS += tests/trace/medium_furnace_test
 TESTS += tests/trace/medium_furnace_test
 tests_trace_medium_furnace_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/trace/medium_phase_test
+TESTS += tests/trace/medium_phase_test
+tests_trace_medium_phase_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 # --- end of participating media ---
