@@ -10,6 +10,9 @@
  *   pixel, the transmittance exp(-sigma_a L) along each camera ray's chord
  *   L through the cube (averaged over the pixel here, exactly): the
  *   tracking's weights are the medium's transmittance, per channel;
+ * - emission: the same cube emitting Le (Lescale 0.5) in an environment of
+ *   0.5 reads 0.5 T + Le (1 - T) per channel (pbrt-v4's emission at
+ *   collisions, sigma_a Le per unit length);
  * - the path integrator ignores media as pbrt-v4's does: both scenes read
  *   1 everywhere with it (the boundaries are invisible).
  * Each channel's image mean must lie within 4 standard errors (from the
@@ -83,6 +86,26 @@ static void cube_exact(double *img)
         }
 }
 
+/* text with the first `from` replaced by `to`; newly allocated. */
+static char *replace(const char *text, const char *from, const char *to)
+{
+    const char *at = strstr(text, from);
+    if (!at)
+        return cv_xstrdup(text);
+    return cv_xasprintf("%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+}
+
+/* The emitting cube: cube_scene in a dimmer environment, its medium
+ * emitting. */
+static char *emitting_cube(void)
+{
+    char *t = replace(cube_scene, "\"rgb L\" [ 1 1 1 ]", "\"rgb L\" [ 0.5 0.5 0.5 ]");
+    char *out = replace(t, "\"float scale\" [ 2 ]",
+                        "\"float scale\" [ 2 ] \"rgb Le\" [ 2 4 1 ] \"float Lescale\" [ 0.5 ]");
+    free(t);
+    return out;
+}
+
 /* Renders s with integrator integ and checks each channel's mean against
  * exact (3 per pixel; NULL: 1 everywhere). */
 static void check(struct cv_gpu *gpu, const struct cv_scene *s, enum cv_integrator integ,
@@ -140,8 +163,18 @@ int main(void)
         cube_exact(exact);
         check(gpu, s, CV_INTEGRATOR_VOLPATH, "absorbing cube, volpath", exact, 256);
         check(gpu, s, CV_INTEGRATOR_PATH, "absorbing cube, path (media ignored)", NULL, 16);
-        free(exact);
         cv_scene_destroy(&s);
+        char *text = emitting_cube();
+        if (tap_ok(cv_scene_load_string("emit.pbrt", text, strlen(text), &lp, &s, &err),
+                   "load the emitting cube: %s", err.msg)) {
+            const double Le[3] = {1, 2, 0.5};
+            for (int i = 0; i < RES * RES * 3; i++)
+                exact[i] = 0.5 * exact[i] + Le[i % 3] * (1 - exact[i]);
+            check(gpu, s, CV_INTEGRATOR_VOLPATH, "emitting cube, volpath", exact, 256);
+            cv_scene_destroy(&s);
+        }
+        free(text);
+        free(exact);
     }
     cv_gpu_destroy(&gpu);
     return tap_done();
