@@ -83,19 +83,28 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
     return true;
 }
 
+/* pbrt-v4's integrators that render participating media, beside volpath
+ * (cpu/render.cpp warns for the others, which ignore media). */
+static const char *const media_integrators[] = {"simplevolpath", "bdpt", "mlt"};
+
 /* The manifest's integrator, else the scene's where Cavalry has it, else
- * the one that renders the same image: volpath in a scene with
- * participating media (pbrt-v4's default, and what its bdpt and sppm
- * converge to there), else path; the scene's is then reported (an error
- * with --strict). pbrt-v4's path ignores media: so does Cavalry's, with a
- * warning. */
+ * the one that renders the same image: volpath where the scene has
+ * participating media and pbrt-v4's integrator renders them (volpath is
+ * also pbrt-v4's default), else path; the scene's is then reported (an
+ * error with --strict). Integrators that ignore media (path, rlpath, and
+ * of pbrt-v4's sppm and the rest) render without them, with a warning, as
+ * pbrt-v4 does. */
 static bool plan_integrator(const struct cv_job *job, const struct cv_scene *scene,
                             const struct cv_plan_options *o, struct cv_render_plan *p,
                             struct cv_error *err)
 {
     bool media = scene->n_media > 0;
-    enum cv_integrator fallback = media ? CV_INTEGRATOR_VOLPATH : CV_INTEGRATOR_PATH;
     const char *asked = scene->settings.integrator;
+    bool renders_media = !asked;
+    for (size_t i = 0; asked && i < CV_ARRAY_SIZE(media_integrators); i++)
+        renders_media |= strcmp(asked, media_integrators[i]) == 0;
+    enum cv_integrator fallback =
+        media && renders_media ? CV_INTEGRATOR_VOLPATH : CV_INTEGRATOR_PATH;
     const char *at = scene->settings.integrator_at ? scene->settings.integrator_at
                                                    : scene->path;
     p->integrator = fallback;
