@@ -36,8 +36,11 @@
  * bound only where the scene has curves (CV_HAS_CURVES); above the
  * stage-private range */
 #define CV_BIND_CURVES 28
+/* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
+ * above the stage-private range */
+#define CV_BIND_MEDIA 29
 
-/* 10 and above (but 26): stage-private, named below per stage. */
+/* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10
 
 /* ---- Path tracer (src/trace/render.c, glsl/trace; glsl/shared/trace.h
@@ -54,6 +57,9 @@
 /* uint[n * CV_MATTE_WORDS]: coverage and ID mattes per path slot
  * (glsl/shared/trace.h), only with alpha or ID AOVs */
 #define CV_BIND_MATTE (CV_BIND_STAGE0 + 7)
+/* vec4[n]: volpath's channel ratios of each path slot's path
+ * (glsl/trace/medium/track.glsl) */
+#define CV_BIND_MEDIUM_PATHS (CV_BIND_STAGE0 + 8)
 
 /* ---- Exclusive prefix scan (src/bvh/scan.c; glsl/bvh/scan_*.comp) ---- */
 #define CV_BIND_SCAN_DATA (CV_BIND_STAGE0 + 0)   /* uint[]: summed in place */

@@ -172,7 +172,7 @@ CV_STRUCT(CvMaterial) {
     CV_INT amount_tex;        /* mix amount (probability of mix_b) */
     CV_FLOAT amount;
     CV_INT eta_tex;           /* spectrally constant eta as float texture, rarely used */
-    CV_UINT pad;
+    CV_UINT media;            /* the surface's MediumInterface (glsl/shared/medium.h) */
 } CV_END(CvMaterial)
 CV_CHECK_SIZE(CvMaterial, 160);
 

@@ -94,11 +94,16 @@ CV_STRUCT(CvTraceQueues) {
 CV_CHECK_SIZE(CvTraceQueues, 160);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
- * and the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT. */
+ * the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT (11
+ * bits: max_depth is at most 1024), and from bit CV_RAYF_MEDIUM_SHIFT the
+ * medium the ray travels in (glsl/shared/medium.h; 0 outside volpath), all
+ * below 2^24 so the float holds them exactly. */
 #define CV_RAYF_SPECULAR 1u        /* the last bounce was specular (no MIS on emission) */
 #define CV_RAYF_ALBEDO_DONE 2u     /* the albedo AOV has been written for this sample */
 #define CV_RAYF_MASK 255u
 #define CV_RAYF_DEPTH_SHIFT 8u
+#define CV_RAYF_DEPTH_MASK 2047u
+#define CV_RAYF_MEDIUM_SHIFT 19u
 
 /* A path's next ray. o.w: its path slot (a float holding the integer:
  * exact below 2^24, which the host enforces; integer bit patterns would be
@@ -113,7 +118,9 @@ CV_STRUCT(CvRayItem) {
 CV_CHECK_SIZE(CvRayItem, 48);
 
 /* A closest hit: ray indexes the input ray queue; b1, b2 barycentrics of
- * vertices 1 and 2; t along the unit ray direction. */
+ * vertices 1 and 2; t along the unit ray direction. prim CV_HIT_MEDIUM: a
+ * scattering event in the ray's medium at t (volpath; trace/medium). */
+#define CV_HIT_MEDIUM 0xffffffffu
 CV_STRUCT(CvHitItem) {
     CV_UINT ray;
     CV_UINT prim;
@@ -130,13 +137,16 @@ CV_CHECK_SIZE(CvHitItem, 32);
  * L.rgb: the contribution (MIS-weighted, divided by the light pdf) added to
  * the slot's film entry when unoccluded; L.w: in a scene with alpha
  * cut-outs, the sample index of the path that sent it, for the alpha tests
- * (CvFilmPixel.normal.w has moved on when that path ended). */
+ * (CvFilmPixel.normal.w has moved on when that path ended). m.x: the
+ * medium the ray starts in (volpath: the contribution is multiplied by the
+ * transmittance along it, trace/shadow.comp); m.yzw unused. */
 CV_STRUCT(CvShadowItem) {
     cv_vec4 o;
     cv_vec4 d;
     cv_vec4 L;
+    cv_vec4 m;
 } CV_END(CvShadowItem)
-CV_CHECK_SIZE(CvShadowItem, 48);
+CV_CHECK_SIZE(CvShadowItem, 64);
 
 /* A path slot's sums over its samples (a pixel's are the sum of its K
  * slots'), each sample weighted by its filter weight w (+1 or -1:
@@ -212,7 +222,7 @@ CV_STRUCT(CvPassParams) {
     CV_UINT n_paths;       /* path slots (the queues' capacity) */
     CV_UINT paths_per_pixel;   /* slots per pixel (K) */
     CV_UINT camera_rays;   /* camera rays the pass's generate stage writes */
-    CV_UINT pad;
+    CV_UINT camera_medium; /* the medium camera rays start in (glsl/shared/medium.h) */
     /* The camera's motion (src/trace/camera_motion.h), pbrt-v4's
      * AnimatedTransform of camera to world: each end's transform split
      * into translation T, rotation R (a unit quaternion x, y, z, w; R[1]

@@ -25,8 +25,14 @@ uint cv_capacity() { return u_pass.n_paths; }
 
 // A ray's bits (CV_RAYF_*) and depth, both kept in beta.w (see trace.h).
 uint cv_ray_flags(CvRayItem r) { return uint(r.beta.w) & CV_RAYF_MASK; }
-uint cv_ray_depth(CvRayItem r) { return uint(r.beta.w) >> CV_RAYF_DEPTH_SHIFT; }
+uint cv_ray_depth(CvRayItem r) { return (uint(r.beta.w) >> CV_RAYF_DEPTH_SHIFT) & CV_RAYF_DEPTH_MASK; }
+uint cv_ray_medium(CvRayItem r) { return uint(r.beta.w) >> CV_RAYF_MEDIUM_SHIFT; }
 float cv_ray_meta(uint flags, uint depth) { return float(flags | (depth << CV_RAYF_DEPTH_SHIFT)); }
+// the same for a ray in medium `medium` (glsl/shared/medium.h)
+float cv_ray_meta_in(uint flags, uint depth, uint medium)
+{
+    return float(flags | (depth << CV_RAYF_DEPTH_SHIFT) | (medium << CV_RAYF_MEDIUM_SHIFT));
+}
 
 // The sample index of the path in flight in slot `path`, and its filter
 // weight (trace.h: CvFilmPixel.normal.w).
@@ -45,6 +51,9 @@ uint cv_film_pixel(uint i)
 
 // The iteration's input rays and the rays it writes (see trace.h).
 CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }
+// volpath's intersect stage updates an input ray's throughput and medium
+// (medium/track.glsl) for the stages after it.
+void cv_ray_in_beta(uint i, vec4 beta) { rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i].beta = beta; }
 void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_iteration() & 1u) * cv_capacity() + slot] = r; }
 // The shade stage's i-th hit: with CV_SHADE_BIN 0 or 1, of that bin alone;
 // else the first bin from the front of the hit queue, then the second from

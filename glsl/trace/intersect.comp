@@ -10,7 +10,10 @@
 // stays out of this kernel: with it, the kernel would use more storage
 // blocks than Mesa allows (17 of 16). Alpha cut-outs are handled here by
 // continuing the ray past a surface whose alpha test lets it through, so
-// the depth does not change. The last group to finish prepares the shade
+// the depth does not change. Under volpath (CV_MEDIA) the ray is tracked
+// through the media on its way (medium/track.glsl): a collision in a
+// medium is queued as a hit of its own (CV_HIT_MEDIUM) for the shade
+// stage's medium vertex. The last group to finish prepares the shade
 // stage's dispatch (queue_args.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
@@ -22,6 +25,10 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "queue_args.glsl"
 #ifndef CV_ESCAPED_QUEUE
 #include "regenerate.glsl"
+#endif
+#ifdef CV_MEDIA
+#include "medium/medium.glsl"
+#include "medium/track.glsl"
 #endif
 
 void main()
@@ -36,8 +43,13 @@ void main()
     h.b2 = 0.0;
     bool regen = false;    // a miss's slot starts its next sample: nr
     CvRayItem nr;
+    bool event = false;    // a collision in a medium (CV_MEDIA)
     if (valid) {
         CvRayItem r = cv_ray_in(i);
+#ifdef CV_MEDIA
+        hit = cv_medium_track(r, h, event) || event;  // an event is queued as a hit
+        cv_ray_in_beta(i, r.beta);
+#else
         float tmin = 0.0;
 #ifndef CV_EMPTY_SCENE
         hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
@@ -58,6 +70,7 @@ void main()
             hit = cv_trace_closest(r.o.xyz, r.d.xyz, tmin, 1e30, h);
         }
 #endif
+#endif
 #ifndef CV_ESCAPED_QUEUE
         if (!hit)
             regen = cv_regenerate(uint(r.o.w), nr);
@@ -76,7 +89,8 @@ void main()
     // everything else, written from the queue's end.
     bool bin_b = false;
     if (valid && hit)
-        bin_b = materials[cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
+        bin_b = event ||
+                materials[cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
     uvec3 s3 = cv_queue_slots3(bvec3(valid && hit && !bin_b, valid && hit && bin_b, miss_push),
                                uvec3(CV_Q_HITS, CV_Q_HITS_B, miss_queue));
     uvec2 slot = uvec2(bin_b ? cv_capacity() - 1u - s3.y : s3.x, s3.z);

@@ -8,6 +8,8 @@
 #include "bsdf/material_buffers.glsl"
 // outside the #if: the loader includes a file once, and light.glsl needs it
 #include "../lib/constants.glsl"
+// likewise for medium/medium.glsl (volpath's phase sampling)
+#include "../lib/frame.glsl"
 #include "bsdf/texture.glsl"
 #ifdef CV_BSDF_BASIC
 #include "bsdf_basic.glsl"

@@ -47,6 +47,13 @@ void main()
         return;
     uint path = uint(r.o.w);
     uint base = path * CV_MATTE_STRIDE;
+    float w = cv_path_weight(path);
+    if (h.prim == CV_HIT_MEDIUM) {
+        // scattered in a medium before any surface: covered (not the
+        // background), by no object or material
+        cv_matte_add(base + CV_MATTE_COVERAGE, w);
+        return;
+    }
     uint object, word;
 #ifdef CV_HAS_CURVES
     if ((h.prim & CV_PRIM_CURVE) != 0u) {
@@ -60,7 +67,6 @@ void main()
         word = cv_triangles[h.prim].idx.w;
     }
     uint material = (word & CV_TRI_MATERIAL_MASK) + 1u;
-    float w = cv_path_weight(path);
     cv_matte_add(base + CV_MATTE_COVERAGE, w);
     if (cv_path_sample(path) == 0u) {
         matte[base + CV_MATTE_OBJECT_ID] = object;

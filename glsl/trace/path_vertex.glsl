@@ -25,7 +25,9 @@
 //       delta lobe was chosen; false ends the path
 // The strategy only decides directions and densities; throughput, MIS,
 // roulette and the queued rays stay here, so the integrators' images differ
-// only by their sampling. Include after surface_inputs.glsl.
+// only by their sampling. Under volpath (CV_MEDIA) the shadow ray and the
+// bounce ray carry the medium on their side of the surface (its
+// MediumInterface, medium/medium.glsl). Include after surface_inputs.glsl.
 #ifndef CV_TRACE_PATH_VERTEX_GLSL
 #define CV_TRACE_PATH_VERTEX_GLSL
 
@@ -49,6 +51,21 @@ vec3 cv_light_sample_point(CvSurface sf, CvBsdf b, vec3 wo, uint prim)
     }
 #endif
     return sf.p;
+}
+
+#ifdef CV_MEDIA
+#include "medium/medium.glsl"
+#endif
+
+// The medium of a ray leaving surface sf in direction w, from a path in
+// medium `medium` (0 without CV_MEDIA).
+uint cv_path_medium_after(CvSurface sf, vec3 w, uint medium)
+{
+#ifdef CV_MEDIA
+    return cv_medium_across(sf.material, sf.ng, w, medium);
+#else
+    return 0u;
+#endif
 }
 
 // Shades hit h of ray r with strategy g; what it queues comes back in the
@@ -118,6 +135,7 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
                                ls.dist * (1.0 - 1e-4));
                     s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
+                    s.m = vec4(float(cv_path_medium_after(sf, ls.wi, cv_ray_medium(r))), 0.0, 0.0, 0.0);
                 }
             }
         }
@@ -146,7 +164,8 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     push_ray = true;
     nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
-    nr.beta = vec4(beta, cv_ray_meta(flags, depth + 1u));
+    nr.beta = vec4(beta, cv_ray_meta_in(flags, depth + 1u,
+                                        cv_path_medium_after(sf, bs.wi, cv_ray_medium(r))));
 }
 
 #endif

@@ -36,7 +36,7 @@ CvRayItem cv_camera_sample(uint path, uint sample_index)
     CvRayItem r;
     r.o = vec4(o, float(path));
     r.d = vec4(d, 0.0);
-    r.beta = vec4(1.0, 1.0, 1.0, cv_ray_meta(0u, 0u));
+    r.beta = vec4(1.0, 1.0, 1.0, cv_ray_meta_in(0u, 0u, u_pass.camera_medium));
     film[path].L.w += w;
     film[path].normal.w = w * (float(sample_index) + 1.0);
     return r;

@@ -5,12 +5,18 @@
 // with slots taken in uniform control flow. The last group to finish (of
 // both bins' programs, which the path integrator runs side by side)
 // prepares the shadow stage and the next iteration (queue_args.glsl).
+// Under volpath (CV_MEDIA), a collision in a medium (CV_HIT_MEDIUM, in the
+// second bin) is a medium vertex (medium/vertex.glsl) instead.
 // Include last.
 #ifndef CV_TRACE_SHADE_QUEUE_GLSL
 #define CV_TRACE_SHADE_QUEUE_GLSL
 
 #include "queue_args.glsl"
 #include "regenerate.glsl"
+#ifdef CV_MEDIA
+#include "medium/medium.glsl"
+#include "medium/vertex.glsl"
+#endif
 
 // Work groups of the shade stage, over both bins' dispatches.
 uint cv_shade_groups()
@@ -31,6 +37,12 @@ void main()
     CvRayItem nr;
     if (valid) {
         uint slot_in = cv_hit_slot(i);
+#ifdef CV_MEDIA
+        CvHitItem hm = hits[slot_in];
+        if (hm.prim == CV_HIT_MEDIUM)
+            cv_medium_vertex(hm, cv_ray_in(hm.ray), push_shadow, s, push_ray, nr);
+        else
+#endif
         cv_shade(slot_in, push_shadow, s, push_ray, nr);
         uint path = uint(cv_ray_in(hits[slot_in].ray).o.w);
 #ifdef CV_HAS_ALPHA

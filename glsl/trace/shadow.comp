@@ -1,7 +1,10 @@
 #version 450
 // glsl/trace/shadow.comp: next-event shadow rays; an unoccluded one adds its
 // contribution to its path slot's film entry. With alpha cut-outs in the
-// scene, occluders that the alpha test lets through are skipped.
+// scene, occluders that the alpha test lets through are skipped. Under
+// volpath (CV_MEDIA) the contribution is multiplied by the transmittance
+// along the ray, through the medium boundaries ("interface" surfaces) on
+// its way, as pbrt-v4's TraceTransmittance.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -9,6 +12,48 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "tracing.glsl"
 #include "geometry.glsl"
 #include "materials.glsl"
+#ifdef CV_MEDIA
+#include "medium/medium.glsl"
+
+// Shadow ray s of path slot `path` through media: its contribution times
+// the transmittance, unless a surface other than a boundary or a cut-out
+// that lets it through is in the way.
+void cv_shadow_media(CvShadowItem s, uint path)
+{
+    uint medium = uint(s.m.x);
+    vec3 T = vec3(1.0);
+    float tmin = 0.0, seg0 = 0.0;
+    CvHit h;
+    for (uint k = 0u; k < 64u; k++) {
+        bool hit = false;
+#ifndef CV_EMPTY_SCENE
+        hit = cv_trace_closest(s.o.xyz, s.d.xyz, tmin, s.o.w, h);
+#endif
+        if (medium != 0u)
+            T *= cv_medium_transmittance(medium, (hit ? h.t : s.o.w) - seg0);
+        if (!hit) {
+            cv_film_add(path, s.L.rgb * T);
+            return;
+        }
+#ifdef CV_HAS_ALPHA
+        uint material = cv_triangles[h.prim].idx.w & CV_TRI_MATERIAL_MASK;
+        CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
+        float u = cv_u32_to_unit(
+            cv_hash4(cv_film_pixel(cv_path_pixel(path)), uint(s.L.w), h.prim, 0x5bd1e995u + k));
+        if (!cv_material_alpha_pass(material, sf.uv, u))
+            return;
+        if (materials[material].type == CV_MAT_INTERFACE)
+            medium = cv_medium_across(material, sf.ng, s.d.xyz, medium);
+#else
+        return;
+#endif
+        if (cv_max3(T) <= 0.0)
+            return;
+        seg0 = h.t;
+        tmin = h.t * (1.0 + 1e-5) + 1e-6;
+    }
+}
+#endif
 
 void main()
 {
@@ -17,7 +62,9 @@ void main()
         return;
     CvShadowItem s = shadows[i];
     uint path = uint(s.d.w);
-#ifdef CV_HAS_ALPHA
+#ifdef CV_MEDIA
+    cv_shadow_media(s, path);
+#elif defined(CV_HAS_ALPHA)
     float tmin = 0.0;
     CvHit h;
     for (uint k = 0u; k < 64u; k++) {

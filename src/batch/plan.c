@@ -83,30 +83,55 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
     return true;
 }
 
+/* pbrt-v4's integrators that render participating media, beside volpath
+ * (cpu/render.cpp warns for the others, which ignore media). */
+static const char *const media_integrators[] = {"simplevolpath", "bdpt", "mlt"};
+
 /* The manifest's integrator, else the scene's where Cavalry has it, else
- * path: the scene's is then reported (an error with --strict). */
+ * the one that renders the same image: volpath where the scene has
+ * participating media and pbrt-v4's integrator renders them (volpath is
+ * also pbrt-v4's default), else path; the scene's is then reported (an
+ * error with --strict). Integrators that ignore media (path, rlpath, and
+ * of pbrt-v4's sppm and the rest) render without them, with a warning, as
+ * pbrt-v4 does. */
 static bool plan_integrator(const struct cv_job *job, const struct cv_scene *scene,
                             const struct cv_plan_options *o, struct cv_render_plan *p,
                             struct cv_error *err)
 {
-    p->integrator = CV_INTEGRATOR_PATH;
+    bool media = scene->n_media > 0;
+    const char *asked = scene->settings.integrator;
+    bool renders_media = !asked;
+    for (size_t i = 0; asked && i < CV_ARRAY_SIZE(media_integrators); i++)
+        renders_media |= strcmp(asked, media_integrators[i]) == 0;
+    enum cv_integrator fallback =
+        media && renders_media ? CV_INTEGRATOR_VOLPATH : CV_INTEGRATOR_PATH;
+    const char *at = scene->settings.integrator_at ? scene->settings.integrator_at
+                                                   : scene->path;
+    p->integrator = fallback;
     p->substituted = NULL;
     if (job->has_integrator) {
         p->integrator = job->integrator;
-        return true;
+    } else if (asked) {
+        int id = cv_name_find(&cv_integrator_names, asked);
+        if (id >= 0) {
+            p->integrator = (enum cv_integrator)id;
+        } else {
+            p->substituted = asked;
+            const char *with = cv_integrator_name(fallback);
+            if (o->strict)
+                return cv_fail(err, "%s: integrator \"%s\" is not supported (--strict): job "
+                                    "\"%s\" would render with \"%s\" (%s:%u:%u; set integrator "
+                                    "there)", at, asked, job->name, with, o->manifest_path,
+                               job->line, job->col);
+            cv_warn("%s: integrator \"%s\" is not supported: job \"%s\" renders with \"%s\"",
+                    at, asked, job->name, with);
+        }
     }
-    const char *asked = scene->settings.integrator;
-    if (!asked || strcmp(asked, cv_integrator_name(CV_INTEGRATOR_PATH)) == 0)
-        return true;
-    p->substituted = asked;
-    const char *at = scene->settings.integrator_at ? scene->settings.integrator_at
-                                                   : scene->path;
-    if (o->strict)
-        return cv_fail(err, "%s: integrator \"%s\" is not supported (--strict): job \"%s\" "
-                            "would render with \"path\" (%s:%u:%u; set integrator there)",
-                       at, asked, job->name, o->manifest_path, job->line, job->col);
-    cv_warn("%s: integrator \"%s\" is not supported: job \"%s\" renders with \"path\"", at,
-            asked, job->name);
+    if (media && p->integrator != CV_INTEGRATOR_VOLPATH)
+        cv_warn("%s: the scene has participating media, which integrator \"%s\" ignores (as "
+                "pbrt-v4's path does): job \"%s\"; use \"volpath\" to render them",
+                job->has_integrator ? o->manifest_path : at,
+                cv_integrator_name(p->integrator), job->name);
     return true;
 }
 

@@ -103,9 +103,8 @@ void cv_b_free(struct cv_builder *b)
     free_named(b->float_tex, b->n_float_tex);
     free_named(b->spec_tex, b->n_spec_tex);
     free_named(b->images, b->n_images);
-    for (size_t i = 0; i < b->n_media; i++)
-        free(b->media[i]);
-    free(b->media);
+    free_named(b->media_named, b->n_media_named);
+    free(b->media_copies);
     for (size_t i = 0; i < b->n_coordsys; i++)
         free(b->coordsys[i].name);
     free(b->coordsys);
@@ -340,7 +339,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
     if (nv0 + m->n_verts > 0xffffffffu || nt0 + m->n_tris > 0xffffffffu)
         return cv_fail(err, "%s:%d:%d: scene exceeds 2^32 vertices or triangles", loc->file,
                        loc->line, loc->col);
-    uint32_t mat = current_material(b);
+    uint32_t mat = cv_b_material_in_media(b, current_material(b));
     if (mat > CV_TRI_MATERIAL_MASK)
         return cv_fail(err, "%s:%d:%d: more than 2^24 materials", loc->file, loc->line, loc->col);
 

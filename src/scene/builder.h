@@ -41,6 +41,12 @@ struct cv_gstate {
      * camera moves (a differing ctm_end elsewhere warns). */
     struct cv_mat4 ctm_end;
     unsigned active;     /* CV_XFORM_START | CV_XFORM_END */
+    int medium_inside, medium_outside; /* MediumInterface: media numbers, 0 vacuum */
+};
+
+/* A material copied for a MediumInterface (media.c). */
+struct cv_media_copy {
+    uint32_t base, word, copy;
 };
 #define CV_XFORM_START 1u
 #define CV_XFORM_END 2u
@@ -91,8 +97,10 @@ struct cv_builder {
     size_t n_materials_named, cap_materials_named;
     struct cv_named *float_tex, *spec_tex;
     size_t n_float_tex, cap_float_tex, n_spec_tex, cap_spec_tex;
-    char **media;
-    size_t n_media, cap_media;
+    struct cv_named *media_named;  /* name -> medium number (media.c) */
+    size_t n_media_named, cap_media_named, cap_media;
+    struct cv_media_copy *media_copies;
+    size_t n_media_copies, cap_media_copies;
     struct cv_coordsys *coordsys;
     size_t n_coordsys, cap_coordsys;
     struct cv_object *objects;
@@ -189,6 +197,14 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
                 const struct cv_loc *loc, const char *dir, struct cv_error *err); /* lights.c */
 bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *ps,
                      const struct cv_loc *loc, const char *dir, struct cv_error *err);
+bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
+                 const struct cv_loc *loc, const char *dir, struct cv_error *err); /* media.c */
+/* MediumInterface inside outside ("" is vacuum) into the graphics state. */
+bool cv_b_medium_interface(struct cv_builder *b, const char *inside, const char *outside,
+                           const struct cv_loc *loc, struct cv_error *err);
+/* material, or its copy carrying the current MediumInterface when that
+ * separates two media. */
+uint32_t cv_b_material_in_media(struct cv_builder *b, uint32_t material);
 bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
                  const struct cv_loc *loc, struct cv_error *err);                /* camera.c */
 bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,

@@ -22,6 +22,8 @@ bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
     b->camera_to_world = inv;
     b->camera_to_world_end = inv_end;
     b->camera_set = true;
+    /* pbrt-v4: the camera sits in the outside medium current here */
+    b->s->camera_medium = (uint32_t)b->gs.medium_outside;
     size_t i;
     for (i = 0; i < b->n_coordsys; i++)
         if (strcmp(b->coordsys[i].name, "camera") == 0)

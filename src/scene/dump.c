@@ -126,8 +126,22 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
                 m->reflectance_tex, m->specular_tex, m->roughness_u_tex, m->roughness_v_tex,
                 m->displacement_tex, m->normal_tex, m->alpha_tex, m->eta_tex, m->alpha, m->mix_a,
                 m->mix_b, m->amount, m->amount_tex);
+        if (m->media)
+            fprintf(o, "    media inside %u outside %u\n", m->media & 255u, (m->media >> 8) & 255u);
     }
     free(uses);
+    /* media only where the scene has them: other scenes' dumps stay as they were */
+    if (s->n_media) {
+        fprintf(o, "media %u camera %u\n", s->n_media - 1, s->camera_medium);
+        for (uint32_t i = 1; i < s->n_media; i++) {
+            const CvMedium *m = &s->media[i];
+            fprintf(o, "  medium %u %s", i, m->type == CV_MEDIUM_HOMOGENEOUS ? "homogeneous" : "vacuum");
+            v4(o, "sigma_a", m->sigma_a);
+            v4(o, "sigma_s", m->sigma_s);
+            v4(o, "Le", m->Le);
+            fprintf(o, "\n");
+        }
+    }
     fprintf(o, "textures %u texels %llu\n", s->n_textures, (unsigned long long)s->n_texels);
     for (uint32_t i = 0; i < s->n_textures; i++) {
         const CvTexture *t = &s->textures[i];

@@ -17,6 +17,7 @@ libcavalry_a_SOURCES += \
 	src/scene/lights.c \
 	src/scene/relight.c src/scene/relight.h \
 	src/scene/env_file.c src/scene/env_file.h \
+	src/scene/media.c \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
 	src/scene/filter.c src/scene/filter.h \

@@ -761,19 +761,21 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (!typed(p, d, &name, &ps, err))
             goto fail;
         attrs_apply(p, "medium", &ps);
-        for (size_t i = 0; i < ps.n; i++)
-            ps.v[i].used = true;
-        CV_PUSH(b->media, b->n_media, b->cap_media, cv_xstrdup(name));
-        ok = cv_b_warn(b, err, &loc, "medium \"%s\" parsed; participating media are not rendered", name);
+        dir = dir_of(p, d);
+        ok = cv_b_medium(b, name, &ps, &loc, dir, err) &&
+             cv_b_check_unused(b, &ps, "MakeNamedMedium", err);
     } else if (IS(MediumInterface)) {
-        /* one or two names: inside [outside] */
+        /* one or two names: inside [outside]; one name is both */
         if (!expect_string(p, d, &name, err))
             return false;
         struct cv_token t;
         if (!peek(p, &t, err))
             goto fail;
-        if (t.kind == CV_TOK_STRING)
-            next(p, &t, err);
+        char *outside = NULL;
+        if (t.kind == CV_TOK_STRING && !expect_string(p, d, &outside, err))
+            goto fail;
+        ok = cv_b_medium_interface(b, name, outside ? outside : name, &loc, err);
+        free(outside);
     } else if (IS(ObjectBegin)) {
         if (!expect_string(p, d, &name, err))
             return false;

@@ -30,6 +30,7 @@ static void scene_free(struct cv_scene *s)
     free(s->textures);
     free(s->texels);
     free(s->lights);
+    free(s->media);
     free(s->light_power);
     for (uint32_t i = 0; i < s->n_light_sources; i++) {
         free(s->light_sources[i].type);

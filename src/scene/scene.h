@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "base/error.h"
+#include "glsl/shared/medium.h"
 #include "glsl/shared/scene.h"
 
 /* The renderer's ids (glsl/shared/scene.h); names and defaults:
@@ -97,6 +98,10 @@ struct cv_scene {
     CvLight *lights;
     uint32_t n_lights;
     float *light_power;              /* per light: power used for the sampling CDF */
+
+    CvMedium *media;                 /* glsl/shared/medium.h: media[0] is vacuum */
+    uint32_t n_media;                /* 0 when the scene names none */
+    uint32_t camera_medium;          /* the medium the camera sits in (0: vacuum) */
 
     CvCamera camera;
     struct cv_render_settings settings;

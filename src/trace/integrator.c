@@ -16,10 +16,21 @@ static const struct cv_integrator_ops path_ops = {
     .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
 };
 
+/* volpath: the path integrator's stages with participating media
+ * (glsl/trace/medium): pbrt-v4's VolPathIntegrator. */
+static const struct cv_integrator_ops volpath_ops = {
+    .media = true,
+    .n_shade = 2,
+    .file = {"trace/shade.comp", "trace/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
+};
+
 /* One entry for each of manifest/enums.h's integrators. */
 static const struct cv_integrator_ops *const integrators[CV_INTEGRATOR_COUNT] = {
     [CV_INTEGRATOR_PATH] = &path_ops,
     [CV_INTEGRATOR_RLPATH] = &cv_rlpath_ops,
+    [CV_INTEGRATOR_VOLPATH] = &volpath_ops,
 };
 
 const struct cv_integrator_ops *cv_integrator_find(enum cv_integrator id)

@@ -35,6 +35,10 @@ struct cv_integrator_ops {
      * escaped_define added when not NULL. */
     bool escaped_stage;
     const char *escaped_define;
+    /* The stages track participating media (volpath: every stage built
+     * with CV_MEDIA where the scene has media, glsl/trace/medium); else
+     * media are ignored, as by pbrt-v4's path integrator. */
+    bool media;
     /* The shade stage: n_shade programs, each over the hits of the
      * CV_ARGS_* slot args[k] (glsl/shared/trace.h). They share no data
      * (each path's hit is in one bin; queue slots come from atomics), so

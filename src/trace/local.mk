@@ -38,3 +38,8 @@ GLSL_FILES += glsl/shared/rlpath.h \
 # --- end of rlpath ---
 # --- hair BSDF and curves (issue 27 item 2) ---
 GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl
+
+# --- participating media (volpath) ---
+GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
+	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp
+# --- end of participating media ---

@@ -78,6 +78,8 @@ struct cv_renderer {
     CvPassParams pass;
     GLuint ubo, queues, rays, hits, shadow, film;
     GLuint matte;                  /* coverage and ID mattes, with matte_stride */
+    GLuint medium_paths;           /* volpath's channel ratios per path slot (0: no media) */
+    bool media;                    /* the stages track media (CV_MEDIA) */
     struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
@@ -301,8 +303,12 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         defines[nd++] = "CV_HAS_CURVES";
     if (gs->has_curves && gs->no_triangles)
         defines[nd++] = "CV_NO_TRIANGLES";
-    defines[nd] = NULL;
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    /* media are tracked by an integrator that renders them, in a scene
+     * that has them */
+    if (ops->media && gs->has_media)
+        defines[nd++] = "CV_MEDIA";
+    defines[nd] = NULL;
     bool escaped_stage = ops->escaped_stage || gs->has_env;
     defines_plus(sp->escaped, defines, nd, ops->escaped_define,
                  p->alpha ? "CV_FILM_TRANSPARENT" : NULL);
@@ -425,6 +431,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
+    /* media are tracked by an integrator that renders them, in a scene
+     * that has them; camera rays start in the camera's medium */
+    if (ops->media && r->scene->has_media) {
+        r->media = true;
+        r->pass.camera_medium = scene->camera_medium;
+    }
     /* Misses need an escaped stage for an environment light or where the
      * integrator asks for it; otherwise the intersect stage starts their
      * pixels' next samples itself (intersect.comp). */
@@ -475,6 +487,14 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
     if (r->matte_stride)
         r->matte = make(gpu, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
+    if (r->media && ok) {
+        /* starts cleared: no slot's ratios belong to a path yet (track.glsl) */
+        float *zero = cv_xcalloc(n, 4 * sizeof(float));
+        r->medium_paths = make(gpu, n * 4 * sizeof(float), "trace medium paths", &ok, err);
+        if (ok)
+            glNamedBufferSubData(r->medium_paths, 0, (GLsizeiptr)(n * 4 * sizeof(float)), zero);
+        free(zero);
+    }
     if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){
                                                       .size = (size_t)r->n_pixels * 4 * sizeof(float),
                                                       .storable = true, .host_readable = true,
@@ -508,6 +528,8 @@ static void bind_all(struct cv_renderer *r)
     cv_buffer_bind(r->film, CV_BIND_FILM);
     if (r->matte)
         cv_buffer_bind(r->matte, CV_BIND_MATTE);
+    if (r->medium_paths)
+        cv_buffer_bind(r->medium_paths, CV_BIND_MEDIUM_PATHS);
     cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
     if (r->ops->bind)
@@ -774,7 +796,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     cv_gpu_timer_destroy(&r->passes);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
                       &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts,
-                      &r->matte};
+                      &r->matte, &r->medium_paths};
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);

@@ -126,6 +126,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g->has_env = true;
     g->has_textures = s->n_textures > 0;
+    g->has_media = s->n_media > 0;
     g->basic_materials = true;
     for (uint32_t i = 0; i < s->n_materials; i++) {
         const CvMaterial *m = &s->materials[i];
@@ -177,7 +178,8 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         up(gpu, &g.texels, (size_t)s->n_texels * 8, s->texels, "scene texels", err) &&
         up(gpu, &g.lights, s->n_lights * sizeof(CvLight), lights, "scene lights", err) &&
         up(gpu, &g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err) &&
-        up(gpu, &g.env_dist, n_env * sizeof(float), env, "environment distributions", err);
+        up(gpu, &g.env_dist, n_env * sizeof(float), env, "environment distributions", err) &&
+        up(gpu, &g.media, s->n_media * sizeof(CvMedium), s->media, "scene media", err);
     free(cdf);
     free(lights);
     free(env);
@@ -226,6 +228,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->tri_object, CV_BIND_TRI_OBJECT);
     if (g->curves)
         cv_buffer_bind(g->curves, CV_BIND_CURVES);
+    if (g->media)
+        cv_buffer_bind(g->media, CV_BIND_MEDIA);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -243,7 +247,7 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
-                   &g->tri_object, &g->curves};
+                   &g->tri_object, &g->curves, &g->media};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;

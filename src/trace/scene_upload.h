@@ -18,6 +18,8 @@ struct cv_scene_gpu {
     GLuint vertices, triangles, tri_light, materials, textures, texels, lights, light_cdf;
     GLuint env_dist;  /* environment-map distributions (glsl/shared/envmap.h) */
     GLuint tri_object; /* uint[]: each triangle's ID-matte object (scene.h) */
+    GLuint media;     /* CvMedium[] (glsl/shared/medium.h) */
+    bool has_media;   /* the scene names participating media */
     bool has_env;     /* an infinite light exists */
     bool has_alpha;   /* some material has an alpha cut-out */
     bool has_textures; /* the texture table is not empty */

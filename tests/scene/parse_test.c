@@ -124,9 +124,27 @@ static void test_attributes(void)
     s = ok_load("Option \"bool disablepixeljitter\" true\nColorSpace \"srgb\"\nWorldBegin\n"
                 "Attribute \"shape\" \"float radius\" [ 2 ]\n" TRI "WorldEnd\n", "Option, ColorSpace, Attribute, WorldEnd");
     cv_scene_destroy(&s);
-    s = ok_load("WorldBegin\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [1 1 1]\n"
-                "MediumInterface \"fog\" \"\"\nMediumInterface \"fog\"\n" TRI, "media parse");
-    tap_ok(s && s->warnings >= 1, "media are reported as not rendered");
+    s = ok_load("WorldBegin\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [1 2 3]\n"
+                "  \"float scale\" [ 0.5 ] \"float g\" [ 0.25 ] \"rgb Le\" [ 1 1 1 ] \"float Lescale\" [ 2 ]\n"
+                "MediumInterface \"fog\" \"\"\n" TRI "MediumInterface \"fog\"\n" TRI, "media parse");
+    tap_ok(s && s->warnings == 0 && s->n_media == 2 && s->media[1].type == CV_MEDIUM_HOMOGENEOUS &&
+               near(s->media[1].sigma_a.z, 1.5, 1e-6) && near(s->media[1].sigma_s.x, 0.5, 1e-6) &&
+               near(s->media[1].sigma_a.w, 0.25, 1e-6) && near(s->media[1].Le.y, 2, 1e-6) &&
+               s->media[1].emissive,
+           "a homogeneous medium is read: sigma_a, sigma_s (default 1) times scale, g, Le times Lescale");
+    tap_ok(s && tri_mat(s, 0)->media == CV_MEDIA_WORD(1u, 0u) && tri_mat(s, 1)->media == 0 &&
+               tri_mat(s, 0)->type == tri_mat(s, 1)->type,
+           "MediumInterface inside outside marks the surface's material copy; one name is no transition");
+    cv_scene_destroy(&s);
+    s = ok_load("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\nMediumInterface \"\" \"fog\"\n"
+                "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin\n" TRI, "camera medium");
+    tap_ok(s && s->camera_medium == 1, "the camera sits in the outside medium current at Camera");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMakeNamedMedium \"a\" \"string type\" \"uniformgrid\"\n"
+                "MakeNamedMedium \"b\" \"string type\" \"homogeneous\" \"string preset\" \"Ketchup\"\n"
+                "MediumInterface \"c\" \"\"\n" TRI, "media not rendered");
+    tap_ok(s && s->warnings == 3 && s->media[1].type == CV_MEDIUM_VACUUM,
+           "grid media, presets and unknown media names are reported (%u warnings)", s ? s->warnings : 0);
     cv_scene_destroy(&s);
 }
 

@@ -83,3 +83,12 @@ check_PROGRAMS += tests/trace/bsdf_hair_test
 TESTS += tests/trace/bsdf_hair_test
 tests_trace_bsdf_hair_test_LDADD = $(CV_LIBS)
 # --- end of hair and curves ---
+# --- participating media (volpath; glsl/trace/medium) ---
+check_PROGRAMS += tests/trace/medium_furnace_test
+TESTS += tests/trace/medium_furnace_test
+tests_trace_medium_furnace_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/trace/medium_phase_test
+TESTS += tests/trace/medium_phase_test
+tests_trace_medium_phase_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
+# --- end of participating media ---

@@ -280,6 +280,7 @@ def main():
           ENV_CONST + AREA_LAMP + FLOOR + 'AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
           + deep_bvh() + "AttributeEnd\n")
     curve_scenes()
+    media_scenes()
 
 
 # Camera and film (branch filmcam): scenes of emitters alone (maxdepth 1,
@@ -353,6 +354,95 @@ def camera_main():
                  'LookAt 0 0 -5  0 0 0  0 1 0\nActiveTransform EndTime\nRotate 8 0 0 1\n'
                  'Translate -0.3 0 0\nActiveTransform All\n'
                  'Camera "perspective" "float fov" [ 30 ]', '"box"', emitter(checker(8, 0.3)))
+
+
+# Participating media (volpath; tests/trace/oracle_test.c renders scenes
+# with media with Cavalry's volpath). Boundaries are "interface" surfaces
+# (or glass) with a MediumInterface; inside is the side away from the
+# normals, which point out of the volumes.
+
+def box(lo, hi, inward=False):
+    """Axis-aligned box as 6 quads (24 vertices) with outward normals
+    (inward: the normals and winding turned into the box)."""
+    faces = []
+    for axis in range(3):
+        for side in (0, 1):
+            n = [0, 0, 0]
+            n[axis] = 1 if side else -1
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            c = [lo, hi][side][axis]
+            quad = []
+            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                pt = [0, 0, 0]
+                pt[axis] = c
+                pt[u] = [lo, hi][a][u]
+                pt[v] = [lo, hi][b][v]
+                quad.append(pt)
+            # cross(p1 - p0, p2 - p0) points along +axis for this winding
+            # (u, v, axis right-handed); flip it where the normal is -axis
+            if (n[axis] < 0) != inward:
+                quad = [quad[0], quad[3], quad[2], quad[1]]
+            if inward:
+                n = [-x for x in n]
+            faces.append((quad, n))
+    p, nn, idx = [], [], []
+    for k, (quad, n) in enumerate(faces):
+        for pt in quad:
+            p += pt
+            nn += n
+        idx += [4 * k, 4 * k + 1, 4 * k + 2, 4 * k, 4 * k + 2, 4 * k + 3]
+    return mesh(idx, p, nn)
+
+
+def volpath_scene(name, what, body, maxdepth=20, before_camera=""):
+    text = HEADER % (name + ".pbrt", what, name, maxdepth, RES, RES, name)
+    text = text.replace('Integrator "path"', 'Integrator "volpath"')
+    if before_camera:
+        text = text.replace("LookAt", before_camera + "LookAt", 1)
+    with open(os.path.join(HERE, name + ".pbrt"), "w") as out:
+        out.write(text + body)
+
+
+def indent(s):
+    return "  " + s.replace("\n", "\n  ").rstrip() + "\n"
+
+
+def media_scenes():
+    # a grey scattering cube (albedo 0.9, forward g) on the floor under the lamp
+    volpath_scene(
+        "vol_cube", "homogeneous scattering cube (albedo 0.9, g 0.5) behind an interface, area lamp",
+        AREA_LAMP + FLOOR
+        + 'MakeNamedMedium "smoke" "string type" "homogeneous"\n'
+          '  "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.9 0.9 0.9 ] "float scale" [ 1.5 ]'
+          ' "float g" [ 0.5 ]\n'
+          'AttributeBegin\n  MediumInterface "smoke" ""\n  Material "interface"\n'
+        + indent(box([-1, 0.01, -1], [1, 2, 1])) + "AttributeEnd\n")
+    # a chromatic medium: sigma_s differs per channel
+    volpath_scene(
+        "vol_chromatic", "chromatic scattering sphere (sigma_s 0.6 1 1.6, sigma_a 0.1, g -0.3), "
+        "environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + 'MakeNamedMedium "dye" "string type" "homogeneous"\n'
+          '  "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.6 1 1.6 ] "float g" [ -0.3 ]\n'
+        + sphere('MediumInterface "dye" ""\n  Material "interface"'))
+    # the camera inside a foggy closed room: fog everywhere, no boundary
+    room = ('AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]\n'
+            + indent(box([-4, 0, -7], [4, 5, 4], inward=True)) + "AttributeEnd\n")
+    volpath_scene(
+        "vol_fog_room", "camera inside a closed room filled with fog (sigma_s 0.08, sigma_a 0.02), "
+        "area lamp",
+        AREA_LAMP + room + GREY_SPHERE,
+        before_camera='MakeNamedMedium "fog" "string type" "homogeneous"\n'
+                      '  "rgb sigma_a" [ 0.02 0.02 0.02 ] "rgb sigma_s" [ 0.08 0.08 0.08 ]\n'
+                      'MediumInterface "" "fog"\n')
+    # a smooth glass sphere filled with a scattering medium
+    volpath_scene(
+        "vol_glass", "smooth glass sphere (eta 1.5) filled with a scattering medium (sigma_s 2, "
+        "sigma_a 0.2), environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + 'MakeNamedMedium "milk" "string type" "homogeneous"\n'
+          '  "rgb sigma_a" [ 0.2 0.2 0.2 ] "rgb sigma_s" [ 2 2 2 ]\n'
+        + sphere('MediumInterface "milk" ""\n  Material "dielectric" "float eta" [ 1.5 ]'))
 
 
 if __name__ == "__main__":
