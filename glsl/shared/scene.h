@@ -111,6 +111,7 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */
 #define CV_MATF_TWO_SIDED (1u << 2)
+#define CV_MATF_COAT_CLOSED (1u << 3) /* coated diffuse: closed form allowed, roughness2.xy its integrals */
 
 CV_STRUCT(CvMaterial) {
     CV_UINT type;
@@ -123,7 +124,8 @@ CV_STRUCT(CvMaterial) {
     cv_vec4 eta;              /* rgb: conductor eta; .x: dielectric/interface eta */
     cv_vec4 k;                /* rgb: conductor k */
     cv_vec4 roughness;        /* x,y: alpha u,v; z: coat thickness; w: coat g */
-    cv_vec4 roughness2;       /* x,y: coated conductor's base alpha u,v; z: maxdepth; w: nsamples */
+    cv_vec4 roughness2;       /* x,y: coated conductor's base alpha u,v (coated diffuse: the closed form's
+                                 r_in, t_out, src/scene/coat_closed.h); z: maxdepth; w: nsamples */
 
     CV_INT reflectance_tex;
     CV_INT specular_tex;
