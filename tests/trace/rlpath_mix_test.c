@@ -14,7 +14,7 @@
 #include "tests/trace/rlpath_room.h"
 #include "tests/trace/trace_test_util.h"
 
-#define B 8
+#define B 16
 
 /* Image means of B independent renders (a fresh renderer and seed each, a
  * few passes so the table learns across them): their mean and its
