@@ -145,6 +145,7 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MATF_HAIR_SIGMA_A (1u << 3)     /* absorption sigma_a (per radius) */
 #define CV_MATF_HAIR_REFLECTANCE (1u << 4) /* colour, turned into sigma_a over beta_n */
                                            /* neither: (eumelanin, pheomelanin, -) */
+#define CV_MATF_COAT_CLOSED (1u << 5) /* coated diffuse: closed form allowed, roughness2.xy its integrals */
 
 CV_STRUCT(CvMaterial) {
     CV_UINT type;
@@ -157,7 +158,8 @@ CV_STRUCT(CvMaterial) {
     cv_vec4 eta;              /* rgb: conductor eta; .x: dielectric/interface eta */
     cv_vec4 k;                /* rgb: conductor k */
     cv_vec4 roughness;        /* x,y: alpha u,v; z: coat thickness; w: coat g */
-    cv_vec4 roughness2;       /* x,y: coated conductor's base alpha u,v; z: maxdepth; w: nsamples */
+    cv_vec4 roughness2;       /* x,y: coated conductor's base alpha u,v (coated diffuse: the closed form's
+                                 r_in, t_out, src/scene/coat_closed.h); z: maxdepth; w: nsamples */
 
     CV_INT reflectance_tex;
     CV_INT specular_tex;

@@ -9,6 +9,7 @@ libcavalry_a_SOURCES += \
 	src/scene/ply.c src/scene/ply.h \
 	src/scene/shapes.c src/scene/curves.c \
 	src/scene/materials.c \
+	src/scene/coat_closed.c src/scene/coat_closed.h \
 	src/scene/spectrum.c \
 	src/scene/image.c src/scene/image.h \
 	src/scene/hdr_check.c src/scene/hdr_check.h \

@@ -8,6 +8,7 @@
 
 #include "base/mem.h"
 #include "scene/builder.h"
+#include "scene/coat_closed.h"
 
 static void mat_init(CvMaterial *m, uint32_t type)
 {
@@ -399,6 +400,7 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
     if (alpha != 1)
         m.alpha = (float)alpha;
     cv_params_string(ps, "type", NULL);
+    cv_coat_closed_prepare(&m);
     *out = (int)cv_b_add_material(b, &m, name);
     return true;
 }

@@ -123,6 +123,9 @@ static const struct oracle_scene scenes[] = {
     {"vol_chromatic", NULL},
     {"vol_fog_room", NULL},
     {"vol_glass", NULL},
+    /* coated diffuse in closed form: a white base, maxdepth 10 and 100 */
+    {"mat_coateddiffuse_white_md10", NULL},
+    {"mat_coateddiffuse_white_md100", NULL},
 };
 
 /* Channel-averaged mean of the pixels [x0, x1) x [y0, y1); stride: floats

@@ -35,6 +35,7 @@
 #include "conductor.glsl"
 #include "dielectric.glsl"
 #include "layered.glsl"
+#include "coated_closed.glsl"
 #include "plastic.glsl"
 #include "hair.glsl"
 #include "texture.glsl"
@@ -47,7 +48,7 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 // A material resolved at one point. Fields by type:
 //  DIFFUSE c0 = R | CONDUCTOR c0 = eta, c1 = k, alpha.xy
 //  DIELECTRIC eta, alpha.xy, c0 = Kr, c1 = Kt | THIN_DIELECTRIC eta | MIRROR c0 = Kr
-//  COATED_DIFFUSE c0 = R, eta, alpha.xy (coat), thickness, medium, walk
+//  COATED_DIFFUSE c0 = R, eta, alpha.xy (coat), thickness, medium, walk, coat_closed
 //  COATED_CONDUCTOR eta (coat), alpha.xy (coat), alpha.zw (base), c0/c1 = base eta/k over coat eta,
 //    thickness, medium, walk
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
@@ -64,6 +65,7 @@ struct CvBsdf {
     float thickness;
     vec4 medium;  // coated: slab albedo (rgb), Henyey-Greenstein g (w)
     ivec2 walk;   // coated: max depth, samples per estimate
+    vec2 coat_closed;  // coated diffuse in closed form: r_in, t_out (coated_closed.glsl); x < 0: random walk
     uint stream;  // key of the stochastic BSDFs' random streams (cv_bsdf_set_stream)
 };
 
@@ -184,6 +186,7 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     b.thickness = 0.0;
     b.medium = vec4(0.0);
     b.walk = ivec2(0);
+    b.coat_closed = vec2(-1.0);
     b.stream = 0u;
 
     // Every texture the material reads, evaluated in one loop (one inlined
@@ -251,6 +254,8 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.thickness = m.roughness.z;
         b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
         b.walk = ivec2(m.roughness2.zw);
+        if ((m.flags & CV_MATF_COAT_CLOSED) != 0u && max(alpha.x, alpha.y) <= CV_COAT_CLOSED_ALPHA)
+            b.coat_closed = m.roughness2.xy;
     } else if (b.type == CV_MAT_COATED_CONDUCTOR) {
         b.eta = m.eta.w > 0.0 ? m.eta.w : 1.5;
         b.alpha.xy = alpha;
@@ -323,6 +328,15 @@ CvHair cv_bsdf_hair(CvBsdf b)
     return cv_hair_make(b.alpha.w, b.eta, b.c0, b.alpha.x, b.alpha.y, b.alpha.z);
 }
 
+// Whether a coated diffuse takes the closed form (coated_closed.glsl).
+bool cv_bsdf_coat_closed(CvBsdf b) { return CV_BSDF_TYPE(b) == CV_MAT_COATED_DIFFUSE && b.coat_closed.x >= 0.0; }
+
+CvCoatClosed cv_bsdf_coat_closed_params(CvBsdf b)
+{
+    return CvCoatClosed(b.eta, b.alpha.xy, b.c0, max(b.thickness, 1.17549435e-38), b.walk.x, b.coat_closed.x,
+                        b.coat_closed.y);
+}
+
 // Two-sided layered lobes work with wo on +z.
 bool cv_bsdf_mirrored(CvBsdf b)
 {
@@ -348,6 +362,8 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_dielectric_f(b.eta, b.alpha.xy, b.c0, b.c1, wo, wi);
     case CV_MAT_COATED_DIFFUSE:
     case CV_MAT_COATED_CONDUCTOR:
+        if (cv_bsdf_coat_closed(b))
+            return cv_coat_closed_f(cv_bsdf_coat_closed_params(b), wo, wi);
         return cv_layered_f(cv_bsdf_layered(b), wo, wi);
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_f(b.c0, b.c1, wo, wi);
@@ -379,6 +395,8 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_dielectric_pdf(b.eta, b.alpha.xy, wo, wi);
     case CV_MAT_COATED_DIFFUSE:
     case CV_MAT_COATED_CONDUCTOR:
+        if (cv_bsdf_coat_closed(b))
+            return cv_coat_closed_pdf(cv_bsdf_coat_closed_params(b), wo, wi);
         return cv_layered_pdf(cv_bsdf_layered(b), wo, wi);
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
@@ -436,7 +454,10 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         break;
     case CV_MAT_COATED_DIFFUSE:
     case CV_MAT_COATED_CONDUCTOR:
-        ok = cv_layered_sample(cv_bsdf_layered(b), wo, uc, u, s);
+        if (cv_bsdf_coat_closed(b))
+            ok = cv_coat_closed_sample(cv_bsdf_coat_closed_params(b), wo, uc, u, s);
+        else
+            ok = cv_layered_sample(cv_bsdf_layered(b), wo, uc, u, s);
         break;
     case CV_MAT_DIFFUSE_TRANSMISSION:
         ok = cv_difftrans_sample(b.c0, b.c1, wo, uc, u, s);
@@ -493,6 +514,8 @@ float cv_bsdf_delta_prob(CvBsdf b, vec3 wo_world)
         wo.z = abs(wo.z);
     if (wo.z <= 0.0)
         return 0.0;
+    if (cv_bsdf_coat_closed(b))
+        return cv_mf_smooth(b.alpha.xy) ? cv_coat_closed_spec_prob(cv_bsdf_coat_closed_params(b), wo) : 0.0;
     if (b.type == CV_MAT_COATED_DIFFUSE || b.type == CV_MAT_COATED_CONDUCTOR)
         return cv_layered_delta_prob(cv_bsdf_layered(b), wo);
     if (b.type == CV_MAT_PLASTIC)

@@ -279,6 +279,12 @@ def main():
     scene("deep_bvh", "1200 triangles shrinking geometrically (a deep BVH) over the floor",
           ENV_CONST + AREA_LAMP + FLOOR + 'AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
           + deep_bvh() + "AttributeEnd\n")
+    # a white base under a smooth coat at pbrt-v4's default thickness, where
+    # the walk's maxdepth shows (coated diffuse in closed form, issue 26)
+    for md in (10, 100):
+        scene("mat_coateddiffuse_white_md%d" % md, "coated diffuse, smooth coat, white base, maxdepth %d" % md,
+              LIT + sphere('Material "coateddiffuse" "rgb reflectance" [ 1 1 1 ] "float roughness" [ 0 ]'
+                           ' "integer maxdepth" [ %d ]' % md), maxdepth=8)
     curve_scenes()
     media_scenes()
 
