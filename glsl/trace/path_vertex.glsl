@@ -95,6 +95,8 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
                                ls.dist * (1.0 - 1e-4));
                     s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
+                } else {
+                    cv_film_reject();
                 }
             }
         }
@@ -106,7 +108,11 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     if (!cv_strategy_sample(g, b, sf, wo, u_bc, u_bsdf, bs, pdf, specular))
         return;
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
-    if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
+    if (!cv_finite3(beta)) {
+        cv_film_reject();
+        return;
+    }
+    if (cv_max3(beta) <= 0.0)
         return;
     // Russian roulette from the fourth vertex on: a path whose throughput
     // fell below 1 ends with probability p_end, the survivors weigh more
