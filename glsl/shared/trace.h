@@ -84,14 +84,17 @@
  * (one per pixel sample). */
 #define CV_STAT_EXTEND 0u      /* every closest-hit ray, camera rays included */
 #define CV_STAT_SHADOW 1u
+/* Radiance samples dropped for a NaN or infinite value (x alone: a count,
+ * added to by any stage, cv_film_reject in common.glsl): 0 unless a bug. */
+#define CV_STAT_NONFINITE 2u
 
 CV_STRUCT(CvTraceQueues) {
     CV_UINT count[8];      /* CV_Q_* counters and tickets; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
     cv_uvec4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
-    cv_uvec4 stats[2];     /* CV_STAT_*: x lo, y hi */
+    cv_uvec4 stats[3];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 160);
+CV_CHECK_SIZE(CvTraceQueues, 176);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
  * the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT (11

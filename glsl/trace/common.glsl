@@ -165,13 +165,33 @@ bool cv_finite3(vec3 v)
     return !(any(isnan(v)) || any(isinf(v)));
 }
 
+// Counts a radiance sample (or a path's throughput) dropped for a NaN or
+// infinite value: it never reaches the film, where one would poison its
+// pixel, and the host reports the count (render.h: nonfinite_samples), so
+// that the bug behind it shows. An atomic: reached only when something
+// already went wrong.
+void cv_film_reject()
+{
+    atomicAdd(q.stats[CV_STAT_NONFINITE].x, 1u);
+}
+
 // Adds radiance to a path slot's film entry, weighted by the filter
 // weight of its sample. Each slot has one path in flight and each stage
 // touches a path once, so the stages need no atomics here.
+// A finite sample that would take the sum past the float range is left out
+// too: the resolve would divide infinity (or its difference with a
+// negative filter lobe's, NaN) into the pixel.
 void cv_film_add(uint path, vec3 L)
 {
-    if (cv_finite3(L) && cv_max3(L) > 0.0)
-        film[path].L.rgb += cv_path_weight(path) * L;
+    if (!cv_finite3(L)) {
+        cv_film_reject();
+    } else if (cv_max3(L) > 0.0) {
+        vec3 s = film[path].L.rgb + cv_path_weight(path) * L;
+        if (cv_finite3(s))
+            film[path].L.rgb = s;
+        else
+            cv_film_reject();
+    }
 }
 
 #endif

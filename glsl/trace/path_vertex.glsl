@@ -136,6 +136,8 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
                     s.d = vec4(ls.wi, float(path));
                     s.L = vec4(Ld, 0.0);
                     s.m = vec4(float(cv_path_medium_after(sf, ls.wi, cv_ray_medium(r))), 0.0, 0.0, 0.0);
+                } else {
+                    cv_film_reject();
                 }
             }
         }
@@ -147,7 +149,11 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     if (!cv_strategy_sample(g, b, sf, wo, u_bc, u_bsdf, bs, pdf, specular))
         return;
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
-    if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
+    if (!cv_finite3(beta)) {
+        cv_film_reject();
+        return;
+    }
+    if (cv_max3(beta) <= 0.0)
         return;
     // Russian roulette from the fourth vertex on: a path whose throughput
     // fell below 1 ends with probability p_end, the survivors weigh more

@@ -415,7 +415,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                 .render_seconds = res.render_seconds,
                 .outputs = (const char *const *)res.outputs,
                 .n_outputs = res.n_outputs,
-                .detail = ready ? NULL : jerr.msg,
+                .detail = ready ? res.warning : jerr.msg,
             };
             if (!ready) {
                 failed++;

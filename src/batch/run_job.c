@@ -5,6 +5,7 @@
 #include "config.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -77,6 +78,8 @@ static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_rend
     cv_metadata_set_int(m, "cavalry.sppTarget", plan->spp);
     cv_metadata_set_string(m, "cavalry.settingsHash", plan->settings_hash);
     cv_metadata_set_string(m, "cavalry.status", cv_job_status_name(res->stop));
+    if (res->nonfinite > 0)   /* report_nonfinite */
+        cv_metadata_set_int(m, "cavalry.nonfiniteSamples", (int64_t)res->nonfinite);
     /* the colour settings as the job gives them; the png's text has the
      * resolved config (write_png) */
     const struct cv_color_params *c = &plan->color;
@@ -87,6 +90,44 @@ static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_rend
                            c->display && *c->display ? c->display : "(default)");
     cv_metadata_set_string(m, "cavalry.ocioView", c->view && *c->view ? c->view : "(default)");
     return m;
+}
+
+/* A NaN or infinite sample is a bug (a 0/0 in a pdf, a table gone bad, a
+ * sum that overflowed): the renderer leaves it out, as pbrt-v4's film
+ * does, so that one sample cannot poison its pixel (a NaN pixel shows as
+ * black in most viewers and spreads through every filter downstream), and
+ * it is reported here, in the log, the job's events (detail) and the
+ * image's metadata, never passed over in silence. */
+static void report_nonfinite(const char *job, struct cv_job_result *res, const char *what,
+                             uint64_t count)
+{
+    char msg[160];
+    snprintf(msg, sizeof(msg), "%llu %s NaN or infinite and left out", (unsigned long long)count,
+             what);
+    cv_warn("job \"%s\": %s (a bug, or values past the float range: please report it "
+            "with the scene)", job, msg);
+    if (res->warning) {
+        char *both = cv_xmalloc(strlen(res->warning) + strlen(msg) + 3);
+        sprintf(both, "%s; %s", res->warning, msg);
+        free(res->warning);
+        res->warning = both;
+    } else {
+        res->warning = cv_xstrdup(msg);
+    }
+}
+
+/* The last line of report_nonfinite's defence: a pixel that came out of
+ * the resolve NaN or infinite (its sums overflowed, say) is written as 0
+ * and counted. Returns the count. */
+static uint64_t zero_nonfinite(float *v, size_t n)
+{
+    uint64_t bad = 0;
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i])) {
+            v[i] = 0;
+            bad++;
+        }
+    return bad;
 }
 
 static void note_written(struct cv_job_result *res, const char *path)
@@ -100,6 +141,8 @@ void cv_job_result_clear(struct cv_job_result *r)
     for (size_t i = 0; i < r->n_outputs; i++)
         free(r->outputs[i]);
     r->n_outputs = 0;
+    free(r->warning);
+    r->warning = NULL;
 }
 
 static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan,
@@ -114,6 +157,9 @@ static bool write_exr(struct cv_renderer *r, const struct cv_render_plan *plan,
     float *normal = job->aovs & CV_AOV_NORMAL ? cv_xmalloc(n * 3 * sizeof(float)) : NULL;
     float *depth = job->aovs & CV_AOV_DEPTH ? cv_xmalloc(n * sizeof(float)) : NULL;
     bool ok = cv_renderer_read(r, rgba, albedo, normal, depth, err);
+    uint64_t bad = ok ? zero_nonfinite(rgba, n * 4) : 0;
+    if (bad)
+        report_nonfinite(job->name, res, "image values were", bad);
     struct cv_matte_layers mattes = {0};
     ok = ok && cv_matte_layers_make(r, scene, job->aovs, &mattes, err);
     struct cv_image_layer layers[3 + CV_MATTE_MAX_LAYERS];
@@ -257,6 +303,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         }
         double now = now_seconds(), dt = now - tp;
         rays_total = c.primary_rays + c.secondary_rays + c.shadow_rays;
+        res->nonfinite = c.nonfinite_samples;
         double elapsed = now - t_render;
         done = cv_renderer_spp_done(r);
         double rate = elapsed > 0 ? rays_total / elapsed : 0;
@@ -290,6 +337,8 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     cv_renderer_size(r, &w, &h);
     if (ok && res->spp == 0)
         ok = cv_fail(err, "job \"%s\": stopped before the first pass finished", job->name);
+    if (ok && res->nonfinite > 0)
+        report_nonfinite(job->name, res, "radiance samples were", res->nonfinite);
     if (ok) {
         char *first = cv_job_output_path(job, NULL);
         ok = cv_mkdir_parents(first, err);

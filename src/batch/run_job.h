@@ -31,6 +31,9 @@ struct cv_job_result {
     enum cv_job_stop stop;         /* why it stopped */
     char *outputs[2];              /* the files written (one per format); owned */
     size_t n_outputs;
+    uint64_t nonfinite;            /* samples left out for a NaN or infinite value (a bug) */
+    char *warning;                 /* owned; NULL: none. What the job's events report
+                                    * as its detail: the nonfinite count */
 };
 
 /* Frees the result's outputs; the result may be reused after. */

@@ -668,6 +668,7 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
+    c->nonfinite_samples = q.stats[CV_STAT_NONFINITE].x;
     c->gpu_ms = cv_gpu_timer_ms(r->passes, 0);
     /* all 0 when the stage timer is off */
     c->intersect_first_ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, 0);

@@ -112,6 +112,10 @@ struct cv_render_counters {
     uint64_t primary_rays, secondary_rays, shadow_rays;
     uint64_t path_slots;     /* paths in flight at most: pixels times paths_per_pixel */
     uint64_t iterations;     /* bounce iterations of the wave (paths are regenerated) */
+    /* radiance samples and path throughputs dropped for a NaN or infinite
+     * value since the renderer was made (glsl/trace/common.glsl:
+     * cv_film_reject): 0 unless a bug; the caller reports any */
+    uint64_t nonfinite_samples;
     double gpu_ms;
     /* With params' stage_times: GPU time of the closest-hit (intersect)
      * and any-hit (shadow) stages over the same passes; else 0. The part of

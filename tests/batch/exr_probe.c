@@ -6,7 +6,11 @@
  *                                  (row vector, divided by w): "x y z"
  *   exr_probe inside FULL PART     every channel of PART equals, bit for
  *                                  bit, the same pixels of FULL (exit 1 if not)
- *   exr_probe pngtext FILE KEY     the PNG text chunks named KEY, one a line */
+ *   exr_probe pngtext FILE KEY     the PNG text chunks named KEY, one a line
+ *   exr_probe stats FILE           "mean R G B nonfinite N": the RGB means
+ *                                  over the finite values and the count of
+ *                                  NaN or infinite R, G, B values */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,6 +162,31 @@ static int pngtext(const char *path, const char *key)
     return 0;
 }
 
+static int stats(const char *path)
+{
+    float *rgba = NULL;
+    uint32_t w, h;
+    struct cv_error err;
+    if (!cv_exr_read_rgba(path, &rgba, &w, &h, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
+        return 1;
+    }
+    double sum[3] = {0};
+    size_t bad = 0, n = (size_t)w * h;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            float v = rgba[i * 4 + c];
+            if (isfinite(v))
+                sum[c] += v;
+            else
+                bad++;
+        }
+    free(rgba);
+    printf("mean %.6g %.6g %.6g nonfinite %zu\n", n ? sum[0] / n : 0.0, n ? sum[1] / n : 0.0,
+           n ? sum[2] / n : 0.0, bad);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 3 && strcmp(argv[1], "windows") == 0)
@@ -170,6 +199,8 @@ int main(int argc, char **argv)
         return inside(argv[2], argv[3]);
     if (argc == 4 && strcmp(argv[1], "pngtext") == 0)
         return pngtext(argv[2], argv[3]);
-    fprintf(stderr, "usage: exr_probe windows|attr|point|inside|pngtext ...\n");
+    if (argc == 3 && strcmp(argv[1], "stats") == 0)
+        return stats(argv[2]);
+    fprintf(stderr, "usage: exr_probe windows|attr|point|inside|pngtext|stats ...\n");
     return 2;
 }

@@ -119,6 +119,71 @@ struct rig {
     bool indirect;  /* rebuild with CV_RL_GUIDE_INDIRECT */
 };
 
+static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
+                struct cv_error *err);
+static void set_table(struct rig *g, const float *q, const float *emitted, uint32_t visits,
+                      struct cv_error *err);
+
+/* Whether the whole guide table and the test key's learning sums are finite
+ * after a rebuild; *bin_reset: whether bin `bin` of the key sums to 0. */
+static bool tables_finite(struct rig *g, uint32_t bin, bool *bin_reset, struct cv_error *err)
+{
+    size_t gb = (size_t)cv_rlpath_guide_bytes(&g->params);
+    size_t tb = (size_t)cv_rlpath_table_bytes(&g->params);
+    float *guide = malloc(gb), *table = malloc(tb);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    bool ok = cv_buffer_read(g->guide, 0, gb, guide, err) &&
+              cv_buffer_read(g->table, 0, tb, table, err);
+    for (size_t i = 0; ok && i < gb / 4; i++)
+        ok = isfinite(guide[i]);
+    const float *k = table + (size_t)g->key * CV_RL_LEARN_TEXELS(g->params.dirs.z);
+    for (uint32_t b = 0; ok && b < g->params.dirs.z; b++)
+        ok = isfinite(k[3 * b]) && isfinite(k[3 * b + 2]);
+    *bin_reset = k[3 * bin] == 0;
+    free(guide);
+    free(table);
+    return ok;
+}
+
+/* Bad sums in the learning table (one that overflowed to infinity; finite
+ * means whose sum over the bins overflows) give a finite guide: sampling
+ * draws finite, positive pdfs from it. A float sum of targets can overflow
+ * where a path's throughput over a tiny pdf makes a huge target. */
+static void test_poisoned(struct rig *g, float *q, uint32_t nb, float *out, struct cv_error *err)
+{
+    for (int c = 0; c < 2; c++) {
+        for (uint32_t b = 0; b < nb; b++)
+            q[b] = c == 0 ? 1.0f : 1e37f;
+        if (c == 0)
+            q[5] = INFINITY;
+        const char *what = c == 0 ? "a bin summed to infinity" : "bins whose total overflows";
+        set_table(g, q, NULL, c == 0 ? 100 : 1, err);
+        bool reset = false;
+        tap_ok(tables_finite(g, 5, &reset, err), "%s: guide and sums finite after the rebuild",
+               what);
+        if (c == 0)
+            tap_ok(reset, "%s: the bin starts again at 0", what);
+        if (tap_ok(run(g, 0, 1024, 3, out, err), "%s: sample: %s", what, err->msg)) {
+            uint32_t bad = 0, skewed = 0;
+            for (uint32_t i = 0; i < 1024; i++) {
+                const float *o = out + 8 * (size_t)i;
+                /* equal bins: uniform, however large */
+                if (c == 1 && !(fabs(o[4] * 4 * PI - 1) < 1e-4))
+                    skewed++;
+                if (!(o[3] > 0) || !(o[4] > 0) || !isfinite(o[3]) || !isfinite(o[4]) ||
+                    !isfinite(o[6]) || !isfinite(o[7]) || !isfinite(o[0] + o[1] + o[2]))
+                    bad++;
+            }
+            tap_ok(bad == 0, "%s: every pdf and the weight finite and positive (%u not)", what,
+                   bad);
+            if (c == 1)
+                tap_ok(skewed == 0, "%s: equal bins sample uniformly (%u pdfs not 1 / 4 pi)",
+                       what, skewed);
+        }
+    }
+    memset(q, 0, nb * sizeof(float));
+}
+
 /* Runs TEST_MODE mode over n items; out gets 8 floats per item. */
 static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
                 struct cv_error *err)
@@ -273,6 +338,11 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions, bool indirect)
         tap_ok(fabs(out[6] - want) < 1e-6, "a key with 1 visit per bin guides with weight %g "
                "(%g)", want, out[6]);
     }
+
+    /* keys whose sums went bad build a finite distribution (a CDF of
+     * inf / inf would be NaN: every pdf and MIS weight of the key's hits
+     * NaN, their light dropped); then every sample is finite */
+    test_poisoned(&g, q, nb, out, &err);
 
     /* a known pattern: a peaked random fill, a quarter of the bins zero */
     uint32_t state = 2024;

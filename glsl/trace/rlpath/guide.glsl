@@ -118,10 +118,13 @@ float cv_rl_texel_f(int t) { return uintBitsToFloat(imageLoad(rl_q, t).x); }
 
 // The mean over the visits of a bin's sum at learning texel t (its own,
 // or with the emitted part at t + 2 added).
+// A sum that overflowed (or any non-finite one) reads as 0: one bin must
+// not turn the key's CDF into inf / inf (rebuild.comp resets such bins).
 float cv_rl_bin_mean(int t, bool with_emitted)
 {
     float s = cv_rl_texel_f(t) + (with_emitted ? cv_rl_texel_f(t + 2) : 0.0);
-    return s / float(max(imageLoad(rl_q, t + 1).x, 1u));
+    float q = s / float(max(imageLoad(rl_q, t + 1).x, 1u));
+    return isnan(q) || isinf(q) ? 0.0 : q;
 }
 
 // Q of bin `bin` of a key: both sums over the visits.
@@ -290,7 +293,8 @@ void cv_rl_update(uint entry, float target, float emitted)
     uint nb = cv_rl_bins();
     int kt = cv_rl_key_texel(entry / nb);
     int t = cv_rl_bin_texel(kt, int(entry % nb));
-    float e = clamp(emitted, 0.0, target);
+    // not clamp(): its result for a NaN is undefined
+    float e = emitted > 0.0 ? min(emitted, target) : 0.0;
     cv_rl_add(t, target - e);
     imageAtomicAdd(rl_q, t + 1, 1u);
     if (e > 0.0)

@@ -71,7 +71,14 @@ void main()
     for (uint b = b0; b < b1; b++) {
         int tb = cv_rl_bin_texel(kt, int(b));
         uint n = imageLoad(rl_q, tb + 1).x;
-        if (n > CV_RL_MAX_VISITS) {
+        float s0 = cv_rl_texel_f(tb), s2 = cv_rl_texel_f(tb + 2);
+        if (isnan(s0) || isinf(s0) || isnan(s2) || isinf(s2)) {
+            // a sum that overflowed: the bin starts again rather than
+            // read as 0 for ever (cv_rl_bin_mean)
+            imageStore(rl_q, tb, uvec4(0u));
+            imageStore(rl_q, tb + 1, uvec4(0u));
+            imageStore(rl_q, tb + 2, uvec4(0u));
+        } else if (n > CV_RL_MAX_VISITS) {
             // no stage that adds to the table is running: no add is lost
             // between these
             float k = float(n / 2u) / float(n);
@@ -96,12 +103,17 @@ void main()
     }
     barrier();
 
+    // sums of finite means can still overflow (and W, a little above S,
+    // with them): such a key guides uniformly, never by a CDF of inf / inf
+    bool finite = S < 1e30 && IRR < 1e30;
+    if (!finite)
+        S = IRR = 0.0;
     float e = max(u_rl.grid_scale.w * S / float(nb), 1e-20);
     // precise: both passes over a run must round its weights and sums alike
     // (no contraction into fused multiply-adds in one and not the other)
     precise float ws = 0.0;
     for (uint b = b0; b < b1; b++) {
-        precise float w = cv_rl_guided_q(kt, b) + e;
+        precise float w = (finite ? cv_rl_guided_q(kt, b) : 0.0) + e;
         ws += w;
     }
     s_part[t] = ws;
@@ -116,7 +128,7 @@ void main()
     }
     precise float acc = 0.0;
     for (uint b = b0; b < b1; b++) {
-        precise float w = cv_rl_guided_q(kt, b) + e;
+        precise float w = (finite ? cv_rl_guided_q(kt, b) : 0.0) + e;
         acc += w;
         precise float sum = off + acc;
         s_cdf[b] = b == nb - 1u ? 1.0 : min(sum / W, 1.0);
