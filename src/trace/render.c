@@ -243,7 +243,7 @@ static void defines_plus(const char **out, const char *const *defines, int nd, c
 }
 
 /* the scene's defines, then a stage's own (defines_plus) and the NULL */
-enum { MAX_SCENE_DEFINES = 12 };
+enum { MAX_SCENE_DEFINES = 16 };
 
 /* The stage programs a render of gs with p runs: file and defines by stage
  * (file NULL: the stage has none, or the integrator's create makes it).
@@ -303,6 +303,13 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         defines[nd++] = "CV_HAS_CURVES";
     if (gs->has_curves && gs->no_triangles)
         defines[nd++] = "CV_NO_TRIANGLES";
+    /* BSDF code for materials the scene lacks stays out of the shade
+     * kernels: every material of a bin pays for the registers of its
+     * largest case (bench/RESULTS.md, "Merged main against f42fcef") */
+    if (!gs->has_hair)
+        defines[nd++] = "CV_NO_HAIR";
+    if (!gs->has_coat_closed)
+        defines[nd++] = "CV_NO_COAT_CLOSED";
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     /* media are tracked by an integrator that renders them, in a scene
      * that has them */

@@ -132,6 +132,10 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
         const CvMaterial *m = &s->materials[i];
         if (m->alpha_tex >= 0 || m->alpha < 1 || m->type == CV_MAT_INTERFACE)
             g->has_alpha = true;
+        if (m->type == CV_MAT_HAIR)
+            g->has_hair = true;
+        if (m->flags & CV_MATF_COAT_CLOSED)
+            g->has_coat_closed = true;
         if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
             m->displacement_tex >= 0 || m->normal_tex >= 0)
             g->basic_materials = false;

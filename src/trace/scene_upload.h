@@ -28,6 +28,8 @@ struct cv_scene_gpu {
     bool has_curves;  /* compile the stages with CV_HAS_CURVES */
     bool no_triangles; /* curves only: no triangle BVH (CV_NO_TRIANGLES) */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
+    bool has_hair;    /* some material is hair (else CV_NO_HAIR) */
+    bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its

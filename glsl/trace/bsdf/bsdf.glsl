@@ -274,7 +274,9 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.c0 = clamp(refl, 0.0, 1.0);
         b.c1 = clamp(spec, 0.0, 1.0);
         b.alpha.xy = alpha;
-    } else if (b.type == CV_MAT_HAIR) {
+    }
+#ifndef CV_NO_HAIR
+    else if (b.type == CV_MAT_HAIR) {
         // pbrt-v4's HairMaterial: h from v across the curve's width
         b.eta = eta > 0.0 ? eta : 1.55;
         b.alpha = vec4(max(m.roughness.xy, vec2(0.01)), m.roughness.z, clamp(2.0 * uv.y - 1.0, -1.0, 1.0));
@@ -285,6 +287,7 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         else
             b.c0 = cv_hair_sigma_a_from_melanin(refl.x, refl.y);
     }
+#endif
 #endif
     return b;
 }
@@ -328,8 +331,19 @@ CvHair cv_bsdf_hair(CvBsdf b)
     return cv_hair_make(b.alpha.w, b.eta, b.c0, b.alpha.x, b.alpha.y, b.alpha.z);
 }
 
-// Whether a coated diffuse takes the closed form (coated_closed.glsl).
-bool cv_bsdf_coat_closed(CvBsdf b) { return CV_BSDF_TYPE(b) == CV_MAT_COATED_DIFFUSE && b.coat_closed.x >= 0.0; }
+// Whether a coated diffuse takes the closed form (coated_closed.glsl). With
+// CV_NO_COAT_CLOSED (the host defines it where no material may take it),
+// as with CV_NO_HAIR, that code stays out of the kernels: every material
+// of a shade bin pays for the registers of the largest case in it
+// (bench/RESULTS.md).
+bool cv_bsdf_coat_closed(CvBsdf b)
+{
+#ifdef CV_NO_COAT_CLOSED
+    return false;
+#else
+    return CV_BSDF_TYPE(b) == CV_MAT_COATED_DIFFUSE && b.coat_closed.x >= 0.0;
+#endif
+}
 
 CvCoatClosed cv_bsdf_coat_closed_params(CvBsdf b)
 {
@@ -369,8 +383,10 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_difftrans_f(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
         return cv_plastic_f(b.c0, b.c1, b.alpha.xy, wo, wi);
+#ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_f(cv_bsdf_hair(b), wo, wi);
+#endif
     default:
         return vec3(0.0);
     }
@@ -402,8 +418,10 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
         return cv_plastic_pdf(b.c0, b.c1, b.alpha.xy, wo, wi);
+#ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_pdf(cv_bsdf_hair(b), wo, wi);
+#endif
     default:
         return 0.0;
     }
@@ -465,9 +483,11 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
     case CV_MAT_PLASTIC:
         ok = cv_plastic_sample(b.c0, b.c1, b.alpha.xy, wo, uc, u, s);
         break;
+#ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         ok = cv_hair_sample(cv_bsdf_hair(b), wo, uc, u, s);
         break;
+#endif
     default:
         break;
     }
@@ -545,8 +565,10 @@ vec3 cv_bsdf_albedo(CvBsdf b)
         return clamp(b.c0 + b.c1, 0.0, 1.0);
     case CV_MAT_PLASTIC:
         return clamp(b.c0 + b.c1, 0.0, 1.0);
+#ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return exp(-2.0 * b.c0);  // straight through the fibre (h 0, theta 0): its colour
+#endif
     default:
         return vec3(0.0);
     }
