@@ -206,6 +206,29 @@ bool cv_curve_slab(vec3 o, vec3 inv, vec3 lo, vec3 hi, float tmin, float tmax)
     return a <= b && all(lessThanEqual(lo, hi));
 }
 
+// Curves first..last-1 against o + t d over (tmin, hit_t): the nearest
+// hit replaces (hit_t, hit_prim, hit_u, hit_v); with any, the first ends
+// the search. True when one was found. The tree walk's leaves and the
+// tests' brute force over every curve.
+bool cv_curves_in_range(uint first, uint last, vec3 o, vec3 d, float tmin, bool any,
+                        inout float hit_t, inout uint hit_prim, inout float hit_u, inout float hit_v)
+{
+    bool found = false;
+    for (uint ci = first; ci < last; ci++) {
+        float t, u, v;
+        if (cv_curve_intersect(ci, o, d, tmin, hit_t, any, t, u, v) && t < hit_t) {
+            hit_t = t;
+            hit_prim = CV_PRIM_CURVE | ci;
+            hit_u = u;
+            hit_v = v;
+            found = true;
+            if (any)
+                return true;
+        }
+    }
+    return found;
+}
+
 // Walks the curve tree for hits below hit_t (closest, or any hit); replaces
 // the hit (prim CV_PRIM_CURVE | curve, b1 = u, b2 = v) by a
 // nearer one. Ties keep the earlier hit (triangles, then lower curves).
@@ -238,17 +261,10 @@ bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, ino
                 continue;
             }
             uint first = uint(max(word, 0)), last = min(first + uint(max(count, 0)), n_curves);
-            for (uint ci = first; ci < last; ci++) {
-                float t, u, v;
-                if (cv_curve_intersect(ci, o, d, tmin, hit_t, any, t, u, v) && t < hit_t) {
-                    hit_t = t;
-                    hit_prim = CV_PRIM_CURVE | ci;
-                    hit_u = u;
-                    hit_v = v;
-                    found = true;
-                    if (any)
-                        return true;
-                }
+            if (cv_curves_in_range(first, last, o, d, tmin, any, hit_t, hit_prim, hit_u, hit_v)) {
+                found = true;
+                if (any)
+                    return true;
             }
         }
         if (next[0] >= 0 && next[1] >= 0) {
@@ -270,20 +286,7 @@ bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, ino
 bool cv_curves_brute(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, inout uint hit_prim,
                      inout float hit_u, inout float hit_v)
 {
-    bool found = false;
-    for (uint ci = 0u; ci < cv_curve_count(); ci++) {
-        float t, u, v;
-        if (cv_curve_intersect(ci, o, d, tmin, hit_t, any, t, u, v) && t < hit_t) {
-            hit_t = t;
-                    hit_prim = CV_PRIM_CURVE | ci;
-                    hit_u = u;
-                    hit_v = v;
-            found = true;
-            if (any)
-                return true;
-        }
-    }
-    return found;
+    return cv_curves_in_range(0u, cv_curve_count(), o, d, tmin, any, hit_t, hit_prim, hit_u, hit_v);
 }
 
 // The surface at a curve hit (u, v) of ray o + t d, as pbrt-v4 builds its
