@@ -160,6 +160,24 @@ uvec2 cv_queue_slots(bool push0, uint queue0, bool push1, uint queue1)
     return cv_queue_slots3(bvec3(push0, push1, false), uvec3(queue0, queue1, queue1)).xy;
 }
 
+// Russian roulette from the fourth vertex on (depth 3), for surface and
+// medium vertices alike: a path whose throughput beta fell below 1 ends
+// with probability 1 - max(beta) (false: the path ends), the survivors
+// weigh more. u: the vertex's roulette number.
+bool cv_roulette_survives(uint depth, float u, inout vec3 beta)
+{
+    if (depth < 3u)
+        return true;
+    float m = cv_max3(beta);
+    if (m >= 1.0)
+        return true;
+    float p_end = max(0.0, 1.0 - m);
+    if (u < p_end)
+        return false;
+    beta /= 1.0 - p_end;
+    return true;
+}
+
 bool cv_finite3(vec3 v)
 {
     return !(any(isnan(v)) || any(isinf(v)));

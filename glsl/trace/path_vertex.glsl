@@ -155,17 +155,8 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     }
     if (cv_max3(beta) <= 0.0)
         return;
-    // Russian roulette from the fourth vertex on: a path whose throughput
-    // fell below 1 ends with probability p_end, the survivors weigh more
-    if (depth >= 3u) {
-        float m = cv_max3(beta);
-        if (m < 1.0) {
-            float p_end = max(0.0, 1.0 - m);
-            if (u_lc.y < p_end)
-                return;
-            beta /= 1.0 - p_end;
-        }
-    }
+    if (!cv_roulette_survives(depth, u_lc.y, beta))
+        return;
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
     push_ray = true;
     nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);

@@ -62,15 +62,8 @@ void cv_medium_vertex(CvHitItem h, CvRayItem r, out bool push_shadow, out CvShad
     vec3 wi = cv_hg_sample(wo, g, u_phase, pdf);
     if (!(pdf > 0.0))
         return;
-    if (depth >= 3u) {
-        float m = cv_max3(beta);
-        if (m < 1.0) {
-            float p_end = max(0.0, 1.0 - m);
-            if (u_lc.y < p_end)
-                return;
-            beta /= 1.0 - p_end;
-        }
-    }
+    if (!cv_roulette_survives(depth, u_lc.y, beta))
+        return;
     push_ray = true;
     nr.o = vec4(p, r.o.w);
     nr.d = vec4(wi, pdf);
