@@ -41,8 +41,8 @@
 // Coats up to this alpha take the closed form (where allowed): pbrt-v4's
 // smooth coats (alpha below 1e-3) and alpha 1e-3 itself, what exporters
 // write for "smooth" (the coffee scene). At alpha 0.01 the rough coat's
-// walk already differs at grazing angles (2 % at theta 85: see
-// bsdf_coat_closed_test's history in the commit message).
+// walk already differs from it at grazing angles beyond noise (the
+// figures are in the commit that added bsdf_coat_closed_test).
 #define CV_COAT_CLOSED_ALPHA 0.001
 
 struct CvCoatClosed {

@@ -223,8 +223,8 @@ bool cv_lay_base_sample(CvLayered L, vec3 wo, vec2 u, out CvBsdfSample s)
 // upward direction w inside the slab, i.e. the coat's transmission pdf
 // from wi to -w. pbrt-v4 uses the reverse density (from -w to wi, measured
 // outside) here, so its two weights for one path do not sum to 1 and its
-// f overshoots its own sampler (and the physics) by 6-8 % under a rough
-// coat (bsdf_layered_test); under a smooth coat the two agree.
+// f overshoots its own sampler (and the physics) under a rough coat, by
+// how much bsdf_layered_test measures; under a smooth coat the two agree.
 float cv_lay_exit_pdf(CvLayered L, vec3 w, vec3 wi) { return cv_lay_coat_pdf(L, wi, -w, CV_LAY_T); }
 
 bool cv_lay_ok(CvBsdfSample s) { return cv_max3(s.f) > 0.0 && s.pdf > 0.0 && s.wi.z != 0.0; }
