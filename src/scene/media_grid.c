@@ -29,6 +29,18 @@ static uint32_t push_floats(struct cv_builder *b, const double *v, size_t n, dou
     return (uint32_t)at;
 }
 
+/* The last parameter `name` of type t, marked used (pbrt-v4's
+ * GetFloatArray and GetRGBArray read only their own type). */
+static struct cv_param *typed(struct cv_params *ps, const char *name, enum cv_param_type t)
+{
+    for (size_t i = ps->n; i-- > 0;)
+        if (ps->v[i].type == t && strcmp(ps->v[i].name, name) == 0) {
+            ps->v[i].used = true;
+            return &ps->v[i];
+        }
+    return NULL;
+}
+
 /* Grid `name` of nxyz samples of `comps` numbers each, or absent (*out
  * CV_NO_GRID). Wrong counts, negative or non-finite values are errors at
  * the parameter. */
@@ -37,7 +49,7 @@ static bool read_grid(struct cv_builder *b, struct cv_params *ps, const char *me
                       struct cv_error *err)
 {
     *out = CV_NO_GRID;
-    struct cv_param *p = cv_params_array(ps, name);
+    struct cv_param *p = typed(ps, name, comps == 3 ? CV_PARAM_RGB : CV_PARAM_FLOAT);
     if (!p)
         return true;
     if (p->n_nums != nxyz * (size_t)comps)
@@ -53,7 +65,8 @@ static bool read_grid(struct cv_builder *b, struct cv_params *ps, const char *me
     return true;
 }
 
-/* The largest value of channel c of a grid (stride comps) over the samples
+/* The largest value of channel c of a grid of comps numbers per sample (a
+ * grid of one is the same in every channel) over the samples
  * that a lookup in [lo, hi] of the unit cube reads: pbrt-v4's
  * SampledGrid::MaxValue. 1 for an absent grid (its lookup is 1). */
 static double grid_max(const struct cv_scene *s, uint32_t off, const uint32_t res[3], int comps,
@@ -74,7 +87,7 @@ static double grid_max(const struct cv_scene *s, uint32_t off, const uint32_t re
         for (int y = i0[1]; y <= i1[1]; y++)
             for (int x = i0[0]; x <= i1[0]; x++) {
                 size_t i = ((size_t)z * res[1] + (size_t)y) * res[0] + (size_t)x;
-                m = fmax(m, s->medium_grids[off + i * (size_t)comps + (size_t)c]);
+                m = fmax(m, s->medium_grids[off + i * (size_t)comps + (size_t)(comps == 3 ? c : 0)]);
             }
     return m;
 }
@@ -154,7 +167,7 @@ static bool uniformgrid(struct cv_builder *b, const char *name, struct cv_params
                         struct cv_error *err)
 {
     size_t nxyz = (size_t)m->res.x * m->res.y * m->res.z;
-    if (!cv_params_array(ps, "density"))
+    if (!typed(ps, "density", CV_PARAM_FLOAT))
         return cv_fail(err, "%s:%d:%d: medium \"%s\": a uniformgrid needs \"float density\"",
                        loc->file, loc->line, loc->col, name);
     double sa[3] = {1, 1, 1}, ss[3] = {1, 1, 1}, Le[3] = {0, 0, 0};
@@ -170,7 +183,7 @@ static bool uniformgrid(struct cv_builder *b, const char *name, struct cv_params
             return cv_fail(err, "%s:%d:%d: medium \"%s\": sigma_a and sigma_s must be finite "
                                 "and not negative", loc->file, loc->line, loc->col, name);
     /* pbrt-v4 reads a temperature grid for blackbody emission; not here */
-    struct cv_param *temp = cv_params_array(ps, "temperature");
+    struct cv_param *temp = typed(ps, "temperature", CV_PARAM_FLOAT);
     if (temp) {
         cv_params_find(ps, "temperatureoffset");
         cv_params_find(ps, "temperaturecutoff");
@@ -208,10 +221,11 @@ static bool rgbgrid(struct cv_builder *b, const char *name, struct cv_params *ps
                     const struct cv_loc *loc, CvMedium *m, struct cv_error *err)
 {
     size_t nxyz = (size_t)m->res.x * m->res.y * m->res.z;
-    if (!cv_params_array(ps, "sigma_a") && !cv_params_array(ps, "sigma_s"))
+    bool has_a = typed(ps, "sigma_a", CV_PARAM_RGB), has_s = typed(ps, "sigma_s", CV_PARAM_RGB);
+    if (!has_a && !has_s)
         return cv_fail(err, "%s:%d:%d: medium \"%s\": an rgbgrid needs \"rgb sigma_a\" or "
                             "\"rgb sigma_s\"", loc->file, loc->line, loc->col, name);
-    if (cv_params_array(ps, "Le") && !cv_params_array(ps, "sigma_a"))
+    if (typed(ps, "Le", CV_PARAM_RGB) && !has_a)
         return cv_fail(err, "%s:%d:%d: medium \"%s\": an rgbgrid with \"Le\" needs "
                             "\"sigma_a\"", loc->file, loc->line, loc->col, name);
     double scale = cv_params_float(ps, "scale", 1), le_scale = cv_params_float(ps, "Lescale", 1);
