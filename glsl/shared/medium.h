@@ -25,6 +25,7 @@
 
 #define CV_MAJORANT_RES 16u        /* majorant cells per axis (pbrt-v4's) */
 #define CV_NO_GRID 0xffffffffu     /* a grid offset: this grid is absent */
+#define CV_BLACKBODY_STEPS 512u    /* entries of a temperature grid's blackbody table */
 
 #define CV_MAX_MEDIA 31u          /* numbers 1..31 fit the ray's 5 bits */
 #define CV_MEDIA_TRANSITION 0x80000000u
@@ -35,7 +36,9 @@
  * point inside its bounds, sigma_a is sigma_a.rgb times the lookup of grid
  * A, sigma_s is sigma_s.rgb times the lookup of grid S and the emitted
  * radiance Le.rgb times the lookup of grid E (a grid's lookup is 1 where
- * it is absent); outside its bounds a grid medium is vacuum. uniformgrid:
+ * it is absent; a uniformgrid with a temperature grid emits, where the
+ * temperature is above 100 K, grid E times the blackbody of that
+ * temperature instead); outside its bounds a grid medium is vacuum. uniformgrid:
  * A and S are the density grid, E the Lescale grid (1 value or nx*ny*nz);
  * rgbgrid: A, S and E are RGB grids, sigma_a and sigma_s hold "scale" and
  * Le "Lescale". */
@@ -52,7 +55,13 @@ CV_STRUCT(CvMedium) {
     cv_uvec4 res;       /* xyz: nx ny nz of grids A and S; w: the majorant grid's offset */
     cv_uvec4 grids;     /* float offsets in the grid buffer of A, S, E (CV_NO_GRID: absent); w: 1 when A, S, E hold RGB */
     cv_uvec4 le_res;    /* xyz: the resolution of grid E */
+    /* a uniformgrid's temperature grid (blackbody emission in place of
+     * Le): x its offset (CV_NO_GRID: none; resolution res.xyz), y the
+     * offset of its blackbody table (CV_BLACKBODY_STEPS RGB entries from
+     * 100 K to temperature.z) */
+    cv_uvec4 temperature_grids;
+    cv_vec4 temperature; /* x: temperatureoffset, y: temperaturescale, z: the table's top */
 } CV_END(CvMedium)
-CV_CHECK_SIZE(CvMedium, 160);
+CV_CHECK_SIZE(CvMedium, 192);
 
 #endif

@@ -231,6 +231,10 @@ bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
                 enum cv_spectrum_kind kind, const char *dir, double rgb[3], bool *found,
                 struct cv_error *err);
 /* A colour-or-texture slot: sets *tex (-1 if constant) and rgb. */
+/* pbrt-v4's BlackbodySpectrum(T) (Planck's law over its peak) as its
+ * cie1931 sensor records it: the CIE functions' integrals over it, not
+ * normalised, to linear Rec.709. (spectrum.c) */
+void cv_blackbody_sensor_rgb(double T, double rgb[3]);
 bool cv_b_color_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
                     enum cv_spectrum_kind kind, const char *dir, double rgb[3], int *tex,
                     struct cv_error *err);

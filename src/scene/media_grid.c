@@ -162,6 +162,51 @@ static bool resolution(struct cv_params *ps, const char *name, const struct cv_l
     return true;
 }
 
+/* A uniformgrid's temperature grid: pbrt-v4's GridMedium emits, where
+ * (lookup - temperatureoffset) x temperaturescale exceeds 100 K, the
+ * Lescale grid times the blackbody of that temperature (its peak
+ * normalised to 1), in place of Le. The blackbody's RGB goes to a table
+ * up to the hottest temperature a lookup can give (lookups are convex
+ * combinations of the samples and 0), interpolated linearly. le_given:
+ * the medium has a non-black Le, which pbrt-v4 refuses beside a
+ * temperature grid. */
+static bool temperature(struct cv_builder *b, const char *name, struct cv_params *ps,
+                        const struct cv_loc *loc, bool le_given, CvMedium *m,
+                        struct cv_error *err)
+{
+    m->temperature_grids = (cv_uvec4){CV_NO_GRID, CV_NO_GRID, 0, 0};
+    struct cv_param *p = typed(ps, "temperature", CV_PARAM_FLOAT);
+    double off = cv_params_float(ps, "temperatureoffset",
+                                 cv_params_float(ps, "temperaturecutoff", 0));
+    double scale = cv_params_float(ps, "temperaturescale", 1);
+    if (!p)
+        return true;
+    if (le_given)
+        return cv_fail(err, "%s:%d:%d: medium \"%s\": both \"Le\" and \"temperature\" are "
+                            "given", loc->file, loc->line, loc->col, name);
+    size_t nxyz = (size_t)m->res.x * m->res.y * m->res.z;
+    uint32_t grid;
+    if (!read_grid(b, ps, name, "temperature", nxyz, 1, 1, &grid, err))
+        return false;
+    if (!isfinite(off) || !isfinite(scale))
+        return cv_fail(err, "%s:%d:%d: medium \"%s\": temperatureoffset and temperaturescale "
+                            "must be finite", loc->file, loc->line, loc->col, name);
+    double top = -off * scale;
+    for (size_t i = 0; i < nxyz; i++)
+        top = fmax(top, (p->nums[i] - off) * scale);
+    m->Le = (cv_vec4){1, 1, 1, 0};
+    m->emissive = 1;
+    m->temperature_grids.x = grid;
+    m->temperature = (cv_vec4){(float)off, (float)scale, (float)fmax(top, 101), 0};
+    double *table = cv_xmalloc(CV_BLACKBODY_STEPS * 3 * sizeof(double));
+    for (uint32_t i = 0; i < CV_BLACKBODY_STEPS; i++)
+        cv_blackbody_sensor_rgb(100 + (fmax(top, 101) - 100) * i / (CV_BLACKBODY_STEPS - 1),
+                                table + 3 * i);
+    m->temperature_grids.y = push_floats(b, table, CV_BLACKBODY_STEPS * 3, 1);
+    free(table);
+    return true;
+}
+
 static bool uniformgrid(struct cv_builder *b, const char *name, struct cv_params *ps,
                         const struct cv_loc *loc, const char *dir, CvMedium *m,
                         struct cv_error *err)
@@ -182,16 +227,6 @@ static bool uniformgrid(struct cv_builder *b, const char *name, struct cv_params
             !isfinite(ss[c] * scale))
             return cv_fail(err, "%s:%d:%d: medium \"%s\": sigma_a and sigma_s must be finite "
                                 "and not negative", loc->file, loc->line, loc->col, name);
-    /* pbrt-v4 reads a temperature grid for blackbody emission; not here */
-    struct cv_param *temp = typed(ps, "temperature", CV_PARAM_FLOAT);
-    if (temp) {
-        cv_params_find(ps, "temperatureoffset");
-        cv_params_find(ps, "temperaturecutoff");
-        cv_params_find(ps, "temperaturescale");
-        if (!cv_b_warn(b, err, loc, "medium \"%s\": its temperature grid (blackbody emission) "
-                                    "is not rendered", name))
-            return false;
-    }
     m->type = CV_MEDIUM_UNIFORMGRID;
     m->sigma_a = (cv_vec4){(float)(sa[0] * scale), (float)(sa[1] * scale),
                            (float)(sa[2] * scale), m->sigma_a.w};
@@ -214,7 +249,7 @@ static bool uniformgrid(struct cv_builder *b, const char *name, struct cv_params
         m->le_res = (cv_uvec4){1, 1, 1, 0};
     }
     m->grids = (cv_uvec4){dens, dens, les, 0};
-    return true;
+    return temperature(b, name, ps, loc, found, m, err);
 }
 
 static bool rgbgrid(struct cv_builder *b, const char *name, struct cv_params *ps,
@@ -259,6 +294,7 @@ bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
         g = g <= -1 ? -0.999 : 0.999;
     }
     m->sigma_a.w = (float)g;
+    m->temperature_grids = (cv_uvec4){CV_NO_GRID, CV_NO_GRID, 0, 0};
     if (!resolution(ps, name, loc, m, err) || !grid_transform(b, ps, name, loc, m, err))
         return false;
     bool ok = strcmp(type, "uniformgrid") == 0 ? uniformgrid(b, name, ps, loc, dir, m, err)

@@ -192,6 +192,19 @@ static void test_grid_media(void)
                near(s->medium_grids[s->media[1].grids.y + 4], 5, 0),
            "an rgbgrid is read: RGB sigma_s, no sigma_a grid (1 times scale), no emission");
     cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"integer nx\" 2\n"
+                "  \"float density\" [1 1] \"float temperature\" [1000 2000]\n"
+                "  \"float temperaturecutoff\" 100 \"float temperaturescale\" 2\n" TRI,
+                "uniformgrid with a temperature grid");
+    tap_ok(s && s->warnings == 0 && s->media[1].emissive &&
+               s->media[1].temperature_grids.x != CV_NO_GRID &&
+               near(s->medium_grids[s->media[1].temperature_grids.x + 1], 2000, 0) &&
+               near(s->media[1].temperature.x, 100, 0) && near(s->media[1].temperature.y, 2, 0) &&
+               near(s->media[1].temperature.z, 3800, 1e-3) &&
+               s->media[1].temperature_grids.y + 3 * CV_BLACKBODY_STEPS <= s->n_medium_grids,
+           "a temperature grid emits: offset (temperaturecutoff, pbrt-v4's old name), scale, "
+           "a blackbody table up to the hottest lookup (3800 K)");
+    cv_scene_destroy(&s);
     const char *head = "WorldBegin\nMakeNamedMedium \"g\" \"string type\" ";
     char text[512];
     snprintf(text, sizeof(text), "%s\"uniformgrid\" \"integer nx\" 2\n  \"float density\" [1 2 3]\n", head);
@@ -205,6 +218,11 @@ static void test_grid_media(void)
     fails(text, false, "main.pbrt:3:3: medium \"g\": \"density\" value 1 is -2", "a negative density");
     snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1]\n  \"float Lescale\" [1 2]\n", head);
     fails(text, false, "main.pbrt:3:3: medium \"g\": \"Lescale\" has 2 values", "an Lescale grid of the wrong size");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1]\n  \"float temperature\" [1 2]\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"g\": \"temperature\" has 2 values", "a temperature grid of the wrong size");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1] \"rgb Le\" [1 1 1]\n"
+             "  \"float temperature\" [1000]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"g\": both \"Le\" and \"temperature\"", "Le beside a temperature grid");
     snprintf(text, sizeof(text), "%s\"uniformgrid\" \"integer nx\" 2\n", head);
     fails(text, false, "main.pbrt:2:1: medium \"g\": a uniformgrid needs \"float density\"", "no density");
     snprintf(text, sizeof(text), "%s\"rgbgrid\" \"integer nx\" 2\n  \"rgb sigma_a\" [1 2 3 4 5 6]\n"

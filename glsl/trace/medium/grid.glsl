@@ -80,8 +80,25 @@ void cv_grid_point(uint m, vec3 g, out vec3 sigma_a, out vec3 sigma_s, out vec3 
     uint comps = grids.w != 0u ? 3u : 1u;
     sigma_a = media[m].sigma_a.rgb * cv_grid_lookup(grids.x, res, comps, g);
     sigma_s = media[m].sigma_s.rgb * cv_grid_lookup(grids.y, res, comps, g);
-    if (media[m].emissive != 0u)
-        Le = media[m].Le.rgb * cv_grid_lookup(grids.z, media[m].le_res.xyz, comps, g);
+    if (media[m].emissive == 0u)
+        return;
+    Le = media[m].Le.rgb * cv_grid_lookup(grids.z, media[m].le_res.xyz, comps, g);
+    uvec4 tg = media[m].temperature_grids;
+    if (tg.x != CV_NO_GRID) {
+        // blackbody emission: the table's linear interpolation
+        vec4 tp = media[m].temperature;
+        float T = (cv_grid_lookup(tg.x, res, 1u, g).x - tp.x) * tp.y;
+        if (!(T > 100.0)) {
+            Le = vec3(0.0);
+            return;
+        }
+        float x = clamp((T - 100.0) / (tp.z - 100.0), 0.0, 1.0) * float(CV_BLACKBODY_STEPS - 1u);
+        uint i = min(uint(x), CV_BLACKBODY_STEPS - 2u);
+        uint k = tg.y + 3u * i;
+        vec3 b0 = vec3(medium_grids[k], medium_grids[k + 1u], medium_grids[k + 2u]);
+        vec3 b1 = vec3(medium_grids[k + 3u], medium_grids[k + 4u], medium_grids[k + 5u]);
+        Le *= mix(b0, b1, x - float(i));
+    }
 }
 
 // The majorant of cell c of medium m's majorant grid.
