@@ -102,7 +102,7 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
                 h.prim = CV_HIT_MEDIUM;
                 break;
             }
-            if (cv_max3(beta) <= 0.0) {  // a grid walk ended the path
+            if (cv_max3(beta) <= 0.0) {  // the tracking ended the path (weight 0)
                 hit = false;
                 break;
             }
