@@ -39,6 +39,10 @@
 /* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
  * above the stage-private range */
 #define CV_BIND_MEDIA 29
+/* float[]: grid media's samples and majorant grids (glsl/shared/medium.h),
+ * with the scene, only where it has grid media; above the stage-private
+ * range */
+#define CV_BIND_MEDIUM_GRIDS 30
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

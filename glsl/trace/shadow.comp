@@ -4,7 +4,8 @@
 // scene, occluders that the alpha test lets through are skipped. Under
 // volpath (CV_MEDIA) the contribution is multiplied by the transmittance
 // along the ray, through the medium boundaries ("interface" surfaces) on
-// its way, as pbrt-v4's TraceTransmittance.
+// its way, as pbrt-v4's TraceTransmittance: exact in homogeneous media,
+// ratio-tracked in grid media (medium/grid.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -29,8 +30,19 @@ void cv_shadow_media(CvShadowItem s, uint path)
 #ifndef CV_EMPTY_SCENE
         hit = cv_trace_closest(s.o.xyz, s.d.xyz, tmin, s.o.w, h);
 #endif
-        if (medium != 0u)
-            T *= cv_medium_transmittance(medium, (hit ? h.t : s.o.w) - seg0);
+        if (medium != 0u) {
+#ifdef CV_MEDIUM_GRIDS
+            // ratio tracking, its random numbers keyed by the shadow ray
+            if (cv_grid_medium(medium))
+                T *= cv_grid_transmittance(
+                    medium, s.o.xyz, s.d.xyz, seg0, hit ? h.t : s.o.w,
+                    uvec3(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
+                          uint(s.L.w) ^ floatBitsToUint(s.o.x) ^ cv_hash(floatBitsToUint(s.o.y)),
+                          floatBitsToUint(s.o.z) ^ cv_hash(0x52415449u + k)));
+            else
+#endif
+                T *= cv_medium_transmittance(medium, (hit ? h.t : s.o.w) - seg0);
+        }
         if (!hit) {
             cv_film_add(path, s.L.rgb * T);
             return;

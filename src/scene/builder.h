@@ -101,6 +101,7 @@ struct cv_builder {
     size_t n_media_named, cap_media_named, cap_media;
     struct cv_media_copy *media_copies;
     size_t n_media_copies, cap_media_copies;
+    size_t cap_medium_grids;       /* capacity of s->medium_grids (media_grid.c) */
     struct cv_coordsys *coordsys;
     size_t n_coordsys, cap_coordsys;
     struct cv_object *objects;
@@ -200,6 +201,12 @@ bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *p
 bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
                  const struct cv_loc *loc, const char *dir, struct cv_error *err); /* media.c */
 /* MediumInterface inside outside ("" is vacuum) into the graphics state. */
+/* pbrt-v4's "uniformgrid" and "rgbgrid" media into *m, their grids
+ * appended to the scene's grid buffer; the medium's transform is the
+ * current CTM. */
+bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
+                      struct cv_params *ps, const struct cv_loc *loc, const char *dir,
+                      CvMedium *m, struct cv_error *err); /* media_grid.c */
 bool cv_b_medium_interface(struct cv_builder *b, const char *inside, const char *outside,
                            const struct cv_loc *loc, struct cv_error *err);
 /* material, or its copy carrying the current MediumInterface when that
@@ -224,6 +231,10 @@ bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
                 enum cv_spectrum_kind kind, const char *dir, double rgb[3], bool *found,
                 struct cv_error *err);
 /* A colour-or-texture slot: sets *tex (-1 if constant) and rgb. */
+/* pbrt-v4's BlackbodySpectrum(T) (Planck's law over its peak) as its
+ * cie1931 sensor records it: the CIE functions' integrals over it, not
+ * normalised, to linear Rec.709. (spectrum.c) */
+void cv_blackbody_sensor_rgb(double T, double rgb[3]);
 bool cv_b_color_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
                     enum cv_spectrum_kind kind, const char *dir, double rgb[3], int *tex,
                     struct cv_error *err);

@@ -102,6 +102,8 @@ struct cv_scene {
     CvMedium *media;                 /* glsl/shared/medium.h: media[0] is vacuum */
     uint32_t n_media;                /* 0 when the scene names none */
     uint32_t camera_medium;          /* the medium the camera sits in (0: vacuum) */
+    float *medium_grids;             /* grid media's samples and majorants (medium.h) */
+    size_t n_medium_grids;           /* in floats; 0 without grid media */
 
     CvCamera camera;
     struct cv_render_settings settings;

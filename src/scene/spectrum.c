@@ -338,3 +338,15 @@ bool cv_b_float_tex(struct cv_builder *b, struct cv_params *ps, const char *name
     }
     return true;
 }
+
+void cv_blackbody_sensor_rgb(double T, double rgb[3])
+{
+    double xyz[3] = {0, 0, 0}, peak = planck(2.8977721e-3 / T * 1e9, T);
+    for (double l = 360; l <= 830; l += 1) {
+        double m[3], v = planck(l, T) / peak;
+        cie_xyz(l, m);
+        for (int c = 0; c < 3; c++)
+            xyz[c] += v * m[c];
+    }
+    xyz_to_rgb(xyz, rgb);
+}

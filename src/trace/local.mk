@@ -42,5 +42,6 @@ GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl
 
 # --- participating media (volpath) ---
 GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
-	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp
+	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp \
+	glsl/trace/medium/grid.glsl glsl/trace/test/grid_probe.comp
 # --- end of participating media ---

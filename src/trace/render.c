@@ -315,6 +315,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * that has them */
     if (ops->media && gs->has_media)
         defines[nd++] = "CV_MEDIA";
+    /* grid media's lookups and majorant walk (glsl/trace/medium/grid.glsl) */
+    if (ops->media && gs->has_medium_grids)
+        defines[nd++] = "CV_MEDIUM_GRIDS";
     defines[nd] = NULL;
     bool escaped_stage = ops->escaped_stage || gs->has_env;
     defines_plus(sp->escaped, defines, nd, ops->escaped_define,

@@ -127,6 +127,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
             g->has_env = true;
     g->has_textures = s->n_textures > 0;
     g->has_media = s->n_media > 0;
+    g->has_medium_grids = s->n_medium_grids > 0;
     g->basic_materials = true;
     for (uint32_t i = 0; i < s->n_materials; i++) {
         const CvMaterial *m = &s->materials[i];
@@ -183,7 +184,10 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         up(gpu, &g.lights, s->n_lights * sizeof(CvLight), lights, "scene lights", err) &&
         up(gpu, &g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err) &&
         up(gpu, &g.env_dist, n_env * sizeof(float), env, "environment distributions", err) &&
-        up(gpu, &g.media, s->n_media * sizeof(CvMedium), s->media, "scene media", err);
+        up(gpu, &g.media, s->n_media * sizeof(CvMedium), s->media, "scene media", err) &&
+        (s->n_medium_grids == 0 ||
+         up(gpu, &g.medium_grids, s->n_medium_grids * sizeof(float), s->medium_grids,
+            "scene medium grids", err));
     free(cdf);
     free(lights);
     free(env);
@@ -234,6 +238,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         cv_buffer_bind(g->curves, CV_BIND_CURVES);
     if (g->media)
         cv_buffer_bind(g->media, CV_BIND_MEDIA);
+    if (g->medium_grids)
+        cv_buffer_bind(g->medium_grids, CV_BIND_MEDIUM_GRIDS);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -251,7 +257,7 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
-                   &g->tri_object, &g->curves, &g->media};
+                   &g->tri_object, &g->curves, &g->media, &g->medium_grids};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;

@@ -20,6 +20,8 @@ struct cv_scene_gpu {
     GLuint tri_object; /* uint[]: each triangle's ID-matte object (scene.h) */
     GLuint media;     /* CvMedium[] (glsl/shared/medium.h) */
     bool has_media;   /* the scene names participating media */
+    GLuint medium_grids; /* float[]: grid media's samples and majorants, or 0 */
+    bool has_medium_grids; /* some medium is a grid (CV_MEDIUM_GRIDS) */
     bool has_env;     /* an infinite light exists */
     bool has_alpha;   /* some material has an alpha cut-out */
     bool has_textures; /* the texture table is not empty */

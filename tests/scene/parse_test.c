@@ -140,12 +140,101 @@ static void test_attributes(void)
                 "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin\n" TRI, "camera medium");
     tap_ok(s && s->camera_medium == 1, "the camera sits in the outside medium current at Camera");
     cv_scene_destroy(&s);
-    s = ok_load("WorldBegin\nMakeNamedMedium \"a\" \"string type\" \"uniformgrid\"\n"
+    s = ok_load("WorldBegin\nMakeNamedMedium \"a\" \"string type\" \"cloud\"\n"
                 "MakeNamedMedium \"b\" \"string type\" \"homogeneous\" \"string preset\" \"Ketchup\"\n"
                 "MediumInterface \"c\" \"\"\n" TRI, "media not rendered");
     tap_ok(s && s->warnings == 3 && s->media[1].type == CV_MEDIUM_VACUUM,
-           "grid media, presets and unknown media names are reported (%u warnings)", s ? s->warnings : 0);
+           "cloud media, presets and unknown media names are reported (%u warnings)", s ? s->warnings : 0);
     cv_scene_destroy(&s);
+}
+
+/* pbrt-v4's grid media: what they become, and broken grids. */
+static void test_grid_media(void)
+{
+    struct cv_scene *s;
+    s = ok_load("WorldBegin\nTranslate 1 0 0\nMakeNamedMedium \"g\" \"string type\" \"uniformgrid\"\n"
+                "  \"integer nx\" 2 \"integer ny\" 1 \"integer nz\" 3 \"float density\" [0 1 2 3 4 5]\n"
+                "  \"point3 p0\" [2 0 -1] \"point3 p1\" [0 4 1] \"rgb sigma_a\" [1 2 3] \"float scale\" 2\n"
+                "  \"float g\" -0.5 \"rgb Le\" [1 1 1]\n" TRI, "uniformgrid");
+    if (s && s->n_media == 2) {
+        const CvMedium *m = &s->media[1];
+        /* render (2, 2, 0) is medium (1, 2, 0): the bounds [0,2]x[0,4]x[-1,1] put it at (0.5, 0.5, 0.5) */
+        double g[3];
+        for (int a = 0; a < 3; a++) {
+            const cv_vec4 *r = &m->to_grid[a];
+            g[a] = r->x * 2 + r->y * 2 + r->z * 0 + r->w;
+        }
+        tap_ok(s->warnings == 0 && m->type == CV_MEDIUM_UNIFORMGRID && m->res.x == 2 &&
+                   m->res.y == 1 && m->res.z == 3 && near(m->sigma_a.z, 6, 1e-6) &&
+                   near(m->sigma_s.x, 2, 1e-6) && near(m->sigma_a.w, -0.5, 1e-6) && m->emissive &&
+                   m->grids.x == m->grids.y && m->grids.w == 0 && m->le_res.x == 1 &&
+                   near(s->medium_grids[m->grids.x + 5], 5, 0) &&
+                   near(s->medium_grids[m->grids.z], 1, 0),
+               "a uniformgrid is read: density grid, sigma times scale, g, Le with pbrt-v4's "
+               "one-sample Lescale grid");
+        tap_ok(near(g[0], 0.5, 1e-6) && near(g[1], 0.5, 1e-6) && near(g[2], 0.5, 1e-6),
+               "its transform is the CTM at MakeNamedMedium, then the bounds (corners in any "
+               "order): %g %g %g", g[0], g[1], g[2]);
+        size_t maj = m->res.w, nmaj = CV_MAJORANT_RES * CV_MAJORANT_RES * CV_MAJORANT_RES;
+        tap_ok(maj + nmaj == s->n_medium_grids &&
+                   near(s->medium_grids[maj + nmaj - 1], 5 * 8 * (1 + 1e-5), 1e-4),
+               "its majorant grid follows the samples; the last cell bounds density 5 times "
+               "sigma_t 8 (%g)", s->medium_grids[maj + nmaj - 1]);
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMakeNamedMedium \"g\" \"string type\" \"rgbgrid\" \"integer nx\" 2\n"
+                "  \"rgb sigma_s\" [1 2 3 4 5 6] \"float scale\" 0.5 \"float Lescale\" 3\n" TRI,
+                "rgbgrid");
+    tap_ok(s && s->warnings == 0 && s->n_media == 2 && s->media[1].type == CV_MEDIUM_RGBGRID &&
+               s->media[1].grids.x == CV_NO_GRID && s->media[1].grids.z == CV_NO_GRID &&
+               s->media[1].grids.w == 1 && !s->media[1].emissive &&
+               near(s->media[1].sigma_a.x, 0.5, 1e-6) &&
+               near(s->medium_grids[s->media[1].grids.y + 4], 5, 0),
+           "an rgbgrid is read: RGB sigma_s, no sigma_a grid (1 times scale), no emission");
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"integer nx\" 2\n"
+                "  \"float density\" [1 1] \"float temperature\" [1000 2000]\n"
+                "  \"float temperaturecutoff\" 100 \"float temperaturescale\" 2\n" TRI,
+                "uniformgrid with a temperature grid");
+    tap_ok(s && s->warnings == 0 && s->media[1].emissive &&
+               s->media[1].temperature_grids.x != CV_NO_GRID &&
+               near(s->medium_grids[s->media[1].temperature_grids.x + 1], 2000, 0) &&
+               near(s->media[1].temperature.x, 100, 0) && near(s->media[1].temperature.y, 2, 0) &&
+               near(s->media[1].temperature.z, 3800, 1e-3) &&
+               s->media[1].temperature_grids.y + 3 * CV_BLACKBODY_STEPS <= s->n_medium_grids,
+           "a temperature grid emits: offset (temperaturecutoff, pbrt-v4's old name), scale, "
+           "a blackbody table up to the hottest lookup (3800 K)");
+    cv_scene_destroy(&s);
+    const char *head = "WorldBegin\nMakeNamedMedium \"g\" \"string type\" ";
+    char text[512];
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"integer nx\" 2\n  \"float density\" [1 2 3]\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"g\": \"density\" has 3 values; nx*ny*nz = 2",
+          "a density grid of the wrong size");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\"\n  \"integer ny\" -2 \"float density\" [1]\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"g\": \"ny\" is -2", "a negative grid size");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"integer nz\" 0 \"float density\" [1]\n", head);
+    fails(text, false, "main.pbrt:2:49: medium \"g\": \"nz\" is 0", "a grid size of 0");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"integer nx\" 2\n  \"float density\" [1 -2]\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"g\": \"density\" value 1 is -2", "a negative density");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1]\n  \"float Lescale\" [1 2]\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"g\": \"Lescale\" has 2 values", "an Lescale grid of the wrong size");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1]\n  \"float temperature\" [1 2]\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"g\": \"temperature\" has 2 values", "a temperature grid of the wrong size");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1] \"rgb Le\" [1 1 1]\n"
+             "  \"float temperature\" [1000]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"g\": both \"Le\" and \"temperature\"", "Le beside a temperature grid");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"integer nx\" 2\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"g\": a uniformgrid needs \"float density\"", "no density");
+    snprintf(text, sizeof(text), "%s\"rgbgrid\" \"integer nx\" 2\n  \"rgb sigma_a\" [1 2 3 4 5 6]\n"
+             "  \"rgb sigma_s\" [1 2 3]\n", head);
+    fails(text, false, "main.pbrt:4:3: medium \"g\": \"sigma_s\" has 3 values; nx*ny*nz = 2 needs 6",
+          "RGB grids of different sizes");
+    snprintf(text, sizeof(text), "%s\"rgbgrid\" \"rgb Le\" [1 2 3]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"g\": an rgbgrid needs \"rgb sigma_a\" or", "an rgbgrid without sigma");
+    snprintf(text, sizeof(text), "%s\"rgbgrid\" \"rgb sigma_s\" [1 2 3] \"rgb Le\" [1 2 3]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"g\": an rgbgrid with \"Le\" needs", "Le without sigma_a");
+    snprintf(text, sizeof(text), "%s\"rgbgrid\" \"rgb sigma_s\" [1 2 3]\n  \"point3 p0\" [0 1 0] \"point3 p1\" [1 1 1]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"g\": its bounds p0 p1 are empty along axis 1", "empty bounds");
 }
 
 static void test_settings(void)
@@ -702,6 +791,7 @@ int main(void)
 {
     th_init();
     test_transforms();
+    test_grid_media();
     test_attributes();
     test_settings();
     test_shapes();

@@ -123,6 +123,12 @@ static const struct oracle_scene scenes[] = {
     {"vol_chromatic", NULL},
     {"vol_fog_room", NULL},
     {"vol_glass", NULL},
+    /* grid media: uniformgrid under a transform, rgbgrid, emission from
+     * an Lescale grid and from a temperature grid */
+    {"vol_grid_gradient", NULL},
+    {"vol_grid_rgb", NULL},
+    {"vol_grid_emission", NULL},
+    {"vol_grid_blackbody", NULL},
     /* coated diffuse in closed form: a white base, maxdepth 10 and 100 */
     {"mat_coateddiffuse_white_md10", NULL},
     {"mat_coateddiffuse_white_md100", NULL},

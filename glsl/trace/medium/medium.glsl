@@ -1,8 +1,9 @@
 // glsl/trace/medium/medium.glsl: participating media (glsl/shared/medium.h)
 // as the volumetric stages use them: which medium a ray enters at a surface,
 // collision distances, transmittance, and the Henyey-Greenstein phase
-// function. Homogeneous media only: their majorant is sigma_t itself, so
-// delta tracking never meets a null collision.
+// function. A homogeneous medium's majorant is sigma_t itself, so delta
+// tracking there never meets a null collision; grid media (grid.glsl,
+// with CV_MEDIUM_GRIDS) walk a majorant grid.
 //
 // Colour is RGB, and sigma_t may differ per channel (a chromatic medium).
 // As pbrt-v4 does over its wavelengths (the hero wavelength of
@@ -27,6 +28,27 @@
 layout(std430, binding = CV_BIND_MEDIA) readonly buffer CvMediaBlock { CvMedium media[]; };
 
 vec3 cv_medium_sigma_t(uint m) { return media[m].sigma_a.rgb + media[m].sigma_s.rgb; }
+
+#ifdef CV_MEDIUM_GRIDS
+#include "grid.glsl"
+#else
+bool cv_grid_medium(uint m) { return false; }
+#endif
+
+// sigma_a, sigma_s and emitted radiance of medium m at render-space point
+// p: its constants, or a grid medium's lookups (grid.glsl).
+void cv_medium_point(uint m, vec3 p, out vec3 sigma_a, out vec3 sigma_s, out vec3 Le)
+{
+#ifdef CV_MEDIUM_GRIDS
+    if (cv_grid_medium(m)) {
+        cv_grid_point(m, cv_grid_space(m, vec4(p, 1.0)), sigma_a, sigma_s, Le);
+        return;
+    }
+#endif
+    sigma_a = media[m].sigma_a.rgb;
+    sigma_s = media[m].sigma_s.rgb;
+    Le = media[m].Le.rgb;
+}
 
 // The medium a ray in direction w is in after crossing (or leaving) the
 // surface of top-level material `material` with geometric normal ng:

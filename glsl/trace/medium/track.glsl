@@ -52,6 +52,12 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
     uint hero = cv_medium_hero(path);
     float tmin = 0.0, seg0 = 0.0;
     bool hit = false;
+#ifdef CV_MEDIUM_GRIDS
+    // grid media's random numbers: a counter under the path's key and depth
+    uvec3 grid_key = uvec3(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
+                           cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), depth ^ 0x47524944u);
+    uint grid_n = 0u;
+#endif
     h.t = 0.0;
     h.prim = 0u;
     h.b1 = 0.0;
@@ -78,14 +84,26 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
             float len = (hit ? h.t : 1e30) - seg0;
             float t;
             vec3 w;
-            bool collide = cv_medium_sample_distance(medium, len, hero,
-                                                     cv_medium_track_u(path, depth, k), ratios, t, w);
+            bool collide;
+#ifdef CV_MEDIUM_GRIDS
+            if (cv_grid_medium(medium)) {
+                collide = cv_grid_sample_distance(medium, r.o.xyz, r.d.xyz, seg0, seg0 + len, hero,
+                                                  grid_key, grid_n, ratios, t, w);
+                t -= seg0;
+            } else
+#endif
+                collide = cv_medium_sample_distance(medium, len, hero,
+                                                    cv_medium_track_u(path, depth, k), ratios, t, w);
             beta *= w;
             if (collide) {
                 event = true;
                 hit = false;
                 h.t = seg0 + t;
                 h.prim = CV_HIT_MEDIUM;
+                break;
+            }
+            if (cv_max3(beta) <= 0.0) {  // the tracking ended the path (weight 0)
+                hit = false;
                 break;
             }
         }

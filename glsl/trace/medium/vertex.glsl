@@ -29,15 +29,16 @@ void cv_medium_vertex(CvHitItem h, CvRayItem r, out bool push_shadow, out CvShad
     // beyond the maximum depth, and no emission there either
     if (depth >= cv_max_depth() || medium == 0u)
         return;
-    CvMedium md = media[medium];
     vec3 p = r.o.xyz + h.t * r.d.xyz;
     vec3 wo = -r.d.xyz;
-    if (md.emissive != 0u)
-        cv_film_add(path, beta * md.sigma_a.rgb * md.Le.rgb);
-    beta *= md.sigma_s.rgb;
+    vec3 sigma_a, sigma_s, Le;
+    cv_medium_point(medium, p, sigma_a, sigma_s, Le);
+    if (media[medium].emissive != 0u)
+        cv_film_add(path, beta * sigma_a * Le);
+    beta *= sigma_s;
     if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
         return;
-    float g = md.sigma_a.w;
+    float g = media[medium].sigma_a.w;
     vec2 u_phase = cv_bounce_2d(path, depth, CV_PAIR_BSDF_U2);
     vec2 u_light = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_U2);
     vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);

@@ -287,6 +287,7 @@ def main():
                            ' "integer maxdepth" [ %d ]' % md), maxdepth=8)
     curve_scenes()
     media_scenes()
+    grid_scenes()
 
 
 # Camera and film (branch filmcam): scenes of emitters alone (maxdepth 1,
@@ -449,6 +450,89 @@ def media_scenes():
         + 'MakeNamedMedium "milk" "string type" "homogeneous"\n'
           '  "rgb sigma_a" [ 0.2 0.2 0.2 ] "rgb sigma_s" [ 2 2 2 ]\n'
         + sphere('MediumInterface "milk" ""\n  Material "dielectric" "float eta" [ 1.5 ]'))
+
+
+def floats(vals):
+    return " ".join("%.4g" % v for v in vals)
+
+
+def grid_scenes():
+    # pbrt-v4's grid media: samples x fastest, then y, then z
+    import math
+    nx, ny, nz = 8, 6, 5
+    dens = [(0.15 + 1.85 * x / (nx - 1)) * (1 + 0.4 * math.sin(1.3 * y + 0.7 * z))
+            for z in range(nz) for y in range(ny) for x in range(nx)]
+    # a density gradient, rotated and shifted by the CTM at MakeNamedMedium
+    volpath_scene(
+        "vol_grid_gradient", "uniformgrid 8x6x5 density gradient (sigma_s 1.5, sigma_a 0.2, "
+        "scale 1.2, g 0.3) under a rotation, area lamp",
+        AREA_LAMP + FLOOR
+        + "AttributeBegin\n  Translate 0.1 0 0\n  Rotate 30 0 1 0\n"
+          '  MakeNamedMedium "smoke" "string type" "uniformgrid"\n'
+          '    "integer nx" [ %d ] "integer ny" [ %d ] "integer nz" [ %d ]\n'
+          '    "point3 p0" [ -1 0.01 -1 ] "point3 p1" [ 1 2 1 ]\n'
+          '    "rgb sigma_a" [ 0.2 0.2 0.2 ] "rgb sigma_s" [ 1.5 1.5 1.5 ] "float scale" [ 1.2 ]'
+          ' "float g" [ 0.3 ]\n    "float density" [ %s ]\nAttributeEnd\n' % (nx, ny, nz, floats(dens))
+        + 'AttributeBegin\n  MediumInterface "smoke" ""\n  Material "interface"\n'
+        + indent(box([-1.6, 0.005, -1.6], [1.6, 2.2, 1.6])) + "AttributeEnd\n")
+    # RGB grids: mildly chromatic scattering, absorption and emission
+    n = 4
+    sa, ss, le = [], [], []
+    for z in range(n):
+        for y in range(n):
+            for x in range(n):
+                k = 0.5 + 0.5 * math.cos(1.1 * x + 0.8 * y - 0.9 * z)
+                sa += [0.1 + 0.2 * k, 0.1 + 0.15 * k, 0.1 + 0.1 * k]
+                ss += [0.8 + 0.6 * k, 1.0 + 0.6 * k, 1.2 + 0.6 * k]
+                hot = 1.0 if (x + y + z) % 3 == 0 else 0.0
+                le += [0.02 * hot, 0.012 * hot, 0.006 * hot]
+    volpath_scene(
+        "vol_grid_rgb", "rgbgrid 4x4x4 (RGB sigma_a, sigma_s, Le; scale 1.3, Lescale 0.5, "
+        "g -0.2), environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + 'MakeNamedMedium "dye" "string type" "rgbgrid"\n'
+          '  "integer nx" [ 4 ] "integer ny" [ 4 ] "integer nz" [ 4 ]\n'
+          '  "point3 p0" [ -1 0.01 -1 ] "point3 p1" [ 1 2 1 ] "float scale" [ 1.3 ]'
+          ' "float Lescale" [ 0.5 ] "float g" [ -0.2 ]\n'
+          '  "rgb sigma_a" [ %s ]\n  "rgb sigma_s" [ %s ]\n  "rgb Le" [ %s ]\n'
+          % (floats(sa), floats(ss), floats(le))
+        + 'AttributeBegin\n  MediumInterface "dye" ""\n  Material "interface"\n'
+        + indent(box([-1, 0.01, -1], [1, 2, 1])) + "AttributeEnd\n")
+    # emission: a mostly absorbing density grid with a Lescale grid
+    n = 5
+    dens = [0.3 + 0.7 * ((x + 2 * y + z) % 4) / 3 for z in range(n) for y in range(n) for x in range(n)]
+    les = [1.5 * (1 + math.cos(0.9 * x + 1.4 * y)) / 2 + 0.1 * z for z in range(n) for y in range(n) for x in range(n)]
+    volpath_scene(
+        "vol_grid_emission", "emissive uniformgrid 5x5x5 (rgb Le 2 1.2 0.6 times a Lescale grid; "
+        "sigma_a 1, sigma_s 0.3), dim lamp",
+        AREA_LAMP.replace("8 8 8", "1 1 1") + FLOOR
+        + 'MakeNamedMedium "fire" "string type" "uniformgrid"\n'
+          '  "integer nx" [ 5 ] "integer ny" [ 5 ] "integer nz" [ 5 ]\n'
+          '  "point3 p0" [ -1 0.01 -1 ] "point3 p1" [ 1 2 1 ]\n'
+          '  "rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 0.3 0.3 0.3 ] "rgb Le" [ 2 1.2 0.6 ]\n'
+          '  "float density" [ %s ]\n  "float Lescale" [ %s ]\n' % (floats(dens), floats(les))
+        + 'AttributeBegin\n  MediumInterface "fire" ""\n  Material "interface"\n'
+        + indent(box([-1, 0.01, -1], [1, 2, 1])) + "AttributeEnd\n")
+    # blackbody emission from a temperature grid (offset and scale), with
+    # pbrt-v4's default Lescale: one sample, fading towards the bounds
+    n = 4
+    # (hot: Cavalry's fit of the CIE functions, spectrum.c, turns cooler
+    # blackbodies' red up to 2 % darker than pbrt-v4's tables; README)
+    temp = [3000 + 700 * ((x + y * z) % 4) + 200 * z for z in range(n) for y in range(n) for x in range(n)]
+    volpath_scene(
+        "vol_grid_blackbody", "uniformgrid 4x4x4 with a temperature grid (3000-5700, offset 200, "
+        "scale 1.1; sigma_a 1, sigma_s 0.2), dim lamp",
+        AREA_LAMP.replace("8 8 8", "1 1 1") + FLOOR
+        + 'MakeNamedMedium "flame" "string type" "uniformgrid"\n'
+          '  "integer nx" [ 4 ] "integer ny" [ 4 ] "integer nz" [ 4 ]\n'
+          '  "point3 p0" [ -1 0.01 -1 ] "point3 p1" [ 1 2 1 ]\n'
+          '  "rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 0.2 0.2 0.2 ]\n'
+          '  "float temperatureoffset" [ 200 ] "float temperaturescale" [ 1.1 ]\n'
+          '  "float density" [ %s ]\n  "float temperature" [ %s ]\n'
+          % (floats([0.5 + 0.5 * ((x + y + z) % 2) for z in range(n) for y in range(n) for x in range(n)]),
+             floats(temp))
+        + 'AttributeBegin\n  MediumInterface "flame" ""\n  Material "interface"\n'
+        + indent(box([-1, 0.01, -1], [1, 2, 1])) + "AttributeEnd\n")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,456 @@
+/* medium_grid_test.c: the shipped grid-medium code (glsl/trace/medium/
+ * grid.glsl, through glsl/trace/test/grid_probe.comp) on three media read
+ * from a pbrt scene (a rotated uniformgrid with pbrt-v4's one-sample
+ * Lescale grid, an rgbgrid with RGB sigma_a, sigma_s and Le, a uniformgrid
+ * with an Lescale grid), against what is computed here in double:
+ * - the lookups at points in and just outside the bounds equal pbrt-v4's
+ *   SampledGrid trilinear interpolation (samples at voxel centres, zero
+ *   beyond the outermost ones; vacuum outside the bounds);
+ * - every majorant bounds sigma_t of every channel at points all over its
+ *   cell (16 per cell, and the cell's corners), and is the largest value
+ *   pbrt-v4's MaxValue finds for the cell; a majorant grid 2 % too low
+ *   fails the same check;
+ * - the DDA walk integrates the majorant along random rays as a fine
+ *   quadrature does;
+ * - ratio tracking's transmittance and delta tracking's pass and collision
+ *   weights (the hero channel cycling) average to exp(-optical depth) and
+ *   1 minus it per channel, the optical depth integrated here, within 4.5
+ *   standard errors. */
+#include "config.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/mem.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/program.h"
+#include "scene/scene.h"
+#include "scene/transform.h"
+#include "tests/gpu/gpu_test_util.h"
+#include "trace/scene_upload.h"
+
+#define PER_CELL 16
+#define N_RAYS 64
+#define N_TRACK 4096
+
+/* The test's grids, from a fixed LCG. */
+static uint32_t lcg = 12345;
+static double rnd(void)
+{
+    lcg = lcg * 1664525u + 1013904223u;
+    return (lcg >> 8) / 16777216.0;
+}
+
+struct grid_case {
+    const char *name;
+    int n[3], comps;
+    double p0[3], p1[3];
+    double sa[3], ss[3], Le[3]; /* the medium's constants (rgbgrid: scale, Lescale) */
+    double *a, *s, *e;          /* the grids (e: NULL = pbrt-v4's one-sample Lescale) */
+    struct cv_mat4 ctm;
+};
+
+static double *random_grid(size_t n, double lo, double hi)
+{
+    double *v = cv_xmalloc(n * sizeof(double));
+    for (size_t i = 0; i < n; i++)
+        v[i] = lo + (hi - lo) * rnd();
+    return v;
+}
+
+static void append(char **text, size_t *len, const char *fmt, ...)
+{
+    char buf[256];
+    va_list ap;
+    va_start(ap, fmt);
+    int k = vsnprintf(buf, sizeof(buf), fmt, ap);
+    va_end(ap);
+    if (k >= (int)sizeof(buf))
+        abort();
+    *text = realloc(*text, *len + (size_t)k + 1);
+    memcpy(*text + *len, buf, (size_t)k + 1);
+    *len += (size_t)k;
+}
+
+static void append_grid(char **text, size_t *len, const char *type, const char *name,
+                        const double *v, size_t n)
+{
+    append(text, len, "  \"%s %s\" [", type, name);
+    for (size_t i = 0; i < n; i++)
+        append(text, len, " %.9g", v[i]);
+    append(text, len, " ]\n");
+}
+
+/* pbrt-v4's SampledGrid::Lookup of channel c at g (double). */
+static double lookup(const double *v, const int n[3], int comps, int c, const double g[3])
+{
+    if (!v)
+        return 1;
+    double s[3], d[3];
+    int i[3];
+    for (int a = 0; a < 3; a++) {
+        s[a] = g[a] * n[a] - 0.5;
+        i[a] = (int)floor(s[a]);
+        d[a] = s[a] - i[a];
+    }
+    double r = 0;
+    for (int k = 0; k < 8; k++) {
+        int x = i[0] + (k & 1), y = i[1] + ((k >> 1) & 1), z = i[2] + (k >> 2);
+        double w = ((k & 1) ? d[0] : 1 - d[0]) * (((k >> 1) & 1) ? d[1] : 1 - d[1]) *
+                   ((k >> 2) ? d[2] : 1 - d[2]);
+        if (x < 0 || y < 0 || z < 0 || x >= n[0] || y >= n[1] || z >= n[2])
+            continue;
+        r += w * v[(((size_t)z * n[1] + y) * n[0] + x) * comps + (comps == 3 ? c : 0)];
+    }
+    return r;
+}
+
+static void props(const struct grid_case *k, const double g[3], double sa[3], double ss[3],
+                  double le[3])
+{
+    bool in = g[0] >= 0 && g[0] <= 1 && g[1] >= 0 && g[1] <= 1 && g[2] >= 0 && g[2] <= 1;
+    static const int one[3] = {1, 1, 1};
+    for (int c = 0; c < 3; c++) {
+        sa[c] = in ? k->sa[c] * lookup(k->a, k->n, k->comps, c, g) : 0;
+        ss[c] = in ? k->ss[c] * lookup(k->s, k->n, k->comps, c, g) : 0;
+        if (k->comps == 3)
+            le[c] = in && k->e ? k->Le[c] * lookup(k->e, k->n, 3, c, g) * 106.856895 : 0;
+        else if (k->e)
+            le[c] = in ? k->Le[c] * lookup(k->e, k->n, 1, 0, g) : 0;
+        else {
+            const double unit = 1;
+            le[c] = in ? k->Le[c] * lookup(&unit, one, 1, 0, g) : 0;
+        }
+    }
+}
+
+/* pbrt-v4's MaxValue of sigma_t's largest channel over majorant cell (x, y, z). */
+static double cell_max(const struct grid_case *k, int x, int y, int z)
+{
+    int cell[3] = {x, y, z}, lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        double b0 = (double)cell[a] / CV_MAJORANT_RES, b1 = (double)(cell[a] + 1) / CV_MAJORANT_RES;
+        lo[a] = (int)fmax(floor(b0 * k->n[a] - 0.5), 0);
+        hi[a] = (int)fmin(floor(b1 * k->n[a] - 0.5) + 1, k->n[a] - 1);
+    }
+    double best = 0;
+    for (int c = 0; c < 3; c++) {
+        double ma = 0, ms = 0;
+        for (int zz = lo[2]; zz <= hi[2]; zz++)
+            for (int yy = lo[1]; yy <= hi[1]; yy++)
+                for (int xx = lo[0]; xx <= hi[0]; xx++) {
+                    size_t i = (((size_t)zz * k->n[1] + yy) * k->n[0] + xx) * k->comps +
+                               (k->comps == 3 ? c : 0);
+                    ma = fmax(ma, k->a ? k->a[i] : 1);
+                    ms = fmax(ms, k->s ? k->s[i] : 1);
+                }
+        best = fmax(best, k->sa[c] * ma + k->ss[c] * ms);
+    }
+    return best;
+}
+
+static void to_render(const struct grid_case *k, const double g[3], double p[3])
+{
+    double q[3];
+    for (int a = 0; a < 3; a++)
+        q[a] = k->p0[a] + g[a] * (k->p1[a] - k->p0[a]);
+    cv_mat4_point(&k->ctm, q, p);
+}
+
+static bool run(struct cv_program *prog, unsigned mode, unsigned medium, const float *in,
+                size_t n_in4, size_t count, float *out, size_t n_out4, struct cv_error *err)
+{
+    GLuint bin = cv_buffer_create(n_in4 * 16, in, "grid probe in", err);
+    GLuint bout = cv_buffer_create(n_out4 * 16, NULL, "grid probe out", err);
+    bool ok = bin && bout;
+    if (ok) {
+        cv_buffer_bind(bin, CV_BIND_PROBE_IN);
+        cv_buffer_bind(bout, CV_BIND_PROBE_OUT);
+        glUseProgram(prog->id);
+        glUniform1ui(glGetUniformLocation(prog->id, "u_mode"), mode);
+        glUniform1ui(glGetUniformLocation(prog->id, "u_count"), (GLuint)count);
+        glUniform1ui(glGetUniformLocation(prog->id, "u_medium"), medium);
+        glUniform1ui(glGetUniformLocation(prog->id, "u_samples"), N_TRACK);
+        cv_program_dispatch_1d(prog, count);
+        ok = cv_buffer_read(bout, 0, n_out4 * 16, out, err);
+    }
+    cv_buffer_destroy(&bin);
+    cv_buffer_destroy(&bout);
+    return ok;
+}
+
+static void check_lookups(struct cv_program *prog, const struct grid_case *k, unsigned medium,
+                          const struct cv_scene *s)
+{
+    struct cv_error err = {{0}};
+    const unsigned R = CV_MAJORANT_RES;
+    size_t n_cells = (size_t)R * R * R, n = n_cells * (PER_CELL + 8) + 4096;
+    double *g = cv_xmalloc(n * 3 * sizeof(double));
+    float *in = cv_xmalloc(n * 16), *out = cv_xmalloc(n * 64);
+    size_t i = 0;
+    for (size_t c = 0; c < n_cells; c++) {
+        int cx = (int)(c % R), cy = (int)(c / R % R), cz = (int)(c / (R * R));
+        for (int j = 0; j < PER_CELL + 8; j++, i++) {
+            /* random points, then the corners pulled a hair inside */
+            double t[3] = {rnd(), rnd(), rnd()};
+            if (j >= PER_CELL)
+                for (int a = 0; a < 3; a++)
+                    t[a] = ((j - PER_CELL) >> a) & 1 ? 0.999 : 0.001;
+            g[3 * i] = (cx + t[0]) / R;
+            g[3 * i + 1] = (cy + t[1]) / R;
+            g[3 * i + 2] = (cz + t[2]) / R;
+        }
+    }
+    for (; i < n; i++)  /* beside and outside the bounds */
+        for (int a = 0; a < 3; a++)
+            g[3 * i + a] = -0.1 + 1.2 * rnd();
+    for (i = 0; i < n; i++) {
+        double p[3];
+        to_render(k, g + 3 * i, p);
+        memcpy(in + 4 * i, (float[4]){(float)p[0], (float)p[1], (float)p[2], 0}, 16);
+    }
+    if (!tap_ok(run(prog, 0, medium, in, n, n, out, 4 * n, &err), "%s: probe runs %s", k->name,
+                err.msg))
+        goto done;
+    double worst = 0, worst_ratio = 0, worst_low = 0;
+    size_t below = 0, wrong_max = 0;
+    const float *maj = s->medium_grids + s->media[medium].res.w;
+    for (i = 0; i < n; i++) {
+        const float *o = out + 16 * i;
+        double gg[3] = {o[12], o[13], o[14]}, sa[3], ss[3], le[3];
+        /* the GPU's own grid point: the render-space round trip is float */
+        props(k, gg, sa, ss, le);
+        double scale = 1;
+        for (int c = 0; c < 3; c++)
+            scale = fmax(scale, fmax(sa[c] + ss[c], le[c]));
+        for (int c = 0; c < 3; c++) {
+            worst = fmax(worst, fabs(o[c] - sa[c]) / scale);
+            worst = fmax(worst, fabs(o[4 + c] - ss[c]) / scale);
+            worst = fmax(worst, fabs(o[8 + c] - le[c]) / scale);
+        }
+        if (i >= n_cells * (PER_CELL + 8))
+            continue;
+        int cell[3];
+        for (int a = 0; a < 3; a++)
+            cell[a] = (int)fmin(fmax(floor(gg[a] * R), 0), R - 1);
+        double m = o[3], m_low = 0.98 * m;
+        for (int c = 0; c < 3; c++) {
+            double st = (double)o[c] + o[4 + c];
+            if (st > m)
+                below++;
+            worst_ratio = fmax(worst_ratio, st / m);
+            worst_low = fmax(worst_low, st / m_low);
+        }
+        double cm = cell_max(k, cell[0], cell[1], cell[2]);
+        if (fabs(m - cm) > 1e-4 * fmax(cm, 1e-3) + 1e-7 ||
+            maj[((size_t)cell[2] * R + cell[1]) * R + cell[0]] != o[3])
+            wrong_max++;
+    }
+    tap_ok(worst < 2e-5, "%s: lookups equal pbrt-v4's trilinear interpolation (worst %.2g of "
+                         "the largest value)", k->name, worst);
+    tap_ok(below == 0, "%s: every majorant bounds sigma_t in its cell (%zu points above; the "
+                       "closest %.6f of it)", k->name, below, worst_ratio);
+    /* the density grid's majorant is tight (an RGB grid's adds the maxima
+     * of two grids): there a majorant 2 % low must fail the check */
+    if (k->comps == 1)
+        tap_ok(worst_low > 1, "%s: the check catches a majorant 2 %% too low (sigma_t up to "
+                              "%.4f of it)", k->name, worst_low);
+    tap_ok(wrong_max == 0, "%s: each majorant is pbrt-v4's MaxValue of its cell (%zu differ)",
+           k->name, wrong_max);
+done:
+    free(g);
+    free(in);
+    free(out);
+}
+
+/* The optical depth (per channel) and majorant integral along a ray,
+ * by midpoint quadrature. */
+static void quadrature(const struct grid_case *k, const struct cv_scene *s, unsigned medium,
+                       const double o[3], const double d[3], double t1, double tau[3],
+                       double *maj_int, double *maj_max)
+{
+    struct cv_mat4 inv;
+    cv_mat4_inverse(&k->ctm, &inv);
+    const int steps = 40000;
+    const unsigned R = CV_MAJORANT_RES;
+    const float *maj = s->medium_grids + s->media[medium].res.w;
+    double dt = t1 / steps;
+    tau[0] = tau[1] = tau[2] = 0;
+    *maj_int = 0;
+    *maj_max = 0;
+    for (int i = 0; i < steps; i++) {
+        double p[3], q[3], g[3], sa[3], ss[3], le[3];
+        for (int a = 0; a < 3; a++)
+            p[a] = o[a] + (i + 0.5) * dt * d[a];
+        cv_mat4_point(&inv, p, q);
+        bool in = true;
+        for (int a = 0; a < 3; a++) {
+            g[a] = (q[a] - k->p0[a]) / (k->p1[a] - k->p0[a]);
+            in = in && g[a] >= 0 && g[a] <= 1;
+        }
+        props(k, g, sa, ss, le);
+        for (int c = 0; c < 3; c++)
+            tau[c] += (sa[c] + ss[c]) * dt;
+        if (in) {
+            int cx = (int)fmin(g[0] * R, R - 1), cy = (int)fmin(g[1] * R, R - 1),
+                cz = (int)fmin(g[2] * R, R - 1);
+            double m = maj[((size_t)cz * R + cy) * R + cx];
+            *maj_int += m * dt;
+            *maj_max = fmax(*maj_max, m);
+        }
+    }
+}
+
+static void check_walks(struct cv_program *prog, const struct grid_case *k, unsigned medium,
+                        const struct cv_scene *s)
+{
+    struct cv_error err = {{0}};
+    float in[N_RAYS * 8], walk[N_RAYS * 4];
+    float *ratio = cv_xmalloc((size_t)N_RAYS * N_TRACK * 32);
+    float *delta = cv_xmalloc((size_t)N_RAYS * N_TRACK * 32);
+    double o[N_RAYS][3], d[N_RAYS][3], t1[N_RAYS];
+    for (int i = 0; i < N_RAYS; i++) {
+        /* from a point near the medium towards another: some rays start
+         * inside, some end inside, some miss */
+        double ga[3], gb[3], pa[3], pb[3], len = 0;
+        for (int a = 0; a < 3; a++) {
+            ga[a] = -0.3 + 1.6 * rnd();
+            gb[a] = -0.3 + 1.6 * rnd();
+        }
+        to_render(k, ga, pa);
+        to_render(k, gb, pb);
+        for (int a = 0; a < 3; a++)
+            len += (pb[a] - pa[a]) * (pb[a] - pa[a]);
+        len = sqrt(len);
+        t1[i] = len;
+        for (int a = 0; a < 3; a++) {
+            o[i][a] = pa[a];
+            d[i][a] = (pb[a] - pa[a]) / len;
+        }
+        memcpy(in + 8 * i, (float[8]){(float)o[i][0], (float)o[i][1], (float)o[i][2], (float)t1[i],
+                                       (float)d[i][0], (float)d[i][1], (float)d[i][2], 0}, 32);
+    }
+    size_t n_est = (size_t)N_RAYS * N_TRACK;
+    if (!tap_ok(run(prog, 1, medium, in, 2 * N_RAYS, N_RAYS, walk, N_RAYS, &err) &&
+                    run(prog, 2, medium, in, 2 * N_RAYS, n_est, ratio, 2 * n_est, &err) &&
+                    run(prog, 3, medium, in, 2 * N_RAYS, n_est, delta, 2 * n_est, &err),
+                "%s: walk probes run %s", k->name, err.msg)) {
+        free(ratio);
+        free(delta);
+        return;
+    }
+    double worst_walk = 0, worst_ratio = 0, worst_pass = 0, worst_coll = 0;
+    int entered = 0;
+    for (int i = 0; i < N_RAYS; i++) {
+        double tau[3], mi, mm;
+        quadrature(k, s, medium, o[i], d[i], t1[i], tau, &mi, &mm);
+        worst_walk = fmax(worst_walk, fabs(walk[4 * i] - mi) / fmax(mm * t1[i], 1e-6));
+        entered += walk[4 * i + 1] > 0;
+        for (int c = 0; c < 3; c++) {
+            double T = exp(-tau[c]);
+            /* each estimator's standard error from its samples */
+            double m[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+            for (int j = 0; j < N_TRACK; j++) {
+                const float *e = ratio + 8 * ((size_t)i * N_TRACK + j);
+                const float *f = delta + 8 * ((size_t)i * N_TRACK + j);
+                double v[3] = {e[c], f[c], f[4 + c]};
+                for (int x = 0; x < 3; x++) {
+                    m[x] += v[x] / N_TRACK;
+                    q[x] += v[x] * v[x] / N_TRACK;
+                }
+            }
+            double se[3];
+            for (int x = 0; x < 3; x++)
+                se[x] = sqrt(fmax(q[x] - m[x] * m[x], 0) / N_TRACK) + 1e-4;
+            worst_ratio = fmax(worst_ratio, fabs(m[0] - T) / se[0]);
+            worst_pass = fmax(worst_pass, fabs(m[1] - T) / se[1]);
+            worst_coll = fmax(worst_coll, fabs(m[2] - (1 - T)) / se[2]);
+        }
+    }
+    tap_ok(worst_walk < 2e-3 && entered > N_RAYS / 4,
+           "%s: the DDA walk integrates the majorant as a fine quadrature does (worst %.2g of "
+           "the largest majorant times the length; %d of %d rays enter)", k->name, worst_walk,
+           entered, N_RAYS);
+    tap_ok(worst_ratio < 4.5, "%s: ratio tracking averages to exp(-optical depth) per channel "
+                              "(worst %.2f standard errors)", k->name, worst_ratio);
+    tap_ok(worst_pass < 4.5 && worst_coll < 4.5,
+           "%s: delta tracking's pass and collision weights average to T and 1 - T per channel "
+           "(worst %.2f and %.2f standard errors)", k->name, worst_pass, worst_coll);
+    free(ratio);
+    free(delta);
+}
+
+int main(void)
+{
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    struct cv_error err = {{0}};
+    struct grid_case cases[3] = {
+        {.name = "uniformgrid", .n = {5, 3, 7}, .comps = 1, .p0 = {-1, -0.5, 0}, .p1 = {1.5, 2, 1},
+         .sa = {0.3, 0.5, 0.2}, .ss = {1, 0.7, 1.4}, .Le = {1, 2, 3}},
+        {.name = "rgbgrid", .n = {37, 20, 3}, .comps = 3, .p0 = {0, 0, 0}, .p1 = {2, 1, 0.5},
+         .sa = {0.7, 0.7, 0.7}, .ss = {0.7, 0.7, 0.7}, .Le = {2, 2, 2}},
+        {.name = "uniformgrid Lescale", .n = {2, 2, 2}, .comps = 1, .p0 = {0, 0, 0},
+         .p1 = {1, 1, 1}, .sa = {2, 1, 0.5}, .ss = {0, 0, 0}, .Le = {0.5, 1, 1.5}},
+    };
+    cases[0].a = cases[0].s = random_grid(5 * 3 * 7, 0, 3);
+    cases[1].a = random_grid(37 * 20 * 3 * 3, 0, 0.5);
+    cases[1].s = random_grid(37 * 20 * 3 * 3, 0, 2);
+    cases[1].e = random_grid(37 * 20 * 3 * 3, 0, 0.01);
+    cases[2].a = cases[2].s = random_grid(8, 0, 1);
+    cases[2].e = random_grid(8, 0, 4);
+    struct cv_mat4 t = cv_mat4_translate(0.3, -0.2, 0.5), r = cv_mat4_rotate(25, 1, 1, 0);
+    cases[0].ctm = cv_mat4_mul(&t, &r);
+    cases[1].ctm = cv_mat4_identity();
+    cases[2].ctm = cv_mat4_scale(1, 2, 0.5);
+
+    char *text = NULL;
+    size_t len = 0;
+    append(&text, &len, "WorldBegin\nAttributeBegin\nTranslate 0.3 -0.2 0.5\nRotate 25 1 1 0\n");
+    append(&text, &len, "MakeNamedMedium \"a\" \"string type\" \"uniformgrid\" \"integer nx\" 5 "
+                        "\"integer ny\" 3 \"integer nz\" 7\n");
+    append(&text, &len, "  \"point3 p0\" [-1 -0.5 0] \"point3 p1\" [1.5 2 1] ");
+    append(&text, &len, "\"rgb sigma_a\" [0.3 0.5 0.2] \"rgb sigma_s\" [1 0.7 1.4]");
+    append(&text, &len, " \"rgb Le\" [1 2 3]\n");
+    append_grid(&text, &len, "float", "density", cases[0].a, 5 * 3 * 7);
+    append(&text, &len, "AttributeEnd\nMakeNamedMedium \"b\" \"string type\" \"rgbgrid\" ");
+    append(&text, &len, "\"integer nx\" 37 \"integer ny\" 20 \"integer nz\" 3\n");
+    append(&text, &len, "  \"point3 p1\" [2 1 0.5] \"float scale\" 0.7 \"float Lescale\" 2\n");
+    append_grid(&text, &len, "rgb", "sigma_a", cases[1].a, 37 * 20 * 3 * 3);
+    append_grid(&text, &len, "rgb", "sigma_s", cases[1].s, 37 * 20 * 3 * 3);
+    append_grid(&text, &len, "rgb", "Le", cases[1].e, 37 * 20 * 3 * 3);
+    append(&text, &len, "Scale 1 2 0.5\nMakeNamedMedium \"c\" \"string type\" \"uniformgrid\" ");
+    append(&text, &len, "\"integer nx\" 2 \"integer ny\" 2 \"integer nz\" 2\n");
+    append(&text, &len, "  \"rgb sigma_a\" [2 1 0.5] \"rgb sigma_s\" [0 0 0] \"rgb Le\" [0.5 1 1.5]\n");
+    append_grid(&text, &len, "float", "density", cases[2].a, 8);
+    append_grid(&text, &len, "float", "Lescale", cases[2].e, 8);
+
+    struct cv_scene_load_params lp = {.strict = true};
+    struct cv_scene *s = NULL;
+    struct cv_scene_gpu g = {0};
+    bool loaded = cv_scene_load_string("grid.pbrt", text, len, &lp, &s, &err);
+    free(text);
+    if (tap_ok(loaded && s->n_media == 4, "the grid media load: %s", err.msg) &&
+        tap_ok(cv_scene_upload(gpu, s, NULL, &g, &err), "the scene uploads: %s", err.msg)) {
+        cv_scene_bind(&g);
+        struct cv_program *prog = cv_program_get(gpu, "trace/test/grid_probe.comp", NULL, &err);
+        if (tap_ok(prog != NULL, "grid_probe.comp compiles: %s", prog ? "" : err.msg))
+            for (unsigned m = 0; m < 3; m++) {
+                check_lookups(prog, &cases[m], m + 1, s);
+                check_walks(prog, &cases[m], m + 1, s);
+            }
+        cv_scene_gpu_release(&g);
+    }
+    cv_scene_destroy(&s);
+    free(cases[0].a);
+    free(cases[1].a);
+    free(cases[1].s);
+    free(cases[1].e);
+    free(cases[2].a);
+    free(cases[2].e);
+    cv_gpu_destroy(&gpu);
+    return tap_done();
+}
