@@ -39,6 +39,10 @@
 /* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
  * above the stage-private range */
 #define CV_BIND_MEDIA 29
+/* vec4[]: the moving shapes, their transforms and trees (glsl/bvh/motion.glsl,
+ * src/bvh/motion_bvh.c); bound only where the scene has them (CV_HAS_MOTION);
+ * above the stage-private range */
+#define CV_BIND_MOTION 30
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -5,6 +5,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "bvh/curve_bvh.h"
+#include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
@@ -144,7 +145,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
         g->basic_materials = false;
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
-    g->no_triangles = s->n_triangles == 0;
+    g->has_motion = s->n_motions > 0;
+    g->no_triangles = cv_scene_static_triangles(s) == 0;
 }
 
 bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
@@ -201,14 +203,27 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
             return false;
         }
     }
+    if (g.has_motion) {
+        size_t n4;
+        float *packed = cv_motion_bvh_pack(s, &n4);
+        ok = up(gpu, &g.motion, n4 * 16, packed, "scene moving shapes", err);
+        free(packed);
+        if (!ok) {
+            cv_scene_gpu_release(&g);
+            return false;
+        }
+    }
+    /* the static triangles' tree; moving shapes' triangles (after them)
+     * have their own */
+    uint32_t n_static = cv_scene_static_triangles(s);
     struct cv_bvh_params bp = bvh ? *bvh : cv_bvh_default_params();
     /* tests count this line to check that a batch builds each scene's BVH
      * once, and read the knobs that reached the build */
-    if (s->n_triangles)
+    if (n_static)
         cv_debug("building BVH for %s (%u triangles, %d treelet rounds, split budget %g)",
-                 s->path ? s->path : "scene", s->n_triangles, bp.treelet_rounds,
+                 s->path ? s->path : "scene", n_static, bp.treelet_rounds,
                  bp.split_budget);
-    if (s->n_triangles && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, &bp, &g.bvh, err)) {
+    if (n_static && !cv_bvh_build(gpu, g.vertices, g.triangles, n_static, &bp, &g.bvh, err)) {
         cv_error_prefix(err, "building the BVH: ");
         cv_scene_gpu_release(&g);
         return false;
@@ -234,6 +249,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         cv_buffer_bind(g->curves, CV_BIND_CURVES);
     if (g->media)
         cv_buffer_bind(g->media, CV_BIND_MEDIA);
+    if (g->motion)
+        cv_buffer_bind(g->motion, CV_BIND_MOTION);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -251,7 +268,7 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
-                   &g->tri_object, &g->curves, &g->media};
+                   &g->tri_object, &g->curves, &g->media, &g->motion};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;
