@@ -45,7 +45,7 @@ CvSurface cv_surface(uint prim, float b1, float b2)
     // flip for a handedness swap: the geometric normal below flips back).
     // Rays leave it by a larger margin: they are carried back into object
     // space, which rounds at the scale of the point and the translation.
-    if (prim >= cv_motion_first_prim()) {
+    if (prim >= cv_motion_first_prim() && (prim & CV_PRIM_CURVE) == 0u) {
         mat3 m;
         vec3 T;
         cv_motion_xf(cv_motion_of_prim(prim), cv_trace_time, m, T);
