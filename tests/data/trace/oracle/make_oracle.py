@@ -466,8 +466,14 @@ def motion_main():
     turn = ("AttributeBegin\n  " + white + "  Translate 1.2 0 0.4\n"
             "  ActiveTransform EndTime\n  Rotate 80 0 1 0\n  Scale 1 1.5 1\n  ActiveTransform All\n"
             + indent(box([-0.9, 0, -0.15], [0.9, 0.5, 0.15])) + "AttributeEnd\n")
-    scene("object_motion", "a box sliding and a plank turning and growing over the shutter, "
-          "area lamp", AREA_LAMP + FLOOR + slide + turn, maxdepth=3)
+    # a flattened sphere (smooth normals) rolling 60 degrees about z: its
+    # shading normals go through the inverse transpose of the transform at
+    # each time
+    roll = ("AttributeBegin\n  " + white + "  Translate 0 1.1 1.6\n"
+            "  ActiveTransform EndTime\n  Rotate 60 0 0 1\n  ActiveTransform All\n"
+            "  Scale 0.9 0.45 0.9\n  Include \"sphere.pbrt\"\nAttributeEnd\n")
+    scene("object_motion", "a box sliding, a plank turning and growing and a flattened sphere "
+          "rolling over the shutter, area lamp", AREA_LAMP + FLOOR + slide + turn + roll, maxdepth=3)
 
 
 if __name__ == "__main__":
