@@ -52,8 +52,8 @@ void cv_animated_at(const struct cv_animated *a, double time, double m[3][4]);
  * box's images at evenly spaced times, each grown by how far a point of
  * the box can move in half a step (a bound on its speed times the time
  * between samples), so it holds the swept volume whatever the rotation.
- * Conservative, at most a few thousandths of the sweep larger than the
- * exact bound. */
+ * Conservative: its slack over the exact sweep shrinks with the number of
+ * time samples (animated.c), which cost host time once per moving shape. */
 void cv_animated_bounds(const struct cv_animated *a, const float lo[3], const float hi[3],
                         float out_lo[3], float out_hi[3]);
 
