@@ -30,7 +30,20 @@
 #include "../lib/quaternion.glsl"
 #include "triangle.glsl"
 
+#ifdef CV_HAS_CURVES
+// A kernel may use 16 storage blocks, which one with curves, media, alpha
+// cut-outs and moving shapes would pass: with curves, the moving shapes'
+// vec4s follow the curves' in their block (src/trace/scene_upload.c), from
+// the vec4 that the curves' header's w names.
+#include "curves.glsl"
+uint cv_motion_base() { return floatBitsToUint(cv_curve_data[0].w); }
+vec4 cv_motion_at(uint i) { return cv_curve_data[cv_motion_base() + i]; }
+uint cv_motion_len() { return uint(cv_curve_data.length()) - cv_motion_base(); }
+#else
 layout(std430, binding = CV_BIND_MOTION) readonly buffer CvMotionBlock { vec4 cv_motion_data[]; };
+vec4 cv_motion_at(uint i) { return cv_motion_data[i]; }
+uint cv_motion_len() { return uint(cv_motion_data.length()); }
+#endif
 
 #define CV_MOTION_STACK 32  // node stacks: median-split trees of < 2^32 items are shallower
 #define CV_MOTION_RECORD 11u
@@ -40,28 +53,28 @@ layout(std430, binding = CV_BIND_MOTION) readonly buffer CvMotionBlock { vec4 cv
 // traces.
 float cv_trace_time = 0.0;
 
-uint cv_motion_count() { return floatBitsToUint(cv_motion_data[0].x); }
-uint cv_motion_first_prim() { return floatBitsToUint(cv_motion_data[0].w); }
+uint cv_motion_count() { return floatBitsToUint(cv_motion_at(0).x); }
+uint cv_motion_first_prim() { return floatBitsToUint(cv_motion_at(0).w); }
 
 // World from object of shape g at `time`: w = m * x + T.
 void cv_motion_xf(uint g, float time, out mat3 m, out vec3 T)
 {
-    uint b = floatBitsToUint(cv_motion_data[0].y) + CV_MOTION_RECORD * g;
-    vec4 a0 = cv_motion_data[b], a1 = cv_motion_data[b + 5u];
+    uint b = floatBitsToUint(cv_motion_at(0).y) + CV_MOTION_RECORD * g;
+    vec4 a0 = cv_motion_at(b), a1 = cv_motion_at(b + 5u);
     float t0 = a0.w, t1 = a1.w;
     float dt = time <= t0 ? 0.0 : time >= t1 ? 1.0 : (time - t0) / (t1 - t0);
     T = mix(a0.xyz, a1.xyz, dt);
-    vec4 q = cv_quat_slerp(dt, cv_motion_data[b + 1u], cv_motion_data[b + 6u]);
+    vec4 q = cv_quat_slerp(dt, cv_motion_at(b + 1u), cv_motion_at(b + 6u));
     // S's rows lerped; m's columns are R times S's columns
-    mat3 s = transpose(mat3(mix(cv_motion_data[b + 2u].xyz, cv_motion_data[b + 7u].xyz, dt),
-                            mix(cv_motion_data[b + 3u].xyz, cv_motion_data[b + 8u].xyz, dt),
-                            mix(cv_motion_data[b + 4u].xyz, cv_motion_data[b + 9u].xyz, dt)));
+    mat3 s = transpose(mat3(mix(cv_motion_at(b + 2u).xyz, cv_motion_at(b + 7u).xyz, dt),
+                            mix(cv_motion_at(b + 3u).xyz, cv_motion_at(b + 8u).xyz, dt),
+                            mix(cv_motion_at(b + 4u).xyz, cv_motion_at(b + 9u).xyz, dt)));
     m = mat3(cv_quat_rotate(q, s[0]), cv_quat_rotate(q, s[1]), cv_quat_rotate(q, s[2]));
 }
 
 uvec4 cv_motion_info(uint g)
 {
-    return floatBitsToUint(cv_motion_data[floatBitsToUint(cv_motion_data[0].y) + CV_MOTION_RECORD * g + 10u]);
+    return floatBitsToUint(cv_motion_at(floatBitsToUint(cv_motion_at(0).y) + CV_MOTION_RECORD * g + 10u));
 }
 
 // The shape that triangle `prim` (a moving one) belongs to: records are in
@@ -98,10 +111,10 @@ vec3 cv_motion_inv(vec3 d)
 void cv_motion_node(int node, out vec4 lo0, out vec4 hi0, out vec4 lo1, out vec4 hi1)
 {
     uint b = 1u + 4u * uint(node);
-    lo0 = cv_motion_data[b];
-    hi0 = cv_motion_data[b + 1u];
-    lo1 = cv_motion_data[b + 2u];
-    hi1 = cv_motion_data[b + 3u];
+    lo0 = cv_motion_at(b);
+    hi0 = cv_motion_at(b + 1u);
+    lo1 = cv_motion_at(b + 2u);
+    hi1 = cv_motion_at(b + 3u);
 }
 
 // The triangle test's t is only as exact as the vertices' distance from
@@ -126,13 +139,13 @@ float cv_motion_pad(int root, vec3 o, vec3 d)
 bool cv_motion_tris(uint first, uint last, CvRayTri r, float tmin, bool any, inout float hit_t,
                     inout uint hit_prim, inout float hit_b1, inout float hit_b2)
 {
-    uint tb = floatBitsToUint(cv_motion_data[0].z);
+    uint tb = floatBitsToUint(cv_motion_at(0).z);
     bool found = false;
     for (uint k = first; k < last; k++) {
         uint v = tb + 3u * k;
-        vec4 v0 = cv_motion_data[v];
+        vec4 v0 = cv_motion_at(v);
         float t, b1, b2;
-        if (!cv_ray_tri(r, v0.xyz, cv_motion_data[v + 1u].xyz, cv_motion_data[v + 2u].xyz, t, b1, b2) ||
+        if (!cv_ray_tri(r, v0.xyz, cv_motion_at(v + 1u).xyz, cv_motion_at(v + 2u).xyz, t, b1, b2) ||
             !(t > tmin))
             continue;
         uint prim = floatBitsToUint(v0.w);
@@ -178,8 +191,8 @@ bool cv_motion_shape(uint g, vec3 o, vec3 d, float time, float tmin, bool any, i
     int sp = 0;
     int node = root;
     bool found = false;
-    uint n_nodes = (floatBitsToUint(cv_motion_data[0].y) - 1u) / 4u;
-    uint slot_end = (uint(cv_motion_data.length()) - floatBitsToUint(cv_motion_data[0].z)) / 3u;
+    uint n_nodes = (floatBitsToUint(cv_motion_at(0).y) - 1u) / 4u;
+    uint slot_end = (cv_motion_len() - floatBitsToUint(cv_motion_at(0).z)) / 3u;
     for (uint steps = 0u; steps <= n_nodes; steps++) {
         vec4 lo[2], hi[2];
         cv_motion_node(node, lo[0], hi[0], lo[1], hi[1]);
@@ -223,7 +236,7 @@ bool cv_motion_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, ino
     uint ng = cv_motion_count();
     if (ng == 0u)
         return false;
-    uint n_nodes = (floatBitsToUint(cv_motion_data[0].y) - 1u) / 4u;
+    uint n_nodes = (floatBitsToUint(cv_motion_at(0).y) - 1u) / 4u;
     vec3 inv = cv_motion_inv(d);
     float pad = cv_motion_pad(0, o, d);
     int stack[CV_MOTION_STACK];
@@ -272,7 +285,7 @@ bool cv_motion_brute(vec3 o, vec3 d, float time, float tmin, bool any, inout flo
                      inout uint hit_prim, inout float hit_b1, inout float hit_b2)
 {
     bool found = false;
-    uint slot = 0u, tb = floatBitsToUint(cv_motion_data[0].z);
+    uint slot = 0u, tb = floatBitsToUint(cv_motion_at(0).z);
     for (uint g = 0u; g < cv_motion_count(); g++) {
         vec3 oo, od;
         cv_motion_ray(g, time, o, d, oo, od);
@@ -280,9 +293,9 @@ bool cv_motion_brute(vec3 o, vec3 d, float time, float tmin, bool any, inout flo
         uint n = cv_motion_info(g).z;
         for (uint k = slot; k < slot + n; k++) {
             uint v = tb + 3u * k;
-            vec4 v0 = cv_motion_data[v];
+            vec4 v0 = cv_motion_at(v);
             float t, b1, b2;
-            if (!cv_ray_tri(r, v0.xyz, cv_motion_data[v + 1u].xyz, cv_motion_data[v + 2u].xyz, t, b1, b2) ||
+            if (!cv_ray_tri(r, v0.xyz, cv_motion_at(v + 1u).xyz, cv_motion_at(v + 2u).xyz, t, b1, b2) ||
                 !(t > tmin))
                 continue;
             uint prim = floatBitsToUint(v0.w);

@@ -193,25 +193,23 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
-    if (g.has_curves) {
-        size_t n4;
-        float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
-        ok = up(gpu, &g.curves, n4 * 16, packed, "scene curves", err);
-        free(packed);
-        if (!ok) {
-            cv_scene_gpu_release(&g);
-            return false;
-        }
-    }
-    if (g.has_motion) {
-        size_t n4;
-        float *packed = cv_motion_bvh_pack(s, &n4);
-        ok = up(gpu, &g.motion, n4 * 16, packed, "scene moving shapes", err);
-        free(packed);
-        if (!ok) {
-            cv_scene_gpu_release(&g);
-            return false;
-        }
+    /* with curves, the moving shapes share their buffer (bvh/motion_bvh.h) */
+    size_t n_curve4 = 0, n_motion4 = 0;
+    float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, &n_curve4) : NULL;
+    float *motion4 = NULL;
+    if (curve4 && g.has_motion)
+        cv_motion_bvh_append(s, &curve4, &n_curve4);
+    else if (g.has_motion)
+        motion4 = cv_motion_bvh_pack(s, &n_motion4);
+    if (curve4)
+        ok = up(gpu, &g.curves, n_curve4 * 16, curve4, "scene curves", err);
+    if (ok && motion4)
+        ok = up(gpu, &g.motion, n_motion4 * 16, motion4, "scene moving shapes", err);
+    free(curve4);
+    free(motion4);
+    if (!ok) {
+        cv_scene_gpu_release(&g);
+        return false;
     }
     /* the static triangles' tree; moving shapes' triangles (after them)
      * have their own */
