@@ -12,7 +12,9 @@
 // chord. u runs along the piece, v across the width (0.5 on the centre).
 //
 // One storage block holds everything (a kernel may bind only a few):
-// vec4 0 is the header (node count, curve count, first curve's vec4), then
+// vec4 0 is the header (node count, curve count, first curve's vec4, and
+// in a scene with moving shapes the first of their vec4s, which follow:
+// glsl/bvh/motion.glsl), then
 // the nodes, 4 vec4 each as a binary CvBvhNode (glsl/shared/bvh.h: a leaf
 // child's word is its first curve, its count the curves), then the curves,
 // 7 vec4 each as CvCurve, in leaf order.

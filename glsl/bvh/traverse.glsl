@@ -40,6 +40,15 @@ struct CvHit {
 // walked after the triangles' by the two queries below.
 #include "curves.glsl"
 #endif
+// (Included files expand once, where first named, whatever #ifdef is
+// around them: motion.glsl's own includes come first, outside it.)
+#include "../lib/quaternion.glsl"
+#ifdef CV_HAS_MOTION
+// Moving shapes (prim: the triangle's index, as static ones) in trees of
+// their own, walked after the static triangles' at the ray's time
+// cv_trace_time.
+#include "motion.glsl"
+#endif
 
 // Zero direction components become tiny ones of the same sign, so slabs
 // never compute 0 * inf.
@@ -344,6 +353,9 @@ bool cv_trace_closest(vec3 o, vec3 d, float tmin, float tmax, out CvHit hit)
 #ifdef CV_HAS_CURVES
     cv_curves_walk(o, d, tmin, false, w.hit.t, w.hit.prim, w.hit.b1, w.hit.b2);
 #endif
+#ifdef CV_HAS_MOTION
+    cv_motion_walk(o, d, tmin, false, w.hit.t, w.hit.prim, w.hit.b1, w.hit.b2);
+#endif
     hit = w.hit;
     return hit.prim != 0xffffffffu;
 }
@@ -360,6 +372,10 @@ bool cv_trace_any(vec3 o, vec3 d, float tmin, float tmax)
 #ifdef CV_HAS_CURVES
     if (w.hit.prim == 0xffffffffu)
         cv_curves_walk(o, d, tmin, true, w.hit.t, w.hit.prim, w.hit.b1, w.hit.b2);
+#endif
+#ifdef CV_HAS_MOTION
+    if (w.hit.prim == 0xffffffffu)
+        cv_motion_walk(o, d, tmin, true, w.hit.t, w.hit.prim, w.hit.b1, w.hit.b2);
 #endif
     return w.hit.prim != 0xffffffffu;
 }

@@ -43,6 +43,10 @@
  * with the scene, only where it has grid media; above the stage-private
  * range */
 #define CV_BIND_MEDIUM_GRIDS 30
+/* vec4[]: the moving shapes, their transforms and trees (glsl/bvh/motion.glsl,
+ * src/bvh/motion_bvh.c); bound only where the scene has them (CV_HAS_MOTION);
+ * above the stage-private range */
+#define CV_BIND_MOTION 31
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

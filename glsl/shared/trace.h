@@ -142,7 +142,8 @@ CV_CHECK_SIZE(CvHitItem, 32);
  * cut-outs, the sample index of the path that sent it, for the alpha tests
  * (CvFilmPixel.normal.w has moved on when that path ended). m.x: the
  * medium the ray starts in (volpath: the contribution is multiplied by the
- * transmittance along it, trace/shadow.comp); m.yzw unused. */
+ * transmittance along it, trace/shadow.comp); m.y: with moving shapes
+ * (CV_HAS_MOTION), the path's time (trace/path_time.glsl); m.zw unused. */
 CV_STRUCT(CvShadowItem) {
     cv_vec4 o;
     cv_vec4 d;

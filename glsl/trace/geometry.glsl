@@ -8,6 +8,13 @@
 #ifdef CV_HAS_CURVES
 #include "../bvh/curves.glsl"
 #endif
+// (Included files expand once, where first named, whatever #ifdef is
+// around them: motion.glsl's own includes come first, outside it.)
+#include "../lib/quaternion.glsl"
+#include "../bvh/triangle.glsl"
+#ifdef CV_HAS_MOTION
+#include "../bvh/motion.glsl"
+#endif
 
 struct CvSurface {
     vec3 p;
@@ -29,8 +36,34 @@ CvSurface cv_surface(uint prim, float b1, float b2)
     s.flags = idx.w & ~CV_TRI_MATERIAL_MASK;
     s.material = idx.w & CV_TRI_MATERIAL_MASK;
     vec3 p0 = v0.pos_u.xyz, p1 = v1.pos_u.xyz, p2 = v2.pos_u.xyz;
+    vec3 n0 = v0.nrm_v.xyz, n1 = v1.nrm_v.xyz, n2 = v2.nrm_v.xyz;
+    float xf_err = 0.0;
+#ifdef CV_HAS_MOTION
+    // A moving shape's triangle (object space) at the time of the ray that
+    // hit it, as pbrt-v4 transforms an AnimatedPrimitive's intersection:
+    // positions by the transform, normals by its inverse transpose (no
+    // flip for a handedness swap: the geometric normal below flips back).
+    // Rays leave it by a larger margin: they are carried back into object
+    // space, which rounds at the scale of the point and the translation.
+    if (prim >= cv_motion_first_prim() && (prim & CV_PRIM_CURVE) == 0u) {
+        mat3 m;
+        vec3 T;
+        cv_motion_xf(cv_motion_of_prim(prim), cv_trace_time, m, T);
+        xf_err = cv_point_error(p0, p1, p2) * (length(m[0]) + length(m[1]) + length(m[2]));
+        p0 = m * p0 + T;
+        p1 = m * p1 + T;
+        p2 = m * p2 + T;
+        mat3 nm = transpose(inverse(m));
+        n0 = nm * n0;
+        n1 = nm * n1;
+        n2 = nm * n2;
+        if (determinant(m) < 0.0)
+            s.flags ^= CV_TRI_REVERSE;
+        xf_err += (1.0 / 524288.0) * (cv_max3(abs(p0)) + cv_max3(abs(T)));
+    }
+#endif
     s.p = b0 * p0 + b1 * p1 + b2 * p2;
-    s.p_err = cv_point_error(p0, p1, p2);
+    s.p_err = cv_point_error(p0, p1, p2) + xf_err;
     vec2 uv0 = vec2(0.0, 0.0), uv1 = vec2(1.0, 0.0), uv2 = vec2(1.0, 1.0);
     if ((s.flags & CV_TRI_HAS_UV) != 0u) {
         uv0 = vec2(v0.pos_u.w, v0.nrm_v.w);
@@ -55,7 +88,7 @@ CvSurface cv_surface(uint prim, float b1, float b2)
     }
     s.ns = ng;
     if ((s.flags & CV_TRI_HAS_NORMAL) != 0u) {
-        vec3 n = b0 * v0.nrm_v.xyz + b1 * v1.nrm_v.xyz + b2 * v2.nrm_v.xyz;
+        vec3 n = b0 * n0 + b1 * n1 + b2 * n2;
         if (dot(n, n) > 0.0) {
             n = normalize(n);
             // pbrt orients the geometric normal by the shading normal

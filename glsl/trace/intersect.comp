@@ -21,6 +21,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "sampler.glsl"
 #include "tracing.glsl"
 #include "geometry.glsl"
+#include "path_time.glsl"
 #include "materials.glsl"
 #include "queue_args.glsl"
 #ifndef CV_ESCAPED_QUEUE
@@ -46,6 +47,9 @@ void main()
     bool event = false;    // a collision in a medium (CV_MEDIA)
     if (valid) {
         CvRayItem r = cv_ray_in(i);
+#ifdef CV_HAS_MOTION
+        cv_trace_time = cv_path_time(uint(r.o.w));
+#endif
 #ifdef CV_MEDIA
         hit = cv_medium_track(r, h, event) || event;  // an event is queued as a hit
         cv_ray_in_beta(i, r.beta);

@@ -13,6 +13,7 @@
 #define CV_TRACE_REGENERATE_GLSL
 
 #include "camera.glsl"
+#include "path_time.glsl"
 
 // Sample `sample_index` of the pixel of path slot `path`: its camera ray;
 // the slot's film entry counts the sample's weight and records it, with
@@ -28,9 +29,7 @@ CvRayItem cv_camera_sample(uint path, uint sample_index)
     vec2 ul = cv_sample_2d(film_pixel, sample_index, 1u, seed, sampler);
     float w;
     vec2 raster = vec2(px) + 0.5 + cv_filter_sample(uf, w);
-    float ut = u_pass.cam_moves.x != 0u
-                   ? cv_sample_2d(film_pixel, sample_index, CV_PAIR_CAMERA_TIME, seed, sampler).x
-                   : 0.0;
+    float ut = cv_time_sampled() ? cv_time_u(film_pixel, sample_index) : 0.0;
     vec3 o, d;
     cv_camera_ray(raster, ul, ut, o, d);
     CvRayItem r;

@@ -37,6 +37,12 @@ void main()
     CvRayItem nr;
     if (valid) {
         uint slot_in = cv_hit_slot(i);
+#ifdef CV_HAS_MOTION
+        // the path's time, for a moving shape's surface and carried by the
+        // shadow ray (CvShadowItem.m.y): the slot may move on before the
+        // shadow stage runs
+        cv_trace_time = cv_path_time(uint(cv_ray_in(hits[slot_in].ray).o.w));
+#endif
 #ifdef CV_MEDIA
         CvHitItem hm = hits[slot_in];
         if (hm.prim == CV_HIT_MEDIUM)
@@ -50,6 +56,10 @@ void main()
         // before the slot moves on to its next
         if (push_shadow)
             s.L.w = float(cv_path_sample(path));
+#endif
+#ifdef CV_HAS_MOTION
+        if (push_shadow)
+            s.m.y = cv_trace_time;
 #endif
         if (!push_ray)
             push_ray = cv_regenerate(path, nr);

@@ -74,6 +74,9 @@ void main()
         return;
     CvShadowItem s = shadows[i];
     uint path = uint(s.d.w);
+#ifdef CV_HAS_MOTION
+    cv_trace_time = s.m.y;
+#endif
 #ifdef CV_MEDIA
     cv_shadow_media(s, path);
 #elif defined(CV_HAS_ALPHA)

@@ -2,6 +2,7 @@
 libcavalry_a_SOURCES += \
 	src/bvh/bounds.c src/bvh/bounds.h \
 	src/bvh/bvh.c src/bvh/bvh.h src/bvh/curve_bvh.c src/bvh/curve_bvh.h \
+	src/bvh/motion_bvh.c src/bvh/motion_bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
 	src/bvh/scan.c src/bvh/scan.h \
 	src/bvh/scratch.c src/bvh/scratch.h \
@@ -23,4 +24,5 @@ GLSL_FILES += \
 	glsl/bvh/widen.glsl glsl/bvh/widen_next.comp glsl/bvh/widen_level.comp \
 	glsl/bvh/widen_emit.comp \
 	glsl/bvh/mesh_buffers.glsl glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
-	glsl/bvh/rays_test.comp glsl/bvh/curves_test.comp
+	glsl/bvh/rays_test.comp glsl/bvh/curves_test.comp \
+	glsl/bvh/motion.glsl glsl/bvh/motion_test.comp

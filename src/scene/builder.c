@@ -515,6 +515,110 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
     return ok;
 }
 
+static void rows3x4(const struct cv_mat4 *a, double m[3][4])
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            m[r][c] = a->m[r][c];
+}
+
+bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why)
+{
+    *why = NULL;
+    if (memcmp(&b->gs.ctm, &b->gs.ctm_end, sizeof(b->gs.ctm)) == 0)
+        return false;
+    struct cv_animated a;
+    double m0[3][4], m1[3][4];
+    rows3x4(&b->gs.ctm, m0);
+    rows3x4(&b->gs.ctm_end, m1);
+    if (b->cur_object >= 0)
+        *why = "shapes moving inside an object definition are not rendered moving";
+    else if (b->gs.area.on && type)
+        *why = "moving area lights are not rendered moving (nor by pbrt-v4)";
+    else if (type && strcmp(type, "curve") == 0)
+        *why = "moving curves are not rendered moving";
+    else if (b->gs.ctm.m[3][0] != 0 || b->gs.ctm.m[3][1] != 0 || b->gs.ctm.m[3][2] != 0 ||
+             b->gs.ctm_end.m[3][0] != 0 || b->gs.ctm_end.m[3][1] != 0 || b->gs.ctm_end.m[3][2] != 0 ||
+             !cv_animated_init(&a, m0, b->transform_times[0], m1, b->transform_times[1]))
+        *why = "a projective or singular transform cannot be interpolated";
+    else if (!a.moving)
+        *why = "TransformTimes do not increase";
+    return *why == NULL;
+}
+
+void cv_b_motion_begin(struct cv_builder *b)
+{
+    b->motion_ctm = b->gs.ctm;
+    b->gs.ctm = cv_mat4_identity();
+    b->motion_nt0 = b->s->n_triangles;
+    b->motion_nv0 = b->s->n_vertices;
+}
+
+void cv_b_motion_end(struct cv_builder *b)
+{
+    struct cv_scene *s = b->s;
+    b->gs.ctm = b->motion_ctm;
+    if (s->n_triangles == b->motion_nt0)
+        return;
+    s->motions = cv_xgrow(s->motions, &b->cap_motions, s->n_motions + 1, sizeof(*s->motions));
+    struct cv_motion *m = &s->motions[s->n_motions++];
+    *m = (struct cv_motion){.first = b->motion_nt0, .count = s->n_triangles - b->motion_nt0,
+                            .first_vertex = b->motion_nv0, .n_vertices = s->n_vertices - b->motion_nv0};
+    double m0[3][4], m1[3][4];
+    rows3x4(&b->gs.ctm, m0);
+    rows3x4(&b->gs.ctm_end, m1);
+    cv_animated_init(&m->xf, m0, b->transform_times[0], m1, b->transform_times[1]); /* cv_b_can_move checked it */
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t v = m->first_vertex; v < m->first_vertex + m->n_vertices; v++)
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fminf(lo[c], (&s->vertices[v].pos_u.x)[c]);
+            hi[c] = fmaxf(hi[c], (&s->vertices[v].pos_u.x)[c]);
+        }
+    cv_animated_bounds(&m->xf, lo, hi, m->lo, m->hi);
+}
+
+/* Moves the moving shapes' triangles after all static ones (scene.h), the
+ * per-triangle arrays and area lights' triangle indices with them. */
+static void order_motions(struct cv_scene *s)
+{
+    if (s->n_motions == 0)
+        return;
+    uint32_t n = s->n_triangles, k = 0;
+    uint32_t *to = cv_xmalloc(n * sizeof(uint32_t));
+    bool *moving = cv_xcalloc(n, sizeof(bool));
+    for (uint32_t m = 0; m < s->n_motions; m++)
+        for (uint32_t t = 0; t < s->motions[m].count; t++)
+            moving[s->motions[m].first + t] = true;
+    for (uint32_t t = 0; t < n; t++)
+        if (!moving[t])
+            to[t] = k++;
+    for (uint32_t m = 0; m < s->n_motions; m++) {
+        uint32_t first = s->motions[m].first;
+        s->motions[m].first = k;
+        for (uint32_t t = 0; t < s->motions[m].count; t++)
+            to[first + t] = k++;
+    }
+    CvTriangle *tri = cv_xmalloc(n * sizeof(CvTriangle));
+    int32_t *tl = cv_xmalloc(n * sizeof(int32_t));
+    uint32_t *to_obj = cv_xmalloc(n * sizeof(uint32_t));
+    for (uint32_t t = 0; t < n; t++) {
+        tri[to[t]] = s->triangles[t];
+        tl[to[t]] = s->tri_light[t];
+        to_obj[to[t]] = s->tri_object[t];
+    }
+    memcpy(s->triangles, tri, n * sizeof(CvTriangle));
+    memcpy(s->tri_light, tl, n * sizeof(int32_t));
+    memcpy(s->tri_object, to_obj, n * sizeof(uint32_t));
+    for (uint32_t i = 0; i < s->n_lights; i++)
+        if (s->lights[i].type == CV_LIGHT_AREA)
+            s->lights[i].prim = to[s->lights[i].prim];
+    free(tri);
+    free(tl);
+    free(to_obj);
+    free(moving);
+    free(to);
+}
+
 static bool is_infinite(const CvLight *l)
 {
     return l->type == CV_LIGHT_INFINITE || l->type == CV_LIGHT_INFINITE_MAP;
@@ -558,7 +662,19 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
 {
     struct cv_scene *s = b->s;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    /* moving shapes' vertices are in object space: their motion boxes count */
+    bool *moving = cv_xcalloc(s->n_vertices ? s->n_vertices : 1, sizeof(bool));
+    for (uint32_t m = 0; m < s->n_motions; m++) {
+        for (uint32_t v = 0; v < s->motions[m].n_vertices; v++)
+            moving[s->motions[m].first_vertex + v] = true;
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fmin(lo[c], s->motions[m].lo[c]);
+            hi[c] = fmax(hi[c], s->motions[m].hi[c]);
+        }
+    }
     for (size_t i = 0; i < s->n_vertices; i++) {
+        if (moving[i])
+            continue;
         const float *p = &s->vertices[i].pos_u.x;
         for (int c = 0; c < 3; c++) {
             if (p[c] < lo[c])
@@ -567,6 +683,7 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
                 hi[c] = p[c];
         }
     }
+    free(moving);
     for (size_t i = 0; i < s->n_curves; i++) {
         /* control points bound the piece; half the widest width around them */
         const CvCurve *cu = &s->curves[i];
@@ -600,6 +717,7 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
     if (b->cur_object >= 0)
         return cv_fail(err, "ObjectBegin \"%s\" not closed at end of input", b->objects[b->cur_object].name);
     order_lights(s);
+    order_motions(s);
     cv_b_finish_camera(b);
     return true;
 }

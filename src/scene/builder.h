@@ -130,6 +130,9 @@ struct cv_builder {
     char **paths;                /* every file read, kept for locations */
     size_t n_paths, cap_paths;
     uint32_t light_source;       /* the directive of the lights added next */
+    size_t cap_motions;
+    struct cv_mat4 motion_ctm;   /* the start transform of the moving shape being emitted */
+    uint32_t motion_nt0, motion_nv0;
     size_t cap_light_sources;
 };
 
@@ -149,6 +152,16 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err);
 bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct cv_loc *loc,
                     struct cv_error *err);
 /* Copies object `index` with the current transform (flattened instancing). */
+/* Moving shapes (scene.h, cv_motion): whether what the current
+ * transforms place now (a shape of `type`, or an instance when type is
+ * NULL) moves, or, where Cavalry cannot move it, is placed at its start
+ * transform (*why says why; NULL when the transforms agree). */
+bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why);
+/* Between these two, geometry is emitted in object space (the start
+ * transform set aside); the end records what was emitted as one moving
+ * shape. */
+void cv_b_motion_begin(struct cv_builder *b);
+void cv_b_motion_end(struct cv_builder *b);
 bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err);
 uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);
 /* Records where material `index` was made ("file:line", for ID mattes). */

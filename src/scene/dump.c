@@ -73,6 +73,8 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
     fprintf(o, "vertices %u\ntriangles %u\n", s->n_vertices, s->n_triangles);
     if (s->n_curves)
         fprintf(o, "curves %u\n", s->n_curves);
+    if (s->n_motions)  /* their triangles are counted above, in object space */
+        fprintf(o, "moving shapes %u triangles %u\n", s->n_motions, s->n_triangles - cv_scene_static_triangles(s));
     fprintf(o, "bounds %.6g %.6g %.6g  %.6g %.6g %.6g\n", s->bounds_min[0], s->bounds_min[1],
             s->bounds_min[2], s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]);
     uint64_t h = 1469598103934665603ull;

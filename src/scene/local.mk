@@ -6,6 +6,7 @@ libcavalry_a_SOURCES += \
 	src/scene/parse.c src/scene/parse.h \
 	src/scene/builder.c src/scene/builder.h \
 	src/scene/transform.c src/scene/transform.h \
+	src/scene/animated.c src/scene/animated.h \
 	src/scene/ply.c src/scene/ply.h \
 	src/scene/shapes.c src/scene/curves.c \
 	src/scene/materials.c \

@@ -303,9 +303,10 @@ static void set_ctm(struct cv_builder *b, struct cv_mat4 m)
         b->gs.ctm_end = m;
 }
 
-/* Objects do not move in Cavalry: a shape, light or instance whose start
- * and end transforms differ is placed at its start transform, with a
- * warning at its directive. */
+/* A shape or instance whose start and end transforms differ moves
+ * (builder.h, cv_b_can_move); one that cannot is placed at its start
+ * transform, with a warning that says why. Lights never move (as in
+ * pbrt-v4, which takes their start transform too). */
 static bool warn_animated(struct cv_builder *b, const struct cv_loc *loc, const char *what,
                           struct cv_error *err)
 {
@@ -313,6 +314,23 @@ static bool warn_animated(struct cv_builder *b, const struct cv_loc *loc, const 
         return true;
     return cv_b_warn(b, err, loc, "animated transform: %s motion blur is not rendered; the %s "
                      "is taken at its start time", what, what);
+}
+
+/* Shape `type` (NULL: an instance of object `index`) under the current
+ * transforms: moving when they differ and it can move. */
+static bool place(struct cv_builder *b, const char *type, struct cv_params *ps, int index,
+                  const struct cv_loc *loc, const char *dir, struct cv_error *err)
+{
+    const char *why;
+    bool moving = cv_b_can_move(b, type, &why);
+    if (why && !cv_b_warn(b, err, loc, "animated transform: %s; taken at its start time", why))
+        return false;
+    if (moving)
+        cv_b_motion_begin(b);
+    bool ok = type ? cv_b_shape(b, type, ps, loc, dir, err) : cv_b_instance(b, index, loc, err);
+    if (moving)
+        cv_b_motion_end(b);
+    return ok;
 }
 
 static bool attr_push(struct cv_builder *b, bool transform_only, const struct cv_loc *loc)
@@ -687,8 +705,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             goto fail;
         attrs_apply(p, "shape", &ps);
         dir = dir_of(p, d);
-        ok = warn_animated(b, &loc, "object", err) && cv_b_shape(b, type, &ps, &loc, dir, err) &&
-             cv_b_check_unused(b, &ps, "Shape", err);
+        ok = place(b, type, &ps, -1, &loc, dir, err) && cv_b_check_unused(b, &ps, "Shape", err);
     } else if (IS(Material)) {
         if (!typed(p, d, &type, &ps, err))
             goto fail;
@@ -806,7 +823,7 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         if (found < 0 || found == b->cur_object)
             ok = cv_fail(err, "%s:%d:%d: unknown object \"%s\"", loc.file, loc.line, loc.col, name);
         else
-            ok = warn_animated(b, &loc, "object", err) && cv_b_instance(b, found, &loc, err);
+            ok = place(b, NULL, NULL, found, &loc, NULL, err);
     } else if (IS(Include) || IS(Import)) {
         if (!expect_string(p, d, &name, err))
             return false;

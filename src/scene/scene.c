@@ -17,6 +17,7 @@ static void scene_free(struct cv_scene *s)
     free(s->tri_light);
     free(s->tri_object);
     free(s->curves);
+    free(s->motions);
     for (uint32_t i = 0; i < s->n_objects; i++)
         free(s->object_names[i]);
     free(s->object_names);
@@ -90,4 +91,9 @@ void cv_scene_destroy(struct cv_scene **scene)
         return;
     scene_free(*scene);
     *scene = NULL;
+}
+
+uint32_t cv_scene_static_triangles(const struct cv_scene *s)
+{
+    return s->n_motions ? s->motions[0].first : s->n_triangles;
 }

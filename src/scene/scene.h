@@ -11,6 +11,7 @@
 #include "base/error.h"
 #include "glsl/shared/medium.h"
 #include "glsl/shared/scene.h"
+#include "scene/animated.h"
 
 /* The renderer's ids (glsl/shared/scene.h); names and defaults:
  * scene/filter.h. */
@@ -64,7 +65,24 @@ struct cv_render_settings {
  *   (in file order): the GPU sums the environment over the leading infinite
  *   lights alone (glsl/trace/light/light.glsl). tri_light indices follow.
  * - Instanced objects are flattened (copied per instance).
- * - Quadrics are tessellated (see shapes.c for the accuracy). */
+ * - Quadrics are tessellated (see shapes.c for the accuracy).
+ * - Moving shapes (below) keep object-space vertices; their triangles come
+ *   after every static one. */
+
+/* A shape (or object instance) under an animated transform, pbrt-v4's
+ * AnimatedPrimitive: triangles [first, first + count) and vertices
+ * [first_vertex, first_vertex + n_vertices) are in its object space, xf
+ * takes them to world space at a ray's time (scene/animated.h); their
+ * CV_TRI_REVERSE is ReverseOrientation alone, the renderer flipping for a
+ * transform that swaps handedness at that time (glsl/bvh/motion.glsl). lo,
+ * hi: the world-space box the shape stays in while it moves. */
+struct cv_motion {
+    uint32_t first, count;
+    uint32_t first_vertex, n_vertices;
+    struct cv_animated xf;
+    float lo[3], hi[3];
+};
+
 struct cv_scene {
     CvVertex *vertices;
     uint32_t n_vertices;
@@ -73,6 +91,8 @@ struct cv_scene {
     int32_t *tri_light;              /* per triangle: light index or -1 */
     CvCurve *curves;                 /* curve primitives (src/scene/curves.c) */
     uint32_t n_curves;
+    struct cv_motion *motions;       /* moving shapes, their triangles in this order */
+    uint32_t n_motions;
 
     CvMaterial *materials;
     uint32_t n_materials;
@@ -148,6 +168,9 @@ bool cv_scene_load_string(const char *name, const char *text, size_t len,
                           struct cv_error *err);
 /* Accepts NULL; clears the pointer. */
 void cv_scene_destroy(struct cv_scene **scene);
+
+/* How many triangles are static: those before the moving shapes'. */
+uint32_t cv_scene_static_triangles(const struct cv_scene *s);
 
 /* Texel i (counted over the mip chain, level 0 first) of image texture t,
  * as linear RGBA, whichever way it is stored. i must lie inside the

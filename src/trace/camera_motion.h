@@ -4,10 +4,8 @@
  * remaining scale and shear. The shader (glsl/trace/camera.glsl)
  * interpolates translation and scale linearly and the rotation by slerp at
  * each camera ray's time, so a turning camera sweeps an arc, not a chord.
- * pbrt-v4 leaves a transform that swaps handedness (det < 0, e.g. Scale -1
- * 1 1 before LookAt) to a polar factor that is a reflection, which its
- * quaternion cannot hold; here the reflection moves into S (R and S both
- * negated), so such a camera moves as its matrices say. */
+ * The split (and its handling of a handedness swap, e.g. Scale -1 1 1
+ * before LookAt) is scene/animated.h's, shared with moving shapes. */
 #ifndef CV_TRACE_CAMERA_MOTION_H
 #define CV_TRACE_CAMERA_MOTION_H
 
@@ -15,14 +13,7 @@
 
 #include "glsl/shared/scene.h"
 #include "glsl/shared/trace.h"
-
-/* m (3x4 rows, affine) as translation T, unit quaternion q (x, y, z, w)
- * and 3x3 S with m = T * R(q) * S; false when m's 3x3 is singular. */
-bool cv_motion_decompose(const double m[3][4], double T[3], double q[4], double S[3][3]);
-
-/* The composition T * R(q) * S as 3x4 rows (q need not be unit length:
- * it is normalised). */
-void cv_motion_compose(const double T[3], const double q[4], const double S[3][3], double m[3][4]);
+#include "scene/animated.h"
 
 /* Fills the pass constants' cam_* motion fields for cam; a camera whose
  * start and end transforms agree gets cam_moves 0. */

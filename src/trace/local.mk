@@ -19,6 +19,7 @@ GLSL_FILES += \
 # ---- bsdf / light sampling (branch bsdf) ----
 GLSL_FILES += \
 	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \
+	glsl/lib/quaternion.glsl glsl/trace/path_time.glsl \
 	glsl/trace/bsdf/bsdf.glsl glsl/trace/bsdf/bsdf_sample.glsl glsl/trace/bsdf/material_buffers.glsl \
 	glsl/trace/bsdf/texture_buffers.glsl \
 	glsl/trace/bsdf/fresnel.glsl glsl/trace/bsdf/microfacet.glsl glsl/trace/bsdf/diffuse.glsl \

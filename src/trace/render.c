@@ -301,7 +301,10 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* curves: their own tree beside the triangles' (glsl/bvh/curves.glsl) */
     if (gs->has_curves)
         defines[nd++] = "CV_HAS_CURVES";
-    if (gs->has_curves && gs->no_triangles)
+    /* moving shapes: their own trees beside (glsl/bvh/motion.glsl) */
+    if (gs->has_motion)
+        defines[nd++] = "CV_HAS_MOTION";
+    if ((gs->has_curves || gs->has_motion) && gs->no_triangles)
         defines[nd++] = "CV_NO_TRIANGLES";
     /* BSDF code for materials the scene lacks stays out of the shade
      * kernels: every material of a bin pays for the registers of its

@@ -5,6 +5,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "bvh/curve_bvh.h"
+#include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
@@ -145,7 +146,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
         g->basic_materials = false;
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
-    g->no_triangles = s->n_triangles == 0;
+    g->has_motion = s->n_motions > 0;
+    g->no_triangles = cv_scene_static_triangles(s) == 0;
 }
 
 bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
@@ -195,24 +197,35 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
-    if (g.has_curves) {
-        size_t n4;
-        float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
-        ok = up(gpu, &g.curves, n4 * 16, packed, "scene curves", err);
-        free(packed);
-        if (!ok) {
-            cv_scene_gpu_release(&g);
-            return false;
-        }
+    /* with curves, the moving shapes share their buffer (bvh/motion_bvh.h) */
+    size_t n_curve4 = 0, n_motion4 = 0;
+    float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, &n_curve4) : NULL;
+    float *motion4 = NULL;
+    if (curve4 && g.has_motion)
+        cv_motion_bvh_append(s, &curve4, &n_curve4);
+    else if (g.has_motion)
+        motion4 = cv_motion_bvh_pack(s, &n_motion4);
+    if (curve4)
+        ok = up(gpu, &g.curves, n_curve4 * 16, curve4, "scene curves", err);
+    if (ok && motion4)
+        ok = up(gpu, &g.motion, n_motion4 * 16, motion4, "scene moving shapes", err);
+    free(curve4);
+    free(motion4);
+    if (!ok) {
+        cv_scene_gpu_release(&g);
+        return false;
     }
+    /* the static triangles' tree; moving shapes' triangles (after them)
+     * have their own */
+    uint32_t n_static = cv_scene_static_triangles(s);
     struct cv_bvh_params bp = bvh ? *bvh : cv_bvh_default_params();
     /* tests count this line to check that a batch builds each scene's BVH
      * once, and read the knobs that reached the build */
-    if (s->n_triangles)
+    if (n_static)
         cv_debug("building BVH for %s (%u triangles, %d treelet rounds, split budget %g)",
-                 s->path ? s->path : "scene", s->n_triangles, bp.treelet_rounds,
+                 s->path ? s->path : "scene", n_static, bp.treelet_rounds,
                  bp.split_budget);
-    if (s->n_triangles && !cv_bvh_build(gpu, g.vertices, g.triangles, s->n_triangles, &bp, &g.bvh, err)) {
+    if (n_static && !cv_bvh_build(gpu, g.vertices, g.triangles, n_static, &bp, &g.bvh, err)) {
         cv_error_prefix(err, "building the BVH: ");
         cv_scene_gpu_release(&g);
         return false;
@@ -240,6 +253,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         cv_buffer_bind(g->media, CV_BIND_MEDIA);
     if (g->medium_grids)
         cv_buffer_bind(g->medium_grids, CV_BIND_MEDIUM_GRIDS);
+    if (g->motion)
+        cv_buffer_bind(g->motion, CV_BIND_MOTION);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -257,7 +272,8 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
-                   &g->tri_object, &g->curves, &g->media, &g->medium_grids};
+                   &g->tri_object, &g->curves, &g->media, &g->medium_grids,
+                   &g->motion};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;

@@ -28,7 +28,10 @@ struct cv_scene_gpu {
     bool empty;       /* no triangles and no curves: nothing to hit */
     GLuint curves;    /* the curves and their tree (src/bvh/curve_bvh.h), or 0 */
     bool has_curves;  /* compile the stages with CV_HAS_CURVES */
-    bool no_triangles; /* curves only: no triangle BVH (CV_NO_TRIANGLES) */
+    bool no_triangles; /* no static triangles: no triangle BVH (CV_NO_TRIANGLES) */
+    GLuint motion;    /* the moving shapes and their trees (src/bvh/motion_bvh.h); 0 without,
+                       * or with curves, whose buffer then holds them too */
+    bool has_motion;  /* compile the stages with CV_HAS_MOTION */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     bool has_hair;    /* some material is hair (else CV_NO_HAIR) */
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */

@@ -14,6 +14,10 @@ check_PROGRAMS += tests/scene/camera_matrix_test
 TESTS += tests/scene/camera_matrix_test
 tests_scene_camera_matrix_test_LDADD = $(CV_LIBS)
 
+check_PROGRAMS += tests/scene/animated_test
+TESTS += tests/scene/animated_test
+tests_scene_animated_test_LDADD = $(CV_LIBS)
+
 check_PROGRAMS += tests/scene/ply_test
 TESTS += tests/scene/ply_test
 tests_scene_ply_test_LDADD = $(CV_LIBS)

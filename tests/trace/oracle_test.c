@@ -73,6 +73,9 @@ static const struct {
     {"filter_sinc", REGIONS_LINES},
     {"camera_dof", REGIONS_GRID},
     {"camera_motion", REGIONS_GRID8},
+    /* object_motion: where the moving shapes' blur moves light between
+     * blocks */
+    {"object_motion", REGIONS_GRID8},
 };
 
 static enum oracle_regions regions_of(const char *name)
@@ -115,6 +118,8 @@ static const struct oracle_scene scenes[] = {
     {"filter_sinc", NULL},
     {"camera_dof", NULL},
     {"camera_motion", NULL},
+    /* issue 27: shapes under an animated transform (object motion blur) */
+    {"object_motion", NULL},
     /* issue 27: curve shapes (flat, cylinder, ribbon) and the hair BSDF */
     {"curve_diffuse", NULL},
     {"curve_hair", NULL},

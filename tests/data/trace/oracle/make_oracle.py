@@ -535,6 +535,32 @@ def grid_scenes():
         + indent(box([-1, 0.01, -1], [1, 2, 1])) + "AttributeEnd\n")
 
 
+# Object motion blur (issue 27): shapes under an animated transform
+# (ActiveTransform EndTime), pbrt-v4's AnimatedTransform over the default
+# shutter [0, 1] with a still camera. motion_main() writes it last (the
+# earlier files come out unchanged).
+def motion_main():
+    white = 'Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]\n'
+    # a box sliding 1 along +x
+    slide = ("AttributeBegin\n  " + white + "  Translate -1.5 0 -0.2\n"
+             "  ActiveTransform EndTime\n  Translate 1 0 0\n  ActiveTransform All\n"
+             + indent(box([-0.4, 0, -0.4], [0.4, 0.8, 0.4])) + "AttributeEnd\n")
+    # a plank turning 80 degrees about the vertical and growing to 1.5 times
+    # its height: slerped rotation and lerped scale
+    turn = ("AttributeBegin\n  " + white + "  Translate 1.2 0 0.4\n"
+            "  ActiveTransform EndTime\n  Rotate 80 0 1 0\n  Scale 1 1.5 1\n  ActiveTransform All\n"
+            + indent(box([-0.9, 0, -0.15], [0.9, 0.5, 0.15])) + "AttributeEnd\n")
+    # a flattened sphere (smooth normals) rolling 60 degrees about z: its
+    # shading normals go through the inverse transpose of the transform at
+    # each time
+    roll = ("AttributeBegin\n  " + white + "  Translate 0 1.1 1.6\n"
+            "  ActiveTransform EndTime\n  Rotate 60 0 0 1\n  ActiveTransform All\n"
+            "  Scale 0.9 0.45 0.9\n  Include \"sphere.pbrt\"\nAttributeEnd\n")
+    scene("object_motion", "a box sliding, a plank turning and growing and a flattened sphere "
+          "rolling over the shutter, area lamp", AREA_LAMP + FLOOR + slide + turn + roll, maxdepth=3)
+
+
 if __name__ == "__main__":
     main()
     camera_main()
+    motion_main()

@@ -1,0 +1,311 @@
+/* motion_test.c: moving shapes from the scene file to the GPU hit
+ * (src/scene/animated.c, src/bvh/motion_bvh.c, glsl/bvh/motion.glsl):
+ * - the walk through the top tree and the shapes' trees equals the brute
+ *   force over every moving triangle, bit for bit (t, triangle,
+ *   barycentrics; any-hit too), at several times over the motion and
+ *   before and after it, for rays aimed at where the shapes are at that
+ *   time and rays at random;
+ * - each hit lies on its triangle as the host's pbrt-v4 interpolation
+ *   (cv_animated_at, in double) places it at that time: the point the
+ *   barycentrics give is the point o + t d, so the shader's transform is
+ *   the host's (a rotation slerped, not vertices lerped);
+ * - rays aimed at a shape's place at one time miss it at another.
+ * Fixed seeds. */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh/curve_bvh.h"
+#include "bvh/motion_bvh.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/program.h"
+#include "scene/scene.h"
+#include "tests/gpu/gpu_test_util.h"
+
+/* the moving shapes: 0 an instanced box, 1 a sphere, 2 a cylinder */
+#define MOTION_N 12
+#define MOTION_SHAPE(k) ((k) == 1 ? 1 : (k) % 2 == 0 ? 0 : 2)
+static uint64_t rng = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static float fbits(uint32_t u)
+{
+    float f;
+    memcpy(&f, &u, 4);
+    return f;
+}
+
+/* 12 words per ray: (t, prim, b1, b2) of the walk, of the brute force,
+ * then (any walk, any brute, -, -), from motion_test.comp's four
+ * programs */
+static uint32_t *trace_in(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n,
+                          float time, bool with_curves, struct cv_error *err)
+{
+    size_t n4;
+    float *packed;
+    if (with_curves) {
+        packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
+        cv_motion_bvh_append(s, &packed, &n4);
+    } else {
+        packed = cv_motion_bvh_pack(s, &n4);
+    }
+    GLuint mb = cv_buffer_create(n4 * 16, packed, "motion", err);
+    free(packed);
+    GLuint rb = mb ? cv_buffer_create((size_t)n * 32, rays, "rays", err) : 0;
+    GLuint ob = rb ? cv_buffer_create((size_t)n * 16, NULL, "results", err) : 0;
+    uint32_t *out = ob ? calloc((size_t)n * 12, sizeof(uint32_t)) : NULL, *one = malloc((size_t)n * 16);
+    for (int q = 0; q < 4 && out; q++) {
+        char def[32];
+        snprintf(def, sizeof(def), "MOTION_QUERY=%d", q);
+        const char *defs[] = {def, with_curves ? "CV_HAS_CURVES" : NULL, NULL};
+        struct cv_program *p = cv_program_get(gpu, "bvh/motion_test.comp", defs, err);
+        if (!p) {
+            free(out);
+            out = NULL;
+            break;
+        }
+        cv_buffer_bind(mb, with_curves ? CV_BIND_CURVES : CV_BIND_MOTION);
+        cv_buffer_bind(rb, CV_BIND_PROBE_IN);
+        cv_buffer_bind(ob, CV_BIND_PROBE_OUT);
+        glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_rays"), n);
+        glProgramUniform1f(p->id, glGetUniformLocation(p->id, "u_time"), time);
+        cv_program_dispatch_1d(p, n);
+        if (!cv_buffer_read(ob, 0, (size_t)n * 16, one, err)) {
+            free(out);
+            out = NULL;
+            break;
+        }
+        for (uint32_t i = 0; i < n; i++) {
+            if (q < 2)
+                memcpy(out + 12 * i + 4 * q, one + 4 * i, 16);
+            else
+                out[12 * i + 8 + (q - 2)] = one[4 * i + 1];
+        }
+    }
+    free(one);
+    cv_buffer_destroy(&mb);
+    cv_buffer_destroy(&rb);
+    cv_buffer_destroy(&ob);
+    return out;
+}
+
+/* the moving shapes alone in their block */
+static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n, float time,
+                       struct cv_error *err)
+{
+    return trace_in(gpu, s, rays, n, time, false, err);
+}
+
+static void apply(const double m[3][4], const double p[3], double out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3];
+}
+
+/* the moving shape that triangle prim belongs to */
+static const struct cv_motion *motion_of(const struct cv_scene *s, uint32_t prim)
+{
+    for (uint32_t g = 0; g < s->n_motions; g++)
+        if (prim >= s->motions[g].first && prim < s->motions[g].first + s->motions[g].count)
+            return &s->motions[g];
+    return NULL;
+}
+
+/* A scene of moving shapes: a sphere, cylinders and instanced boxes under
+ * random translations, large turns about random axes and scales between
+ * TransformTimes 0 1, and a static floor. One sphere (16128 triangles):
+ * llvmpipe ends a loop after 65535 turns, which the brute force over
+ * several would pass. */
+static struct cv_scene *make_scene(double centres[][3], int *n_centres)
+{
+    size_t cap = 1 << 16, len = 0;
+    char *text = malloc(cap);
+    len += (size_t)snprintf(text + len, cap - len,
+                            "WorldBegin\nShape \"trianglemesh\" \"point3 P\" [-20 -5 -20 20 -5 -20 20 -5 20 -20 -5 20]"
+                            " \"integer indices\" [0 1 2 0 2 3]\n"
+                            "ObjectBegin \"box\"\nShape \"trianglemesh\" \"point3 P\" [-1 -0.3 -0.2 1 -0.3 -0.2 1 0.3 -0.2"
+                            " -1 0.3 -0.2 -1 -0.3 0.2 1 -0.3 0.2 1 0.3 0.2 -1 0.3 0.2] \"integer indices\" [0 1 2 0 2 3 "
+                            "4 6 5 4 7 6 0 4 5 0 5 1 3 2 6 3 6 7 0 3 7 0 7 4 1 5 6 1 6 2]\nObjectEnd\n");
+    int n = 0;
+    for (int k = 0; k < MOTION_N; k++) {
+        double c[3] = {rnd() * 12 - 6, rnd() * 6 - 3, rnd() * 12 - 6};
+        memcpy(centres[n++], c, sizeof(c));
+        len += (size_t)snprintf(text + len, cap - len,
+                                "AttributeBegin\nTranslate %.4f %.4f %.4f\nActiveTransform EndTime\n"
+                                "Translate %.4f %.4f %.4f\nRotate %.2f %.3f %.3f %.3f\nScale %.3f %.3f %.3f\n"
+                                "ActiveTransform All\n%s\nAttributeEnd\n",
+                                c[0], c[1], c[2], rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 340 - 170,
+                                rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, 0.6 + rnd(), 0.6 + rnd(), 0.6 + rnd(),
+                                MOTION_SHAPE(k) == 0 ? "ObjectInstance \"box\""
+                                : MOTION_SHAPE(k) == 1 ? "Shape \"sphere\" \"float radius\" 0.8"
+                                             : "Shape \"cylinder\" \"float radius\" 0.4 \"float zmin\" -1 "
+                                               "\"float zmax\" 1");
+    }
+    /* a curve: its buffer then holds the moving shapes too (motion_bvh.h) */
+    len += (size_t)snprintf(text + len, cap - len,
+                            "Shape \"curve\" \"point3 P\" [-1 9 0 -0.3 9 0.5 0.3 9 -0.5 1 9 0] \"float width\" 0.1\n");
+    *n_centres = n;
+    struct cv_scene *s = NULL;
+    struct cv_error err = {{0}};
+    struct cv_scene_load_params p = {.strict = true};
+    if (!cv_scene_load_string("/tmp/motion_test.pbrt", text, len, &p, &s, &err))
+        tap_diag("load: %s", err.msg);
+    free(text);
+    return s;
+}
+
+static void test_walk(struct cv_gpu *gpu)
+{
+    double centres[16][3];
+    int n_c = 0;
+    struct cv_scene *s = make_scene(centres, &n_c);
+    if (!tap_ok(s && s->n_motions == MOTION_N && cv_scene_static_triangles(s) == 2 && s->warnings == 0,
+                "12 moving shapes load in strict mode after 2 static triangles (%u)", s ? s->n_motions : 0)) {
+        cv_scene_destroy(&s);
+        return;
+    }
+    static const float times[] = {0.0f, 0.3f, 0.5f, 0.77f, 1.0f, -0.5f, 1.5f};
+    uint32_t n = 1024;
+    float *rays = calloc((size_t)n * 8, sizeof(float));
+    uint32_t diff = 0, any_diff = 0, any_wrong = 0, hits = 0, off_plane = 0, total = 0;
+    double worst = 0;
+    for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
+        float time = times[ti];
+        for (uint32_t i = 0; i < n; i++) {
+            double o[3] = {rnd() * 30 - 15, rnd() * 10 + 6, rnd() * 30 - 15}, d[3];
+            if (i % 4 != 3) {
+                /* at the centre of a shape where it is at this time, jittered */
+                const struct cv_motion *m = &s->motions[i % s->n_motions];
+                double mt[3][4], zero[3] = {0, 0, 0}, c[3];
+                cv_animated_at(&m->xf, time, mt);
+                apply(mt, zero, c);
+                for (int k = 0; k < 3; k++)
+                    d[k] = c[k] + (rnd() - 0.5) * 1.6 - o[k];
+            } else {
+                for (int k = 0; k < 3; k++)
+                    d[k] = rnd() - 0.5;
+            }
+            float *r = rays + 8 * i;
+            for (int k = 0; k < 3; k++) {
+                r[k] = (float)o[k];
+                r[4 + k] = (float)d[k];
+            }
+            r[3] = i % 5 == 0 ? 0.3f : 0.0f;
+            r[7] = i % 7 == 0 ? 0.6f : 1e30f;
+        }
+        struct cv_error err = {{0}};
+        uint32_t *out = trace(gpu, s, rays, n, time, &err);
+        if (!tap_ok(out != NULL, "GPU run at time %g: %s", time, err.msg))
+            break;
+        if (ti == 2) {
+            /* the same rays with the shapes behind the curves in one block */
+            uint32_t *both = trace_in(gpu, s, rays, n, time, true, &err);
+            uint32_t differ = 0;
+            for (uint32_t i = 0; both && i < n; i++)
+                differ += memcmp(out + 12 * i, both + 12 * i, 48) != 0;
+            tap_ok(both != NULL && differ == 0,
+                   "in the curves' block (kernels with curves) the same answers (%u of %u differ)%s", differ, n,
+                   err.msg);
+            free(both);
+        }
+        for (uint32_t i = 0; i < n; i++) {
+            const uint32_t *w = out + 12 * i;
+            total++;
+            if (memcmp(w, w + 4, 16) != 0) {
+                if (diff < 3)
+                    tap_diag("time %g ray %u: walk t %.9g prim %u, brute t %.9g prim %u", time, i, fbits(w[0]),
+                             w[1], fbits(w[4]), w[5]);
+                diff++;
+            }
+            if (w[8] != w[9])
+                any_diff++;
+            if (w[8] != (w[5] != 0xffffffffu))
+                any_wrong++;
+            if (w[1] == 0xffffffffu)
+                continue;
+            hits++;
+            /* the hit against the host's transform at this time */
+            const struct cv_motion *m = motion_of(s, w[1]);
+            if (!m) {
+                off_plane++;
+                continue;
+            }
+            double mt[3][4], P[3][3], b1 = fbits(w[2]), b2 = fbits(w[3]), t = fbits(w[0]);
+            cv_animated_at(&m->xf, time, mt);
+            const CvTriangle *tri = &s->triangles[w[1]];
+            const uint32_t idx[3] = {tri->idx.x, tri->idx.y, tri->idx.z};
+            for (int k = 0; k < 3; k++) {
+                const cv_vec4 *v = &s->vertices[idx[k]].pos_u;
+                double p[3] = {v->x, v->y, v->z};
+                apply(mt, p, P[k]);
+            }
+            const float *r = rays + 8 * i;
+            double e = 0;
+            for (int k = 0; k < 3; k++) {
+                double bary = (1 - b1 - b2) * P[0][k] + b1 * P[1][k] + b2 * P[2][k];
+                e = fmax(e, fabs(bary - (r[k] + t * r[4 + k])));
+            }
+            worst = fmax(worst, e);
+            if (e > 1e-3)
+                off_plane++;
+        }
+        free(out);
+    }
+    tap_ok(hits > total / 4, "rays hit the moving shapes (%u of %u)", hits, total);
+    tap_ok(diff == 0, "closest hit through the trees equals the brute force at 7 times (%u of %u differ)", diff,
+           total);
+    tap_ok(any_diff == 0 && any_wrong == 0,
+           "any-hit through the trees equals the brute force (%u differ) and the closest query (%u differ)",
+           any_diff, any_wrong);
+    tap_ok(off_plane == 0, "every hit lies where pbrt-v4's interpolation puts its triangle (%u off, worst %.2g)",
+           off_plane, worst);
+    free(rays);
+    cv_scene_destroy(&s);
+}
+
+/* A bar 2 long turning 90 degrees about z: at time 0.5 it lies at 45
+ * degrees and is still 2 long (slerp), where its vertices lerped would
+ * make it 1.41 long; a ray down -z at 1.9 along the diagonal hits it, one
+ * at its place at time 0 misses it. */
+static void test_arc(struct cv_gpu *gpu)
+{
+    const char *text = "WorldBegin\nActiveTransform EndTime\nRotate 90 0 0 1\nActiveTransform All\n"
+                       "Shape \"trianglemesh\" \"point3 P\" [0 -0.05 0 2 -0.05 0 2 0.05 0 0 0.05 0]"
+                       " \"integer indices\" [0 1 2 0 2 3]\n";
+    struct cv_scene *s = NULL;
+    struct cv_error err = {{0}};
+    struct cv_scene_load_params p = {.strict = true};
+    if (!tap_ok(cv_scene_load_string("/tmp/arc.pbrt", text, strlen(text), &p, &s, &err) && s->n_motions == 1,
+                "a turning bar loads: %s", err.msg)) {
+        cv_scene_destroy(&s);
+        return;
+    }
+    float rays[16] = {1.3435029f, 1.3435029f, 1, 0, 0, 0, -1, 1e30f, 1.5f, 0, 1, 0, 0, 0, -1, 1e30f};
+    uint32_t *out = trace(gpu, s, rays, 2, 0.5f, &err);
+    if (tap_ok(out != NULL, "GPU run: %s", err.msg))
+        tap_ok(out[1] != 0xffffffffu && fabsf(fbits(out[0]) - 1) < 1e-5f && out[13] == 0xffffffffu,
+               "at half time the bar lies on the arc, full length (hit at 1.9: t %g), not where it was "
+               "(%s)", fbits(out[0]), out[13] == 0xffffffffu ? "missed" : "hit");
+    free(out);
+    cv_scene_destroy(&s);
+}
+
+int main(void)
+{
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    test_arc(gpu);
+    test_walk(gpu);
+    cv_gpu_destroy(&gpu);
+    return tap_done();
+}
