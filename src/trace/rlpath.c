@@ -20,6 +20,7 @@ _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
 struct cv_rlpath {
     CvRlParams params;
     uint32_t n_paths;
+    uint32_t train;                     /* learns until this spp; 0: in every pass */
     struct cv_program shade, rebuild;   /* copies (see render.c) */
     GLuint ubo, table, guide, path;
     GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
@@ -81,6 +82,7 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
     out->grid_scale = (cv_vec4){scale[0], scale[1], scale[2], CV_RL_FLOOR};
     out->dims = (cv_uvec4){dims[0], dims[1], dims[2], dims[0] * dims[1] * dims[2]};
     out->dirs = (cv_uvec4){nz, np, nz * np, out->dims.w * CV_RL_ORIENTS};
+    out->learn = (cv_uvec4){1, 0, 0, 0};
     if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30) ||
         cv_rlpath_guide_bytes(out) > ((uint64_t)1 << 30))
         return cv_fail(err, "rlpath table of %u cells x %u normal classes x %u directions is "
@@ -195,6 +197,19 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
                        GL_RGBA32F);
 }
 
+uint32_t cv_rlpath_train_spp(uint32_t train)
+{
+    return train == 0 ? CV_RL_DEFAULT_TRAIN : train == CV_RL_TRAIN_ALWAYS ? 0 : train;
+}
+
+void cv_rlpath_set_learning(struct cv_rlpath *rl, bool learning)
+{
+    if ((rl->params.learn.x != 0) == learning)
+        return;
+    rl->params.learn.x = learning;
+    glNamedBufferSubData(rl->ubo, 0, sizeof(CvRlParams), &rl->params);
+}
+
 void cv_rlpath_update(const struct cv_rlpath *rl)
 {
     /* the escaped and shade stages' adds to the table */
@@ -245,6 +260,7 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
                           p->rl_directions, p->rl_mix, &rp, err) ||
         !cv_rlpath_create(s->gpu, &rp, s->n_paths, s->defines, p->rl_guide_indirect, &rl, err))
         return false;
+    rl->train = cv_rlpath_train_spp(p->rl_train);
     shade[0] = rl->shade;
     *state = rl;
     return true;
@@ -258,6 +274,16 @@ static void ops_bind(const void *state)
 static void ops_after_shade(const void *state)
 {
     cv_rlpath_update(state);
+}
+
+static uint32_t ops_learn_spp(const void *state)
+{
+    return ((const struct cv_rlpath *)state)->train;
+}
+
+static void ops_set_learning(void *state, bool learning)
+{
+    cv_rlpath_set_learning(state, learning);
 }
 
 static void ops_prefetch(struct cv_gpu *gpu, const struct cv_render_params *p,
@@ -284,4 +310,6 @@ const struct cv_integrator_ops cv_rlpath_ops = {
     .after_shade_name = "rlpath-rebuild",
     .destroy = ops_destroy,
     .prefetch = ops_prefetch,
+    .learn_spp = ops_learn_spp,
+    .set_learning = ops_set_learning,
 };

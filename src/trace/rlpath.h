@@ -59,6 +59,16 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
  * GL_DISPATCH_INDIRECT_BUFFER). */
 void cv_rlpath_bind(const struct cv_rlpath *rl);
 
+/* The samples per pixel during which the table learns, from the render
+ * parameter rl_train (0: CV_RL_DEFAULT_TRAIN; CV_RL_TRAIN_ALWAYS: every
+ * pass, returned as 0). */
+uint32_t cv_rlpath_train_spp(uint32_t train);
+
+/* Starts (true) or stops learning from the next pass on: the shade and
+ * escaped stages add targets and keep path state only while learning.
+ * Writes the parameter block when it changes: between passes only. */
+void cv_rlpath_set_learning(struct cv_rlpath *rl, bool learning);
+
 /* Queues the rebuild of the keys that the escaped and shade stages of this
  * iteration changed: run right after the shade stage. (Rebuilding every
  * fourth iteration instead saved no time: the rebuild is a small share of

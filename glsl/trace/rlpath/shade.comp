@@ -25,7 +25,9 @@
 // writes, so one dispatch still sees one distribution per key and the
 // sampling and MIS densities of a vertex agree (a separate update stage
 // that read the path state back was a dispatch and a pass over the hits
-// per depth).
+// per depth). All of the learning (path state, target, atomics) runs only
+// while the table learns (cv_rl_learning, rlpath.train): the passes after
+// it sample the frozen guide and pay for its loads alone.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../common.glsl"
@@ -194,14 +196,18 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     CvRayItem r = cv_ray_in(h.ray);
     uint path = uint(r.o.w);
     uint depth = cv_ray_depth(r);
-    uvec2 st = imageLoad(rl_path, int(path)).xy;
+    // frozen (u_rl.learn.x 0, rlpath.train): no path state, no target
+    bool learning = cv_rl_learning();
+    uvec2 st = learning ? imageLoad(rl_path, int(path)).xy : uvec2(CV_RL_NONE);
     uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
     CvStrategy g = CvStrategy(learn != CV_RL_NONE, 0.0, 0.0, 0u,
                               CvRlKey(0, 0.0, 0.0, vec4(0.0), vec4(0.0)), 0.0, false, 0u, 0.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
-    uint entry = push_ray ? cv_rl_entry(g.key, g.wbin) : CV_RL_NONE;
-    cv_rl_update(learn, g.target, g.emitted);
-    imageStore(rl_path, int(path), uvec4(entry, depth, 0u, 0u));
+    if (learning) {
+        uint entry = push_ray ? cv_rl_entry(g.key, g.wbin) : CV_RL_NONE;
+        cv_rl_update(learn, g.target, g.emitted);
+        imageStore(rl_path, int(path), uvec4(entry, depth, 0u, 0u));
+    }
 }
 
 #include "../shade_queue.glsl"
