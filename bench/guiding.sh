@@ -9,17 +9,18 @@
 # time per scene.
 #
 # usage: bench/guiding.sh [--batch PATH] [--bench PATH] [--scenes DIR]
-#                         [--times "2 4 8"] [--seeds "1 2 3 4 5"]
+#                         [--times "2 4 8"] [--seeds "1 2 3"]
 #                         [--size WxH] [--ref-spp N] [--room-triangles N]
 #                         [--variants "path rlpath rlpath-online"]
-#                         [--rl "KEY: V, ..."] [--work DIR] [scenes...]
+#                         [--rl "KEY: V, ..."] [--work DIR] [--summarize]
+#                         [scenes...]
 #   --batch PATH   cavalry-batch (default: src/cavalry-batch of this tree)
 #   --bench PATH   cavalry_bench, for --relmse, and beside it plot and
 #                  gen_scene (default: next to this script)
 #   --scenes DIR   the shared scenes (default $CV_SHARED_SCENES, else
 #                  ../shared/scenes of the tree, else shared/scenes in it)
 #   --times T      wall-time limits in seconds (default "2 4 8")
-#   --seeds S      seeds of every render (default "1 2 3 4 5")
+#   --seeds S      seeds of every render (default "1 2 3")
 #   --size WxH     film size of every render (default: each scene's own)
 #   --ref-spp N    samples per pixel of the path reference (default 8192;
 #                  seed 1000, apart from the seeds compared)
@@ -30,6 +31,10 @@
 #   --rl SETTINGS  more rlpath settings for every rlpath variant, a YAML flow
 #                  mapping's inside ("mix: 0.5, grid: 8")
 #   --work DIR     references, images, logs, results (default bench/out/guiding)
+#   --summarize    render nothing: only the medians, table and plots of the
+#                  renders in DIR/runs.csv (a run replaces the lines of the
+#                  scenes it renders and keeps the others, so one scene per
+#                  call, then --summarize, gives the table of all)
 #   scenes         names (veach-ajar, veach-bidir, cornell-box, room: the
 #                  generated closed room lit by bounced light) or .pbrt files;
 #                  default: "veach-ajar veach-bidir cornell-box room"
@@ -37,7 +42,7 @@
 # relmse: one line per render), DIR/medians.csv (per scene, variant and
 # limit, the median over the seeds), DIR/table.md (medians, and each
 # variant's relMSE over path's at the same limit) and DIR/NAME.png (relMSE
-# against the median wall seconds, log-log, one series per variant).
+# against the time limit, log-log, one series per variant).
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 srcdir=$(cd "$here/.." && pwd)
@@ -45,7 +50,7 @@ batch=$srcdir/src/cavalry-batch
 benchbin=$here/cavalry_bench
 shared=${CV_SHARED_SCENES:-}
 times="2 4 8"
-seeds="1 2 3 4 5"
+seeds="1 2 3"
 size=
 ref_spp=8192
 room_tris=100k
@@ -53,6 +58,7 @@ variants="path rlpath rlpath-online"
 rl_extra=
 work=
 scenes=
+summarize_only=0
 usage() { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -67,6 +73,7 @@ while [ $# -gt 0 ]; do
     --variants) variants=$2; shift 2 ;;
     --rl) rl_extra=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
+    --summarize) summarize_only=1; shift ;;
     -h|--help) usage; exit 0 ;;
     -*) echo "guiding.sh: unknown option $1" >&2; exit 2 ;;
     *) scenes="$scenes $1"; shift ;;
@@ -136,7 +143,7 @@ render() {
         echo "guiding.sh: $1 made no image (see $work/logs/$1.err)" >&2
         return 1
     fi
-    awk '/"event":"job_(done|partial)"/ {
+    awk '/"event":"job_(finished|partial)"/ {
         spp = $0; sub(/.*"spp":/, "", spp); sub(/[,}].*/, "", spp)
         s = $0; sub(/.*"seconds":/, "", s); sub(/[,}].*/, "", s)
         r = $0; sub(/.*"render_seconds":/, "", r); sub(/[,}].*/, "", r)
@@ -144,8 +151,22 @@ render() {
         END { if (!found) print "0 0 0" }' "$work/logs/$1.json"
 }
 
+# runs.csv keeps the renders of scenes not run this time (one scene per
+# call keeps each call short), and loses those of the scenes run now
 runs=$work/runs.csv
-echo "scene,variant,limit,seed,spp,seconds,render_seconds,relmse" > "$runs"
+header="scene,variant,limit,seed,spp,seconds,render_seconds,relmse"
+if [ "$summarize_only" = 0 ]; then
+    names=
+    for s in $scenes; do names="$names $(basename "$s" .pbrt)"; done
+    if [ -f "$runs" ]; then
+        awk -F, -v names="$names" 'BEGIN { n = split(names, a, " "); for (i = 1; i <= n; i++) drop[a[i]] = 1 }
+            NR == 1 || !($1 in drop)' "$runs" > "$runs.tmp" && mv "$runs.tmp" "$runs"
+    else
+        echo "$header" > "$runs"
+    fi
+fi
+[ -f "$runs" ] || { echo "guiding.sh: no $runs to summarize" >&2; exit 1; }
+[ "$summarize_only" = 1 ] && scenes=
 for s in $scenes; do
     file=$(scene_file "$s") || { echo "guiding.sh: cannot make scene $s" >&2; exit 1; }
     [ -f "$file" ] || { echo "guiding.sh: $file not found, $s skipped" >&2; continue; }
@@ -207,18 +228,19 @@ END {
 }' "$work/medians.csv" > "$work/table.md" || exit 1
 cat "$work/table.md"
 
-# one log-log plot per scene: relMSE against the median wall seconds
+# one log-log plot per scene: relMSE against the time limit (the measured
+# job seconds, in medians.csv, overshoot it by the last pass and the write)
 for name in $(awk -F, 'NR > 1 { if (!($1 in s)) { s[$1] = 1; print $1 } }' "$work/medians.csv"); do
     args=
     for v in $variants; do
         c=$work/logs/plot-$name-$v.csv
         awk -F, -v n="$name" -v v="$v" 'NR == 1 { print "seconds,relmse" }
-            NR > 1 && $1 == n && $2 == v { print $6 "," $7 }' "$work/medians.csv" > "$c"
+            NR > 1 && $1 == n && $2 == v { print $3 "," $7 }' "$work/medians.csv" > "$c"
         args="$args $c=$v"
     done
     # shellcheck disable=SC2086
     "$bindir/plot" --out "$work/$name.png" --title "$name: relMSE at equal wall time" \
-        --x seconds --y relmse --xlabel "wall time (s)" --ylabel "relMSE (median over seeds)" \
+        --x seconds --y relmse --xlabel "wall-time limit (s)" --ylabel "relMSE (median over seeds)" \
         $args || exit 1
     echo "guiding.sh: wrote $work/$name.png" >&2
 done

@@ -21,7 +21,7 @@ struct cv_rlpath {
     CvRlParams params;
     uint32_t n_paths;
     uint32_t train;                     /* learns until this spp; 0: in every pass */
-    struct cv_program shade, rebuild;   /* copies (see render.c) */
+    struct cv_program rebuild;          /* a copy (see render.c) */
     GLuint ubo, table, guide, path;
     GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
                                                             (r32ui, r32f), guide and path */
@@ -118,33 +118,29 @@ GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct
     return tex;
 }
 
-/* The shade program is built with the scene's defines, the rebuild with
- * these. */
+/* The rebuild program's defines (the shade programs are the renderer's:
+ * cv_rlpath_ops.file). */
 static const char *const rebuild_indirect[2] = {"CV_RL_GUIDE_INDIRECT", NULL};
 static const char *const *rebuild_defines(bool guide_indirect)
 {
     return guide_indirect ? rebuild_indirect : NULL;
 }
 
-static void rlpath_prefetch(struct cv_gpu *gpu, const char *const *defines, bool guide_indirect)
+static void rlpath_prefetch(struct cv_gpu *gpu, bool guide_indirect)
 {
-    cv_program_request(gpu, "trace/rlpath/shade.comp", defines);
     cv_program_request(gpu, "trace/rlpath/rebuild.comp", rebuild_defines(guide_indirect));
 }
 
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
-                      const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
-                      struct cv_error *err)
+                      bool guide_indirect, struct cv_rlpath **out, struct cv_error *err)
 {
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
     rl->n_paths = n_paths;
-    rlpath_prefetch(gpu, defines, guide_indirect);
-    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
+    rlpath_prefetch(gpu, guide_indirect);
+    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/rebuild.comp",
+                                          rebuild_defines(guide_indirect), err);
     if (p)
-        rl->shade = *p;
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp",
-                                 rebuild_defines(guide_indirect), err)))
         rl->rebuild = *p;
     if (!p) {
         cv_rlpath_destroy(&rl);
@@ -258,10 +254,10 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     struct cv_rlpath *rl = NULL;
     if (!cv_rlpath_layout(s->scene->bounds_min, s->scene->bounds_max, p->rl_grid,
                           p->rl_directions, p->rl_mix, &rp, err) ||
-        !cv_rlpath_create(s->gpu, &rp, s->n_paths, s->defines, p->rl_guide_indirect, &rl, err))
+        !cv_rlpath_create(s->gpu, &rp, s->n_paths, p->rl_guide_indirect, &rl, err))
         return false;
     rl->train = cv_rlpath_train_spp(p->rl_train);
-    shade[0] = rl->shade;
+    (void)shade;   /* both are the renderer's (cv_rlpath_ops.file) */
     *state = rl;
     return true;
 }
@@ -289,7 +285,8 @@ static void ops_set_learning(void *state, bool learning)
 static void ops_prefetch(struct cv_gpu *gpu, const struct cv_render_params *p,
                          const char *const *defines)
 {
-    rlpath_prefetch(gpu, defines, p->rl_guide_indirect);
+    (void)defines;
+    rlpath_prefetch(gpu, p->rl_guide_indirect);
 }
 
 static void ops_destroy(void **state)
@@ -302,8 +299,12 @@ static void ops_destroy(void **state)
 const struct cv_integrator_ops cv_rlpath_ops = {
     .escaped_stage = true,   /* misses learn too */
     .escaped_define = "CV_RLPATH",
-    .n_shade = 1,
-    .args = {CV_ARGS_HITS_ALL},
+    /* path's two bins (trace/integrator.c): diffuse hits in a build cut
+     * down to diffuse, then the others */
+    .n_shade = 2,
+    .file = {"trace/rlpath/shade.comp", "trace/rlpath/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
     .create = ops_create,
     .bind = ops_bind,
     .after_shade = ops_after_shade,

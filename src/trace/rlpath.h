@@ -47,12 +47,11 @@ struct cv_rlpath;
 
 /* Creates the tables (zero: every key unguided until it learns) and the
  * path state for n_paths path slots (glsl/shared/trace.h), and compiles
- * the programs with the renderer's `defines` (NULL-terminated, may be
- * NULL). guide_indirect: guide by the learned radiance less lamps seen
- * directly (guide.glsl). */
+ * the rebuild program (the renderer builds the shade programs:
+ * cv_rlpath_ops.file). guide_indirect: guide by the learned radiance less
+ * lamps seen directly (guide.glsl). */
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
-                      const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
-                      struct cv_error *err);
+                      bool guide_indirect, struct cv_rlpath **out, struct cv_error *err);
 
 /* Binds the tables, path state and uniform block (after the renderer's own
  * bindings; the renderer's queue buffer must be the bound

@@ -28,8 +28,15 @@
 // per depth). All of the learning (path state, target, atomics) runs only
 // while the table learns (cv_rl_learning, rlpath.train): the passes after
 // it sample the frozen guide and pay for its loads alone.
+// Built twice over the two bins of the hit queue, as path's shade.comp:
+// CV_SHADE_BIN=0 shades diffuse hits with the BSDF code cut down to
+// diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 the others; one build for
+// all materials sized the kernel for the largest and cost every hit that.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
+#define CV_BSDF_DIFFUSE_ONLY
+#endif
 #include "../common.glsl"
 #include "../sampler.glsl"
 #include "../geometry.glsl"
@@ -55,12 +62,13 @@ bool cv_rl_guides(CvBsdf b)
 #ifdef CV_BSDF_BASIC
     return true;   // diffuse, or a mirror (delta: not guided anyway)
 #else
-    if (b.type == CV_MAT_DIFFUSE || b.type == CV_MAT_COATED_DIFFUSE ||
-        b.type == CV_MAT_DIFFUSE_TRANSMISSION || b.type == CV_MAT_PLASTIC)
+    uint t = CV_BSDF_TYPE(b);   // a constant in the diffuse build
+    if (t == CV_MAT_DIFFUSE || t == CV_MAT_COATED_DIFFUSE ||
+        t == CV_MAT_DIFFUSE_TRANSMISSION || t == CV_MAT_PLASTIC)
         return true;
-    if (b.type == CV_MAT_CONDUCTOR || b.type == CV_MAT_DIELECTRIC)
+    if (t == CV_MAT_CONDUCTOR || t == CV_MAT_DIELECTRIC)
         return min(b.alpha.x, b.alpha.y) >= CV_RL_GLOSSY_ALPHA;
-    if (b.type == CV_MAT_COATED_CONDUCTOR)
+    if (t == CV_MAT_COATED_CONDUCTOR)
         return min(min(b.alpha.x, b.alpha.y), min(b.alpha.z, b.alpha.w)) >= CV_RL_GLOSSY_ALPHA;
     return false;
 #endif
