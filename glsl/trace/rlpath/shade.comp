@@ -158,10 +158,13 @@ bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, vec
                                 CV_ONE_MINUS_EPS),
                             u_bsdf.y)
                      : u_bsdf;
-    if (guided && g.pd > 0.0 && cv_bsdf_sample(b, wo, u_bc.x, u, bs) &&
-        (bs.flags & CV_BSDF_SPECULAR) != 0u)
+    // one call site: the compiler inlines the whole BSDF library at each
+    bool sampled = false;
+    if (!guided || g.pd > 0.0)
+        sampled = cv_bsdf_sample(b, wo, u_bc.x, u, bs);
+    if (guided && sampled && (bs.flags & CV_BSDF_SPECULAR) != 0u)
         guided = false;   // the delta lobe the BSDF picked: bs stands
-    else if (!guided && !cv_bsdf_sample(b, wo, u_bc.x, u, bs))
+    else if (!guided && !sampled)
         return false;
     if (guided) {
         // the bin drawn, not the bin of bs.wi looked up again: rounding may
