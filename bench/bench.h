@@ -61,6 +61,7 @@ struct bench_run_params {
     unsigned rl_grid, rl_directions;   /* rlpath options; 0: defaults */
     float rl_mix;                      /* rlpath guiding weight; negative: default */
     bool rl_guide_indirect;            /* --rl-guide indirect */
+    uint32_t rl_train;                 /* --rl-train (render.h's rl_train) */
     unsigned seed;                     /* sampler seed; 0: 1 */
     unsigned paths_per_pixel;          /* trace/render.h; 0: the renderer's choice */
     unsigned pass_spp;                 /* passes of this many spp; 0: as cavalry-batch sizes them */

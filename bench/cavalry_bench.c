@@ -21,6 +21,7 @@
 
 #include "base/error.h"
 #include "base/file.h"
+#include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "bench/bench.h"
@@ -42,13 +43,13 @@ static void usage(FILE *f)
     fputs("usage: cavalry_bench --bench SCENE.pbrt [--spp N] [--repeat K] [--width W]\n"
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
           "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
-          "                     [--rl-guide all|indirect] [--seed S]\n"
+          "                     [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
           "                     [--paths-per-pixel N] [--pass-spp N] [--no-gpu] [-v]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
           "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
-          "                     [--rl-guide all|indirect] [--seed S]\n"
+          "                     [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
           "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
@@ -102,6 +103,7 @@ struct opts {
     unsigned paths_per_pixel, pass_spp;
     float rl_mix;
     bool rl_guide_indirect;
+    unsigned rl_train;      /* render.h's rl_train: 0 the default, CV_RL_TRAIN_ALWAYS */
     int gpu_index;
     bool no_gpu;
     struct cv_knobs knobs;  /* CAVALRY_BVH_*, CAVALRY_STAGE_TIMES, as cavalry-batch reads them */
@@ -113,7 +115,8 @@ static struct bench_run_params run_params(const struct opts *o)
     return (struct bench_run_params){.spp = o->spp, .width = o->width, .height = o->height,
                                      .integrator = o->integrator, .rl_grid = o->rl_grid,
                                      .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
-                                     .rl_guide_indirect = o->rl_guide_indirect, .seed = o->seed,
+                                     .rl_guide_indirect = o->rl_guide_indirect,
+                                     .rl_train = o->rl_train, .seed = o->seed,
                                      .paths_per_pixel = o->paths_per_pixel,
                                      .pass_spp = o->pass_spp, .knobs = o->knobs};
 }
@@ -244,6 +247,10 @@ int main(int argc, char **argv)
             o.paths_per_pixel = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--pass-spp") && has) {
             o.pass_spp = (unsigned)strtoul(argv[++i], NULL, 10);
+        } else if (!strcmp(a, "--rl-train") && has) {
+            /* as the manifest's rlpath.train: 0 learns in every pass */
+            unsigned long t = strtoul(argv[++i], NULL, 10);
+            o.rl_train = t == 0 ? CV_RL_TRAIN_ALWAYS : (unsigned)t;
         } else if (!strcmp(a, "--rl-mix") && has) {
             o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--rl-guide") && has) {

@@ -110,6 +110,7 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_directions = p->rl_directions;
     rp.rl_mix = p->rl_mix;
     rp.rl_guide_indirect = p->rl_guide_indirect;
+    rp.rl_train = p->rl_train;
     rp.paths_per_pixel = p->paths_per_pixel;
     rp.stage_times = p->knobs.stage_times;
     rp.bvh = &p->knobs.bvh;

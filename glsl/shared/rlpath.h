@@ -123,7 +123,9 @@ CV_STRUCT(CvRlParams) {
     cv_vec4 grid_scale;    /* xyz: cells per world unit; w: floor share (CV_RL_FLOOR) */
     cv_uvec4 dims;         /* xyz: cells per axis; w: cells in all */
     cv_uvec4 dirs;         /* x: z bands; y: phi sectors; z: bins = x * y; w: keys = cells * 6 */
+    cv_uvec4 learn;        /* x: 1 while the table learns (this pass adds targets and
+                              keeps path state), 0 once the guide is frozen; yzw: 0 */
 } CV_END(CvRlParams)
-CV_CHECK_SIZE(CvRlParams, 64);
+CV_CHECK_SIZE(CvRlParams, 80);
 
 #endif

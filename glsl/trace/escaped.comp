@@ -31,6 +31,8 @@ layout(rg32ui, binding = CV_IMAGE_RL_PATH) uniform readonly uimageBuffer rl_path
 // seen through openings is what guiding is for.
 void cv_rl_learn_escaped(CvRayItem r)
 {
+    if (!cv_rl_learning())
+        return;   // the guide is frozen (rlpath.train)
     uvec2 st = imageLoad(rl_path, int(r.o.w)).xy;
     uint depth = cv_ray_depth(r);
     if (depth == 0u || st.x == CV_RL_NONE || st.y + 1u != depth)

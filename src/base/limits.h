@@ -24,6 +24,14 @@
  * rlpath.c checks against this one). */
 #define CV_RL_MAX_GRID 256u
 #define CV_RL_MAX_DIRECTIONS 1024u
+/* ... and the samples per pixel during which it learns by default
+ * (rlpath.train), after Mueller et al. 2017's schedule: learn in the first
+ * passes, then render with the frozen guide, so that the rendering passes
+ * pay no update, no path state and no rebuild (trace/render.c splits a
+ * pass that would cross it). CV_RL_TRAIN_ALWAYS: learn in every pass, Dahm
+ * and Keller's online learning (rlpath.train: 0). */
+#define CV_RL_DEFAULT_TRAIN 16u
+#define CV_RL_TRAIN_ALWAYS 0xffffffffu
 
 /* Bytes of one input file: a scene file, an Include, a PLY mesh (after
  * gzip), a texture, a spectrum, a manifest. Far above any real one (the

@@ -189,6 +189,12 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                            .has = AT(rlpath.has_guide), .def = CV_RL_GUIDE_ALL,
                            .def_text = "all", .hash = CV_HASH_OFF_DEFAULT,
                            .help = "guide by all learned radiance or the indirect part"},
+    [CV_K_RLPATH_TRAIN] = {.name = "rlpath.train", .type = CV_KT_U32, .min = 0,
+                           .max = CV_MAX_SPP, .offset = AT(rlpath.train),
+                           .has = AT(rlpath.has_train), .hash = CV_HASH_OFF_DEFAULT,
+                           .def = CV_RL_DEFAULT_TRAIN, .fill_default = true, .def_text = "16",
+                           .help = "spp the table learns in, then the guide is frozen "
+                                   "(0: learns in every pass)"},
     [CV_K_MATRIX] = {.name = "matrix", .type = CV_KT_MATRIX, .offset = AT(has_matrix),
                      .has = AT(has_matrix), .merge = CV_MERGE_JOB_ONLY, .def_text = "none",
                      .help = "expand the job over lists of values of its keys (every combination)"},

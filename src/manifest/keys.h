@@ -48,6 +48,7 @@ enum cv_key_id {
     CV_K_RLPATH_DIRECTIONS,
     CV_K_RLPATH_MIX,
     CV_K_RLPATH_GUIDE,
+    CV_K_RLPATH_TRAIN,
     CV_K_MATRIX,
     CV_K_ENV,
     CV_K_ENV_SCALE,

@@ -53,11 +53,12 @@ struct cv_job_camera {
 };
 
 struct cv_job_rlpath {
-    bool has_grid, has_directions, has_mix, has_guide;
+    bool has_grid, has_directions, has_mix, has_guide, has_train;
     uint32_t grid;             /* spatial cells per axis, >= 1 */
     uint32_t directions;       /* directional bins per cell, >= 1 */
     float mix;                 /* [0,1]: share of guided vs. BSDF sampling */
     enum cv_rl_guide guide;    /* default CV_RL_GUIDE_ALL */
+    uint32_t train;            /* spp during which the table learns; 0: every pass */
 };
 
 /* Overrides of the scene's environment (its LightSource "infinite"

@@ -66,6 +66,13 @@ struct cv_integrator_ops {
      * (gpu/program.h: cv_program_request). */
     void (*prefetch)(struct cv_gpu *gpu, const struct cv_render_params *p,
                      const char *const *defines);
+    /* May be NULL: the integrator learns in every pass, or not at all.
+     * learn_spp gives the samples per pixel after which it stops learning
+     * (0: never stops); the renderer splits a pass that would cross it and
+     * from it on calls set_learning(state, false) before each pass (true
+     * before) and no longer queues after_shade. */
+    uint32_t (*learn_spp)(const void *state);
+    void (*set_learning)(void *state, bool learning);
 };
 
 /* The operations of integrator id (CV_RENDER_*); NULL for an unknown id. */

@@ -86,6 +86,7 @@ struct cv_renderer {
     struct cv_gpu_timer *passes;   /* one row: every pass, start to end */
     const struct cv_integrator_ops *ops;
     void *integrator;              /* ops->create's state, or NULL */
+    bool learning;                 /* this pass learns (ops->learn_spp); after_shade runs */
     /* params' stage_times: GPU time of every dispatch by stage, and by the
      * pass's iteration (a diagnostic: the scopes cost time themselves);
      * NULL: off */
@@ -586,7 +587,7 @@ static void iterate(struct cv_renderer *r, uint32_t it)
         prof_end(r);
     }
     stage_indirect(r, ST_SHADE + ops->n_shade - 1, ops->args[ops->n_shade - 1]);
-    if (ops->after_shade) {
+    if (ops->after_shade && r->learning) {
         prof_begin(r, PROF_AFTER_SHADE);
         ops->after_shade(r->integrator);
         prof_end(r);
@@ -600,6 +601,15 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return true;
     if ((uint64_t)r->spp_done + spp > CV_MAX_SPP)
         return cv_fail(err, "more than %u samples per pixel", CV_MAX_SPP);
+    /* a learning integrator's last learning pass ends where it stops */
+    uint32_t until = r->ops->learn_spp ? r->ops->learn_spp(r->integrator) : 0;
+    if (until > r->spp_done && r->spp_done + spp > until) {
+        uint32_t first = until - r->spp_done;
+        return cv_renderer_pass(r, first, err) && cv_renderer_pass(r, spp - first, err);
+    }
+    r->learning = until == 0 || r->spp_done < until;
+    if (r->ops->set_learning)
+        r->ops->set_learning(r->integrator, r->learning);
     cv_gpu_timer_begin(r->passes, 0, 0);
     bind_all(r);
     /* the slots that have a sample in this pass (generate.comp) */

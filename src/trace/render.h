@@ -42,6 +42,10 @@ struct cv_render_params {
     /* rlpath: guide by the learned radiance less lamps seen directly
      * (rlpath.guide: indirect) instead of all of it */
     bool rl_guide_indirect;
+    /* rlpath: samples per pixel during which the table learns; then the
+     * guide is frozen (0: CV_RL_DEFAULT_TRAIN; CV_RL_TRAIN_ALWAYS: every
+     * pass) */
+    uint32_t rl_train;
     /* Paths in flight per pixel (path slots, glsl/shared/trace.h). 0: as
      * many as keep the GPU busy (CV_WAVE_PATHS in all, at most
      * CV_MAX_PATHS_PER_PIXEL), within the advertised storage-buffer size and

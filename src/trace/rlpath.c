@@ -20,7 +20,8 @@ _Static_assert(CV_RL_MAX_DIRECTIONS == CV_RL_MAX_BINS,
 struct cv_rlpath {
     CvRlParams params;
     uint32_t n_paths;
-    struct cv_program shade, rebuild;   /* copies (see render.c) */
+    uint32_t train;                     /* learns until this spp; 0: in every pass */
+    struct cv_program rebuild;          /* a copy (see render.c) */
     GLuint ubo, table, guide, path;
     GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
                                                             (r32ui, r32f), guide and path */
@@ -81,6 +82,7 @@ bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
     out->grid_scale = (cv_vec4){scale[0], scale[1], scale[2], CV_RL_FLOOR};
     out->dims = (cv_uvec4){dims[0], dims[1], dims[2], dims[0] * dims[1] * dims[2]};
     out->dirs = (cv_uvec4){nz, np, nz * np, out->dims.w * CV_RL_ORIENTS};
+    out->learn = (cv_uvec4){1, 0, 0, 0};
     if (cv_rlpath_table_bytes(out) > ((uint64_t)1 << 30) ||
         cv_rlpath_guide_bytes(out) > ((uint64_t)1 << 30))
         return cv_fail(err, "rlpath table of %u cells x %u normal classes x %u directions is "
@@ -116,33 +118,29 @@ GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct
     return tex;
 }
 
-/* The shade program is built with the scene's defines, the rebuild with
- * these. */
+/* The rebuild program's defines (the shade programs are the renderer's:
+ * cv_rlpath_ops.file). */
 static const char *const rebuild_indirect[2] = {"CV_RL_GUIDE_INDIRECT", NULL};
 static const char *const *rebuild_defines(bool guide_indirect)
 {
     return guide_indirect ? rebuild_indirect : NULL;
 }
 
-static void rlpath_prefetch(struct cv_gpu *gpu, const char *const *defines, bool guide_indirect)
+static void rlpath_prefetch(struct cv_gpu *gpu, bool guide_indirect)
 {
-    cv_program_request(gpu, "trace/rlpath/shade.comp", defines);
     cv_program_request(gpu, "trace/rlpath/rebuild.comp", rebuild_defines(guide_indirect));
 }
 
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
-                      const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
-                      struct cv_error *err)
+                      bool guide_indirect, struct cv_rlpath **out, struct cv_error *err)
 {
     struct cv_rlpath *rl = cv_xcalloc(1, sizeof(*rl));
     rl->params = *layout;
     rl->n_paths = n_paths;
-    rlpath_prefetch(gpu, defines, guide_indirect);
-    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/shade.comp", defines, err);
+    rlpath_prefetch(gpu, guide_indirect);
+    struct cv_program *p = cv_program_get(gpu, "trace/rlpath/rebuild.comp",
+                                          rebuild_defines(guide_indirect), err);
     if (p)
-        rl->shade = *p;
-    if (p && (p = cv_program_get(gpu, "trace/rlpath/rebuild.comp",
-                                 rebuild_defines(guide_indirect), err)))
         rl->rebuild = *p;
     if (!p) {
         cv_rlpath_destroy(&rl);
@@ -195,6 +193,19 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
                        GL_RGBA32F);
 }
 
+uint32_t cv_rlpath_train_spp(uint32_t train)
+{
+    return train == 0 ? CV_RL_DEFAULT_TRAIN : train == CV_RL_TRAIN_ALWAYS ? 0 : train;
+}
+
+void cv_rlpath_set_learning(struct cv_rlpath *rl, bool learning)
+{
+    if ((rl->params.learn.x != 0) == learning)
+        return;
+    rl->params.learn.x = learning;
+    glNamedBufferSubData(rl->ubo, 0, sizeof(CvRlParams), &rl->params);
+}
+
 void cv_rlpath_update(const struct cv_rlpath *rl)
 {
     /* the escaped and shade stages' adds to the table */
@@ -243,9 +254,10 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     struct cv_rlpath *rl = NULL;
     if (!cv_rlpath_layout(s->scene->bounds_min, s->scene->bounds_max, p->rl_grid,
                           p->rl_directions, p->rl_mix, &rp, err) ||
-        !cv_rlpath_create(s->gpu, &rp, s->n_paths, s->defines, p->rl_guide_indirect, &rl, err))
+        !cv_rlpath_create(s->gpu, &rp, s->n_paths, p->rl_guide_indirect, &rl, err))
         return false;
-    shade[0] = rl->shade;
+    rl->train = cv_rlpath_train_spp(p->rl_train);
+    (void)shade;   /* both are the renderer's (cv_rlpath_ops.file) */
     *state = rl;
     return true;
 }
@@ -260,10 +272,21 @@ static void ops_after_shade(const void *state)
     cv_rlpath_update(state);
 }
 
+static uint32_t ops_learn_spp(const void *state)
+{
+    return ((const struct cv_rlpath *)state)->train;
+}
+
+static void ops_set_learning(void *state, bool learning)
+{
+    cv_rlpath_set_learning(state, learning);
+}
+
 static void ops_prefetch(struct cv_gpu *gpu, const struct cv_render_params *p,
                          const char *const *defines)
 {
-    rlpath_prefetch(gpu, defines, p->rl_guide_indirect);
+    (void)defines;
+    rlpath_prefetch(gpu, p->rl_guide_indirect);
 }
 
 static void ops_destroy(void **state)
@@ -276,12 +299,18 @@ static void ops_destroy(void **state)
 const struct cv_integrator_ops cv_rlpath_ops = {
     .escaped_stage = true,   /* misses learn too */
     .escaped_define = "CV_RLPATH",
-    .n_shade = 1,
-    .args = {CV_ARGS_HITS_ALL},
+    /* path's two bins (trace/integrator.c): diffuse hits in a build cut
+     * down to diffuse, then the others */
+    .n_shade = 2,
+    .file = {"trace/rlpath/shade.comp", "trace/rlpath/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
     .create = ops_create,
     .bind = ops_bind,
     .after_shade = ops_after_shade,
     .after_shade_name = "rlpath-rebuild",
     .destroy = ops_destroy,
     .prefetch = ops_prefetch,
+    .learn_spp = ops_learn_spp,
+    .set_learning = ops_set_learning,
 };

@@ -47,17 +47,26 @@ struct cv_rlpath;
 
 /* Creates the tables (zero: every key unguided until it learns) and the
  * path state for n_paths path slots (glsl/shared/trace.h), and compiles
- * the programs with the renderer's `defines` (NULL-terminated, may be
- * NULL). guide_indirect: guide by the learned radiance less lamps seen
- * directly (guide.glsl). */
+ * the rebuild program (the renderer builds the shade programs:
+ * cv_rlpath_ops.file). guide_indirect: guide by the learned radiance less
+ * lamps seen directly (guide.glsl). */
 bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_paths,
-                      const char *const *defines, bool guide_indirect, struct cv_rlpath **out,
-                      struct cv_error *err);
+                      bool guide_indirect, struct cv_rlpath **out, struct cv_error *err);
 
 /* Binds the tables, path state and uniform block (after the renderer's own
  * bindings; the renderer's queue buffer must be the bound
  * GL_DISPATCH_INDIRECT_BUFFER). */
 void cv_rlpath_bind(const struct cv_rlpath *rl);
+
+/* The samples per pixel during which the table learns, from the render
+ * parameter rl_train (0: CV_RL_DEFAULT_TRAIN; CV_RL_TRAIN_ALWAYS: every
+ * pass, returned as 0). */
+uint32_t cv_rlpath_train_spp(uint32_t train);
+
+/* Starts (true) or stops learning from the next pass on: the shade and
+ * escaped stages add targets and keep path state only while learning.
+ * Writes the parameter block when it changes: between passes only. */
+void cv_rlpath_set_learning(struct cv_rlpath *rl, bool learning);
 
 /* Queues the rebuild of the keys that the escaped and shade stages of this
  * iteration changed: run right after the shade stage. (Rebuilding every

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/limits.h"
 #include "base/mem.h"
 #include "batch/plan.h"
 #include "manifest/manifest.h"
@@ -207,6 +208,36 @@ static void test_substituted_integrator(void)
     cv_manifest_destroy(&m);
 }
 
+/* Issue 29: rlpath.train reaches the renderer: unset is the default count,
+ * 0 learns in every pass (CV_RL_TRAIN_ALWAYS), a count is that count. */
+static void test_rlpath_train(void)
+{
+    struct cv_scene *s = scene_of("WorldBegin\n");
+    struct cv_manifest *m = manifest_of("version: 1\njobs:\n"
+                                        "  - {name: a, scene: s.pbrt, integrator: rlpath}\n"
+                                        "  - {name: b, scene: s.pbrt, integrator: rlpath, "
+                                        "rlpath: {train: 0}}\n"
+                                        "  - {name: c, scene: s.pbrt, integrator: rlpath, "
+                                        "rlpath: {train: 64}}\n");
+    if (!tap_ok(s && m, "scene and manifest load")) {
+        cv_scene_destroy(&s);
+        cv_manifest_destroy(&m);
+        return;
+    }
+    struct cv_plan_options o = {.manifest_path = m->path};
+    const uint32_t want[3] = {CV_RL_DEFAULT_TRAIN, CV_RL_TRAIN_ALWAYS, 64};
+    for (int j = 0; j < 3; j++) {
+        struct cv_render_plan p;
+        struct cv_error err = {{0}};
+        bool ok = cv_plan_make(&m->jobs[j], s, &o, &p, &err);
+        struct cv_render_params rp = ok ? cv_plan_render_params(&p) : (struct cv_render_params){0};
+        tap_ok(ok && rp.rl_train == want[j], "job %c: rl_train %u (want %u) %s", 'a' + j,
+               rp.rl_train, want[j], err.msg);
+    }
+    cv_scene_destroy(&s);
+    cv_manifest_destroy(&m);
+}
+
 /* Issue 27: volpath renders media; a scene with media that asks for bdpt
  * or nothing renders with volpath, one that asks for path ignores them
  * (pbrt-v4's path does too). */
@@ -302,6 +333,7 @@ int main(void)
     test_fallbacks();
     test_substituted_integrator();
     test_media_integrator();
+    test_rlpath_train();
     test_color();
     char *cmd = cv_xasprintf("rm -rf '%s'", dir);
     if (system(cmd) != 0)

@@ -129,6 +129,11 @@ int main(void)
     fails("rlpath directions past the table's limit",
           HEAD "  - {name: a, scene: s.pbrt, rlpath: {directions: 1025}}\n",
           "m.yaml:3:51: rlpath.directions: expected an integer from 1 to 1024, got \"1025\"");
+    fails("rlpath train past the spp limit",
+          HEAD "  - {name: a, scene: s.pbrt, rlpath: {train: 16777217}}\n",
+          "m.yaml:3:46: rlpath.train: expected an integer from 0 to 16777216, got \"16777217\"");
+    fails("negative rlpath train", HEAD "  - {name: a, scene: s.pbrt, rlpath: {train: -1}}\n",
+          "rlpath.train: expected an integer from 0 to 16777216, got \"-1\"");
     fails("duration without a known unit", HEAD "  - {name: a, scene: s.pbrt, time_limit: 5min}\n",
           "time_limit: expected a duration > 0");
     fails("zero duration", HEAD "  - {name: a, scene: s.pbrt, time_limit: 0}\n",

@@ -5,12 +5,15 @@
  * lobes must be sampled by the BSDF with its own probability whatever the
  * mix; at mix 1 they were never drawn (the floor's coat reflection lost).
  * Checked: the image means of path and of rlpath at mix 0, 0.3 and 1
- * agree within 4 standard errors of their difference, which is below
+ * (the table learning in the first pass of 16 spp, then frozen: the
+ * default rlpath.train; at 0.3 and 1 also learning in every pass, Dahm and
+ * Keller's online learning, rlpath.train 0) agree within 4 standard errors of their difference, which is below
  * 0.5 % of the mean, so a 2 % bias fails; and mix 0 is BSDF sampling
  * alone: the same image as path, bit for bit (the renderer once put the
  * default in its place). */
 #include "config.h"
 
+#include "base/limits.h"
 #include "tests/trace/rlpath_room.h"
 #include "tests/trace/trace_test_util.h"
 
@@ -20,6 +23,8 @@
  * coat's base (closed form, coated_closed.glsl) at mix 1 is noisy: 24
  * keep the "a 2 % bias fails" clause true in every run, not only in most. */
 #define B_PATH 16
+/* image_mean's first pass (16 spp) holds the whole default training */
+_Static_assert(CV_RL_DEFAULT_TRAIN <= 16, "the default training ends in the first pass");
 #define B_GUIDED 24
 
 /* Image means of B independent renders (a fresh renderer and seed each, a
@@ -65,20 +70,23 @@ int main(void)
     tap_ok(mp > 0.05 && sqrt(sp) < 0.004 * mp, "path: image mean %.5f +- %.5f (%.2f %%)", mp,
            sqrt(sp), 100 * sqrt(sp) / mp);
 
-    const float mixes[] = {0, 0.3f, 1};
-    for (int k = 0; k < 3; k++) {
+    const float mixes[] = {0, 0.3f, 1, 0.3f, 1};
+    const uint32_t train[] = {0, 0, 0, CV_RL_TRAIN_ALWAYS, CV_RL_TRAIN_ALWAYS};
+    for (int k = 0; k < 5; k++) {
         struct cv_render_params pr = pp;
         pr.integrator = CV_INTEGRATOR_RLPATH;
         pr.rl_mix = mixes[k];
+        pr.rl_train = train[k];
+        const char *how = train[k] ? "learning every pass" : "frozen after 16 spp";
         double mr, sr;
         int b = mixes[k] > 0 ? B_GUIDED : B_PATH;
-        if (!tap_ok(image_mean(gpu, s, pr, b, &mr, &sr, &err), "rlpath mix %.1f: %d renders: %s",
-                    mixes[k], b, err.msg))
+        if (!tap_ok(image_mean(gpu, s, pr, b, &mr, &sr, &err),
+                    "rlpath mix %.1f, %s: %d renders: %s", mixes[k], how, b, err.msg))
             continue;
         double z = (mr - mp) / sqrt(sp + sr);
         tap_ok(fabs(z) < 4 && 4 * sqrt(sp + sr) < 0.02 * mp,
-               "rlpath mix %.1f: image mean %.5f +- %.5f agrees with path (ratio %.4f, z = %.2f)",
-               mixes[k], mr, sqrt(sr), mr / mp, z);
+               "rlpath mix %.1f, %s: image mean %.5f +- %.5f agrees with path (ratio %.4f, "
+               "z = %.2f)", mixes[k], how, mr, sqrt(sr), mr / mp, z);
     }
 
     /* mix 0: path's image, sample for sample */

@@ -55,6 +55,8 @@ const float CV_RL_PI = 3.14159265358979323846;
 uint cv_rl_bins() { return u_rl.dirs.z; }
 uint cv_rl_keys() { return u_rl.dirs.w; }
 float cv_rl_mix_weight() { return u_rl.grid_min.w; }
+// Whether this pass learns (adds targets, keeps path state): rlpath.train.
+bool cv_rl_learning() { return u_rl.learn.x != 0u; }
 
 uint cv_rl_cell(vec3 p)
 {

@@ -25,9 +25,18 @@
 // writes, so one dispatch still sees one distribution per key and the
 // sampling and MIS densities of a vertex agree (a separate update stage
 // that read the path state back was a dispatch and a pass over the hits
-// per depth).
+// per depth). All of the learning (path state, target, atomics) runs only
+// while the table learns (cv_rl_learning, rlpath.train): the passes after
+// it sample the frozen guide and pay for its loads alone.
+// Built twice over the two bins of the hit queue, as path's shade.comp:
+// CV_SHADE_BIN=0 shades diffuse hits with the BSDF code cut down to
+// diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 the others; one build for
+// all materials sized the kernel for the largest and cost every hit that.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
+#define CV_BSDF_DIFFUSE_ONLY
+#endif
 #include "../common.glsl"
 #include "../sampler.glsl"
 #include "../geometry.glsl"
@@ -53,12 +62,13 @@ bool cv_rl_guides(CvBsdf b)
 #ifdef CV_BSDF_BASIC
     return true;   // diffuse, or a mirror (delta: not guided anyway)
 #else
-    if (b.type == CV_MAT_DIFFUSE || b.type == CV_MAT_COATED_DIFFUSE ||
-        b.type == CV_MAT_DIFFUSE_TRANSMISSION || b.type == CV_MAT_PLASTIC)
+    uint t = CV_BSDF_TYPE(b);   // a constant in the diffuse build
+    if (t == CV_MAT_DIFFUSE || t == CV_MAT_COATED_DIFFUSE ||
+        t == CV_MAT_DIFFUSE_TRANSMISSION || t == CV_MAT_PLASTIC)
         return true;
-    if (b.type == CV_MAT_CONDUCTOR || b.type == CV_MAT_DIELECTRIC)
+    if (t == CV_MAT_CONDUCTOR || t == CV_MAT_DIELECTRIC)
         return min(b.alpha.x, b.alpha.y) >= CV_RL_GLOSSY_ALPHA;
-    if (b.type == CV_MAT_COATED_CONDUCTOR)
+    if (t == CV_MAT_COATED_CONDUCTOR)
         return min(min(b.alpha.x, b.alpha.y), min(b.alpha.z, b.alpha.w)) >= CV_RL_GLOSSY_ALPHA;
     return false;
 #endif
@@ -148,10 +158,13 @@ bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, vec
                                 CV_ONE_MINUS_EPS),
                             u_bsdf.y)
                      : u_bsdf;
-    if (guided && g.pd > 0.0 && cv_bsdf_sample(b, wo, u_bc.x, u, bs) &&
-        (bs.flags & CV_BSDF_SPECULAR) != 0u)
+    // one call site: the compiler inlines the whole BSDF library at each
+    bool sampled = false;
+    if (!guided || g.pd > 0.0)
+        sampled = cv_bsdf_sample(b, wo, u_bc.x, u, bs);
+    if (guided && sampled && (bs.flags & CV_BSDF_SPECULAR) != 0u)
         guided = false;   // the delta lobe the BSDF picked: bs stands
-    else if (!guided && !cv_bsdf_sample(b, wo, u_bc.x, u, bs))
+    else if (!guided && !sampled)
         return false;
     if (guided) {
         // the bin drawn, not the bin of bs.wi looked up again: rounding may
@@ -194,14 +207,18 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     CvRayItem r = cv_ray_in(h.ray);
     uint path = uint(r.o.w);
     uint depth = cv_ray_depth(r);
-    uvec2 st = imageLoad(rl_path, int(path)).xy;
+    // frozen (u_rl.learn.x 0, rlpath.train): no path state, no target
+    bool learning = cv_rl_learning();
+    uvec2 st = learning ? imageLoad(rl_path, int(path)).xy : uvec2(CV_RL_NONE);
     uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
     CvStrategy g = CvStrategy(learn != CV_RL_NONE, 0.0, 0.0, 0u,
                               CvRlKey(0, 0.0, 0.0, vec4(0.0), vec4(0.0)), 0.0, false, 0u, 0.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
-    uint entry = push_ray ? cv_rl_entry(g.key, g.wbin) : CV_RL_NONE;
-    cv_rl_update(learn, g.target, g.emitted);
-    imageStore(rl_path, int(path), uvec4(entry, depth, 0u, 0u));
+    if (learning) {
+        uint entry = push_ray ? cv_rl_entry(g.key, g.wbin) : CV_RL_NONE;
+        cv_rl_update(learn, g.target, g.emitted);
+        imageStore(rl_path, int(path), uvec4(entry, depth, 0u, 0u));
+    }
 }
 
 #include "../shade_queue.glsl"
