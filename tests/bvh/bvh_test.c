@@ -38,13 +38,20 @@ static bool subnormal(float x)
     return x != 0 && fabsf(x) < FLT_MIN;
 }
 
+/* x, after noting in *sub whether it is subnormal. */
+static float note_subnormal(bool *sub, float x)
+{
+    *sub |= subnormal(x);
+    return x;
+}
+
 /* CPU port of glsl/bvh/triangle.glsl, for the sanity check. *under (if
  * not NULL) is set when an intermediate float result is subnormal. */
 static bool cpu_ray_tri(const float o[3], const float dir[3], const float *v0, const float *v1,
                         const float *v2, float *t_out, bool *under)
 {
     bool sub = false;
-#define CV_T(x) (sub |= subnormal(x), (x))
+#define CV_T(x) note_subnormal(&sub, (x))
     float ad[3] = {fabsf(dir[0]), fabsf(dir[1]), fabsf(dir[2])};
     int kz = ad[0] > ad[1] ? (ad[0] > ad[2] ? 0 : 2) : (ad[1] > ad[2] ? 1 : 2);
     int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
