@@ -36,6 +36,7 @@
 set -u
 
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/common.sh"
 srcdir=$(cd "$here/.." && pwd)
 binary=
 repeat=5
@@ -57,21 +58,13 @@ while [ $# -gt 0 ]; do
     --integrator) integrator=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
+    -h|--help) bench_usage "$0"; exit 0 ;;
     -*) echo "coldstart.sh: unknown option $1" >&2; exit 2 ;;
     *) scenes="$scenes $1"; shift ;;
     esac
 done
 
-if [ -z "$binary" ]; then
-    for b in "$here/cavalry_bench" "./bench/cavalry_bench"; do
-        [ -x "$b" ] && { binary=$b; break; }
-    done
-fi
-if [ -z "$binary" ] || [ ! -x "$binary" ]; then
-    echo "coldstart.sh: cavalry_bench not found; build it (make) or pass --binary PATH" >&2
-    exit 2
-fi
+binary=$(bench_binary coldstart.sh "$binary" "$here/cavalry_bench" "./bench/cavalry_bench") || exit 2
 [ -n "$work" ] || work="$(cd "$(dirname "$binary")" && pwd)/out/coldstart"
 mkdir -p "$work/logs" || exit 1
 if [ -z "$scenes" ]; then

@@ -23,7 +23,8 @@ bench: bench/cavalry_bench bench/gen_scene
 	$(SHELL) $(srcdir)/bench/run.sh --quick --binary bench/cavalry_bench \
 		--work bench/out --out bench/out/quick.json
 
-EXTRA_DIST += bench/run.sh bench/converge.sh bench/csv_median.sh bench/coldstart.sh bench/guiding.sh bench/README.md \
+EXTRA_DIST += bench/common.sh bench/run.sh bench/converge.sh bench/csv_median.sh bench/coldstart.sh \
+	bench/guiding.sh bench/README.md \
 	bench/RESULTS.md
 TESTS += bench/bench_test.sh
 EXTRA_DIST += bench/bench_test.sh

@@ -25,6 +25,7 @@ set -u
 
 cmdline="bench/multigpu.sh $*"
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/common.sh"
 binary=
 jobs=16
 spp=64
@@ -45,21 +46,13 @@ while [ $# -gt 0 ]; do
     --gpus) gpus=$2; shift 2 ;;
     --repeat) repeat=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
-    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
+    -h|--help) bench_usage "$0"; exit 0 ;;
     -*) echo "multigpu.sh: unknown option $1" >&2; exit 2 ;;
     *) scene=$1; shift ;;
     esac
 done
 
-if [ -z "$binary" ]; then
-    for b in "$here/../src/cavalry-batch" "./src/cavalry-batch"; do
-        [ -x "$b" ] && { binary=$b; break; }
-    done
-fi
-if [ -z "$binary" ] || [ ! -x "$binary" ]; then
-    echo "multigpu.sh: cavalry-batch not found; build it (make) or pass --binary PATH" >&2
-    exit 2
-fi
+binary=$(bench_binary multigpu.sh "$binary" "$here/../src/cavalry-batch" "./src/cavalry-batch") || exit 2
 binary=$(cd "$(dirname "$binary")" && pwd)/$(basename "$binary")
 [ -n "$work" ] || work="$(dirname "$binary")/../bench/out/multigpu"
 mkdir -p "$work" || exit 1

@@ -25,6 +25,7 @@ set -u
 
 cmdline="bench/run.sh $*"
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/common.sh"
 srcdir=$(cd "$here/.." && pwd)
 binary=
 quick=no
@@ -51,21 +52,13 @@ while [ $# -gt 0 ]; do
     --size) size=$2; shift 2 ;;
     --sizes) sizes=$2; shift 2 ;;
     --timeout) limit=$2; shift 2 ;;
-    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
+    -h|--help) bench_usage "$0"; exit 0 ;;
     -*) echo "run.sh: unknown option $1" >&2; exit 2 ;;
     *) scenes="$scenes $1"; shift ;;
     esac
 done
 
-if [ -z "$binary" ]; then
-    for b in "$here/cavalry_bench" "./bench/cavalry_bench"; do
-        [ -x "$b" ] && { binary=$b; break; }
-    done
-fi
-if [ -z "$binary" ] || [ ! -x "$binary" ]; then
-    echo "run.sh: cavalry_bench not found; build it (make) or pass --binary PATH" >&2
-    exit 2
-fi
+binary=$(bench_binary run.sh "$binary" "$here/cavalry_bench" "./bench/cavalry_bench") || exit 2
 bindir=$(cd "$(dirname "$binary")" && pwd)
 gen="$bindir/gen_scene"
 [ -n "$work" ] || work="$bindir/out"

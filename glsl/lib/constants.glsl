@@ -2,6 +2,8 @@
 #ifndef CV_LIB_CONSTANTS_GLSL
 #define CV_LIB_CONSTANTS_GLSL
 
+#include "../shared/common.h"
+
 #define CV_PI 3.14159265358979323846
 #define CV_INV_PI 0.31830988618379067154
 #define CV_INV_2PI 0.15915494309189533577
@@ -14,7 +16,7 @@
 float cv_sqr(float x) { return x * x; }
 float cv_safe_sqrt(float x) { return sqrt(max(x, 0.0)); }
 float cv_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
-float cv_luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+float cv_luminance(vec3 c) { return CV_LUMA(c.x, c.y, c.z); }
 
 // How far a ray leaving a point of triangle p0 p1 p2 must start off its
 // plane so that neither the interpolated point's rounding (each term of

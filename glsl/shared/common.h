@@ -12,6 +12,10 @@
 #ifndef CV_SHARED_COMMON_H
 #define CV_SHARED_COMMON_H
 
+/* Luminance of linear Rec.709 RGB, the render's space: one set of weights
+ * for C and GLSL. */
+#define CV_LUMA(r, g, b) (0.2126 * (r) + 0.7152 * (g) + 0.0722 * (b))
+
 #ifdef GL_core_profile
 #define CV_GLSL 1
 #define CV_UINT uint

@@ -182,22 +182,29 @@ static bool read_lookat(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d,
     return true;
 }
 
-/* crop: [x0, x1, y0, y1], fractions of the film as pbrt's cropwindow. */
-static bool read_crop(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d, float *out)
+/* A sequence of four numbers in [lo, hi] into v; what a key of that shape
+ * expects is said in the error ("[x0, x1, y0, y1] ..."). */
+static bool read_four(yaml_document_t *doc, yaml_node_t *n, const char *key, const char *shape,
+                      double lo, double hi, struct cv_diag *d, double v[4])
 {
     if (n->type != YAML_SEQUENCE_NODE ||
         n->data.sequence.items.top - n->data.sequence.items.start != 4) {
-        cv_diag_add(d, cv_yline(n), cv_ycol(n),
-                    "crop: expected [x0, x1, y0, y1] (film fractions in [0, 1]), got %s",
+        cv_diag_add(d, cv_yline(n), cv_ycol(n), "%s: expected %s, got %s", key, shape,
                     cv_ykind(n));
         return false;
     }
     yaml_node_item_t *it = n->data.sequence.items.start;
-    double v[4];
     bool ok = true;
     for (int i = 0; i < 4; i++)
-        ok &= cv_yread_float(yaml_document_get_node(doc, it[i]), d, "crop", 0, 1, &v[i]);
-    if (!ok)
+        ok &= cv_yread_float(yaml_document_get_node(doc, it[i]), d, key, lo, hi, &v[i]);
+    return ok;
+}
+
+/* crop: [x0, x1, y0, y1], fractions of the film as pbrt's cropwindow. */
+static bool read_crop(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d, float *out)
+{
+    double v[4];
+    if (!read_four(doc, n, "crop", "[x0, x1, y0, y1] (film fractions in [0, 1])", 0, 1, d, v))
         return false;
     if (!(v[0] < v[1] && v[2] < v[3])) {
         cv_diag_add(d, cv_yline(n), cv_ycol(n),
@@ -214,19 +221,8 @@ static bool read_crop(yaml_document_t *doc, yaml_node_t *n, struct cv_diag *d, f
 static bool read_rotate(yaml_document_t *doc, yaml_node_t *n, const struct cv_key *k,
                         struct cv_diag *d, float *out)
 {
-    if (n->type != YAML_SEQUENCE_NODE ||
-        n->data.sequence.items.top - n->data.sequence.items.start != 4) {
-        cv_diag_add(d, cv_yline(n), cv_ycol(n),
-                    "%s: expected [degrees, x, y, z] (as pbrt's Rotate), got %s", k->name,
-                    cv_ykind(n));
-        return false;
-    }
-    yaml_node_item_t *it = n->data.sequence.items.start;
     double v[4];
-    bool ok = true;
-    for (int i = 0; i < 4; i++)
-        ok &= cv_yread_float(yaml_document_get_node(doc, it[i]), d, k->name, -1e6, 1e6, &v[i]);
-    if (!ok)
+    if (!read_four(doc, n, k->name, "[degrees, x, y, z] (as pbrt's Rotate)", -1e6, 1e6, d, v))
         return false;
     if (v[1] == 0 && v[2] == 0 && v[3] == 0) {
         cv_diag_add(d, cv_yline(n), cv_ycol(n), "%s: the axis is zero", k->name);

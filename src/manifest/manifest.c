@@ -100,6 +100,20 @@ static bool is_ocio_uri(const char *s)
 }
 
 /* Resolves and checks one merged job; draft index i is only for messages. */
+/* Makes *path (as written) relative to the manifest's folder dir, and
+ * says where it was written if no file is there. */
+static void resolve_file(const char *dir, char **path, struct cv_key_at at, const char *what,
+                         const char *label, struct cv_diag *d)
+{
+    char *full = cv_path_join(dir, *path);
+    struct stat st;
+    if (stat(full, &st) != 0)
+        cv_diag_add(d, at.line, at.col, "%s: %s \"%s\" not found (%s: %s)", label, what, *path,
+                    full, strerror(errno));
+    free(*path);
+    *path = full;
+}
+
 static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, struct cv_diag *d)
 {
     struct cv_job *j = &dr->job;
@@ -149,27 +163,10 @@ static void resolve_job(struct cv_job_draft *dr, size_t i, const char *dir, stru
     if (scene_ok)
         j->settings_hash = cv_job_settings_hash_stat(j, &st);
 
-    if (j->env.file) {
-        char *path = cv_path_join(dir, j->env.file);
-        struct stat est;
-        if (stat(path, &est) != 0)
-            cv_diag_add(d, at[CV_K_ENV_FILE].line, at[CV_K_ENV_FILE].col,
-                        "%s: environment image \"%s\" not found (%s: %s)", label, j->env.file,
-                        path, strerror(errno));
-        free(j->env.file);
-        j->env.file = path;
-    }
-
-    if (j->color.config && !is_ocio_uri(j->color.config)) {
-        char *path = cv_path_join(dir, j->color.config);
-        struct stat cst;
-        if (stat(path, &cst) != 0)
-            cv_diag_add(d, at[CV_K_COLOR_CONFIG].line, at[CV_K_COLOR_CONFIG].col,
-                        "%s: color config \"%s\" not found (%s: %s)", label, j->color.config,
-                        path, strerror(errno));
-        free(j->color.config);
-        j->color.config = path;
-    }
+    if (j->env.file)
+        resolve_file(dir, &j->env.file, at[CV_K_ENV_FILE], "environment image", label, d);
+    if (j->color.config && !is_ocio_uri(j->color.config))
+        resolve_file(dir, &j->color.config, at[CV_K_COLOR_CONFIG], "color config", label, d);
 }
 
 /* Names and output files must be unique: two jobs writing one file would

@@ -293,7 +293,7 @@ static double tri_area(const CvVertex *v, const CvTriangle *t)
 
 static double luminance(const double rgb[3])
 {
-    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    return CV_LUMA(rgb[0], rgb[1], rgb[2]);
 }
 
 /* "file:line" with the file's base name: a name for what a directive made */

@@ -9,7 +9,7 @@
 #include "scene/builder.h"
 #include "scene/image.h"
 
-static double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+static double luminance(const double c[3]) { return CV_LUMA(c[0], c[1], c[2]); }
 
 static bool normalize3(double v[3])
 {
@@ -154,15 +154,8 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
             l.type = CV_LIGHT_INFINITE_MAP;
             l.flags = v4map ? CV_LIGHTF_EQUAL_AREA : 0;
             l.tex = t;
-            /* the last mip level (1x1) is the map's average */
-            uint64_t last = 0;
-            for (uint32_t lw = tx->width, lh = tx->height; lw > 1 || lh > 1;) {
-                last += (uint64_t)lw * lh;
-                lw = lw > 1 ? lw / 2 : 1;
-                lh = lh > 1 ? lh / 2 : 1;
-            }
             float rgba[4];
-            cv_scene_texel(b->s, tx, last, rgba);
+            cv_scene_texture_average(b->s, tx, rgba);
             double c[3] = {rgba[0], rgba[1], rgba[2]};
             avg = (float)luminance(c);
         } else {

@@ -46,18 +46,12 @@ bool cv_scene_env_equal_area(const struct cv_scene *s, const struct cv_scene *en
     return t->width == t->height;
 }
 
-/* Luminance of a map's average: its last mip level (1x1). */
+/* Luminance of a map's average. */
 static double map_average(const struct cv_scene *s, const CvTexture *t)
 {
-    uint64_t last = 0;
-    for (uint32_t w = t->width, h = t->height; w > 1 || h > 1;) {
-        last += (uint64_t)w * h;
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
-    }
     float c[4];
-    cv_scene_texel(s, t, last, c);
-    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    cv_scene_texture_average(s, t, c);
+    return CV_LUMA(c[0], c[1], c[2]);
 }
 
 /* Every infinite light shows r->env's image: its type, texture and flags

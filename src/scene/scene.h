@@ -176,5 +176,7 @@ uint32_t cv_scene_static_triangles(const struct cv_scene *s);
  * as linear RGBA, whichever way it is stored. i must lie inside the
  * texture's texels. */
 void cv_scene_texel(const struct cv_scene *s, const CvTexture *t, uint64_t i, float rgba[4]);
+/* The average of image texture t: its last mip level (1x1). */
+void cv_scene_texture_average(const struct cv_scene *s, const CvTexture *t, float rgba[4]);
 
 #endif

@@ -99,6 +99,17 @@ void cv_scene_texel(const struct cv_scene *s, const CvTexture *t, uint64_t i, fl
         rgba[c] = cv_half_to_float((uint16_t)(w[c / 2] >> (16 * (c % 2))));
 }
 
+void cv_scene_texture_average(const struct cv_scene *s, const CvTexture *t, float rgba[4])
+{
+    uint64_t last = 0;
+    for (uint32_t w = t->width, h = t->height; w > 1 || h > 1;) {
+        last += (uint64_t)w * h;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    cv_scene_texel(s, t, last, rgba);
+}
+
 int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
                        const struct cv_loc *loc, struct cv_error *err)
 {

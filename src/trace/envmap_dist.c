@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "glsl/shared/common.h"
 #include "glsl/shared/envmap.h"
 #include "trace/envmap_dist.h"
 
@@ -14,7 +15,7 @@ size_t cv_envmap_dist_floats(uint32_t w, uint32_t h)
 
 static double luminance(const float *t)
 {
-    double y = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+    double y = CV_LUMA(t[0], t[1], t[2]);
     return isfinite(y) && y > 0 ? y : 0;
 }
 

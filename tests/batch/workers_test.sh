@@ -31,6 +31,16 @@ cd "$tmp"
 # names of the jobs with an event, sorted: "job_finished" FILE
 # how many lines of FILE (which may not exist yet) match: count PATTERN FILE
 count() { cat "$2" 2>/dev/null | grep -c "$1" || :; }
+# wait_for PATTERN N FILE: until FILE has N lines with PATTERN, the batch
+# ($pid) has ended, or two minutes have passed.
+wait_for() {
+    n=0
+    while [ "$(count "$1" "$3")" -lt "$2" ]; do
+        n=$((n + 1))
+        if [ "$n" -gt 1200 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
+        sleep 0.1
+    done
+}
 jobs_with() { grep "\"event\":\"$1\"" "$2" | sed 's/.*"job":"\([^"]*\)".*/\1/' | sort | tr '\n' ' '; }
 
 # The reference: one process.
@@ -93,12 +103,7 @@ check "failing job: OpenJD lines, progress rising to 100" "$py" "$checker" openj
     2>crash.err &
 pid=$!
 # Once the four short jobs are done, only the worker on "long" is left.
-n=0
-while [ "$(count '"event":"job_finished"' crash.jsonl)" -lt 4 ]; do
-    n=$((n + 1))
-    if [ "$n" -gt 1200 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
-    sleep 0.1
-done
+wait_for '"event":"job_finished"' 4 crash.jsonl
 for w in $(ps -o pid= --ppid "$pid"); do kill -KILL "$w" 2>/dev/null || :; done
 set +e
 wait "$pid"
@@ -118,12 +123,7 @@ check "dead worker: every job ended once" "$py" "$checker" json crash.jsonl done
 } >long.yaml
 "$CAVALRY_BATCH" --workers=2 --progress=json long.yaml >term.jsonl 2>term.err &
 pid=$!
-n=0
-while [ "$(count '"event":"progress"' term.jsonl)" -lt 2 ]; do
-    n=$((n + 1))
-    if [ "$n" -gt 1200 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
-    sleep 0.1
-done
+wait_for '"event":"progress"' 2 term.jsonl
 workers=$(ps -o pid= --ppid "$pid" | tr '\n' ' ')
 kill -TERM "$pid" || :
 set +e
@@ -154,12 +154,7 @@ check "time limit: every job partial, once" test "$(jobs_with job_partial limit.
 "$CAVALRY_BATCH" --workers=2 --time-limit=3 --progress=json --output-dir=one long.yaml \
     >one.jsonl 2>one.err &
 pid=$!
-n=0
-while [ "$(count '"event":"progress"' one.jsonl)" -lt 2 ]; do
-    n=$((n + 1))
-    if [ "$n" -gt 1200 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
-    sleep 0.1
-done
+wait_for '"event":"progress"' 2 one.jsonl
 w=$(ps -o pid= --ppid "$pid" | head -n 1)
 kill -TERM $w || :
 set +e

@@ -33,6 +33,7 @@
 
 #include "scene/coat_closed.h"
 #include "tests/trace/bsdf_probe.h"
+#include "tests/trace/fresnel_ref.h"
 #include "tests/trace/bsdf_stats.h"
 
 #define N_DEFAULT 131072
@@ -49,24 +50,7 @@ struct ccase {
 static uint64_t rs = 0x2545F4914F6CDD1Dull;
 static double rnd(void)
 {
-    rs ^= rs << 13;
-    rs ^= rs >> 7;
-    rs ^= rs << 17;
-    return (double)(rs >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static double fr_diel(double c, double eta)
-{
-    if (c < 0) {
-        eta = 1 / eta;
-        c = -c;
-    }
-    double s2 = (1 - c * c) / (eta * eta);
-    if (s2 >= 1)
-        return 1;
-    double ct = sqrt(1 - s2);
-    double a = (eta * c - ct) / (eta * c + ct), b = (c - eta * ct) / (c + eta * ct);
-    return 0.5 * (a * a + b * b);
+    return ref_rnd(&rs);
 }
 
 /* r_in, t_out by the midpoint rule straight from their definitions. */
@@ -76,10 +60,10 @@ static void integrals_ref(double eta, double th, double *r_in, double *t_out)
     double r = 0, t = 0;
     for (int i = 0; i < n; i++) {
         double mu = (i + 0.5) / n;
-        r += 2 * mu * fr_diel(-mu, eta) * exp(-2 * th / mu);
+        r += 2 * mu * ref_fresnel_dielectric(-mu, eta) * exp(-2 * th / mu);
         double s2 = (1 - mu * mu) / (eta * eta);
         if (s2 < 1)
-            t += 2 * mu * (1 - fr_diel(mu, eta)) * exp(-th / sqrt(1 - s2));
+            t += 2 * mu * (1 - ref_fresnel_dielectric(mu, eta)) * exp(-th / sqrt(1 - s2));
     }
     *r_in = r / n;
     *t_out = t / n / (eta * eta);

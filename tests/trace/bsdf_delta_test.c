@@ -21,6 +21,7 @@
 
 #include "tests/trace/bsdf_probe.h"
 #include "tests/trace/bsdf_stats.h"
+#include "tests/trace/fresnel_ref.h"
 
 #define N_SAMPLES 200000
 /* standard errors allowed between a lobe's mean weight and its Fresnel
@@ -35,34 +36,6 @@ struct cfg {
     double wo_theta[3];
     int n_wo;
 };
-
-/* Unpolarised Fresnel reflectance of a dielectric interface, eta = inside
- * over outside, outside on +z. */
-static double fr_dielectric(double cos_i, double eta)
-{
-    if (cos_i < 0) {
-        eta = 1 / eta;
-        cos_i = -cos_i;
-    }
-    double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1)
-        return 1;
-    double cos_t = sqrt(1 - sin2_t);
-    double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    return (rs * rs + rp * rp) / 2;
-}
-
-/* Fresnel reflectance of a conductor of complex index eta + i k. */
-static double fr_conductor(double cos_i, double eta, double k)
-{
-    double complex n = eta + I * k;
-    double complex sin2_t = (1 - cos_i * cos_i) / (n * n);
-    double complex cos_t = csqrt(1 - sin2_t);
-    double complex rs = (cos_i - n * cos_t) / (cos_i + n * cos_t);
-    double complex rp = (n * cos_i - cos_t) / (n * cos_i + cos_t);
-    return (cabs(rs) * cabs(rs) + cabs(rp) * cabs(rp)) / 2;
-}
 
 static CvMaterial conductor(float a)
 {
@@ -97,14 +70,14 @@ static void expected(const CvMaterial *m, const float wo[3], double e[N_LOBES][3
     switch (m->type) {
     case CV_MAT_CONDUCTOR:
         for (int ch = 0; ch < 3; ch++)
-            e[LOBE_R][ch] = fr_conductor(fabs(c), eta[ch], k[ch]);
+            e[LOBE_R][ch] = ref_fresnel_conductor(fabs(c), eta[ch] + I * k[ch]);
         break;
     case CV_MAT_MIRROR:
         for (int ch = 0; ch < 3; ch++)
             e[LOBE_R][ch] = (&m->reflectance.x)[ch];
         break;
     case CV_MAT_DIELECTRIC: {
-        double F = fr_dielectric(c, eta[0]);
+        double F = ref_fresnel_dielectric(c, eta[0]);
         double etap = c > 0 ? eta[0] : 1 / eta[0];
         /* Snell: wt = -wo / etap + (cos_i / etap - cos_t) n, n on wo's side */
         double ci = fabs(c), s2t = (1 - ci * ci) / (etap * etap);
@@ -122,7 +95,7 @@ static void expected(const CvMaterial *m, const float wo[3], double e[N_LOBES][3
     }
     case CV_MAT_THIN_DIELECTRIC: {
         /* the slab's inter-reflections: R + T^2 R / (1 - R^2) */
-        double R = fr_dielectric(fabs(c), eta[0]), T = 1 - R;
+        double R = ref_fresnel_dielectric(fabs(c), eta[0]), T = 1 - R;
         if (R < 1)
             R += T * T * R / (1 - R * R);
         for (int ch = 0; ch < 3; ch++) {
@@ -133,11 +106,11 @@ static void expected(const CvMaterial *m, const float wo[3], double e[N_LOBES][3
     }
     case CV_MAT_COATED_DIFFUSE:
         for (int ch = 0; ch < 3; ch++)
-            e[LOBE_R][ch] = fr_dielectric(fabs(c), eta[0]);
+            e[LOBE_R][ch] = ref_fresnel_dielectric(fabs(c), eta[0]);
         break;
     case CV_MAT_COATED_CONDUCTOR:
         for (int ch = 0; ch < 3; ch++)
-            e[LOBE_R][ch] = fr_dielectric(fabs(c), m->eta.w);
+            e[LOBE_R][ch] = ref_fresnel_dielectric(fabs(c), m->eta.w);
         break;
     }
 }

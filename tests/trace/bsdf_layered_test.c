@@ -36,6 +36,7 @@
 #include <stdlib.h>
 
 #include "tests/trace/bsdf_probe.h"
+#include "tests/trace/fresnel_ref.h"
 
 #define N_EVAL 131072
 #define N_REF 800000
@@ -53,33 +54,9 @@ struct lcase {
 static uint64_t rs = 0x9E3779B97F4A7C15ull;
 static double rnd(void)
 {
-    rs ^= rs << 13;
-    rs ^= rs >> 7;
-    rs ^= rs << 17;
-    return (double)(rs >> 11) * (1.0 / 9007199254740992.0);
+    return ref_rnd(&rs);
 }
 
-static double fr_diel(double c, double eta)
-{
-    if (c < 0) {
-        eta = 1 / eta;
-        c = -c;
-    }
-    double s2 = (1 - c * c) / (eta * eta);
-    if (s2 >= 1)
-        return 1;
-    double ct = sqrt(1 - s2);
-    double a = (eta * c - ct) / (eta * c + ct), b = (c - eta * ct) / (c + eta * ct);
-    return 0.5 * (a * a + b * b);
-}
-
-static double fr_complex(double c, double complex eta)
-{
-    double s2 = 1 - c * c;
-    double complex s2t = s2 / (eta * eta), ct = csqrt(1 - s2t);
-    double complex a = (eta * c - ct) / (eta * c + ct), b = (c - eta * ct) / (c + eta * ct);
-    return 0.5 * (creal(a * conj(a)) + creal(b * conj(b)));
-}
 
 static double ggx_lambda(double a, const double w[3])
 {
@@ -97,7 +74,7 @@ static double cond_weight(double a, double complex eta, const double wo[3], cons
     double c2 = m[2] * m[2], t2 = (1 - c2) / c2, e = 1 + t2 / (a * a);
     double D = 1 / (M_PI * a * a * c2 * c2 * e * e);
     double G = 1 / (1 + ggx_lambda(a, wo) + ggx_lambda(a, wi));
-    double F = fr_complex(fabs(wo[0] * m[0] + wo[1] * m[1] + wo[2] * m[2]), eta);
+    double F = ref_fresnel_conductor(fabs(wo[0] * m[0] + wo[1] * m[1] + wo[2] * m[2]), eta);
     return M_PI * D * G * F / (4 * wo[2] * wi[2]);
 }
 
@@ -180,7 +157,7 @@ static int coat_cross(double alpha, double eta, double d[3], double *w)
     if (alpha > 0)
         vndf(alpha, wo, m);
     double c = dot3(wo, m);
-    double F = fr_diel(c, eta);
+    double F = ref_fresnel_dielectric(c, eta);
     double wi[3];
     bool refl = rnd() < F;
     if (refl) {
@@ -422,7 +399,7 @@ int main(void)
         if (!ran)
             break;
         double ne = (double)reps * N_EVAL;
-        double me = e / ne + fr_diel(wo[2], 1.5);
+        double me = e / ne + ref_fresnel_dielectric(wo[2], 1.5);
         double sde = sqrt(fmax(e2 / ne - cv_sqr_d(e / ne), 0) / ne);
         tap_diag("furnace theta %2.0f: evaluated albedo %.4f +- %.4f", thetas[k], me, sde);
         lo = fmin(lo, me + 4 * sde);
