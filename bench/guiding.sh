@@ -59,7 +59,8 @@ rl_extra=
 work=
 scenes=
 summarize_only=0
-usage() { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; }
+. "$here/common.sh"
+usage() { bench_usage "$0"; }
 while [ $# -gt 0 ]; do
     case "$1" in
     --batch) batch=$2; shift 2 ;;
