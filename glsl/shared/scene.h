@@ -136,6 +136,9 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_INTERFACE 9u            /* no surface: rays pass through */
 #define CV_MAT_PLASTIC 10u             /* v3 plastic: Kd in reflectance, Ks in specular, roughness */
 #define CV_MAT_HAIR 11u                /* hair: reflectance.rgb (see CV_MATF_HAIR_*), eta.x, roughness = beta_m, beta_n, alpha (degrees) */
+#define CV_MAT_SUBSURFACE 12u          /* subsurface: a dielectric boundary (eta.x, roughness) over a BSSRDF:
+                                          reflectance.rgb sigma_a, specular.rgb sigma_s [1 / scene unit],
+                                          k.x its table (glsl/shared/bssrdf.h) */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */

@@ -103,6 +103,13 @@ struct cv_scene {
     uint32_t n_media;                /* 0 when the scene names none */
     uint32_t camera_medium;          /* the medium the camera sits in (0: vacuum) */
 
+    /* pbrt-v4's BSSRDF tables of the subsurface materials
+     * (glsl/shared/bssrdf.h: CV_BSSRDF_FLOATS each), one per (g, eta):
+     * bssrdf_keys[2 i], [2 i + 1] */
+    float *bssrdf;
+    float *bssrdf_keys;
+    uint32_t n_bssrdf;
+
     CvCamera camera;
     struct cv_render_settings settings;
 
