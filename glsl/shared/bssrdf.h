@@ -15,7 +15,8 @@
 #define CV_SHARED_BSSRDF_H
 
 /* The buffer texture (r32f) the kernels read the tables from, and the
- * image (rgba32f, two texels a path slot: the entry point, its normal)
+ * image (rgba32f, two texels a path slot: the entry point and its
+ * material, its normal)
  * where a path that entered a subsurface material keeps its entry while
  * its probe segment is traced (glsl/trace/sss_probe.glsl). */
 #define CV_TEXUNIT_BSSRDF 0

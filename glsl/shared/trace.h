@@ -104,7 +104,7 @@ CV_CHECK_SIZE(CvTraceQueues, 176);
 #define CV_RAYF_SPECULAR 1u        /* the last bounce was specular (no MIS on emission) */
 #define CV_RAYF_ALBEDO_DONE 2u     /* the albedo AOV has been written for this sample */
 /* a BSSRDF probe segment, not a ray (glsl/trace/sss_vertex.glsl): o.xyz its
- * start, d.xyz the vector to its end, d.w the subsurface material */
+ * start, d.xyz the vector to its end, d.w the material its exits have */
 #define CV_RAYF_PROBE 4u
 #define CV_RAYF_MASK 255u
 #define CV_RAYF_DEPTH_SHIFT 8u

@@ -8,8 +8,11 @@
 // weighted by Sp over the density of having found it and goes on from
 // the exit lobe Sw, with next-event estimation and MIS like any vertex
 // (path_vertex.glsl), at the same depth as the entry: the probe is no
-// bounce. The entry point and normal wait for the exit in an image of one
-// pair of texels a path slot (CV_IMAGE_SSS_ENTRY). Include from
+// bounce. The entry point, its normal and the (mix-resolved) subsurface
+// material wait for the exit in an image of one pair of texels a path
+// slot (CV_IMAGE_SSS_ENTRY); the probe looks for the surface's material as
+// the scene names it (a mix, where the subsurface is one of a mix's), as
+// pbrt-v4 compares the intersections' materials. Include from
 // path_vertex.glsl.
 #ifndef CV_TRACE_SSS_VERTEX_GLSL
 #define CV_TRACE_SSS_VERTEX_GLSL
@@ -27,8 +30,8 @@ layout(rgba32f, binding = CV_IMAGE_SSS_ENTRY) uniform imageBuffer cv_sss_entry;
 
 // At a hit on a subsurface material whose BSDF sample bs leaves through the
 // boundary (into the material): the probe ray nr (o: its start, d.xyz: the
-// segment, d.w: the material; beta as the bounce would carry it, flagged
-// CV_RAYF_PROBE). False ends the path (no segment: pbrt-v4 does the same).
+// segment, d.w: the surface's material; beta as the bounce would carry it,
+// flagged CV_RAYF_PROBE). False ends the path (no segment: pbrt-v4 does the same).
 bool cv_sss_enter(CvSurface sf, CvBsdf b, float path_w, uint path, uint depth, vec3 beta,
                   uint flags, uint medium, out CvRayItem nr)
 {
@@ -42,10 +45,10 @@ bool cv_sss_enter(CvSurface sf, CvBsdf b, float path_w, uint path, uint depth, v
     vec3 p0, seg;
     if (!cv_bssrdf_probe(s, sf.p, ns, u.x, vec2(u.y, ua.x), p0, seg))
         return false;
-    imageStore(cv_sss_entry, int(2u * path), vec4(sf.p, 0.0));
+    imageStore(cv_sss_entry, int(2u * path), vec4(sf.p, float(b.material)));
     imageStore(cv_sss_entry, int(2u * path + 1u), vec4(ns, 0.0));
     nr.o = vec4(p0, path_w);
-    nr.d = vec4(seg, float(b.material));
+    nr.d = vec4(seg, float(sf.material));
     nr.beta = vec4(beta, cv_ray_meta_in((flags & ~CV_RAYF_SPECULAR) | CV_RAYF_PROBE, depth, medium));
     return true;
 }
@@ -58,8 +61,9 @@ bool cv_sss_exit(CvHitItem h, CvRayItem r, uint path, out CvSurface sf, inout ve
                  out CvBsdf b)
 {
     sf = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
-    uint material = uint(r.d.w);
-    vec3 po = imageLoad(cv_sss_entry, int(2u * path)).xyz;
+    vec4 entry = imageLoad(cv_sss_entry, int(2u * path));
+    vec3 po = entry.xyz;
+    uint material = uint(entry.w);
     vec3 ns_o = imageLoad(cv_sss_entry, int(2u * path + 1u)).xyz;
     CvBssrdf s = cv_bssrdf_of(material);
     float pdf;
