@@ -54,10 +54,17 @@ static double henyey_greenstein(double cos_theta, double g)
     return (1 - g * g) / (4 * PI * d * sqrt(fmax(d, 0)));
 }
 
-/* The depth with exponential density of rate a at cumulative u. */
-static double exp_depth(double u, double a) { return -log(1 - u) / a; }
-
 #define BEAM_SAMPLES 100
+
+/* The stratified depths of an exponential density of rate 1 the beam
+ * integrals use (depths at rate a are these over a): computed once. */
+static double unit_depth[BEAM_SAMPLES];
+
+static void init_unit_depths(void)
+{
+    for (int i = 0; i < BEAM_SAMPLES; i++)
+        unit_depth[i] = -log(1 - (i + 0.5) / BEAM_SAMPLES);
+}
 
 /* Multiple scattering: the dipole's exitance at radius r (unit-free: the
  * coefficients are per unit length). */
@@ -71,11 +78,12 @@ static double beam_ms(double sigma_s, double sigma_a, double g, double eta, doub
     double c_phi = 0.25 * (1 - 2 * fm1), c_e = 0.5 * (1 - 3 * fm2);
     double ed = 0;
     for (int i = 0; i < BEAM_SAMPLES; i++) {
-        double zr = exp_depth((i + 0.5) / BEAM_SAMPLES, spt), zv = -zr + 2 * ze;
+        double zr = unit_depth[i] / spt, zv = -zr + 2 * ze;
         double dr = sqrt(r * r + zr * zr), dv = sqrt(r * r + zv * zv);
-        double phi = (exp(-str * dr) / dr - exp(-str * dv) / dv) / (4 * PI * D);
-        double edn = (zr * (1 + str * dr) * exp(-str * dr) / (dr * dr * dr) -
-                      zv * (1 + str * dv) * exp(-str * dv) / (dv * dv * dv)) / (4 * PI);
+        double er = exp(-str * dr), ev = exp(-str * dv);
+        double phi = (er / dr - ev / dv) / (4 * PI * D);
+        double edn = (zr * (1 + str * dr) * er / (dr * dr * dr) -
+                      zv * (1 + str * dv) * ev / (dv * dv * dv)) / (4 * PI);
         double kappa = 1 - exp(-2 * spt * (dr + zr));
         ed += kappa * rhop * rhop * (phi * c_phi + edn * c_e);
     }
@@ -89,7 +97,7 @@ static double beam_ss(double sigma_s, double sigma_a, double g, double eta, doub
     double t_crit = r * sqrt(fmax(0, eta * eta - 1));
     double ess = 0;
     for (int i = 0; i < BEAM_SAMPLES; i++) {
-        double ti = t_crit + exp_depth((i + 0.5) / BEAM_SAMPLES, st);
+        double ti = t_crit + unit_depth[i] / st;
         double d = sqrt(r * r + ti * ti), cos_o = ti / d;
         ess += rho * exp(-st * (d + t_crit)) / (d * d) * henyey_greenstein(cos_o, g) *
                (1 - fr_dielectric(-cos_o, eta)) * fabs(cos_o);
@@ -107,6 +115,8 @@ static void segment_slopes(const float *x, const float *f, int n, int i, double 
 
 void cv_bssrdf_table_compute(double g, double eta, float *t)
 {
+    if (unit_depth[0] == 0)
+        init_unit_depths();
     float *rho = t + CV_BSSRDF_RHO, *rad = t + CV_BSSRDF_RADIUS;
     rad[0] = 0;
     rad[1] = 2.5e-3f;

@@ -11,8 +11,9 @@
 #include "glsl/shared/bssrdf.h"
 
 /* Fills t[0 .. CV_BSSRDF_FLOATS) for Henyey-Greenstein g and relative
- * index of refraction eta (> 0). Cost: about a million exponentials, a
- * few milliseconds; once per distinct material. */
+ * index of refraction eta (> 0). Cost: a few million exponentials and
+ * square roots (6400 entries of two 100-point sums); once per distinct
+ * (g, eta). */
 void cv_bssrdf_table_compute(double g, double eta, float *t);
 
 /* Catmull-Rom spline weights of x over nodes[0..n) (increasing), as
