@@ -8,9 +8,10 @@
 // weighted by Sp over the density of having found it and goes on from
 // the exit lobe Sw, with next-event estimation and MIS like any vertex
 // (path_vertex.glsl), at the same depth as the entry: the probe is no
-// bounce. The entry point, its normal and the (mix-resolved) subsurface
-// material wait for the exit in an image of one pair of texels a path
-// slot (CV_IMAGE_SSS_ENTRY); the probe looks for the surface's material as
+// bounce. The entry point, its normal, the (mix-resolved) subsurface
+// material and its coefficients there (textures evaluated at the entry, as
+// pbrt-v4 does) wait for the exit in an image of four texels a path slot
+// (CV_IMAGE_SSS_ENTRY); the probe looks for the surface's material as
 // the scene names it (a mix, where the subsurface is one of a mix's), as
 // pbrt-v4 compares the intersections' materials. Include from
 // path_vertex.glsl.
@@ -38,15 +39,19 @@ bool cv_sss_enter(CvSurface sf, CvBsdf b, float path_w, uint path, uint depth, v
     nr.o = vec4(0.0);
     nr.d = vec4(0.0);
     nr.beta = vec4(0.0);
-    CvBssrdf s = cv_bssrdf_of(b.material);
+    vec3 sigma_a, sigma_s;
+    cv_bssrdf_sigma(b.material, b.medium.rgb, vec3(b.alpha.zw, b.thickness), sigma_a, sigma_s);
+    CvBssrdf s = cv_bssrdf_make(sigma_a, sigma_s, uint(materials[b.material].k.x), b.eta);
     vec2 u = cv_bounce_2d(path, depth, CV_PAIR_SSS_PROBE);
     vec2 ua = cv_bounce_2d(path, depth, CV_PAIR_SSS_ANGLE);
     vec3 ns = b.frame.z;
     vec3 p0, seg;
     if (!cv_bssrdf_probe(s, sf.p, ns, u.x, vec2(u.y, ua.x), p0, seg))
         return false;
-    imageStore(cv_sss_entry, int(2u * path), vec4(sf.p, float(b.material)));
-    imageStore(cv_sss_entry, int(2u * path + 1u), vec4(ns, 0.0));
+    imageStore(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path), vec4(sf.p, float(b.material)));
+    imageStore(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path + 1u), vec4(ns, 0.0));
+    imageStore(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path + 2u), vec4(sigma_a, 0.0));
+    imageStore(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path + 3u), vec4(sigma_s, 0.0));
     nr.o = vec4(p0, path_w);
     nr.d = vec4(seg, float(sf.material));
     nr.beta = vec4(beta, cv_ray_meta_in((flags & ~CV_RAYF_SPECULAR) | CV_RAYF_PROBE, depth, medium));
@@ -61,11 +66,13 @@ bool cv_sss_exit(CvHitItem h, CvRayItem r, uint path, out CvSurface sf, inout ve
                  out CvBsdf b)
 {
     sf = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
-    vec4 entry = imageLoad(cv_sss_entry, int(2u * path));
+    vec4 entry = imageLoad(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path));
     vec3 po = entry.xyz;
     uint material = uint(entry.w);
-    vec3 ns_o = imageLoad(cv_sss_entry, int(2u * path + 1u)).xyz;
-    CvBssrdf s = cv_bssrdf_of(material);
+    vec3 ns_o = imageLoad(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path + 1u)).xyz;
+    CvBssrdf s = cv_bssrdf_make(imageLoad(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path + 2u)).xyz,
+                                imageLoad(cv_sss_entry, int(CV_SSS_ENTRY_TEXELS * path + 3u)).xyz,
+                                uint(materials[material].k.x), materials[material].eta.x);
     float pdf;
     vec3 sp = cv_bssrdf_sp(s, po, ns_o, sf.p, sf.ng, pdf);
     pdf /= float(max(h.pad0, 1u));

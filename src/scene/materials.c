@@ -201,23 +201,15 @@ static uint32_t bssrdf_table(struct cv_builder *b, double g, double eta)
     return i;
 }
 
-/* A colour that may be a texture, read for its constant: subsurface
- * coefficients are constants here (textures are reported and their
- * default used). */
-static bool constant_color(struct cv_builder *b, struct cv_params *ps, const char *name, double def,
-                           enum cv_spectrum_kind kind, const char *dir, const struct cv_loc *loc,
-                           double rgb[3], struct cv_error *err)
+/* A subsurface coefficient: its constant (def where absent) and texture
+ * (-1 for none). */
+static bool coefficient(struct cv_builder *b, struct cv_params *ps, const char *name, double def,
+                        enum cv_spectrum_kind kind, const char *dir, double rgb[3], int *tex,
+                        struct cv_error *err)
 {
-    int tex = -1;
+    *tex = -1;
     rgb[0] = rgb[1] = rgb[2] = def;
-    if (!cv_b_color_tex(b, ps, name, kind, dir, rgb, &tex, err))
-        return false;
-    if (tex >= 0) {
-        rgb[0] = rgb[1] = rgb[2] = def;
-        if (!cv_b_warn(b, err, loc, "subsurface: a texture for \"%s\" is not supported; %g used", name, def))
-            return false;
-    }
-    return true;
+    return cv_b_color_tex(b, ps, name, kind, dir, rgb, tex, err);
 }
 
 /* pbrt-v4's SubsurfaceMaterial: a dielectric boundary (eta, roughness)
@@ -226,7 +218,9 @@ static bool constant_color(struct cv_builder *b, struct cv_params *ps, const cha
  * coefficients), from sigma_a and sigma_s, from reflectance (and mfp,
  * inverted through the table), or from pbrt-v4's defaults (whole milk per
  * mm); all times scale. reflectance = sigma_a, specular = sigma_s (per
- * scene unit), k.x = the table (glsl/shared/scene.h). */
+ * scene unit), k.x = the table (glsl/shared/scene.h); with a texture, the
+ * coefficients as given and their textures, for the GPU to scale or
+ * invert per point (CV_MATF_SSS_POINT, CV_MATF_SSS_DIFFUSE). */
 static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
                        const char *dir, CvMaterial *m, struct cv_error *err)
 {
@@ -234,6 +228,7 @@ static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct 
     const char *name = cv_params_string(ps, "name", NULL);
     bool from_diffuse = false;
     double refl[3], mfp[3];
+    int tex_a = -1, tex_s = -1;
     m->type = CV_MAT_SUBSURFACE;
     if (name && *name) {
         if (!cv_scattering_preset(name, sa, ss))
@@ -246,13 +241,13 @@ static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct 
         if (!cv_params_find(ps, "sigma_a") || !cv_params_find(ps, "sigma_s"))
             return cv_fail(err, "%s:%d:%d: subsurface: \"sigma_a\" and \"sigma_s\" go together", loc->file,
                            loc->line, loc->col);
-        if (!constant_color(b, ps, "sigma_a", 0, CV_SPEC_UNBOUNDED, dir, loc, sa, err) ||
-            !constant_color(b, ps, "sigma_s", 0, CV_SPEC_UNBOUNDED, dir, loc, ss, err))
+        if (!coefficient(b, ps, "sigma_a", 0, CV_SPEC_UNBOUNDED, dir, sa, &tex_a, err) ||
+            !coefficient(b, ps, "sigma_s", 0, CV_SPEC_UNBOUNDED, dir, ss, &tex_s, err))
             return false;
     } else if (cv_params_find(ps, "reflectance")) {
         from_diffuse = true;
-        if (!constant_color(b, ps, "reflectance", 0, CV_SPEC_REFLECTANCE, dir, loc, refl, err) ||
-            !constant_color(b, ps, "mfp", 1, CV_SPEC_UNBOUNDED, dir, loc, mfp, err))
+        if (!coefficient(b, ps, "reflectance", 0, CV_SPEC_REFLECTANCE, dir, refl, &tex_a, err) ||
+            !coefficient(b, ps, "mfp", 1, CV_SPEC_UNBOUNDED, dir, mfp, &tex_s, err))
             return false;
     } else {
         static const double def_a[3] = {.0011, .0024, .014}, def_s[3] = {2.55, 3.21, 3.77};
@@ -266,6 +261,19 @@ static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct 
         return false;
     uint32_t table = bssrdf_table(b, g, eta);
     const float *t = b->s->bssrdf + (size_t)table * CV_BSSRDF_FLOATS;
+    m->eta = (cv_vec4){(float)eta, (float)eta, (float)eta, 0};
+    m->k = (cv_vec4){(float)table, 0, 0, 0};
+    if (tex_a >= 0 || tex_s >= 0) {
+        /* textured: the GPU scales (or inverts) per point */
+        m->flags |= CV_MATF_SSS_POINT | (from_diffuse ? CV_MATF_SSS_DIFFUSE : 0);
+        m->reflectance = v4(from_diffuse ? refl : sa, 0);
+        m->specular = v4(from_diffuse ? mfp : ss, 0);
+        m->reflectance_tex = tex_a;
+        m->specular_tex = tex_s;
+        m->k.y = (float)scale;
+        (void)loc;
+        return true;
+    }
     for (int c = 0; c < 3; c++) {
         if (from_diffuse) {
             float a, s;
@@ -281,8 +289,7 @@ static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct 
     }
     m->reflectance = v4(sa, 0);
     m->specular = v4(ss, 0);
-    m->eta = (cv_vec4){(float)eta, (float)eta, (float)eta, 0};
-    m->k = (cv_vec4){(float)table, 0, 0, 0};
+    (void)loc;
     return true;
 }
 

@@ -82,8 +82,8 @@ struct cv_renderer {
     GLuint matte;                  /* coverage and ID mattes, with matte_stride */
     GLuint medium_paths;           /* volpath's channel ratios per path slot (0: no media) */
     bool media;                    /* the stages track media (CV_MEDIA) */
-    /* subsurface materials: each path slot's entry point and normal while
-     * its BSSRDF probe is traced (glsl/trace/sss_vertex.glsl), as a buffer
+    /* subsurface materials: each path slot's entry (point, normal,
+     * coefficients) while its BSSRDF probe is traced (glsl/trace/sss_vertex.glsl), as a buffer
      * and its rgba32f buffer texture; 0 without subsurface */
     GLuint sss_entry, sss_entry_tex;
     struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
@@ -513,8 +513,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         free(zero);
     }
     if (r->scene->has_subsurface && ok) {
-        r->sss_entry = make(gpu, n * 2 * 4 * sizeof(float), "trace subsurface entries", &ok, err);
-        if (ok && !(r->sss_entry_tex = cv_rlpath_buffer_texture(r->sss_entry, GL_RGBA32F, 2 * n, err)))
+        size_t texels = n * CV_SSS_ENTRY_TEXELS;
+        r->sss_entry = make(gpu, texels * 4 * sizeof(float), "trace subsurface entries", &ok, err);
+        if (ok && !(r->sss_entry_tex = cv_rlpath_buffer_texture(r->sss_entry, GL_RGBA32F, texels, err)))
             ok = false;
     }
     if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){

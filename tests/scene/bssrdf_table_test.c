@@ -171,6 +171,17 @@ static void check_import(void)
            "no coefficients: pbrt-v4's defaults; one table for two materials of one (g, eta) (%s)", err.msg);
     cv_scene_destroy(&s);
 
+    /* a textured coefficient: the values as given, for the GPU */
+    s = load_material("Texture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [ 0.2 0.2 0.2 ]"
+                      " \"rgb tex2\" [ 0.8 0.8 0.8 ]\n"
+                      "Material \"subsurface\" \"texture reflectance\" \"c\" \"rgb mfp\" [ 3 3 3 ]"
+                      " \"float scale\" [ 0.5 ]", &err);
+    m = s ? &s->materials[s->n_materials - 1] : NULL;
+    tap_ok(m && (m->flags & CV_MATF_SSS_POINT) && (m->flags & CV_MATF_SSS_DIFFUSE) && m->reflectance_tex >= 0 &&
+               m->specular_tex < 0 && m->specular.x == 3 && m->k.y == 0.5f,
+           "textured reflectance: mfp and scale kept for the GPU's inversion per point (%s)", err.msg);
+    cv_scene_destroy(&s);
+
     s = load_material("Material \"subsurface\" \"string name\" \"Unobtainium\"", &err);
     tap_ok(!s && strstr(err.msg, "Unobtainium"), "an unknown measured medium is an error: %s", err.msg);
     cv_scene_destroy(&s);

@@ -9,7 +9,9 @@
  * - that density integrates to 1 over the plane (the profile's
  *   normalisation by the effective albedo);
  * - Sr at a table node is the node's value over 2 pi r, times sigma_t^2
- *   (pbrt-v4's units), computed here from the table. */
+ *   (pbrt-v4's units), computed here from the table;
+ * - the GPU's inversion of effective albedos (textured reflectance) finds
+ *   the albedos src/scene/bssrdf_table.c finds. */
 #include "config.h"
 
 #include <math.h>
@@ -146,6 +148,27 @@ static void check_node(struct cv_program *prog, const float *tables)
     tap_ok(ok, "Sr and pdf_Sr at table nodes: the table's values in scene units");
 }
 
+/* cv_bssrdf_invert against cv_bssrdf_invert_rho_eff over the table's range. */
+static void check_invert(struct cv_program *prog, const float *tables)
+{
+    struct cv_error err = {{0}};
+    enum { M = 64 };
+    float in[4 * M] = {0}, out[4 * M];
+    for (unsigned t = 0; t < 2; t++) {
+        struct sr_case c = {t, 0, 1};
+        for (int k = 0; k < M; k++)
+            in[4 * k] = (float)k / (M - 1) * 1.05f;  /* beyond both ends too */
+        double worst = 0;
+        bool ok = run(prog, 2, &c, in, M, out, &err);
+        for (int k = 0; ok && k < M; k++) {
+            double want = cv_bssrdf_invert_rho_eff(tables + (size_t)t * CV_BSSRDF_FLOATS, in[4 * k]);
+            worst = fmax(worst, fabs(out[4 * k] - want) / fmax(1 - want, 1e-3));
+        }
+        tap_ok(ok && worst < 1e-3, "table %u: GPU inverts effective albedos as the CPU (worst %.2g of 1 - rho) %s",
+               t, worst, err.msg);
+    }
+}
+
 int main(void)
 {
     (void)stats_cell;  /* the direction helpers of bsdf_stats.h: not for radii */
@@ -166,6 +189,7 @@ int main(void)
         for (size_t i = 0; i < N_CASES; i++)
             check_case(prog, tables, &cases[i], alpha);
         check_node(prog, tables);
+        check_invert(prog, tables);
     }
     if (tex)
         glDeleteTextures(1, &tex);

@@ -147,6 +147,7 @@ static const struct oracle_scene scenes[] = {
     /* issue 27: pbrt-v4's subsurface material (BSSRDF probes), volpath */
     {"sss_grey", NULL},
     {"sss_reflectance", NULL},
+    {"sss_texture", NULL},
     /* Skin1: against pbrt-v4's grey renders of each channel (README: its
      * spectral render, sss_skin.exr, differs by the upsampling) */
     {"sss_skin", NULL},

@@ -60,6 +60,8 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 //    thickness, medium, walk
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
 //  HAIR c0 = sigma_a, eta, alpha = (beta_m, beta_n, scale tilt in degrees, h across the fibre)
+//  SUBSURFACE as DIELECTRIC (c0 = c1 = 1), and the material's two coefficients at the point:
+//    medium.rgb and (alpha.zw, thickness) (glsl/shared/scene.h: CV_MATF_SSS_POINT)
 struct CvBsdf {
     uint type;  // read through CV_BSDF_TYPE
     uint material;
@@ -251,11 +253,15 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.c0 = refl;
         b.c1 = spec;
     } else if (b.type == CV_MAT_SUBSURFACE) {
-        // the boundary: a dielectric (the BSSRDF is the path's, sss_vertex.glsl)
+        // the boundary: a dielectric (the BSSRDF is the path's,
+        // sss_vertex.glsl, which reads the coefficients here)
         b.eta = eta > 0.0 ? eta : 1.0;
         b.alpha.xy = alpha;
         b.c0 = vec3(1.0);
         b.c1 = vec3(1.0);
+        b.medium.rgb = refl;
+        b.alpha.zw = spec.xy;
+        b.thickness = spec.z;
     } else if (b.type == CV_MAT_THIN_DIELECTRIC) {
         b.eta = eta > 0.0 ? eta : 1.0;
     } else if (b.type == CV_MAT_MIRROR) {

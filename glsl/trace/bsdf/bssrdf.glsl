@@ -174,16 +174,79 @@ float cv_bssrdf_sample_sr(uint t, float rho, float sigma_t, float u)
     return (x0 + width * s) / sigma_t;
 }
 
+// The albedo rho of table t whose effective albedo is u (pbrt-v4's
+// InvertCatmullRom of the effective albedos: Newton-bisection on the
+// spline segment that brackets u).
+float cv_bssrdf_invert(uint t, float u)
+{
+    const int n = CV_BSSRDF_N_RHO;
+    float f_lo = cv_bssrdf_at(t, CV_BSSRDF_RHO_EFF), f_hi = cv_bssrdf_at(t, CV_BSSRDF_RHO_EFF + n - 1);
+    if (!(u > f_lo))
+        return cv_bssrdf_at(t, CV_BSSRDF_RHO);
+    if (!(u < f_hi))
+        return cv_bssrdf_at(t, CV_BSSRDF_RHO + n - 1);
+    int i = cv_bssrdf_interval(t, CV_BSSRDF_RHO_EFF, n, u);
+    float x0 = cv_bssrdf_at(t, CV_BSSRDF_RHO + i), x1 = cv_bssrdf_at(t, CV_BSSRDF_RHO + i + 1);
+    float f0 = cv_bssrdf_at(t, CV_BSSRDF_RHO_EFF + i), f1 = cv_bssrdf_at(t, CV_BSSRDF_RHO_EFF + i + 1);
+    float w = x1 - x0;
+    float d0 = i > 0 ? w * (f1 - cv_bssrdf_at(t, CV_BSSRDF_RHO_EFF + i - 1)) / (x1 - cv_bssrdf_at(t, CV_BSSRDF_RHO + i - 1))
+                     : f1 - f0;
+    float d1 = i + 2 < n ? w * (cv_bssrdf_at(t, CV_BSSRDF_RHO_EFF + i + 2) - f0) /
+                               (cv_bssrdf_at(t, CV_BSSRDF_RHO + i + 2) - x0)
+                         : f1 - f0;
+    float a = 0.0, b = 1.0, s = (u - f0) / (f1 - f0);
+    for (int it = 0; it < 64; it++) {
+        if (!(s > a && s < b))
+            s = 0.5 * (a + b);
+        float s2 = s * s, s3 = s2 * s;
+        float F = (2.0 * s3 - 3.0 * s2 + 1.0) * f0 + (-2.0 * s3 + 3.0 * s2) * f1 + (s3 - 2.0 * s2 + s) * d0 +
+                  (s3 - s2) * d1 - u;
+        float dF = (6.0 * s2 - 6.0 * s) * f0 + (-6.0 * s2 + 6.0 * s) * f1 + (3.0 * s2 - 4.0 * s + 1.0) * d0 +
+                   (3.0 * s2 - 2.0 * s) * d1;
+        if (F < 0.0)
+            a = s;
+        else
+            b = s;
+        if (b - a < 1e-6 || abs(F) < 1e-6)
+            break;
+        s -= F / dF;
+    }
+    return x0 + s * w;
+}
+
 // A subsurface material's scattering: per-channel albedo and extinction,
 // its table and eta (glsl/shared/scene.h's CV_MAT_SUBSURFACE).
 struct CvBssrdf { vec3 rho; vec3 sigma_t; uint table; float eta; };
 
-CvBssrdf cv_bssrdf_of(uint material)
+CvBssrdf cv_bssrdf_make(vec3 sigma_a, vec3 sigma_s, uint table, float eta)
+{
+    vec3 st = sigma_a + sigma_s;
+    vec3 rho = mix(vec3(0.0), sigma_s / max(st, vec3(1e-30)), greaterThan(st, vec3(0.0)));
+    return CvBssrdf(rho, st, table, eta);
+}
+
+// The coefficients of material `material` at a point where its
+// coefficients (or their textures) read c_a and c_s: sigma_a and sigma_s
+// (per scene unit), as pbrt-v4's SubsurfaceMaterial::GetBSSRDF.
+void cv_bssrdf_sigma(uint material, vec3 c_a, vec3 c_s, out vec3 sigma_a, out vec3 sigma_s)
 {
     CvMaterial m = materials[material];
-    vec3 st = m.reflectance.rgb + m.specular.rgb;
-    vec3 rho = mix(vec3(0.0), m.specular.rgb / max(st, vec3(1e-30)), greaterThan(st, vec3(0.0)));
-    return CvBssrdf(rho, st, uint(m.k.x), m.eta.x);
+    sigma_a = m.reflectance.rgb;
+    sigma_s = m.specular.rgb;
+    if ((m.flags & CV_MATF_SSS_POINT) == 0u)
+        return;  // constants, scaled (and inverted) at load
+    float scale = m.k.y;
+    if ((m.flags & CV_MATF_SSS_DIFFUSE) != 0u) {
+        vec3 mfree = max(scale * c_s, vec3(1e-30));
+        for (int c = 0; c < 3; c++) {
+            float rho = cv_bssrdf_invert(uint(m.k.x), clamp(c_a[c], 0.0, 1.0));
+            sigma_s[c] = rho / mfree[c];
+            sigma_a[c] = (1.0 - rho) / mfree[c];
+        }
+    } else {
+        sigma_a = max(scale * c_a, vec3(0.0));
+        sigma_s = max(scale * c_s, vec3(0.0));
+    }
 }
 
 // The three projection axes of a probe at a point with normal ns, as one

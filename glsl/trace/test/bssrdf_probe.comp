@@ -4,7 +4,8 @@
 // u_table of the bound tables with albedo u_rho and extinction u_sigma_t:
 // mode 0 samples a radius per invocation (x: cv_bssrdf_sample_sr, < 0 for
 // none); mode 1 evaluates the profile at given radii (x: Sr, y: its
-// sampling density per unit area, pdf_Sr).
+// sampling density per unit area, pdf_Sr); mode 2 inverts effective
+// albedos (x: cv_bssrdf_invert).
 layout(local_size_x = 64) in;
 
 #include "lib/index.glsl"
@@ -32,7 +33,9 @@ void main()
     if (u_mode == 0u) {
         CvRng rng = cv_rng_init(u_seed, i);
         probe_out[i] = vec4(cv_bssrdf_sample_sr(u_table, u_rho, u_sigma_t, cv_rng_next2(rng).x));
-    } else {
+    } else if (u_mode == 1u) {
         probe_out[i] = vec4(cv_bssrdf_sr(u_table, u_rho, u_sigma_t, probe_in[i].x), 0.0, 0.0);
+    } else {
+        probe_out[i] = vec4(cv_bssrdf_invert(u_table, probe_in[i].x));
     }
 }

@@ -473,6 +473,15 @@ def subsurface_scenes():
         "environment and lamp",
         ENV_CONST + AREA_LAMP + FLOOR
         + sphere('Material "subsurface" "string name" "Skin1" "float scale" [ 10 ]'))
+    # a textured reflectance, inverted to albedos per point (Cavalry: on
+    # the GPU); a constant texture, which pbrt-v4 does not filter by the
+    # ray's footprint (Cavalry filters no texture so: README)
+    volpath_scene(
+        "sss_texture", "subsurface sphere whose reflectance is a texture (constant 0.6), mfp 0.3, "
+        "environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + 'Texture "refl" "spectrum" "constant" "rgb value" [ 0.6 0.6 0.6 ]\n'
+        + sphere('Material "subsurface" "texture reflectance" "refl" "rgb mfp" [ 0.3 0.3 0.3 ]'))
     # Skin1 channel by channel as grey media: pbrt-v4 renders sss_skin's
     # coloured coefficients spectrally, and Cavalry in RGB; channel c of
     # sss_skin_c's render is what an RGB renderer's channel c should give
