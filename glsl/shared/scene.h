@@ -136,6 +136,9 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_INTERFACE 9u            /* no surface: rays pass through */
 #define CV_MAT_PLASTIC 10u             /* v3 plastic: Kd in reflectance, Ks in specular, roughness */
 #define CV_MAT_HAIR 11u                /* hair: reflectance.rgb (see CV_MATF_HAIR_*), eta.x, roughness = beta_m, beta_n, alpha (degrees) */
+#define CV_MAT_SUBSURFACE 12u          /* subsurface: a dielectric boundary (eta.x, roughness) over a BSSRDF:
+                                          reflectance.rgb sigma_a, specular.rgb sigma_s [1 / scene unit],
+                                          k.x its table (glsl/shared/bssrdf.h); see CV_MATF_SSS_POINT */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */
@@ -146,6 +149,13 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MATF_HAIR_REFLECTANCE (1u << 4) /* colour, turned into sigma_a over beta_n */
                                            /* neither: (eumelanin, pheomelanin, -) */
 #define CV_MATF_COAT_CLOSED (1u << 5) /* coated diffuse: closed form allowed, roughness2.xy its integrals */
+/* Subsurface with textured coefficients: reflectance.rgb and specular.rgb
+ * (and their textures) are sigma_a and sigma_s as given, times k.y (the
+ * material's scale) per point; with CV_MATF_SSS_DIFFUSE, reflectance and
+ * mfp, inverted through the table per point (pbrt-v4's
+ * SubsurfaceFromDiffuse). */
+#define CV_MATF_SSS_POINT (1u << 12)
+#define CV_MATF_SSS_DIFFUSE (1u << 13)
 
 CV_STRUCT(CvMaterial) {
     CV_UINT type;

@@ -103,6 +103,9 @@ CV_CHECK_SIZE(CvTraceQueues, 176);
  * below 2^24 so the float holds them exactly. */
 #define CV_RAYF_SPECULAR 1u        /* the last bounce was specular (no MIS on emission) */
 #define CV_RAYF_ALBEDO_DONE 2u     /* the albedo AOV has been written for this sample */
+/* a BSSRDF probe segment, not a ray (glsl/trace/sss_vertex.glsl): o.xyz its
+ * start, d.xyz the vector to its end, d.w the material its exits have */
+#define CV_RAYF_PROBE 4u
 #define CV_RAYF_MASK 255u
 #define CV_RAYF_DEPTH_SHIFT 8u
 #define CV_RAYF_DEPTH_MASK 2047u
@@ -124,6 +127,10 @@ CV_CHECK_SIZE(CvRayItem, 48);
  * vertices 1 and 2; t along the unit ray direction. prim CV_HIT_MEDIUM: a
  * scattering event in the ray's medium at t (volpath; trace/medium). */
 #define CV_HIT_MEDIUM 0xffffffffu
+/* A probe segment's result (CV_RAYF_PROBE rays; glsl/trace/sss_probe.glsl):
+ * the exit chosen among the material's surfaces along it, pad0 their
+ * count; prim CV_HIT_PROBE_MISS where there was none. */
+#define CV_HIT_PROBE_MISS 0xfffffffeu
 CV_STRUCT(CvHitItem) {
     CV_UINT ray;
     CV_UINT prim;

@@ -31,6 +31,9 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "medium/medium.glsl"
 #include "medium/track.glsl"
 #endif
+#ifdef CV_HAS_SUBSURFACE
+#include "sss_probe.glsl"
+#endif
 
 void main()
 {
@@ -45,10 +48,19 @@ void main()
     bool regen = false;    // a miss's slot starts its next sample: nr
     CvRayItem nr;
     bool event = false;    // a collision in a medium (CV_MEDIA)
+    bool probe = false;    // a subsurface probe segment: its result is queued as a hit
+    uint probe_n = 0u;
     if (valid) {
         CvRayItem r = cv_ray_in(i);
 #ifdef CV_HAS_MOTION
         cv_trace_time = cv_path_time(uint(r.o.w));
+#endif
+#ifdef CV_HAS_SUBSURFACE
+        probe = (cv_ray_flags(r) & CV_RAYF_PROBE) != 0u;
+        if (probe) {
+            cv_sss_probe_trace(r, h, probe_n);
+            hit = true;
+        } else {
 #endif
 #ifdef CV_MEDIA
         hit = cv_medium_track(r, h, event) || event;  // an event is queued as a hit
@@ -79,6 +91,9 @@ void main()
         if (!hit)
             regen = cv_regenerate(uint(r.o.w), nr);
 #endif
+#ifdef CV_HAS_SUBSURFACE
+        }
+#endif
     }
 #ifdef CV_ESCAPED_QUEUE
     bool miss_push = valid && !hit;
@@ -93,7 +108,7 @@ void main()
     // everything else, written from the queue's end.
     bool bin_b = false;
     if (valid && hit)
-        bin_b = event ||
+        bin_b = event || probe ||
                 materials[cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
     uvec3 s3 = cv_queue_slots3(bvec3(valid && hit && !bin_b, valid && hit && bin_b, miss_push),
                                uvec3(CV_Q_HITS, CV_Q_HITS_B, miss_queue));
@@ -108,7 +123,7 @@ void main()
         it.b1 = h.b1;
         it.b2 = h.b2;
         it.t = h.t;
-        it.pad0 = 0u;
+        it.pad0 = probe_n;
         it.pad1 = 0u;
         it.pad2 = 0u;
         hits[slot.x] = it;

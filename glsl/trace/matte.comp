@@ -43,7 +43,7 @@ void main()
         return;
     CvHitItem h = hits[cv_hit_slot(i)];
     CvRayItem r = cv_ray_in(h.ray);
-    if (cv_ray_depth(r) != 0u)
+    if (cv_ray_depth(r) != 0u || (cv_ray_flags(r) & CV_RAYF_PROBE) != 0u)  // a probe: no camera ray
         return;
     uint path = uint(r.o.w);
     uint base = path * CV_MATTE_STRIDE;

@@ -56,6 +56,11 @@ vec3 cv_light_sample_point(CvSurface sf, CvBsdf b, vec3 wo, uint prim)
 #ifdef CV_MEDIA
 #include "medium/medium.glsl"
 #endif
+// Subsurface materials (sss_vertex.glsl): never in the diffuse bin
+#if defined(CV_HAS_SUBSURFACE) && !defined(CV_BSDF_DIFFUSE_ONLY) && !defined(CV_BSDF_BASIC)
+#define CV_SSS
+#include "sss_vertex.glsl"
+#endif
 
 // The medium of a ray leaving surface sf in direction w, from a path in
 // medium `medium` (0 without CV_MEDIA).
@@ -81,10 +86,33 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     uint depth = cv_ray_depth(r);
     vec3 beta = r.beta.rgb;
     vec3 wo = -r.d.xyz;
+    uint pairs = 0u;  // the vertex's sample pairs: the bounce's, or a probe exit's own
+#ifdef CV_SSS
+    // The exit of a BSSRDF probe: weighted by Sp, scatters through the
+    // exit lobe, from its normal as wo (pbrt-v4); no emission, no AOVs.
+    bool sss_exit = (flags & CV_RAYF_PROBE) != 0u;
+    CvSurface sf;
+    CvBsdf b;
+    if (sss_exit) {
+        if (h.prim == CV_HIT_PROBE_MISS || !cv_sss_exit(h, r, path, sf, beta, b))
+            return;
+        if (!cv_finite3(beta)) {
+            cv_film_reject();
+            return;
+        }
+        wo = b.frame.z;
+        flags &= ~CV_RAYF_PROBE;
+        pairs = CV_PAIR_SSS_EXIT;
+    } else {
+        sf = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
+    }
+#else
+    const bool sss_exit = false;
     CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, r.o.xyz, r.d.xyz, h.t);
+#endif
     bool front = dot(wo, sf.ng) > 0.0;
 
-    int light = (h.prim & CV_PRIM_CURVE) != 0u ? -1 : cv_tri_light[h.prim];  // curves emit nothing
+    int light = (h.prim & CV_PRIM_CURVE) != 0u || sss_exit ? -1 : cv_tri_light[h.prim];  // curves emit nothing
     if (light >= 0) {
         vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
         cv_strategy_emitted(g, Le, flags);
@@ -96,20 +124,27 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
         }
     }
 
-    vec2 u_bsdf = cv_bounce_2d(path, depth, CV_PAIR_BSDF_U2);
-    vec2 u_bc = cv_bounce_2d(path, depth, CV_PAIR_BSDF_UC);
-    vec2 u_light = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_U2);
-    vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);
+    vec2 u_bsdf = cv_bounce_2d(path, depth, pairs + CV_PAIR_BSDF_U2);
+    vec2 u_bc = cv_bounce_2d(path, depth, pairs + CV_PAIR_BSDF_UC);
+    vec2 u_light = cv_bounce_2d(path, depth, pairs + CV_PAIR_LIGHT_U2);
+    vec2 u_lc = cv_bounce_2d(path, depth, pairs + CV_PAIR_LIGHT_UC);
 
+#ifdef CV_SSS
+    if (!sss_exit)
+        b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+#else
     CvBsdf b = cv_bsdf_at(sf.material, cv_shading_point(sf, front), u_bc.y);
+#endif
     cv_bsdf_set_stream(b, u_bsdf, u_light);  // stochastic (coated) BSDFs' random numbers
     bool delta = cv_bsdf_is_delta(b);
     cv_strategy_begin(g, sf, wo, b, delta);
 
 #ifdef CV_AOVS
+    if (sss_exit)
+        flags |= CV_RAYF_ALBEDO_DONE;  // the albedo of the surface the path entered
     // weighted by the sample's filter weight, as radiance (cv_film_add)
     float aov_w = cv_path_weight(path);
-    if (depth == 0u) {
+    if (depth == 0u && !sss_exit) {
         film[path].normal.xyz += aov_w * sf.ns;
         film[path].albedo.w += aov_w * h.t;
     }
@@ -158,6 +193,13 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     if (!cv_roulette_survives(depth, u_lc.y, beta))
         return;
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
+#ifdef CV_SSS
+    // into a subsurface material: the path goes on as its probe segment
+    if (!sss_exit && CV_BSDF_TYPE(b) == CV_MAT_SUBSURFACE && dot(bs.wi, sf.ng) * dot(wo, sf.ng) < 0.0) {
+        push_ray = cv_sss_enter(sf, b, r.o.w, path, depth, beta, flags, cv_ray_medium(r), nr);
+        return;
+    }
+#endif
     push_ray = true;
     nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);
     nr.d = vec4(bs.wi, specular ? 0.0 : pdf);

@@ -12,7 +12,8 @@ static const char *mat_type(uint32_t t)
 {
     static const char *const n[] = {"diffuse", "conductor", "dielectric", "thindielectric",
                                     "mirror", "coateddiffuse", "coatedconductor",
-                                    "diffusetransmission", "mix", "interface", "plastic", "hair"};
+                                    "diffusetransmission", "mix", "interface", "plastic", "hair",
+                                    "subsurface"};
     return t < sizeof(n) / sizeof(n[0]) ? n[t] : "?";
 }
 

@@ -10,6 +10,8 @@ libcavalry_a_SOURCES += \
 	src/scene/ply.c src/scene/ply.h \
 	src/scene/shapes.c src/scene/curves.c \
 	src/scene/materials.c \
+	src/scene/bssrdf_table.c src/scene/bssrdf_table.h \
+	src/scene/scattering_presets.c src/scene/scattering_presets.h \
 	src/scene/coat_closed.c src/scene/coat_closed.h \
 	src/scene/spectrum.c \
 	src/scene/image.c src/scene/image.h \

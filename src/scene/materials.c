@@ -8,7 +8,9 @@
 
 #include "base/mem.h"
 #include "scene/builder.h"
+#include "scene/bssrdf_table.h"
 #include "scene/coat_closed.h"
+#include "scene/scattering_presets.h"
 
 static void mat_init(CvMaterial *m, uint32_t type)
 {
@@ -183,6 +185,114 @@ static bool hair(struct cv_builder *b, struct cv_params *ps, const struct cv_loc
     return true;
 }
 
+/* The scene's BSSRDF table for (g, eta), computed on first use. */
+static uint32_t bssrdf_table(struct cv_builder *b, double g, double eta)
+{
+    struct cv_scene *s = b->s;
+    for (uint32_t i = 0; i < s->n_bssrdf; i++)
+        if (s->bssrdf_keys[2 * i] == (float)g && s->bssrdf_keys[2 * i + 1] == (float)eta)
+            return i;
+    uint32_t i = s->n_bssrdf++;
+    s->bssrdf = cv_xrealloc(s->bssrdf, (size_t)s->n_bssrdf * CV_BSSRDF_FLOATS * sizeof(float));
+    s->bssrdf_keys = cv_xrealloc(s->bssrdf_keys, (size_t)s->n_bssrdf * 2 * sizeof(float));
+    s->bssrdf_keys[2 * i] = (float)g;
+    s->bssrdf_keys[2 * i + 1] = (float)eta;
+    cv_bssrdf_table_compute(g, eta, s->bssrdf + (size_t)i * CV_BSSRDF_FLOATS);
+    return i;
+}
+
+/* A subsurface coefficient: its constant (def where absent) and texture
+ * (-1 for none). */
+static bool coefficient(struct cv_builder *b, struct cv_params *ps, const char *name, double def,
+                        enum cv_spectrum_kind kind, const char *dir, double rgb[3], int *tex,
+                        struct cv_error *err)
+{
+    *tex = -1;
+    rgb[0] = rgb[1] = rgb[2] = def;
+    return cv_b_color_tex(b, ps, name, kind, dir, rgb, tex, err);
+}
+
+/* pbrt-v4's SubsurfaceMaterial: a dielectric boundary (eta, roughness)
+ * over a tabulated BSSRDF. The coefficients come, in pbrt-v4's order, from
+ * a measured medium's name (g forced to 0: the data are reduced
+ * coefficients), from sigma_a and sigma_s, from reflectance (and mfp,
+ * inverted through the table), or from pbrt-v4's defaults (whole milk per
+ * mm); all times scale. reflectance = sigma_a, specular = sigma_s (per
+ * scene unit), k.x = the table (glsl/shared/scene.h); with a texture, the
+ * coefficients as given and their textures, for the GPU to scale or
+ * invert per point (CV_MATF_SSS_POINT, CV_MATF_SSS_DIFFUSE). */
+static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
+                       const char *dir, CvMaterial *m, struct cv_error *err)
+{
+    double g = cv_params_float(ps, "g", 0), sa[3], ss[3], scale;
+    const char *name = cv_params_string(ps, "name", NULL);
+    bool from_diffuse = false;
+    double refl[3], mfp[3];
+    int tex_a = -1, tex_s = -1;
+    m->type = CV_MAT_SUBSURFACE;
+    if (name && *name) {
+        if (!cv_scattering_preset(name, sa, ss))
+            return cv_fail(err, "%s:%d:%d: subsurface: unknown measured medium \"%s\"", loc->file,
+                           loc->line, loc->col, name);
+        if (g != 0 && !cv_b_warn(b, err, loc, "subsurface: non-zero \"g\" ignored with named scattering coefficients"))
+            return false;
+        g = 0;
+    } else if (cv_params_find(ps, "sigma_a") || cv_params_find(ps, "sigma_s")) {
+        if (!cv_params_find(ps, "sigma_a") || !cv_params_find(ps, "sigma_s"))
+            return cv_fail(err, "%s:%d:%d: subsurface: \"sigma_a\" and \"sigma_s\" go together", loc->file,
+                           loc->line, loc->col);
+        if (!coefficient(b, ps, "sigma_a", 0, CV_SPEC_UNBOUNDED, dir, sa, &tex_a, err) ||
+            !coefficient(b, ps, "sigma_s", 0, CV_SPEC_UNBOUNDED, dir, ss, &tex_s, err))
+            return false;
+    } else if (cv_params_find(ps, "reflectance")) {
+        from_diffuse = true;
+        if (!coefficient(b, ps, "reflectance", 0, CV_SPEC_REFLECTANCE, dir, refl, &tex_a, err) ||
+            !coefficient(b, ps, "mfp", 1, CV_SPEC_UNBOUNDED, dir, mfp, &tex_s, err))
+            return false;
+    } else {
+        static const double def_a[3] = {.0011, .0024, .014}, def_s[3] = {2.55, 3.21, 3.77};
+        memcpy(sa, def_a, sizeof(sa));
+        memcpy(ss, def_s, sizeof(ss));
+    }
+    scale = cv_params_float(ps, "scale", 1);
+    double eta = 1.33;
+    bool found;
+    if (!cv_b_scalar_eta(b, ps, "eta", dir, &eta, &found, err))
+        return false;
+    uint32_t table = bssrdf_table(b, g, eta);
+    const float *t = b->s->bssrdf + (size_t)table * CV_BSSRDF_FLOATS;
+    m->eta = (cv_vec4){(float)eta, (float)eta, (float)eta, 0};
+    m->k = (cv_vec4){(float)table, 0, 0, 0};
+    if (tex_a >= 0 || tex_s >= 0) {
+        /* textured: the GPU scales (or inverts) per point */
+        m->flags |= CV_MATF_SSS_POINT | (from_diffuse ? CV_MATF_SSS_DIFFUSE : 0);
+        m->reflectance = v4(from_diffuse ? refl : sa, 0);
+        m->specular = v4(from_diffuse ? mfp : ss, 0);
+        m->reflectance_tex = tex_a;
+        m->specular_tex = tex_s;
+        m->k.y = (float)scale;
+        (void)loc;
+        return true;
+    }
+    for (int c = 0; c < 3; c++) {
+        if (from_diffuse) {
+            float a, s;
+            double r = refl[c] < 0 ? 0 : refl[c] > 1 ? 1 : refl[c];
+            double free_path = scale * mfp[c] > 1e-30 ? scale * mfp[c] : 1e-30;
+            cv_bssrdf_from_diffuse(t, (float)r, (float)free_path, &a, &s);
+            sa[c] = a;
+            ss[c] = s;
+        } else {
+            sa[c] = sa[c] * scale > 0 ? sa[c] * scale : 0;
+            ss[c] = ss[c] * scale > 0 ? ss[c] * scale : 0;
+        }
+    }
+    m->reflectance = v4(sa, 0);
+    m->specular = v4(ss, 0);
+    (void)loc;
+    return true;
+}
+
 bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
                    struct cv_params *ps, const struct cv_loc *loc, const char *dir,
                    struct cv_error *err, int *out)
@@ -341,6 +451,10 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
     } else if (strcmp(type, "hair") == 0) {
         if (!hair(b, ps, loc, dir, &m, err))
             return false;
+    } else if (strcmp(type, "subsurface") == 0) {
+        if (!subsurface(b, ps, loc, dir, &m, err) || !ROUGH("", 0, false))
+            return false;
+        m.roughness = (cv_vec4){au, av, 0, 0};
     } else if (strcmp(type, "mix") == 0) {
         m.type = CV_MAT_MIX;
         double amount = 0.5;

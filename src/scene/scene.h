@@ -125,6 +125,13 @@ struct cv_scene {
     float *medium_grids;             /* grid media's samples and majorants (medium.h) */
     size_t n_medium_grids;           /* in floats; 0 without grid media */
 
+    /* pbrt-v4's BSSRDF tables of the subsurface materials
+     * (glsl/shared/bssrdf.h: CV_BSSRDF_FLOATS each), one per (g, eta):
+     * bssrdf_keys[2 i], [2 i + 1] */
+    float *bssrdf;
+    float *bssrdf_keys;
+    uint32_t n_bssrdf;
+
     CvCamera camera;
     struct cv_render_settings settings;
 

@@ -46,3 +46,8 @@ GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medi
 	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp \
 	glsl/trace/medium/grid.glsl glsl/trace/test/grid_probe.comp
 # --- end of participating media ---
+
+# --- subsurface material (issue 27 item 4) ---
+GLSL_FILES += glsl/shared/bssrdf.h glsl/trace/bsdf/bssrdf.glsl glsl/trace/bsdf/sss_exit.glsl \
+	glsl/trace/sss_probe.glsl glsl/trace/sss_vertex.glsl glsl/trace/test/bssrdf_probe.comp
+# --- end of subsurface ---

@@ -17,6 +17,7 @@
 #include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
+#include "glsl/shared/bssrdf.h"
 #include "glsl/shared/trace.h"
 #include "gpu/buf.h"
 #include "gpu/buffer.h"
@@ -29,6 +30,7 @@
 #include "trace/filter_table.h"
 #include "trace/integrator.h"
 #include "trace/render.h"
+#include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 
 /* Iterations queued between looks at whether the pass is over. Small, so
@@ -80,6 +82,10 @@ struct cv_renderer {
     GLuint matte;                  /* coverage and ID mattes, with matte_stride */
     GLuint medium_paths;           /* volpath's channel ratios per path slot (0: no media) */
     bool media;                    /* the stages track media (CV_MEDIA) */
+    /* subsurface materials: each path slot's entry (point, normal,
+     * coefficients) while its BSSRDF probe is traced (glsl/trace/sss_vertex.glsl), as a buffer
+     * and its rgba32f buffer texture; 0 without subsurface */
+    GLuint sss_entry, sss_entry_tex;
     struct cv_buf *resolved;       /* RGBA float a pixel, handed to the colour stage */
     GLuint alive[2];               /* rays-out count at the end of a chunk, by chunk parity */
     GLuint queues_copy;            /* cv_renderer_counters' read-back staging */
@@ -314,6 +320,10 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         defines[nd++] = "CV_NO_HAIR";
     if (!gs->has_coat_closed)
         defines[nd++] = "CV_NO_COAT_CLOSED";
+    /* BSSRDF probes in the intersect and shade stages (sss_probe.glsl,
+     * sss_vertex.glsl): only where a material is subsurface */
+    if (gs->has_subsurface)
+        defines[nd++] = "CV_HAS_SUBSURFACE";
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     /* media are tracked by an integrator that renders them, in a scene
      * that has them */
@@ -509,6 +519,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             glNamedBufferSubData(r->medium_paths, 0, (GLsizeiptr)(n * 4 * sizeof(float)), zero);
         free(zero);
     }
+    if (r->scene->has_subsurface && ok) {
+        size_t texels = n * CV_SSS_ENTRY_TEXELS;
+        r->sss_entry = make(gpu, texels * 4 * sizeof(float), "trace subsurface entries", &ok, err);
+        if (ok && !(r->sss_entry_tex = cv_rlpath_buffer_texture(r->sss_entry, GL_RGBA32F, texels, err)))
+            ok = false;
+    }
     if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){
                                                       .size = (size_t)r->n_pixels * 4 * sizeof(float),
                                                       .storable = true, .host_readable = true,
@@ -544,6 +560,9 @@ static void bind_all(struct cv_renderer *r)
         cv_buffer_bind(r->matte, CV_BIND_MATTE);
     if (r->medium_paths)
         cv_buffer_bind(r->medium_paths, CV_BIND_MEDIUM_PATHS);
+    if (r->sss_entry_tex)
+        glBindImageTexture(CV_IMAGE_SSS_ENTRY, r->sss_entry_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
+                           GL_RGBA32F);
     cv_buf_bind(r->resolved, CV_BIND_RESOLVED);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->queues);
     if (r->ops->bind)
@@ -587,6 +606,9 @@ static void iterate(struct cv_renderer *r, uint32_t it)
         prof_end(r);
     }
     stage_indirect(r, ST_SHADE + ops->n_shade - 1, ops->args[ops->n_shade - 1]);
+    /* the probes' entries, stored by this shade stage, for the next one's */
+    if (r->sss_entry_tex)
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     if (ops->after_shade && r->learning) {
         prof_begin(r, PROF_AFTER_SHADE);
         ops->after_shade(r->integrator);
@@ -624,10 +646,12 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     prof_end(r);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-    /* Every path ends within max_depth + 1 iterations and a slot runs at
-     * most ceil(spp / slots) of them, so this bounds the pass even if a
-     * count were never read back as 0. */
-    uint64_t limit = (uint64_t)((spp + slots - 1) / slots) * (r->max_depth + 1) + CV_CHUNK;
+    /* Every path ends within max_depth + 1 iterations (twice that with
+     * subsurface probes, an iteration each on top of its bounce) and a
+     * slot runs at most ceil(spp / slots) of them, so this bounds the pass
+     * even if a count were never read back as 0. */
+    uint64_t per_path = (uint64_t)(r->max_depth + 1) * (r->sss_entry ? 2 : 1);
+    uint64_t limit = (uint64_t)((spp + slots - 1) / slots) * per_path + CV_CHUNK;
     uint64_t it = 0;
     uint32_t alive = 1;
     for (uint32_t chunk = 0; it < limit; chunk++) {
@@ -820,7 +844,9 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     cv_gpu_timer_destroy(&r->passes);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
                       &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts,
-                      &r->matte, &r->medium_paths};
+                      &r->matte, &r->medium_paths, &r->sss_entry};
+    if (r->sss_entry_tex)
+        glDeleteTextures(1, &r->sss_entry_tex);
     for (size_t i = 0; i < CV_ARRAY_SIZE(bufs); i++)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);

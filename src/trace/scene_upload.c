@@ -7,6 +7,7 @@
 #include "bvh/curve_bvh.h"
 #include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
+#include "glsl/shared/bssrdf.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
@@ -14,6 +15,7 @@
 #include "gpu/storage.h"
 #include "glsl/shared/envmap.h"
 #include "trace/envmap_dist.h"
+#include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 
 void cv_light_cdf(const float *power, uint32_t n, float *cdf)
@@ -136,6 +138,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
             g->has_alpha = true;
         if (m->type == CV_MAT_HAIR)
             g->has_hair = true;
+        if (m->type == CV_MAT_SUBSURFACE)
+            g->has_subsurface = true;
         if (m->flags & CV_MATF_COAT_CLOSED)
             g->has_coat_closed = true;
         if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
@@ -197,6 +201,15 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
+    if (s->n_bssrdf) {
+        size_t n = (size_t)s->n_bssrdf * CV_BSSRDF_FLOATS;
+        ok = up(gpu, &g.bssrdf, n * sizeof(float), s->bssrdf, "BSSRDF tables", err) &&
+             (g.bssrdf_tex = cv_rlpath_buffer_texture(g.bssrdf, GL_R32F, n, err)) != 0;
+        if (!ok) {
+            cv_scene_gpu_release(&g);
+            return false;
+        }
+    }
     /* with curves, the moving shapes share their buffer (bvh/motion_bvh.h) */
     size_t n_curve4 = 0, n_motion4 = 0;
     float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, &n_curve4) : NULL;
@@ -255,6 +268,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         cv_buffer_bind(g->medium_grids, CV_BIND_MEDIUM_GRIDS);
     if (g->motion)
         cv_buffer_bind(g->motion, CV_BIND_MOTION);
+    if (g->bssrdf_tex)
+        glBindTextureUnit(CV_TEXUNIT_BSSRDF, g->bssrdf_tex);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -273,9 +288,12 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
                    &g->tri_object, &g->curves, &g->media, &g->medium_grids,
-                   &g->motion};
+                   &g->motion, &g->bssrdf};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
+    if (g->bssrdf_tex)
+        glDeleteTextures(1, &g->bssrdf_tex);
+    g->bssrdf_tex = 0;
     bool had_bvh = g->bvh != NULL;
     cv_bvh_destroy(&g->bvh);
     if (had_bvh && g->gpu)

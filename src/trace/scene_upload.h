@@ -34,6 +34,9 @@ struct cv_scene_gpu {
     bool has_motion;  /* compile the stages with CV_HAS_MOTION */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     bool has_hair;    /* some material is hair (else CV_NO_HAIR) */
+    GLuint bssrdf;    /* float[]: the BSSRDF tables (glsl/shared/bssrdf.h), or 0 */
+    GLuint bssrdf_tex; /* that buffer as an r32f buffer texture (CV_TEXUNIT_BSSRDF) */
+    bool has_subsurface; /* some material is subsurface (CV_HAS_SUBSURFACE) */
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */

@@ -31,3 +31,7 @@ EXTRA_DIST += tests/scene/scene_helpers.h tests/scene/fuzz_test.sh tests/scene/f
 check_PROGRAMS += tests/scene/hdr_check_test
 TESTS += tests/scene/hdr_check_test
 tests_scene_hdr_check_test_LDADD = $(CV_LIBS)
+
+check_PROGRAMS += tests/scene/bssrdf_table_test
+TESTS += tests/scene/bssrdf_table_test
+tests_scene_bssrdf_table_test_LDADD = $(CV_LIBS)

@@ -98,3 +98,7 @@ TESTS += tests/trace/medium_grid_test
 tests_trace_medium_grid_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 # --- end of participating media ---
+
+check_PROGRAMS += tests/trace/bssrdf_sample_test
+TESTS += tests/trace/bssrdf_sample_test
+tests_trace_bssrdf_sample_test_LDADD = $(CV_LIBS)

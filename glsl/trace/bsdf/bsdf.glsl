@@ -39,6 +39,13 @@
 #include "plastic.glsl"
 #include "hair.glsl"
 #include "texture.glsl"
+#ifdef CV_HAS_SUBSURFACE
+#include "sss_exit.glsl"
+#endif
+
+// Not a material: the exit lobe of a subsurface material's BSSRDF probe
+// (sss_exit.glsl; built by trace/sss_vertex.glsl, eta in eta).
+#define CV_BSDF_SSS_EXIT 64u
 
 // ng: geometric normal as stored (oriented by CV_TRI_REVERSE); ns: shading
 // normal (interpolated), dpdu: surface tangent along u; front: wo on ng's
@@ -53,6 +60,8 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 //    thickness, medium, walk
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
 //  HAIR c0 = sigma_a, eta, alpha = (beta_m, beta_n, scale tilt in degrees, h across the fibre)
+//  SUBSURFACE as DIELECTRIC (c0 = c1 = 1), and the material's two coefficients at the point:
+//    medium.rgb and (alpha.zw, thickness) (glsl/shared/scene.h: CV_MATF_SSS_POINT)
 struct CvBsdf {
     uint type;  // read through CV_BSDF_TYPE
     uint material;
@@ -243,6 +252,16 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.alpha.xy = alpha;
         b.c0 = refl;
         b.c1 = spec;
+    } else if (b.type == CV_MAT_SUBSURFACE) {
+        // the boundary: a dielectric (the BSSRDF is the path's,
+        // sss_vertex.glsl, which reads the coefficients here)
+        b.eta = eta > 0.0 ? eta : 1.0;
+        b.alpha.xy = alpha;
+        b.c0 = vec3(1.0);
+        b.c1 = vec3(1.0);
+        b.medium.rgb = refl;
+        b.alpha.zw = spec.xy;
+        b.thickness = spec.z;
     } else if (b.type == CV_MAT_THIN_DIELECTRIC) {
         b.eta = eta > 0.0 ? eta : 1.0;
     } else if (b.type == CV_MAT_MIRROR) {
@@ -373,7 +392,12 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
     case CV_MAT_CONDUCTOR:
         return cv_conductor_f(b.alpha.xy, b.c0, b.c1, wo, wi);
     case CV_MAT_DIELECTRIC:
+    case CV_MAT_SUBSURFACE:
         return cv_dielectric_f(b.eta, b.alpha.xy, b.c0, b.c1, wo, wi);
+#ifdef CV_HAS_SUBSURFACE
+    case CV_BSDF_SSS_EXIT:
+        return cv_sss_exit_f(b.eta, wo, wi);
+#endif
     case CV_MAT_COATED_DIFFUSE:
     case CV_MAT_COATED_CONDUCTOR:
         if (cv_bsdf_coat_closed(b))
@@ -408,7 +432,12 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
     case CV_MAT_CONDUCTOR:
         return cv_conductor_pdf(b.alpha.xy, wo, wi);
     case CV_MAT_DIELECTRIC:
+    case CV_MAT_SUBSURFACE:
         return cv_dielectric_pdf(b.eta, b.alpha.xy, wo, wi);
+#ifdef CV_HAS_SUBSURFACE
+    case CV_BSDF_SSS_EXIT:
+        return cv_sss_exit_pdf(wo, wi);
+#endif
     case CV_MAT_COATED_DIFFUSE:
     case CV_MAT_COATED_CONDUCTOR:
         if (cv_bsdf_coat_closed(b))
@@ -458,8 +487,14 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         ok = cv_conductor_sample(b.alpha.xy, b.c0, b.c1, wo, u, s);
         break;
     case CV_MAT_DIELECTRIC:
+    case CV_MAT_SUBSURFACE:
         ok = cv_dielectric_sample(b.eta, b.alpha.xy, b.c0, b.c1, wo, uc, u, s);
         break;
+#ifdef CV_HAS_SUBSURFACE
+    case CV_BSDF_SSS_EXIT:
+        ok = cv_sss_exit_sample(b.eta, wo, u, s);
+        break;
+#endif
     case CV_MAT_THIN_DIELECTRIC:
         ok = cv_thin_dielectric_sample(b.eta, wo, uc, s);
         break;
@@ -509,7 +544,7 @@ bool cv_bsdf_is_delta(CvBsdf b)
         return true;
     if (b.type == CV_MAT_CONDUCTOR)
         return cv_mf_smooth(b.alpha.xy);
-    if (b.type == CV_MAT_DIELECTRIC)
+    if (b.type == CV_MAT_DIELECTRIC || b.type == CV_MAT_SUBSURFACE)
         return cv_dielectric_is_delta(b.eta, b.alpha.xy);
     if (b.type == CV_MAT_COATED_CONDUCTOR)
         return cv_layered_delta_prob(cv_bsdf_layered(b), vec3(0.0, 0.0, 1.0)) == 1.0;
@@ -556,6 +591,7 @@ vec3 cv_bsdf_albedo(CvBsdf b)
     case CV_MAT_COATED_CONDUCTOR:
         return cv_fr_complex(1.0, b.c0, b.c1);
     case CV_MAT_DIELECTRIC:
+    case CV_MAT_SUBSURFACE:
         return b.c1;
     case CV_MAT_THIN_DIELECTRIC:
         return vec3(1.0);

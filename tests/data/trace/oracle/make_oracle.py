@@ -560,7 +560,53 @@ def motion_main():
           "rolling over the shutter, area lamp", AREA_LAMP + FLOOR + slide + turn + roll, maxdepth=3)
 
 
+def subsurface_scenes():
+    # pbrt-v4's subsurface material on the sphere (radius 1) over the floor,
+    # under the lamp and the environment: volpath, which is where pbrt-v4's
+    # CPU integrators render a BSSRDF
+    volpath_scene(
+        "sss_grey", "subsurface sphere, grey sigma_a 0.05 sigma_s 4 (per unit), smooth boundary "
+        "eta 1.33, environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + sphere('Material "subsurface" "rgb sigma_a" [ 0.05 0.05 0.05 ]'
+                 ' "rgb sigma_s" [ 4 4 4 ]'))
+    volpath_scene(
+        "sss_reflectance", "subsurface sphere from reflectance 0.7 and mfp 0.4, rough boundary "
+        "(roughness 0.3, eta 1.5), g 0.3, environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + sphere('Material "subsurface" "rgb reflectance" [ 0.7 0.7 0.7 ]'
+                 ' "rgb mfp" [ 0.4 0.4 0.4 ] "float roughness" [ 0.3 ] "float eta" [ 1.5 ]'
+                 ' "float g" [ 0.3 ]'))
+    volpath_scene(
+        "sss_skin", "subsurface sphere of pbrt-v4's measured \"Skin1\" (mm^-1, scale 10), "
+        "environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + sphere('Material "subsurface" "string name" "Skin1" "float scale" [ 10 ]'))
+    # a textured reflectance, inverted to albedos per point (Cavalry: on
+    # the GPU); a constant texture, which pbrt-v4 does not filter by the
+    # ray's footprint (Cavalry filters no texture so: README)
+    volpath_scene(
+        "sss_texture", "subsurface sphere whose reflectance is a texture (constant 0.6), mfp 0.3, "
+        "environment and lamp",
+        ENV_CONST + AREA_LAMP + FLOOR
+        + 'Texture "refl" "spectrum" "constant" "rgb value" [ 0.6 0.6 0.6 ]\n'
+        + sphere('Material "subsurface" "texture reflectance" "refl" "rgb mfp" [ 0.3 0.3 0.3 ]'))
+    # Skin1 channel by channel as grey media: pbrt-v4 renders sss_skin's
+    # coloured coefficients spectrally, and Cavalry in RGB; channel c of
+    # sss_skin_c's render is what an RGB renderer's channel c should give
+    # (oracle_test.c compares sss_skin with the three so combined)
+    skin = {"r": (0.032, 0.74), "g": (0.17, 0.88), "b": (0.48, 1.01)}
+    for c, (sa, ss) in skin.items():
+        volpath_scene(
+            "sss_skin_" + c, "Skin1's %s channel alone as a grey subsurface sphere (sigma_a %g, "
+            "sigma_s %g per mm, scale 10), environment and lamp" % (c, sa, ss),
+            ENV_CONST + AREA_LAMP + FLOOR
+            + sphere('Material "subsurface" "rgb sigma_a" [ %g %g %g ] "rgb sigma_s" [ %g %g %g ]'
+                     ' "float scale" [ 10 ]' % (sa, sa, sa, ss, ss, ss)))
+
+
 if __name__ == "__main__":
     main()
     camera_main()
     motion_main()
+    subsurface_scenes()
