@@ -30,17 +30,25 @@ void cv_strategy_emitted(inout CvStrategy g, vec3 Le, uint flags) {}
 
 void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool delta) {}
 
-float cv_strategy_pdf(CvStrategy g, CvBsdf b, vec3 wo, vec3 wi)
+float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf)
 {
-    return cv_bsdf_pdf(b, wo, wi);
+    return bsdf_pdf;
 }
 
-bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, vec2 u_bc,
-                        vec2 u_bsdf, out CvBsdfSample bs, out float pdf, out bool specular)
+void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bsdf, inout CvBsdfQuery q)
 {
+    q.ask |= CV_BQ_SAMPLE;
+    q.uc = u_bc.x;
+    q.u = u_bsdf;
+}
+
+bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvBsdfQuery q,
+                        out CvBsdfSample bs, out float pdf, out bool specular)
+{
+    bs = q.s;
     specular = false;
     pdf = 0.0;
-    if (!cv_bsdf_sample(b, wo, u_bc.x, u_bsdf, bs) || bs.pdf <= 0.0)
+    if (!q.sampled || bs.pdf <= 0.0)
         return false;
     pdf = bs.pdf;
     specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;

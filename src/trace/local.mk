@@ -44,3 +44,6 @@ GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl
 GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
 	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp
 # --- end of participating media ---
+
+# --- the one BSDF query (issue 26) ---
+GLSL_FILES += glsl/trace/bsdf/bsdf_query.glsl
