@@ -3,15 +3,22 @@
 // (path_vertex.glsl: emission, AOVs, next-event estimation, bounce with
 // Russian roulette) whose bounce direction the BSDF samples. A path that
 // does not go on starts its slot's next sample (shade_queue.glsl).
-// The host builds it twice over the two bins of the hit queue (trace.h):
+// The host builds it once per bin of the hit queue (trace.h):
 // CV_SHADE_BIN=0 shades diffuse surfaces with the BSDF code cut down to
-// diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 every other material. The
-// full BSDF library sizes the whole kernel for its largest material, so
-// the lean copy runs most hits of a typical scene.
+// diffuse (CV_BSDF_DIFFUSE_ONLY); CV_SHADE_BIN=1 every other material but
+// those that may take the coated walk (bsdf/layered.glsl), whose code it
+// leaves out (CV_NO_LAYERED); CV_SHADE_BIN=2 those, built only for scenes
+// that have them (src/trace/shade_bins.c decides a material's bin). A
+// kernel's registers, so its occupancy, are those of its largest material
+// and its compile time grows with its code, so the walk, by far the
+// largest, has a kernel of its own and the lean copy runs most hits of a
+// typical scene.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
 #define CV_BSDF_DIFFUSE_ONLY
+#elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1
+#define CV_NO_LAYERED
 #endif
 #include "common.glsl"
 #include "sampler.glsl"

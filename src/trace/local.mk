@@ -4,7 +4,8 @@ libcavalry_a_SOURCES += \
 	src/trace/camera_motion.c src/trace/camera_motion.h \
 	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/render.c src/trace/render.h \
-	src/trace/scene_upload.c src/trace/scene_upload.h
+	src/trace/scene_upload.c src/trace/scene_upload.h \
+	src/trace/shade_bins.c src/trace/shade_bins.h
 
 GLSL_FILES += \
 	glsl/shared/trace.h \

@@ -95,3 +95,8 @@ TESTS += tests/trace/medium_phase_test
 tests_trace_medium_phase_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 # --- end of participating media ---
+
+# --- shade bins (issue 26) ---
+check_PROGRAMS += tests/trace/shade_bins_test
+TESTS += tests/trace/shade_bins_test
+tests_trace_shade_bins_test_LDADD = $(CV_LIBS)
