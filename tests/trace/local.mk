@@ -100,3 +100,7 @@ EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 check_PROGRAMS += tests/trace/shade_bins_test
 TESTS += tests/trace/shade_bins_test
 tests_trace_shade_bins_test_LDADD = $(CV_LIBS)
+# the coated walk inlined once per kernel
+check_PROGRAMS += tests/trace/bsdf_sites_test
+TESTS += tests/trace/bsdf_sites_test
+tests_trace_bsdf_sites_test_LDADD = $(CV_LIBS)
