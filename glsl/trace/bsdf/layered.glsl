@@ -17,6 +17,12 @@
 // .key, from the shade stage's sampler) and the directions involved, so one
 // seed renders one image.
 //
+// The three estimators are one loop (cv_layered_run), reached from one
+// call site per kernel (bsdf.glsl: cv_bsdf_query), so a kernel holds one
+// copy of the interfaces' code: compilers inline every call, and the
+// walk's copies were most of a shade kernel's build time
+// (tests/trace/bsdf_sites_test counts them).
+//
 // Local frame, wo on +z (bsdf.glsl mirrors both directions when wo is
 // below). Cost class: O(n_samples * max_depth) interface evaluations per
 // call, where the closed forms were O(1).
@@ -230,7 +236,8 @@ float cv_lay_exit_pdf(CvLayered L, vec3 w, vec3 wi) { return cv_lay_coat_pdf(L, 
 bool cv_lay_ok(CvBsdfSample s) { return cv_max3(s.f) > 0.0 && s.pdf > 0.0 && s.wi.z != 0.0; }
 
 // ---- the layered BSDF
-// Probability that cv_layered_sample returns a delta sample from wo.
+// Probability that a walk (cv_layered_run, CV_LAY_MODE_WALK) from wo returns a
+// delta sample.
 float cv_layered_delta_prob(CvLayered L, vec3 wo)
 {
     if (!cv_lay_coat_smooth(L))
