@@ -484,11 +484,10 @@ bool cv_bsdf_walks(CvBsdf b)
 
 // Answers q (bsdf_query.glsl): every BSDF function a vertex needs, from
 // this one call site, so that each lobe's code (the coated walk's above
-// all) is inlined once per kernel. The steps run in a loop whose length is
-// known only at run time (bit k of `todo`: 0 f at wi0, 1 pdf at wi0, 2 the
-// sample, 3 the pdf at the sample's direction, which restates a coated
-// walk's proportional pdf as pbrt-v4's LayeredBxDF::Sample does, 4 f at
-// wi1, 5 pdf at wi1), so the compiler cannot copy its body.
+// all) is inlined once per kernel. The steps run in one loop (bit k of
+// `todo`: 0 f at wi0, 1 pdf at wi0, 2 the sample, 3 the pdf at the
+// sample's direction, which restates a coated walk's proportional pdf as
+// pbrt-v4's LayeredBxDF::Sample does, 4 f at wi1, 5 pdf at wi1).
 void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
 {
     q.f0 = vec3(0.0);
@@ -518,9 +517,13 @@ void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
         q.pdf1 = cv_bsdf_pdf_local(b, wo, wi1);
 #else
     bool walks = cv_bsdf_walks(b);
-    while (todo != 0u) {
-        int k = findLSB(todo);
-        todo &= todo - 1u;
+    // k is every invocation's same step, so a warp's invocations stay
+    // together (those with nothing to do at step k skip it) and the
+    // bound, known only at run time, keeps the compiler from copying the
+    // body
+    for (int k = 0; k <= findMSB(todo); k++) {
+        if ((todo & (1u << uint(k))) == 0u)
+            continue;
         vec3 wi = q.s.wi;  // step 3: the sample's, local and mirrored already
         if (k != 2 && k != 3) {
             wi = cv_to_local(b.frame, k < 2 ? q.wi0 : q.wi1);
