@@ -18,14 +18,16 @@
 #include "medium/vertex.glsl"
 #endif
 
-// Work groups of the shade stage, over every bin's dispatch. The third
-// bin's program is built only where a scene has its materials (trace.h:
-// CV_Q_HITS_C), so an empty third bin counts no group: its program, where
-// it runs, then takes no ticket (main).
+// Work groups of the shade stage, over every bin's dispatch. The programs
+// of bins 1 and 2 are built only where a scene's materials use them
+// (src/trace/render.c), so an empty bin 1 or 2 counts no group: its
+// program, where it runs, then takes no ticket (main). Bin 0's program
+// always runs, so some group always prepares the shadow stage.
 uint cv_shade_groups()
 {
 #ifdef CV_SHADE_BIN
-    return cv_groups_in(q.args[CV_ARGS_HITS]) + cv_groups_in(q.args[CV_ARGS_HITS_B]) +
+    return cv_groups_in(q.args[CV_ARGS_HITS]) +
+           (q.count[CV_Q_HITS_B] > 0u ? cv_groups_in(q.args[CV_ARGS_HITS_B]) : 0u) +
            (q.count[CV_Q_HITS_C] > 0u ? cv_groups_in(q.args[CV_ARGS_HITS_C]) : 0u);
 #else
     return cv_groups_in(q.args[CV_ARGS_HITS_ALL]);
@@ -63,8 +65,8 @@ void main()
         shadows[slot.x] = s;
     if (push_ray)
         cv_ray_out(slot.y, nr);
-#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 2
-    bool counted = q.count[CV_Q_HITS_C] > 0u;  // (cv_shade_groups)
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN != 0
+    bool counted = cv_hit_count() > 0u;  // (cv_shade_groups)
 #else
     bool counted = true;
 #endif

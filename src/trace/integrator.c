@@ -15,7 +15,7 @@ static const struct cv_integrator_ops path_ops = {
     .file = {"trace/shade.comp", "trace/shade.comp", "trace/shade.comp"},
     .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1", "CV_SHADE_BIN=2"},
     .args = {CV_ARGS_HITS, CV_ARGS_HITS_B, CV_ARGS_HITS_C},
-    .walk_bin = {false, false, true},
+    .bins = {1u, 2u, 4u},
 };
 
 /* volpath: the path integrator's stages with participating media
@@ -26,7 +26,7 @@ static const struct cv_integrator_ops volpath_ops = {
     .file = {"trace/shade.comp", "trace/shade.comp", "trace/shade.comp"},
     .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1", "CV_SHADE_BIN=2"},
     .args = {CV_ARGS_HITS, CV_ARGS_HITS_B, CV_ARGS_HITS_C},
-    .walk_bin = {false, false, true},
+    .bins = {1u, 2u, 4u},
 };
 
 /* One entry for each of manifest/enums.h's integrators. */

@@ -330,19 +330,22 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* hits binned by material for the shade stages (intersect.comp) */
     defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS",
                  escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
-    /* the coated walk's bin (trace/shade_bins.h): a program only where the
-     * scene has its materials, without the closed-form coat where none of
-     * them may take it */
+    /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
+     * prepare the shadow stage: shade_queue.glsl), the others' only where
+     * the scene's materials use them (volpath's medium events are bin 1's);
+     * the coated walk's without the closed-form coat where none of its
+     * materials may take it */
+    uint32_t bins_used = 1u | gs->shade_bins | (ops->media && gs->has_media ? 2u : 0u);
     for (int k = 0; k < ops->n_shade; k++)
         defines_plus(sp->shade[k], defines, nd, ops->define[k],
-                     ops->walk_bin[k] && gs->has_coat_closed && !gs->walk_coat_closed ? "CV_NO_COAT_CLOSED"
-                                                                                       : NULL);
+                     ops->bins[k] == 4u && gs->has_coat_closed && !gs->walk_coat_closed ? "CV_NO_COAT_CLOSED"
+                                                                                      : NULL);
     for (int s = 0; s < ST_COUNT; s++) {
         const char *file = stage_files[s];
         const char *const *d = defines;
         if (s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS) {
             int k = s - ST_SHADE;
-            if (k >= ops->n_shade || !ops->file[k] || (ops->walk_bin[k] && !gs->has_walk))
+            if (k >= ops->n_shade || !ops->file[k] || (ops->bins[k] && !(ops->bins[k] & bins_used)))
                 continue;
             file = ops->file[k];
             d = sp->shade[k];

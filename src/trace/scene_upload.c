@@ -143,7 +143,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     }
     if (g->has_alpha)
         g->basic_materials = false;
-    cv_shade_bins_features(s->materials, s->n_materials, &g->has_walk, &g->walk_coat_closed);
+    cv_shade_bins_features(s->materials, s->n_materials, &g->shade_bins, &g->walk_coat_closed);
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
     g->no_triangles = s->n_triangles == 0;

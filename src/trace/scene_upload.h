@@ -30,8 +30,8 @@ struct cv_scene_gpu {
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     bool has_hair;    /* some material is hair (else CV_NO_HAIR) */
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
-    bool has_walk;    /* some material is in the coated walk's shade bin (trace/shade_bins.h) */
-    bool walk_coat_closed; /* one of those may take the closed form too */
+    uint32_t shade_bins; /* bit b: some material is in shade bin b (trace/shade_bins.h) */
+    bool walk_coat_closed; /* one in the coated walk's bin may take the closed form too */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its

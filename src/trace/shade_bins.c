@@ -51,14 +51,15 @@ void cv_shade_bins_mark(CvMaterial *ms, uint32_t n)
     }
 }
 
-void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, bool *walk, bool *walk_closed)
+void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed)
 {
-    *walk = false;
+    *bins = 0;
     *walk_closed = false;
     for (uint32_t i = 0; i < n; i++) {
-        if (cv_shade_bin(ms, n, i) != CV_SHADE_BIN_WALK)
+        uint32_t bin = cv_shade_bin(ms, n, i);
+        *bins |= 1u << bin;
+        if (bin != CV_SHADE_BIN_WALK)
             continue;
-        *walk = true;
         /* a mix may resolve to a closed-form coat */
         if ((ms[i].flags & CV_MATF_COAT_CLOSED) || ms[i].type == CV_MAT_MIX)
             *walk_closed = true;

@@ -24,9 +24,10 @@ uint32_t cv_shade_bin(const CvMaterial *ms, uint32_t n, uint32_t i);
  * for the intersect stage's binning. */
 void cv_shade_bins_mark(CvMaterial *ms, uint32_t n);
 
-/* What the bin-2 kernel must hold: *walk, whether any material is in bin
- * 2 (else its program is not built); *walk_closed, whether one of them may
+/* Which bins the scene's materials use (*bins: bit b for bin b; a bin no
+ * material uses needs no program, but bin 0's always runs) and what the
+ * bin-2 kernel must hold: *walk_closed, whether one of its materials may
  * also take the closed-form coat (coated_closed.glsl). */
-void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, bool *walk, bool *walk_closed);
+void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed);
 
 #endif

@@ -64,12 +64,13 @@ int main(void)
         marked = marked && ms[i].flags >> CV_MATF_SHADE_BIN_SHIFT == want[i];
     tap_ok(marked && (ms[CLOSED].flags & CV_MATF_COAT_CLOSED), "marked in the flags, others kept");
 
-    bool walk, walk_closed;
-    cv_shade_bins_features(ms, N, &walk, &walk_closed);
-    tap_ok(walk && walk_closed, "the walk's bin, which may also take the closed form");
-    cv_shade_bins_features(ms, CLOSED + 1, &walk, &walk_closed);
-    tap_ok(!walk && !walk_closed, "no walk among diffuse, conductor, dielectric, closed form");
-    cv_shade_bins_features(ms + WALK_DIFF, 2, &walk, &walk_closed);
-    tap_ok(walk && !walk_closed, "walks without the closed form");
+    uint32_t bins;
+    bool walk_closed;
+    cv_shade_bins_features(ms, N, &bins, &walk_closed);
+    tap_ok(bins == 7u && walk_closed, "every bin; the walk's may also take the closed form");
+    cv_shade_bins_features(ms, CLOSED + 1, &bins, &walk_closed);
+    tap_ok(bins == 3u && !walk_closed, "no walk among diffuse, conductor, dielectric, closed form");
+    cv_shade_bins_features(ms + WALK_DIFF, 2, &bins, &walk_closed);
+    tap_ok(bins == 4u && !walk_closed, "walks alone, without the closed form");
     return tap_done();
 }
