@@ -156,6 +156,18 @@ CV_CHECK_SIZE(CvTexture, 96);
  * SubsurfaceFromDiffuse). */
 #define CV_MATF_SSS_POINT (1u << 12)
 #define CV_MATF_SSS_DIFFUSE (1u << 13)
+/* Coats up to this alpha take the closed form (where allowed): pbrt-v4's
+ * smooth coats (alpha below 1e-3) and alpha 1e-3 itself, what exporters
+ * write for "smooth" (the coffee scene). At alpha 0.01 the rough coat's
+ * walk already differs from it at grazing angles beyond noise (the
+ * figures are in the commit that added bsdf_coat_closed_test). Read by
+ * the shader (bsdf.glsl) and by the host's shade bins
+ * (src/trace/shade_bins.c). */
+#define CV_COAT_CLOSED_ALPHA 0.001f
+/* The shade bin of the hit queue that shades the material (glsl/shared/
+ * trace.h), set by the host on upload (src/trace/shade_bins.c): bits
+ * CV_MATF_SHADE_BIN_SHIFT and up. */
+#define CV_MATF_SHADE_BIN_SHIFT 30u
 
 CV_STRUCT(CvMaterial) {
     CV_UINT type;

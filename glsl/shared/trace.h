@@ -40,7 +40,9 @@
  *   [((d + 1) & 1) * n, ...) and the bounce rays go to [(d & 1) * n, ...).
  * - CV_BIND_HITS: hits at [0, n) (two bins, from both ends: CV_Q_HITS_B),
  *   escaped rays at [n, 2n) (their .ray only: a ray index; rlpath alone
- *   queues them, the path integrator's intersect stage handles misses).
+ *   queues them, the path integrator's intersect stage handles misses),
+ *   the third bin's hits from the end of that half (CV_Q_HITS_C): hits and
+ *   misses together are at most n.
  * Items refer to rays by their index within the iteration's half. */
 
 /* Queue counters (slots of CvTraceQueues.count). */
@@ -55,27 +57,36 @@
 #define CV_Q_TICKET_INTERSECT 5u
 #define CV_Q_TICKET_SHADE 7u
 /* Hits of the second bin (CV_HIT_BINS in intersect.comp: materials other
- * than diffuse): they fill the hit queue from its end, hits[n - 1 - k].
- * The path integrator shades the two bins with two programs (CV_SHADE_BIN
- * in trace/shade.comp), the first one's code cut down to diffuse surfaces;
- * a shade stage built without CV_SHADE_BIN (rlpath's) meets first the
- * CV_Q_HITS hits and then these (cv_hit_slot in common.glsl). 0 without
- * binning. */
+ * than diffuse, but those of the third bin): they fill the hit queue from
+ * its end, hits[n - 1 - k]. The path integrator shades each bin with a
+ * program of its own (CV_SHADE_BIN in trace/shade.comp), the first one's
+ * code cut down to diffuse surfaces; a shade stage built without
+ * CV_SHADE_BIN (rlpath's) meets the CV_Q_HITS hits, then these, then the
+ * third bin's (cv_hit_slot in common.glsl). 0 without binning. */
 #define CV_Q_HITS_B 6u
+/* Hits of the third bin (materials that may take the coated walk,
+ * glsl/trace/bsdf/layered.glsl): hits[2n - 1 - k], shaded by a program of
+ * their own (CV_SHADE_BIN=2), which the host builds only for scenes that
+ * have such materials, so that the walk's code and registers stay out of
+ * the other bins' kernels. Which bin a material's hits go to: the host's
+ * one decision (src/trace/shade_bins.c), in CvMaterial.flags
+ * (CV_MATF_SHADE_BIN_SHIFT). */
+#define CV_Q_HITS_C 8u
 
 /* Indirect dispatch slots (args[slot] = groups x, y, z, unused); the byte
  * offset of slot s in the buffer is CV_ARGS_BYTES(s). CV_ARGS_HITS covers
- * the CV_Q_HITS hits, CV_ARGS_HITS_B the CV_Q_HITS_B ones: the path
- * integrator shades each bin with its own program (trace/shade.comp).
- * CV_ARGS_HITS_ALL covers both bins, for a shade stage built without
- * CV_SHADE_BIN (rlpath's). */
+ * the CV_Q_HITS hits, CV_ARGS_HITS_B the CV_Q_HITS_B ones, CV_ARGS_HITS_C
+ * the CV_Q_HITS_C ones: the path integrator shades each bin with its own
+ * program (trace/shade.comp). CV_ARGS_HITS_ALL covers every bin, for a
+ * shade stage built without CV_SHADE_BIN (rlpath's). */
 #define CV_ARGS_RAYS 0u
 #define CV_ARGS_HITS 1u
 #define CV_ARGS_ESCAPED 2u
 #define CV_ARGS_SHADOW 3u
 #define CV_ARGS_HITS_B 4u
-#define CV_ARGS_HITS_ALL 5u
-#define CV_ARGS_OFFSET 32
+#define CV_ARGS_HITS_ALL 5u   /* every bin's hits */
+#define CV_ARGS_HITS_C 6u
+#define CV_ARGS_OFFSET 48
 #define CV_ARGS_BYTES(s) (CV_ARGS_OFFSET + 16 * (s))
 
 /* Statistic slots: 64-bit totals kept as (lo, hi) pairs by the last work
@@ -89,12 +100,12 @@
 #define CV_STAT_NONFINITE 2u
 
 CV_STRUCT(CvTraceQueues) {
-    CV_UINT count[8];      /* CV_Q_* counters and tickets; a scalar array because llvmpipe's atomics on
+    CV_UINT count[12];     /* CV_Q_* counters and tickets; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
-    cv_uvec4 args[6];      /* indirect dispatch arguments, CV_ARGS_* */
+    cv_uvec4 args[7];      /* indirect dispatch arguments, CV_ARGS_* */
     cv_uvec4 stats[3];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 176);
+CV_CHECK_SIZE(CvTraceQueues, 208);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
  * the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT (11

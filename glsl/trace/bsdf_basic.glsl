@@ -8,9 +8,8 @@
 #ifndef CV_TRACE_BSDF_BASIC_GLSL
 #define CV_TRACE_BSDF_BASIC_GLSL
 
-#define CV_BSDF_REFLECTION 1u
-#define CV_BSDF_TRANSMISSION 2u
-#define CV_BSDF_SPECULAR 4u
+// (CvBsdfSample and the query: included by materials.glsl)
+#include "bsdf/bsdf_query.glsl"
 
 struct CvShadingPoint {
     vec3 p;
@@ -27,12 +26,6 @@ struct CvBsdf {
     bool mirror;
 };
 
-struct CvBsdfSample {
-    vec3 wi;
-    vec3 f;
-    float pdf;
-    uint flags;
-};
 
 CvBsdf cv_bsdf_at(uint material, CvShadingPoint sp, float u_mix)
 {
@@ -98,6 +91,22 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo, float uc, vec2 u2, out CvBsdfSample s)
     s.f = b.r / CV_PI;
     s.flags = CV_BSDF_REFLECTION;
     return s.pdf > 0.0;
+}
+
+// as bsdf/bsdf.glsl (two small lobes: straight on)
+void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
+{
+    uint a = q.ask;
+    q.f0 = (a & CV_BQ_F0) != 0u ? cv_bsdf_f(b, q.wo, q.wi0) : vec3(0.0);
+    bool pdf0 = (a & CV_BQ_PDF0) != 0u && ((a & (CV_BQ_GATE0 | CV_BQ_F0)) != (CV_BQ_GATE0 | CV_BQ_F0) ||
+                                           cv_max3(q.f0) > 0.0);
+    q.pdf0 = pdf0 ? cv_bsdf_pdf(b, q.wo, q.wi0) : 0.0;
+    q.s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
+    q.sampled = (a & CV_BQ_SAMPLE) != 0u && cv_bsdf_sample(b, q.wo, q.uc, q.u, q.s) && q.s.pdf > 0.0;
+    q.f1 = (a & CV_BQ_F1) != 0u ? cv_bsdf_f(b, q.wo, q.wi1) : vec3(0.0);
+    bool pdf1 = (a & CV_BQ_PDF1) != 0u && ((a & (CV_BQ_GATE1 | CV_BQ_F1)) != (CV_BQ_GATE1 | CV_BQ_F1) ||
+                                           cv_max3(q.f1) > 0.0);
+    q.pdf1 = pdf1 ? cv_bsdf_pdf(b, q.wo, q.wi1) : 0.0;
 }
 
 bool cv_material_alpha_pass(uint material, vec2 uv, float u)

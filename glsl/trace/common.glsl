@@ -55,21 +55,27 @@ CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capa
 // (medium/track.glsl) for the stages after it.
 void cv_ray_in_beta(uint i, vec4 beta) { rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i].beta = beta; }
 void cv_ray_out(uint slot, CvRayItem r) { rays[(cv_iteration() & 1u) * cv_capacity() + slot] = r; }
-// The shade stage's i-th hit: with CV_SHADE_BIN 0 or 1, of that bin alone;
-// else the first bin from the front of the hit queue, then the second from
-// its end (CV_Q_HITS_B in trace.h).
+// The shade stage's i-th hit: with CV_SHADE_BIN 0, 1 or 2, of that bin
+// alone; else the first bin from the front of the hit queue, then the
+// second from its end, then the third from the end of the buffer
+// (CV_Q_HITS_B, CV_Q_HITS_C in trace.h).
 #if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
 uint cv_hit_count() { return q.count[CV_Q_HITS]; }
 uint cv_hit_slot(uint i) { return i; }
-#elif defined(CV_SHADE_BIN)
+#elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1
 uint cv_hit_count() { return q.count[CV_Q_HITS_B]; }
 uint cv_hit_slot(uint i) { return cv_capacity() - 1u - i; }
+#elif defined(CV_SHADE_BIN)
+uint cv_hit_count() { return q.count[CV_Q_HITS_C]; }
+uint cv_hit_slot(uint i) { return 2u * cv_capacity() - 1u - i; }
 #else
-uint cv_hit_count() { return q.count[CV_Q_HITS] + q.count[CV_Q_HITS_B]; }
+uint cv_hit_count() { return q.count[CV_Q_HITS] + q.count[CV_Q_HITS_B] + q.count[CV_Q_HITS_C]; }
 uint cv_hit_slot(uint i)
 {
-    uint a = q.count[CV_Q_HITS];
-    return i < a ? i : cv_capacity() - 1u - (i - a);
+    uint a = q.count[CV_Q_HITS], b = q.count[CV_Q_HITS_B];
+    if (i < a)
+        return i;
+    return i < a + b ? cv_capacity() - 1u - (i - a) : 2u * cv_capacity() - 1u - (i - a - b);
 }
 #endif
 uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
@@ -112,25 +118,28 @@ vec3 cv_offset_ray(vec3 p, float err, vec3 n)
 }
 
 // Queue slots for a whole group: every invocation says whether it pushes to
-// each of up to three queues; the group takes its range of each queue with
+// each of up to four queues; the group takes its range of each queue with
 // one atomic and hands out slots in invocation order. Call from uniform
 // control flow (no invocation may have returned). Besides saving atomics,
 // this avoids llvmpipe (Mesa 22.3) losing per-invocation atomicAdd results
 // in partially active SIMD vectors, which dropped and duplicated items.
-// The three flags travel packed in 10-bit fields (a group of 64 counts to
+// The four flags travel packed in 8-bit fields (a group of 64 counts to
 // 64 at most) through an inclusive Hillis-Steele scan in shared memory:
 // log2(group) steps for every invocation rather than a serial loop in one.
+#if CV_TRACE_GROUP > 255
+#error "cv_queue_slots4 packs counts of a group in 8 bits"
+#endif
 shared uint cv_q_scan[2][CV_TRACE_GROUP];
-shared uint cv_q_base[3];
+shared uint cv_q_base[4];
 
 // The invocation that takes its group's queue slots: the last, whose
 // inclusive scan holds the group's totals.
 bool cv_queue_slot_taker() { return gl_LocalInvocationIndex == uint(CV_TRACE_GROUP) - 1u; }
 
-uvec3 cv_queue_slots3(bvec3 push, uvec3 queue)
+uvec4 cv_queue_slots4(bvec4 push, uvec4 queue)
 {
     uint li = gl_LocalInvocationIndex;
-    uint mine = (push.x ? 1u : 0u) | (push.y ? 1u << 10 : 0u) | (push.z ? 1u << 20 : 0u);
+    uint mine = (push.x ? 1u : 0u) | (push.y ? 1u << 8 : 0u) | (push.z ? 1u << 16 : 0u) | (push.w ? 1u << 24 : 0u);
     cv_q_scan[0][li] = mine;
     barrier();
     uint src = 0u;
@@ -144,15 +153,21 @@ uvec3 cv_queue_slots3(bvec3 push, uvec3 queue)
     }
     uint incl = cv_q_scan[src][li];
     if (cv_queue_slot_taker()) {
-        uvec3 total = uvec3(incl & 1023u, (incl >> 10) & 1023u, incl >> 20);
+        uvec4 total = (uvec4(incl) >> uvec4(0u, 8u, 16u, 24u)) & 255u;
         cv_q_base[0] = total.x > 0u ? atomicAdd(q.count[queue.x], total.x) : 0u;
         cv_q_base[1] = total.y > 0u ? atomicAdd(q.count[queue.y], total.y) : 0u;
         cv_q_base[2] = total.z > 0u ? atomicAdd(q.count[queue.z], total.z) : 0u;
+        cv_q_base[3] = total.w > 0u ? atomicAdd(q.count[queue.w], total.w) : 0u;
     }
     barrier();
     uint excl = incl - mine;
-    return uvec3(cv_q_base[0] + (excl & 1023u), cv_q_base[1] + ((excl >> 10) & 1023u),
-                 cv_q_base[2] + (excl >> 20));
+    return uvec4(cv_q_base[0], cv_q_base[1], cv_q_base[2], cv_q_base[3]) +
+           ((uvec4(excl) >> uvec4(0u, 8u, 16u, 24u)) & 255u);
+}
+
+uvec3 cv_queue_slots3(bvec3 push, uvec3 queue)
+{
+    return cv_queue_slots4(bvec4(push, false), uvec4(queue, queue.z)).xyz;
 }
 
 uvec2 cv_queue_slots(bool push0, uint queue0, bool push1, uint queue1)

@@ -103,16 +103,22 @@ void main()
     const uint miss_queue = CV_Q_RAYS_OUT;
 #endif
 #ifdef CV_HIT_BINS
-    // Two bins by material, so that the shade stage's work groups mostly
-    // run one BSDF's code: diffuse surfaces (most of a typical scene), and
-    // everything else, written from the queue's end.
-    bool bin_b = false;
+    // Three bins by material (the host's choice, in the material's flags:
+    // src/trace/shade_bins.c), so that the shade stage's work groups mostly
+    // run one BSDF's code and each bin's kernel carries the registers of
+    // its own materials only: diffuse surfaces (most of a typical scene);
+    // every other material but the coated walk's, and volpath's medium
+    // events, written from the queue's end; the coated walk's, from the
+    // buffer's end (trace.h).
+    uint bin = 0u;
     if (valid && hit)
-        bin_b = event || probe ||
-                materials[cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK].type != CV_MAT_DIFFUSE;
-    uvec3 s3 = cv_queue_slots3(bvec3(valid && hit && !bin_b, valid && hit && bin_b, miss_push),
-                               uvec3(CV_Q_HITS, CV_Q_HITS_B, miss_queue));
-    uvec2 slot = uvec2(bin_b ? cv_capacity() - 1u - s3.y : s3.x, s3.z);
+        bin = event || probe ? 1u
+                    : materials[cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK].flags >> CV_MATF_SHADE_BIN_SHIFT;
+    bool hb = valid && hit;
+    uvec4 s4 = cv_queue_slots4(bvec4(hb && bin == 0u, hb && bin == 1u, hb && bin == 2u, miss_push),
+                               uvec4(CV_Q_HITS, CV_Q_HITS_B, CV_Q_HITS_C, miss_queue));
+    uint hit_slot = bin == 0u ? s4.x : (bin == 1u ? cv_capacity() - 1u - s4.y : 2u * cv_capacity() - 1u - s4.z);
+    uvec2 slot = uvec2(hit_slot, s4.w);
 #else
     uvec2 slot = cv_queue_slots(valid && hit, CV_Q_HITS, miss_push, miss_queue);
 #endif

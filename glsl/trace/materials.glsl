@@ -11,6 +11,8 @@
 // likewise for medium/medium.glsl (volpath's phase sampling)
 #include "../lib/frame.glsl"
 #include "bsdf/texture.glsl"
+// both BSDF interfaces answer the same query
+#include "bsdf/bsdf_query.glsl"
 #ifdef CV_BSDF_BASIC
 #include "bsdf_basic.glsl"
 #else

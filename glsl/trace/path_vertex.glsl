@@ -13,16 +13,22 @@
 //   void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo,
 //                          CvBsdf b, bool delta)
 //       once the BSDF is known
-//   float cv_strategy_pdf(CvStrategy g, CvBsdf b, vec3 wo, vec3 wi)
-//       the density (solid angle) with which the strategy would draw wi:
-//       next-event estimation weighs its light sample against it
+//   float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf)
+//       the density (solid angle) with which the strategy would draw wi,
+//       given the BSDF's (bsdf_pdf): next-event estimation weighs its
+//       light sample against it
+//   void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc,
+//                        vec2 u_bsdf, inout CvBsdfQuery q)
+//       adds to q what the bounce needs of the BSDF (a sample, f and pdf
+//       at wi1: bsdf/bsdf_query.glsl); the vertex asks for everything in
+//       one cv_bsdf_query, whose call site is the only copy of the BSDF
+//       code (the coated walk's above all) in the kernel
 //   bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf,
-//                           vec3 wo, vec2 u_bc, vec2 u_bsdf,
-//                           out CvBsdfSample bs, out float pdf,
-//                           out bool specular)
-//       draws the bounce: bs.wi and bs.f, pdf the density it was drawn
-//       with (for a delta lobe its probability, > 0), specular whether a
-//       delta lobe was chosen; false ends the path
+//                           vec3 wo, CvBsdfQuery q, out CvBsdfSample bs,
+//                           out float pdf, out bool specular)
+//       draws the bounce from q's answers: bs.wi and bs.f, pdf the density
+//       it was drawn with (for a delta lobe its probability, > 0),
+//       specular whether a delta lobe was chosen; false ends the path
 // The strategy only decides directions and densities; throughput, MIS,
 // roulette and the queued rays stay here, so the integrators' images differ
 // only by their sampling. Under volpath (CV_MEDIA) the shadow ray and the
@@ -156,24 +162,33 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     if (depth >= cv_max_depth())
         return;
 
-    if (!delta && cv_n_lights() > 0u) {
-        CvLightSample ls;
-        if (cv_light_sample(cv_light_sample_point(sf, b, wo, h.prim), sf.ns, vec3(u_lc.x, u_light), ls) &&
-            cv_max3(ls.L) > 0.0) {
-            vec3 f = cv_bsdf_f(b, wo, ls.wi) * abs(dot(ls.wi, sf.ns));
-            if (cv_max3(f) > 0.0) {
-                float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, cv_strategy_pdf(g, b, wo, ls.wi));
-                vec3 Ld = beta * f * ls.L * (w / ls.pdf);
-                if (cv_finite3(Ld)) {
-                    push_shadow = true;
-                    s.o = vec4(cv_spawn_origin(sf, ls.wi),
-                               ls.dist * (1.0 - 1e-4));
-                    s.d = vec4(ls.wi, float(path));
-                    s.L = vec4(Ld, 0.0);
-                    s.m = vec4(float(cv_path_medium_after(sf, ls.wi, cv_ray_medium(r))), 0.0, 0.0, 0.0);
-                } else {
-                    cv_film_reject();
-                }
+    // The light sample; then one query of the BSDF for it and the bounce.
+    CvLightSample ls;
+    bool nee = !delta && cv_n_lights() > 0u &&
+               cv_light_sample(cv_light_sample_point(sf, b, wo, h.prim), sf.ns, vec3(u_lc.x, u_light), ls) &&
+               cv_max3(ls.L) > 0.0;
+    CvBsdfQuery q = cv_bsdf_query_new(wo);
+    if (nee) {
+        q.ask = CV_BQ_F0 | CV_BQ_GATE0 | (ls.delta ? 0u : CV_BQ_PDF0);
+        q.wi0 = ls.wi;
+    }
+    cv_strategy_ask(g, b, wo, u_bc, u_bsdf, q);
+    cv_bsdf_query(b, q);
+
+    if (nee) {
+        vec3 f = q.f0 * abs(dot(ls.wi, sf.ns));
+        if (cv_max3(f) > 0.0) {
+            float w = ls.delta ? 1.0 : cv_power_heuristic(ls.pdf, cv_strategy_pdf(g, ls.wi, q.pdf0));
+            vec3 Ld = beta * f * ls.L * (w / ls.pdf);
+            if (cv_finite3(Ld)) {
+                push_shadow = true;
+                s.o = vec4(cv_spawn_origin(sf, ls.wi),
+                           ls.dist * (1.0 - 1e-4));
+                s.d = vec4(ls.wi, float(path));
+                s.L = vec4(Ld, 0.0);
+                s.m = vec4(float(cv_path_medium_after(sf, ls.wi, cv_ray_medium(r))), 0.0, 0.0, 0.0);
+            } else {
+                cv_film_reject();
             }
         }
     }
@@ -181,7 +196,7 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     CvBsdfSample bs;
     float pdf;
     bool specular;
-    if (!cv_strategy_sample(g, b, sf, wo, u_bc, u_bsdf, bs, pdf, specular))
+    if (!cv_strategy_sample(g, b, sf, wo, q, bs, pdf, specular))
         return;
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
     if (!cv_finite3(beta)) {

@@ -58,6 +58,7 @@ void cv_prepare_iteration(uint n)
     q.count[CV_Q_RAYS_OUT] = 0u;
     q.count[CV_Q_HITS] = 0u;
     q.count[CV_Q_HITS_B] = 0u;
+    q.count[CV_Q_HITS_C] = 0u;
     q.count[CV_Q_ESCAPED] = 0u;
     q.args[CV_ARGS_RAYS] = cv_groups(n);
     cv_stat_add(CV_STAT_EXTEND, n);
@@ -66,10 +67,11 @@ void cv_prepare_iteration(uint n)
 // After the intersect stage: the shade (and rlpath's escaped) dispatches.
 void cv_prepare_shade()
 {
-    uint a = cv_count(CV_Q_HITS), b = cv_count(CV_Q_HITS_B);
+    uint a = cv_count(CV_Q_HITS), b = cv_count(CV_Q_HITS_B), c = cv_count(CV_Q_HITS_C);
     q.args[CV_ARGS_HITS] = cv_groups(a);
     q.args[CV_ARGS_HITS_B] = cv_groups(b);
-    q.args[CV_ARGS_HITS_ALL] = cv_groups(a + b);
+    q.args[CV_ARGS_HITS_C] = cv_groups(c);
+    q.args[CV_ARGS_HITS_ALL] = cv_groups(a + b + c);
     q.args[CV_ARGS_ESCAPED] = cv_groups(cv_count(CV_Q_ESCAPED));
     q.count[CV_Q_SHADOW] = 0u;
 }

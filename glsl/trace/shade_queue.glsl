@@ -3,7 +3,7 @@
 // queues what it produced (a shadow ray; the bounce ray, or else, the path
 // having ended, the camera ray of its slot's next sample: regenerate.glsl)
 // with slots taken in uniform control flow. The last group to finish (of
-// both bins' programs, which the path integrator runs side by side)
+// every bin's programs, which the path integrator runs side by side)
 // prepares the shadow stage and the next iteration (queue_args.glsl).
 // Under volpath (CV_MEDIA), a collision in a medium (CV_HIT_MEDIUM, in the
 // second bin) is a medium vertex (medium/vertex.glsl) instead.
@@ -18,11 +18,17 @@
 #include "medium/vertex.glsl"
 #endif
 
-// Work groups of the shade stage, over both bins' dispatches.
+// Work groups of the shade stage, over every bin's dispatch. The programs
+// of bins 1 and 2 are built only where a scene's materials use them
+// (src/trace/render.c), so an empty bin 1 or 2 counts no group: its
+// program, where it runs, then takes no ticket (main). Bin 0's program
+// always runs, so some group always prepares the shadow stage.
 uint cv_shade_groups()
 {
 #ifdef CV_SHADE_BIN
-    return cv_groups_in(q.args[CV_ARGS_HITS]) + cv_groups_in(q.args[CV_ARGS_HITS_B]);
+    return cv_groups_in(q.args[CV_ARGS_HITS]) +
+           (q.count[CV_Q_HITS_B] > 0u ? cv_groups_in(q.args[CV_ARGS_HITS_B]) : 0u) +
+           (q.count[CV_Q_HITS_C] > 0u ? cv_groups_in(q.args[CV_ARGS_HITS_C]) : 0u);
 #else
     return cv_groups_in(q.args[CV_ARGS_HITS_ALL]);
 #endif
@@ -69,7 +75,12 @@ void main()
         shadows[slot.x] = s;
     if (push_ray)
         cv_ray_out(slot.y, nr);
-    if (cv_queue_slot_taker() && cv_last_group(CV_Q_TICKET_SHADE, cv_shade_groups()))
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN != 0
+    bool counted = cv_hit_count() > 0u;  // (cv_shade_groups)
+#else
+    bool counted = true;
+#endif
+    if (counted && cv_queue_slot_taker() && cv_last_group(CV_Q_TICKET_SHADE, cv_shade_groups()))
         cv_prepare_shadow();
 }
 

@@ -8,22 +8,25 @@
 
 /* The path integrator shades each bin of the hit queue with its own build
  * of trace/shade.comp (CV_SHADE_BIN: diffuse hits with the BSDF code cut
- * down to diffuse, then the others). */
+ * down to diffuse, the others but the coated walk's, then those:
+ * trace/shade_bins.h). */
 static const struct cv_integrator_ops path_ops = {
-    .n_shade = 2,
-    .file = {"trace/shade.comp", "trace/shade.comp"},
-    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
-    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
+    .n_shade = 3,
+    .file = {"trace/shade.comp", "trace/shade.comp", "trace/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1", "CV_SHADE_BIN=2"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B, CV_ARGS_HITS_C},
+    .bins = {1u, 2u, 4u},
 };
 
 /* volpath: the path integrator's stages with participating media
  * (glsl/trace/medium): pbrt-v4's VolPathIntegrator. */
 static const struct cv_integrator_ops volpath_ops = {
     .media = true,
-    .n_shade = 2,
-    .file = {"trace/shade.comp", "trace/shade.comp"},
-    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
-    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
+    .n_shade = 3,
+    .file = {"trace/shade.comp", "trace/shade.comp", "trace/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1", "CV_SHADE_BIN=2"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B, CV_ARGS_HITS_C},
+    .bins = {1u, 2u, 4u},
 };
 
 /* One entry for each of manifest/enums.h's integrators. */

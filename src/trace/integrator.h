@@ -26,7 +26,7 @@ struct cv_integrator_setup {
 };
 
 /* At most this many shade programs per integrator. */
-#define CV_SHADE_PROGRAMS 2
+#define CV_SHADE_PROGRAMS 3
 
 struct cv_integrator_ops {
     /* Misses always go through the escaped stage (else only with an
@@ -49,6 +49,10 @@ struct cv_integrator_ops {
     const char *file[CV_SHADE_PROGRAMS];
     const char *define[CV_SHADE_PROGRAMS];
     uint32_t args[CV_SHADE_PROGRAMS];
+    /* The shade bins program k shades (bit b: bin b, trace/shade_bins.h);
+     * 0: every bin. A program of bin 1 or 2 alone is built and run only
+     * for scenes whose materials (or, for bin 1, media) use its bin. */
+    uint32_t bins[CV_SHADE_PROGRAMS];
     /* The remaining operations may be NULL: no state of its own. create
      * makes the state (its buffers and programs) and fills the shade
      * programs that file leaves out; bind binds its buffers after the

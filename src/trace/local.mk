@@ -4,7 +4,8 @@ libcavalry_a_SOURCES += \
 	src/trace/camera_motion.c src/trace/camera_motion.h \
 	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/render.c src/trace/render.h \
-	src/trace/scene_upload.c src/trace/scene_upload.h
+	src/trace/scene_upload.c src/trace/scene_upload.h \
+	src/trace/shade_bins.c src/trace/shade_bins.h
 
 GLSL_FILES += \
 	glsl/shared/trace.h \
@@ -51,3 +52,5 @@ GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medi
 GLSL_FILES += glsl/shared/bssrdf.h glsl/trace/bsdf/bssrdf.glsl glsl/trace/bsdf/sss_exit.glsl \
 	glsl/trace/sss_probe.glsl glsl/trace/sss_vertex.glsl glsl/trace/test/bssrdf_probe.comp
 # --- end of subsurface ---
+# --- the one BSDF query (issue 26) ---
+GLSL_FILES += glsl/trace/bsdf/bsdf_query.glsl

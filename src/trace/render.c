@@ -45,6 +45,7 @@ enum stage {
     ST_ESCAPED,
     ST_SHADE,
     ST_SHADE_B,
+    ST_SHADE_C,
     ST_SHADOW,
     ST_RESOLVE,
     ST_MATTE,             /* only for alpha and ID AOVs (matte.comp) */
@@ -106,7 +107,7 @@ struct cv_renderer {
 };
 
 static const char *const stage_names[ST_COUNT] = {
-    "generate", "intersect", "escaped", "shade", "shade-b", "shadow", "resolve",
+    "generate", "intersect", "escaped", "shade", "shade-b", "shade-c", "shadow", "resolve",
     "matte",    "resolve-straight",
 };
 
@@ -126,8 +127,8 @@ static void prof_end(struct cv_renderer *r)
 /* The shade stages' files come from the integrator (NULL here). */
 static const char *const stage_files[ST_COUNT] = {
     "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
-    NULL,                  "trace/shadow.comp",    "trace/resolve.comp", "trace/matte.comp",
-    "trace/resolve.comp",
+    NULL,                  NULL,                   "trace/shadow.comp",  "trace/resolve.comp",
+    "trace/matte.comp",    "trace/resolve.comp",
 };
 
 /* The film and camera: the plan's (p->camera), else the scene's. */
@@ -262,7 +263,7 @@ struct stage_programs {
     const char *const *defines[ST_COUNT];
     const char *escaped[MAX_SCENE_DEFINES + 3];
     const char *intersect[MAX_SCENE_DEFINES + 3];
-    const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 2];
+    const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 3];
     char stride[32];  /* CV_MATTE_STRIDE=N */
     const char *matte[MAX_SCENE_DEFINES + 3];
     const char *resolve[MAX_SCENE_DEFINES + 3];
@@ -346,14 +347,24 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* hits binned by material for the shade stages (intersect.comp) */
     defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS",
                  escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
+    /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
+     * prepare the shadow stage: shade_queue.glsl), the others' only where
+     * the scene's materials use them (volpath's medium events and
+     * subsurface probes are bin 1's);
+     * the coated walk's without the closed-form coat where none of its
+     * materials may take it */
+    uint32_t bins_used = 1u | gs->shade_bins | (ops->media && gs->has_media ? 2u : 0u) |
+                         (gs->has_subsurface ? 2u : 0u);
     for (int k = 0; k < ops->n_shade; k++)
-        defines_plus(sp->shade[k], defines, nd, ops->define[k], NULL);
+        defines_plus(sp->shade[k], defines, nd, ops->define[k],
+                     ops->bins[k] == 4u && gs->has_coat_closed && !gs->walk_coat_closed ? "CV_NO_COAT_CLOSED"
+                                                                                      : NULL);
     for (int s = 0; s < ST_COUNT; s++) {
         const char *file = stage_files[s];
         const char *const *d = defines;
-        if (s == ST_SHADE || s == ST_SHADE_B) {
+        if (s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS) {
             int k = s - ST_SHADE;
-            if (k >= ops->n_shade || !ops->file[k])
+            if (k >= ops->n_shade || !ops->file[k] || (ops->bins[k] && !(ops->bins[k] & bins_used)))
                 continue;
             file = ops->file[k];
             d = sp->shade[k];
@@ -597,15 +608,21 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     if (r->matte)
         stage_indirect(r, ST_MATTE, CV_ARGS_HITS_ALL);
     /* The shade programs share no data (integrator.h), so only the last
-     * is followed by a barrier and they may overlap. */
+     * is followed by a barrier and they may overlap. A program the scene
+     * does not need was not built (stage_programs). */
     const struct cv_integrator_ops *ops = r->ops;
-    for (int k = 0; k + 1 < ops->n_shade; k++) {
+    int last = ops->n_shade - 1;
+    while (last > 0 && !r->prog[ST_SHADE + last].id)
+        last--;
+    for (int k = 0; k < last; k++) {
+        if (!r->prog[ST_SHADE + k].id)
+            continue;
         prof_begin(r, ST_SHADE + k);
         glUseProgram(r->prog[ST_SHADE + k].id);
         glDispatchComputeIndirect(CV_ARGS_BYTES(ops->args[k]));
         prof_end(r);
     }
-    stage_indirect(r, ST_SHADE + ops->n_shade - 1, ops->args[ops->n_shade - 1]);
+    stage_indirect(r, ST_SHADE + last, ops->args[last]);
     /* the probes' entries, stored by this shade stage, for the next one's */
     if (r->sss_entry_tex)
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

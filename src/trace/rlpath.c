@@ -299,12 +299,12 @@ static void ops_destroy(void **state)
 const struct cv_integrator_ops cv_rlpath_ops = {
     .escaped_stage = true,   /* misses learn too */
     .escaped_define = "CV_RLPATH",
-    /* path's two bins (trace/integrator.c): diffuse hits in a build cut
-     * down to diffuse, then the others */
-    .n_shade = 2,
-    .file = {"trace/rlpath/shade.comp", "trace/rlpath/shade.comp"},
-    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1"},
-    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B},
+    /* path's three bins (trace/integrator.c, trace/shade_bins.h) */
+    .n_shade = 3,
+    .file = {"trace/rlpath/shade.comp", "trace/rlpath/shade.comp", "trace/rlpath/shade.comp"},
+    .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1", "CV_SHADE_BIN=2"},
+    .args = {CV_ARGS_HITS, CV_ARGS_HITS_B, CV_ARGS_HITS_C},
+    .bins = {1u, 2u, 4u},
     .create = ops_create,
     .bind = ops_bind,
     .after_shade = ops_after_shade,

@@ -17,6 +17,7 @@
 #include "trace/envmap_dist.h"
 #include "trace/rlpath.h"
 #include "trace/scene_upload.h"
+#include "trace/shade_bins.h"
 
 void cv_light_cdf(const float *power, uint32_t n, float *cdf)
 {
@@ -148,6 +149,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     }
     if (g->has_alpha)
         g->basic_materials = false;
+    cv_shade_bins_features(s->materials, s->n_materials, &g->shade_bins, &g->walk_coat_closed);
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
     g->has_motion = s->n_motions > 0;
@@ -172,6 +174,11 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         free(lights);
         return false;
     }
+    /* each material with its shade bin, for the intersect stage */
+    CvMaterial *materials = cv_xcalloc(s->n_materials ? s->n_materials : 1, sizeof(CvMaterial));
+    if (s->n_materials)
+        memcpy(materials, s->materials, s->n_materials * sizeof(CvMaterial));
+    cv_shade_bins_mark(materials, s->n_materials);
     bool ok =
         up(gpu, &g.vertices, s->n_vertices * sizeof(CvVertex), s->vertices, "scene vertices",
            err) &&
@@ -182,7 +189,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         /* NULL (a scene made by hand): object 0 everywhere */
         up(gpu, &g.tri_object, s->n_triangles * sizeof(uint32_t), s->tri_object,
            "scene triangle objects", err) &&
-        up(gpu, &g.materials, s->n_materials * sizeof(CvMaterial), s->materials,
+        up(gpu, &g.materials, s->n_materials * sizeof(CvMaterial), materials,
            "scene materials", err) &&
         up(gpu, &g.textures, s->n_textures * sizeof(CvTexture), s->textures, "scene textures",
            err) &&
@@ -197,6 +204,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
     free(cdf);
     free(lights);
     free(env);
+    free(materials);
     if (!ok) {
         cv_scene_gpu_release(&g);
         return false;

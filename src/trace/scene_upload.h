@@ -38,6 +38,8 @@ struct cv_scene_gpu {
     GLuint bssrdf_tex; /* that buffer as an r32f buffer texture (CV_TEXUNIT_BSSRDF) */
     bool has_subsurface; /* some material is subsurface (CV_HAS_SUBSURFACE) */
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
+    uint32_t shade_bins; /* bit b: some material is in shade bin b (trace/shade_bins.h) */
+    bool walk_coat_closed; /* one in the coated walk's bin may take the closed form too */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its

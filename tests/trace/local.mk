@@ -102,3 +102,11 @@ EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 check_PROGRAMS += tests/trace/bssrdf_sample_test
 TESTS += tests/trace/bssrdf_sample_test
 tests_trace_bssrdf_sample_test_LDADD = $(CV_LIBS)
+# --- shade bins (issue 26) ---
+check_PROGRAMS += tests/trace/shade_bins_test
+TESTS += tests/trace/shade_bins_test
+tests_trace_shade_bins_test_LDADD = $(CV_LIBS)
+# the coated walk inlined once per kernel
+check_PROGRAMS += tests/trace/bsdf_sites_test
+TESTS += tests/trace/bsdf_sites_test
+tests_trace_bsdf_sites_test_LDADD = $(CV_LIBS)

@@ -29,6 +29,7 @@
 #include "../../lib/constants.glsl"
 #include "../../lib/frame.glsl"
 #include "bsdf_sample.glsl"
+#include "bsdf_query.glsl"
 #include "fresnel.glsl"
 #include "microfacet.glsl"
 #include "diffuse.glsl"
@@ -377,15 +378,13 @@ bool cv_bsdf_mirrored(CvBsdf b)
     return type == CV_MAT_COATED_DIFFUSE || type == CV_MAT_COATED_CONDUCTOR || type == CV_MAT_PLASTIC;
 }
 
+// f and pdf of every lobe but the coated walk's (cv_bsdf_query), local
+// directions with wo on the side the lobes expect (cv_bsdf_mirrored).
 vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
 {
 #ifdef CV_BSDF_DIFFUSE_ONLY
     return cv_diffuse_f(b.c0, wo, wi);
 #else
-    if (cv_bsdf_mirrored(b) && wo.z < 0.0) {
-        wo.z = -wo.z;
-        wi.z = -wi.z;
-    }
     switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
         return cv_diffuse_f(b.c0, wo, wi);
@@ -399,10 +398,8 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_sss_exit_f(b.eta, wo, wi);
 #endif
     case CV_MAT_COATED_DIFFUSE:
-    case CV_MAT_COATED_CONDUCTOR:
-        if (cv_bsdf_coat_closed(b))
-            return cv_coat_closed_f(cv_bsdf_coat_closed_params(b), wo, wi);
-        return cv_layered_f(cv_bsdf_layered(b), wo, wi);
+        // (the walk's coats: cv_bsdf_query)
+        return cv_bsdf_coat_closed(b) ? cv_coat_closed_f(cv_bsdf_coat_closed_params(b), wo, wi) : vec3(0.0);
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_f(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
@@ -422,10 +419,6 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
 #ifdef CV_BSDF_DIFFUSE_ONLY
     return cv_diffuse_pdf(wo, wi);
 #else
-    if (cv_bsdf_mirrored(b) && wo.z < 0.0) {
-        wo.z = -wo.z;
-        wi.z = -wi.z;
-    }
     switch (CV_BSDF_TYPE(b)) {
     case CV_MAT_DIFFUSE:
         return cv_diffuse_pdf(wo, wi);
@@ -439,10 +432,7 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
         return cv_sss_exit_pdf(wo, wi);
 #endif
     case CV_MAT_COATED_DIFFUSE:
-    case CV_MAT_COATED_CONDUCTOR:
-        if (cv_bsdf_coat_closed(b))
-            return cv_coat_closed_pdf(cv_bsdf_coat_closed_params(b), wo, wi);
-        return cv_layered_pdf(cv_bsdf_layered(b), wo, wi);
+        return cv_bsdf_coat_closed(b) ? cv_coat_closed_pdf(cv_bsdf_coat_closed_params(b), wo, wi) : 0.0;
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
@@ -457,23 +447,10 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
 #endif
 }
 
-vec3 cv_bsdf_f(CvBsdf b, vec3 wo, vec3 wi)
+// Samples every lobe but the coated walk's (cv_bsdf_query), wo local on
+// the side the lobes expect (cv_bsdf_mirrored).
+bool cv_bsdf_sample_local(CvBsdf b, vec3 wo, float uc, vec2 u, out CvBsdfSample s)
 {
-    return cv_bsdf_f_local(b, cv_to_local(b.frame, wo), cv_to_local(b.frame, wi));
-}
-
-float cv_bsdf_pdf(CvBsdf b, vec3 wo, vec3 wi)
-{
-    return cv_bsdf_pdf_local(b, cv_to_local(b.frame, wo), cv_to_local(b.frame, wi));
-}
-
-// uc picks a lobe, u places the direction. s.wi is in world space.
-bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample s)
-{
-    vec3 wo = cv_to_local(b.frame, wo_world);
-    bool flip = cv_bsdf_mirrored(b) && wo.z < 0.0;
-    if (flip)
-        wo.z = -wo.z;
     bool ok = false;
     s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
 #ifdef CV_BSDF_DIFFUSE_ONLY
@@ -506,11 +483,8 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         }
         break;
     case CV_MAT_COATED_DIFFUSE:
-    case CV_MAT_COATED_CONDUCTOR:
         if (cv_bsdf_coat_closed(b))
             ok = cv_coat_closed_sample(cv_bsdf_coat_closed_params(b), wo, uc, u, s);
-        else
-            ok = cv_layered_sample(cv_bsdf_layered(b), wo, uc, u, s);
         break;
     case CV_MAT_DIFFUSE_TRANSMISSION:
         ok = cv_difftrans_sample(b.c0, b.c1, wo, uc, u, s);
@@ -527,12 +501,148 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
         break;
     }
 #endif
-    if (!ok || !(s.pdf > 0.0) || any(isnan(s.f)) || any(isinf(s.f)))
-        return false;
+    return ok;
+}
+
+// Whether b is evaluated by the coated walk (layered.glsl): a coated
+// material that does not take the closed form. CV_NO_LAYERED (the shade
+// bins that never meet one: shade.comp) leaves the walk's code out.
+bool cv_bsdf_walks(CvBsdf b)
+{
+#if defined(CV_NO_LAYERED) || defined(CV_BSDF_DIFFUSE_ONLY)
+    return false;
+#else
+    uint t = CV_BSDF_TYPE(b);
+    return (t == CV_MAT_COATED_DIFFUSE || t == CV_MAT_COATED_CONDUCTOR) && !cv_bsdf_coat_closed(b);
+#endif
+}
+
+// Answers q (bsdf_query.glsl): every BSDF function a vertex needs, from
+// this one call site, so that each lobe's code (the coated walk's above
+// all) is inlined once per kernel. The steps run in one loop (bit k of
+// `todo`: 0 f at wi0, 1 pdf at wi0, 2 the sample, 3 the pdf at the
+// sample's direction, which restates a coated walk's proportional pdf as
+// pbrt-v4's LayeredBxDF::Sample does, 4 f at wi1, 5 pdf at wi1).
+void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
+{
+    q.f0 = vec3(0.0);
+    q.f1 = vec3(0.0);
+    q.pdf0 = 0.0;
+    q.pdf1 = 0.0;
+    q.sampled = false;
+    q.s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
+    uint todo = q.ask & (CV_BQ_F0 | CV_BQ_PDF0 | CV_BQ_SAMPLE | CV_BQ_F1 | CV_BQ_PDF1);
+    bool gate0 = (q.ask & CV_BQ_GATE0) != 0u, gate1 = (q.ask & CV_BQ_GATE1) != 0u;
+    vec3 wo = cv_to_local(b.frame, q.wo);
+    bool flip = cv_bsdf_mirrored(b) && wo.z < 0.0;
     if (flip)
-        s.wi.z = -s.wi.z;
-    s.wi = normalize(cv_from_local(b.frame, s.wi));
-    return true;
+        wo.z = -wo.z;
+#ifdef CV_BSDF_DIFFUSE_ONLY
+    // one small lobe: straight on, without the loop's bookkeeping
+    vec3 wi0 = cv_to_local(b.frame, q.wi0), wi1 = cv_to_local(b.frame, q.wi1);
+    if ((todo & CV_BQ_F0) != 0u)
+        q.f0 = cv_bsdf_f_local(b, wo, wi0);
+    if ((todo & CV_BQ_PDF0) != 0u && (!gate0 || (todo & CV_BQ_F0) == 0u || cv_max3(q.f0) > 0.0))
+        q.pdf0 = cv_bsdf_pdf_local(b, wo, wi0);
+    if ((todo & CV_BQ_SAMPLE) != 0u)
+        q.sampled = cv_bsdf_sample_local(b, wo, q.uc, q.u, q.s);
+    if ((todo & CV_BQ_F1) != 0u)
+        q.f1 = cv_bsdf_f_local(b, wo, wi1);
+    if ((todo & CV_BQ_PDF1) != 0u && (!gate1 || (todo & CV_BQ_F1) == 0u || cv_max3(q.f1) > 0.0))
+        q.pdf1 = cv_bsdf_pdf_local(b, wo, wi1);
+#else
+    bool walks = cv_bsdf_walks(b);
+    // k is every invocation's same step, so a warp's invocations stay
+    // together (those with nothing to do at step k skip it) and the
+    // bound, known only at run time, keeps the compiler from copying the
+    // body
+    for (int k = 0; k <= findMSB(todo); k++) {
+        if ((todo & (1u << uint(k))) == 0u)
+            continue;
+        vec3 wi = q.s.wi;  // step 3: the sample's, local and mirrored already
+        if (k != 2 && k != 3) {
+            wi = cv_to_local(b.frame, k < 2 ? q.wi0 : q.wi1);
+            if (flip)
+                wi.z = -wi.z;
+        }
+        uint mode = k == 2 ? CV_LAY_MODE_WALK : ((k & 1) == 0 ? CV_LAY_MODE_F : CV_LAY_MODE_PDF);
+        vec3 f = vec3(0.0);
+        float pdf = 0.0;
+        CvBsdfSample s;
+        bool ok = false;
+#if !defined(CV_NO_LAYERED) && !defined(CV_BSDF_DIFFUSE_ONLY)
+        if (walks)
+            ok = cv_layered_run(cv_bsdf_layered(b), mode, wo, wi, q.uc, q.u, f, pdf, s);
+        else
+#endif
+        if (mode == CV_LAY_MODE_F)
+            f = cv_bsdf_f_local(b, wo, wi);
+        else if (mode == CV_LAY_MODE_PDF)
+            pdf = cv_bsdf_pdf_local(b, wo, wi);
+        else
+            ok = cv_bsdf_sample_local(b, wo, q.uc, q.u, s);
+        if (k == 0) {
+            q.f0 = f;
+            if (gate0 && !(cv_max3(f) > 0.0))
+                todo &= ~CV_BQ_PDF0;
+        } else if (k == 1) {
+            q.pdf0 = pdf;
+        } else if (k == 2) {
+            q.sampled = ok;
+            q.s = s;
+            if (ok && walks && (s.flags & CV_BSDF_SPECULAR) == 0u)
+                todo |= 8u;
+        } else if (k == 3) {
+            q.s.f *= pdf / q.s.pdf;
+            q.s.pdf = pdf;
+        } else if (k == 4) {
+            q.f1 = f;
+            if (gate1 && !(cv_max3(f) > 0.0))
+                todo &= ~CV_BQ_PDF1;
+        } else {
+            q.pdf1 = pdf;
+        }
+    }
+#endif
+    if (q.sampled && (!(q.s.pdf > 0.0) || any(isnan(q.s.f)) || any(isinf(q.s.f))))
+        q.sampled = false;
+    if (q.sampled) {
+        if (flip)
+            q.s.wi.z = -q.s.wi.z;
+        q.s.wi = normalize(cv_from_local(b.frame, q.s.wi));
+    }
+}
+
+// One answer each, for code that asks for one thing (tests): every call
+// is a copy of cv_bsdf_query, so shade stages ask through one query.
+vec3 cv_bsdf_f(CvBsdf b, vec3 wo, vec3 wi)
+{
+    CvBsdfQuery q = cv_bsdf_query_new(wo);
+    q.ask = CV_BQ_F0;
+    q.wi0 = wi;
+    cv_bsdf_query(b, q);
+    return q.f0;
+}
+
+float cv_bsdf_pdf(CvBsdf b, vec3 wo, vec3 wi)
+{
+    CvBsdfQuery q = cv_bsdf_query_new(wo);
+    q.ask = CV_BQ_PDF0;
+    q.wi0 = wi;
+    cv_bsdf_query(b, q);
+    return q.pdf0;
+}
+
+// uc picks a lobe, u places the direction. s.wi is in world space.
+bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample s)
+{
+    CvBsdfQuery q = cv_bsdf_query_new(wo_world);
+    q.ask = CV_BQ_SAMPLE;
+    q.uc = uc;
+    q.u = u;
+    cv_bsdf_query(b, q);
+    s = q.s;
+    return q.sampled;
 }
 
 bool cv_bsdf_is_delta(CvBsdf b)

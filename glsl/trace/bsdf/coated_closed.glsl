@@ -38,12 +38,7 @@
 #include "microfacet.glsl"
 #include "bsdf_sample.glsl"
 
-// Coats up to this alpha take the closed form (where allowed): pbrt-v4's
-// smooth coats (alpha below 1e-3) and alpha 1e-3 itself, what exporters
-// write for "smooth" (the coffee scene). At alpha 0.01 the rough coat's
-// walk already differs from it at grazing angles beyond noise (the
-// figures are in the commit that added bsdf_coat_closed_test).
-#define CV_COAT_CLOSED_ALPHA 0.001
+// (Coats up to CV_COAT_CLOSED_ALPHA, glsl/shared/scene.h, take it.)
 
 struct CvCoatClosed {
     float eta;        // coat IOR (outside 1)

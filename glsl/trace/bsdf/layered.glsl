@@ -17,6 +17,12 @@
 // .key, from the shade stage's sampler) and the directions involved, so one
 // seed renders one image.
 //
+// The three estimators are one loop (cv_layered_run), reached from one
+// call site per kernel (bsdf.glsl: cv_bsdf_query), so a kernel holds one
+// copy of the interfaces' code: compilers inline every call, and the
+// walk's copies were most of a shade kernel's build time
+// (tests/trace/bsdf_sites_test counts them).
+//
 // Local frame, wo on +z (bsdf.glsl mirrors both directions when wo is
 // below). Cost class: O(n_samples * max_depth) interface evaluations per
 // call, where the closed forms were O(1).
@@ -230,7 +236,8 @@ float cv_lay_exit_pdf(CvLayered L, vec3 w, vec3 wi) { return cv_lay_coat_pdf(L, 
 bool cv_lay_ok(CvBsdfSample s) { return cv_max3(s.f) > 0.0 && s.pdf > 0.0 && s.wi.z != 0.0; }
 
 // ---- the layered BSDF
-// Probability that cv_layered_sample returns a delta sample from wo.
+// Probability that a walk (cv_layered_run, CV_LAY_MODE_WALK) from wo returns a
+// delta sample.
 float cv_layered_delta_prob(CvLayered L, vec3 wo)
 {
     if (!cv_lay_coat_smooth(L))
@@ -240,221 +247,313 @@ float cv_layered_delta_prob(CvLayered L, vec3 wo)
     return L.eta == 1.0 ? 0.0 : cv_fr_dielectric(wo.z, L.eta);
 }
 
-vec3 cv_layered_f(CvLayered L, vec3 wo, vec3 wi)
+// What cv_layered_run estimates.
+#define CV_LAY_MODE_F 0u     // f(wo, wi): walks from both ends with next-event connections
+#define CV_LAY_MODE_PDF 1u   // the pdf of wi: the TRT lobe's estimate mixed with a uniform term
+#define CV_LAY_MODE_WALK 2u  // one walk out from wo, its first event at the coat drawn with (uc, u)
+
+// Where a walk stands (cv_layered_run).
+#define CV_LAY_AT_ENTER_O 0  // the next event: into the slab along wo (WALK: the first event)
+#define CV_LAY_AT_ENTER_I 1  // the virtual light's way in along wi (F, PDF)
+#define CV_LAY_AT_BASE 2     // PDF: the one reflection at the base
+#define CV_LAY_AT_INSIDE 3   // F, WALK: events in the slab, `depth` of them so far
+
+// A connection through the coat that the last event left (cv_layered_run).
+#define CV_LAY_CONN_NONE 0
+#define CV_LAY_CONN_TOP 1    // F: reflection off the coat, wo to wi; PDF: its density
+#define CV_LAY_CONN_EXIT 2   // F: out along w through the coat towards wi
+#define CV_LAY_CONN_BASE 3   // PDF: out through the coat after the base, w
+
+// The layered BSDF's three estimators as one walk, so that a kernel holds
+// one copy of the interfaces' code however many estimates it asks for
+// (GLSL compilers inline every call: bsdf.glsl's cv_bsdf_query calls this
+// from one site). mode CV_LAY_MODE_F returns f(wo, wi) in f (0 where either
+// direction is below, since the base transmits nothing); CV_LAY_MODE_PDF
+// the pdf estimate in pdf; CV_LAY_MODE_WALK one walk out of the layers in
+// s (false: the walk died), whose s.pdf is proportional to the density
+// only (pbrt-v4's pdfIsProportional): a caller restates a non-delta sample
+// with the pdf estimate. One iteration of the loop makes at most one
+// event (an interface sample, or a scattering in the slab) and evaluates
+// at most one connection through the coat, the one the event before left,
+// in the same order of random numbers as pbrt-v4's three separate loops.
+bool cv_layered_run(CvLayered L, uint mode, vec3 wo, vec3 wi, float uc0, vec2 u0, out vec3 f,
+                    out float pdf, out CvBsdfSample s)
 {
-    if (!(wi.z > 0.0) || !(wo.z > 0.0))
-        return vec3(0.0);  // the base transmits nothing
-    if (cv_layered_delta_prob(L, wo) == 1.0)
-        return vec3(0.0);  // the one exact shortcut: all delta (every walk adds 0)
-    float n = float(L.n_samples);
-    vec3 f = vec3(n * cv_lay_coat_f(L, wo, wi, true));
-    CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(wo)), cv_lay_dir_hash(wi));
+    bool fm = mode == CV_LAY_MODE_F, pm = mode == CV_LAY_MODE_PDF, walk = mode == CV_LAY_MODE_WALK;
+    s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
     bool coat_smooth = cv_lay_coat_smooth(L), base_smooth = cv_lay_base_smooth(L);
     bool medium = cv_lay_has_medium(L);
-    float th = L.thickness;
-    for (int smp = 0; smp < L.n_samples; smp++) {
-        // into the slab along wo, and the virtual light's way in along wi
-        CvBsdfSample wos, wis;
-        float uc = cv_lay_next(rng);
-        if (!cv_lay_coat_sample(L, wo, uc, cv_lay_next2(rng), true, CV_LAY_T, wos) || !cv_lay_ok(wos))
-            continue;
-        uc = cv_lay_next(rng);
-        if (!cv_lay_coat_sample(L, wi, uc, cv_lay_next2(rng), false, CV_LAY_T, wis) || !cv_lay_ok(wis))
-            continue;
-        vec3 beta = wos.f * abs(wos.wi.z) / wos.pdf;
-        float z = th;
-        vec3 w = wos.wi;
-        for (int depth = 0; depth < L.max_depth; depth++) {
-            if (depth > 3 && cv_max3(beta) < 0.25) {
-                float q = max(0.0, 1.0 - cv_max3(beta));
-                if (cv_lay_next(rng) < q)
-                    break;
-                beta /= 1.0 - q;
+    float n = float(L.n_samples), th = L.thickness;
+    // F and PDF hash both directions into their streams (in opposite
+    // orders, so the two estimates stay independent); the walk its
+    // direction and random numbers
+    CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(pm ? wi : wo)),
+                            walk ? cv_hash3(floatBitsToUint(uc0), floatBitsToUint(u0.x), floatBitsToUint(u0.y))
+                                 : cv_lay_dir_hash(pm ? wo : wi));
+    vec3 fsum = vec3(0.0);  // F: the estimate's sum
+    float psum = 0.0;       // PDF: the estimate's sum
+    vec3 beta = vec3(0.0);  // F: throughput of the walk from wo; WALK: its f
+    float wpdf = 1.0;       // WALK: its pdf
+    bool specular = false;  // WALK: every event so far specular
+    CvBsdfSample wos = s, wis = s, bs = s;
+    bool wos_ok = false;
+    vec3 w = vec3(0.0);     // the walk's direction of travel
+    float z = th;
+    int depth = 0, smp = 0, at = CV_LAY_AT_ENTER_O;
+    int conn = CV_LAY_CONN_NONE;
+    float conn_pdf = 0.0;       // the density of w's sampling, for the exit's MIS weight
+    bool conn_weighted = true;  // EXIT: weigh it against the other strategy
+    float rpdf = 0.0;           // PDF: the base's density towards wis
+    // F and PDF only where both directions are above (the base transmits
+    // nothing); the all-delta layers are the one exact shortcut (every walk
+    // of F adds 0)
+    bool live = walk || (wo.z > 0.0 && wi.z > 0.0 && cv_layered_delta_prob(L, wo) < 1.0);
+    if (live && !walk)
+        conn = CV_LAY_CONN_TOP;
+    int bound = L.n_samples * (L.max_depth + 4) + 4;
+    for (int it = 0; live && it < bound; it++) {
+        // The connection the last event left: f through the coat (F) and
+        // the coat's density the MIS weight or the pdf estimate needs.
+        if (conn != CV_LAY_CONN_NONE) {
+            vec3 ca = conn == CV_LAY_CONN_TOP ? wo : -w;
+            float fe = fm ? cv_lay_coat_f(L, ca, wi, true) : 0.0;
+            // exit: the density with which wis's strategy makes w (cv_lay_exit_pdf)
+            bool exit = conn == CV_LAY_CONN_EXIT;
+            float cp = 0.0;
+            if (pm || (exit && fe > 0.0 && conn_weighted))
+                cp = cv_lay_coat_pdf(L, exit ? wi : ca, exit ? -w : wi,
+                                     conn == CV_LAY_CONN_TOP ? CV_LAY_R : (exit ? CV_LAY_T : CV_LAY_RT));
+            if (conn == CV_LAY_CONN_TOP) {
+                if (fm)
+                    fsum = vec3(n * fe);
+                else
+                    psum = n * cp;
+            } else if (exit) {
+                if (fe > 0.0)
+                    fsum += beta * cv_lay_tr(th - z, w) * fe * (conn_weighted ? cv_lay_power(conn_pdf, cp) : 1.0);
+            } else if (base_smooth) {
+                psum += cp;
+            } else {
+                psum += cv_lay_power(wis.pdf, rpdf) * rpdf;
+                psum += cv_lay_power(conn_pdf, cp) * cp;
             }
-            if (!medium) {
+            conn = CV_LAY_CONN_NONE;
+        }
+
+        // The next event: an interface (the coat from above or below, or
+        // the base) seen from win, or a scattering in the slab.
+        bool at_base = false, scatter = false, radiance = true, end = false;
+        float zp = z;  // a scattering's height
+        vec3 win = wo;
+        uint mask = walk ? CV_LAY_RT : CV_LAY_T;
+        float uc = uc0;
+        vec2 u2 = u0;
+        if (at == CV_LAY_AT_ENTER_O || at == CV_LAY_AT_ENTER_I) {
+            if (!walk && smp == L.n_samples)
+                break;
+            radiance = at == CV_LAY_AT_ENTER_O;
+            win = radiance ? wo : wi;
+            if (!walk) {
+                uc = cv_lay_next(rng);
+                u2 = cv_lay_next2(rng);
+            }
+        } else if (at == CV_LAY_AT_BASE) {
+            at_base = true;
+            w = wos.wi;
+            win = -w;
+        } else {
+            if (depth == L.max_depth || w.z == 0.0)
+                end = true;
+            if (!end && depth > 3) {
+                // Russian roulette
+                float rr = walk ? cv_max3(beta) / wpdf : cv_max3(beta);
+                if (rr < 0.25) {
+                    float q = max(0.0, 1.0 - rr);
+                    if (cv_lay_next(rng) < q)
+                        end = true;
+                    else if (walk)
+                        wpdf *= 1.0 - q;
+                    else
+                        beta /= 1.0 - q;
+                }
+            }
+            if (!end && medium) {
+                float dz = -log(1.0 - cv_lay_next(rng)) * abs(w.z);
+                zp = w.z > 0.0 ? z + dz : z - dz;
+                if (zp == z) {
+                    // no progress: F goes on to its next depth, the walk dies
+                    end = walk;
+                    depth++;
+                    if (!end)
+                        continue;
+                } else if (0.0 < zp && zp < th) {
+                    scatter = true;
+                    if (fm) {
+                        // next event: the phase function towards wis
+                        float ph = cv_lay_hg(dot(-w, -wis.wi), L.g);
+                        float wt = coat_smooth ? 1.0 : cv_lay_power(wis.pdf, ph);
+                        fsum += beta * L.albedo * ph * wt * cv_lay_tr(zp - th, wis.wi) * wis.f / wis.pdf;
+                    }
+                } else {
+                    z = clamp(zp, 0.0, th);
+                }
+            } else if (!end) {
                 z = (z == th) ? 0.0 : th;
                 beta *= cv_lay_tr(th, w);
-            } else {
-                float dz = -log(1.0 - cv_lay_next(rng)) * abs(w.z);
-                float zp = w.z > 0.0 ? z + dz : z - dz;
-                if (zp == z)
-                    continue;
-                if (0.0 < zp && zp < th) {
-                    // scattering in the slab: connect to wi through the coat, then
-                    // follow the phase function (and connect that direction too)
-                    float ph = cv_lay_hg(dot(-w, -wis.wi), L.g);
-                    float wt = coat_smooth ? 1.0 : cv_lay_power(wis.pdf, ph);
-                    f += beta * L.albedo * ph * wt * cv_lay_tr(zp - th, wis.wi) * wis.f / wis.pdf;
-                    float ppdf;
-                    vec3 wn = cv_lay_hg_sample(-w, L.g, cv_lay_next2(rng), ppdf);
-                    if (!(ppdf > 0.0) || wn.z == 0.0)
-                        continue;
-                    beta *= L.albedo;
-                    w = wn;
-                    z = zp;
-                    if (w.z > 0.0 && !coat_smooth) {
-                        float fe = cv_lay_coat_f(L, -w, wi, true);
-                        if (fe > 0.0) {
-                            float wt2 = cv_lay_power(ppdf, cv_lay_exit_pdf(L, w, wi));
-                            f += beta * cv_lay_tr(zp - th, w) * fe * wt2;
-                        }
-                    }
-                    continue;
-                }
-                z = clamp(zp, 0.0, th);
             }
-            CvBsdfSample bs;
-            if (z == th) {
-                // back down off the coat's underside
+            if (!end && !scatter) {
+                at_base = z == 0.0;
+                win = -w;
+                mask = walk ? CV_LAY_RT : CV_LAY_R;
                 uc = cv_lay_next(rng);
-                if (!cv_lay_coat_sample(L, -w, uc, cv_lay_next2(rng), true, CV_LAY_R, bs) || !cv_lay_ok(bs))
-                    break;
-                beta *= bs.f * abs(bs.wi.z) / bs.pdf;
-                w = bs.wi;
+                u2 = cv_lay_next2(rng);
+            }
+        }
+        if (!end && at_base && (pm || (fm && !base_smooth))) {
+            // the base towards wis: F's next event, PDF's TRT term
+            float bp = (pm || !coat_smooth) ? cv_lay_base_pdf(L, -w, -wis.wi) : 0.0;
+            if (fm) {
+                float wt = coat_smooth ? 1.0 : cv_lay_power(wis.pdf, bp);
+                fsum += beta * cv_lay_base_f(L, -w, -wis.wi) * abs(wis.wi.z) * wt * cv_lay_tr(th, wis.wi) *
+                        wis.f / wis.pdf;
             } else {
-                if (!base_smooth) {
-                    // next event: the base towards wis
-                    float wt = coat_smooth ? 1.0 : cv_lay_power(wis.pdf, cv_lay_base_pdf(L, -w, -wis.wi));
-                    f += beta * cv_lay_base_f(L, -w, -wis.wi) * abs(wis.wi.z) * wt * cv_lay_tr(th, wis.wi) *
-                         wis.f / wis.pdf;
-                }
-                uc = cv_lay_next(rng);
-                if (!cv_lay_base_sample(L, -w, cv_lay_next2(rng), bs) || !cv_lay_ok(bs))
-                    break;
-                beta *= bs.f * abs(bs.wi.z) / bs.pdf;
-                w = bs.wi;
-                if (!coat_smooth) {
-                    // next event: the sampled direction out through the coat
-                    float fe = cv_lay_coat_f(L, -w, wi, true);
-                    if (fe > 0.0) {
-                        float wt = base_smooth ? 1.0 : cv_lay_power(bs.pdf, cv_lay_exit_pdf(L, w, wi));
-                        f += beta * cv_lay_tr(th, bs.wi) * fe * wt;
-                    }
+                rpdf = bp;
+                if (coat_smooth) {
+                    psum += bp;
+                    end = true;
+                } else {
+                    uc = cv_lay_next(rng);
+                    u2 = cv_lay_next2(rng);
                 }
             }
         }
-    }
-    return f / n;
-}
-
-float cv_layered_pdf(CvLayered L, vec3 wo, vec3 wi)
-{
-    float sum = 0.0;
-    if (wo.z > 0.0 && wi.z > 0.0 && cv_layered_delta_prob(L, wo) < 1.0) {
-        float n = float(L.n_samples);
-        sum = n * cv_lay_coat_pdf(L, wo, wi, CV_LAY_R);
-        CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(wi)), cv_lay_dir_hash(wo));
-        bool coat_smooth = cv_lay_coat_smooth(L), base_smooth = cv_lay_base_smooth(L);
-        for (int smp = 0; smp < L.n_samples; smp++) {
-            // transmission in, reflection at the base, transmission out
-            CvBsdfSample wos, wis, rs;
-            float uc = cv_lay_next(rng);
-            bool a = cv_lay_coat_sample(L, wo, uc, cv_lay_next2(rng), true, CV_LAY_T, wos);
-            uc = cv_lay_next(rng);
-            bool b = cv_lay_coat_sample(L, wi, uc, cv_lay_next2(rng), false, CV_LAY_T, wis);
-            if (!(a && b && cv_max3(wos.f) > 0.0 && wos.pdf > 0.0 && cv_max3(wis.f) > 0.0 && wis.pdf > 0.0))
-                continue;
-            if (coat_smooth) {
-                sum += cv_lay_base_pdf(L, -wos.wi, -wis.wi);
-                continue;
-            }
-            uc = cv_lay_next(rng);
-            if (!cv_lay_base_sample(L, -wos.wi, cv_lay_next2(rng), rs) || !(cv_max3(rs.f) > 0.0 && rs.pdf > 0.0))
-                continue;
-            if (base_smooth) {
-                sum += cv_lay_coat_pdf(L, -rs.wi, wi, CV_LAY_RT);
-            } else {
-                float rpdf = cv_lay_base_pdf(L, -wos.wi, -wis.wi);
-                sum += cv_lay_power(wis.pdf, rpdf) * rpdf;
-                float tpdf = cv_lay_coat_pdf(L, -rs.wi, wi, CV_LAY_RT);
-                sum += cv_lay_power(rs.pdf, tpdf) * tpdf;
-            }
-        }
-        sum /= n;
-    }
-    // (transmission: the base passes nothing, the estimate is 0)
-    return mix(CV_INV_4PI, sum, 0.9);
-}
-
-// One walk out of the layers. s.pdf is the walk's pdf, proportional to the
-// true density only (pbrt-v4's pdfIsProportional): cv_layered_sample below
-// restates a non-delta sample with the pdf estimate.
-bool cv_layered_walk(CvLayered L, vec3 wo, float uc, vec2 u, out CvBsdfSample s)
-{
-    if (!cv_lay_coat_sample(L, wo, uc, u, true, CV_LAY_RT, s) || !cv_lay_ok(s))
-        return false;
-    if ((s.flags & CV_BSDF_REFLECTION) != 0u)
-        return true;
-    vec3 w = s.wi;
-    bool specular = (s.flags & CV_BSDF_SPECULAR) != 0u;
-    CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(wo)),
-                            cv_hash3(floatBitsToUint(uc), floatBitsToUint(u.x), floatBitsToUint(u.y)));
-    vec3 f = s.f * abs(s.wi.z);
-    float pdf = s.pdf;
-    float th = L.thickness, z = th;
-    bool medium = cv_lay_has_medium(L);
-    for (int depth = 0; depth < L.max_depth; depth++) {
-        float rr = cv_max3(f) / pdf;
-        if (depth > 3 && rr < 0.25) {
-            float q = max(0.0, 1.0 - rr);
-            if (cv_lay_next(rng) < q)
+        if (end) {
+            if (walk)
                 return false;
-            pdf *= 1.0 - q;
+            smp++;
+            at = CV_LAY_AT_ENTER_O;
+            continue;
         }
-        if (w.z == 0.0)
-            return false;
-        if (medium) {
-            float dz = -log(1.0 - cv_lay_next(rng)) * abs(w.z);
-            float zp = w.z > 0.0 ? z + dz : z - dz;
-            if (zp == z)
-                return false;
-            if (0.0 < zp && zp < th) {
-                float ppdf;
-                vec3 wn = cv_lay_hg_sample(-w, L.g, cv_lay_next2(rng), ppdf);
-                if (!(ppdf > 0.0) || wn.z == 0.0)
-                    return false;
-                f *= L.albedo * ppdf;
-                pdf *= ppdf;
-                specular = false;
-                w = wn;
-                z = zp;
-                continue;
-            }
-            z = clamp(zp, 0.0, th);
+
+        // The event: the one place the interfaces and the phase function
+        // are sampled.
+        bool ok;
+        float ppdf = 0.0;
+        if (scatter) {
+            bs.wi = cv_lay_hg_sample(-w, L.g, cv_lay_next2(rng), ppdf);
+            ok = ppdf > 0.0 && bs.wi.z != 0.0;
+        } else if (at_base) {
+            ok = cv_lay_base_sample(L, win, u2, bs);
         } else {
-            z = (z == th) ? 0.0 : th;
-            f *= cv_lay_tr(th, w);
+            ok = cv_lay_coat_sample(L, win, uc, u2, radiance, mask, bs);
         }
-        CvBsdfSample bs;
-        float uci = cv_lay_next(rng);
-        vec2 ui = cv_lay_next2(rng);
-        bool ok = z == 0.0 ? cv_lay_base_sample(L, -w, ui, bs) : cv_lay_coat_sample(L, -w, uci, ui, true, CV_LAY_RT, bs);
-        if (!ok || !cv_lay_ok(bs))
-            return false;
-        f *= bs.f;
-        pdf *= bs.pdf;
-        specular = specular && (bs.flags & CV_BSDF_SPECULAR) != 0u;
-        w = bs.wi;
-        if ((bs.flags & CV_BSDF_TRANSMISSION) != 0u) {
-            uint flags = (w.z > 0.0 ? CV_BSDF_REFLECTION : CV_BSDF_TRANSMISSION) | (specular ? CV_BSDF_SPECULAR : 0u);
-            s = CvBsdfSample(w, f, pdf, flags);
-            return true;
-        }
-        f *= abs(bs.wi.z);
-    }
-    return false;
-}
 
-bool cv_layered_sample(CvLayered L, vec3 wo, float uc, vec2 u, out CvBsdfSample s)
-{
-    if (!cv_layered_walk(L, wo, uc, u, s))
-        return false;
-    if ((s.flags & CV_BSDF_SPECULAR) == 0u) {
-        float p = cv_layered_pdf(L, wo, s.wi);
-        s.f *= p / s.pdf;
-        s.pdf = p;
+        // What it did to the walk.
+        if (at == CV_LAY_AT_ENTER_O) {
+            bool good = ok && cv_lay_ok(bs);
+            if (walk) {
+                if (!good)
+                    return false;
+                if ((bs.flags & CV_BSDF_REFLECTION) != 0u) {
+                    s = bs;
+                    return true;
+                }
+                w = bs.wi;
+                specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+                beta = bs.f * abs(bs.wi.z);
+                wpdf = bs.pdf;
+                at = CV_LAY_AT_INSIDE;
+            } else if (fm && !good) {
+                smp++;
+            } else {
+                wos = bs;
+                wos_ok = ok;
+                at = CV_LAY_AT_ENTER_I;
+            }
+        } else if (at == CV_LAY_AT_ENTER_I) {
+            wis = bs;
+            at = CV_LAY_AT_ENTER_O;
+            if (fm) {
+                if (ok && cv_lay_ok(bs)) {
+                    beta = wos.f * abs(wos.wi.z) / wos.pdf;
+                    z = th;
+                    w = wos.wi;
+                    depth = 0;
+                    at = CV_LAY_AT_INSIDE;
+                } else {
+                    smp++;
+                }
+            } else if (wos_ok && ok && cv_max3(wos.f) > 0.0 && wos.pdf > 0.0 && cv_max3(wis.f) > 0.0 &&
+                       wis.pdf > 0.0) {
+                at = CV_LAY_AT_BASE;  // transmission in, reflection at the base, transmission out
+            } else {
+                smp++;
+            }
+        } else if (at == CV_LAY_AT_BASE) {
+            if (ok && cv_max3(bs.f) > 0.0 && bs.pdf > 0.0) {
+                w = bs.wi;
+                conn = CV_LAY_CONN_BASE;
+                conn_pdf = bs.pdf;
+            }
+            smp++;
+            at = CV_LAY_AT_ENTER_O;
+        } else if (scatter) {
+            depth++;
+            if (!ok) {
+                if (walk)
+                    return false;
+                continue;  // F goes on to its next depth
+            }
+            if (walk) {
+                beta *= L.albedo * ppdf;
+                wpdf *= ppdf;
+                specular = false;
+            } else {
+                beta *= L.albedo;
+            }
+            w = bs.wi;
+            z = zp;
+            if (fm && w.z > 0.0 && !coat_smooth) {
+                // next event: the scattered direction out through the coat
+                conn = CV_LAY_CONN_EXIT;
+                conn_pdf = ppdf;
+                conn_weighted = true;
+            }
+        } else {
+            depth++;
+            if (!ok || !cv_lay_ok(bs)) {
+                if (walk)
+                    return false;
+                smp++;
+                at = CV_LAY_AT_ENTER_O;
+                continue;
+            }
+            w = bs.wi;
+            if (walk) {
+                beta *= bs.f;
+                wpdf *= bs.pdf;
+                specular = specular && (bs.flags & CV_BSDF_SPECULAR) != 0u;
+                if ((bs.flags & CV_BSDF_TRANSMISSION) != 0u) {
+                    uint flags = (w.z > 0.0 ? CV_BSDF_REFLECTION : CV_BSDF_TRANSMISSION) |
+                                 (specular ? CV_BSDF_SPECULAR : 0u);
+                    s = CvBsdfSample(w, beta, wpdf, flags);
+                    return true;
+                }
+                beta *= abs(bs.wi.z);
+            } else {
+                beta *= bs.f * abs(bs.wi.z) / bs.pdf;
+                if (at_base && !coat_smooth) {
+                    // next event: the sampled direction out through the coat
+                    conn = CV_LAY_CONN_EXIT;
+                    conn_pdf = bs.pdf;
+                    conn_weighted = !base_smooth;
+                }
+            }
+        }
     }
-    return true;
+    f = fsum / n;
+    pdf = mix(CV_INV_4PI, psum / n, 0.9);
+    return false;
 }
 
 #endif

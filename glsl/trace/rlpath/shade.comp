@@ -28,14 +28,17 @@
 // per depth). All of the learning (path state, target, atomics) runs only
 // while the table learns (cv_rl_learning, rlpath.train): the passes after
 // it sample the frozen guide and pay for its loads alone.
-// Built twice over the two bins of the hit queue, as path's shade.comp:
+// Built once per bin of the hit queue, as path's shade.comp:
 // CV_SHADE_BIN=0 shades diffuse hits with the BSDF code cut down to
-// diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 the others; one build for
-// all materials sized the kernel for the largest and cost every hit that.
+// diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 the others but the coated
+// walk's (CV_NO_LAYERED), CV_SHADE_BIN=2 those; one build for all
+// materials sized the kernel for the largest and cost every hit that.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
 #define CV_BSDF_DIFFUSE_ONLY
+#elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1
+#define CV_NO_LAYERED
 #endif
 #include "../common.glsl"
 #include "../sampler.glsl"
@@ -82,7 +85,9 @@ bool cv_rl_guides(CvBsdf b)
 // texels, m the guiding weight; expected: the target takes the key's
 // expected reflected radiance (else the one-sample estimate from the
 // bounce); wbin: the table bin of the bounce; pd: the probability with
-// which the BSDF picks a delta lobe (those stay the BSDF's to sample).
+// which the BSDF picks a delta lobe (those stay the BSDF's to sample);
+// guided, pq: the bounce is the guide's draw, of guided density pq
+// (cv_strategy_ask).
 struct CvStrategy {
     bool learning;
     float target;
@@ -93,6 +98,8 @@ struct CvStrategy {
     bool expected;
     uint wbin;
     float pd;
+    bool guided;
+    float pq;
 };
 
 void cv_strategy_emitted(inout CvStrategy g, vec3 Le, uint flags)
@@ -132,11 +139,10 @@ void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool
 }
 
 // The mixture density of wi (light samples weigh against it).
-float cv_strategy_pdf(CvStrategy g, CvBsdf b, vec3 wo, vec3 wi)
+float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf)
 {
     float pl = g.m > 0.0 ? cv_rl_prob(g.kk.gt, cv_rl_bin(wi)) : 0.0;
-    return cv_rl_mix_pdf(g.m, (1.0 - g.pd) * pl * float(cv_rl_bins()) / (4.0 * CV_RL_PI),
-                         cv_bsdf_pdf(b, wo, wi));
+    return cv_rl_mix_pdf(g.m, (1.0 - g.pd) * pl * float(cv_rl_bins()) / (4.0 * CV_RL_PI), bsdf_pdf);
 }
 
 // One-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives
@@ -145,34 +151,48 @@ float cv_strategy_pdf(CvStrategy g, CvBsdf b, vec3 wo, vec3 wi)
 // does) and keeps a delta lobe it picks. So a delta lobe is taken with the
 // BSDF's own probability whatever m, and a direction of the rest has
 // density m (1 - pd) pq + (1 - m) p_bsdf: every lobe is sampled for any m
-// in [0, 1].
-bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, vec2 u_bc,
-                        vec2 u_bsdf, out CvBsdfSample bs, out float pdf, out bool specular)
+// in [0, 1]. The guided direction is drawn here, before the vertex's one
+// BSDF query (cv_bsdf_query), which returns f and pdf there (wi1).
+void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bsdf, inout CvBsdfQuery q)
+{
+    float m = g.m;
+    g.guided = m > 0.0 && u_bsdf.x < m;
+    g.pq = 0.0;
+    q.uc = u_bc.x;
+    q.u = m > 0.0 ? vec2(min((g.guided ? u_bsdf.x : u_bsdf.x - m) / (g.guided ? m : 1.0 - m),
+                             CV_ONE_MINUS_EPS),
+                         u_bsdf.y)
+                  : u_bsdf;
+    if (!g.guided || g.pd > 0.0)
+        q.ask |= CV_BQ_SAMPLE;
+    if (g.guided) {
+        // the bin drawn, not the bin of the direction looked up again:
+        // rounding may put a direction on a bin's edge across it, a set of
+        // measure zero where either density serves (and a round of loads
+        // less)
+        g.wbin = cv_rl_sample_key(g.kk, q.u, q.wi1, g.pq);
+        q.ask |= CV_BQ_F1 | CV_BQ_PDF1;
+    }
+}
+
+bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvBsdfQuery q,
+                        out CvBsdfSample bs, out float pdf, out bool specular)
 {
     float m = g.m;
     pdf = 0.0;
     float pq = 0.0;   // the guided density of bs.wi
     specular = false;
-    bool guided = m > 0.0 && u_bsdf.x < m;
-    vec2 u = m > 0.0 ? vec2(min((guided ? u_bsdf.x : u_bsdf.x - m) / (guided ? m : 1.0 - m),
-                                CV_ONE_MINUS_EPS),
-                            u_bsdf.y)
-                     : u_bsdf;
-    // one call site: the compiler inlines the whole BSDF library at each
-    bool sampled = false;
-    if (!guided || g.pd > 0.0)
-        sampled = cv_bsdf_sample(b, wo, u_bc.x, u, bs);
-    if (guided && sampled && (bs.flags & CV_BSDF_SPECULAR) != 0u)
+    bool guided = g.guided;
+    bs = q.s;
+    if (guided && g.pd > 0.0 && q.sampled && (bs.flags & CV_BSDF_SPECULAR) != 0u)
         guided = false;   // the delta lobe the BSDF picked: bs stands
-    else if (!guided && !sampled)
+    else if (!guided && !q.sampled)
         return false;
     if (guided) {
-        // the bin drawn, not the bin of bs.wi looked up again: rounding may
-        // put a direction on a bin's edge across it, a set of measure zero
-        // where either density serves (and a round of loads less)
-        g.wbin = cv_rl_sample_key(g.kk, u, bs.wi, pq);
-        bs.f = cv_bsdf_f(b, wo, bs.wi);
-        bs.pdf = cv_bsdf_pdf(b, wo, bs.wi);
+        bs.wi = q.wi1;
+        bs.f = q.f1;
+        bs.pdf = q.pdf1;
+        pq = g.pq;
     } else {
         if (bs.pdf <= 0.0)
             return false;
@@ -212,7 +232,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     uvec2 st = learning ? imageLoad(rl_path, int(path)).xy : uvec2(CV_RL_NONE);
     uint learn = (depth > 0u && st.x != CV_RL_NONE && st.y + 1u == depth) ? st.x : CV_RL_NONE;
     CvStrategy g = CvStrategy(learn != CV_RL_NONE, 0.0, 0.0, 0u,
-                              CvRlKey(0, 0.0, 0.0, vec4(0.0), vec4(0.0)), 0.0, false, 0u, 0.0);
+                              CvRlKey(0, 0.0, 0.0, vec4(0.0), vec4(0.0)), 0.0, false, 0u, 0.0, false, 0.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
     if (learning) {
         uint entry = push_ray ? cv_rl_entry(g.key, g.wbin) : CV_RL_NONE;

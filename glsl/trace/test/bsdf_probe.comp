@@ -43,21 +43,38 @@ void main()
     CvBsdf b = cv_bsdf_at(u_material, sp, cv_rng_next(rng));
     CvRng stream = cv_rng_init(u_seed ^ 0x5bd1e995u, i);  // own stream: the draws below stay as they were
     cv_bsdf_set_stream(b, cv_rng_next2(stream), cv_rng_next2(stream));
+    // Every answer through one query call site, as a shade stage asks
+    // (bsdf/bsdf_query.glsl): mode 0 samples, then evaluates f and pdf at
+    // the sampled direction; mode 1 evaluates at probe_in[i].
+    CvBsdfQuery q = cv_bsdf_query_new(u_wo);
     if (u_mode == 0u) {
-        float uc = cv_rng_next(rng);
-        vec2 u = cv_rng_next2(rng);
-        CvBsdfSample s;
-        if (!cv_bsdf_sample(b, u_wo, uc, u, s)) {
+        q.ask = CV_BQ_SAMPLE;
+        q.uc = cv_rng_next(rng);
+        q.u = cv_rng_next2(rng);
+    } else {
+        q.ask = CV_BQ_F0 | CV_BQ_PDF0;
+        q.wi0 = probe_in[i].xyz;
+    }
+    CvBsdfSample s = q.s;
+    for (uint pass = 0u; pass < 2u; pass++) {
+        cv_bsdf_query(b, q);
+        if (q.ask != CV_BQ_SAMPLE)
+            break;
+        s = q.s;
+        if (!q.sampled) {
             probe_out[3u * i] = vec4(0.0, 0.0, 0.0, -1.0);
             probe_out[3u * i + 1u] = vec4(0.0);
             probe_out[3u * i + 2u] = vec4(0.0);
             return;
         }
+        q.ask = CV_BQ_F0 | CV_BQ_PDF0;
+        q.wi0 = s.wi;
+    }
+    if (u_mode == 0u) {
         probe_out[3u * i] = vec4(s.wi, s.pdf);
         probe_out[3u * i + 1u] = vec4(s.f, float(s.flags));
-        probe_out[3u * i + 2u] = vec4(cv_bsdf_f(b, u_wo, s.wi), cv_bsdf_pdf(b, u_wo, s.wi));
+        probe_out[3u * i + 2u] = vec4(q.f0, q.pdf0);
     } else {
-        vec3 wi = probe_in[i].xyz;
-        probe_out[i] = vec4(cv_bsdf_f(b, u_wo, wi), cv_bsdf_pdf(b, u_wo, wi));
+        probe_out[i] = vec4(q.f0, q.pdf0);
     }
 }

@@ -1,0 +1,67 @@
+/* shade_bins.c: see shade_bins.h. */
+#include "trace/shade_bins.h"
+
+/* A coated diffuse takes the closed form where the host allowed it and
+ * its coat is smooth enough (bsdf.glsl: cv_bsdf_at); with a textured
+ * roughness only the shader knows, so it may walk. */
+static bool always_closed(const CvMaterial *m)
+{
+    return (m->flags & CV_MATF_COAT_CLOSED) && m->roughness_u_tex < 0 && m->roughness_v_tex < 0 &&
+           m->roughness.x <= CV_COAT_CLOSED_ALPHA && m->roughness.y <= CV_COAT_CLOSED_ALPHA;
+}
+
+/* Mixes nest at most this deep (bsdf.glsl: cv_material_resolve). */
+enum { MIX_DEPTH = 8 };
+
+static uint32_t bin_of(const CvMaterial *ms, uint32_t n, int32_t i, int depth)
+{
+    if (i < 0 || (uint32_t)i >= n)
+        return CV_SHADE_BIN_OTHER;
+    const CvMaterial *m = &ms[i];
+    switch (m->type) {
+    case CV_MAT_DIFFUSE:
+        return CV_SHADE_BIN_DIFFUSE;
+    case CV_MAT_COATED_DIFFUSE:
+        return always_closed(m) ? CV_SHADE_BIN_OTHER : CV_SHADE_BIN_WALK;
+    case CV_MAT_COATED_CONDUCTOR:
+        return CV_SHADE_BIN_WALK;
+    case CV_MAT_MIX: {
+        if (depth >= MIX_DEPTH)
+            return CV_SHADE_BIN_OTHER;  /* the shader stops resolving there too */
+        uint32_t a = bin_of(ms, n, m->mix_a, depth + 1), b = bin_of(ms, n, m->mix_b, depth + 1);
+        uint32_t k = a > b ? a : b;
+        return k > CV_SHADE_BIN_OTHER ? k : CV_SHADE_BIN_OTHER;
+    }
+    default:
+        return CV_SHADE_BIN_OTHER;
+    }
+}
+
+uint32_t cv_shade_bin(const CvMaterial *ms, uint32_t n, uint32_t i)
+{
+    return bin_of(ms, n, (int32_t)i, 0);
+}
+
+void cv_shade_bins_mark(CvMaterial *ms, uint32_t n)
+{
+    uint32_t keep = (1u << CV_MATF_SHADE_BIN_SHIFT) - 1u;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t bin = cv_shade_bin(ms, n, i);
+        ms[i].flags = (ms[i].flags & keep) | bin << CV_MATF_SHADE_BIN_SHIFT;
+    }
+}
+
+void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed)
+{
+    *bins = 0;
+    *walk_closed = false;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t bin = cv_shade_bin(ms, n, i);
+        *bins |= 1u << bin;
+        if (bin != CV_SHADE_BIN_WALK)
+            continue;
+        /* a mix may resolve to a closed-form coat */
+        if ((ms[i].flags & CV_MATF_COAT_CLOSED) || ms[i].type == CV_MAT_MIX)
+            *walk_closed = true;
+    }
+}

@@ -1,0 +1,33 @@
+/* shade_bins.h: which shade bin of the hit queue shades each material
+ * (glsl/shared/trace.h: CV_Q_HITS, CV_Q_HITS_B, CV_Q_HITS_C), the one home
+ * of that choice. A bin's kernel carries the code and registers of every
+ * BSDF its materials may resolve to, so the choice is by cost: bin 0 the
+ * diffuse material (BSDF code cut down to it), bin 1 every other material
+ * but those that may take the coated walk (glsl/trace/bsdf/layered.glsl),
+ * bin 2 those, whose walk is by far the largest code (compile time) and
+ * register set (occupancy) of the library. */
+#ifndef CV_TRACE_SHADE_BINS_H
+#define CV_TRACE_SHADE_BINS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "glsl/shared/scene.h"
+
+enum { CV_SHADE_BIN_DIFFUSE = 0, CV_SHADE_BIN_OTHER = 1, CV_SHADE_BIN_WALK = 2 };
+
+/* The bin of material i of ms[0..n): of a mix, the largest of its
+ * components' (at least CV_SHADE_BIN_OTHER, whose kernel resolves mixes). */
+uint32_t cv_shade_bin(const CvMaterial *ms, uint32_t n, uint32_t i);
+
+/* Writes every material's bin into its flags (CV_MATF_SHADE_BIN_SHIFT),
+ * for the intersect stage's binning. */
+void cv_shade_bins_mark(CvMaterial *ms, uint32_t n);
+
+/* Which bins the scene's materials use (*bins: bit b for bin b; a bin no
+ * material uses needs no program, but bin 0's always runs) and what the
+ * bin-2 kernel must hold: *walk_closed, whether one of its materials may
+ * also take the closed-form coat (coated_closed.glsl). */
+void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed);
+
+#endif

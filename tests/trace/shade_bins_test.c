@@ -1,0 +1,76 @@
+/* shade_bins_test.c: the shade bin of each kind of material
+ * (src/trace/shade_bins.h): diffuse in bin 0; what may take the coated
+ * walk in bin 2 (a mix by its components); a coated diffuse that always
+ * takes the closed form in bin 1 with the other materials; and the
+ * features that decide whether the bin-2 program is built. */
+#include <string.h>
+
+#include "base/mem.h"
+#include "tests/tap.h"
+#include "trace/shade_bins.h"
+
+static CvMaterial mat(uint32_t type)
+{
+    CvMaterial m;
+    memset(&m, 0, sizeof(m));
+    m.type = type;
+    m.displacement_tex = m.normal_tex = m.reflectance_tex = m.specular_tex = -1;
+    m.roughness_u_tex = m.roughness_v_tex = m.alpha_tex = m.amount_tex = m.eta_tex = -1;
+    m.mix_a = m.mix_b = -1;
+    m.alpha = 1;
+    return m;
+}
+
+int main(void)
+{
+    enum { DIFF, COND, GLASS, CLOSED, CLOSED_ROUGH, CLOSED_TEX, WALK_DIFF, COAT_COND, MIX_DD, MIX_DW,
+           MIX_NEST, HAIR, N };
+    CvMaterial ms[N];
+    ms[DIFF] = mat(CV_MAT_DIFFUSE);
+    ms[COND] = mat(CV_MAT_CONDUCTOR);
+    ms[GLASS] = mat(CV_MAT_DIELECTRIC);
+    ms[CLOSED] = mat(CV_MAT_COATED_DIFFUSE);
+    ms[CLOSED].flags = CV_MATF_COAT_CLOSED;
+    ms[CLOSED].roughness.x = ms[CLOSED].roughness.y = CV_COAT_CLOSED_ALPHA;
+    ms[CLOSED_ROUGH] = ms[CLOSED];
+    ms[CLOSED_ROUGH].roughness.x = 0.01f;
+    ms[CLOSED_TEX] = ms[CLOSED];
+    ms[CLOSED_TEX].roughness_v_tex = 0;
+    ms[WALK_DIFF] = mat(CV_MAT_COATED_DIFFUSE);
+    ms[COAT_COND] = mat(CV_MAT_COATED_CONDUCTOR);
+    ms[MIX_DD] = mat(CV_MAT_MIX);
+    ms[MIX_DD].mix_a = DIFF;
+    ms[MIX_DD].mix_b = DIFF;
+    ms[MIX_DW] = mat(CV_MAT_MIX);
+    ms[MIX_DW].mix_a = DIFF;
+    ms[MIX_DW].mix_b = COAT_COND;
+    ms[MIX_NEST] = mat(CV_MAT_MIX);
+    ms[MIX_NEST].mix_a = MIX_DD;
+    ms[MIX_NEST].mix_b = MIX_DW;
+    ms[HAIR] = mat(CV_MAT_HAIR);
+    static const uint32_t want[N] = {0, 1, 1, 1, 2, 2, 2, 2, 1, 2, 2, 1};
+    static const char *const names[N] = {
+        "diffuse", "conductor", "dielectric", "closed-form coated diffuse",
+        "closed-form allowed, rough coat", "closed-form allowed, textured roughness",
+        "coated diffuse with a medium", "coated conductor", "mix of diffuse",
+        "mix of diffuse and coated conductor", "mix of those mixes", "hair"};
+    for (uint32_t i = 0; i < N; i++) {
+        uint32_t b = cv_shade_bin(ms, N, i);
+        tap_ok(b == want[i], "%s: bin %u (want %u)", names[i], b, want[i]);
+    }
+    cv_shade_bins_mark(ms, N);
+    bool marked = true;
+    for (uint32_t i = 0; i < N; i++)
+        marked = marked && ms[i].flags >> CV_MATF_SHADE_BIN_SHIFT == want[i];
+    tap_ok(marked && (ms[CLOSED].flags & CV_MATF_COAT_CLOSED), "marked in the flags, others kept");
+
+    uint32_t bins;
+    bool walk_closed;
+    cv_shade_bins_features(ms, N, &bins, &walk_closed);
+    tap_ok(bins == 7u && walk_closed, "every bin; the walk's may also take the closed form");
+    cv_shade_bins_features(ms, CLOSED + 1, &bins, &walk_closed);
+    tap_ok(bins == 3u && !walk_closed, "no walk among diffuse, conductor, dielectric, closed form");
+    cv_shade_bins_features(ms + WALK_DIFF, 2, &bins, &walk_closed);
+    tap_ok(bins == 4u && !walk_closed, "walks alone, without the closed form");
+    return tap_done();
+}
