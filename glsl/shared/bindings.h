@@ -39,6 +39,10 @@
 /* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
  * above the stage-private range */
 #define CV_BIND_MEDIA 29
+/* uint[]: the measured BRDFs' tables (glsl/shared/measured.h), with the
+ * scene; declared only where a material is measured (else CV_NO_MEASURED);
+ * above the stage-private range */
+#define CV_BIND_MEASURED 30
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -136,6 +136,7 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_INTERFACE 9u            /* no surface: rays pass through */
 #define CV_MAT_PLASTIC 10u             /* v3 plastic: Kd in reflectance, Ks in specular, roughness */
 #define CV_MAT_HAIR 11u                /* hair: reflectance.rgb (see CV_MATF_HAIR_*), eta.x, roughness = beta_m, beta_n, alpha (degrees) */
+#define CV_MAT_MEASURED 13u            /* measured (RGL BRDF): mix_a = word offset of its tables (glsl/shared/measured.h) */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */

@@ -129,6 +129,8 @@ struct cv_builder {
     char **paths;                /* every file read, kept for locations */
     size_t n_paths, cap_paths;
     uint32_t light_source;       /* the directive of the lights added next */
+    struct cv_named *measured_files; /* path -> word offset in the scene's measured tables */
+    size_t n_measured_files, cap_measured_files, cap_measured;
     size_t cap_light_sources;
 };
 

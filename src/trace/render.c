@@ -310,6 +310,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         defines[nd++] = "CV_NO_HAIR";
     if (!gs->has_coat_closed)
         defines[nd++] = "CV_NO_COAT_CLOSED";
+    if (!gs->has_measured)
+        defines[nd++] = "CV_NO_MEASURED";
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     /* media are tracked by an integrator that renders them, in a scene
      * that has them */

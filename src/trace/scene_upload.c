@@ -134,6 +134,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
             g->has_alpha = true;
         if (m->type == CV_MAT_HAIR)
             g->has_hair = true;
+        if (m->type == CV_MAT_MEASURED)
+            g->has_measured = true;
         if (m->flags & CV_MATF_COAT_CLOSED)
             g->has_coat_closed = true;
         if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
@@ -191,6 +193,11 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
+    if (g.has_measured && !up(gpu, &g.measured, s->n_measured * sizeof(uint32_t), s->measured,
+                              "measured BRDF tables", err)) {
+        cv_scene_gpu_release(&g);
+        return false;
+    }
     if (g.has_curves) {
         size_t n4;
         float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
@@ -234,6 +241,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         cv_buffer_bind(g->curves, CV_BIND_CURVES);
     if (g->media)
         cv_buffer_bind(g->media, CV_BIND_MEDIA);
+    if (g->measured)
+        cv_buffer_bind(g->measured, CV_BIND_MEASURED);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -251,7 +260,7 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     }
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
-                   &g->tri_object, &g->curves, &g->media};
+                   &g->tri_object, &g->curves, &g->media, &g->measured};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     bool had_bvh = g->bvh != NULL;

@@ -30,6 +30,8 @@ struct cv_scene_gpu {
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     bool has_hair;    /* some material is hair (else CV_NO_HAIR) */
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
+    GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
+    bool has_measured; /* some material is measured (else CV_NO_MEASURED) */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its

@@ -38,6 +38,14 @@
 #include "coated_closed.glsl"
 #include "plastic.glsl"
 #include "hair.glsl"
+// measured BRDFs: only in kernels of scenes that have them (the host
+// defines CV_NO_MEASURED otherwise), never in the diffuse bin's
+#if defined(CV_BSDF_DIFFUSE_ONLY) && !defined(CV_NO_MEASURED)
+#define CV_NO_MEASURED
+#endif
+#ifndef CV_NO_MEASURED
+#include "measured.glsl"
+#endif
 #include "texture.glsl"
 
 // ng: geometric normal as stored (oriented by CV_TRI_REVERSE); ns: shading
@@ -53,6 +61,7 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 //    thickness, medium, walk
 //  DIFFUSE_TRANSMISSION c0 = R, c1 = T | PLASTIC c0 = Kd, c1 = Ks, alpha.xy | INTERFACE none
 //  HAIR c0 = sigma_a, eta, alpha = (beta_m, beta_n, scale tilt in degrees, h across the fibre)
+//  MEASURED walk.x = word offset of its tables (glsl/shared/measured.h)
 struct CvBsdf {
     uint type;  // read through CV_BSDF_TYPE
     uint material;
@@ -288,6 +297,11 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
             b.c0 = cv_hair_sigma_a_from_melanin(refl.x, refl.y);
     }
 #endif
+#ifndef CV_NO_MEASURED
+    else if (b.type == CV_MAT_MEASURED) {
+        b.walk.x = m.mix_a;
+    }
+#endif
 #endif
     return b;
 }
@@ -355,7 +369,8 @@ CvCoatClosed cv_bsdf_coat_closed_params(CvBsdf b)
 bool cv_bsdf_mirrored(CvBsdf b)
 {
     uint type = CV_BSDF_TYPE(b);
-    return type == CV_MAT_COATED_DIFFUSE || type == CV_MAT_COATED_CONDUCTOR || type == CV_MAT_PLASTIC;
+    return type == CV_MAT_COATED_DIFFUSE || type == CV_MAT_COATED_CONDUCTOR || type == CV_MAT_PLASTIC ||
+           type == CV_MAT_MEASURED;
 }
 
 vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
@@ -386,6 +401,10 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_f(cv_bsdf_hair(b), wo, wi);
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        return cv_measured_f(uint(b.walk.x), wo, wi);
 #endif
     default:
         return vec3(0.0);
@@ -421,6 +440,10 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_pdf(cv_bsdf_hair(b), wo, wi);
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        return cv_measured_pdf(uint(b.walk.x), wo, wi);
 #endif
     default:
         return 0.0;
@@ -486,6 +509,11 @@ bool cv_bsdf_sample(CvBsdf b, vec3 wo_world, float uc, vec2 u, out CvBsdfSample 
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         ok = cv_hair_sample(cv_bsdf_hair(b), wo, uc, u, s);
+        break;
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        ok = cv_measured_sample(uint(b.walk.x), wo, u, s);
         break;
 #endif
     default:
@@ -568,6 +596,10 @@ vec3 cv_bsdf_albedo(CvBsdf b)
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return exp(-2.0 * b.c0);  // straight through the fibre (h 0, theta 0): its colour
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        return cv_measured_albedo(uint(b.walk.x));
 #endif
     default:
         return vec3(0.0);
