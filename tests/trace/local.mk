@@ -95,3 +95,8 @@ TESTS += tests/trace/medium_phase_test
 tests_trace_medium_phase_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 # --- end of participating media ---
+# --- measured BRDFs (issue 27 item 4) ---
+check_PROGRAMS += tests/trace/bsdf_measured_test
+TESTS += tests/trace/bsdf_measured_test
+tests_trace_bsdf_measured_test_LDADD = $(CV_LIBS)
+# --- end of measured BRDFs ---

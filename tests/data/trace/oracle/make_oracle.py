@@ -287,6 +287,7 @@ def main():
                            ' "integer maxdepth" [ %d ]' % md), maxdepth=8)
     curve_scenes()
     media_scenes()
+    measured_scenes()
 
 
 # Camera and film (branch filmcam): scenes of emitters alone (maxdepth 1,
@@ -449,6 +450,14 @@ def media_scenes():
         + 'MakeNamedMedium "milk" "string type" "homogeneous"\n'
           '  "rgb sigma_a" [ 0.2 0.2 0.2 ] "rgb sigma_s" [ 2 2 2 ]\n'
         + sphere('MediumInterface "milk" ""\n  Material "dielectric" "float eta" [ 1.5 ]'))
+
+
+# Measured BRDFs (issue 27): the RGL tensor file of make_measured.py (an
+# analytic GGX conductor whose colour varies across the spectrum) on the
+# sphere, lit as the other materials.
+def measured_scenes():
+    scene("mat_measured", "measured BRDF (RGL tensor file measured_ggx.bsdf, make_measured.py)",
+          LIT + sphere('Material "measured" "string filename" "measured_ggx.bsdf"'), maxdepth=8)
 
 
 if __name__ == "__main__":
