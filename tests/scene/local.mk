@@ -27,3 +27,8 @@ EXTRA_DIST += tests/scene/scene_helpers.h tests/scene/fuzz_test.sh tests/scene/f
 check_PROGRAMS += tests/scene/hdr_check_test
 TESTS += tests/scene/hdr_check_test
 tests_scene_hdr_check_test_LDADD = $(CV_LIBS)
+
+# --- measured BRDFs (issue 27 item 4): RGL tensor files ---
+check_PROGRAMS += tests/scene/rgl_tensor_test
+TESTS += tests/scene/rgl_tensor_test
+tests_scene_rgl_tensor_test_LDADD = $(CV_LIBS)
