@@ -47,6 +47,10 @@
  * src/bvh/motion_bvh.c); bound only where the scene has them (CV_HAS_MOTION);
  * above the stage-private range */
 #define CV_BIND_MOTION 31
+/* uint[]: the measured BRDFs' tables (glsl/shared/measured.h), with the
+ * scene; declared only where a material is measured (else CV_NO_MEASURED);
+ * above the stage-private range */
+#define CV_BIND_MEASURED 32
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -139,6 +139,7 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_SUBSURFACE 12u          /* subsurface: a dielectric boundary (eta.x, roughness) over a BSSRDF:
                                           reflectance.rgb sigma_a, specular.rgb sigma_s [1 / scene unit],
                                           k.x its table (glsl/shared/bssrdf.h); see CV_MATF_SSS_POINT */
+#define CV_MAT_MEASURED 13u            /* measured (RGL BRDF): mix_a = word offset of its tables (glsl/shared/measured.h) */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */

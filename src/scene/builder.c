@@ -104,6 +104,7 @@ void cv_b_free(struct cv_builder *b)
     free_named(b->spec_tex, b->n_spec_tex);
     free_named(b->images, b->n_images);
     free_named(b->media_named, b->n_media_named);
+    free_named(b->measured_files, b->n_measured_files);
     free(b->media_copies);
     for (size_t i = 0; i < b->n_coordsys; i++)
         free(b->coordsys[i].name);

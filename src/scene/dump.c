@@ -13,7 +13,7 @@ static const char *mat_type(uint32_t t)
     static const char *const n[] = {"diffuse", "conductor", "dielectric", "thindielectric",
                                     "mirror", "coateddiffuse", "coatedconductor",
                                     "diffusetransmission", "mix", "interface", "plastic", "hair",
-                                    "subsurface"};
+                                    "subsurface", "measured"};
     return t < sizeof(n) / sizeof(n[0]) ? n[t] : "?";
 }
 
@@ -133,6 +133,9 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
             fprintf(o, "    media inside %u outside %u\n", m->media & 255u, (m->media >> 8) & 255u);
     }
     free(uses);
+    /* measured BRDF tables likewise */
+    if (s->n_measured)
+        fprintf(o, "measured tables %zu words\n", s->n_measured);
     /* media only where the scene has them: other scenes' dumps stay as they were */
     if (s->n_media) {
         fprintf(o, "media %u camera %u\n", s->n_media - 1, s->camera_medium);

@@ -13,7 +13,9 @@ libcavalry_a_SOURCES += \
 	src/scene/bssrdf_table.c src/scene/bssrdf_table.h \
 	src/scene/scattering_presets.c src/scene/scattering_presets.h \
 	src/scene/coat_closed.c src/scene/coat_closed.h \
-	src/scene/spectrum.c \
+	src/scene/spectrum.c src/scene/spectrum.h \
+	src/scene/rgl_tensor.c src/scene/rgl_tensor.h \
+	src/scene/measured.c src/scene/measured.h \
 	src/scene/image.c src/scene/image.h \
 	src/scene/hdr_check.c src/scene/hdr_check.h \
 	src/scene/exr_image.cpp src/scene/exr_image.h \

@@ -11,6 +11,8 @@
 #include "scene/bssrdf_table.h"
 #include "scene/coat_closed.h"
 #include "scene/scattering_presets.h"
+#include "scene/measured.h"
+#include "scene/rgl_tensor.h"
 
 static void mat_init(CvMaterial *m, uint32_t type)
 {
@@ -293,6 +295,53 @@ static bool subsurface(struct cv_builder *b, struct cv_params *ps, const struct 
     return true;
 }
 
+/* pbrt-v4's MeasuredMaterial: the RGL tensor file "filename", read once
+ * per scene however many materials name it; its tables go to the scene's
+ * measured buffer (glsl/shared/measured.h), the block's offset to mix_a. */
+static bool measured(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
+                     const char *dir, CvMaterial *m, struct cv_error *err)
+{
+    const char *file = cv_params_string(ps, "filename", NULL);
+    if (!file || !*file)
+        return cv_fail(err, "%s:%d:%d: measured: \"string filename\" (an RGL .bsdf file) is required",
+                       loc->file, loc->line, loc->col);
+    m->type = CV_MAT_MEASURED;
+    char *path = cv_b_resolve(b, dir, file, err);
+    if (!path) {
+        cv_error_prefix(err, "%s:%d:%d: measured \"%s\"", loc->file, loc->line, loc->col, file);
+        return false;
+    }
+    int at = cv_b_lookup(b->measured_files, b->n_measured_files, path);
+    if (at < 0) {
+        struct cv_tensor_file t;
+        uint32_t *block = NULL;
+        size_t n = 0;
+        bool ok = cv_tensor_load(path, &t, err);
+        if (ok) {
+            ok = cv_measured_tables(path, &t, &block, &n, err);
+            cv_tensor_free(&t);
+        }
+        if (ok && b->s->n_measured + n > (size_t)INT32_MAX)
+            ok = cv_fail(err, "%s: the scene's measured tables grow past 2^31 words", path);
+        if (!ok) {
+            free(path);
+            free(block);
+            cv_error_prefix(err, "%s:%d:%d: measured", loc->file, loc->line, loc->col);
+            return false;
+        }
+        struct cv_scene *s = b->s;
+        at = (int)s->n_measured;
+        s->measured = cv_xgrow(s->measured, &b->cap_measured, s->n_measured + n, sizeof(uint32_t));
+        memcpy(s->measured + s->n_measured, block, n * sizeof(uint32_t));
+        s->n_measured += n;
+        free(block);
+        cv_b_set_named(&b->measured_files, &b->n_measured_files, &b->cap_measured_files, path, at);
+    }
+    free(path);
+    m->mix_a = at;
+    return true;
+}
+
 bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
                    struct cv_params *ps, const struct cv_loc *loc, const char *dir,
                    struct cv_error *err, int *out)
@@ -455,6 +504,9 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         if (!subsurface(b, ps, loc, dir, &m, err) || !ROUGH("", 0, false))
             return false;
         m.roughness = (cv_vec4){au, av, 0, 0};
+    } else if (strcmp(type, "measured") == 0) {
+        if (!measured(b, ps, loc, dir, &m, err))
+            return false;
     } else if (strcmp(type, "mix") == 0) {
         m.type = CV_MAT_MIX;
         double amount = 0.5;

@@ -29,6 +29,7 @@ static void scene_free(struct cv_scene *s)
     free(s->material_at);
     free(s->materials);
     free(s->textures);
+    free(s->measured);
     free(s->texels);
     free(s->lights);
     free(s->media);

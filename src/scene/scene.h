@@ -119,6 +119,12 @@ struct cv_scene {
     uint32_t n_lights;
     float *light_power;              /* per light: power used for the sampling CDF */
 
+    /* measured BRDFs' tables (glsl/shared/measured.h), one block per file
+     * in first-use order; a CV_MAT_MEASURED material's mix_a is the word
+     * offset of its block */
+    uint32_t *measured;
+    size_t n_measured;               /* in words */
+
     CvMedium *media;                 /* glsl/shared/medium.h: media[0] is vacuum */
     uint32_t n_media;                /* 0 when the scene names none */
     uint32_t camera_medium;          /* the medium the camera sits in (0: vacuum) */

@@ -12,6 +12,7 @@
 #include "base/file.h"
 #include "base/mem.h"
 #include "scene/builder.h"
+#include "scene/spectrum.h"
 
 static double lobe(double l, double mu, double s1, double s2)
 {
@@ -83,6 +84,56 @@ static void spectrum_rgb(const double *pairs, size_t n, double T, enum cv_spectr
     for (int c = 0; c < 3; c++)
         xyz[c] /= norm;
     xyz_to_rgb(xyz, rgb);
+}
+
+/* CIE standard illuminant D65, 360..830 nm in steps of 10 nm. */
+static const double d65[] = {
+    46.6383, 52.0891, 49.9755, 54.6482, 82.7549, 91.486,  93.4318, 86.6823, 104.865, 117.008,
+    117.812, 114.861, 115.923, 108.811, 109.354, 107.802, 104.79,  107.689, 104.405, 104.046,
+    100.0,   96.3342, 95.788,  88.6856, 90.0062, 89.5991, 87.6987, 83.2886, 83.6992, 80.0268,
+    80.2146, 82.2778, 78.2842, 69.7213, 71.6091, 74.349,  61.604,  69.8856, 75.087,  63.5927,
+    46.4182, 66.8054, 63.3828, 64.304,  59.4519, 51.959,  57.4406, 60.3125,
+};
+
+static double d65_at(double l)
+{
+    double x = (l - 360) / 10;
+    int i = (int)x;
+    if (i < 0)
+        return d65[0];
+    if (i >= (int)CV_ARRAY_SIZE(d65) - 1)
+        return d65[CV_ARRAY_SIZE(d65) - 1];
+    return d65[i] + (x - i) * (d65[i + 1] - d65[i]);
+}
+
+void cv_spectrum_rgb_weights(const float *lambda, size_t n, double *w)
+{
+    for (size_t k = 0; k < 3 * n; k++)
+        w[k] = 0;
+    for (double l = 360; l <= 830; l += 1) {
+        double xyz[3], rgb[3], e = d65_at(l);
+        cie_xyz(l, xyz);
+        xyz_to_rgb(xyz, rgb);
+        /* the hat functions of the nodes around l */
+        size_t k = 0;
+        while (k + 1 < n && lambda[k + 1] <= l)
+            k++;
+        double t = 0;
+        if (k + 1 < n && l > lambda[k])
+            t = (l - lambda[k]) / (lambda[k + 1] - lambda[k]);
+        for (int c = 0; c < 3; c++) {
+            w[3 * k + c] += (1 - t) * e * rgb[c];
+            if (t > 0)
+                w[3 * (k + 1) + c] += t * e * rgb[c];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        double sum = 0;
+        for (size_t k = 0; k < n; k++)
+            sum += w[3 * k + c];
+        for (size_t k = 0; k < n; k++)
+            w[3 * k + c] = sum != 0 ? w[3 * k + c] / sum : 0;
+    }
 }
 
 static const struct {

@@ -41,6 +41,8 @@ GLSL_FILES += glsl/shared/rlpath.h \
 # --- end of rlpath ---
 # --- hair BSDF and curves (issue 27 item 2) ---
 GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl
+# --- measured BRDFs (issue 27 item 4) ---
+GLSL_FILES += glsl/shared/measured.h glsl/trace/bsdf/measured.glsl
 
 # --- participating media (volpath) ---
 GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \

@@ -325,6 +325,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * sss_vertex.glsl): only where a material is subsurface */
     if (gs->has_subsurface)
         defines[nd++] = "CV_HAS_SUBSURFACE";
+    if (!gs->has_measured)
+        defines[nd++] = "CV_NO_MEASURED";
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     /* media are tracked by an integrator that renders them, in a scene
      * that has them */

@@ -141,6 +141,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
             g->has_hair = true;
         if (m->type == CV_MAT_SUBSURFACE)
             g->has_subsurface = true;
+        if (m->type == CV_MAT_MEASURED)
+            g->has_measured = true;
         if (m->flags & CV_MATF_COAT_CLOSED)
             g->has_coat_closed = true;
         if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
@@ -206,6 +208,11 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
     free(env);
     free(materials);
     if (!ok) {
+        cv_scene_gpu_release(&g);
+        return false;
+    }
+    if (g.has_measured && !up(gpu, &g.measured, s->n_measured * sizeof(uint32_t), s->measured,
+                              "measured BRDF tables", err)) {
         cv_scene_gpu_release(&g);
         return false;
     }
@@ -278,6 +285,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         cv_buffer_bind(g->motion, CV_BIND_MOTION);
     if (g->bssrdf_tex)
         glBindTextureUnit(CV_TEXUNIT_BSSRDF, g->bssrdf_tex);
+    if (g->measured)
+        cv_buffer_bind(g->measured, CV_BIND_MEASURED);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -296,7 +305,8 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     GLuint *b[] = {&g->vertices, &g->triangles, &g->tri_light, &g->materials,
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
                    &g->tri_object, &g->curves, &g->media, &g->medium_grids,
-                   &g->motion, &g->bssrdf};
+                   &g->motion, &g->bssrdf,
+                   &g->measured};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     if (g->bssrdf_tex)

@@ -40,6 +40,8 @@ struct cv_scene_gpu {
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
     uint32_t shade_bins; /* bit b: some material is in shade bin b (trace/shade_bins.h) */
     bool walk_coat_closed; /* one in the coated walk's bin may take the closed form too */
+    GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
+    bool has_measured; /* some material is measured (else CV_NO_MEASURED) */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its

@@ -35,3 +35,7 @@ tests_scene_hdr_check_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/scene/bssrdf_table_test
 TESTS += tests/scene/bssrdf_table_test
 tests_scene_bssrdf_table_test_LDADD = $(CV_LIBS)
+# --- measured BRDFs (issue 27 item 4): RGL tensor files ---
+check_PROGRAMS += tests/scene/rgl_tensor_test
+TESTS += tests/scene/rgl_tensor_test
+tests_scene_rgl_tensor_test_LDADD = $(CV_LIBS)

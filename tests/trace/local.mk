@@ -110,3 +110,8 @@ tests_trace_shade_bins_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/bsdf_sites_test
 TESTS += tests/trace/bsdf_sites_test
 tests_trace_bsdf_sites_test_LDADD = $(CV_LIBS)
+# --- measured BRDFs (issue 27 item 4) ---
+check_PROGRAMS += tests/trace/bsdf_measured_test
+TESTS += tests/trace/bsdf_measured_test
+tests_trace_bsdf_measured_test_LDADD = $(CV_LIBS)
+# --- end of measured BRDFs ---

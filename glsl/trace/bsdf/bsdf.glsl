@@ -39,6 +39,14 @@
 #include "coated_closed.glsl"
 #include "plastic.glsl"
 #include "hair.glsl"
+// measured BRDFs: only in kernels of scenes that have them (the host
+// defines CV_NO_MEASURED otherwise), never in the diffuse bin's
+#if defined(CV_BSDF_DIFFUSE_ONLY) && !defined(CV_NO_MEASURED)
+#define CV_NO_MEASURED
+#endif
+#ifndef CV_NO_MEASURED
+#include "measured.glsl"
+#endif
 #include "texture.glsl"
 #ifdef CV_HAS_SUBSURFACE
 #include "sss_exit.glsl"
@@ -63,6 +71,7 @@ struct CvShadingPoint { vec3 p; vec3 ng; vec3 ns; vec3 dpdu; vec2 uv; bool front
 //  HAIR c0 = sigma_a, eta, alpha = (beta_m, beta_n, scale tilt in degrees, h across the fibre)
 //  SUBSURFACE as DIELECTRIC (c0 = c1 = 1), and the material's two coefficients at the point:
 //    medium.rgb and (alpha.zw, thickness) (glsl/shared/scene.h: CV_MATF_SSS_POINT)
+//  MEASURED walk.x = word offset of its tables (glsl/shared/measured.h)
 struct CvBsdf {
     uint type;  // read through CV_BSDF_TYPE
     uint material;
@@ -308,6 +317,11 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
             b.c0 = cv_hair_sigma_a_from_melanin(refl.x, refl.y);
     }
 #endif
+#ifndef CV_NO_MEASURED
+    else if (b.type == CV_MAT_MEASURED) {
+        b.walk.x = m.mix_a;
+    }
+#endif
 #endif
     return b;
 }
@@ -375,7 +389,8 @@ CvCoatClosed cv_bsdf_coat_closed_params(CvBsdf b)
 bool cv_bsdf_mirrored(CvBsdf b)
 {
     uint type = CV_BSDF_TYPE(b);
-    return type == CV_MAT_COATED_DIFFUSE || type == CV_MAT_COATED_CONDUCTOR || type == CV_MAT_PLASTIC;
+    return type == CV_MAT_COATED_DIFFUSE || type == CV_MAT_COATED_CONDUCTOR || type == CV_MAT_PLASTIC ||
+           type == CV_MAT_MEASURED;
 }
 
 // f and pdf of every lobe but the coated walk's (cv_bsdf_query), local
@@ -407,6 +422,10 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_f(cv_bsdf_hair(b), wo, wi);
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        return cv_measured_f(uint(b.walk.x), wo, wi);
 #endif
     default:
         return vec3(0.0);
@@ -440,6 +459,10 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_pdf(cv_bsdf_hair(b), wo, wi);
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        return cv_measured_pdf(uint(b.walk.x), wo, wi);
 #endif
     default:
         return 0.0;
@@ -495,6 +518,11 @@ bool cv_bsdf_sample_local(CvBsdf b, vec3 wo, float uc, vec2 u, out CvBsdfSample 
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         ok = cv_hair_sample(cv_bsdf_hair(b), wo, uc, u, s);
+        break;
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        ok = cv_measured_sample(uint(b.walk.x), wo, u, s);
         break;
 #endif
     default:
@@ -714,6 +742,10 @@ vec3 cv_bsdf_albedo(CvBsdf b)
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return exp(-2.0 * b.c0);  // straight through the fibre (h 0, theta 0): its colour
+#endif
+#ifndef CV_NO_MEASURED
+    case CV_MAT_MEASURED:
+        return cv_measured_albedo(uint(b.walk.x));
 #endif
     default:
         return vec3(0.0);

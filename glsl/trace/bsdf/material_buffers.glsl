@@ -9,5 +9,9 @@
 #include "texture_buffers.glsl"
 
 layout(std430, binding = CV_BIND_MATERIALS) readonly buffer CvMaterials { CvMaterial materials[]; };
+#ifndef CV_NO_MEASURED
+// the measured BRDFs' tables (glsl/shared/measured.h, bsdf/measured.glsl)
+layout(std430, binding = CV_BIND_MEASURED) readonly buffer CvMeasuredTables { uint cv_measured[]; };
+#endif
 
 #endif

@@ -288,6 +288,7 @@ def main():
     curve_scenes()
     media_scenes()
     grid_scenes()
+    measured_scenes()
 
 
 # Camera and film (branch filmcam): scenes of emitters alone (maxdepth 1,
@@ -603,6 +604,14 @@ def subsurface_scenes():
             ENV_CONST + AREA_LAMP + FLOOR
             + sphere('Material "subsurface" "rgb sigma_a" [ %g %g %g ] "rgb sigma_s" [ %g %g %g ]'
                      ' "float scale" [ 10 ]' % (sa, sa, sa, ss, ss, ss)))
+
+
+# Measured BRDFs (issue 27): the RGL tensor file of make_measured.py (an
+# analytic GGX conductor whose colour varies across the spectrum) on the
+# sphere, lit as the other materials.
+def measured_scenes():
+    scene("mat_measured", "measured BRDF (RGL tensor file measured_ggx.bsdf, make_measured.py)",
+          LIT + sphere('Material "measured" "string filename" "measured_ggx.bsdf"'), maxdepth=8)
 
 
 if __name__ == "__main__":
