@@ -95,3 +95,8 @@ TESTS += tests/trace/medium_phase_test
 tests_trace_medium_phase_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 # --- end of participating media ---
+# --- bidirectional path tracing (bdpt; glsl/trace/bdpt) ---
+check_PROGRAMS += tests/trace/bdpt_test
+TESTS += tests/trace/bdpt_test
+tests_trace_bdpt_test_LDADD = $(CV_LIBS)
+# --- end of bdpt ---
