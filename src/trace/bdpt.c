@@ -1,4 +1,5 @@
 /* bdpt.c: see bdpt.h. */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include <epoxy/gl.h>
@@ -9,6 +10,10 @@
 #include "gpu/buffer.h"
 #include "gpu/storage.h"
 #include "trace/bdpt.h"
+
+#define KERNEL "trace/bdpt/bdpt.comp"
+/* defines of the kernel at most, with the NULL */
+#define CV_MAX_DEFINES 24
 
 struct cv_bdpt {
     GLuint vertices;   /* CvBdptVertex[n_paths * CV_BDPT_VERTS(max_depth)] */
@@ -26,10 +31,45 @@ static void ops_destroy(void **state)
     *state = NULL;
 }
 
+/* The kernel's defines: the scene's, and a strategy alone where the
+ * parameters ask for one (render.h: bdpt_s, bdpt_t). */
+struct kernel_defines {
+    const char *list[CV_MAX_DEFINES];
+    char only_s[32], only_t[32];
+};
+
+static const char *const *kernel_defines(struct kernel_defines *k, const struct cv_render_params *p,
+                                         const char *const *defines)
+{
+    int n = 0;
+    while (defines[n] && n < CV_MAX_DEFINES - 3)
+        k->list[n] = defines[n], n++;
+    if (p->bdpt_t > 0) {
+        snprintf(k->only_s, sizeof(k->only_s), "CV_BDPT_ONLY_S=%uu", p->bdpt_s);
+        snprintf(k->only_t, sizeof(k->only_t), "CV_BDPT_ONLY_T=%uu", p->bdpt_t);
+        k->list[n++] = k->only_s;
+        k->list[n++] = k->only_t;
+    }
+    k->list[n] = NULL;
+    return k->list;
+}
+
+static void ops_prefetch(struct cv_gpu *gpu, const struct cv_render_params *p,
+                         const char *const *defines)
+{
+    struct kernel_defines k;
+    cv_program_request(gpu, KERNEL, kernel_defines(&k, p, defines));
+}
+
 static bool ops_create(const struct cv_integrator_setup *s, void **state,
                        struct cv_program shade[CV_SHADE_PROGRAMS], struct cv_error *err)
 {
-    (void)shade;  /* the renderer builds the kernel: file[0] */
+    struct kernel_defines k;
+    struct cv_program *prog = cv_program_get(s->gpu, KERNEL, kernel_defines(&k, s->params, s->defines),
+                                             err);
+    if (!prog)
+        return false;
+    shade[0] = *prog;
     struct cv_bdpt *b = cv_xcalloc(1, sizeof(*b));
     *state = b;
     uint64_t verts = (uint64_t)s->n_paths * CV_BDPT_VERTS((uint64_t)s->max_depth);
@@ -63,8 +103,8 @@ const struct cv_integrator_ops cv_bdpt_ops = {
     .max_paths = CV_BDPT_MAX_PATHS,
     .resolve_define = "CV_BDPT_SPLAT",
     .n_shade = 1,
-    .file = {"trace/bdpt/bdpt.comp"},
     .create = ops_create,
+    .prefetch = ops_prefetch,
     .bind = ops_bind,
     .destroy = ops_destroy,
 };

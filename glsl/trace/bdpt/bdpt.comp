@@ -311,6 +311,9 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, vec3 beta, float pdf_fwd, uin
 float cv_bdpt_mis(uint s, uint t, float pt_rev, float ptm_rev, float qs_rev, float qsm_rev,
                   float sampled_fwd, bool sampled_delta_light, float splat_scale)
 {
+#ifdef CV_BDPT_ONLY_T
+    return 1.0;  // one strategy's image alone
+#endif
     if (s + t == 2u)
         return 1.0;
     float sum = 0.0, ri = 1.0;
@@ -522,6 +525,17 @@ vec3 cv_bdpt_connect(uint s, uint t, CvBdptVertex qs, CvBsdf bq, CvBdptVertex pt
     return L * cv_bdpt_mis(s, t, pt_rev, ptm_rev, qs_rev, qsm_rev, 0.0, false, splat_scale);
 }
 
+// Whether strategy (s, t) runs: all of them, unless the host asks for one
+// alone (CV_BDPT_ONLY_S, CV_BDPT_ONLY_T: a test of its image, unweighted).
+bool cv_bdpt_runs(uint s, uint t)
+{
+#ifdef CV_BDPT_ONLY_T
+    return s == CV_BDPT_ONLY_S && t == CV_BDPT_ONLY_T;
+#else
+    return true;
+#endif
+}
+
 // pbrt-v4's GenerateLightSubpath: the light vertex and the walk from it;
 // returns the light subpath's vertex count (0: none).
 uint cv_bdpt_light_subpath()
@@ -601,19 +615,21 @@ void main()
     for (uint s = 2u; s <= n_light && s - 1u <= max_depth; s++) {
         CvBdptVertex qs = cv_bdpt_light(s - 1u);
         CvBsdf bq = cv_bdpt_bsdf(qs);
-        if (!cv_bsdf_is_delta(bq))
+        if (!cv_bsdf_is_delta(bq) && cv_bdpt_runs(s, 1u))
             cv_bdpt_connect_t1(s, qs, bq, splat_scale);
     }
     for (uint t = 2u; t <= n_cam; t++) {
         CvBdptVertex pt = cv_bdpt_cam(t - 1u);
-        if (t - 2u <= max_depth)
+        if (t - 2u <= max_depth && cv_bdpt_runs(0u, t))
             L += cv_bdpt_connect_s0(t, splat_scale);
         CvBsdf bt = cv_bdpt_bsdf(pt);
         if (cv_bsdf_is_delta(bt))
             continue;
-        if (n_light >= 1u && t - 1u <= max_depth)
+        if (n_light >= 1u && t - 1u <= max_depth && cv_bdpt_runs(1u, t))
             L += cv_bdpt_connect_s1(t, pt, bt, splat_scale);
         for (uint s = 2u; s <= n_light && s + t - 2u <= max_depth; s++) {
+            if (!cv_bdpt_runs(s, t))
+                continue;
             CvBdptVertex qs = cv_bdpt_light(s - 1u);
             CvBsdf bq = cv_bdpt_bsdf(qs);
             if (cv_bsdf_is_delta(bq))
