@@ -6,10 +6,10 @@
  * group's loads of one vertex index come together), camera vertices
  * k < CV_BDPT_CAMERA_VERTS(max_depth), then light vertices. Densities are
  * pbrt-v4's BDPT Vertex pdfFwd and pdfRev: per unit area at the vertex
- * (per solid angle only where pbrt-v4 keeps one for infinite lights,
- * which bdpt does not start subpaths from). The t = 1 strategy (light
- * tracing) adds into the splat film, CV_BIND_BDPT_SPLAT: three floats a
- * crop pixel, as uint bits summed with compare-and-swap; resolve.comp
+ * (per solid angle towards infinite lights, as pbrt-v4 keeps them,
+ * CV_BDPT_INFINITE). The t = 1 strategy (light
+ * tracing) adds into the splat film, CV_BIND_BDPT_SPLAT: after a header
+ * (CV_BDPT_SPLAT_HEADER), three floats a crop pixel, as uint bits summed with compare-and-swap; resolve.comp
  * adds them to the pixel's weighted sum (CV_BDPT_SPLAT). */
 #ifndef CV_SHARED_BDPT_H
 #define CV_SHARED_BDPT_H
@@ -29,6 +29,16 @@
 /* CvBdptVertex.id.y: flags. */
 #define CV_BDPT_DELTA 1u        /* the bounce from here was specular (pbrt-v4's Vertex::delta) */
 #define CV_BDPT_DELTA_LIGHT 2u  /* a point or spot light (no position to connect to by area) */
+/* A vertex on the infinite lights (pbrt-v4's IsInfiniteLight): a light
+ * subpath's start on an infinite light (id.w the light), or where a camera
+ * subpath escaped (wo.xyz: back along its ray). Densities towards it are
+ * per solid angle. */
+#define CV_BDPT_INFINITE 4u
+
+/* The splat film's first floats: the scene's bounding sphere (centre,
+ * radius), from which light subpaths leave infinite lights (pbrt-v4's
+ * disk of the scene radius); the pixels' sums follow. */
+#define CV_BDPT_SPLAT_HEADER 4u
 
 /* One subpath vertex. p.w: how far rays leaving p start off the surface
  * (cv_point_error); ng.xyz: geometric normal (0 where not on a surface:

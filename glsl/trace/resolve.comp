@@ -19,6 +19,7 @@ layout(std430, binding = CV_BIND_RESOLVED) writeonly buffer CvResolved { vec4 re
 layout(std430, binding = CV_BIND_MATTE) readonly buffer CvMatte { uint matte[]; };
 #endif
 #ifdef CV_BDPT_SPLAT
+#include "shared/bdpt.h"
 // bdpt's light tracing (glsl/shared/bdpt.h): already weighed as the
 // radiance sum is, so it joins that sum
 layout(std430, binding = CV_BIND_BDPT_SPLAT) readonly buffer CvBdptSplat { float splat[]; };
@@ -42,7 +43,8 @@ void main()
 #endif
     }
 #ifdef CV_BDPT_SPLAT
-    f.rgb += vec3(splat[3u * i], splat[3u * i + 1u], splat[3u * i + 2u]);
+    uint at = CV_BDPT_SPLAT_HEADER + 3u * i;
+    f.rgb += vec3(splat[at], splat[at + 1u], splat[at + 2u]);
 #endif
 #ifdef CV_FILM_TRANSPARENT
     a = f.w != 0.0 ? c / f.w : 0.0;

@@ -96,8 +96,8 @@ static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *s
         return "participating media";
     for (uint32_t i = 0; i < scene->n_lights; i++) {
         uint32_t t = scene->lights[i].type;
-        if (t == CV_LIGHT_INFINITE || t == CV_LIGHT_INFINITE_MAP || t == CV_LIGHT_DISTANT)
-            return "infinite and distant lights";
+        if (t == CV_LIGHT_DISTANT)
+            return "distant lights";
     }
     if (cam->type == CV_CAMERA_ORTHOGRAPHIC)
         return "an orthographic camera";

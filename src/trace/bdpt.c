@@ -1,4 +1,5 @@
 /* bdpt.c: see bdpt.h. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -75,13 +76,23 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     uint64_t verts = (uint64_t)s->n_paths * CV_BDPT_VERTS((uint64_t)s->max_depth);
     b->vertices = cv_gpu_storage_buffer(s->gpu, verts * sizeof(CvBdptVertex),
                                         NULL, "bdpt subpath vertices", err);
+    size_t splat_floats = CV_BDPT_SPLAT_HEADER + (size_t)s->n_pixels * 3;
     if (b->vertices)
-        b->splat = cv_gpu_storage_buffer(s->gpu, (size_t)s->n_pixels * 3 * sizeof(float), NULL,
+        b->splat = cv_gpu_storage_buffer(s->gpu, splat_floats * sizeof(float), NULL,
                                          "bdpt splat film", err);
     if (!b->vertices || !b->splat) {
         ops_destroy(state);
         return false;
     }
+    /* pbrt-v4's Bounds3::BoundingSphere of the scene */
+    float sphere[4] = {0, 0, 0, 0}, r2 = 0;
+    for (int i = 0; i < 3; i++) {
+        sphere[i] = 0.5f * (s->scene->bounds_min[i] + s->scene->bounds_max[i]);
+        float d = s->scene->bounds_max[i] - sphere[i];
+        r2 += d * d;
+    }
+    sphere[3] = r2 > 0 ? sqrtf(r2) : 0;
+    glNamedBufferSubData(b->splat, 0, sizeof(sphere), sphere);
     return true;
 }
 

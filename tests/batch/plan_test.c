@@ -203,13 +203,13 @@ static void test_substituted_integrator(void)
     o.strict = false;
     struct cv_scene *b = scene_of("Camera \"perspective\"\n\n  Integrator \"bdpt\"\nWorldBegin\n");
     struct cv_scene *env = scene_of("Camera \"perspective\"\nIntegrator \"bdpt\"\nWorldBegin\n"
-                                    "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n");
+                                    "LightSource \"distant\" \"rgb L\" [ 1 1 1 ]\n");
     tap_ok(b && cv_plan_make(&m->jobs[0], b, &o, &p, &err) && !p.substituted &&
                p.integrator == CV_INTEGRATOR_BDPT,
            "bdpt is rendered with bdpt, not substituted");
     tap_ok(env && cv_plan_make(&m->jobs[0], env, &o, &p, &err) && p.substituted &&
                !strcmp(p.substituted, "bdpt") && p.integrator == CV_INTEGRATOR_PATH,
-           "bdpt with an infinite light (which it does not render yet) is rendered with path, "
+           "bdpt with a distant light (which it does not render yet) is rendered with path, "
            "and the plan says so");
     cv_scene_destroy(&b);
     cv_scene_destroy(&env);

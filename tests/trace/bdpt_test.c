@@ -146,8 +146,10 @@ static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uin
     free(ref.rgba);
 }
 
+/* oracle scenes without distant lights, which bdpt does not render */
 static const char *const oracle_scenes[] = {
-    "light_area", "light_point", "light_spot",
+    "light_area", "light_point", "light_spot", "light_env_const", "light_env_map",
+    "mat_diffuse", "mat_conductor_rough", "mat_dielectric", "mat_coateddiffuse",
     "bdpt_caustic",
 };
 

@@ -16,7 +16,8 @@
 // slot's film entry with the sample's filter weight, as the path
 // integrator's; t = 1 ones to the splat film. No Russian roulette (pbrt-v4's
 // BDPT has none): subpaths end at the maximum depth. Media are not
-// rendered. Light subpaths start from area, point and spot lights only.
+// rendered. Light subpaths start from area, point, spot and infinite
+// lights (not distant ones).
 #include "shared/trace.h"
 #include "shared/bdpt.h"
 #define CV_NO_QUEUES
@@ -61,6 +62,21 @@ CvBdptVertex cv_bdpt_cam(uint k) { return bv[cv_bdpt_index(false, k)]; }
 CvBdptVertex cv_bdpt_light(uint k) { return bv[cv_bdpt_index(true, k)]; }
 
 bool cv_bdpt_on_surface(CvBdptVertex v) { return dot(v.ng.xyz, v.ng.xyz) > 0.0; }
+bool cv_bdpt_infinite(CvBdptVertex v) { return v.id.x == CV_BDPT_LIGHT && (v.id.y & CV_BDPT_INFINITE) != 0u; }
+
+// The scene's bounding sphere (glsl/shared/bdpt.h), and pbrt-v4's density
+// of a light subpath's start on an infinite light: uniform over the disk
+// of its radius (planar, per unit area).
+vec4 cv_bdpt_sphere()
+{
+    return vec4(uintBitsToFloat(splat[0]), uintBitsToFloat(splat[1]), uintBitsToFloat(splat[2]),
+                uintBitsToFloat(splat[3]));
+}
+float cv_bdpt_pdf_planar()
+{
+    float r = cv_bdpt_sphere().w;
+    return r > 0.0 ? 1.0 / (CV_PI * r * r) : 0.0;
+}
 bool cv_bdpt_delta(CvBdptVertex v) { return (v.id.y & CV_BDPT_DELTA) != 0u; }
 float cv_bdpt_remap0(float f) { return f != 0.0 ? f : 1.0; }
 
@@ -106,6 +122,8 @@ vec3 cv_bdpt_f(CvBdptVertex v, CvBsdf b, vec3 wi, bool importance)
 // vertex next, per unit area at next.
 float cv_bdpt_convert(float pdf, vec3 p, CvBdptVertex next)
 {
+    if (cv_bdpt_infinite(next))
+        return pdf;
     vec3 w = next.p.xyz - p;
     float d2 = dot(w, w);
     if (!(d2 > 0.0))
@@ -224,8 +242,19 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, vec3 beta, float pdf_fwd, uin
     bool albedo_done = false;
     while (n < max_verts) {
         CvHit h;
-        if (!cv_bdpt_trace(o, d, (light_side ? 0x8000u : 0u) + n, h))
+        if (!cv_bdpt_trace(o, d, (light_side ? 0x8000u : 0u) + n, h)) {
+#ifndef CV_NO_ENV
+            // a camera subpath that escapes ends on the infinite lights
+            if (!light_side) {
+                bv[cv_bdpt_index(false, n)] = CvBdptVertex(
+                    vec4(o + d, 0.0), vec4(0.0, 0.0, 0.0, pdf_fwd), vec4(0.0), vec4(-d, 0.0),
+                    vec4(beta, 0.0), vec4(0.0), vec4(0.0),
+                    uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, 0u));
+                n++;
+            }
+#endif
             break;
+        }
         CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, o, d, h.t);
         uint prev_i = cv_bdpt_index(light_side, n - 1u);
         CvBdptVertex prev = bv[prev_i];
@@ -349,6 +378,7 @@ float cv_bdpt_mis(uint s, uint t, float pt_rev, float ptm_rev, float qs_rev, flo
 
 void cv_bdpt_atomic_add(uint i, float v)
 {
+    i += CV_BDPT_SPLAT_HEADER;
     uint old = splat[i];
     for (uint k = 0u; k < 4096u; k++) {
         uint prev = atomicCompSwap(splat[i], old, floatBitsToUint(uintBitsToFloat(old) + v));
@@ -410,6 +440,17 @@ void cv_bdpt_splat(vec2 raster, vec3 L)
 vec3 cv_bdpt_connect_s0(uint t, float splat_scale)
 {
     CvBdptVertex pt = cv_bdpt_cam(t - 1u), pm = cv_bdpt_cam(t - 2u);
+    if (cv_bdpt_infinite(pt)) {
+#ifndef CV_NO_ENV
+        vec3 d = -pt.wo.xyz;  // the escaped ray's direction
+        vec3 L = cv_env_Le(d) * pt.beta.rgb;
+        if (!(cv_max3(L) > 0.0))
+            return vec3(0.0);
+        float ptm_rev = cv_bdpt_pdf_planar() * (cv_bdpt_on_surface(pm) ? abs(dot(pm.ng.xyz, d)) : 1.0);
+        return L * cv_bdpt_mis(0u, t, cv_env_pdf(d), ptm_rev, 0.0, 0.0, 0.0, false, splat_scale);
+#endif
+        return vec3(0.0);
+    }
     if (pt.id.x != CV_BDPT_SURFACE || pt.id.w == 0u)
         return vec3(0.0);
     uint li = pt.id.w - 1u;
@@ -433,7 +474,37 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
     uint li = cv_light_pick(u_lc.x);
     float pmf = cv_light_pmf(li);
     uint type = lights[li].type;
-    if (!(pmf > 0.0) || (type != CV_LIGHT_AREA && type != CV_LIGHT_POINT && type != CV_LIGHT_SPOT))
+    if (!(pmf > 0.0))
+        return vec3(0.0);
+    CvBdptVertex pm = cv_bdpt_cam(t - 2u);
+    if (type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
+#ifndef CV_NO_ENV
+        // a direction from the chosen infinite light alone, as pbrt-v4's
+        // SampleLi; the MIS densities count them all (cv_env_pdf)
+        CvLight l = lights[li];
+        float pdf_l = CV_INV_4PI;
+        vec3 wi = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_light)
+                                            : cv_env_map_sample(l, u_light, pdf_l);
+        vec3 Li = cv_env_light_Le(l, wi);
+        float pdf = pmf * pdf_l;
+        if (!(cv_max3(Li) > 0.0) || !(pdf > 0.0))
+            return vec3(0.0);
+        vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * abs(dot(wi, pt.ns.xyz));
+        vec3 pl = pt.p.xyz + wi * (2.0 * max(cv_bdpt_sphere().w, 1.0));
+        if (!(cv_max3(L) > 0.0) || !cv_bdpt_visible(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, 0.0, vec3(0.0)))
+            return vec3(0.0);
+        CvBdptVertex qs = CvBdptVertex(vec4(pl, 0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
+                                       vec4(0.0), vec4(0.0),
+                                       uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, li));
+        float pt_rev = cv_bdpt_pdf_planar() * abs(dot(pt.ng.xyz, wi));
+        float ptm_rev = cv_bdpt_pdf_surface(pt, bt, pl, pm);
+        float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
+        return L * cv_bdpt_mis(1u, t, pt_rev, ptm_rev, qs_rev, 0.0, cv_env_pdf(wi), false,
+                               splat_scale);
+#endif
+        return vec3(0.0);
+    }
+    if (type != CV_LIGHT_AREA && type != CV_LIGHT_POINT && type != CV_LIGHT_SPOT)
         return vec3(0.0);
     vec3 pl, nl;
     vec2 uvl;
@@ -465,7 +536,6 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
     // the sampled light vertex, for the densities
     CvBdptVertex qs = CvBdptVertex(vec4(pl, errl), vec4(nl, 0.0), vec4(nl, 0.0), vec4(0.0),
                                    vec4(0.0), vec4(0.0), vec4(uvl, 0.0, 0.0), uvec4(CV_BDPT_LIGHT, 0u, 0u, li));
-    CvBdptVertex pm = cv_bdpt_cam(t - 2u);
     float pt_rev = cv_bdpt_pdf_light(li, pl, nl, pt);
     float ptm_rev = cv_bdpt_pdf_surface(pt, bt, pl, pm);
     float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
@@ -546,6 +616,41 @@ uint cv_bdpt_light_subpath()
     float pmf = cv_light_pmf(li);
     if (!(pmf > 0.0))
         return 0u;
+    uint type = lights[li].type;
+    if (type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
+#ifndef CV_NO_ENV
+        // pbrt-v4's SampleLe of an infinite light: a direction from it, and
+        // a point on the disk of the scene's radius across it
+        CvLight l = lights[li];
+        float pdf_dir = CV_INV_4PI;
+        vec2 u_dir = cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_DIR));
+        vec3 wl = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_dir)
+                                            : cv_env_map_sample(l, u_dir, pdf_dir);
+        vec4 sph = cv_bdpt_sphere();
+        float pdf_pos = cv_bdpt_pdf_planar();
+        vec3 Le = cv_env_light_Le(l, wl);
+        if (!(pdf_dir > 0.0) || !(pdf_pos > 0.0) || !(cv_max3(Le) > 0.0))
+            return 0u;
+        vec2 cd = cv_sample_disk_concentric(cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_POS)));
+        vec3 o = sph.xyz + sph.w * cv_from_local(cv_frame_from_z(-wl), vec3(cd, 0.0)) + sph.w * wl;
+        bv[cv_bdpt_index(true, 0u)] = CvBdptVertex(
+            vec4(o, 0.0), vec4(0.0, 0.0, 0.0, pmf * pdf_pos), vec4(0.0), vec4(0.0), vec4(Le, 0.0),
+            vec4(0.0), vec4(0.0), uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, li));
+        uint n_inf = cv_bdpt_walk(true, o, -wl, Le / (pmf * pdf_pos * pdf_dir), pdf_dir,
+                                  CV_BDPT_LIGHT_VERTS(cv_max_depth()));
+        // the densities pbrt-v4 corrects for an infinite light's start:
+        // vertex 1 per unit area of the disk, vertex 0 per solid angle
+        if (n_inf > 1u) {
+            uint i1 = cv_bdpt_index(true, 1u);
+            bv[i1].ng.w = pdf_pos * abs(dot(wl, bv[i1].ng.xyz));
+        }
+        bv[cv_bdpt_index(true, 0u)].ng.w = cv_env_pdf(wl);
+        return n_inf;
+#endif
+        return 0u;
+    }
+    if (type == CV_LIGHT_DISTANT)
+        return 0u;  // the host renders no bdpt scene with one (src/batch/plan.c)
     vec3 p, n;
     vec2 uv;
     float err;
@@ -622,6 +727,8 @@ void main()
         CvBdptVertex pt = cv_bdpt_cam(t - 1u);
         if (t - 2u <= max_depth && cv_bdpt_runs(0u, t))
             L += cv_bdpt_connect_s0(t, splat_scale);
+        if (pt.id.x != CV_BDPT_SURFACE)
+            continue;  // escaped: s = 0 alone
         CvBsdf bt = cv_bdpt_bsdf(pt);
         if (cv_bsdf_is_delta(bt))
             continue;

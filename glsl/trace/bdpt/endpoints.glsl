@@ -3,9 +3,8 @@
 // (PDF_We) and its sampling of a point on the lens towards a scene point
 // (SampleWi), for a perspective camera, pinhole or thin lens, that does not
 // move; the lights' emission sampling (SampleLe) and its densities (PDF_Le)
-// for area (one triangle, diffuse), point and spot lights. Infinite and
-// distant lights start no light subpaths here (src/batch/plan.c renders
-// their scenes with path). Include after lights.glsl and camera.glsl.
+// for area (one triangle, diffuse), point and spot lights (infinite lights:
+// bdpt.comp). Include after lights.glsl and camera.glsl.
 #ifndef CV_TRACE_BDPT_ENDPOINTS_GLSL
 #define CV_TRACE_BDPT_ENDPOINTS_GLSL
 
