@@ -109,7 +109,13 @@ static void ops_bind(const void *state)
  * GPU. */
 #define CV_BDPT_MAX_PATHS (1u << 20)
 
+static uint64_t slot_bytes(uint32_t max_depth)
+{
+    return CV_BDPT_VERTS((uint64_t)max_depth) * sizeof(CvBdptVertex);
+}
+
 const struct cv_integrator_ops cv_bdpt_ops = {
+    .slot_bytes = slot_bytes,
     .whole_samples = true,
     .max_paths = CV_BDPT_MAX_PATHS,
     .resolve_define = "CV_BDPT_SPLAT",

@@ -57,6 +57,9 @@ struct cv_integrator_ops {
      * resolve_define: added to the resolve stage's defines when not NULL. */
     bool whole_samples;
     uint32_t max_paths;
+    /* May be NULL: bytes of the integrator's own storage per path slot at
+     * maximum depth max_depth, which bounds the slots the renderer chooses */
+    uint64_t (*slot_bytes)(uint32_t max_depth);
     const char *resolve_define;
     const char *define[CV_SHADE_PROGRAMS];
     uint32_t args[CV_SHADE_PROGRAMS];

@@ -168,8 +168,8 @@ static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok
  * renders: K sets the order in which a pixel's samples are summed, so a
  * tile must use the K of the whole image to give its pixels bit for bit. */
 static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_params *p,
-                                   uint32_t n_pixels, uint64_t film_pixels, uint32_t *out,
-                                   struct cv_error *err)
+                                   uint32_t n_pixels, uint64_t film_pixels, uint32_t max_depth,
+                                   uint32_t *out, struct cv_error *err)
 {
     uint64_t max_paths = CV_MAX_PATHS;
     if (p->paths_per_pixel) {
@@ -186,11 +186,20 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
     if (ops->max_paths && ops->max_paths < cap)
         cap = ops->max_paths;
     uint64_t known = cv_gpu_storage_known(gpu);
+    /* an integrator's own storage per slot (bdpt's subpath vertices): in
+     * one buffer, and within a quarter of the free memory */
+    uint64_t own = ops->slot_bytes ? ops->slot_bytes(max_depth) : 0;
+    if (own && known && known / own < cap)
+        cap = known / own;
     if (known && known / (2 * sizeof(CvRayItem)) < cap)
         cap = known / (2 * sizeof(CvRayItem));
     uint64_t total = 0, avail = 0;
     if (cv_gpu_memory(gpu, &total, &avail) && avail / 8 / PATH_BYTES < cap)
         cap = avail / 8 / PATH_BYTES;
+    if (own && avail && avail / 4 / own < cap)
+        cap = avail / 4 / own;
+    if (cap < 1)
+        cap = 1;
     uint32_t k = CV_MAX_PATHS_PER_PIXEL;
     while (k > 1 && film_pixels * k > cap)
         k--;
@@ -423,7 +432,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     }
     const CvCamera *cam = p->camera ? p->camera : &scene->camera;
     uint64_t film_pixels = (uint64_t)cam->film.x * cam->film.y;
-    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, film_pixels, &r->paths_per_pixel, err)) {
+    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, film_pixels, r->max_depth,
+                                &r->paths_per_pixel, err)) {
         free(r);
         return false;
     }
