@@ -11,7 +11,7 @@
  * 3. bdpt's AOVs are path's (aovs()).
  * 4. Unbiasedness against our own path integrator on bdpt_caustic_gaussian
  *    (light tracing's splats under a filter wider than a pixel): the
- *    regions' means agree within BDPT_TOL.
+ *    regions' means agree within BDPT_TOL_PATH.
  * The bound: at BDPT_SPP a region's standard error is below 0.5 % (seeds
  * 24 and 1; bdpt_caustic's lower-left quadrant, where the lamp is seen
  * through the glass, 0.8 %); BDPT_TOL = 2 % is over two and a half of
@@ -29,6 +29,11 @@
 #define BDPT_SPP 512
 #define BDPT_TOL 0.02
 #define BDPT_TOL_STRATEGY 0.03
+/* bdpt against path, both noisy: in the quadrant where the lamp is seen
+ * through the glass (found by s = 0 alone, by both integrators alike)
+ * each region mean has about 0.8 % standard error, their difference 1.1 %
+ * (2.1 % apart with seeds 24 and 25) */
+#define BDPT_TOL_PATH 0.03
 
 static double region_mean(const float *img, int stride, int x0, int y0, int x1, int y1)
 {
@@ -115,8 +120,8 @@ static void against_path(struct cv_gpu *gpu, const char *name, uint64_t seed)
     if (render(gpu, name, CV_INTEGRATOR_BDPT, seed, BDPT_SPP, &a) &&
         render(gpu, name, CV_INTEGRATOR_PATH, seed + 1, 2 * BDPT_SPP, &b)) {
         double dev = worst_dev(name, a.rgba, 4, b.rgba, 4);
-        tap_ok(dev <= BDPT_TOL, "%s: bdpt within %.0f%% of path (worst region off by %.4f)",
-               name, 100 * BDPT_TOL, dev);
+        tap_ok(dev <= BDPT_TOL_PATH, "%s: bdpt within %.0f%% of path (worst region off by %.4f)",
+               name, 100 * BDPT_TOL_PATH, dev);
     }
     free(a.rgba);
     free(b.rgba);
