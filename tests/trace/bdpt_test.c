@@ -31,8 +31,7 @@
 #define BDPT_TOL_STRATEGY 0.03
 /* bdpt against path, both noisy: in the quadrant where the lamp is seen
  * through the glass (found by s = 0 alone, by both integrators alike)
- * each region mean has about 0.8 % standard error, their difference 1.1 %
- * (2.1 % apart with seeds 24 and 25) */
+ * each region mean has about 0.8 % standard error, their difference 1.1 % */
 #define BDPT_TOL_PATH 0.03
 
 static double region_mean(const float *img, int stride, int x0, int y0, int x1, int y1)
@@ -133,8 +132,7 @@ static void against_path(struct cv_gpu *gpu, const char *name, uint64_t seed)
  * the same image (all paths of that length, in a scene of diffuse
  * surfaces and a lamp, which each strategy can sample): a check of each
  * strategy's contribution apart from the MIS weights, against s = 1, on
- * the image mean (the unweighted strategies are noisy per region: up to
- * 18 % for s = 0 at this count, and under 1 % on the image). */
+ * the image mean (unweighted, s = 0 is far too noisy per region). */
 static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uint64_t seed)
 {
     struct test_image ref;
