@@ -630,6 +630,7 @@ static bool whole_samples_pass(struct cv_renderer *r, uint32_t spp, struct cv_er
         prof_begin(r, ST_SHADE);
         cv_program_dispatch_1d(&r->prog[ST_SHADE], r->n_paths);
         prof_end(r);
+        /* the next round reads the film and vertex store; resolve reads both films */
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     }
     cv_gpu_timer_end(r->passes);
