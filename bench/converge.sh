@@ -5,7 +5,7 @@
 #
 # usage: bench/converge.sh [--binary PATH] [--reference REF.exr | --ref-spp N]
 #                          [--spp N] [--width W --height H] [--out DIR]
-#                          [--integrator path|rlpath]
+#                          [--integrator path|rlpath|volpath|bdpt]
 #                          [--title T] LABEL=SCENE.pbrt[@INTEGRATOR]...
 #   Each LABEL=SCENE is one series (@path or @rlpath picks its integrator,
 #   e.g. path=room.pbrt@path rlpath=room.pbrt@rlpath): relMSE at 1, 2, 4, ... up to --spp

@@ -34,4 +34,4 @@ EXTRA_DIST += bench/bench_test.sh
 .PHONY: bench-multigpu
 bench-multigpu: src/cavalry-batch bench/gen_scene
 	$(SHELL) $(srcdir)/bench/multigpu.sh --binary src/cavalry-batch $(MULTIGPU_FLAGS)
-EXTRA_DIST += bench/multigpu.sh
+EXTRA_DIST += bench/multigpu.sh bench/bdpt.sh

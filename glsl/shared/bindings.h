@@ -72,6 +72,10 @@
 /* vec4[n]: volpath's channel ratios of each path slot's path
  * (glsl/trace/medium/track.glsl) */
 #define CV_BIND_MEDIUM_PATHS (CV_BIND_STAGE0 + 8)
+/* bdpt's subpath vertices (CvBdptVertex[], glsl/shared/bdpt.h) and its
+ * splat film (uint[3 * pixels]: float bits, light tracing's t = 1 strategy) */
+#define CV_BIND_BDPT_VERTICES (CV_BIND_STAGE0 + 9)
+#define CV_BIND_BDPT_SPLAT (CV_BIND_STAGE0 + 10)
 
 /* ---- Exclusive prefix scan (src/bvh/scan.c; glsl/bvh/scan_*.comp) ---- */
 #define CV_BIND_SCAN_DATA (CV_BIND_STAGE0 + 0)   /* uint[]: summed in place */

@@ -12,9 +12,14 @@
 layout(std140, binding = CV_UBO_PASS) uniform CvPassBlock { CvPassParams u_pass; };
 
 layout(std430, binding = CV_BIND_QUEUES) coherent buffer CvQueueBlock { CvTraceQueues q; };
+// CV_NO_QUEUES (bdpt's kernel, which runs whole samples): no ray, hit or
+// shadow queues. Mesa counts every declared storage block against its 16,
+// used or not.
+#ifndef CV_NO_QUEUES
 layout(std430, binding = CV_BIND_RAYS) buffer CvRays { CvRayItem rays[]; };
 layout(std430, binding = CV_BIND_HITS) buffer CvHits { CvHitItem hits[]; };
 layout(std430, binding = CV_BIND_SHADOW) buffer CvShadow { CvShadowItem shadows[]; };
+#endif
 layout(std430, binding = CV_BIND_FILM) buffer CvFilm { CvFilmPixel film[]; };
 
 uint cv_iteration() { return u_pass.iteration; }
@@ -49,6 +54,7 @@ uint cv_film_pixel(uint i)
     return px.y * u_pass.film.x + px.x;
 }
 
+#ifndef CV_NO_QUEUES
 // The iteration's input rays and the rays it writes (see trace.h).
 CvRayItem cv_ray_in(uint i) { return rays[((cv_iteration() + 1u) & 1u) * cv_capacity() + i]; }
 // volpath's intersect stage updates an input ray's throughput and medium
@@ -80,6 +86,7 @@ uint cv_hit_slot(uint i)
 #endif
 uint cv_escaped_ray(uint i) { return hits[cv_capacity() + i].ray; }
 void cv_escaped_push(uint slot, uint ray) { hits[cv_capacity() + slot].ray = ray; }
+#endif
 
 // Dimension pairs: 0 filter, 1 lens, then CV_PAIRS_PER_BOUNCE per depth.
 // (Shade stages get theirs through cv_bounce_2d in surface_inputs.glsl.)

@@ -18,6 +18,12 @@ layout(std430, binding = CV_BIND_RESOLVED) writeonly buffer CvResolved { vec4 re
 #ifdef CV_FILM_TRANSPARENT
 layout(std430, binding = CV_BIND_MATTE) readonly buffer CvMatte { uint matte[]; };
 #endif
+#ifdef CV_BDPT_SPLAT
+#include "shared/bdpt.h"
+// bdpt's light tracing (glsl/shared/bdpt.h): already weighed as the
+// radiance sum is, so it joins that sum
+layout(std430, binding = CV_BIND_BDPT_SPLAT) readonly buffer CvBdptSplat { float splat[]; };
+#endif
 
 void main()
 {
@@ -36,6 +42,10 @@ void main()
         c += uintBitsToFloat(matte[(k * pixels + i) * CV_MATTE_STRIDE + CV_MATTE_COVERAGE]);
 #endif
     }
+#ifdef CV_BDPT_SPLAT
+    uint at = CV_BDPT_SPLAT_HEADER + 3u * i;
+    f.rgb += vec3(splat[at], splat[at + 1u], splat[at + 2u]);
+#endif
 #ifdef CV_FILM_TRANSPARENT
     a = f.w != 0.0 ? c / f.w : 0.0;
 #endif

@@ -87,6 +87,28 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
  * (cpu/render.cpp warns for the others, which ignore media). */
 static const char *const media_integrators[] = {"simplevolpath", "bdpt", "mlt"};
 
+/* Why bdpt (trace/bdpt.h) cannot render job on scene with camera cam, or
+ * NULL: what its kernel leaves out. */
+static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *scene,
+                              const CvCamera *cam)
+{
+    if (scene->n_media > 0)
+        return "participating media";
+    for (uint32_t i = 0; i < scene->n_lights; i++) {
+        uint32_t t = scene->lights[i].type;
+        if (t == CV_LIGHT_DISTANT)
+            return "distant lights";
+    }
+    if (cam->type == CV_CAMERA_ORTHOGRAPHIC)
+        return "an orthographic camera";
+    if (memcmp(cam->to_world, cam->to_world_end, sizeof(cam->to_world)) != 0)
+        return "camera motion blur";
+    if (job->alpha || (job->aovs & (CV_AOV_OBJECT_ID | CV_AOV_MATERIAL_ID | CV_AOV_CRYPTO_OBJECT |
+                                    CV_AOV_CRYPTO_MATERIAL)))
+        return "alpha and ID mattes";
+    return NULL;
+}
+
 /* The manifest's integrator, else the scene's where Cavalry has it, else
  * the one that renders the same image: volpath where the scene has
  * participating media and pbrt-v4's integrator renders them (volpath is
@@ -109,11 +131,40 @@ static bool plan_integrator(const struct cv_job *job, const struct cv_scene *sce
                                                    : scene->path;
     p->integrator = fallback;
     p->substituted = NULL;
+    const char *lacks = bdpt_lacks(job, scene, &p->camera);
     if (job->has_integrator) {
         p->integrator = job->integrator;
+        if (p->integrator == CV_INTEGRATOR_BDPT && lacks)
+            return cv_fail(err, "%s:%u:%u: job \"%s\": integrator \"bdpt\" does not render %s "
+                                "yet (path or volpath does)", o->manifest_path, job->line, job->col,
+                           job->name, lacks);
     } else if (asked) {
         int id = cv_name_find(&cv_integrator_names, asked);
-        if (id >= 0) {
+        /* sppm is for caustics, as bdpt: rendered with it, substituted */
+        bool sppm = strcmp(asked, "sppm") == 0;
+        if ((id == CV_INTEGRATOR_BDPT || sppm) && !lacks) {
+            p->integrator = CV_INTEGRATOR_BDPT;
+            if (sppm) {
+                p->substituted = asked;
+                if (o->strict)
+                    return cv_fail(err, "%s: integrator \"sppm\" is not supported (--strict): "
+                                        "job \"%s\" would render with \"bdpt\" (%s:%u:%u; set "
+                                        "integrator there)", at, job->name, o->manifest_path,
+                                   job->line, job->col);
+                cv_warn("%s: integrator \"sppm\" is not supported: job \"%s\" renders with "
+                        "\"bdpt\", which converges to the same image", at, job->name);
+            }
+        } else if (id == CV_INTEGRATOR_BDPT || sppm) {
+            p->substituted = asked;
+            const char *with = cv_integrator_name(fallback);
+            if (o->strict)
+                return cv_fail(err, "%s: integrator \"%s\" would render with \"%s\" (--strict): "
+                                    "bdpt does not render %s yet (%s:%u:%u, job \"%s\"; set "
+                                    "integrator there)", at, asked, with, lacks, o->manifest_path,
+                               job->line, job->col, job->name);
+            cv_warn("%s: integrator \"%s\": job \"%s\" renders with \"%s\": bdpt does not "
+                    "render %s yet", at, asked, job->name, with, lacks);
+        } else if (id >= 0) {
             p->integrator = (enum cv_integrator)id;
         } else {
             p->substituted = asked;

@@ -4,7 +4,7 @@
 #include "base/mem.h"
 #include "manifest/enums.h"
 
-static const char *const integrators[] = {"path", "rlpath", "volpath"};
+static const char *const integrators[] = {"path", "rlpath", "volpath", "bdpt"};
 static const char *const compressions[] = {"zip", "none", "zips", "piz", "rle", "dwaa", "dwab"};
 /* the manifest's order, which its messages print */
 static const char *const manifest_compressions[] = {"none", "zip", "piz", "dwaa"};

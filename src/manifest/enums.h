@@ -13,6 +13,7 @@ enum cv_integrator {
     CV_INTEGRATOR_PATH = 0,    /* unidirectional path tracing with NEE and MIS */
     CV_INTEGRATOR_RLPATH,      /* path guided by a learned Q-table (trace/rlpath.h) */
     CV_INTEGRATOR_VOLPATH,     /* path with participating media (glsl/trace/medium) */
+    CV_INTEGRATOR_BDPT,        /* bidirectional path tracing (trace/bdpt.h) */
     CV_INTEGRATOR_COUNT
 };
 

@@ -3,6 +3,7 @@
 #include <stddef.h>
 
 #include "glsl/shared/trace.h"
+#include "trace/bdpt.h"
 #include "trace/integrator.h"
 #include "trace/rlpath.h"
 
@@ -34,6 +35,7 @@ static const struct cv_integrator_ops *const integrators[CV_INTEGRATOR_COUNT] = 
     [CV_INTEGRATOR_PATH] = &path_ops,
     [CV_INTEGRATOR_RLPATH] = &cv_rlpath_ops,
     [CV_INTEGRATOR_VOLPATH] = &volpath_ops,
+    [CV_INTEGRATOR_BDPT] = &cv_bdpt_ops,
 };
 
 const struct cv_integrator_ops *cv_integrator_find(enum cv_integrator id)

@@ -23,6 +23,8 @@ struct cv_integrator_setup {
     const struct cv_render_params *params;
     const char *const *defines;   /* the scene's program defines, NULL-terminated */
     uint32_t n_paths;             /* path slots (glsl/shared/trace.h) */
+    uint32_t n_pixels;            /* pixels of the crop */
+    uint32_t max_depth;           /* the render's maximum depth */
 };
 
 /* At most this many shade programs per integrator. */
@@ -47,6 +49,18 @@ struct cv_integrator_ops {
      * NULL); a NULL file[k] is create's shade[k]. */
     int n_shade;
     const char *file[CV_SHADE_PROGRAMS];
+    /* Whole samples (bdpt): the renderer runs shade program 0 once per
+     * round of samples over the path slots (u_pass.iteration: the round;
+     * each slot runs its next sample of the pass), in place of the
+     * wavefront stages, which are not built. max_paths: at most this many
+     * path slots where the renderer chooses (0: no bound of its own);
+     * resolve_define: added to the resolve stage's defines when not NULL. */
+    bool whole_samples;
+    uint32_t max_paths;
+    /* May be NULL: bytes of the integrator's own storage per path slot at
+     * maximum depth max_depth, which bounds the slots the renderer chooses */
+    uint64_t (*slot_bytes)(uint32_t max_depth);
+    const char *resolve_define;
     const char *define[CV_SHADE_PROGRAMS];
     uint32_t args[CV_SHADE_PROGRAMS];
     /* The shade bins program k shades (bit b: bin b, trace/shade_bins.h);

@@ -3,6 +3,7 @@ libcavalry_a_SOURCES += \
 	src/trace/filter_table.c src/trace/filter_table.h \
 	src/trace/camera_motion.c src/trace/camera_motion.h \
 	src/trace/integrator.c src/trace/integrator.h \
+	src/trace/bdpt.c src/trace/bdpt.h \
 	src/trace/render.c src/trace/render.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h \
 	src/trace/shade_bins.c src/trace/shade_bins.h
@@ -16,7 +17,8 @@ GLSL_FILES += \
 	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
 	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
-	glsl/trace/resolve.comp glsl/trace/matte.comp glsl/trace/test/sampler_probe.comp
+	glsl/trace/resolve.comp glsl/trace/matte.comp glsl/trace/test/sampler_probe.comp \
+	glsl/shared/bdpt.h glsl/trace/bdpt/bdpt.comp glsl/trace/bdpt/endpoints.glsl
 # ---- bsdf / light sampling (branch bsdf) ----
 GLSL_FILES += \
 	glsl/lib/constants.glsl glsl/lib/rng.glsl glsl/lib/frame.glsl glsl/lib/sampling.glsl \

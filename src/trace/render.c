@@ -176,8 +176,8 @@ static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok
  * renders: K sets the order in which a pixel's samples are summed, so a
  * tile must use the K of the whole image to give its pixels bit for bit. */
 static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_params *p,
-                                   uint32_t n_pixels, uint64_t film_pixels, uint32_t *out,
-                                   struct cv_error *err)
+                                   uint32_t n_pixels, uint64_t film_pixels, uint32_t max_depth,
+                                   uint32_t *out, struct cv_error *err)
 {
     uint64_t max_paths = CV_MAX_PATHS;
     if (p->paths_per_pixel) {
@@ -190,12 +190,24 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
     /* Only for speed, so never into a probed storage size, nor into memory
      * that scenes or other jobs might want. */
     uint64_t cap = CV_WAVE_PATHS < max_paths ? CV_WAVE_PATHS : max_paths;
+    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    if (ops->max_paths && ops->max_paths < cap)
+        cap = ops->max_paths;
     uint64_t known = cv_gpu_storage_known(gpu);
+    /* an integrator's own storage per slot (bdpt's subpath vertices): in
+     * one buffer, and within a quarter of the free memory */
+    uint64_t own = ops->slot_bytes ? ops->slot_bytes(max_depth) : 0;
+    if (own && known && known / own < cap)
+        cap = known / own;
     if (known && known / (2 * sizeof(CvRayItem)) < cap)
         cap = known / (2 * sizeof(CvRayItem));
     uint64_t total = 0, avail = 0;
     if (cv_gpu_memory(gpu, &total, &avail) && avail / 8 / PATH_BYTES < cap)
         cap = avail / 8 / PATH_BYTES;
+    if (own && avail && avail / 4 / own < cap)
+        cap = avail / 4 / own;
+    if (cap < 1)
+        cap = 1;
     uint32_t k = CV_MAX_PATHS_PER_PIXEL;
     while (k > 1 && film_pixels * k > cap)
         k--;
@@ -213,6 +225,17 @@ static bool check_params(const struct cv_scene *scene, const struct cv_render_pa
     const CvCamera *c = p->camera ? p->camera : &scene->camera;
     if (c->film.x == 0 || c->film.y == 0 || c->crop.x == 0 || c->crop.y == 0)
         return cv_fail(err, "scene has no film resolution");
+    /* whole-sample integrators (bdpt) run no matte stage, and their
+     * camera (glsl/trace/bdpt/endpoints.glsl) is a still perspective one */
+    if (cv_integrator_find(p->integrator)->whole_samples) {
+        const char *name = cv_integrator_name(p->integrator);
+        if (p->alpha || p->id_mattes || p->cryptomatte)
+            return cv_fail(err, "integrator \"%s\" renders no alpha or ID mattes", name);
+        if (c->type == CV_CAMERA_ORTHOGRAPHIC)
+            return cv_fail(err, "integrator \"%s\" renders no orthographic camera", name);
+        if (memcmp(c->to_world, c->to_world_end, sizeof(c->to_world)) != 0)
+            return cv_fail(err, "integrator \"%s\" renders no camera motion blur", name);
+    }
     return true;
 }
 
@@ -343,7 +366,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     uint32_t words = matte_words(p);
     snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
     defines_plus(sp->matte, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
-    defines_plus(sp->resolve, defines, nd, p->alpha ? "CV_FILM_TRANSPARENT" : NULL,
+    defines_plus(sp->resolve, defines, nd,
+                 p->alpha ? "CV_FILM_TRANSPARENT" : ops->resolve_define,
                  p->alpha ? sp->stride : NULL);
     defines_plus(sp->straight, sp->resolve, nd + (p->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
@@ -373,6 +397,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         }
         if ((s == ST_ESCAPED && !escaped_stage) || (s == ST_MATTE && !words) ||
             (s == ST_RESOLVE_STRAIGHT && !p->alpha))
+            continue;
+        /* a whole-sample integrator runs its program and the resolve alone */
+        if (ops->whole_samples && s != ST_SHADE && s != ST_RESOLVE && s != ST_RESOLVE_STRAIGHT)
             continue;
         if (s == ST_GENERATE)
             d = no_defines;
@@ -435,7 +462,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     }
     const CvCamera *cam = p->camera ? p->camera : &scene->camera;
     uint64_t film_pixels = (uint64_t)cam->film.x * cam->film.y;
-    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, film_pixels, &r->paths_per_pixel, err)) {
+    if (!choose_paths_per_pixel(gpu, p, r->n_pixels, film_pixels, r->max_depth,
+                                &r->paths_per_pixel, err)) {
         free(r);
         return false;
     }
@@ -503,6 +531,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             .params = p,
             .defines = defines,
             .n_paths = (uint32_t)r->n_paths,
+            .n_pixels = r->n_pixels,
+            .max_depth = r->max_depth,
         };
         struct cv_program made[CV_SHADE_PROGRAMS];
         if (!ops->create(&setup, &r->integrator, made, err)) {
@@ -636,6 +666,29 @@ static void iterate(struct cv_renderer *r, uint32_t it)
     stage_indirect(r, ST_SHADOW, CV_ARGS_SHADOW);
 }
 
+/* A pass of a whole-sample integrator (integrator.h): round k runs every
+ * slot's k-th sample of the pass, in one dispatch over the slots. */
+static bool whole_samples_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
+{
+    uint32_t slots = r->paths_per_pixel, rounds = (spp + slots - 1) / slots;
+    for (uint32_t k = 0; k < rounds; k++) {
+        r->pass.iteration = k;
+        glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, iteration),
+                             sizeof(r->pass.iteration), &r->pass.iteration);
+        prof_begin(r, ST_SHADE);
+        cv_program_dispatch_1d(&r->prog[ST_SHADE], r->n_paths);
+        prof_end(r);
+        /* the next round reads the film and vertex store; resolve reads both films */
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    }
+    cv_gpu_timer_end(r->passes);
+    if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
+        return false;
+    r->iterations += rounds;
+    r->spp_done += spp;
+    return true;
+}
+
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
 {
     if (spp == 0)
@@ -660,6 +713,8 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     r->pass.end_sample = r->spp_done + spp;
     r->pass.camera_rays = r->n_pixels * started;
     glNamedBufferSubData(r->ubo, 0, sizeof(CvPassParams), &r->pass);
+    if (r->ops->whole_samples)
+        return whole_samples_pass(r, spp, err);
     prof_begin(r, ST_GENERATE);
     cv_program_dispatch_1d(&r->prog[ST_GENERATE], r->pass.camera_rays);
     prof_end(r);

@@ -66,6 +66,10 @@ struct cv_render_params {
      * lights add nothing; the image of area and environment lights must
      * match the one with light sampling within noise. */
     bool no_nee;
+    /* bdpt only (a test hook, as pbrt-v4's visualizestrategies): when
+     * bdpt_t > 0, only strategy (bdpt_s, bdpt_t) runs, without its MIS
+     * weight: its image alone (glsl/trace/bdpt/bdpt.comp). */
+    uint32_t bdpt_s, bdpt_t;
 };
 
 /* The automatic paths_per_pixel aims at this many paths in flight: the

@@ -177,10 +177,11 @@ static void test_fallbacks(void)
 }
 
 /* Issue 24, bug 9: a scene's bdpt was rendered with path, said only while
- * rendering. */
+ * rendering. Issue 27: bdpt renders it now; sppm is rendered with bdpt,
+ * substituted. */
 static void test_substituted_integrator(void)
 {
-    struct cv_scene *s = scene_of("Camera \"perspective\"\n\n  Integrator \"bdpt\"\nWorldBegin\n");
+    struct cv_scene *s = scene_of("Camera \"perspective\"\n\n  Integrator \"sppm\"\nWorldBegin\n");
     struct cv_manifest *m = manifest_of("version: 1\njobs:\n"
                                         "  - {name: a, scene: s.pbrt}\n"
                                         "  - {name: b, scene: s.pbrt, integrator: rlpath}\n");
@@ -193,12 +194,26 @@ static void test_substituted_integrator(void)
     struct cv_render_plan p;
     struct cv_error err = {{0}};
     tap_ok(cv_plan_make(&m->jobs[0], s, &o, &p, &err) && p.substituted &&
-               !strcmp(p.substituted, "bdpt") && p.integrator == CV_INTEGRATOR_PATH,
-           "bdpt is rendered with path, and the plan says so");
+               !strcmp(p.substituted, "sppm") && p.integrator == CV_INTEGRATOR_BDPT,
+           "sppm is rendered with bdpt, and the plan says so");
     o.strict = true;
     tap_ok(!cv_plan_make(&m->jobs[0], s, &o, &p, &err) && strstr(err.msg, "s.pbrt:3:3: ") &&
-               strstr(err.msg, "\"bdpt\"") && strstr(err.msg, "--strict"),
+               strstr(err.msg, "\"sppm\"") && strstr(err.msg, "--strict"),
            "--strict: an error at the scene's Integrator: %s", err.msg);
+    cv_error_clear(&err);
+    o.strict = false;
+    struct cv_scene *b = scene_of("Camera \"perspective\"\n\n  Integrator \"bdpt\"\nWorldBegin\n");
+    struct cv_scene *env = scene_of("Camera \"perspective\"\nIntegrator \"bdpt\"\nWorldBegin\n"
+                                    "LightSource \"distant\" \"rgb L\" [ 1 1 1 ]\n");
+    tap_ok(b && cv_plan_make(&m->jobs[0], b, &o, &p, &err) && !p.substituted &&
+               p.integrator == CV_INTEGRATOR_BDPT,
+           "bdpt is rendered with bdpt, not substituted");
+    tap_ok(env && cv_plan_make(&m->jobs[0], env, &o, &p, &err) && p.substituted &&
+               !strcmp(p.substituted, "bdpt") && p.integrator == CV_INTEGRATOR_PATH,
+           "bdpt with a distant light (which it does not render yet) is rendered with path, "
+           "and the plan says so");
+    cv_scene_destroy(&b);
+    cv_scene_destroy(&env);
     cv_error_clear(&err);
     tap_ok(cv_plan_make(&m->jobs[1], s, &o, &p, &err) && !p.substituted &&
                p.integrator == CV_INTEGRATOR_RLPATH,

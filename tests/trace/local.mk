@@ -115,3 +115,8 @@ check_PROGRAMS += tests/trace/bsdf_measured_test
 TESTS += tests/trace/bsdf_measured_test
 tests_trace_bsdf_measured_test_LDADD = $(CV_LIBS)
 # --- end of measured BRDFs ---
+# --- bidirectional path tracing (bdpt; glsl/trace/bdpt) ---
+check_PROGRAMS += tests/trace/bdpt_test
+TESTS += tests/trace/bdpt_test
+tests_trace_bdpt_test_LDADD = $(CV_LIBS)
+# --- end of bdpt ---

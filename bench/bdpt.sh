@@ -1,0 +1,66 @@
+#!/bin/sh
+# bdpt.sh: the bdpt integrator against path at equal render time, on
+# scenes with caustics: per scene a converged reference (bdpt at --ref-spp,
+# rendered with cavalry-batch to EXR), then bench/converge.sh's series of
+# relMSE against render time for path and bdpt, both against that
+# reference (CSV and a plot per scene).
+#
+# usage: bench/bdpt.sh [--ref-spp N] [--spp N] [--size WxH] [--out DIR]
+#                      SCENE.pbrt...
+#   --ref-spp N  the reference's samples per pixel (default 4096)
+#   --spp N      the series run to N spp at doubling counts (default 256)
+#   --size WxH   film size (default: the scene's)
+#   --out DIR    default bench/out/bdpt: DIR/NAME/{ref.exr,path.csv,
+#                bdpt.csv,convergence.png}, NAME the scene file's name
+# e.g. bench/bdpt.sh ../shared/scenes/veach-bidir/scene-v4.pbrt \
+#          ../shared/scenes/caustic-glass/caustic-glass-v4.pbrt
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+ref_spp=4096
+spp=256
+size=
+out=
+scenes=
+while [ $# -gt 0 ]; do
+    case "$1" in
+    --ref-spp) ref_spp=$2; shift 2 ;;
+    --spp) spp=$2; shift 2 ;;
+    --size) size=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
+    -*) echo "bdpt.sh: unknown option $1" >&2; exit 2 ;;
+    *) scenes="$scenes $1"; shift ;;
+    esac
+done
+[ -n "$scenes" ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0" >&2; exit 2; }
+batch=
+for b in "$here/../src/cavalry-batch" ./src/cavalry-batch; do
+    [ -x "$b" ] && { batch=$(cd "$(dirname "$b")" && pwd)/cavalry-batch; break; }
+done
+[ -n "$batch" ] || { echo "bdpt.sh: cavalry-batch not found; build it (make)" >&2; exit 2; }
+[ -n "$out" ] || out="$here/out/bdpt"
+size_key=
+size_args=
+if [ -n "$size" ]; then
+    size_key=", resolution: [${size%x*}, ${size#*x}]"
+    size_args="--width ${size%x*} --height ${size#*x}"
+fi
+for scene in $scenes; do
+    scene=$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")
+    name=$(basename "$scene" .pbrt)
+    dir="$out/$name"
+    mkdir -p "$dir" || exit 1
+    {
+        echo 'version: 1'
+        echo 'jobs:'
+        echo "  - {name: ref, scene: \"$scene\", integrator: bdpt, spp: $ref_spp,"
+        echo "     output: \"$dir/ref\", formats: [exr], seed: 7$size_key}"
+    } >"$dir/ref.yaml"
+    echo "bdpt.sh: $name: reference, bdpt at $ref_spp spp" >&2
+    "$batch" --force "$dir/ref.yaml" >"$dir/ref.log" 2>&1 ||
+        { echo "bdpt.sh: the reference failed; see $dir/ref.log" >&2; exit 1; }
+    # shellcheck disable=SC2086
+    "$here/converge.sh" --reference "$dir/ref.exr" --spp "$spp" $size_args --out "$dir" \
+        --title "$name: relMSE vs render time" \
+        "path=$scene@path" "bdpt=$scene@bdpt" || exit 1
+done
