@@ -24,7 +24,7 @@
 
 /* Regularized upper incomplete gamma Q(a, x), series for x < a + 1, else
  * Lentz's continued fraction. */
-static double stats_gamma_q(double a, double x)
+static inline double stats_gamma_q(double a, double x)
 {
     if (x <= 0)
         return 1;
@@ -59,14 +59,14 @@ static double stats_gamma_q(double a, double x)
     return exp(-x + a * log(x) - gln) * h;
 }
 
-static int stats_cmp_double(const void *a, const void *b)
+static inline int stats_cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
 }
 
 /* The cell of a unit direction. */
-static int stats_cell(const float w[3])
+static inline int stats_cell(const float w[3])
 {
     double z = w[2] < -1 ? -1 : (w[2] > 1 ? 1 : w[2]);
     double theta = acos(z), phi = atan2(w[1], w[0]);
@@ -80,7 +80,7 @@ static int stats_cell(const float w[3])
 
 /* Directions at which to evaluate the pdf: CHI_SUB^2 midpoints per cell,
  * cell-major; 4 floats each. */
-static float *stats_grid_dirs(size_t *n)
+static inline float *stats_grid_dirs(size_t *n)
 {
     *n = (size_t)CHI_CELLS * CHI_SUB * CHI_SUB;
     float *d = calloc(*n * 4, sizeof(float));
@@ -100,7 +100,7 @@ static float *stats_grid_dirs(size_t *n)
 
 /* Per-cell integral of the pdf from values at stats_grid_dirs' points
  * (value i at pdf[stride * i]). */
-static void stats_integrate(const float *pdf, size_t stride, double *cell)
+static inline void stats_integrate(const float *pdf, size_t stride, double *cell)
 {
     size_t k = 0;
     double dt = M_PI / CHI_THETA / CHI_SUB, dp = 2 * M_PI / CHI_PHI / CHI_SUB;
@@ -126,7 +126,7 @@ struct stats_chi2 {
 
 /* observed: counts per cell out of n samples; expected_pdf: pdf integral
  * per cell (scaled by n here). */
-static struct stats_chi2 stats_chi2_test(const double *observed, const double *cell_pdf, double n)
+static inline struct stats_chi2 stats_chi2_test(const double *observed, const double *cell_pdf, double n)
 {
     struct stats_chi2 r = {0};
     double pairs[CHI_CELLS][2];
@@ -169,7 +169,7 @@ static struct stats_chi2 stats_chi2_test(const double *observed, const double *c
 }
 
 /* Šidák: per-test significance so that `tests` tests together keep alpha. */
-static double stats_sidak(double alpha, int tests)
+static inline double stats_sidak(double alpha, int tests)
 {
     return 1 - pow(1 - alpha, 1.0 / tests);
 }
