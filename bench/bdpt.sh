@@ -16,6 +16,7 @@
 #          ../shared/scenes/caustic-glass/caustic-glass-v4.pbrt
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/common.sh"
 ref_spp=4096
 spp=256
 size=
@@ -27,17 +28,14 @@ while [ $# -gt 0 ]; do
     --spp) spp=$2; shift 2 ;;
     --size) size=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
+    -h|--help) bench_usage "$0"; exit 0 ;;
     -*) echo "bdpt.sh: unknown option $1" >&2; exit 2 ;;
     *) scenes="$scenes $1"; shift ;;
     esac
 done
-[ -n "$scenes" ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0" >&2; exit 2; }
-batch=
-for b in "$here/../src/cavalry-batch" ./src/cavalry-batch; do
-    [ -x "$b" ] && { batch=$(cd "$(dirname "$b")" && pwd)/cavalry-batch; break; }
-done
-[ -n "$batch" ] || { echo "bdpt.sh: cavalry-batch not found; build it (make)" >&2; exit 2; }
+[ -n "$scenes" ] || { bench_usage "$0" >&2; exit 2; }
+batch=$(bench_binary bdpt.sh "" "$here/../src/cavalry-batch" ./src/cavalry-batch) || exit 2
+batch=$(cd "$(dirname "$batch")" && pwd)/cavalry-batch
 [ -n "$out" ] || out="$here/out/bdpt"
 size_key=
 size_args=
