@@ -7,25 +7,9 @@
 #include <math.h>
 
 #include "scene/bssrdf_table.h"
+#include "scene/fresnel.h"
 
 #define PI 3.14159265358979323846
-
-/* Fresnel reflectance of a dielectric interface, pbrt-v4's FrDielectric. */
-static double fr_dielectric(double cos_i, double eta)
-{
-    cos_i = cos_i < -1 ? -1 : cos_i > 1 ? 1 : cos_i;
-    if (cos_i < 0) {
-        eta = 1 / eta;
-        cos_i = -cos_i;
-    }
-    double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1)
-        return 1;
-    double cos_t = sqrt(fmax(0, 1 - sin2_t));
-    double parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    double perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return (parl * parl + perp * perp) / 2;
-}
 
 /* The Fresnel moments' polynomial fits (d'Eon and Irving 2011), as
  * pbrt-v4 takes them. */
@@ -100,7 +84,7 @@ static double beam_ss(double sigma_s, double sigma_a, double g, double eta, doub
         double ti = t_crit + unit_depth[i] / st;
         double d = sqrt(r * r + ti * ti), cos_o = ti / d;
         ess += rho * exp(-st * (d + t_crit)) / (d * d) * henyey_greenstein(cos_o, g) *
-               (1 - fr_dielectric(-cos_o, eta)) * fabs(cos_o);
+               (1 - cv_fresnel_dielectric(-cos_o, eta)) * fabs(cos_o);
     }
     return ess / BEAM_SAMPLES;
 }

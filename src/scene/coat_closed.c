@@ -4,23 +4,7 @@
 #include <math.h>
 
 #include "scene/coat_closed.h"
-
-/* Unpolarised Fresnel reflectance of a dielectric boundary of relative IOR
- * eta (cos_i < 0: seen from the inside), as glsl/trace/bsdf/fresnel.glsl. */
-static double fresnel(double cos_i, double eta)
-{
-    if (cos_i < 0) {
-        eta = 1 / eta;
-        cos_i = -cos_i;
-    }
-    double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1)
-        return 1;
-    double cos_t = sqrt(1 - sin2_t);
-    double a = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    double b = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5 * (a * a + b * b);
-}
+#include "scene/fresnel.h"
 
 /* Cosine after refraction into relative IOR eta; 0 past the critical angle. */
 static double refracted_cos(double mu, double eta)
@@ -38,14 +22,14 @@ struct coat { double eta, thickness; };
 /* 2 mu F_inside(mu) Tr(2 thickness, mu) at the inner cosine mu. */
 static double r_in_integrand(double mu, const struct coat *c)
 {
-    return 2 * mu * fresnel(-mu, c->eta) * transmittance(2 * c->thickness, mu);
+    return 2 * mu * cv_fresnel_dielectric(-mu, c->eta) * transmittance(2 * c->thickness, mu);
 }
 
 /* 2 mu (1 - F(mu)) Tr(thickness, mu') at the outer cosine mu. */
 static double t_out_integrand(double mu, const struct coat *c)
 {
     double mt = refracted_cos(mu, c->eta);
-    return mt > 0 ? 2 * mu * (1 - fresnel(mu, c->eta)) * transmittance(c->thickness, mt) : 0;
+    return mt > 0 ? 2 * mu * (1 - cv_fresnel_dielectric(mu, c->eta)) * transmittance(c->thickness, mt) : 0;
 }
 
 #define SIMPSON_N 4096 /* even */

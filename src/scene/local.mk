@@ -12,7 +12,7 @@ libcavalry_a_SOURCES += \
 	src/scene/materials.c \
 	src/scene/bssrdf_table.c src/scene/bssrdf_table.h \
 	src/scene/scattering_presets.c src/scene/scattering_presets.h \
-	src/scene/coat_closed.c src/scene/coat_closed.h \
+	src/scene/coat_closed.c src/scene/coat_closed.h src/scene/fresnel.h \
 	src/scene/spectrum.c src/scene/spectrum.h \
 	src/scene/rgl_tensor.c src/scene/rgl_tensor.h \
 	src/scene/measured.c src/scene/measured.h \
