@@ -115,7 +115,7 @@ jobs:
     matrix:
       max_depth: [1, 2, 1]
       scene: [sub/tiny.pbrt]
-      integrator: [path, bdpt]
+      integrator: [path, sppm]
   - name: c
     output: "{name}_{seed}"
   - name: d
@@ -131,7 +131,7 @@ expect_invalid bad \
     'bad.yaml:11:7: matrix: "name" cannot vary in a matrix' \
     'bad.yaml:14:25: matrix: max_depth: value "1" is listed twice' \
     'bad.yaml:15:15: matrix: scene: "sub/tiny.pbrt" cannot label a job name' \
-    'bad.yaml:16:26: integrator: expected one of path, rlpath, volpath, got "bdpt"' \
+    'bad.yaml:16:26: integrator: expected one of path, rlpath, volpath, bdpt, got "sppm"' \
     'bad.yaml:18:13: job "c" (line 17): output "{name}_{seed}": {seed} is not a key' \
     'bad.yaml:20:20: matrix: seed: the list is empty' \
     'bad.yaml:22:13: matrix: expected a mapping of keys to lists of values'

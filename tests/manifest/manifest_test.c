@@ -201,7 +201,7 @@ int main(void)
                 "5:3: unknown key \"colour\" in defaults; valid keys: scene, output, formats, "
                 "resolution, crop, spp, time_limit, integrator, max_depth, seed, color, aovs, exr, "
                 "png, camera, rlpath, env, lights, alpha (did you mean \"color\"?)",
-                "8:17: integrator: expected one of path, rlpath, volpath, got \"bidir\"",
+                "8:17: integrator: expected one of path, rlpath, volpath, bdpt, got \"bidir\"",
                 "9:5: job 2: missing required key \"name\"",
                 "10:11: name: \"b c\" has ' '; job names use only letters, digits, '.', '_' "
                 "and '-'",
