@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "bvh/median_split.h"
 #include "glsl/shared/bvh.h"
 
 static double blossom(const double p[4], double a, double b, double c)
@@ -37,18 +38,6 @@ struct build {
     float *out;     /* vec4s */
     uint32_t n_nodes;
 };
-
-struct keyed {
-    float key;
-    uint32_t index;
-};
-
-/* by centre, ties by index: one order whatever qsort does */
-static int cmp_keyed(const void *a, const void *b)
-{
-    const struct keyed *x = a, *y = b;
-    return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->index > y->index) - (x->index < y->index);
-}
 
 static void range_box(const struct build *b, uint32_t first, uint32_t count, float lo[3], float hi[3])
 {
@@ -83,26 +72,8 @@ static void build_node(struct build *b, uint32_t node, uint32_t first, uint32_t 
 {
     uint32_t half[2] = {count / 2, count - count / 2};
     if (count > 1) {
-        float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (uint32_t k = first; k < first + count; k++)
-            for (int a = 0; a < 3; a++) {
-                float c = 0.5f * (b->lo[b->order[k]][a] + b->hi[b->order[k]][a]);
-                clo[a] = fminf(clo[a], c);
-                chi[a] = fmaxf(chi[a], c);
-            }
-        int axis = 0;
-        for (int a = 1; a < 3; a++)
-            if (chi[a] - clo[a] > chi[axis] - clo[axis])
-                axis = a;
-        struct keyed *k = cv_xcalloc(count, sizeof(*k));
-        for (uint32_t i = 0; i < count; i++) {
-            uint32_t c = b->order[first + i];
-            k[i] = (struct keyed){b->lo[c][axis] + b->hi[c][axis], c};
-        }
-        qsort(k, count, sizeof(*k), cmp_keyed);
-        for (uint32_t i = 0; i < count; i++)
-            b->order[first + i] = k[i].index;
-        free(k);
+        cv_median_split(b->order + first, count, (const float (*)[3])b->lo,
+                        (const float (*)[3])b->hi);
     } else {
         half[0] = count;
         half[1] = 0;

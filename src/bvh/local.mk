@@ -2,6 +2,7 @@
 libcavalry_a_SOURCES += \
 	src/bvh/bounds.c src/bvh/bounds.h \
 	src/bvh/bvh.c src/bvh/bvh.h src/bvh/curve_bvh.c src/bvh/curve_bvh.h \
+	src/bvh/median_split.c src/bvh/median_split.h \
 	src/bvh/motion_bvh.c src/bvh/motion_bvh.h \
 	src/bvh/radix_sort.c src/bvh/radix_sort.h \
 	src/bvh/scan.c src/bvh/scan.h \

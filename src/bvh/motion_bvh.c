@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "bvh/median_split.h"
 #include "glsl/shared/bvh.h"
 
 /* vec4s of a shape's record (glsl/bvh/motion.glsl) */
@@ -34,18 +35,6 @@ struct tree {
     uint32_t n_nodes;  /* nodes so far (all trees) */
 };
 
-struct keyed {
-    float key;
-    uint32_t index;
-};
-
-/* by centre, ties by index: one order whatever qsort does */
-static int cmp_keyed(const void *a, const void *b)
-{
-    const struct keyed *x = a, *y = b;
-    return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->index > y->index) - (x->index < y->index);
-}
-
 static void set_child(struct tree *t, uint32_t node, int side, const float lo[3], const float hi[3],
                       int32_t word, int32_t count)
 {
@@ -63,26 +52,7 @@ static void build_node(struct tree *t, uint32_t node, uint32_t first, uint32_t c
 {
     uint32_t half[2] = {count / 2, count - count / 2};
     if (count > 1) {
-        float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (uint32_t k = first; k < first + count; k++)
-            for (int a = 0; a < 3; a++) {
-                float c = 0.5f * (t->lo[t->order[k]][a] + t->hi[t->order[k]][a]);
-                clo[a] = fminf(clo[a], c);
-                chi[a] = fmaxf(chi[a], c);
-            }
-        int axis = 0;
-        for (int a = 1; a < 3; a++)
-            if (chi[a] - clo[a] > chi[axis] - clo[axis])
-                axis = a;
-        struct keyed *k = cv_xcalloc(count, sizeof(*k));
-        for (uint32_t i = 0; i < count; i++) {
-            uint32_t c = t->order[first + i];
-            k[i] = (struct keyed){t->lo[c][axis] + t->hi[c][axis], c};
-        }
-        qsort(k, count, sizeof(*k), cmp_keyed);
-        for (uint32_t i = 0; i < count; i++)
-            t->order[first + i] = k[i].index;
-        free(k);
+        cv_median_split(t->order + first, count, t->lo, t->hi);
     } else {
         half[0] = count;
         half[1] = 0;
