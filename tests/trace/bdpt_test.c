@@ -34,17 +34,6 @@
  * each region mean has about 0.8 % standard error, their difference 1.1 % */
 #define BDPT_TOL_PATH 0.03
 
-static double region_mean(const float *img, int stride, int x0, int y0, int x1, int y1)
-{
-    double s = 0;
-    for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++) {
-            const float *p = img + ((size_t)y * RES + x) * stride;
-            s += (p[0] + p[1] + p[2]) / 3.0;
-        }
-    return s / ((double)(x1 - x0) * (y1 - y0));
-}
-
 static const int regions[6][4] = {{0, 0, RES, RES},           {0, 0, RES / 2, RES / 2},
                                   {RES / 2, 0, RES, RES / 2}, {0, RES / 2, RES / 2, RES},
                                   {RES / 2, RES / 2, RES, RES}, {11, 10, 21, 20}};
@@ -78,11 +67,11 @@ static bool render(struct cv_gpu *gpu, const char *name, enum cv_integrator in, 
 /* The worst region's deviation of a from b (stride floats a pixel). */
 static double worst_dev(const char *name, const float *a, int sa, const float *b, int sb)
 {
-    double all_b = region_mean(b, sb, 0, 0, RES, RES), worst = 0;
+    double all_b = exr_ref_region_mean(b, RES, sb, 0, 0, RES, RES), worst = 0;
     for (int k = 0; k < 6; k++) {
         const int *r = regions[k];
-        double x = region_mean(a, sa, r[0], r[1], r[2], r[3]);
-        double y = region_mean(b, sb, r[0], r[1], r[2], r[3]);
+        double x = exr_ref_region_mean(a, RES, sa, r[0], r[1], r[2], r[3]);
+        double y = exr_ref_region_mean(b, RES, sb, r[0], r[1], r[2], r[3]);
         double dev = fabs(x - y) / fmax(y, 0.25 * all_b);
         tap_diag("  %-20s region %d mean %.5f reference %.5f ratio %.4f", name, k, x, y, x / y);
         if (!(dev <= worst))
@@ -146,8 +135,8 @@ static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uin
         char what[64];
         snprintf(what, sizeof(what), "%s (%u,%u)", name, s, t);
         worst_dev(what, img.rgba, 4, ref.rgba, 4);  /* the regions, for the log */
-        double a = region_mean(img.rgba, 4, 0, 0, RES, RES);
-        double b = region_mean(ref.rgba, 4, 0, 0, RES, RES);
+        double a = exr_ref_region_mean(img.rgba, RES, 4, 0, 0, RES, RES);
+        double b = exr_ref_region_mean(ref.rgba, RES, 4, 0, 0, RES, RES);
         tap_ok(fabs(a - b) <= BDPT_TOL_STRATEGY * b,
                "%s: strategy (%u, %u) alone: image mean within %.0f%% of (1, %u)'s (ratio %.4f)",
                name, s, t, 100 * BDPT_TOL_STRATEGY, depth + 1, a / b);

@@ -1,5 +1,6 @@
-/* exr_ref.h: reads the R, G, B channels of an OpenEXR reference image and
- * box-downsamples it, for the reference comparisons of the renderer tests. */
+/* exr_ref.h: reads the R, G, B channels of an OpenEXR reference image,
+ * box-downsamples it and averages its regions, for the reference
+ * comparisons of the renderer tests. */
 #ifndef CV_TESTS_TRACE_EXR_REF_H
 #define CV_TESTS_TRACE_EXR_REF_H
 
@@ -44,6 +45,20 @@ static inline float *exr_ref_downsample(const float *rgb, uint32_t w, uint32_t h
                 out[((size_t)(y / factor) * ow + x / factor) * 3 + c] +=
                     rgb[((size_t)y * w + x) * 3 + c] / (float)(factor * factor);
     return out;
+}
+
+/* Channel-averaged mean of the pixels [x0, x1) x [y0, y1) of an image
+ * `width` pixels wide; stride: floats per pixel (R, G, B first). */
+static inline double exr_ref_region_mean(const float *img, int width, int stride, int x0, int y0,
+                                         int x1, int y1)
+{
+    double s = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++) {
+            const float *p = img + ((size_t)y * width + x) * stride;
+            s += (p[0] + p[1] + p[2]) / 3.0;
+        }
+    return s / ((double)(x1 - x0) * (y1 - y0));
 }
 
 #endif

@@ -199,19 +199,6 @@ static double region_channel_mean(const float *img, int stride, int c, int x0, i
     return s / ((double)(x1 - x0) * (y1 - y0));
 }
 
-/* Channel-averaged mean of the pixels [x0, x1) x [y0, y1); stride: floats
- * per pixel. */
-static double region_mean(const float *img, int stride, int x0, int y0, int x1, int y1)
-{
-    double s = 0;
-    for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++) {
-            const float *p = img + ((size_t)y * RES + x) * stride;
-            s += (p[0] + p[1] + p[2]) / 3.0;
-        }
-    return s / ((double)(x1 - x0) * (y1 - y0));
-}
-
 static void check_scene(struct cv_gpu *gpu, const struct oracle_scene *sc, uint64_t seed)
 {
     char name[256], why[4400] = "";
@@ -256,8 +243,8 @@ static void check_scene(struct cv_gpu *gpu, const struct oracle_scene *sc, uint6
         free(img.rgba);
         return;
     }
-    double all = region_mean(img.rgba, 4, 0, 0, RES, RES);
-    double all_ref = region_mean(ref, 3, 0, 0, RES, RES);
+    double all = exr_ref_region_mean(img.rgba, RES, 4, 0, 0, RES, RES);
+    double all_ref = exr_ref_region_mean(ref, RES, 3, 0, 0, RES, RES);
     double rel_mse = 0;
     for (int i = 0; i < RES * RES; i++)
         for (int c = 0; c < 3; c++) {
@@ -307,13 +294,15 @@ static void check_scene(struct cv_gpu *gpu, const struct oracle_scene *sc, uint6
     }
     double scale = 0; /* the brightest reference region (REGIONS_LINES, _GRID) */
     for (int k = 0; k < n_rg; k++)
-        scale = fmax(scale, region_mean(ref, 3, rg[k][0], rg[k][1], rg[k][2], rg[k][3]));
+        scale = fmax(scale,
+                     exr_ref_region_mean(ref, RES, 3, rg[k][0], rg[k][1], rg[k][2], rg[k][3]));
     bool pass = true;
     char worst[128] = "";
     double worst_dev = -1;
     for (int k = 0; k < n_rg; k++) {
-        double a = region_mean(img.rgba, 4, rg[k][0], rg[k][1], rg[k][2], rg[k][3]);
-        double b = region_mean(ref, 3, rg[k][0], rg[k][1], rg[k][2], rg[k][3]);
+        double a = exr_ref_region_mean(img.rgba, RES, 4, rg[k][0], rg[k][1], rg[k][2],
+                                       rg[k][3]);
+        double b = exr_ref_region_mean(ref, RES, 3, rg[k][0], rg[k][1], rg[k][2], rg[k][3]);
         double dev = kind == REGIONS_DEFAULT ? fabs(a - b) / fmax(b, 0.25 * all_ref)
                                                     : fabs(a - b) / scale;
         if (!(dev <= ORACLE_TOL))
