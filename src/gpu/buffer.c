@@ -86,3 +86,21 @@ void cv_buffer_bind(GLuint buf, unsigned binding)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);
 }
+
+GLuint cv_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
+{
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max);
+    if (max > 0 && texels > (size_t)max) {
+        cv_fail(err, "%zu texels exceed this GPU's buffer texture limit of %d", texels, max);
+        return 0;
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &tex);
+    glTextureBuffer(tex, format, buf);
+    if (!cv_gl_check(err, "buffer texture of %zu texels", texels)) {
+        glDeleteTextures(1, &tex);
+        return 0;
+    }
+    return tex;
+}

@@ -40,5 +40,10 @@ bool cv_buffer_read_staged(GLuint buf, size_t offset, size_t bytes, GLuint stagi
                            struct cv_error *err);
 void cv_buffer_zero(GLuint buf);
 void cv_buffer_bind(GLuint buf, unsigned binding);
+/* A buffer texture over buf (texels of `format`, e.g. GL_R32UI), for
+ * reading it through the texture path or binding it as an image; 0 with
+ * err set when the GPU's buffer texture limit is too small. Delete with
+ * glDeleteTextures. */
+GLuint cv_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err);
 
 #endif

@@ -565,7 +565,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (r->scene->has_subsurface && ok) {
         size_t texels = n * CV_SSS_ENTRY_TEXELS;
         r->sss_entry = make(gpu, texels * 4 * sizeof(float), "trace subsurface entries", &ok, err);
-        if (ok && !(r->sss_entry_tex = cv_rlpath_buffer_texture(r->sss_entry, GL_RGBA32F, texels, err)))
+        if (ok && !(r->sss_entry_tex = cv_buffer_texture(r->sss_entry, GL_RGBA32F, texels, err)))
             ok = false;
     }
     if (ok && !(r->resolved = cv_buf_create(gpu, &(struct cv_buf_params){

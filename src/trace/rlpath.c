@@ -100,24 +100,6 @@ uint64_t cv_rlpath_guide_bytes(const CvRlParams *p)
     return (uint64_t)p->dirs.w * CV_RL_GUIDE_TEXELS(p->dirs.z) * 4 * sizeof(float);
 }
 
-GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err)
-{
-    GLint max = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max);
-    if (max > 0 && texels > (size_t)max) {
-        cv_fail(err, "%zu texels exceed this GPU's buffer texture limit of %d", texels, max);
-        return 0;
-    }
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_BUFFER, 1, &tex);
-    glTextureBuffer(tex, format, buf);
-    if (!cv_gl_check(err, "buffer texture of %zu texels", texels)) {
-        glDeleteTextures(1, &tex);
-        return 0;
-    }
-    return tex;
-}
-
 /* The rebuild program's defines (the shade programs are the renderer's:
  * cv_rlpath_ops.file). */
 static const char *const rebuild_indirect[2] = {"CV_RL_GUIDE_INDIRECT", NULL};
@@ -162,16 +144,16 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);
     if (rl->path)
-        rl->table_tex = cv_rlpath_buffer_texture(rl->table, GL_R32UI,
-                                                 cv_rlpath_table_bytes(layout) / 4, err);
+        rl->table_tex = cv_buffer_texture(rl->table, GL_R32UI,
+                                          cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_tex)
-        rl->table_ftex = cv_rlpath_buffer_texture(rl->table, GL_R32F,
-                                                  cv_rlpath_table_bytes(layout) / 4, err);
+        rl->table_ftex = cv_buffer_texture(rl->table, GL_R32F,
+                                           cv_rlpath_table_bytes(layout) / 4, err);
     if (rl->table_ftex)
-        rl->guide_tex = cv_rlpath_buffer_texture(rl->guide, GL_RGBA32F,
-                                                 cv_rlpath_guide_bytes(layout) / 16, err);
+        rl->guide_tex = cv_buffer_texture(rl->guide, GL_RGBA32F,
+                                          cv_rlpath_guide_bytes(layout) / 16, err);
     if (rl->guide_tex)
-        rl->path_tex = cv_rlpath_buffer_texture(rl->path, GL_RG32UI, path_bytes / 8, err);
+        rl->path_tex = cv_buffer_texture(rl->path, GL_RG32UI, path_bytes / 8, err);
     if (!rl->path_tex) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);

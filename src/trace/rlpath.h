@@ -33,11 +33,6 @@
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
                       uint32_t directions, float mix, CvRlParams *out, struct cv_error *err);
 
-/* A buffer texture over buf (texels of `format`, e.g. GL_R32UI), for binding
- * the table or path state as an image; 0 with err set when the GPU's buffer
- * texture limit is too small. Delete with glDeleteTextures. */
-GLuint cv_rlpath_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err);
-
 /* Bytes of the learning table and of the guide table of a layout
  * (glsl/shared/rlpath.h). */
 uint64_t cv_rlpath_table_bytes(const CvRlParams *p);

@@ -15,7 +15,6 @@
 #include "gpu/storage.h"
 #include "glsl/shared/envmap.h"
 #include "trace/envmap_dist.h"
-#include "trace/rlpath.h"
 #include "trace/scene_upload.h"
 #include "trace/shade_bins.h"
 
@@ -219,7 +218,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
     if (s->n_bssrdf) {
         size_t n = (size_t)s->n_bssrdf * CV_BSSRDF_FLOATS;
         ok = up(gpu, &g.bssrdf, n * sizeof(float), s->bssrdf, "BSSRDF tables", err) &&
-             (g.bssrdf_tex = cv_rlpath_buffer_texture(g.bssrdf, GL_R32F, n, err)) != 0;
+             (g.bssrdf_tex = cv_buffer_texture(g.bssrdf, GL_R32F, n, err)) != 0;
         if (!ok) {
             cv_scene_gpu_release(&g);
             return false;

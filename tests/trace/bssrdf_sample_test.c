@@ -181,7 +181,7 @@ int main(void)
     cv_bssrdf_table_compute(0, 1.33, tables);
     cv_bssrdf_table_compute(0.3, 1.5, tables + CV_BSSRDF_FLOATS);
     GLuint buf = cv_buffer_create(n * sizeof(float), tables, "bssrdf tables", &err);
-    GLuint tex = buf ? cv_rlpath_buffer_texture(buf, GL_R32F, n, &err) : 0;
+    GLuint tex = buf ? cv_buffer_texture(buf, GL_R32F, n, &err) : 0;
     struct cv_program *prog = tex ? cv_program_get(gpu, "trace/test/bssrdf_probe.comp", NULL, &err) : NULL;
     if (tap_ok(prog != NULL, "bssrdf_probe.comp compiles, tables bound: %s", prog ? "" : err.msg)) {
         glBindTextureUnit(CV_TEXUNIT_BSSRDF, tex);

@@ -304,11 +304,11 @@ static void test_bins(struct cv_gpu *gpu, uint32_t directions, bool indirect)
         }
     g.in = cv_buffer_create((size_t)QZ * QP * 4 * sizeof(float), inq, "test in", &err);
     if (g.table)
-        g.table_tex = cv_rlpath_buffer_texture(g.table, GL_R32UI,
-                                               cv_rlpath_table_bytes(&g.params) / 4, &err);
+        g.table_tex = cv_buffer_texture(g.table, GL_R32UI,
+                                        cv_rlpath_table_bytes(&g.params) / 4, &err);
     if (g.guide)
-        g.guide_tex = cv_rlpath_buffer_texture(g.guide, GL_RGBA32F,
-                                               cv_rlpath_guide_bytes(&g.params) / 16, &err);
+        g.guide_tex = cv_buffer_texture(g.guide, GL_RGBA32F,
+                                        cv_rlpath_guide_bytes(&g.params) / 16, &err);
     if (!tap_ok(g.ubo && g.table && g.guide && g.out && g.in && g.table_tex && g.guide_tex,
                 "buffers: %s", err.msg))
         return;
