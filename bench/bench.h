@@ -30,6 +30,8 @@ void bench_str(struct bench_record *r, const char *key, const char *v);
 /* Appends a measurement that this build cannot make, with the reason. */
 void bench_unavailable(struct bench_record *r, const char *what, const char *why);
 void bench_record_print(const struct bench_record *r, FILE *out);
+/* Writes s as a JSON string, quoted and escaped. */
+void bench_json_string(FILE *out, const char *s);
 void bench_record_free(struct bench_record *r);
 /* Parses one line printed by bench_record_print; false when it is not one. */
 bool bench_record_parse(const char *line, struct bench_record *r);

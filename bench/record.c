@@ -56,7 +56,7 @@ const struct bench_field *bench_get(const struct bench_record *r, const char *ke
     return NULL;
 }
 
-static void put_json_string(FILE *out, const char *s)
+void bench_json_string(FILE *out, const char *s)
 {
     fputc('"', out);
     for (; *s; s++) {
@@ -77,10 +77,10 @@ void bench_record_print(const struct bench_record *r, FILE *out)
     for (int i = 0; i < r->n; i++) {
         if (i)
             fputs(", ", out);
-        put_json_string(out, r->f[i].key);
+        bench_json_string(out, r->f[i].key);
         fputs(": ", out);
         if (!r->f[i].is_num)
-            put_json_string(out, r->f[i].str);
+            bench_json_string(out, r->f[i].str);
         else if (isfinite(r->f[i].num))
             fprintf(out, "%.6g", r->f[i].num);
         else

@@ -44,21 +44,6 @@ static bool stat_of(const struct scene_runs *s, const char *key, double *med, do
     return n > 0;
 }
 
-static void json_str(FILE *out, const char *s)
-{
-    fputc('"', out);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(out, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(out, "\\u%04x", c);
-        else
-            fputc(c, out);
-    }
-    fputc('"', out);
-}
-
 static void cell(FILE *out, const struct scene_runs *s, const char *key, double scale,
                  const char *fmt, int width)
 {
@@ -190,15 +175,15 @@ bool bench_summarize(char **files, int n_files, FILE *json, FILE *table, struct 
     for (size_t i = 0; i < sizeof gpu_keys / sizeof gpu_keys[0]; i++) {
         const struct bench_field *f = bench_get(first, gpu_keys[i]);
         fprintf(json, "%s", i ? ", " : "");
-        json_str(json, gpu_keys[i] + 4);
+        bench_json_string(json, gpu_keys[i] + 4);
         fputs(": ", json);
-        json_str(json, f && !f->is_num ? f->str : "");
+        bench_json_string(json, f && !f->is_num ? f->str : "");
     }
     fputs("},\n  \"scenes\": [\n", json);
     for (int k = 0; k < n_sc; k++) {
         struct scene_runs *s = &sc[k];
         fputs("    {\"scene\": ", json);
-        json_str(json, s->name);
+        bench_json_string(json, s->name);
         fprintf(json, ", \"repeats\": %d,\n      \"metrics\": {", s->n);
         /* Keys in the order of the first run, numbers only. */
         int printed = 0;
@@ -211,7 +196,7 @@ bool bench_summarize(char **files, int n_files, FILE *json, FILE *table, struct 
             if (!stat_of(s, f->key, &med, &lo, &hi, &n))
                 continue;
             fprintf(json, "%s\n        ", printed++ ? "," : "");
-            json_str(json, f->key);
+            bench_json_string(json, f->key);
             fprintf(json, ": {\"median\": %.6g, \"min\": %.6g, \"max\": %.6g, "
                     "\"spread_pct\": %.3g, \"n\": %d}", med, lo, hi,
                     med != 0 ? 100.0 * (hi - lo) / fabs(med) : 0.0, n);
@@ -223,9 +208,9 @@ bool bench_summarize(char **files, int n_files, FILE *json, FILE *table, struct 
             if (f->is_num || !strncmp(f->key, "unavailable.", 12) || !strcmp(f->key, "scene"))
                 continue;
             fprintf(json, "%s", printed++ ? ", " : "");
-            json_str(json, f->key);
+            bench_json_string(json, f->key);
             fputs(": ", json);
-            json_str(json, f->str);
+            bench_json_string(json, f->str);
         }
         fputs("},\n      \"unavailable\": {", json);
         printed = 0;
@@ -234,9 +219,9 @@ bool bench_summarize(char **files, int n_files, FILE *json, FILE *table, struct 
             if (f->is_num || strncmp(f->key, "unavailable.", 12))
                 continue;
             fprintf(json, "%s", printed++ ? ", " : "");
-            json_str(json, f->key + 12);
+            bench_json_string(json, f->key + 12);
             fputs(": ", json);
-            json_str(json, f->str);
+            bench_json_string(json, f->str);
         }
         fprintf(json, "}}%s\n", k + 1 < n_sc ? "," : "");
     }
