@@ -11,10 +11,9 @@
 // ray passes within half the width of the closest point of the segment's
 // chord. u runs along the piece, v across the width (0.5 on the centre).
 //
-// One storage block holds everything (a kernel may bind only a few):
-// vec4 0 is the header (node count, curve count, first curve's vec4, and
-// in a scene with moving shapes the first of their vec4s, which follow:
-// glsl/bvh/motion.glsl), then
+// One buffer texture holds everything (CV_TEXUNIT_CURVES, read with
+// texelFetch: it uses no storage block, of which a kernel may bind few):
+// vec4 0 is the header (node count, curve count, first curve's vec4), then
 // the nodes, 4 vec4 each as a binary CvBvhNode (glsl/shared/bvh.h: a leaf
 // child's word is its first curve, its count the curves), then the curves,
 // 7 vec4 each as CvCurve, in leaf order.
@@ -25,22 +24,23 @@
 #include "shared/bvh.h"
 #include "shared/bindings.h"
 
-layout(std430, binding = CV_BIND_CURVES) readonly buffer CvCurveBlock { vec4 cv_curve_data[]; };
+layout(binding = CV_TEXUNIT_CURVES) uniform samplerBuffer cv_curve_tex;
+vec4 cv_curve_word(uint i) { return texelFetch(cv_curve_tex, int(i)); }
 
 #define CV_CURVE_STACK 32  // node stack: the host builds trees at most this deep
 #define CV_CURVE_SPLIT_STACK 12
 
-uint cv_curve_count() { return floatBitsToUint(cv_curve_data[0].y); }
+uint cv_curve_count() { return floatBitsToUint(cv_curve_word(0).y); }
 
 CvCurve cv_curve_at(uint i)
 {
-    uint b = floatBitsToUint(cv_curve_data[0].z) + 7u * i;
+    uint b = floatBitsToUint(cv_curve_word(0).z) + 7u * i;
     CvCurve c;
     for (uint k = 0u; k < 4u; k++)
-        c.cp[k] = cv_curve_data[b + k];
-    c.n0 = cv_curve_data[b + 4u];
-    c.n1 = cv_curve_data[b + 5u];
-    c.info = floatBitsToUint(cv_curve_data[b + 6u]);
+        c.cp[k] = cv_curve_word(b + k);
+    c.n0 = cv_curve_word(b + 4u);
+    c.n1 = cv_curve_word(b + 5u);
+    c.info = floatBitsToUint(cv_curve_word(b + 6u));
     return c;
 }
 
@@ -239,7 +239,7 @@ bool cv_curves_in_range(uint first, uint last, vec3 o, vec3 d, float tmin, bool 
 bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, inout uint hit_prim,
                     inout float hit_u, inout float hit_v)
 {
-    uint n_nodes = floatBitsToUint(cv_curve_data[0].x), n_curves = cv_curve_count();
+    uint n_nodes = floatBitsToUint(cv_curve_word(0).x), n_curves = cv_curve_count();
     if (n_nodes == 0u)
         return false;
     vec3 inv = 1.0 / mix(d, mix(vec3(1e-30), vec3(-1e-30), lessThan(d, vec3(0.0))), lessThan(abs(d), vec3(1e-30)));
@@ -249,8 +249,8 @@ bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, ino
     bool found = false;
     for (uint steps = 0u; steps <= n_nodes; steps++) {
         uint b = 1u + 4u * uint(node);
-        vec4 lmin = cv_curve_data[b], lmax = cv_curve_data[b + 1u];
-        vec4 rmin = cv_curve_data[b + 2u], rmax = cv_curve_data[b + 3u];
+        vec4 lmin = cv_curve_word(b), lmax = cv_curve_word(b + 1u);
+        vec4 rmin = cv_curve_word(b + 2u), rmax = cv_curve_word(b + 3u);
         int next[2] = int[2](-1, -1);
         for (int side = 0; side < 2; side++) {
             vec4 lo = side == 0 ? lmin : rmin, hi = side == 0 ? lmax : rmax;

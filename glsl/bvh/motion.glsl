@@ -13,7 +13,7 @@
 // shapes' motion boxes (world space: each holds its shape at every time)
 // picks the shapes a ray may meet.
 //
-// One storage block holds everything: vec4 0 is the header (shape count,
+// One buffer texture holds everything: vec4 0 is the header (shape count,
 // first shape record, first triangle, the first moving triangle's index
 // in cv_triangles), then binary nodes of 4 vec4 as curves.glsl's (the top
 // tree from node 0: a leaf child's word is a shape, its count 1; then each
@@ -30,20 +30,10 @@
 #include "../lib/quaternion.glsl"
 #include "triangle.glsl"
 
-#ifdef CV_HAS_CURVES
-// A kernel may use 16 storage blocks, which one with curves, media, alpha
-// cut-outs and moving shapes would pass: with curves, the moving shapes'
-// vec4s follow the curves' in their block (src/trace/scene_upload.c), from
-// the vec4 that the curves' header's w names.
-#include "curves.glsl"
-uint cv_motion_base() { return floatBitsToUint(cv_curve_data[0].w); }
-vec4 cv_motion_at(uint i) { return cv_curve_data[cv_motion_base() + i]; }
-uint cv_motion_len() { return uint(cv_curve_data.length()) - cv_motion_base(); }
-#else
-layout(std430, binding = CV_BIND_MOTION) readonly buffer CvMotionBlock { vec4 cv_motion_data[]; };
-vec4 cv_motion_at(uint i) { return cv_motion_data[i]; }
-uint cv_motion_len() { return uint(cv_motion_data.length()); }
-#endif
+// read with texelFetch: no storage block (a kernel may bind only 16)
+layout(binding = CV_TEXUNIT_MOTION) uniform samplerBuffer cv_motion_tex;
+vec4 cv_motion_at(uint i) { return texelFetch(cv_motion_tex, int(i)); }
+uint cv_motion_len() { return uint(textureSize(cv_motion_tex)); }
 
 #define CV_MOTION_STACK 32  // node stacks: median-split trees of < 2^32 items are shallower
 #define CV_MOTION_RECORD 11u

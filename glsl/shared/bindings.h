@@ -32,10 +32,6 @@
 /* uint[]: each triangle's ID-matte object (src/scene/scene.h), read only
  * by trace/matte.comp; above the stage-private range, as CV_BIND_BVH_TRIS */
 #define CV_BIND_TRI_OBJECT 27
-/* vec4[]: the curves and their tree (glsl/bvh/curves.glsl, src/bvh/curve_bvh.c);
- * bound only where the scene has curves (CV_HAS_CURVES); above the
- * stage-private range */
-#define CV_BIND_CURVES 28
 /* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
  * above the stage-private range */
 #define CV_BIND_MEDIA 29
@@ -43,14 +39,23 @@
  * with the scene, only where it has grid media; above the stage-private
  * range */
 #define CV_BIND_MEDIUM_GRIDS 30
-/* vec4[]: the moving shapes, their transforms and trees (glsl/bvh/motion.glsl,
- * src/bvh/motion_bvh.c); bound only where the scene has them (CV_HAS_MOTION);
- * above the stage-private range */
-#define CV_BIND_MOTION 31
-/* uint[]: the measured BRDFs' tables (glsl/shared/measured.h), with the
- * scene; declared only where a material is measured (else CV_NO_MEASURED);
- * above the stage-private range */
-#define CV_BIND_MEASURED 32
+
+/* Texture units of the scene's read-only tables, read as buffer textures
+ * (texelFetch): a kernel may use only 16 storage blocks (Mesa's limit),
+ * which one with curves, media, alpha cut-outs, moving shapes and measured
+ * materials together would pass; texture units are not counted there. */
+/* r32f: the subsurface profiles (glsl/shared/bssrdf.h) */
+#define CV_TEXUNIT_BSSRDF 0
+/* rgba32f: the curves and their tree (glsl/bvh/curves.glsl,
+ * src/bvh/curve_bvh.c), bound where the scene has curves (CV_HAS_CURVES) */
+#define CV_TEXUNIT_CURVES 1
+/* rgba32f: the moving shapes, their transforms and trees
+ * (glsl/bvh/motion.glsl, src/bvh/motion_bvh.c), bound where the scene has
+ * them (CV_HAS_MOTION) */
+#define CV_TEXUNIT_MOTION 2
+/* r32ui: the measured BRDFs' tables (glsl/shared/measured.h), declared only
+ * where a material is measured (else CV_NO_MEASURED) */
+#define CV_TEXUNIT_MEASURED 3
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

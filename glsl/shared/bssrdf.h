@@ -14,12 +14,11 @@
 #ifndef CV_SHARED_BSSRDF_H
 #define CV_SHARED_BSSRDF_H
 
-/* The buffer texture (r32f) the kernels read the tables from, and the
- * image (rgba32f, CV_SSS_ENTRY_TEXELS a path slot: the entry point and
- * its material, its normal, sigma_a and sigma_s there)
- * where a path that entered a subsurface material keeps its entry while
+/* The tables are read as a buffer texture (CV_TEXUNIT_BSSRDF in
+ * shared/bindings.h). The image (rgba32f, CV_SSS_ENTRY_TEXELS a path slot:
+ * the entry point and its material, its normal, sigma_a and sigma_s there)
+ * is where a path that entered a subsurface material keeps its entry while
  * its probe segment is traced (glsl/trace/sss_probe.glsl). */
-#define CV_TEXUNIT_BSSRDF 0
 #define CV_IMAGE_SSS_ENTRY 4
 #define CV_SSS_ENTRY_TEXELS 4u
 

@@ -3,7 +3,7 @@
  * them from the tensor file) and glsl/trace/bsdf/measured.glsl read them.
  *
  * All measured BRDFs of a scene share one buffer of 32-bit words
- * (CV_BIND_MEASURED); a material of type CV_MAT_MEASURED holds the word
+ * (CV_TEXUNIT_MEASURED); a material of type CV_MAT_MEASURED holds the word
  * offset of its block in mix_a. Offsets below are in words from the start
  * of the block; floats are stored by their bits.
  *

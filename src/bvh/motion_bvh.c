@@ -198,15 +198,3 @@ float *cv_motion_bvh_pack(const struct cv_scene *s, size_t *n_vec4)
     *n_vec4 = o.n;
     return o.v;
 }
-
-void cv_motion_bvh_append(const struct cv_scene *s, float **buf, size_t *n_vec4)
-{
-    size_t n_motion;
-    float *motion = cv_motion_bvh_pack(s, &n_motion);
-    uint32_t base = (uint32_t)*n_vec4;
-    *buf = cv_xrealloc(*buf, (*n_vec4 + n_motion) * 4 * sizeof(float));
-    memcpy(*buf + 4 * *n_vec4, motion, n_motion * 4 * sizeof(float));
-    memcpy(*buf + 3, &base, 4);
-    *n_vec4 += n_motion;
-    free(motion);
-}

@@ -22,12 +22,4 @@
  * frees it. */
 float *cv_motion_bvh_pack(const struct cv_scene *s, size_t *n_vec4);
 
-/* The same appended to the curves' buffer (cv_curve_bvh_pack's *buf of
- * *n_vec4 vec4s, reallocated and grown), its header's w set to where the
- * moving shapes' vec4s start: one storage block for both, as
- * glsl/bvh/motion.glsl reads them in a kernel with curves (a kernel may
- * use 16 blocks, which one with curves, media, alpha cut-outs and a block
- * of the moving shapes' own would pass). */
-void cv_motion_bvh_append(const struct cv_scene *s, float **buf, size_t *n_vec4);
-
 #endif

@@ -102,6 +102,16 @@ static bool up(struct cv_gpu *gpu, GLuint *b, size_t bytes, const void *data, co
     return *b != 0;
 }
 
+/* up() for a table the kernels read as a buffer texture of n texels of
+ * texel_bytes each (shared/bindings.h says why those are not blocks). */
+static bool up_texture(struct cv_gpu *gpu, GLuint *b, GLuint *tex, GLenum format,
+                       size_t n, size_t texel_bytes, const void *data, const char *label,
+                       struct cv_error *err)
+{
+    return up(gpu, b, n * texel_bytes, data, label, err) &&
+           (*tex = cv_buffer_texture(*b, format, n, err)) != 0;
+}
+
 /* The build's scratch (about 260 bytes per triangle) stays pooled for the
  * next scene's build, a batch's next job, while it is under a quarter of
  * the GPU's free memory: fresh scratch costs a build GPU time in
@@ -210,32 +220,30 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         cv_scene_gpu_release(&g);
         return false;
     }
-    if (g.has_measured && !up(gpu, &g.measured, s->n_measured * sizeof(uint32_t), s->measured,
-                              "measured BRDF tables", err)) {
+    if (g.has_measured && !up_texture(gpu, &g.measured, &g.measured_tex, GL_R32UI, s->n_measured,
+                                      sizeof(uint32_t), s->measured, "measured BRDF tables",
+                                      err)) {
         cv_scene_gpu_release(&g);
         return false;
     }
     if (s->n_bssrdf) {
         size_t n = (size_t)s->n_bssrdf * CV_BSSRDF_FLOATS;
-        ok = up(gpu, &g.bssrdf, n * sizeof(float), s->bssrdf, "BSSRDF tables", err) &&
-             (g.bssrdf_tex = cv_buffer_texture(g.bssrdf, GL_R32F, n, err)) != 0;
+        ok = up_texture(gpu, &g.bssrdf, &g.bssrdf_tex, GL_R32F, n, sizeof(float), s->bssrdf,
+                        "BSSRDF tables", err);
         if (!ok) {
             cv_scene_gpu_release(&g);
             return false;
         }
     }
-    /* with curves, the moving shapes share their buffer (bvh/motion_bvh.h) */
     size_t n_curve4 = 0, n_motion4 = 0;
     float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, &n_curve4) : NULL;
-    float *motion4 = NULL;
-    if (curve4 && g.has_motion)
-        cv_motion_bvh_append(s, &curve4, &n_curve4);
-    else if (g.has_motion)
-        motion4 = cv_motion_bvh_pack(s, &n_motion4);
+    float *motion4 = g.has_motion ? cv_motion_bvh_pack(s, &n_motion4) : NULL;
     if (curve4)
-        ok = up(gpu, &g.curves, n_curve4 * 16, curve4, "scene curves", err);
+        ok = up_texture(gpu, &g.curves, &g.curves_tex, GL_RGBA32F, n_curve4, 16, curve4,
+                        "scene curves", err);
     if (ok && motion4)
-        ok = up(gpu, &g.motion, n_motion4 * 16, motion4, "scene moving shapes", err);
+        ok = up_texture(gpu, &g.motion, &g.motion_tex, GL_RGBA32F, n_motion4, 16, motion4,
+                        "scene moving shapes", err);
     free(curve4);
     free(motion4);
     if (!ok) {
@@ -274,18 +282,18 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->light_cdf, CV_BIND_LIGHT_CDF);
     cv_buffer_bind(g->env_dist, CV_BIND_ENV_DIST);
     cv_buffer_bind(g->tri_object, CV_BIND_TRI_OBJECT);
-    if (g->curves)
-        cv_buffer_bind(g->curves, CV_BIND_CURVES);
+    if (g->curves_tex)
+        glBindTextureUnit(CV_TEXUNIT_CURVES, g->curves_tex);
     if (g->media)
         cv_buffer_bind(g->media, CV_BIND_MEDIA);
     if (g->medium_grids)
         cv_buffer_bind(g->medium_grids, CV_BIND_MEDIUM_GRIDS);
-    if (g->motion)
-        cv_buffer_bind(g->motion, CV_BIND_MOTION);
+    if (g->motion_tex)
+        glBindTextureUnit(CV_TEXUNIT_MOTION, g->motion_tex);
     if (g->bssrdf_tex)
         glBindTextureUnit(CV_TEXUNIT_BSSRDF, g->bssrdf_tex);
-    if (g->measured)
-        cv_buffer_bind(g->measured, CV_BIND_MEASURED);
+    if (g->measured_tex)
+        glBindTextureUnit(CV_TEXUNIT_MEASURED, g->measured_tex);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -308,9 +316,10 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
                    &g->measured};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
-    if (g->bssrdf_tex)
-        glDeleteTextures(1, &g->bssrdf_tex);
-    g->bssrdf_tex = 0;
+    GLuint tex[] = {g->bssrdf_tex, g->curves_tex, g->motion_tex, g->measured_tex};
+    for (size_t i = 0; i < CV_ARRAY_SIZE(tex); i++)
+        if (tex[i])
+            glDeleteTextures(1, &tex[i]);
     bool had_bvh = g->bvh != NULL;
     cv_bvh_destroy(&g->bvh);
     if (had_bvh && g->gpu)

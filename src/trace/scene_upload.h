@@ -27,10 +27,11 @@ struct cv_scene_gpu {
     bool has_textures; /* the texture table is not empty */
     bool empty;       /* no triangles and no curves: nothing to hit */
     GLuint curves;    /* the curves and their tree (src/bvh/curve_bvh.h), or 0 */
+    GLuint curves_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_CURVES) */
     bool has_curves;  /* compile the stages with CV_HAS_CURVES */
     bool no_triangles; /* no static triangles: no triangle BVH (CV_NO_TRIANGLES) */
-    GLuint motion;    /* the moving shapes and their trees (src/bvh/motion_bvh.h); 0 without,
-                       * or with curves, whose buffer then holds them too */
+    GLuint motion;    /* the moving shapes and their trees (src/bvh/motion_bvh.h), or 0 */
+    GLuint motion_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_MOTION) */
     bool has_motion;  /* compile the stages with CV_HAS_MOTION */
     bool basic_materials; /* only untextured diffuse and mirror: glsl/trace/bsdf_basic.glsl */
     bool has_hair;    /* some material is hair (else CV_NO_HAIR) */
@@ -41,6 +42,7 @@ struct cv_scene_gpu {
     uint32_t shade_bins; /* bit b: some material is in shade bin b (trace/shade_bins.h) */
     bool walk_coat_closed; /* one in the coated walk's bin may take the closed form too */
     GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
+    GLuint measured_tex; /* that buffer as an r32ui buffer texture (CV_TEXUNIT_MEASURED) */
     bool has_measured; /* some material is measured (else CV_NO_MEASURED) */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */

@@ -56,12 +56,13 @@ static bool trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *ray
     float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
     GLuint cb = cv_buffer_create(n4 * 16, packed, "curves", err);
     free(packed);
+    GLuint ct = cb ? cv_buffer_texture(cb, GL_RGBA32F, n4, err) : 0;
     GLuint rb = cv_buffer_create((size_t)n * 32, rays, "rays", err);
     GLuint ob = cv_buffer_create((size_t)n * 64, NULL, "results", err);
-    struct cv_program *p = cb && rb && ob ? cv_program_get(gpu, "bvh/curves_test.comp", NULL, err) : NULL;
+    struct cv_program *p = ct && rb && ob ? cv_program_get(gpu, "bvh/curves_test.comp", NULL, err) : NULL;
     bool ok = p != NULL;
     if (ok) {
-        cv_buffer_bind(cb, CV_BIND_CURVES);
+        glBindTextureUnit(CV_TEXUNIT_CURVES, ct);
         cv_buffer_bind(rb, CV_BIND_PROBE_IN);
         cv_buffer_bind(ob, CV_BIND_PROBE_OUT);
         glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_rays"), n);
@@ -70,6 +71,8 @@ static bool trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *ray
         r->n = n;
         ok = cv_buffer_read(ob, 0, (size_t)n * 64, r->out, err);
     }
+    if (ct)
+        glDeleteTextures(1, &ct);
     cv_buffer_destroy(&cb);
     cv_buffer_destroy(&rb);
     cv_buffer_destroy(&ob);

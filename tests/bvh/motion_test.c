@@ -19,7 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh/curve_bvh.h"
 #include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
@@ -49,33 +48,28 @@ static float fbits(uint32_t u)
 /* 12 words per ray: (t, prim, b1, b2) of the walk, of the brute force,
  * then (any walk, any brute, -, -), from motion_test.comp's four
  * programs */
-static uint32_t *trace_in(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n,
-                          float time, bool with_curves, struct cv_error *err)
+static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n,
+                       float time, struct cv_error *err)
 {
     size_t n4;
-    float *packed;
-    if (with_curves) {
-        packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
-        cv_motion_bvh_append(s, &packed, &n4);
-    } else {
-        packed = cv_motion_bvh_pack(s, &n4);
-    }
+    float *packed = cv_motion_bvh_pack(s, &n4);
     GLuint mb = cv_buffer_create(n4 * 16, packed, "motion", err);
     free(packed);
-    GLuint rb = mb ? cv_buffer_create((size_t)n * 32, rays, "rays", err) : 0;
+    GLuint mt = mb ? cv_buffer_texture(mb, GL_RGBA32F, n4, err) : 0;
+    GLuint rb = mt ? cv_buffer_create((size_t)n * 32, rays, "rays", err) : 0;
     GLuint ob = rb ? cv_buffer_create((size_t)n * 16, NULL, "results", err) : 0;
     uint32_t *out = ob ? calloc((size_t)n * 12, sizeof(uint32_t)) : NULL, *one = malloc((size_t)n * 16);
     for (int q = 0; q < 4 && out; q++) {
         char def[32];
         snprintf(def, sizeof(def), "MOTION_QUERY=%d", q);
-        const char *defs[] = {def, with_curves ? "CV_HAS_CURVES" : NULL, NULL};
+        const char *defs[] = {def, NULL};
         struct cv_program *p = cv_program_get(gpu, "bvh/motion_test.comp", defs, err);
         if (!p) {
             free(out);
             out = NULL;
             break;
         }
-        cv_buffer_bind(mb, with_curves ? CV_BIND_CURVES : CV_BIND_MOTION);
+        glBindTextureUnit(CV_TEXUNIT_MOTION, mt);
         cv_buffer_bind(rb, CV_BIND_PROBE_IN);
         cv_buffer_bind(ob, CV_BIND_PROBE_OUT);
         glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_rays"), n);
@@ -94,17 +88,12 @@ static uint32_t *trace_in(struct cv_gpu *gpu, const struct cv_scene *s, const fl
         }
     }
     free(one);
+    if (mt)
+        glDeleteTextures(1, &mt);
     cv_buffer_destroy(&mb);
     cv_buffer_destroy(&rb);
     cv_buffer_destroy(&ob);
     return out;
-}
-
-/* the moving shapes alone in their block */
-static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n, float time,
-                       struct cv_error *err)
-{
-    return trace_in(gpu, s, rays, n, time, false, err);
 }
 
 static void apply(const double m[3][4], const double p[3], double out[3])
@@ -152,9 +141,6 @@ static struct cv_scene *make_scene(double centres[][3], int *n_centres)
                                              : "Shape \"cylinder\" \"float radius\" 0.4 \"float zmin\" -1 "
                                                "\"float zmax\" 1");
     }
-    /* a curve: its buffer then holds the moving shapes too (motion_bvh.h) */
-    len += (size_t)snprintf(text + len, cap - len,
-                            "Shape \"curve\" \"point3 P\" [-1 9 0 -0.3 9 0.5 0.3 9 -0.5 1 9 0] \"float width\" 0.1\n");
     *n_centres = n;
     struct cv_scene *s = NULL;
     struct cv_error err = {{0}};
@@ -208,17 +194,6 @@ static void test_walk(struct cv_gpu *gpu)
         uint32_t *out = trace(gpu, s, rays, n, time, &err);
         if (!tap_ok(out != NULL, "GPU run at time %g: %s", time, err.msg))
             break;
-        if (ti == 2) {
-            /* the same rays with the shapes behind the curves in one block */
-            uint32_t *both = trace_in(gpu, s, rays, n, time, true, &err);
-            uint32_t differ = 0;
-            for (uint32_t i = 0; both && i < n; i++)
-                differ += memcmp(out + 12 * i, both + 12 * i, 48) != 0;
-            tap_ok(both != NULL && differ == 0,
-                   "in the curves' block (kernels with curves) the same answers (%u of %u differ)%s", differ, n,
-                   err.msg);
-            free(both);
-        }
         for (uint32_t i = 0; i < n; i++) {
             const uint32_t *w = out + 12 * i;
             total++;

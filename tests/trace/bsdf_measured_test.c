@@ -99,7 +99,10 @@ int main(void)
         return tap_done();
     GLuint tables = cv_buffer_create(n_words * 4, words, "measured tables", &err);
     free(words);
-    cv_buffer_bind(tables, CV_BIND_MEASURED);
+    GLuint tables_tex = tables ? cv_buffer_texture(tables, GL_R32UI, n_words, &err) : 0;
+    if (!tap_ok(tables_tex != 0, "measured tables as a buffer texture: %s", err.msg))
+        return tap_done();
+    glBindTextureUnit(CV_TEXUNIT_MEASURED, tables_tex);
 
     /* wo on theta_i nodes of the file (u 0.4, 0.6, 0.8: 14.4, 32.4, 57.6
      * degrees) and between its last two (57.6 and 90), where only the
@@ -197,6 +200,7 @@ int main(void)
                "two-sided: f %.4f pdf %.4f from above, %.4f %.4f mirrored below", out[0], out[3], out_d[4], out_d[7]);
     }
 
+    glDeleteTextures(1, &tables_tex);
     cv_buffer_destroy(&tables);
     free(grid);
     free(grid_out);

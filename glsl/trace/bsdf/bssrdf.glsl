@@ -15,6 +15,7 @@
 #ifndef CV_BSDF_BSSRDF_GLSL
 #define CV_BSDF_BSSRDF_GLSL
 
+#include "shared/bindings.h"
 #include "shared/bssrdf.h"
 
 layout(binding = CV_TEXUNIT_BSSRDF) uniform samplerBuffer cv_bssrdf_tables;

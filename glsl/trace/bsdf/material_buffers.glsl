@@ -10,8 +10,10 @@
 
 layout(std430, binding = CV_BIND_MATERIALS) readonly buffer CvMaterials { CvMaterial materials[]; };
 #ifndef CV_NO_MEASURED
-// the measured BRDFs' tables (glsl/shared/measured.h, bsdf/measured.glsl)
-layout(std430, binding = CV_BIND_MEASURED) readonly buffer CvMeasuredTables { uint cv_measured[]; };
+// the measured BRDFs' tables (glsl/shared/measured.h, bsdf/measured.glsl),
+// a buffer texture: no storage block (a kernel may bind only 16)
+layout(binding = CV_TEXUNIT_MEASURED) uniform usamplerBuffer cv_measured_tex;
+uint cv_measured(uint i) { return texelFetch(cv_measured_tex, int(i)).r; }
 #endif
 
 #endif

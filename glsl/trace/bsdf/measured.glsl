@@ -11,9 +11,9 @@
 // visible-normal warp, into the half vector, and reflects wo about it.
 // Reflection only; the callers mirror wo onto +z (cv_bsdf_mirrored).
 //
-// The including shader declares the tables (material_buffers.glsl, as
-// cv_measured[]). Each lookup reads the buffer; a shading point reads a
-// few dozen words (three warps, two binary searches each when sampling).
+// The including shader declares the tables (material_buffers.glsl, read
+// by cv_measured(i)). Each lookup reads the buffer texture; a shading
+// point reads a few dozen words (three warps, two binary searches each when sampling).
 #ifndef CV_BSDF_MEASURED_GLSL
 #define CV_BSDF_MEASURED_GLSL
 
@@ -21,7 +21,7 @@
 #include "shared/measured.h"
 #include "bsdf_sample.glsl"
 
-float cv_meas_word(uint i) { return uintBitsToFloat(cv_measured[i]); }
+float cv_meas_word(uint i) { return uintBitsToFloat(cv_measured(i)); }
 
 // One table: its grid, arrays (absolute word offsets) and value scale.
 struct CvMeasTable { uint nx; uint ny; uint data; uint marg; uint cond; float scale; };
@@ -29,9 +29,9 @@ struct CvMeasTable { uint nx; uint ny; uint data; uint marg; uint cond; float sc
 CvMeasTable cv_meas_table(uint base, uint k)
 {
     uint h = base + CV_MEAS_H_WARPS + k * CV_MEAS_W_WORDS;
-    return CvMeasTable(cv_measured[h + CV_MEAS_W_NX], cv_measured[h + CV_MEAS_W_NY],
-                       base + cv_measured[h + CV_MEAS_W_DATA], base + cv_measured[h + CV_MEAS_W_MARGINAL],
-                       base + cv_measured[h + CV_MEAS_W_COND], cv_meas_word(h + CV_MEAS_W_SCALE));
+    return CvMeasTable(cv_measured(h + CV_MEAS_W_NX), cv_measured(h + CV_MEAS_W_NY),
+                       base + cv_measured(h + CV_MEAS_W_DATA), base + cv_measured(h + CV_MEAS_W_MARGINAL),
+                       base + cv_measured(h + CV_MEAS_W_COND), cv_meas_word(h + CV_MEAS_W_SCALE));
 }
 
 // Where (phi_i, theta_i) of wo falls among the tables' slices: the lower
@@ -58,8 +58,8 @@ uint cv_meas_interval(uint values, uint n, float x)
 // channels: slices per (phi, theta) pair (3 for the colour table).
 CvMeasParams cv_meas_params(uint base, float phi, float theta, uint channels)
 {
-    uint nphi = cv_measured[base + CV_MEAS_H_NPHI], ntheta = cv_measured[base + CV_MEAS_H_NTHETA];
-    uint vphi = base + cv_measured[base + CV_MEAS_H_PHI], vtheta = base + cv_measured[base + CV_MEAS_H_THETA];
+    uint nphi = cv_measured(base + CV_MEAS_H_NPHI), ntheta = cv_measured(base + CV_MEAS_H_NTHETA);
+    uint vphi = base + cv_measured(base + CV_MEAS_H_PHI), vtheta = base + cv_measured(base + CV_MEAS_H_THETA);
     CvMeasParams P = CvMeasParams(0u, 0u, 0u, 0.0, 0.0);
     if (nphi > 1u) {
         uint i = cv_meas_interval(vphi, nphi, phi);
@@ -203,7 +203,7 @@ float cv_meas_ndf_over_sigma(uint base, vec2 u_wm, vec2 u_wo)
 // u(wm) of the half vector, as the tables index it.
 vec2 cv_meas_u_wm(uint base, vec3 wm, float phi_o)
 {
-    bool iso = cv_measured[base + CV_MEAS_H_ISOTROPIC] != 0u;
+    bool iso = cv_measured(base + CV_MEAS_H_ISOTROPIC) != 0u;
     float phi_m = cv_meas_phi(wm);
     vec2 u = vec2(cv_meas_theta_to_u(cv_meas_theta(wm)), cv_meas_phi_to_u(iso ? phi_m - phi_o : phi_m));
     u.y -= floor(u.y);
@@ -260,7 +260,7 @@ bool cv_measured_sample(uint base, vec3 wo, vec2 u, out CvBsdfSample s)
     vec3 v = cv_meas_sample(cv_meas_table(base, CV_MEAS_VNDF), l.xy, P);
     vec2 u_wm = v.xy;
     float phi_m = (2.0 * u_wm.y - 1.0) * CV_PI, theta_m = u_wm.x * u_wm.x * CV_PI_OVER_2;
-    if (cv_measured[base + CV_MEAS_H_ISOTROPIC] != 0u)
+    if (cv_measured(base + CV_MEAS_H_ISOTROPIC) != 0u)
         phi_m += phi_o;
     float sin_m = sin(theta_m);
     vec3 wm = vec3(sin_m * cos(phi_m), sin_m * sin(phi_m), cos(theta_m));
