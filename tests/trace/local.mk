@@ -120,3 +120,8 @@ check_PROGRAMS += tests/trace/bdpt_test
 TESTS += tests/trace/bdpt_test
 tests_trace_bdpt_test_LDADD = $(CV_LIBS)
 # --- end of bdpt ---
+# --- every feature in one scene: all kernels link (storage block limits) ---
+check_PROGRAMS += tests/trace/all_features_test
+TESTS += tests/trace/all_features_test
+tests_trace_all_features_test_LDADD = $(CV_LIBS)
+EXTRA_DIST += tests/data/trace/all_features.pbrt
