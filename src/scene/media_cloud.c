@@ -63,7 +63,11 @@ bool cv_b_medium_cloud(struct cv_builder *b, const char *name, struct cv_params 
     /* The majorant grid: the density never exceeds 1 (its last step
      * clamps it), so sigma_t's largest channel bounds every cell, a hair
      * above so that float rounding of sigma x density stays below; the
-     * one majorant pbrt-v4's CloudMedium uses over its bounds. */
+     * one majorant pbrt-v4's CloudMedium uses over its bounds. A tighter
+     * bound per cell needs one on the noise over the cell, which the
+     * wisps (a displacement up to the noise's steepest slope) and the
+     * octaves up to 16 times finer leave near 1 wherever the height fade
+     * does not. */
     double top = 0;
     for (int c = 0; c < 3; c++)
         top = fmax(top, (double)(float)sa[c] + (double)(float)ss[c]);
