@@ -22,6 +22,7 @@
 #define CV_MEDIUM_HOMOGENEOUS 1u
 #define CV_MEDIUM_UNIFORMGRID 2u   /* pbrt-v4's GridMedium: a density grid */
 #define CV_MEDIUM_RGBGRID 3u       /* pbrt-v4's RGBGridMedium: RGB sigma_a, sigma_s, Le grids */
+#define CV_MEDIUM_CLOUD 4u         /* pbrt-v4's CloudMedium: a procedural noise density */
 
 #define CV_MAJORANT_RES 16u        /* majorant cells per axis (pbrt-v4's) */
 #define CV_NO_GRID 0xffffffffu     /* a grid offset: this grid is absent */
@@ -41,7 +42,11 @@
  * temperature instead); outside its bounds a grid medium is vacuum. uniformgrid:
  * A and S are the density grid, E the Lescale grid (1 value or nx*ny*nz);
  * rgbgrid: A, S and E are RGB grids, sigma_a and sigma_s hold "scale" and
- * Le "Lescale". */
+ * Le "Lescale". cloud: sigma_a and sigma_s times the cloud's density in
+ * [0, 1] (glsl/trace/medium/cloud.glsl), not emissive; grids.x is the
+ * offset of its 9 parameters (density, wispiness, frequency, the bounds'
+ * low corner p0 and size p1 - p0 in medium space), and to_grid and the
+ * majorant grid (res.w) are as for the grids. */
 CV_STRUCT(CvMedium) {
     cv_vec4 sigma_a;   /* rgb: absorption; w: Henyey-Greenstein g in (-1, 1) */
     cv_vec4 sigma_s;   /* rgb: scattering; w: unused */

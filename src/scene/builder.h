@@ -222,6 +222,26 @@ bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
 bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
                       struct cv_params *ps, const struct cv_loc *loc, const char *dir,
                       CvMedium *m, struct cv_error *err); /* media_grid.c */
+/* A medium's Henyey-Greenstein "g" (default 0); outside (-1, 1) it warns
+ * (an error with --strict) and is clamped to +-0.999. */
+bool cv_b_medium_g(struct cv_builder *b, struct cv_params *ps, const char *name,
+                   const struct cv_loc *loc, double *g, struct cv_error *err); /* media.c */
+/* Appends n values times scale to the scene's grid buffer (as floats);
+ * returns their offset. */
+uint32_t cv_b_medium_floats(struct cv_builder *b, const double *v, size_t n, double scale);
+/* m->to_grid from the CTM's inverse (render to medium space) and pbrt-v4's
+ * Bounds3f(p0, p1) (the corners in any order), their low corner and size
+ * in medium space to lo and size where not NULL; empty bounds or a
+ * singular CTM are errors. */
+bool cv_b_medium_bounds(struct cv_builder *b, struct cv_params *ps, const char *name,
+                        const struct cv_loc *loc, CvMedium *m, double lo[3], double size[3],
+                        struct cv_error *err);
+/* pbrt-v4's "cloud" medium into *m, its parameters and majorant grid
+ * appended to the grid buffer; the medium's transform is the current
+ * CTM. */
+bool cv_b_medium_cloud(struct cv_builder *b, const char *name, struct cv_params *ps,
+                       const struct cv_loc *loc, const char *dir, CvMedium *m,
+                       struct cv_error *err); /* media_cloud.c */
 bool cv_b_medium_interface(struct cv_builder *b, const char *inside, const char *outside,
                            const struct cv_loc *loc, struct cv_error *err);
 /* material, or its copy carrying the current MediumInterface when that

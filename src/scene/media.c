@@ -2,12 +2,15 @@
  * pbrt-v4 reads them. Media go to the scene's table (glsl/shared/medium.h:
  * number 0 is vacuum); a shape's MediumInterface goes into its material's
  * media word, so a material used with several interfaces is copied once
- * per interface. Grid media are read by media_grid.c. */
+ * per interface. Grid media are read by media_grid.c, the cloud by
+ * media_cloud.c; a homogeneous medium's "preset" names one of the measured
+ * media of scattering_presets.c. */
 #include <math.h>
 #include <string.h>
 
 #include "base/mem.h"
 #include "scene/builder.h"
+#include "scene/scattering_presets.h"
 
 /* pbrt-v4's HomogeneousMedium defaults. */
 #define DEFAULT_SIGMA 1.0
@@ -34,6 +37,40 @@ static bool sigma(struct cv_builder *b, struct cv_params *ps, const char *name,
     return cv_b_color(b, ps, name, CV_SPEC_UNBOUNDED, dir, out, &found, err);
 }
 
+bool cv_b_medium_g(struct cv_builder *b, struct cv_params *ps, const char *name,
+                   const struct cv_loc *loc, double *g, struct cv_error *err)
+{
+    *g = cv_params_float(ps, "g", 0);
+    if (*g > -1 && *g < 1)
+        return true;
+    if (!cv_b_warn(b, err, loc, "medium \"%s\": g %g is outside (-1, 1); clamped", name, *g))
+        return false;
+    *g = *g <= -1 ? -0.999 : 0.999;
+    return true;
+}
+
+/* A homogeneous medium's "string preset": pbrt-v4's named measured media
+ * (scattering_presets.c), which take the place of sigma_a and sigma_s
+ * (pbrt-v4 then leaves those unread: unused parameters); "scale" applies
+ * to them as to explicit ones. An unknown name is an error at the
+ * parameter (pbrt-v4 warns and falls back to sigma_a and sigma_s). */
+static bool medium_preset(struct cv_params *ps, const char *name, double sa[3], double ss[3],
+                          bool *found, struct cv_error *err)
+{
+    *found = false;
+    const char *preset = cv_params_string(ps, "preset", NULL);
+    if (!preset || !*preset)
+        return true;
+    if (!cv_scattering_preset(preset, sa, ss)) {
+        struct cv_param *p = cv_params_find(ps, "preset");
+        return cv_fail(err, "%s:%d:%d: medium \"%s\": unknown preset \"%s\" (the names are "
+                            "pbrt-v4's measured media, e.g. \"Wholemilk\", \"Skin1\", "
+                            "\"Ketchup\")", p->file, p->line, p->col, name, preset);
+    }
+    *found = true;
+    return true;
+}
+
 bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
                  const struct cv_loc *loc, const char *dir, struct cv_error *err)
 {
@@ -47,24 +84,20 @@ bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
     CvMedium m;
     memset(&m, 0, sizeof(m));
     if (strcmp(type, "homogeneous") == 0) {
-        const char *preset = cv_params_string(ps, "preset", NULL);
-        if (preset && !cv_b_warn(b, err, loc,
-                                 "medium \"%s\": preset \"%s\" is not supported; using "
-                                 "sigma_a and sigma_s", name, preset))
-            return false;
         double sa[3], ss[3], Le[3] = {0, 0, 0};
-        bool found;
-        if (!sigma(b, ps, "sigma_a", dir, sa, err) || !sigma(b, ps, "sigma_s", dir, ss, err) ||
-            !cv_b_color(b, ps, "Le", CV_SPEC_ILLUMINANT, dir, Le, &found, err))
+        bool found, preset;
+        if (!medium_preset(ps, name, sa, ss, &preset, err))
+            return false;
+        if (!preset &&
+            (!sigma(b, ps, "sigma_a", dir, sa, err) || !sigma(b, ps, "sigma_s", dir, ss, err)))
+            return false;
+        if (!cv_b_color(b, ps, "Le", CV_SPEC_ILLUMINANT, dir, Le, &found, err))
             return false;
         double scale = cv_params_float(ps, "scale", 1);
         double le_scale = cv_params_float(ps, "Lescale", 1);
-        double g = cv_params_float(ps, "g", 0);
-        if (!(g > -1 && g < 1)) {
-            if (!cv_b_warn(b, err, loc, "medium \"%s\": g %g is outside (-1, 1); clamped", name, g))
-                return false;
-            g = g <= -1 ? -0.999 : 0.999;
-        }
+        double g;
+        if (!cv_b_medium_g(b, ps, name, loc, &g, err))
+            return false;
         for (int c = 0; c < 3; c++) {
             if (!(sa[c] * scale >= 0) || !(ss[c] * scale >= 0) || !isfinite(sa[c] * scale) ||
                 !isfinite(ss[c] * scale))
@@ -83,12 +116,15 @@ bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
     } else if (strcmp(type, "uniformgrid") == 0 || strcmp(type, "rgbgrid") == 0) {
         if (!cv_b_medium_grid(b, name, type, ps, loc, dir, &m, err))
             return false;
+    } else if (strcmp(type, "cloud") == 0) {
+        if (!cv_b_medium_cloud(b, name, ps, loc, dir, &m, err))
+            return false;
     } else {
         for (size_t i = 0; i < ps->n; i++)
             ps->v[i].used = true;
         if (!cv_b_warn(b, err, loc,
-                       "medium \"%s\": type \"%s\" is not rendered (homogeneous, uniformgrid "
-                       "and rgbgrid are); it is vacuum", name, type))
+                       "medium \"%s\": type \"%s\" is not rendered (homogeneous, uniformgrid, "
+                       "rgbgrid and cloud are); it is vacuum", name, type))
             return false;
         m.type = CV_MEDIUM_VACUUM;
     }

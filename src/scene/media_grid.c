@@ -17,8 +17,7 @@
  * (1, 1, 1) gives. */
 #define CIE_Y_INTEGRAL 106.856895
 
-/* Appends n floats to the scene's grid buffer; returns their offset. */
-static uint32_t push_floats(struct cv_builder *b, const double *v, size_t n, double scale)
+uint32_t cv_b_medium_floats(struct cv_builder *b, const double *v, size_t n, double scale)
 {
     struct cv_scene *s = b->s;
     size_t at = s->n_medium_grids;
@@ -61,7 +60,7 @@ static bool read_grid(struct cv_builder *b, struct cv_params *ps, const char *me
             return cv_fail(err, "%s:%d:%d: medium \"%s\": \"%s\" value %zu is %g; grid values "
                                 "must be finite and not negative", p->file, p->line, p->col,
                            medium, name, i, p->nums[i]);
-    *out = push_floats(b, p->nums, p->n_nums, scale);
+    *out = cv_b_medium_floats(b, p->nums, p->n_nums, scale);
     return true;
 }
 
@@ -114,14 +113,13 @@ static void majorants(struct cv_builder *b, CvMedium *m)
                                     ss[c] * grid_max(b->s, m->grids.y, res, comps, c, lo, hi));
                 maj[(z * R + y) * R + x] = v * (1 + 1e-5);
             }
-    m->res.w = push_floats(b, maj, (size_t)R * R * R, 1);
+    m->res.w = cv_b_medium_floats(b, maj, (size_t)R * R * R, 1);
     free(maj);
 }
 
-/* to_grid: the CTM's inverse (render to medium space), then pbrt-v4's
- * Bounds3f(p0, p1).Offset (the corners in any order). */
-static bool grid_transform(struct cv_builder *b, struct cv_params *ps, const char *name,
-                           const struct cv_loc *loc, CvMedium *m, struct cv_error *err)
+bool cv_b_medium_bounds(struct cv_builder *b, struct cv_params *ps, const char *name,
+                        const struct cv_loc *loc, CvMedium *m, double lo_out[3],
+                        double size_out[3], struct cv_error *err)
 {
     double p0[3] = {0, 0, 0}, p1[3] = {1, 1, 1};
     cv_params_floats(ps, "p0", p0, 3);
@@ -137,6 +135,10 @@ static bool grid_transform(struct cv_builder *b, struct cv_params *ps, const cha
             return cv_fail(err, "%s:%d:%d: medium \"%s\": its bounds p0 p1 are empty along "
                                 "axis %d", loc->file, loc->line, loc->col, name, a);
         double k = 1 / (hi - lo);
+        if (lo_out)
+            lo_out[a] = lo;
+        if (size_out)
+            size_out[a] = hi - lo;
         *rows[a] = (cv_vec4){(float)(inv.m[a][0] * k), (float)(inv.m[a][1] * k),
                              (float)(inv.m[a][2] * k), (float)((inv.m[a][3] - lo) * k)};
     }
@@ -202,7 +204,7 @@ static bool temperature(struct cv_builder *b, const char *name, struct cv_params
     for (uint32_t i = 0; i < CV_BLACKBODY_STEPS; i++)
         cv_blackbody_sensor_rgb(100 + (fmax(top, 101) - 100) * i / (CV_BLACKBODY_STEPS - 1),
                                 table + 3 * i);
-    m->temperature_grids.y = push_floats(b, table, CV_BLACKBODY_STEPS * 3, 1);
+    m->temperature_grids.y = cv_b_medium_floats(b, table, CV_BLACKBODY_STEPS * 3, 1);
     free(table);
     return true;
 }
@@ -245,7 +247,7 @@ static bool uniformgrid(struct cv_builder *b, const char *name, struct cv_params
         /* pbrt-v4's default Lescale is a grid of one sample, which its
          * lookup fades to zero towards the bounds like any other */
         const double one = 1;
-        les = push_floats(b, &one, 1, 1);
+        les = cv_b_medium_floats(b, &one, 1, 1);
         m->le_res = (cv_uvec4){1, 1, 1, 0};
     }
     m->grids = (cv_uvec4){dens, dens, les, 0};
@@ -287,15 +289,13 @@ bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
                       struct cv_params *ps, const struct cv_loc *loc, const char *dir,
                       CvMedium *m, struct cv_error *err)
 {
-    double g = cv_params_float(ps, "g", 0);
-    if (!(g > -1 && g < 1)) {
-        if (!cv_b_warn(b, err, loc, "medium \"%s\": g %g is outside (-1, 1); clamped", name, g))
-            return false;
-        g = g <= -1 ? -0.999 : 0.999;
-    }
+    double g;
+    if (!cv_b_medium_g(b, ps, name, loc, &g, err))
+        return false;
     m->sigma_a.w = (float)g;
     m->temperature_grids = (cv_uvec4){CV_NO_GRID, CV_NO_GRID, 0, 0};
-    if (!resolution(ps, name, loc, m, err) || !grid_transform(b, ps, name, loc, m, err))
+    if (!resolution(ps, name, loc, m, err) ||
+        !cv_b_medium_bounds(b, ps, name, loc, m, NULL, NULL, err))
         return false;
     bool ok = strcmp(type, "uniformgrid") == 0 ? uniformgrid(b, name, ps, loc, dir, m, err)
                                                : rgbgrid(b, name, ps, loc, m, err);

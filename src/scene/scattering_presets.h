@@ -1,7 +1,7 @@
 /* scattering_presets.h: pbrt-v4's named measured scattering media (Jensen
  * et al. 2001, Narasimhan et al. 2006), by the names pbrt-v4 gives them:
- * the subsurface material's "name" (and a homogeneous medium's "preset"
- * in pbrt-v4). One table for every user. */
+ * the subsurface material's "name" and a homogeneous medium's "preset"
+ * (media.c). One table for every user. */
 #ifndef CV_SCENE_SCATTERING_PRESETS_H
 #define CV_SCENE_SCATTERING_PRESETS_H
 

@@ -50,6 +50,8 @@ GLSL_FILES += glsl/shared/measured.h glsl/trace/bsdf/measured.glsl
 GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
 	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp \
 	glsl/trace/medium/grid.glsl glsl/trace/test/grid_probe.comp
+# pbrt-v4's cloud medium and the Perlin noise it is made of
+GLSL_FILES += glsl/shared/perlin.h glsl/lib/noise.glsl glsl/trace/medium/cloud.glsl
 # --- end of participating media ---
 
 # --- subsurface material (issue 27 item 4) ---

@@ -274,7 +274,7 @@ static void defines_plus(const char **out, const char *const *defines, int nd, c
 }
 
 /* the scene's defines, then a stage's own (defines_plus) and the NULL */
-enum { MAX_SCENE_DEFINES = 16 };
+enum { MAX_SCENE_DEFINES = 18 };
 
 /* The stage programs a render of gs with p runs: file and defines by stage
  * (file NULL: the stage has none, or the integrator's create makes it).
@@ -358,6 +358,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* grid media's lookups and majorant walk (glsl/trace/medium/grid.glsl) */
     if (ops->media && gs->has_medium_grids)
         defines[nd++] = "CV_MEDIUM_GRIDS";
+    /* the cloud's noise (glsl/trace/medium/cloud.glsl) */
+    if (ops->media && gs->has_medium_cloud)
+        defines[nd++] = "CV_MEDIUM_CLOUDS";
     defines[nd] = NULL;
     bool escaped_stage = ops->escaped_stage || gs->has_env;
     defines_plus(sp->escaped, defines, nd, ops->escaped_define,

@@ -141,6 +141,9 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     g->has_textures = s->n_textures > 0;
     g->has_media = s->n_media > 0;
     g->has_medium_grids = s->n_medium_grids > 0;
+    for (uint32_t i = 0; i < s->n_media; i++)
+        if (s->media[i].type == CV_MEDIUM_CLOUD)
+            g->has_medium_cloud = true;
     g->basic_materials = true;
     for (uint32_t i = 0; i < s->n_materials; i++) {
         const CvMaterial *m = &s->materials[i];

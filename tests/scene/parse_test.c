@@ -142,10 +142,115 @@ static void test_attributes(void)
     cv_scene_destroy(&s);
     s = ok_load("WorldBegin\nMakeNamedMedium \"a\" \"string type\" \"cloud\"\n"
                 "MakeNamedMedium \"b\" \"string type\" \"homogeneous\" \"string preset\" \"Ketchup\"\n"
-                "MediumInterface \"c\" \"\"\n" TRI, "media not rendered");
-    tap_ok(s && s->warnings == 3 && s->media[1].type == CV_MEDIUM_VACUUM,
-           "cloud media, presets and unknown media names are reported (%u warnings)", s ? s->warnings : 0);
+                "MediumInterface \"c\" \"\"\n" TRI, "cloud, preset, unknown medium");
+    tap_ok(s && s->warnings == 1 && s->media[1].type == CV_MEDIUM_CLOUD &&
+               s->media[2].type == CV_MEDIUM_HOMOGENEOUS,
+           "clouds and presets are read; unknown media names are reported (%u warnings)",
+           s ? s->warnings : 0);
     cv_scene_destroy(&s);
+}
+
+/* A homogeneous medium's "preset": pbrt-v4's measured media, before
+ * sigma_a and sigma_s, times scale; names it does not know. */
+static void test_medium_presets(void)
+{
+    struct cv_scene *s;
+    s = ok_load("WorldBegin\nMakeNamedMedium \"k\" \"string type\" \"homogeneous\"\n"
+                "  \"string preset\" \"Ketchup\" \"float scale\" 2 \"float g\" 0.5\n"
+                "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"string preset\" \"Lowfat Milk\"\n"
+                "MakeNamedMedium \"e\" \"string type\" \"homogeneous\" \"string preset\" \"\"\n"
+                "  \"rgb sigma_a\" [0.5 0.5 0.5]\n", "presets");
+    tap_ok(s && s->warnings == 0 && s->n_media == 4 &&
+               near(s->media[1].sigma_a.x, 0.122, 1e-6) && near(s->media[1].sigma_a.z, 2.9, 1e-6) &&
+               near(s->media[1].sigma_s.x, 0.36, 1e-6) && near(s->media[1].sigma_s.y, 0.14, 1e-6) &&
+               near(s->media[1].sigma_a.w, 0.5, 1e-6) && near(s->media[2].sigma_s.z, 2.532, 1e-6) &&
+               near(s->media[2].sigma_a.y, 0.00575, 1e-9) && near(s->media[3].sigma_a.x, 0.5, 0) &&
+               near(s->media[3].sigma_s.x, 1, 0),
+           "a preset's sigma_a and sigma_s (per mm, as pbrt-v4's table) times scale; \"\" is none");
+    cv_scene_destroy(&s);
+    /* pbrt-v4 reads no sigma_a or sigma_s beside a preset it finds (they
+     * are unused parameters there), and no preset on other media */
+    s = ok_load("WorldBegin\nMakeNamedMedium \"k\" \"string type\" \"homogeneous\"\n"
+                "  \"string preset\" \"Skin1\" \"rgb sigma_a\" [5 5 5]\n", "preset and sigma_a");
+    tap_ok(s && s->warnings == 1 && near(s->media[1].sigma_a.x, 0.032, 1e-7) &&
+               near(s->media[1].sigma_s.z, 1.01, 1e-6),
+           "the preset wins over sigma_a, which is reported unused (%u warnings)", s ? s->warnings : 0);
+    cv_scene_destroy(&s);
+    const char *head = "WorldBegin\nMakeNamedMedium \"m\" \"string type\" ";
+    char text[512];
+    snprintf(text, sizeof(text), "%s\"homogeneous\"\n  \"float scale\" 2 \"string preset\" \"Ketchupp\"\n",
+             head);
+    fails(text, false, "main.pbrt:3:19: medium \"m\": unknown preset \"Ketchupp\"",
+          "an unknown preset (at the parameter)");
+    snprintf(text, sizeof(text), "%s\"homogeneous\" \"string preset\" \"wholemilk\"\n", head);
+    fails(text, false, "medium \"m\": unknown preset \"wholemilk\"", "a preset's name in the wrong case");
+    snprintf(text, sizeof(text), "%s\"homogeneous\" \"string preset\" \"Skin1\"\n  \"rgb sigma_s\" [1 1 1]\n",
+             head);
+    fails(text, true, "main.pbrt:3:3: MakeNamedMedium: parameter \"rgb sigma_s\" unused",
+          "sigma_s beside a preset with --strict");
+    snprintf(text, sizeof(text), "%s\"uniformgrid\" \"float density\" [1]\n  \"string preset\" \"Skin1\"\n",
+             head);
+    fails(text, true, "main.pbrt:3:3: MakeNamedMedium: parameter \"string preset\" unused",
+          "a preset on a grid medium (pbrt-v4 reads none there) with --strict");
+    snprintf(text, sizeof(text), "%s\"homogeneous\" \"string preset\" \"Skin1\" \"float scale\" -1\n", head);
+    fails(text, false, "medium \"m\": sigma_a and sigma_s must be finite and not negative",
+          "a preset with a negative scale");
+}
+
+/* pbrt-v4's cloud medium: what it becomes, and broken parameters. */
+static void test_cloud_media(void)
+{
+    struct cv_scene *s;
+    s = ok_load("WorldBegin\nTranslate 1 0 0\nMakeNamedMedium \"c\" \"string type\" \"cloud\"\n"
+                "  \"float density\" 0.7 \"float wispiness\" 2 \"float frequency\" 9 \"float g\" -0.25\n"
+                "  \"point3 p0\" [2 0 -1] \"point3 p1\" [0 4 1] \"rgb sigma_a\" [1 2 3] \"rgb sigma_s\" [0.5 4 1]\n"
+                "MakeNamedMedium \"d\" \"string type\" \"cloud\"\n" TRI, "clouds");
+    if (s && s->n_media == 3) {
+        const CvMedium *m = &s->media[1], *d = &s->media[2];
+        const float *q = s->medium_grids + m->grids.x, *qd = s->medium_grids + d->grids.x;
+        const float *maj = s->medium_grids + m->res.w;
+        const uint32_t cells = CV_MAJORANT_RES * CV_MAJORANT_RES * CV_MAJORANT_RES;
+        bool flat = true;
+        for (uint32_t i = 0; i < cells; i++)
+            flat = flat && maj[i] == maj[0];
+        /* render (2, 2, 0) is medium (1, 2, 0): the bounds [0,2]x[0,4]x[-1,1] put it at (0.5, 0.5, 0.5) */
+        double g = m->to_grid[1].x * 2 + m->to_grid[1].y * 2 + m->to_grid[1].w;
+        tap_ok(s->warnings == 0 && m->type == CV_MEDIUM_CLOUD && !m->emissive &&
+                   near(m->sigma_a.y, 2, 0) && near(m->sigma_s.y, 4, 0) && near(m->sigma_a.w, -0.25, 1e-7) &&
+                   near(q[0], 0.7, 1e-7) && near(q[1], 2, 0) && near(q[2], 9, 0) && near(q[3], 0, 0) &&
+                   near(q[4], 0, 0) && near(q[5], -1, 0) && near(q[6], 2, 0) && near(q[7], 4, 0) &&
+                   near(q[8], 2, 0) && near(g, 0.5, 1e-6) && flat &&
+                   near(maj[0], 6 * (1 + 1e-5), 1e-5) && m->grids.y == CV_NO_GRID &&
+                   m->temperature_grids.x == CV_NO_GRID,
+               "a cloud is read: sigma_a, sigma_s, g, density, wispiness, frequency, bounds p0 p1 "
+               "under the CTM, majorants the largest sigma_t (%g)", maj[0]);
+        tap_ok(d->type == CV_MEDIUM_CLOUD && near(qd[0], 1, 0) && near(qd[1], 1, 0) &&
+                   near(qd[2], 5, 0) && near(qd[6], 1, 0) && near(d->sigma_a.x, 1, 0) &&
+                   near(d->sigma_s.z, 1, 0) && near(d->sigma_a.w, 0, 0),
+               "a cloud's defaults are pbrt-v4's (density 1, wispiness 1, frequency 5, sigma 1, "
+               "bounds 0 to 1, g 0)");
+    }
+    cv_scene_destroy(&s);
+    const char *head = "WorldBegin\nMakeNamedMedium \"c\" \"string type\" ";
+    char text[512];
+    snprintf(text, sizeof(text), "%s\"cloud\" \"rgb sigma_s\" [1 -1 1]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"c\": sigma_a and sigma_s must be finite and not negative",
+          "a cloud's negative sigma_s");
+    snprintf(text, sizeof(text), "%s\"cloud\"\n  \"point3 p0\" [0 0 1] \"point3 p1\" [1 1 1]\n", head);
+    fails(text, false, "main.pbrt:2:1: medium \"c\": its bounds p0 p1 are empty along axis 2",
+          "a cloud's empty bounds");
+    snprintf(text, sizeof(text), "%s\"cloud\"\n  \"float frequency\" 1e300\n", head);
+    fails(text, false, "main.pbrt:3:3: medium \"c\": \"frequency\" is 1e+300; it must be finite",
+          "a cloud's frequency beyond a float");
+    snprintf(text, sizeof(text), "%s\"cloud\" \"float g\" 1\n", head);
+    fails(text, true, "medium \"c\": g 1 is outside (-1, 1)", "a cloud's g of 1 with --strict");
+    /* pbrt-v4's cloud reads no scale, Le or preset */
+    snprintf(text, sizeof(text), "%s\"cloud\"\n  \"float scale\" 2\n", head);
+    fails(text, true, "main.pbrt:3:3: MakeNamedMedium: parameter \"float scale\" unused",
+          "a cloud's scale with --strict");
+    snprintf(text, sizeof(text), "%s\"cloud\"\n  \"rgb Le\" [1 1 1]\n", head);
+    fails(text, true, "main.pbrt:3:3: MakeNamedMedium: parameter \"rgb Le\" unused",
+          "a cloud's Le with --strict");
 }
 
 /* pbrt-v4's grid media: what they become, and broken grids. */
@@ -834,6 +939,8 @@ int main(void)
     th_init();
     test_transforms();
     test_grid_media();
+    test_medium_presets();
+    test_cloud_media();
     test_attributes();
     test_settings();
     test_shapes();

@@ -186,6 +186,10 @@ static const struct oracle_scene scenes[] = {
     {"sss_skin", NULL},
     /* a measured BRDF (RGL tensor file of make_measured.py) */
     {"mat_measured", NULL},
+    /* issue 27: a homogeneous medium from a measured preset, and pbrt-v4's
+     * procedural cloud */
+    {"vol_preset", NULL},
+    {"vol_cloud", NULL},
 };
 
 /* Mean of channel c of the pixels [x0, x1) x [y0, y1); stride: floats per

@@ -11,8 +11,9 @@
 // channel, so ratio tracking's transmittance is unbiased per channel on
 // its own, and delta tracking needs only the ratios of the channels'
 // probabilities of real and null collisions (medium.glsl's one-sample MIS
-// over the channels). Compiled only with CV_MEDIUM_GRIDS; include from
-// medium.glsl.
+// over the channels). pbrt-v4's cloud (CV_MEDIUM_CLOUD, cloud.glsl with
+// CV_MEDIUM_CLOUDS) takes the same walk: only its point lookup differs.
+// Compiled only with CV_MEDIUM_GRIDS; include from medium.glsl.
 #ifndef CV_TRACE_MEDIUM_GRID_GLSL
 #define CV_TRACE_MEDIUM_GRID_GLSL
 
@@ -21,9 +22,17 @@ layout(std430, binding = CV_BIND_MEDIUM_GRIDS) readonly buffer CvMediumGridBlock
     float medium_grids[];
 };
 
+#ifdef CV_MEDIUM_CLOUDS
+#include "cloud.glsl"
+#endif
+
 bool cv_grid_medium(uint m)
 {
-    return media[m].type == CV_MEDIUM_UNIFORMGRID || media[m].type == CV_MEDIUM_RGBGRID;
+    return media[m].type == CV_MEDIUM_UNIFORMGRID || media[m].type == CV_MEDIUM_RGBGRID
+#ifdef CV_MEDIUM_CLOUDS
+           || media[m].type == CV_MEDIUM_CLOUD  // a procedural density (cloud.glsl)
+#endif
+        ;
 }
 
 // Render space to the grid's unit cube (a point with w 1, a vector with 0).
@@ -75,6 +84,14 @@ void cv_grid_point(uint m, vec3 g, out vec3 sigma_a, out vec3 sigma_s, out vec3 
     Le = vec3(0.0);
     if (any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(1.0))))
         return;
+#ifdef CV_MEDIUM_CLOUDS
+    if (media[m].type == CV_MEDIUM_CLOUD) {
+        float d = cv_cloud_density_at(m, g);
+        sigma_a = media[m].sigma_a.rgb * d;
+        sigma_s = media[m].sigma_s.rgb * d;
+        return;
+    }
+#endif
     uvec4 grids = media[m].grids;
     uvec3 res = media[m].res.xyz;
     uint comps = grids.w != 0u ? 3u : 1u;

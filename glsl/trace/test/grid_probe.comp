@@ -12,6 +12,9 @@
 // delta tracking from r = 1 with hero channel j % 3: the weight if the walk
 // passes t1 (an estimate of the transmittance), else 0; then the weight
 // times sigma_t at the collision if it collides (of 1 minus it), else 0.
+// Mode 4 (compiled with CV_MEDIUM_CLOUDS, tests/trace/medium_cloud_test.c):
+// at points probe_in[i], the noise (x), its differences (yzw), and the
+// density of cloud medium u_medium there in its medium space (two vec4).
 #define CV_MEDIUM_GRIDS 1
 layout(local_size_x = 64) in;
 
@@ -44,6 +47,14 @@ void main()
         probe_out[4u * i + 1u] = vec4(ss, 0.0);
         probe_out[4u * i + 2u] = vec4(Le, 0.0);
         probe_out[4u * i + 3u] = vec4(g, 0.0);
+#ifdef CV_MEDIUM_CLOUDS
+    } else if (u_mode == 4u) {
+        vec3 p = probe_in[i].xyz;
+        uint k = media[m].grids.x;
+        probe_out[2u * i] = vec4(cv_noise(p), cv_dnoise(p));
+        probe_out[2u * i + 1u] = vec4(cv_cloud_density(p, medium_grids[k], medium_grids[k + 1u],
+                                                       medium_grids[k + 2u]), 0.0, 0.0, 0.0);
+#endif
     } else if (u_mode == 2u || u_mode == 3u) {
         // one estimate per invocation (llvmpipe cuts long loops short)
         uint ray = i / u_samples, j = i % u_samples;
