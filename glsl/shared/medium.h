@@ -22,6 +22,7 @@
 #define CV_MEDIUM_HOMOGENEOUS 1u
 #define CV_MEDIUM_UNIFORMGRID 2u   /* pbrt-v4's GridMedium: a density grid */
 #define CV_MEDIUM_RGBGRID 3u       /* pbrt-v4's RGBGridMedium: RGB sigma_a, sigma_s, Le grids */
+#define CV_MEDIUM_NANOVDB 4u       /* pbrt-v4's NanoVDBMedium: a uniformgrid sampled at corners */
 
 #define CV_MAJORANT_RES 16u        /* majorant cells per axis (pbrt-v4's) */
 #define CV_NO_GRID 0xffffffffu     /* a grid offset: this grid is absent */
@@ -41,7 +42,11 @@
  * temperature instead); outside its bounds a grid medium is vacuum. uniformgrid:
  * A and S are the density grid, E the Lescale grid (1 value or nx*ny*nz);
  * rgbgrid: A, S and E are RGB grids, sigma_a and sigma_s hold "scale" and
- * Le "Lescale". */
+ * Le "Lescale". nanovdb: as uniformgrid (A and S the density lattice, E
+ * absent, Le "Lescale", emitting only through a temperature grid), but the
+ * samples of its lattices run from corner to corner of the unit cube
+ * (sample i at i / (res - 1), NanoVDB's voxels) where the other grids'
+ * sit at cell centres ((i + 0.5) / res, pbrt-v4's SampledGrid). */
 CV_STRUCT(CvMedium) {
     cv_vec4 sigma_a;   /* rgb: absorption; w: Henyey-Greenstein g in (-1, 1) */
     cv_vec4 sigma_s;   /* rgb: scattering; w: unused */

@@ -216,8 +216,8 @@ bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *p
 bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
                  const struct cv_loc *loc, const char *dir, struct cv_error *err); /* media.c */
 /* MediumInterface inside outside ("" is vacuum) into the graphics state. */
-/* pbrt-v4's "uniformgrid" and "rgbgrid" media into *m, their grids
- * appended to the scene's grid buffer; the medium's transform is the
+/* pbrt-v4's "uniformgrid", "rgbgrid" and "nanovdb" media into *m, their
+ * grids appended to the scene's grid buffer; the medium's transform is the
  * current CTM. */
 bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
                       struct cv_params *ps, const struct cv_loc *loc, const char *dir,
