@@ -448,14 +448,20 @@ static bool nanovdb(struct cv_builder *b, const char *name, struct cv_params *ps
                                       "voxel lattice", loc->file, loc->line, loc->col, name,
                                  gname, tname);
         }
-        n[a] = (uint32_t)((int64_t)hi[a] - lo[a] + 2);
     }
-    double samples = (double)n[0] * n[1] * n[2];
+    /* in double: damaged bounds may span more than 2^32 voxels */
+    double span[3], samples = 1;
+    for (int a = 0; a < 3; a++) {
+        span[a] = (double)hi[a] - lo[a] + 1;
+        samples *= span[a] + 1;
+    }
     if (ok && samples > NANOVDB_MAX_SAMPLES)
-        ok = cv_fail(err, "%s:%d:%d: medium \"%s\": the grids' bounds span %u x %u x %u voxels; "
-                          "Cavalry resamples nanovdb grids densely and reads at most %u voxels",
-                     loc->file, loc->line, loc->col, name, n[0] - 1, n[1] - 1, n[2] - 1,
-                     NANOVDB_MAX_SAMPLES);
+        ok = cv_fail(err, "%s:%d:%d: medium \"%s\": the grids' bounds span %.0f x %.0f x %.0f "
+                          "voxels; Cavalry copies nanovdb grids densely, at most %u voxels "
+                          "with the plane beyond the bounds on each axis", loc->file, loc->line,
+                     loc->col, name, span[0], span[1], span[2], NANOVDB_MAX_SAMPLES);
+    for (int a = 0; a < 3; a++)
+        n[a] = ok ? (uint32_t)span[a] + 1 : 0;
     /* pbrt-v4 bounds the medium by the grids' stored world boxes; with a
      * map that only scales and moves (what VDB volumes use), that box is
      * the map's image of [lo, hi + 1] */

@@ -279,6 +279,13 @@ int main(void)
         bad[grid0 + 632] = 1;
         th_write("ls.nvdb", bad, raw_len);
         fails("ls.nvdb", "", "is a level set; a medium reads fog volumes", "a level set");
+        /* root bounds damaged to span more than 2^32 voxels */
+        memcpy(bad, raw, raw_len);
+        int32_t far = -2000000000;
+        memcpy(bad + grid0 + 672 + 64, &far, 4);
+        th_write("huge.nvdb", bad, raw_len);
+        fails("huge.nvdb", "", "Cavalry copies nanovdb grids densely, at most 67108864 voxels",
+              "bounds over 2^32 voxels");
         /* codec 7 */
         memcpy(bad, raw, raw_len);
         bad[14] = 7;
@@ -291,6 +298,43 @@ int main(void)
         bad[16 + g.meta_len[0] + g.meta_len[1] + 8 + 40] ^= 0x5a;
         th_write("zipbad.nvdb", bad, len);
         fails("zipbad.nvdb", "", "ZIP data does not inflate", "damaged ZIP data");
+        free(bad);
+    }
+    {
+        /* random damage to the framing, the grid's header, tree and root
+         * and anywhere: a clean error or a grid whose lookups stay inside
+         * its buffer (run under valgrind to see the latter) */
+        uint32_t seed = 99;
+        unsigned char *bad = cv_xmalloc(raw_len);
+        size_t grid0 = 16 + g.meta_len[0] + g.meta_len[1];
+        int errors = 0, read = 0;
+        for (int it = 0; it < 300; it++) {
+            memcpy(bad, raw, raw_len);
+            for (int k = 0; k < 1 + it % 4; k++) {
+                seed = seed * 1664525u + 1013904223u;
+                size_t where = (seed >> 8) % 3 == 0   ? (seed >> 12) % grid0
+                               : (seed >> 8) % 3 == 1 ? grid0 + (seed >> 12) % 2048
+                                                      : (seed >> 12) % raw_len;
+                seed = seed * 1664525u + 1013904223u;
+                bad[where] = (unsigned char)(seed >> 24);
+            }
+            th_write("fuzz.nvdb", bad, raw_len);
+            struct cv_nvdb_grid fg;
+            bool found = false;
+            struct cv_error e2 = {{0}};
+            if (cv_nvdb_read(th_path("fuzz.nvdb"), "density", &fg, &found, &e2) && found) {
+                float v[64];
+                const uint32_t n4[3] = {4, 4, 4};
+                cv_nvdb_fill(&fg, fg.index_lo, n4, v);
+                read++;
+            } else {
+                errors += e2.msg[0] != '\0';
+            }
+            cv_nvdb_free(&fg);
+        }
+        tap_ok(errors > 0 && read > 0,
+               "300 randomly damaged files: %d clean errors, %d grids read and sampled", errors,
+               read);
         free(bad);
     }
     fails("raw.nvdb", " \"string gridname\" \"smoke\"", "raw.nvdb has no grid \"smoke\"",
