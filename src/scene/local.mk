@@ -25,6 +25,7 @@ libcavalry_a_SOURCES += \
 	src/scene/env_file.c src/scene/env_file.h \
 	src/scene/media.c \
 	src/scene/media_grid.c \
+	src/scene/media_nanovdb.c \
 	src/scene/nanovdb.c src/scene/nanovdb.h \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
