@@ -23,6 +23,7 @@
 #define CV_MEDIUM_UNIFORMGRID 2u   /* pbrt-v4's GridMedium: a density grid */
 #define CV_MEDIUM_RGBGRID 3u       /* pbrt-v4's RGBGridMedium: RGB sigma_a, sigma_s, Le grids */
 #define CV_MEDIUM_CLOUD 4u         /* pbrt-v4's CloudMedium: a procedural noise density */
+#define CV_MEDIUM_NANOVDB 5u       /* pbrt-v4's NanoVDBMedium: a uniformgrid sampled at corners */
 
 #define CV_MAJORANT_RES 16u        /* majorant cells per axis (pbrt-v4's) */
 #define CV_NO_GRID 0xffffffffu     /* a grid offset: this grid is absent */
@@ -46,7 +47,12 @@
  * [0, 1] (glsl/trace/medium/cloud.glsl), not emissive; grids.x is the
  * offset of its 9 parameters (density, wispiness, frequency, the bounds'
  * low corner p0 and size p1 - p0 in medium space), and to_grid and the
- * majorant grid (res.w) are as for the grids. */
+ * majorant grid (res.w) are as for the grids.
+ * nanovdb: as uniformgrid (A and S the density lattice, E
+ * absent, Le "Lescale", emitting only through a temperature grid), but the
+ * samples of its lattices run from corner to corner of the unit cube
+ * (sample i at i / (res - 1), NanoVDB's voxels) where the other grids'
+ * sit at cell centres ((i + 0.5) / res, pbrt-v4's SampledGrid). */
 CV_STRUCT(CvMedium) {
     cv_vec4 sigma_a;   /* rgb: absorption; w: Henyey-Greenstein g in (-1, 1) */
     cv_vec4 sigma_s;   /* rgb: scattering; w: unused */

@@ -216,8 +216,8 @@ bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *p
 bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
                  const struct cv_loc *loc, const char *dir, struct cv_error *err); /* media.c */
 /* MediumInterface inside outside ("" is vacuum) into the graphics state. */
-/* pbrt-v4's "uniformgrid" and "rgbgrid" media into *m, their grids
- * appended to the scene's grid buffer; the medium's transform is the
+/* pbrt-v4's "uniformgrid", "rgbgrid" and "nanovdb" media into *m, their
+ * grids appended to the scene's grid buffer; the medium's transform is the
  * current CTM. */
 bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
                       struct cv_params *ps, const struct cv_loc *loc, const char *dir,
@@ -242,6 +242,16 @@ bool cv_b_medium_bounds(struct cv_builder *b, struct cv_params *ps, const char *
 bool cv_b_medium_cloud(struct cv_builder *b, const char *name, struct cv_params *ps,
                        const struct cv_loc *loc, const char *dir, CvMedium *m,
                        struct cv_error *err); /* media_cloud.c */
+/* pbrt-v4's "nanovdb" medium into *m (type, coefficients, lattices,
+ * transform; not its majorant grid, which cv_b_medium_grid adds): the
+ * float grids "density" and "temperature" of its file. */
+bool cv_b_medium_nanovdb(struct cv_builder *b, const char *name, struct cv_params *ps,
+                         const struct cv_loc *loc, const char *dir, CvMedium *m,
+                         struct cv_error *err); /* media_nanovdb.c */
+/* Grid medium *m emits the blackbody of (lookup of temperature grid
+ * `grid` - off) x scale above 100 K; top: the hottest a lookup gives. */
+void cv_b_medium_blackbody(struct cv_builder *b, CvMedium *m, uint32_t grid, double off,
+                           double scale, double top); /* media_grid.c */
 bool cv_b_medium_interface(struct cv_builder *b, const char *inside, const char *outside,
                            const struct cv_loc *loc, struct cv_error *err);
 /* material, or its copy carrying the current MediumInterface when that

@@ -142,9 +142,10 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
         for (uint32_t i = 1; i < s->n_media; i++) {
             const CvMedium *m = &s->media[i];
             static const char *const names[] = {"vacuum", "homogeneous", "uniformgrid", "rgbgrid",
-                                                "cloud"};
+                                                "cloud", "nanovdb"};
             fprintf(o, "  medium %u %s", i, m->type < sizeof(names) / sizeof(names[0]) ? names[m->type] : "?");
-            if (m->type == CV_MEDIUM_UNIFORMGRID || m->type == CV_MEDIUM_RGBGRID)
+            if (m->type == CV_MEDIUM_UNIFORMGRID || m->type == CV_MEDIUM_RGBGRID ||
+                m->type == CV_MEDIUM_NANOVDB)
                 fprintf(o, " grid %ux%ux%u", m->res.x, m->res.y, m->res.z);
             v4(o, "sigma_a", m->sigma_a);
             v4(o, "sigma_s", m->sigma_s);

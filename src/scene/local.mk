@@ -26,6 +26,8 @@ libcavalry_a_SOURCES += \
 	src/scene/media.c \
 	src/scene/media_grid.c \
 	src/scene/media_cloud.c \
+	src/scene/media_nanovdb.c \
+	src/scene/nanovdb.c src/scene/nanovdb.h \
 	src/scene/camera.c \
 	src/scene/film.c src/scene/film.h \
 	src/scene/filter.c src/scene/filter.h \

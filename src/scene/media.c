@@ -2,9 +2,9 @@
  * pbrt-v4 reads them. Media go to the scene's table (glsl/shared/medium.h:
  * number 0 is vacuum); a shape's MediumInterface goes into its material's
  * media word, so a material used with several interfaces is copied once
- * per interface. Grid media are read by media_grid.c, the cloud by
- * media_cloud.c; a homogeneous medium's "preset" names one of the measured
- * media of scattering_presets.c. */
+ * per interface. Grid media (nanovdb too) are read by media_grid.c, the
+ * cloud by media_cloud.c; a homogeneous medium's "preset" names one of the
+ * measured media of scattering_presets.c. */
 #include <math.h>
 #include <string.h>
 
@@ -113,7 +113,8 @@ bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
         m.Le = (cv_vec4){(float)(Le[0] * le_scale), (float)(Le[1] * le_scale),
                          (float)(Le[2] * le_scale), 0};
         m.emissive = m.Le.x > 0 || m.Le.y > 0 || m.Le.z > 0;
-    } else if (strcmp(type, "uniformgrid") == 0 || strcmp(type, "rgbgrid") == 0) {
+    } else if (strcmp(type, "uniformgrid") == 0 || strcmp(type, "rgbgrid") == 0 ||
+               strcmp(type, "nanovdb") == 0) {
         if (!cv_b_medium_grid(b, name, type, ps, loc, dir, &m, err))
             return false;
     } else if (strcmp(type, "cloud") == 0) {
@@ -124,7 +125,7 @@ bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
             ps->v[i].used = true;
         if (!cv_b_warn(b, err, loc,
                        "medium \"%s\": type \"%s\" is not rendered (homogeneous, uniformgrid, "
-                       "rgbgrid and cloud are); it is vacuum", name, type))
+                       "rgbgrid, nanovdb and cloud are); it is vacuum", name, type))
             return false;
         m.type = CV_MEDIUM_VACUUM;
     }

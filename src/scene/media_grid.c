@@ -1,8 +1,9 @@
 /* media_grid.c: pbrt-v4's grid media, "uniformgrid" (GridMedium: a density
  * grid scaling sigma_a and sigma_s, an optional Lescale grid scaling Le)
  * and "rgbgrid" (RGBGridMedium: RGB grids of sigma_a, sigma_s and Le), read
- * with pbrt-v4's parameters and defaults, and their majorant grids
- * (glsl/shared/medium.h says how the GPU sees them). */
+ * with pbrt-v4's parameters and defaults, "nanovdb" (NanoVDBMedium: the
+ * density and temperature grids of a NanoVDB file, media_nanovdb.c), and
+ * their majorant grids (glsl/shared/medium.h says how the GPU sees them). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,17 +68,20 @@ static bool read_grid(struct cv_builder *b, struct cv_params *ps, const char *me
 /* The largest value of channel c of a grid of comps numbers per sample (a
  * grid of one is the same in every channel) over the samples
  * that a lookup in [lo, hi] of the unit cube reads: pbrt-v4's
- * SampledGrid::MaxValue. 1 for an absent grid (its lookup is 1). */
+ * SampledGrid::MaxValue (samples at cell centres) or, with corners, a
+ * nanovdb medium's lattice (samples from corner to corner). 1 for an
+ * absent grid (its lookup is 1). */
 static double grid_max(const struct cv_scene *s, uint32_t off, const uint32_t res[3], int comps,
-                       int c, const double lo[3], const double hi[3])
+                       int c, const double lo[3], const double hi[3], bool corners)
 {
     if (off == CV_NO_GRID)
         return 1;
     int i0[3], i1[3];
     for (int a = 0; a < 3; a++) {
         int n = (int)res[a];
-        i0[a] = (int)floor(lo[a] * n - 0.5);
-        i1[a] = (int)floor(hi[a] * n - 0.5) + 1;
+        double k = corners ? n - 1 : n, h = corners ? 0 : 0.5;
+        i0[a] = (int)floor(lo[a] * k - h);
+        i1[a] = (int)floor(hi[a] * k - h) + 1;
         i0[a] = i0[a] < 0 ? 0 : i0[a];
         i1[a] = i1[a] > n - 1 ? n - 1 : i1[a];
     }
@@ -100,6 +104,7 @@ static void majorants(struct cv_builder *b, CvMedium *m)
     double *maj = cv_xmalloc((size_t)R * R * R * sizeof(double));
     uint32_t res[3] = {m->res.x, m->res.y, m->res.z};
     int comps = m->grids.w ? 3 : 1;
+    bool corners = m->type == CV_MEDIUM_NANOVDB;
     const float sa[3] = {m->sigma_a.x, m->sigma_a.y, m->sigma_a.z};
     const float ss[3] = {m->sigma_s.x, m->sigma_s.y, m->sigma_s.z};
     for (uint32_t z = 0; z < R; z++)
@@ -109,8 +114,8 @@ static void majorants(struct cv_builder *b, CvMedium *m)
                 double hi[3] = {(double)(x + 1) / R, (double)(y + 1) / R, (double)(z + 1) / R};
                 double v = 0;
                 for (int c = 0; c < 3; c++)
-                    v = fmax(v, sa[c] * grid_max(b->s, m->grids.x, res, comps, c, lo, hi) +
-                                    ss[c] * grid_max(b->s, m->grids.y, res, comps, c, lo, hi));
+                    v = fmax(v, sa[c] * grid_max(b->s, m->grids.x, res, comps, c, lo, hi, corners) +
+                                    ss[c] * grid_max(b->s, m->grids.y, res, comps, c, lo, hi, corners));
                 maj[(z * R + y) * R + x] = v * (1 + 1e-5);
             }
     m->res.w = cv_b_medium_floats(b, maj, (size_t)R * R * R, 1);
@@ -164,6 +169,23 @@ static bool resolution(struct cv_params *ps, const char *name, const struct cv_l
     return true;
 }
 
+/* Temperature grid `grid` emits the blackbody of (lookup - off) x scale
+ * above 100 K; top: the hottest temperature a lookup can give. The
+ * blackbody's RGB goes to a table from 100 K to top, interpolated
+ * linearly. */
+void cv_b_medium_blackbody(struct cv_builder *b, CvMedium *m, uint32_t grid, double off,
+                           double scale, double top)
+{
+    m->temperature_grids.x = grid;
+    m->temperature = (cv_vec4){(float)off, (float)scale, (float)fmax(top, 101), 0};
+    double *table = cv_xmalloc(CV_BLACKBODY_STEPS * 3 * sizeof(double));
+    for (uint32_t i = 0; i < CV_BLACKBODY_STEPS; i++)
+        cv_blackbody_sensor_rgb(100 + (fmax(top, 101) - 100) * i / (CV_BLACKBODY_STEPS - 1),
+                                table + 3 * i);
+    m->temperature_grids.y = cv_b_medium_floats(b, table, CV_BLACKBODY_STEPS * 3, 1);
+    free(table);
+}
+
 /* A uniformgrid's temperature grid: pbrt-v4's GridMedium emits, where
  * (lookup - temperatureoffset) x temperaturescale exceeds 100 K, the
  * Lescale grid times the blackbody of that temperature (its peak
@@ -198,14 +220,7 @@ static bool temperature(struct cv_builder *b, const char *name, struct cv_params
         top = fmax(top, (p->nums[i] - off) * scale);
     m->Le = (cv_vec4){1, 1, 1, 0};
     m->emissive = 1;
-    m->temperature_grids.x = grid;
-    m->temperature = (cv_vec4){(float)off, (float)scale, (float)fmax(top, 101), 0};
-    double *table = cv_xmalloc(CV_BLACKBODY_STEPS * 3 * sizeof(double));
-    for (uint32_t i = 0; i < CV_BLACKBODY_STEPS; i++)
-        cv_blackbody_sensor_rgb(100 + (fmax(top, 101) - 100) * i / (CV_BLACKBODY_STEPS - 1),
-                                table + 3 * i);
-    m->temperature_grids.y = cv_b_medium_floats(b, table, CV_BLACKBODY_STEPS * 3, 1);
-    free(table);
+    cv_b_medium_blackbody(b, m, grid, off, scale, top);
     return true;
 }
 
@@ -294,11 +309,15 @@ bool cv_b_medium_grid(struct cv_builder *b, const char *name, const char *type,
         return false;
     m->sigma_a.w = (float)g;
     m->temperature_grids = (cv_uvec4){CV_NO_GRID, CV_NO_GRID, 0, 0};
-    if (!resolution(ps, name, loc, m, err) ||
-        !cv_b_medium_bounds(b, ps, name, loc, m, NULL, NULL, err))
-        return false;
-    bool ok = strcmp(type, "uniformgrid") == 0 ? uniformgrid(b, name, ps, loc, dir, m, err)
-                                               : rgbgrid(b, name, ps, loc, m, err);
+    bool ok;
+    if (strcmp(type, "nanovdb") == 0)
+        ok = cv_b_medium_nanovdb(b, name, ps, loc, dir, m, err);
+    else if (!resolution(ps, name, loc, m, err) ||
+             !cv_b_medium_bounds(b, ps, name, loc, m, NULL, NULL, err))
+        ok = false;
+    else
+        ok = strcmp(type, "uniformgrid") == 0 ? uniformgrid(b, name, ps, loc, dir, m, err)
+                                              : rgbgrid(b, name, ps, loc, m, err);
     if (!ok)
         return false;
     majorants(b, m);

@@ -10,6 +10,10 @@ check_PROGRAMS += tests/scene/parse_test
 TESTS += tests/scene/parse_test
 tests_scene_parse_test_LDADD = $(CV_LIBS)
 
+check_PROGRAMS += tests/scene/nanovdb_test
+TESTS += tests/scene/nanovdb_test
+tests_scene_nanovdb_test_LDADD = $(CV_LIBS)
+
 check_PROGRAMS += tests/scene/camera_matrix_test
 TESTS += tests/scene/camera_matrix_test
 tests_scene_camera_matrix_test_LDADD = $(CV_LIBS)

@@ -99,6 +99,9 @@ tests_trace_medium_grid_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/medium_cloud_test
 TESTS += tests/trace/medium_cloud_test
 tests_trace_medium_cloud_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/trace/medium_nanovdb_test
+TESTS += tests/trace/medium_nanovdb_test
+tests_trace_medium_nanovdb_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/medium_furnace.pbrt
 # --- end of participating media ---
 

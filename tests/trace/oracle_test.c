@@ -174,6 +174,9 @@ static const struct oracle_scene scenes[] = {
     {"vol_grid_rgb", NULL},
     {"vol_grid_emission", NULL},
     {"vol_grid_blackbody", NULL},
+    /* pbrt-v4's nanovdb medium: density and temperature grids of a
+     * NanoVDB file (ZIP-compressed, make_nanovdb.py) */
+    {"vol_nanovdb", NULL},
     /* coated diffuse in closed form: a white base, maxdepth 10 and 100 */
     {"mat_coateddiffuse_white_md10", NULL},
     {"mat_coateddiffuse_white_md100", NULL},

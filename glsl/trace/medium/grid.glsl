@@ -1,7 +1,8 @@
 // glsl/trace/medium/grid.glsl: grid media (CV_MEDIUM_UNIFORMGRID,
-// CV_MEDIUM_RGBGRID; glsl/shared/medium.h) as pbrt-v4 defines them: the
-// trilinear lookup of SampledGrid (samples at voxel centres, zero beyond
-// the outermost ones), vacuum outside the bounds, and the walk over the
+// CV_MEDIUM_RGBGRID, CV_MEDIUM_NANOVDB; glsl/shared/medium.h) as pbrt-v4
+// defines them: the trilinear lookup of SampledGrid (samples at voxel
+// centres, zero beyond the outermost ones) or of NanoVDB (samples at the
+// lattice's corners), vacuum outside the bounds, and the walk over the
 // coarse majorant grid with a 3D DDA (DDAMajorantIterator) for delta
 // tracking (track.glsl) and ratio tracking (shadow.comp).
 //
@@ -28,7 +29,8 @@ layout(std430, binding = CV_BIND_MEDIUM_GRIDS) readonly buffer CvMediumGridBlock
 
 bool cv_grid_medium(uint m)
 {
-    return media[m].type == CV_MEDIUM_UNIFORMGRID || media[m].type == CV_MEDIUM_RGBGRID
+    return media[m].type == CV_MEDIUM_UNIFORMGRID || media[m].type == CV_MEDIUM_RGBGRID ||
+           media[m].type == CV_MEDIUM_NANOVDB
 #ifdef CV_MEDIUM_CLOUDS
            || media[m].type == CV_MEDIUM_CLOUD  // a procedural density (cloud.glsl)
 #endif
@@ -53,12 +55,12 @@ vec3 cv_grid_sample(uint off, uvec3 res, uint comps, ivec3 i)
                        : vec3(medium_grids[k]);
 }
 
-// pbrt-v4's SampledGrid::Lookup at g in the unit cube; 1 for an absent grid.
-vec3 cv_grid_lookup(uint off, uvec3 res, uint comps, vec3 g)
+// The trilinear lookup at s in sample units (sample i at s = i); 1 for
+// an absent grid.
+vec3 cv_grid_lookup_at(uint off, uvec3 res, uint comps, vec3 s)
 {
     if (off == CV_NO_GRID)
         return vec3(1.0);
-    vec3 s = g * vec3(res) - 0.5;
     vec3 f = floor(s);
     ivec3 i = ivec3(f);
     vec3 d = s - f;
@@ -73,6 +75,19 @@ vec3 cv_grid_lookup(uint off, uvec3 res, uint comps, vec3 g)
     vec3 d00 = mix(v000, v100, d.x), d10 = mix(v010, v110, d.x);
     vec3 d01 = mix(v001, v101, d.x), d11 = mix(v011, v111, d.x);
     return mix(mix(d00, d10, d.y), mix(d01, d11, d.y), d.z);
+}
+
+// g in the unit cube in sample units of a grid of res samples of medium
+// m: at cell centres, or a nanovdb lattice's corners.
+vec3 cv_grid_samples(uint m, uvec3 res, vec3 g)
+{
+    return media[m].type == CV_MEDIUM_NANOVDB ? g * vec3(res - 1u) : g * vec3(res) - 0.5;
+}
+
+// pbrt-v4's SampledGrid::Lookup at g in the unit cube; 1 for an absent grid.
+vec3 cv_grid_lookup(uint off, uvec3 res, uint comps, vec3 g)
+{
+    return cv_grid_lookup_at(off, res, comps, g * vec3(res) - 0.5);
 }
 
 // sigma_a, sigma_s and emitted radiance of grid medium m at g in its unit
@@ -95,16 +110,18 @@ void cv_grid_point(uint m, vec3 g, out vec3 sigma_a, out vec3 sigma_s, out vec3 
     uvec4 grids = media[m].grids;
     uvec3 res = media[m].res.xyz;
     uint comps = grids.w != 0u ? 3u : 1u;
-    sigma_a = media[m].sigma_a.rgb * cv_grid_lookup(grids.x, res, comps, g);
-    sigma_s = media[m].sigma_s.rgb * cv_grid_lookup(grids.y, res, comps, g);
+    vec3 s = cv_grid_samples(m, res, g);
+    sigma_a = media[m].sigma_a.rgb * cv_grid_lookup_at(grids.x, res, comps, s);
+    sigma_s = media[m].sigma_s.rgb * cv_grid_lookup_at(grids.y, res, comps, s);
     if (media[m].emissive == 0u)
         return;
-    Le = media[m].Le.rgb * cv_grid_lookup(grids.z, media[m].le_res.xyz, comps, g);
+    uvec3 le_res = media[m].le_res.xyz;
+    Le = media[m].Le.rgb * cv_grid_lookup_at(grids.z, le_res, comps, cv_grid_samples(m, le_res, g));
     uvec4 tg = media[m].temperature_grids;
     if (tg.x != CV_NO_GRID) {
         // blackbody emission: the table's linear interpolation
         vec4 tp = media[m].temperature;
-        float T = (cv_grid_lookup(tg.x, res, 1u, g).x - tp.x) * tp.y;
+        float T = (cv_grid_lookup_at(tg.x, res, 1u, s).x - tp.x) * tp.y;
         if (!(T > 100.0)) {
             Le = vec3(0.0);
             return;

@@ -665,6 +665,26 @@ def media_extra_main():
         + indent(box([-1.3, 0.005, -1.3], [1.3, 2.1, 1.3])) + "AttributeEnd\n")
 
 
+# pbrt-v4's "nanovdb" medium (issue 27): vol_nanovdb.nvdb (make_nanovdb.py)
+# holds a 12x10x8-voxel density grid and a temperature grid poking out of
+# its top; turned and moved by the CTM at MakeNamedMedium. The .pbrt names
+# the ZIP-compressed file; the reference was rendered from
+# vol_nanovdb_raw.nvdb (README). nanovdb_scenes() writes it last.
+def nanovdb_scenes(nvdb="vol_nanovdb.nvdb"):
+    volpath_scene(
+        "vol_nanovdb", "nanovdb density and temperature grids (sigma_a 0.5, sigma_s 1.6, "
+        "scale 1.1, g 0.4, Lescale 0.025, temperatureoffset 100, temperaturescale 1.2) under a "
+        "rotation, area lamp",
+        AREA_LAMP + FLOOR
+        + "AttributeBegin\n  Translate 0.1 0 0.2\n  Rotate 25 0 1 0\n"
+          '  MakeNamedMedium "cloud" "string type" "nanovdb" "string filename" "%s"\n'
+          '    "rgb sigma_a" [ 0.5 0.5 0.5 ] "rgb sigma_s" [ 1.6 1.6 1.6 ] "float scale" [ 1.1 ]'
+          ' "float g" [ 0.4 ]\n    "float Lescale" [ 0.025 ] "float temperatureoffset" [ 100 ]'
+          ' "float temperaturescale" [ 1.2 ]\nAttributeEnd\n' % nvdb
+        + 'AttributeBegin\n  MediumInterface "cloud" ""\n  Material "interface"\n'
+        + indent(box([-1.8, 0.005, -1.8], [1.8, 2.4, 1.8])) + "AttributeEnd\n")
+
+
 if __name__ == "__main__":
     main()
     camera_main()
@@ -672,3 +692,4 @@ if __name__ == "__main__":
     subsurface_scenes()
     bdpt_main()
     media_extra_main()
+    nanovdb_scenes()
