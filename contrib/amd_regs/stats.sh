@@ -16,10 +16,10 @@ tree=$1; k=$2; shift 2
 w=${TMPDIR:-/tmp}/amd_regs.$$
 mkdir -p "$w"
 trap 'rm -rf "$w"' EXIT
-cc -std=c11 -I"$top/src" -I"$top" "$here/assemble.c" "$top/libcavalry.a" -lEGL -lepoxy -lOpenColorIO \
+cc -std=c11 -Wall -Wextra -I"$top/src" -I"$top" "$here/assemble.c" "$top/libcavalry.a" -lEGL -lepoxy -lOpenColorIO \
     -lOpenEXR-3_1 -lOpenEXRUtil-3_1 -lOpenEXRCore-3_1 -lIex-3_1 -lIlmThread-3_1 -lImath-3_1 -lOSMesa -lpng16 \
     -lstb -lyaml -lm -lstdc++ -lpthread -o "$w/assemble"
-cc -std=c11 "$here/vkstats.c" -lvulkan -o "$w/vkstats"
+cc -std=c11 -Wall -Wextra "$here/vkstats.c" -lvulkan -o "$w/vkstats"
 CAVALRY_DATA_DIR=$tree "$w/assemble" "$k" "$@" > "$w/k.comp"
 # GL-only forms Vulkan GLSL refuses: #line with file numbers, the size
 # checks' stray semicolons, `sampler` as a name
@@ -30,5 +30,6 @@ python3 "$here/remap.py" "$w/k.spvasm" "$w/r.spvasm" "$w/layout"
 spirv-as --target-env vulkan1.0 "$w/r.spvasm" -o "$w/r.spv"
 RADV_FORCE_FAMILY=navi21 VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/radeon_icd.x86_64.json \
     "$w/vkstats" "$w/r.spv" "$w/layout" 2>/dev/null |
-    grep -E "^(VGPRs|Spilled VGPRs|Spilled SGPRs|Scratch size|Code size|Subgroups per SIMD|Instructions):" | tr '\n' ' '
+    grep -E "^(VGPRs|Spilled [VS]GPRs|Scratch size|Code size|Subgroups per SIMD|Instructions):" |
+    tr '\n' ' '
 echo
