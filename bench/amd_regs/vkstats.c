@@ -1,4 +1,4 @@
-/* contrib/amd_regs/vkstats.c: compiles a compute SPIR-V module with the
+/* bench/amd_regs/vkstats.c: compiles a compute SPIR-V module with the
  * first Vulkan device (stats.sh picks RADV's null navi21 device) and
  * prints its pipeline executable statistics, one "name: value" a line
  * (VK_KHR_pipeline_executable_properties). LAYOUT lists the module's

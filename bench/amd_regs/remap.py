@@ -1,4 +1,4 @@
-# contrib/amd_regs/remap.py IN.spvasm OUT.spvasm LAYOUT: GL's separate binding namespaces to
+# bench/amd_regs/remap.py IN.spvasm OUT.spvasm LAYOUT: GL's separate binding namespaces to
 # Vulkan sets (0 SSBO, 1 UBO, 2 samplers/texel buffers); LAYOUT lists "set binding type"
 import re, sys
 src = open(sys.argv[1]).read()

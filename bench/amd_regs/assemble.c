@@ -1,4 +1,4 @@
-/* contrib/amd_regs/assemble.c: prints a kernel assembled as the host does
+/* bench/amd_regs/assemble.c: prints a kernel assembled as the host does
  * (gpu/program.h: cv_glsl_assemble; CAVALRY_DATA_DIR picks the tree).
  *   usage: assemble KERNEL [DEFINE]... */
 #include <stdio.h>

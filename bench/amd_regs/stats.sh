@@ -1,5 +1,5 @@
 #!/bin/sh
-# contrib/amd_regs/stats.sh: register proxy for a shade kernel without a GPU.
+# bench/amd_regs/stats.sh: register proxy for a shade kernel without a GPU.
 # Assembles KERNEL as the host does (gpu/program.h, with DEFINES), turns it
 # into Vulkan SPIR-V (glslang, relaxed rules) and compiles it with Mesa's
 # RADV/ACO on a null navi21 device, printing VGPRs, spills, code size and
@@ -7,8 +7,8 @@
 # each other, not with a GPU's occupancy.
 #   needs: mesa-vulkan-drivers glslang-tools spirv-tools libvulkan-dev, a
 #   built tree (libcavalry.a)
-#   usage: contrib/amd_regs/stats.sh GLSL_TREE KERNEL DEFINES...
-#   e.g.   contrib/amd_regs/stats.sh $PWD trace/shade.comp CV_SHADE_BIN=2 CV_NO_ENV
+#   usage: bench/amd_regs/stats.sh GLSL_TREE KERNEL DEFINES...
+#   e.g.   bench/amd_regs/stats.sh $PWD trace/shade.comp CV_SHADE_BIN=2 CV_NO_ENV
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/../.." && pwd)
