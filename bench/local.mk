@@ -35,3 +35,5 @@ EXTRA_DIST += bench/bench_test.sh
 bench-multigpu: src/cavalry-batch bench/gen_scene
 	$(SHELL) $(srcdir)/bench/multigpu.sh --binary src/cavalry-batch $(MULTIGPU_FLAGS)
 EXTRA_DIST += bench/multigpu.sh bench/bdpt.sh
+# the register proxy of shade kernels (bench/amd_regs/stats.sh: RADV, no GPU)
+EXTRA_DIST += bench/amd_regs/stats.sh bench/amd_regs/assemble.c bench/amd_regs/vkstats.c bench/amd_regs/remap.py
