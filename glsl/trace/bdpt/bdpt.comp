@@ -35,8 +35,15 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 layout(std430, binding = CV_BIND_BDPT_VERTICES) buffer CvBdptStore { CvBdptVertex bv[]; };
 layout(std430, binding = CV_BIND_BDPT_SPLAT) buffer CvBdptSplat { uint splat[]; };
 
-// This invocation's path slot, film pixel (full film) and sample index.
-uint g_slot, g_fp, g_sample;
+// The wave this dispatch runs (src/trace/integrator.h): path slots
+// u_wave_first .. u_wave_first + u_wave_paths - 1, slot u_wave_first + i
+// in column i of the vertex store.
+uniform uint u_wave_first;
+uniform uint u_wave_paths;
+
+// This invocation's path slot, its column of the vertex store, film pixel
+// (full film) and sample index.
+uint g_slot, g_column, g_fp, g_sample;
 
 // Random number pairs: the camera subpath's as the path integrator's
 // (common.glsl: CV_PAIR_* of each bounce); the light subpath's from
@@ -56,7 +63,7 @@ uint cv_bdpt_light_pair(uint vertex, uint which) { return CV_BDPT_LIGHT_PAIRS + 
 
 uint cv_bdpt_index(bool light_side, uint k)
 {
-    return ((light_side ? CV_BDPT_CAMERA_VERTS(cv_max_depth()) : 0u) + k) * cv_capacity() + g_slot;
+    return ((light_side ? CV_BDPT_CAMERA_VERTS(cv_max_depth()) : 0u) + k) * u_wave_paths + g_column;
 }
 CvBdptVertex cv_bdpt_cam(uint k) { return bv[cv_bdpt_index(false, k)]; }
 CvBdptVertex cv_bdpt_light(uint k) { return bv[cv_bdpt_index(true, k)]; }
@@ -682,8 +689,9 @@ uint cv_bdpt_light_subpath()
 
 void main()
 {
-    uint slot = cv_global_index();
-    if (slot >= cv_capacity())
+    uint column = cv_global_index();
+    uint slot = u_wave_first + column;
+    if (column >= u_wave_paths || slot >= cv_capacity())
         return;
     // the slot's sample of this round (trace.h: slot s takes the samples
     // j with j % K == s / P, in order)
@@ -693,6 +701,7 @@ void main()
     if (j >= u_pass.end_sample)
         return;
     g_slot = slot;
+    g_column = column;
     g_sample = j;
     g_fp = cv_film_pixel(cv_path_pixel(slot));
     CvRayItem r = cv_camera_sample(slot, j);  // the filter weight, the path in flight
