@@ -538,8 +538,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
-    if (ops->whole_samples)
+    if (ops->whole_samples) {
         r->wave_paths = choose_wave_paths(gpu, p, ops, r->max_depth, r->n_paths);
+        cv_debug("%s: %zu path slots, %u a dispatch (%zu dispatches a round of samples)",
+                 cv_integrator_name(p->integrator), r->n_paths, r->wave_paths,
+                 (r->n_paths + r->wave_paths - 1) / r->wave_paths);
+    }
     /* media are tracked by an integrator that renders them, in a scene
      * that has them; camera rays start in the camera's medium */
     if (ops->media && r->scene->has_media) {
