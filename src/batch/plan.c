@@ -94,11 +94,6 @@ static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *s
 {
     if (scene->n_media > 0)
         return "participating media";
-    for (uint32_t i = 0; i < scene->n_lights; i++) {
-        uint32_t t = scene->lights[i].type;
-        if (t == CV_LIGHT_DISTANT)
-            return "distant lights";
-    }
     if (cam->type == CV_CAMERA_ORTHOGRAPHIC)
         return "an orthographic camera";
     if (memcmp(cam->to_world, cam->to_world_end, sizeof(cam->to_world)) != 0)

@@ -2,8 +2,8 @@
  * 1. pbrt-v4's own renders of the oracle scenes (tests/data/trace/oracle,
  *    made by its path integrator; an unbiased bdpt converges to the same
  *    image) that bdpt renders: diffuse, glossy, specular and coated
- *    materials, area, point, spot, constant and image infinite lights; and
- *    bdpt_caustic, a glass sphere's caustic under a lamp, whose reference
+ *    materials, area, point, spot, distant, constant and image infinite
+ *    lights; and bdpt_caustic, a glass sphere's caustic under a lamp, whose reference
  *    pbrt-v4's bdpt made (README there). Whole image, quadrants and centre
  *    within BDPT_TOL, as oracle_test.c measures them.
  * 2. Each strategy (s, t) of one path length alone, unweighted: the same
@@ -126,8 +126,6 @@ static void against_path(struct cv_gpu *gpu, const char *name, uint64_t seed)
     free(b.rgba);
 }
 
-/* the oracle scenes without infinite or distant lights, which bdpt does
- * not start light subpaths from */
 /* Every strategy (s, t) of one path length, alone and unweighted, makes
  * the same image (all paths of that length, in a scene of diffuse
  * surfaces and a lamp, which each strategy can sample): a check of each
@@ -156,11 +154,11 @@ static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uin
     free(ref.rgba);
 }
 
-/* oracle scenes without distant lights, which bdpt does not render */
+/* the oracle scenes of lights and materials that bdpt renders */
 static const char *const oracle_scenes[] = {
-    "light_area", "light_point", "light_spot", "light_env_const", "light_env_map",
+    "light_area", "light_point", "light_spot", "light_distant", "light_env_const", "light_env_map",
     "mat_diffuse", "mat_conductor_rough", "mat_dielectric", "mat_coateddiffuse",
-    "bdpt_caustic",
+    "bdpt_caustic", "bdpt_caustic_sun",
 };
 
 /* bdpt's camera subpaths take the path integrator's random numbers, so
@@ -297,7 +295,8 @@ static void waves(struct cv_gpu *gpu, uint64_t seed)
  * renders them all (as on the GPU machine). */
 static bool in_check(const char *name)
 {
-    return strcmp(name, "light_area") == 0 || strcmp(name, "bdpt_caustic") == 0;
+    return strcmp(name, "light_area") == 0 || strcmp(name, "light_distant") == 0 ||
+           strcmp(name, "bdpt_caustic") == 0;
 }
 
 /* bdpt_test [all | SCENE [SEED]] */
