@@ -113,6 +113,7 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_train = p->rl_train;
     rp.paths_per_pixel = p->paths_per_pixel;
     rp.stage_times = p->knobs.stage_times;
+    rp.bdpt_slots = p->knobs.bdpt_slots;
     rp.bvh = &p->knobs.bvh;
     if (integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);

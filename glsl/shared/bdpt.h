@@ -1,9 +1,12 @@
 /* glsl/shared/bdpt.h: the bdpt integrator's subpath vertices, shared by
  * the host (src/trace/bdpt.c, which sizes the store) and its kernel
- * (glsl/trace/bdpt/bdpt.comp). Every path slot (trace.h) keeps the camera
- * subpath and the light subpath of its sample in flight: vertex k of slot
- * s at [k * n_paths + s] (neighbouring slots side by side, so a work
- * group's loads of one vertex index come together), camera vertices
+ * (glsl/trace/bdpt/bdpt.comp). The store holds one wave of path slots
+ * (trace.h; src/trace/integrator.h: a round of samples runs in dispatches
+ * over waves of at most W = u_wave_paths slots, so that its size depends
+ * on neither the film nor the driver's per-buffer limit): each keeps the
+ * camera subpath and the light subpath of its sample in flight, vertex k
+ * of the wave's slot i at [k * W + i] (neighbouring slots side by side, so
+ * a work group's loads of one vertex index come together), camera vertices
  * k < CV_BDPT_CAMERA_VERTS(max_depth), then light vertices. Densities are
  * pbrt-v4's BDPT Vertex pdfFwd and pdfRev: per unit area at the vertex
  * (per solid angle towards infinite lights, as pbrt-v4 keeps them,

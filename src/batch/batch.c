@@ -163,6 +163,7 @@ static bool make_plans(const struct cv_manifest *m, const struct cv_batch_option
         .time_limit = opt->time_limit,
         .check_color = true,
         .stage_times = opt->stage_times,
+        .bdpt_slots = opt->bdpt_slots,
         .env_files = &p->env_files,
     };
     p->env_files.params = (struct cv_scene_load_params){.strict = opt->strict,

@@ -36,6 +36,7 @@ struct cv_batch_options {
     struct cv_worker_link *worker; /* a worker of a multi-GPU batch: jobs and events
                                     * go through its parent (workers.h); NULL: none */
     bool serial_compile;           /* no compiling ahead (gpu/program.h) */
+    uint32_t bdpt_slots;           /* bdpt's slots a dispatch (trace/render.h); 0: automatic */
 };
 
 enum cv_batch_status {

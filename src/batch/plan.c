@@ -94,11 +94,6 @@ static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *s
 {
     if (scene->n_media > 0)
         return "participating media";
-    for (uint32_t i = 0; i < scene->n_lights; i++) {
-        uint32_t t = scene->lights[i].type;
-        if (t == CV_LIGHT_DISTANT)
-            return "distant lights";
-    }
     if (cam->type == CV_CAMERA_ORTHOGRAPHIC)
         return "an orthographic camera";
     if (memcmp(cam->to_world, cam->to_world_end, sizeof(cam->to_world)) != 0)
@@ -432,6 +427,7 @@ bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
     out->max_depth = job->has_max_depth ? job->max_depth : scene->settings.max_depth;
     out->seed = job->has_seed ? job->seed : 0;
     out->stage_times = o->stage_times;
+    out->bdpt_slots = o->bdpt_slots;
     out->time_limit = job->has_time_limit ? job->time_limit : 0;
     if (o->time_limit > 0 && (out->time_limit == 0 || o->time_limit < out->time_limit))
         out->time_limit = o->time_limit;
@@ -461,6 +457,7 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_guide_indirect = job->rlpath.guide == CV_RL_GUIDE_INDIRECT,
         .rl_train = job->rlpath.train == 0 ? CV_RL_TRAIN_ALWAYS : job->rlpath.train,
         .stage_times = plan->stage_times,
+        .bdpt_slots = plan->bdpt_slots,
     };
 }
 

@@ -475,6 +475,7 @@ int cv_cli_main(int argc, char **argv)
     o.bvh = &knobs.bvh;
     o.stage_times = knobs.stage_times;
     o.serial_compile = knobs.serial_compile;
+    o.bdpt_slots = knobs.bdpt_slots;
     if (list_gpus) {
         struct cv_error err = {{0}};
         if (!cv_gpu_list(&o.gpu, stdout, &err)) {

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/limits.h"
 #include "base/log.h"
 #include "cli/knobs.h"
 
@@ -32,5 +33,8 @@ struct cv_knobs cv_knobs_from_environment(void)
     k.stage_times = times && *times && strcmp(times, "0") != 0;
     const char *parallel = getenv("CAVALRY_PARALLEL_COMPILE");
     k.serial_compile = parallel && strcmp(parallel, "0") == 0;
+    double slots = 0;
+    env_number("CAVALRY_BDPT_SLOTS", true, 0, CV_MAX_PATHS, &slots);
+    k.bdpt_slots = (uint32_t)slots;
     return k;
 }

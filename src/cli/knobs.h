@@ -1,7 +1,8 @@
 /* knobs.h: the tuning and diagnostic knobs that cavalry-batch and the bench
  * tools take from the environment (documented in cavalry-batch(1)). The
  * library reads no environment for them: these values are passed in as
- * parameters (struct cv_bvh_params, struct cv_render_params' stage_times). */
+ * parameters (struct cv_bvh_params, struct cv_render_params' stage_times
+ * and bdpt_slots). */
 #ifndef CV_CLI_KNOBS_H
 #define CV_CLI_KNOBS_H
 
@@ -17,6 +18,9 @@ struct cv_knobs {
     /* CAVALRY_PARALLEL_COMPILE=0: programs are compiled one at a time at
      * first use (gpu/program.h), which times each one's compile alone */
     bool serial_compile;
+    /* CAVALRY_BDPT_SLOTS (0 to CV_MAX_PATHS; 0, the default: automatic):
+     * render params' bdpt_slots, the path slots bdpt runs in one dispatch */
+    uint32_t bdpt_slots;
 };
 
 /* Reads the knobs; a value that is not a number in its range is warned

@@ -17,7 +17,7 @@
 #define CV_MAX_DEFINES 24
 
 struct cv_bdpt {
-    GLuint vertices;   /* CvBdptVertex[n_paths * CV_BDPT_VERTS(max_depth)] */
+    GLuint vertices;   /* CvBdptVertex[wave_paths * CV_BDPT_VERTS(max_depth)] */
     GLuint splat;      /* float bits [3 * n_pixels], starts at 0 */
 };
 
@@ -73,7 +73,10 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     shade[0] = *prog;
     struct cv_bdpt *b = cv_xcalloc(1, sizeof(*b));
     *state = b;
-    uint64_t verts = (uint64_t)s->n_paths * CV_BDPT_VERTS((uint64_t)s->max_depth);
+    /* one wave's subpaths (integrator.h): the film's slots beyond it run
+     * in further dispatches of each round, so the store's size depends on
+     * neither the film nor, beyond one buffer, the depth */
+    uint64_t verts = (uint64_t)s->wave_paths * CV_BDPT_VERTS((uint64_t)s->max_depth);
     b->vertices = cv_gpu_storage_buffer(s->gpu, verts * sizeof(CvBdptVertex),
                                         NULL, "bdpt subpath vertices", err);
     size_t splat_floats = CV_BDPT_SPLAT_HEADER + (size_t)s->n_pixels * 3;
@@ -103,10 +106,10 @@ static void ops_bind(const void *state)
     cv_buffer_bind(b->splat, CV_BIND_BDPT_SPLAT);
 }
 
-/* Path slots when the renderer chooses: each keeps its two subpaths in
- * the store (CV_BDPT_VERTS vertices of 128 bytes), so fewer than the
- * wavefront's; a slot runs whole samples, so fewer suffice to fill the
- * GPU. */
+/* Path slots when the renderer chooses, and slots a wave: each keeps its
+ * two subpaths in the store (CV_BDPT_VERTS vertices of 128 bytes), so
+ * fewer than the wavefront's; a slot runs whole samples, so fewer suffice
+ * to fill the GPU. */
 #define CV_BDPT_MAX_PATHS (1u << 20)
 
 static uint64_t slot_bytes(uint32_t max_depth)

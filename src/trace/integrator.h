@@ -23,6 +23,10 @@ struct cv_integrator_setup {
     const struct cv_render_params *params;
     const char *const *defines;   /* the scene's program defines, NULL-terminated */
     uint32_t n_paths;             /* path slots (glsl/shared/trace.h) */
+    /* whole samples: the slots one dispatch runs, at most n_paths (the
+     * columns of the integrator's own storage; render.c:
+     * choose_wave_paths); n_paths otherwise */
+    uint32_t wave_paths;
     uint32_t n_pixels;            /* pixels of the crop */
     uint32_t max_depth;           /* the render's maximum depth */
 };
@@ -52,13 +56,20 @@ struct cv_integrator_ops {
     /* Whole samples (bdpt): the renderer runs shade program 0 once per
      * round of samples over the path slots (u_pass.iteration: the round;
      * each slot runs its next sample of the pass), in place of the
-     * wavefront stages, which are not built. max_paths: at most this many
-     * path slots where the renderer chooses (0: no bound of its own);
-     * resolve_define: added to the resolve stage's defines when not NULL. */
+     * wavefront stages, which are not built (nor their queues). A round
+     * runs in waves: dispatches over at most wave_paths slots each
+     * (cv_integrator_setup), the program's uint uniforms u_wave_first (the
+     * wave's first slot) and u_wave_paths (wave_paths) telling it which:
+     * slot u_wave_first + i keeps its state in column i of the
+     * integrator's own storage. max_paths: at most this many path slots,
+     * and slots a wave, where the renderer chooses (0: no bound of its
+     * own); resolve_define: added to the resolve stage's defines when not
+     * NULL. */
     bool whole_samples;
     uint32_t max_paths;
     /* May be NULL: bytes of the integrator's own storage per path slot at
-     * maximum depth max_depth, which bounds the slots the renderer chooses */
+     * maximum depth max_depth (per column, for whole samples), which
+     * bounds the slots a wave runs to what one storage buffer holds */
     uint64_t (*slot_bytes)(uint32_t max_depth);
     const char *resolve_define;
     const char *define[CV_SHADE_PROGRAMS];

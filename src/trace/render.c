@@ -71,6 +71,7 @@ struct cv_renderer {
     uint32_t n_pixels, crop_w, crop_h;
     uint32_t paths_per_pixel;      /* K of glsl/shared/trace.h */
     size_t n_paths;                /* path slots: n_pixels * paths_per_pixel */
+    uint32_t wave_paths;           /* whole samples: slots a dispatch runs (choose_wave_paths) */
     uint32_t max_depth;
     bool aovs;
     bool escaped_stage;            /* misses go through escaped.comp */
@@ -171,6 +172,47 @@ static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok
 #define PATH_BYTES (2 * sizeof(CvRayItem) + 2 * sizeof(CvHitItem) + sizeof(CvShadowItem) + \
                     sizeof(CvFilmPixel))
 
+/* How many path slots an integrator's own storage (cv_integrator_ops.
+ * slot_bytes: bdpt's subpath vertices) holds at most: in one storage
+ * buffer (the driver's per-buffer limit, GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+ * or what a probe found: gpu/storage.h), and within a quarter of the free
+ * memory where the driver reports it. UINT64_MAX: no storage of its own,
+ * or no bound known. */
+static uint64_t own_slots(struct cv_gpu *gpu, const struct cv_integrator_ops *ops,
+                          uint32_t max_depth)
+{
+    uint64_t own = ops->slot_bytes ? ops->slot_bytes(max_depth) : 0, cap = UINT64_MAX;
+    if (!own)
+        return cap;
+    uint64_t known = cv_gpu_storage_known(gpu);
+    if (known && known / own < cap)
+        cap = known / own;
+    uint64_t total = 0, avail = 0;
+    if (cv_gpu_memory(gpu, &total, &avail) && avail && avail / 4 / own < cap)
+        cap = avail / 4 / own;
+    return cap;
+}
+
+/* The path slots one dispatch of a whole-sample integrator runs (render.h:
+ * bdpt_slots): all n_paths where its own storage holds them, else waves of
+ * as many as it holds, ops->max_paths at most (enough to fill the GPU; the
+ * store stays bounded for any film). Waves change where a sample's
+ * subpaths are kept, nothing else: each slot still runs the same samples,
+ * in the same order. */
+static uint32_t choose_wave_paths(struct cv_gpu *gpu, const struct cv_render_params *p,
+                                  const struct cv_integrator_ops *ops, uint32_t max_depth,
+                                  uint64_t n_paths)
+{
+    uint64_t cap = own_slots(gpu, ops, max_depth);
+    if (ops->max_paths && ops->max_paths < cap)
+        cap = ops->max_paths;
+    if (p->bdpt_slots && p->bdpt_slots < cap)
+        cap = p->bdpt_slots;
+    if (n_paths < cap)
+        cap = n_paths;
+    return cap < 1 ? 1 : (uint32_t)cap;
+}
+
 /* Path slots per pixel (render.h: paths_per_pixel). The automatic choice
  * is made for the full film (film_pixels), not for the pixels a crop
  * renders: K sets the order in which a pixel's samples are summed, so a
@@ -194,18 +236,17 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
     if (ops->max_paths && ops->max_paths < cap)
         cap = ops->max_paths;
     uint64_t known = cv_gpu_storage_known(gpu);
-    /* an integrator's own storage per slot (bdpt's subpath vertices): in
-     * one buffer, and within a quarter of the free memory */
-    uint64_t own = ops->slot_bytes ? ops->slot_bytes(max_depth) : 0;
-    if (own && known && known / own < cap)
-        cap = known / own;
+    /* an integrator's own storage per slot (bdpt's subpath vertices):
+     * where the whole film's slots fit it, one dispatch a round runs them
+     * all (choose_wave_paths) */
+    uint64_t own = own_slots(gpu, ops, max_depth);
+    if (own < cap)
+        cap = own;
     if (known && known / (2 * sizeof(CvRayItem)) < cap)
         cap = known / (2 * sizeof(CvRayItem));
     uint64_t total = 0, avail = 0;
     if (cv_gpu_memory(gpu, &total, &avail) && avail / 8 / PATH_BYTES < cap)
         cap = avail / 8 / PATH_BYTES;
-    if (own && avail && avail / 4 / own < cap)
-        cap = avail / 4 / own;
     if (cap < 1)
         cap = 1;
     uint32_t k = CV_MAX_PATHS_PER_PIXEL;
@@ -472,6 +513,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     }
     r->n_paths = (size_t)r->n_pixels * r->paths_per_pixel;
     r->pass.n_paths = (uint32_t)r->n_paths;
+    r->wave_paths = (uint32_t)r->n_paths;
     r->pass.paths_per_pixel = r->paths_per_pixel;
     r->pass.seed_lo = (uint32_t)p->seed;
     r->pass.seed_hi = (uint32_t)(p->seed >> 32);
@@ -499,6 +541,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     r->ops = ops;
+    if (ops->whole_samples) {
+        r->wave_paths = choose_wave_paths(gpu, p, ops, r->max_depth, r->n_paths);
+        cv_debug("%s: %zu path slots, %u a dispatch (%zu dispatches a round of samples)",
+                 cv_integrator_name(p->integrator), r->n_paths, r->wave_paths,
+                 (r->n_paths + r->wave_paths - 1) / r->wave_paths);
+    }
     /* media are tracked by an integrator that renders them, in a scene
      * that has them; camera rays start in the camera's medium */
     if (ops->media && r->scene->has_media) {
@@ -534,6 +582,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             .params = p,
             .defines = defines,
             .n_paths = (uint32_t)r->n_paths,
+            .wave_paths = r->wave_paths,
             .n_pixels = r->n_pixels,
             .max_depth = r->max_depth,
         };
@@ -551,9 +600,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     bool ok = true;
     r->ubo = make(gpu, sizeof(CvPassParams), "trace pass params", &ok, err);
     r->queues = make(gpu, sizeof(CvTraceQueues), "trace queues", &ok, err);
-    r->rays = make(gpu, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
-    r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
-    r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
+    /* a whole-sample integrator's program declares no queues (CV_NO_QUEUES) */
+    if (!ops->whole_samples) {
+        r->rays = make(gpu, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
+        r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
+        r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
+    }
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
     if (r->matte_stride)
         r->matte = make(gpu, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
@@ -670,16 +722,28 @@ static void iterate(struct cv_renderer *r, uint32_t it)
 }
 
 /* A pass of a whole-sample integrator (integrator.h): round k runs every
- * slot's k-th sample of the pass, in one dispatch over the slots. */
+ * slot's k-th sample of the pass, in dispatches over waves of at most
+ * wave_paths slots (one wave where the integrator's own storage holds
+ * every slot: choose_wave_paths). A round of n slots costs ceil(n /
+ * wave_paths) dispatches, each followed by a storage barrier, as the next
+ * wave reuses the store: a few per round for films whose store would pass
+ * the per-buffer limit, no extra work per sample. */
 static bool whole_samples_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
 {
     uint32_t slots = r->paths_per_pixel, rounds = (spp + slots - 1) / slots;
+    const struct cv_program *prog = &r->prog[ST_SHADE];
+    cv_program_set_uint(prog, "u_wave_paths", r->wave_paths);
     for (uint32_t k = 0; k < rounds; k++) {
         r->pass.iteration = k;
         glNamedBufferSubData(r->ubo, (GLintptr)offsetof(CvPassParams, iteration),
                              sizeof(r->pass.iteration), &r->pass.iteration);
         prof_begin(r, ST_SHADE);
-        cv_program_dispatch_1d(&r->prog[ST_SHADE], r->n_paths);
+        for (size_t first = 0; first < r->n_paths; first += r->wave_paths) {
+            size_t n = r->n_paths - first < r->wave_paths ? r->n_paths - first : r->wave_paths;
+            cv_program_set_uint(prog, "u_wave_first", (uint32_t)first);
+            /* with a storage barrier: the next wave reuses the store */
+            cv_program_dispatch_1d(prog, n);
+        }
         prof_end(r);
         /* the next round reads the film and vertex store; resolve reads both films */
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
@@ -789,6 +853,7 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     uint64_t extend = (uint64_t)q.stats[CV_STAT_EXTEND].y << 32 | q.stats[CV_STAT_EXTEND].x;
     c->primary_rays = (uint64_t)r->n_pixels * r->spp_done;
     c->path_slots = r->n_paths;
+    c->wave_slots = r->wave_paths;
     c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
     c->iterations = r->iterations;
     c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;

@@ -70,6 +70,14 @@ struct cv_render_params {
      * bdpt_t > 0, only strategy (bdpt_s, bdpt_t) runs, without its MIS
      * weight: its image alone (glsl/trace/bdpt/bdpt.comp). */
     uint32_t bdpt_s, bdpt_t;
+    /* bdpt (whole-sample integrators): at most this many path slots in one
+     * dispatch, whose subpaths the vertex store holds at once; 0: as many
+     * as fit one storage buffer and a quarter of the free GPU memory (at
+     * most the film's slots). A round of samples over more slots runs in
+     * waves of this many (render.c: choose_wave_paths), with the same
+     * image: it changes where subpaths are kept, not the samples
+     * (cavalry-batch: CAVALRY_BDPT_SLOTS). */
+    uint32_t bdpt_slots;
 };
 
 /* The automatic paths_per_pixel aims at this many paths in flight: the
@@ -119,6 +127,8 @@ void cv_renderer_size(const struct cv_renderer *r, uint32_t *width, uint32_t *he
 struct cv_render_counters {
     uint64_t primary_rays, secondary_rays, shadow_rays;
     uint64_t path_slots;     /* paths in flight at most: pixels times paths_per_pixel */
+    uint64_t wave_slots;     /* whole samples (bdpt): slots a dispatch runs (render_params'
+                              * bdpt_slots); path_slots otherwise */
     uint64_t iterations;     /* bounce iterations of the wave (paths are regenerated) */
     /* radiance samples and path throughputs dropped for a NaN or infinite
      * value since the renderer was made (glsl/trace/common.glsl:

@@ -205,15 +205,20 @@ static void test_substituted_integrator(void)
     struct cv_scene *b = scene_of("Camera \"perspective\"\n\n  Integrator \"bdpt\"\nWorldBegin\n");
     struct cv_scene *env = scene_of("Camera \"perspective\"\nIntegrator \"bdpt\"\nWorldBegin\n"
                                     "LightSource \"distant\" \"rgb L\" [ 1 1 1 ]\n");
+    struct cv_scene *ortho = scene_of("Camera \"orthographic\"\nIntegrator \"bdpt\"\nWorldBegin\n");
     tap_ok(b && cv_plan_make(&m->jobs[0], b, &o, &p, &err) && !p.substituted &&
                p.integrator == CV_INTEGRATOR_BDPT,
            "bdpt is rendered with bdpt, not substituted");
-    tap_ok(env && cv_plan_make(&m->jobs[0], env, &o, &p, &err) && p.substituted &&
+    tap_ok(env && cv_plan_make(&m->jobs[0], env, &o, &p, &err) && !p.substituted &&
+               p.integrator == CV_INTEGRATOR_BDPT,
+           "bdpt with a distant light is rendered with bdpt");
+    tap_ok(ortho && cv_plan_make(&m->jobs[0], ortho, &o, &p, &err) && p.substituted &&
                !strcmp(p.substituted, "bdpt") && p.integrator == CV_INTEGRATOR_PATH,
-           "bdpt with a distant light (which it does not render yet) is rendered with path, "
-           "and the plan says so");
+           "bdpt with an orthographic camera (which it does not render yet) is rendered with "
+           "path, and the plan says so");
     cv_scene_destroy(&b);
     cv_scene_destroy(&env);
+    cv_scene_destroy(&ortho);
     cv_error_clear(&err);
     tap_ok(cv_plan_make(&m->jobs[1], s, &o, &p, &err) && !p.substituted &&
                p.integrator == CV_INTEGRATOR_RLPATH,

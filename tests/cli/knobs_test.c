@@ -1,7 +1,8 @@
 /* knobs_test.c: cavalry-batch's knobs come from the environment in one
  * place (cli/knobs.c): CAVALRY_BVH_ROUNDS and CAVALRY_BVH_SPLIT set the BVH
  * build's treelet rounds and split budget, CAVALRY_STAGE_TIMES turns on the
- * stage timer, CAVALRY_PARALLEL_COMPILE=0 turns compiling ahead off; a bad
+ * stage timer, CAVALRY_PARALLEL_COMPILE=0 turns compiling ahead off,
+ * CAVALRY_BDPT_SLOTS caps bdpt's slots a dispatch; a bad
  * value is ignored (with a warning). The library's own defaults read no
  * environment. */
 #include <stdlib.h>
@@ -73,11 +74,28 @@ static void check_parallel_compile(void)
            unset, one, zero);
 }
 
+static void check_bdpt_slots(void)
+{
+    unsetenv("CAVALRY_BDPT_SLOTS");
+    uint32_t unset = cv_knobs_from_environment().bdpt_slots;
+    setenv("CAVALRY_BDPT_SLOTS", "1000", 1);
+    uint32_t some = cv_knobs_from_environment().bdpt_slots;
+    setenv("CAVALRY_BDPT_SLOTS", "-1", 1);
+    uint32_t negative = cv_knobs_from_environment().bdpt_slots;
+    setenv("CAVALRY_BDPT_SLOTS", "99999999", 1);
+    uint32_t past = cv_knobs_from_environment().bdpt_slots;
+    unsetenv("CAVALRY_BDPT_SLOTS");
+    tap_ok(unset == 0 && some == 1000 && negative == 0 && past == 0,
+           "CAVALRY_BDPT_SLOTS: unset -> %u, 1000 -> %u, -1 -> %u, 99999999 -> %u", unset, some,
+           negative, past);
+}
+
 int main(void)
 {
     check_rounds();
     check_split();
     check_stage_times();
     check_parallel_compile();
+    check_bdpt_slots();
     return tap_done();
 }

@@ -2,8 +2,8 @@
  * 1. pbrt-v4's own renders of the oracle scenes (tests/data/trace/oracle,
  *    made by its path integrator; an unbiased bdpt converges to the same
  *    image) that bdpt renders: diffuse, glossy, specular and coated
- *    materials, area, point, spot, constant and image infinite lights; and
- *    bdpt_caustic, a glass sphere's caustic under a lamp, whose reference
+ *    materials, area, point, spot, distant, constant and image infinite
+ *    lights; and bdpt_caustic, a glass sphere's caustic under a lamp, whose reference
  *    pbrt-v4's bdpt made (README there). Whole image, quadrants and centre
  *    within BDPT_TOL, as oracle_test.c measures them.
  * 2. Each strategy (s, t) of one path length alone, unweighted: the same
@@ -12,6 +12,10 @@
  * 4. Unbiasedness against our own path integrator on bdpt_caustic_gaussian
  *    (light tracing's splats under a filter wider than a pixel): the
  *    regions' means agree within BDPT_TOL_PATH.
+ * 5. The vertex store holds one wave of path slots (waves()): a film whose
+ *    slots pass bdpt_slots, or whose store would pass the driver's
+ *    per-buffer limit, renders in several dispatches a round, with the
+ *    image of one dispatch a round.
  * The bound: at BDPT_SPP a region's standard error is below 0.5 % (seeds
  * 24 and 1; bdpt_caustic's lower-left quadrant, where the lamp is seen
  * through the glass, 0.8 %); BDPT_TOL = 2 % is over two and a half of
@@ -22,6 +26,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "glsl/shared/bdpt.h"
+#include "gpu/context.h"
 #include "tests/trace/exr_ref.h"
 #include "tests/trace/trace_test_util.h"
 
@@ -33,6 +39,11 @@
  * through the glass (found by s = 0 alone, by both integrators alike)
  * each region mean has about 0.8 % standard error, their difference 1.1 % */
 #define BDPT_TOL_PATH 0.03
+/* waves(): few samples (the images are compared with each other, not with
+ * a reference); the full image's bound, relative to its largest value:
+ * a few float roundings, over ten times what the splats' order changes */
+#define WAVE_SPP 8
+#define WAVE_TOL 1e-6
 
 static const int regions[6][4] = {{0, 0, RES, RES},           {0, 0, RES / 2, RES / 2},
                                   {RES / 2, 0, RES, RES / 2}, {0, RES / 2, RES / 2, RES},
@@ -115,8 +126,6 @@ static void against_path(struct cv_gpu *gpu, const char *name, uint64_t seed)
     free(b.rgba);
 }
 
-/* the oracle scenes without infinite or distant lights, which bdpt does
- * not start light subpaths from */
 /* Every strategy (s, t) of one path length, alone and unweighted, makes
  * the same image (all paths of that length, in a scene of diffuse
  * surfaces and a lamp, which each strategy can sample): a check of each
@@ -145,11 +154,11 @@ static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uin
     free(ref.rgba);
 }
 
-/* oracle scenes without distant lights, which bdpt does not render */
+/* the oracle scenes of lights and materials that bdpt renders */
 static const char *const oracle_scenes[] = {
-    "light_area", "light_point", "light_spot", "light_env_const", "light_env_map",
+    "light_area", "light_point", "light_spot", "light_distant", "light_env_const", "light_env_map",
     "mat_diffuse", "mat_conductor_rough", "mat_dielectric", "mat_coateddiffuse",
-    "bdpt_caustic",
+    "bdpt_caustic", "bdpt_caustic_sun",
 };
 
 /* bdpt's camera subpaths take the path integrator's random numbers, so
@@ -188,12 +197,106 @@ static void aovs(struct cv_gpu *gpu, const char *name, uint64_t seed)
     cv_scene_destroy(&s);
 }
 
+/* Renders light_area at RES with K = 2 path slots a pixel (given, so that
+ * a lowered storage limit cannot change the order in which a pixel's
+ * samples add up), at most `slots` a dispatch (0: automatic); with t > 0
+ * strategy (s, t) alone. */
+static bool render_waves(struct cv_gpu *gpu, uint64_t seed, uint32_t slots, uint32_t s_only,
+                         uint32_t t_only, const char *what, struct test_image *img)
+{
+    struct cv_scene *s = test_scene("oracle/light_area.pbrt");
+    CvCamera cam = test_camera(s, RES, RES);
+    struct cv_render_params p = {.seed = seed, .camera = &cam, .integrator = CV_INTEGRATOR_BDPT,
+                                 .paths_per_pixel = 2, .bdpt_slots = slots,
+                                 .bdpt_s = s_only, .bdpt_t = t_only};
+    const uint32_t passes[] = {WAVE_SPP / 2, WAVE_SPP / 2, 0};
+    struct cv_error err = {{0}};
+    memset(img, 0, sizeof(*img));
+    bool ok = test_render(gpu, s, &p, passes, img, &err);
+    cv_scene_destroy(&s);
+    return tap_ok(ok && img->w == RES && img->h == RES, "waves: %s renders: %s", what, err.msg);
+}
+
+/* The largest difference of a's pixels from b's, relative to the image's
+ * largest value: light tracing's splats add up with atomics in an order
+ * that the waves change, so those sums may differ in their last bits. */
+static double worst_rel(const struct test_image *a, const struct test_image *b)
+{
+    double worst = 0, top = 0;
+    for (size_t i = 0; i < (size_t)RES * RES * 4; i++)
+        top = fmax(top, fabs(b->rgba[i]));
+    for (size_t i = 0; i < (size_t)RES * RES * 4; i++) {
+        double d = fabs(a->rgba[i] - b->rgba[i]) / fmax(top, 1e-30);
+        if (!(d <= worst))
+            worst = d;
+    }
+    return worst;
+}
+
+/* The vertex store holds one wave of path slots (src/trace/integrator.h):
+ * bdpt_slots below the film's slots, or a driver whose per-buffer limit
+ * the film's whole store would pass (as an H100 with a 1024x1024 film at
+ * maximum depth 7), split each round into several dispatches. The samples
+ * do not change: a strategy without splats (2, 2) gives the same image bit
+ * for bit; the full image within WAVE_TOL of the largest value (the
+ * splats' summation order). */
+static void waves(struct cv_gpu *gpu, uint64_t seed)
+{
+    const uint32_t slots = 2 * RES * RES, cap = 300;  /* 7 waves, the last one partial */
+    struct test_image one, split, one22, split22, limited;
+    if (!render_waves(gpu, seed, 0, 0, 0, "one dispatch a round", &one))
+        return;
+    if (render_waves(gpu, seed, cap, 0, 0, "bdpt_slots 300", &split)) {
+        tap_ok(one.counters.wave_slots == slots && split.counters.wave_slots == cap &&
+                   split.counters.path_slots == slots,
+               "waves: %llu slots in one dispatch, %llu a dispatch with bdpt_slots %u",
+               (unsigned long long)one.counters.wave_slots,
+               (unsigned long long)split.counters.wave_slots, cap);
+        double d = worst_rel(&split, &one);
+        tap_ok(d <= WAVE_TOL, "waves: bdpt_slots %u gives the image of one dispatch (worst "
+               "difference %.3g of the largest value)", cap, d);
+        free(split.rgba);
+    }
+    if (render_waves(gpu, seed, 0, 2, 2, "(2, 2) alone", &one22) &&
+        render_waves(gpu, seed, cap, 2, 2, "(2, 2) alone, bdpt_slots 300", &split22))
+        tap_ok(memcmp(one22.rgba, split22.rgba, sizeof(float) * RES * RES * 4) == 0,
+               "waves: strategy (2, 2) alone: bit-identical with bdpt_slots %u", cap);
+    free(one22.rgba);
+    free(split22.rgba);
+    /* a driver whose storage buffers hold 1 MiB at most, and which cannot
+     * address more (a probe past the limit is taken to have failed): the
+     * film's whole store, 2048 slots of CV_BDPT_VERTS(5) vertices, would
+     * need 3.3 MiB */
+    struct cv_gpu_info info = gpu->info;
+    struct cv_gpu_storage storage = gpu->storage;
+    const uint64_t limit = 1u << 20, per_slot = CV_BDPT_VERTS(5u) * sizeof(CvBdptVertex);
+    gpu->info.max_ssbo_bytes = (long long)limit;
+    gpu->storage.works = 0;
+    gpu->storage.fails = limit + 4;
+    bool ok = render_waves(gpu, seed, 0, 0, 0, "a film's store over a 1 MiB storage limit",
+                           &limited);
+    gpu->info = info;
+    gpu->storage = storage;
+    if (ok) {
+        uint64_t w = limited.counters.wave_slots;
+        tap_ok(w < slots && w * per_slot <= limit && (w + 1) * per_slot > limit,
+               "waves: under a 1 MiB limit, %llu slots a dispatch (%llu bytes of store)",
+               (unsigned long long)w, (unsigned long long)(w * per_slot));
+        double d = worst_rel(&limited, &one);
+        tap_ok(d <= WAVE_TOL, "waves: under a 1 MiB limit, the image of one dispatch (worst "
+               "difference %.3g of the largest value)", d);
+        free(limited.rgba);
+    }
+    free(one.rgba);
+}
+
 /* The oracle scenes `make check` renders: every one is a kernel of its
  * own to build on llvmpipe, minutes for the whole list; `bdpt_test all`
  * renders them all (as on the GPU machine). */
 static bool in_check(const char *name)
 {
-    return strcmp(name, "light_area") == 0 || strcmp(name, "bdpt_caustic") == 0;
+    return strcmp(name, "light_area") == 0 || strcmp(name, "light_distant") == 0 ||
+           strcmp(name, "bdpt_caustic") == 0;
 }
 
 /* bdpt_test [all | SCENE [SEED]] */
@@ -212,6 +315,8 @@ int main(int argc, char **argv)
         strategies(gpu, "light_area", 2, seed);
     if (!only || strcmp(only, "path") == 0)
         against_path(gpu, "bdpt_caustic_gaussian", seed);
+    if (!only || strcmp(only, "waves") == 0)
+        waves(gpu, seed);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

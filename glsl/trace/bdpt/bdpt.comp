@@ -2,7 +2,8 @@
 // glsl/trace/bdpt/bdpt.comp: the bdpt integrator: pbrt-v4's BDPTIntegrator
 // (Veach's bidirectional path tracing) over surfaces. One invocation runs
 // one pixel sample of its path slot (trace.h; the host dispatches one round
-// of samples at a time, u_pass.iteration counting the rounds): the camera
+// of samples at a time, u_pass.iteration counting the rounds, in waves of
+// at most u_wave_paths slots that the vertex store holds): the camera
 // subpath (the same random numbers as the path integrator's camera path)
 // and a light subpath, both kept in the vertex store (glsl/shared/bdpt.h),
 // then every connection strategy (s, t) of pbrt-v4's Li: s = 0 (the
@@ -16,8 +17,8 @@
 // slot's film entry with the sample's filter weight, as the path
 // integrator's; t = 1 ones to the splat film. No Russian roulette (pbrt-v4's
 // BDPT has none): subpaths end at the maximum depth. Media are not
-// rendered. Light subpaths start from area, point, spot and infinite
-// lights (not distant ones).
+// rendered. Light subpaths start from area, point, spot, distant and
+// infinite lights.
 #include "shared/trace.h"
 #include "shared/bdpt.h"
 #define CV_NO_QUEUES
@@ -35,8 +36,15 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 layout(std430, binding = CV_BIND_BDPT_VERTICES) buffer CvBdptStore { CvBdptVertex bv[]; };
 layout(std430, binding = CV_BIND_BDPT_SPLAT) buffer CvBdptSplat { uint splat[]; };
 
-// This invocation's path slot, film pixel (full film) and sample index.
-uint g_slot, g_fp, g_sample;
+// The wave this dispatch runs (src/trace/integrator.h): path slots
+// u_wave_first .. u_wave_first + u_wave_paths - 1, slot u_wave_first + i
+// in column i of the vertex store.
+uniform uint u_wave_first;
+uniform uint u_wave_paths;
+
+// This invocation's path slot, its column of the vertex store, film pixel
+// (full film) and sample index.
+uint g_slot, g_column, g_fp, g_sample;
 
 // Random number pairs: the camera subpath's as the path integrator's
 // (common.glsl: CV_PAIR_* of each bounce); the light subpath's from
@@ -56,7 +64,7 @@ uint cv_bdpt_light_pair(uint vertex, uint which) { return CV_BDPT_LIGHT_PAIRS + 
 
 uint cv_bdpt_index(bool light_side, uint k)
 {
-    return ((light_side ? CV_BDPT_CAMERA_VERTS(cv_max_depth()) : 0u) + k) * cv_capacity() + g_slot;
+    return ((light_side ? CV_BDPT_CAMERA_VERTS(cv_max_depth()) : 0u) + k) * u_wave_paths + g_column;
 }
 CvBdptVertex cv_bdpt_cam(uint k) { return bv[cv_bdpt_index(false, k)]; }
 CvBdptVertex cv_bdpt_light(uint k) { return bv[cv_bdpt_index(true, k)]; }
@@ -78,6 +86,16 @@ float cv_bdpt_pdf_planar()
     return r > 0.0 ? 1.0 / (CV_PI * r * r) : 0.0;
 }
 bool cv_bdpt_delta(CvBdptVertex v) { return (v.id.y & CV_BDPT_DELTA) != 0u; }
+// pbrt-v4's InfiniteLightDensity: the density per solid angle of light
+// sampling's infinite lights towards w (distant lights are not among them).
+float cv_bdpt_env_density(vec3 w)
+{
+#ifdef CV_NO_ENV
+    return 0.0;
+#else
+    return cv_env_pdf(w);
+#endif
+}
 float cv_bdpt_remap0(float f) { return f != 0.0 ? f : 1.0; }
 
 // The BSDF of a surface vertex, as resolved when the subpath was made.
@@ -477,16 +495,29 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
     if (!(pmf > 0.0))
         return vec3(0.0);
     CvBdptVertex pm = cv_bdpt_cam(t - 2u);
-    if (type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
-#ifndef CV_NO_ENV
-        // a direction from the chosen infinite light alone, as pbrt-v4's
-        // SampleLi; the MIS densities count them all (cv_env_pdf)
+    bool distant = type == CV_LIGHT_DISTANT;
+    if (distant || type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
+        // a direction from the chosen light alone, as pbrt-v4's SampleLi:
+        // a distant light's one direction (a delta density), or one of an
+        // infinite light's; the MIS densities count the infinite lights
+        // all (cv_bdpt_env_density)
         CvLight l = lights[li];
-        float pdf_l = CV_INV_4PI;
-        vec3 wi = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_light)
-                                            : cv_env_map_sample(l, u_light, pdf_l);
-        vec3 Li = cv_env_light_Le(l, wi);
-        float pdf = pmf * pdf_l;
+        vec3 wi, Li;
+        float pdf = pmf;
+        if (distant) {
+            wi = -normalize(l.direction.xyz);
+            Li = l.L.rgb;
+        } else {
+#ifndef CV_NO_ENV
+            float pdf_l = CV_INV_4PI;
+            wi = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_light)
+                                           : cv_env_map_sample(l, u_light, pdf_l);
+            Li = cv_env_light_Le(l, wi);
+            pdf *= pdf_l;
+#else
+            return vec3(0.0);
+#endif
+        }
         if (!(cv_max3(Li) > 0.0) || !(pdf > 0.0))
             return vec3(0.0);
         vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * abs(dot(wi, pt.ns.xyz));
@@ -499,10 +530,8 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
         float pt_rev = cv_bdpt_pdf_planar() * abs(dot(pt.ng.xyz, wi));
         float ptm_rev = cv_bdpt_pdf_surface(pt, bt, pl, pm);
         float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
-        return L * cv_bdpt_mis(1u, t, pt_rev, ptm_rev, qs_rev, 0.0, cv_env_pdf(wi), false,
-                               splat_scale);
-#endif
-        return vec3(0.0);
+        return L * cv_bdpt_mis(1u, t, pt_rev, ptm_rev, qs_rev, 0.0, cv_bdpt_env_density(wi),
+                               distant, splat_scale);
     }
     if (type != CV_LIGHT_AREA && type != CV_LIGHT_POINT && type != CV_LIGHT_SPOT)
         return vec3(0.0);
@@ -617,25 +646,39 @@ uint cv_bdpt_light_subpath()
     if (!(pmf > 0.0))
         return 0u;
     uint type = lights[li].type;
-    if (type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
-#ifndef CV_NO_ENV
-        // pbrt-v4's SampleLe of an infinite light: a direction from it, and
-        // a point on the disk of the scene's radius across it
+    bool distant = type == CV_LIGHT_DISTANT;
+    if (distant || type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
+        // pbrt-v4's SampleLe of an infinite or distant light: a direction
+        // from it (a distant light's one direction: a delta density, so
+        // that no strategy but s >= 1 finds it, pbrt-v4's IsDeltaLight),
+        // and a point on the disk of the scene's radius across it
         CvLight l = lights[li];
-        float pdf_dir = CV_INV_4PI;
-        vec2 u_dir = cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_DIR));
-        vec3 wl = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_dir)
-                                            : cv_env_map_sample(l, u_dir, pdf_dir);
+        float pdf_dir = 1.0;
+        vec3 wl, Le;
+        if (distant) {
+            wl = -normalize(l.direction.xyz);
+            Le = l.L.rgb;
+        } else {
+#ifndef CV_NO_ENV
+            pdf_dir = CV_INV_4PI;
+            vec2 u_dir = cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_DIR));
+            wl = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_dir)
+                                           : cv_env_map_sample(l, u_dir, pdf_dir);
+            Le = cv_env_light_Le(l, wl);
+#else
+            return 0u;
+#endif
+        }
         vec4 sph = cv_bdpt_sphere();
         float pdf_pos = cv_bdpt_pdf_planar();
-        vec3 Le = cv_env_light_Le(l, wl);
         if (!(pdf_dir > 0.0) || !(pdf_pos > 0.0) || !(cv_max3(Le) > 0.0))
             return 0u;
         vec2 cd = cv_sample_disk_concentric(cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_POS)));
         vec3 o = sph.xyz + sph.w * cv_from_local(cv_frame_from_z(-wl), vec3(cd, 0.0)) + sph.w * wl;
+        uint flags = CV_BDPT_INFINITE | (distant ? CV_BDPT_DELTA_LIGHT : 0u);
         bv[cv_bdpt_index(true, 0u)] = CvBdptVertex(
             vec4(o, 0.0), vec4(0.0, 0.0, 0.0, pmf * pdf_pos), vec4(0.0), vec4(0.0), vec4(Le, 0.0),
-            vec4(0.0), vec4(0.0), uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, li));
+            vec4(0.0), vec4(0.0), uvec4(CV_BDPT_LIGHT, flags, 0u, li));
         uint n_inf = cv_bdpt_walk(true, o, -wl, Le / (pmf * pdf_pos * pdf_dir), pdf_dir,
                                   CV_BDPT_LIGHT_VERTS(cv_max_depth()));
         // the densities pbrt-v4 corrects for an infinite light's start:
@@ -644,13 +687,9 @@ uint cv_bdpt_light_subpath()
             uint i1 = cv_bdpt_index(true, 1u);
             bv[i1].ng.w = pdf_pos * abs(dot(wl, bv[i1].ng.xyz));
         }
-        bv[cv_bdpt_index(true, 0u)].ng.w = cv_env_pdf(wl);
+        bv[cv_bdpt_index(true, 0u)].ng.w = cv_bdpt_env_density(wl);
         return n_inf;
-#endif
-        return 0u;
     }
-    if (type == CV_LIGHT_DISTANT)
-        return 0u;  // the host renders no bdpt scene with one (src/batch/plan.c)
     vec3 p, n;
     vec2 uv;
     float err;
@@ -682,8 +721,9 @@ uint cv_bdpt_light_subpath()
 
 void main()
 {
-    uint slot = cv_global_index();
-    if (slot >= cv_capacity())
+    uint column = cv_global_index();
+    uint slot = u_wave_first + column;
+    if (column >= u_wave_paths || slot >= cv_capacity())
         return;
     // the slot's sample of this round (trace.h: slot s takes the samples
     // j with j % K == s / P, in order)
@@ -693,6 +733,7 @@ void main()
     if (j >= u_pass.end_sample)
         return;
     g_slot = slot;
+    g_column = column;
     g_sample = j;
     g_fp = cv_film_pixel(cv_path_pixel(slot));
     CvRayItem r = cv_camera_sample(slot, j);  // the filter weight, the path in flight

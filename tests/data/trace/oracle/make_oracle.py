@@ -626,8 +626,14 @@ def bdpt_main():
     what = "glass sphere's caustic under a small lamp, beside a rough conductor"
     scene("bdpt_caustic", what, body, maxdepth=8)
     scene("bdpt_caustic_gaussian", what + ", gaussian filter", body, maxdepth=8)
+    # the same spheres in sunlight (a distant light, which only light
+    # subpaths bring through the glass: path renders no caustic)
+    sun = 'LightSource "distant" "point3 from" [ -0.3 4 1.5 ] "point3 to" [ 0 0 0 ] "rgb L" [ 3 3 3 ]\n'
+    scene("bdpt_caustic_sun", "glass sphere's caustic in sunlight (a distant light), beside a "
+          "rough conductor", sun + body[len(small_lamp):], maxdepth=8)
     for name, integrator, pixel_filter in (("bdpt_caustic", "bdpt", "box"),
-                                           ("bdpt_caustic_gaussian", "bdpt", "gaussian")):
+                                           ("bdpt_caustic_gaussian", "bdpt", "gaussian"),
+                                           ("bdpt_caustic_sun", "bdpt", "box")):
         path = os.path.join(HERE, name + ".pbrt")
         with open(path) as f:
             text = f.read()
