@@ -8,6 +8,7 @@
 #include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bssrdf.h"
+#include "glsl/shared/conductor_fresnel.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
@@ -144,6 +145,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
             g->has_measured = true;
         if (m->flags & CV_MATF_COAT_CLOSED)
             g->has_coat_closed = true;
+        if (m->flags & CV_MATF_CONDUCTOR_FRESNEL)
+            g->has_conductor_fresnel = true;
         if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
             m->displacement_tex >= 0 || m->normal_tex >= 0)
             g->basic_materials = false;
@@ -224,6 +227,16 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
             return false;
         }
     }
+    if (g.has_conductor_fresnel) {
+        size_t n = (size_t)s->n_conductor_fresnel * CV_CONDUCTOR_FRESNEL_N;
+        ok = up(gpu, &g.conductor_fresnel, n * 4 * sizeof(float), s->conductor_fresnel,
+                "conductor Fresnel tables", err) &&
+             (g.conductor_fresnel_tex = cv_buffer_texture(g.conductor_fresnel, GL_RGBA32F, n, err)) != 0;
+        if (!ok) {
+            cv_scene_gpu_release(&g);
+            return false;
+        }
+    }
     /* with curves, the moving shapes share their buffer (bvh/motion_bvh.h) */
     size_t n_curve4 = 0, n_motion4 = 0;
     float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, &n_curve4) : NULL;
@@ -286,6 +299,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         glBindTextureUnit(CV_TEXUNIT_BSSRDF, g->bssrdf_tex);
     if (g->measured)
         cv_buffer_bind(g->measured, CV_BIND_MEASURED);
+    if (g->conductor_fresnel_tex)
+        glBindTextureUnit(CV_TEXUNIT_CONDUCTOR_FRESNEL, g->conductor_fresnel_tex);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -305,12 +320,15 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
                    &g->tri_object, &g->curves, &g->media, &g->medium_grids,
                    &g->motion, &g->bssrdf,
-                   &g->measured};
+                   &g->measured, &g->conductor_fresnel};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     if (g->bssrdf_tex)
         glDeleteTextures(1, &g->bssrdf_tex);
     g->bssrdf_tex = 0;
+    if (g->conductor_fresnel_tex)
+        glDeleteTextures(1, &g->conductor_fresnel_tex);
+    g->conductor_fresnel_tex = 0;
     bool had_bvh = g->bvh != NULL;
     cv_bvh_destroy(&g->bvh);
     if (had_bvh && g->gpu)

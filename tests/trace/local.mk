@@ -120,3 +120,8 @@ check_PROGRAMS += tests/trace/bdpt_test
 TESTS += tests/trace/bdpt_test
 tests_trace_bdpt_test_LDADD = $(CV_LIBS)
 # --- end of bdpt ---
+
+# --- conductors given by spectra: Fresnel tables in the GLSL (issue 24) ---
+check_PROGRAMS += tests/trace/bsdf_conductor_fresnel_test
+TESTS += tests/trace/bsdf_conductor_fresnel_test
+tests_trace_bsdf_conductor_fresnel_test_LDADD = $(CV_LIBS)

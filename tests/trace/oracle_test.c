@@ -23,8 +23,7 @@
  * of the reference's brightest region (README: their noise).
  *
  * Known bugs of issue 24 (the light order of environment lights, huge
- * planes, the layered coats) and the spectral difference of copper are
- * checks marked "# TODO issue 24 ..." with the worst region's ratio in
+ * planes, the layered coats) are checks marked "# TODO issue 24 ..." with the worst region's ratio in
  * the message: when a fix lands they pass, the driver reports XPASS, and
  * the mark must go. */
 #include "config.h"
@@ -88,7 +87,7 @@ static const char *channels_of(const char *name)
 static const struct {
     const char *name;
     uint32_t spp;
-} per_channel_scenes[] = {{"mat_measured", 4096}};
+} per_channel_scenes[] = {{"mat_measured", 4096}, {"mat_conductor_cu", 0}};
 
 static bool per_channel(const char *name, uint32_t *spp)
 {
@@ -130,9 +129,9 @@ static const struct oracle_scene scenes[] = {
     {"mat_diffuse", NULL},
     {"mat_conductor_smooth", NULL},
     {"mat_conductor_rough", NULL},
-    /* not a bug of ours alone: pbrt-v4 renders copper's measured eta and k
-     * per wavelength, Cavalry as RGB averages of them */
-    {"mat_conductor_cu", "issue 24: spectral copper as RGB eta and k (spectral difference)"},
+    /* pbrt-v4's default copper, given by spectra: Fresnel per wavelength
+     * (src/scene/conductor_fresnel.c) */
+    {"mat_conductor_cu", NULL},
     {"mat_dielectric", NULL},
     {"mat_dielectric_rough", NULL},
     {"mat_thindielectric", NULL},
