@@ -56,6 +56,9 @@
 /* r32ui: the measured BRDFs' tables (glsl/shared/measured.h), declared only
  * where a material is measured (else CV_NO_MEASURED) */
 #define CV_TEXUNIT_MEASURED 3
+/* rgba32f: conductors' spectral Fresnel tables (glsl/shared/conductor_fresnel.h),
+ * bound where the scene has one (CV_CONDUCTOR_TABLES) */
+#define CV_TEXUNIT_CONDUCTOR_FRESNEL 4
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -150,6 +150,10 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MATF_HAIR_REFLECTANCE (1u << 4) /* colour, turned into sigma_a over beta_n */
                                            /* neither: (eumelanin, pheomelanin, -) */
 #define CV_MATF_COAT_CLOSED (1u << 5) /* coated diffuse: closed form allowed, roughness2.xy its integrals */
+/* conductor (or coated conductor's base) given by spectra: Fresnel from the
+ * table k.w (glsl/shared/conductor_fresnel.h); eta.rgb, k.rgb keep RGB
+ * averages */
+#define CV_MATF_CONDUCTOR_FRESNEL (1u << 6)
 /* Subsurface with textured coefficients: reflectance.rgb and specular.rgb
  * (and their textures) are sigma_a and sigma_s as given, times k.y (the
  * material's scale) per point; with CV_MATF_SSS_DIFFUSE, reflectance and

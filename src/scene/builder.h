@@ -286,6 +286,16 @@ bool cv_b_color_tex(struct cv_builder *b, struct cv_params *ps, const char *name
 /* An index of refraction: float, rgb (green), named glass or spectrum at 550 nm. */
 bool cv_b_scalar_eta(struct cv_builder *b, struct cv_params *ps, const char *name,
                      const char *dir, double *eta, bool *found, struct cv_error *err);
+/* A spectrum parameter as pbrt-v4 renders it, for what RGB cannot stand
+ * for (conductors' eta and k): *pairs (malloc'd, the caller frees) and *n
+ * its (lambda [nm], value) pairs, ascending (a float: one pair, a
+ * constant), from a float, a named metal spectrum (cv_metal_spectrum), a
+ * spectrum file or inline pairs; *pairs NULL when the parameter is absent
+ * or something else (rgb, another named spectrum, a texture). Reads the
+ * parameter's value only: cv_b_color reports its errors and marks it
+ * used. (spectrum.c) */
+bool cv_b_spectrum(struct cv_builder *b, struct cv_params *ps, const char *name,
+                   const char *dir, double **pairs, size_t *n, struct cv_error *err);
 /* A float-or-texture slot. */
 bool cv_b_float_tex(struct cv_builder *b, struct cv_params *ps, const char *name,
                     double *val, int *tex, struct cv_error *err);

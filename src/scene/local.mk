@@ -14,6 +14,8 @@ libcavalry_a_SOURCES += \
 	src/scene/scattering_presets.c src/scene/scattering_presets.h \
 	src/scene/coat_closed.c src/scene/coat_closed.h src/scene/fresnel.h \
 	src/scene/spectrum.c src/scene/spectrum.h \
+	src/scene/metal_spectra.c \
+	src/scene/conductor_fresnel.c src/scene/conductor_fresnel.h \
 	src/scene/rgl_tensor.c src/scene/rgl_tensor.h \
 	src/scene/measured.c src/scene/measured.h \
 	src/scene/image.c src/scene/image.h \

@@ -10,9 +10,11 @@
 #include "scene/builder.h"
 #include "scene/bssrdf_table.h"
 #include "scene/coat_closed.h"
+#include "scene/conductor_fresnel.h"
 #include "scene/scattering_presets.h"
 #include "scene/measured.h"
 #include "scene/rgl_tensor.h"
+#include "scene/spectrum.h"
 
 static void mat_init(CvMaterial *m, uint32_t type)
 {
@@ -96,8 +98,34 @@ static bool color(struct cv_builder *b, struct cv_params *ps, const char *name, 
     return true;
 }
 
+/* The index of the scene's Fresnel table of the conductor eta + i k under a
+ * medium of index outer (conductor_fresnel.h), added unless an equal one
+ * is there. */
+static uint32_t conductor_fresnel(struct cv_builder *b, const double *eta, size_t n_eta,
+                                  const double *k, size_t n_k, double outer)
+{
+    enum { FLOATS = 4 * CV_CONDUCTOR_FRESNEL_N };
+    struct cv_scene *s = b->s;
+    float table[FLOATS];
+    cv_conductor_fresnel_table(eta, n_eta, k, n_k, outer, table);
+    for (uint32_t i = 0; i < s->n_conductor_fresnel; i++)
+        if (memcmp(s->conductor_fresnel + (size_t)i * FLOATS, table, sizeof(table)) == 0)
+            return i;
+    uint32_t i = s->n_conductor_fresnel++;
+    s->conductor_fresnel = cv_xrealloc(s->conductor_fresnel,
+                                       (size_t)s->n_conductor_fresnel * sizeof(table));
+    memcpy(s->conductor_fresnel + (size_t)i * FLOATS, table, sizeof(table));
+    return i;
+}
+
+/* eta and k (or reflectance) of a conductor; outer: the index of the
+ * medium above it (1, or a coated conductor's coat). Where both eta and k
+ * are spectra (pbrt-v4's default copper, named metals, files, pairs or
+ * floats) the Fresnel term comes from a table of their spectral
+ * reflectance (CV_MATF_CONDUCTOR_FRESNEL), as pbrt-v4 renders them; eta
+ * and k keep RGB averages. An rgb eta or k is rendered as RGB. */
 static bool conductor(struct cv_builder *b, struct cv_params *ps, const char *prefix,
-                      const char *dir, CvMaterial *m, cv_vec4 *eta, cv_vec4 *k,
+                      const char *dir, double outer, CvMaterial *m, cv_vec4 *eta, cv_vec4 *k,
                       struct cv_error *err)
 {
     static const double cu_eta[3] = {0.200438, 0.924033, 1.10221},
@@ -126,6 +154,23 @@ static bool conductor(struct cv_builder *b, struct cv_params *ps, const char *pr
     }
     *eta = v4(fe ? e : cu_eta, eta->w);
     *k = v4(fk ? kk : cu_k, 0);
+    if (fr || (*prefix && cv_params_find(ps, "reflectance")))
+        return true; /* by reflectance (a coated conductor's is unprefixed) */
+    double *se = NULL, *sk = NULL;
+    size_t ne = 0, nk = 0, n_cu_eta, n_cu_k;
+    if (!cv_b_spectrum(b, ps, n_eta, dir, &se, &ne, err) ||
+        !cv_b_spectrum(b, ps, n_k, dir, &sk, &nk, err)) {
+        free(se);
+        return false;
+    }
+    const double *pe = fe ? se : cv_metal_spectrum("metal-Cu-eta", &n_cu_eta),
+                 *pk = fk ? sk : cv_metal_spectrum("metal-Cu-k", &n_cu_k);
+    if (pe && pk) {
+        m->flags |= CV_MATF_CONDUCTOR_FRESNEL;
+        k->w = (float)conductor_fresnel(b, pe, fe ? ne : n_cu_eta, pk, fk ? nk : n_cu_k, outer);
+    }
+    free(se);
+    free(sk);
     return true;
 }
 
@@ -387,7 +432,7 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
     } else if (strcmp(type, "metal") == 0 || strcmp(type, "conductor") == 0) {
         bool v3 = strcmp(type, "metal") == 0;
         m.type = CV_MAT_CONDUCTOR;
-        if (!conductor(b, ps, "", dir, &m, &m.eta, &m.k, err) || !ROUGH("", v3 ? 0.01 : 0, v3))
+        if (!conductor(b, ps, "", dir, 1, &m, &m.eta, &m.k, err) || !ROUGH("", v3 ? 0.01 : 0, v3))
             return false;
         m.roughness = (cv_vec4){au, av, 0, 0};
     } else if (strcmp(type, "glass") == 0 || strcmp(type, "dielectric") == 0 ||
@@ -450,10 +495,14 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         /* eta.xyz: conductor eta; eta.w: interface (coat) eta. */
         m.type = CV_MAT_COATED_CONDUCTOR;
         float iu, iv;
+        double eta = 1.5;
+        bool found;
+        if (!cv_b_scalar_eta(b, ps, "interface.eta", dir, &eta, &found, err))
+            return false;
         if (!roughness(b, ps, "interface.", 0, false, &iu, &iv, &m.roughness_u_tex,
                        &m.roughness_v_tex, &textured, err) ||
             !roughness(b, ps, "conductor.", 0, false, &au, &av, NULL, NULL, &textured, err) ||
-            !conductor(b, ps, "conductor.", dir, &m, &m.eta, &m.k, err))
+            !conductor(b, ps, "conductor.", dir, eta, &m, &m.eta, &m.k, err))
             return false;
         if (cv_params_find(ps, "reflectance") && !(m.flags & CV_MATF_CONDUCTOR_REFLECTANCE)) {
             double r[3] = {0, 0, 0};
@@ -464,10 +513,6 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
             m.reflectance = v4(r, 0);
             m.reflectance_tex = rt;
         }
-        double eta = 1.5;
-        bool found;
-        if (!cv_b_scalar_eta(b, ps, "interface.eta", dir, &eta, &found, err))
-            return false;
         m.eta.w = (float)eta;
         if (!color(b, ps, "albedo", 0, CV_SPEC_REFLECTANCE, dir, &m.specular, &m.specular_tex, err))
             return false;

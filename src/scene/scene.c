@@ -36,6 +36,7 @@ static void scene_free(struct cv_scene *s)
     free(s->medium_grids);
     free(s->bssrdf);
     free(s->bssrdf_keys);
+    free(s->conductor_fresnel);
     free(s->light_power);
     for (uint32_t i = 0; i < s->n_light_sources; i++) {
         free(s->light_sources[i].type);

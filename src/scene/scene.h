@@ -138,6 +138,12 @@ struct cv_scene {
     float *bssrdf_keys;
     uint32_t n_bssrdf;
 
+    /* Fresnel tables of the conductors given by spectra
+     * (glsl/shared/conductor_fresnel.h: 4 * CV_CONDUCTOR_FRESNEL_N floats
+     * each); a CV_MATF_CONDUCTOR_FRESNEL material's k.w is its index */
+    float *conductor_fresnel;
+    uint32_t n_conductor_fresnel;
+
     CvCamera camera;
     struct cv_render_settings settings;
 

@@ -35,15 +35,16 @@ static void xyz_to_rgb(const double xyz[3], double rgb[3])
     rgb[2] = 0.0556434 * xyz[0] - 0.2040259 * xyz[1] + 1.0572252 * xyz[2];
 }
 
-/* Piecewise-linear spectrum from sorted (lambda, value) pairs, clamped. */
-static double eval_pairs(const double *pairs, size_t n, double l)
+/* Piecewise-linear spectrum from sorted (lambda, value) pairs; beyond
+ * them the end values (clamp) or 0 (pbrt-v4's PiecewiseLinearSpectrum). */
+static double eval_pairs_outside(const double *pairs, size_t n, double l, bool clamp)
 {
     if (n == 0)
         return 0;
-    if (l <= pairs[0])
+    if (n == 1)
         return pairs[1];
-    if (l >= pairs[2 * (n - 1)])
-        return pairs[2 * (n - 1) + 1];
+    if (l < pairs[0] || l > pairs[2 * (n - 1)])
+        return clamp ? pairs[l < pairs[0] ? 1 : 2 * (n - 1) + 1] : 0;
     size_t lo = 0, hi = n - 1;
     while (hi - lo > 1) {
         size_t mid = (lo + hi) / 2;
@@ -55,6 +56,16 @@ static double eval_pairs(const double *pairs, size_t n, double l)
     double l0 = pairs[2 * lo], l1 = pairs[2 * hi];
     double t = l1 > l0 ? (l - l0) / (l1 - l0) : 0;
     return pairs[2 * lo + 1] * (1 - t) + pairs[2 * hi + 1] * t;
+}
+
+static double eval_pairs(const double *pairs, size_t n, double l)
+{
+    return eval_pairs_outside(pairs, n, l, true);
+}
+
+double cv_spectrum_at(const double *pairs, size_t n, double lambda)
+{
+    return eval_pairs_outside(pairs, n, lambda, false);
 }
 
 static double planck(double l_nm, double T)
@@ -106,14 +117,32 @@ static double d65_at(double l)
     return d65[i] + (x - i) * (d65[i + 1] - d65[i]);
 }
 
-void cv_spectrum_rgb_weights(const float *lambda, size_t n, double *w)
+void cv_spectrum_rgb_weights_nm(double *w)
 {
-    for (size_t k = 0; k < 3 * n; k++)
-        w[k] = 0;
-    for (double l = 360; l <= 830; l += 1) {
-        double xyz[3], rgb[3], e = d65_at(l);
+    double sum[3] = {0, 0, 0};
+    for (int i = 0; i < CV_SPECTRUM_NM; i++) {
+        double l = CV_SPECTRUM_NM_MIN + i, xyz[3], rgb[3], e = d65_at(l);
         cie_xyz(l, xyz);
         xyz_to_rgb(xyz, rgb);
+        for (int c = 0; c < 3; c++) {
+            w[3 * i + c] = e * rgb[c];
+            sum[c] += e * rgb[c];
+        }
+    }
+    for (int i = 0; i < CV_SPECTRUM_NM; i++)
+        for (int c = 0; c < 3; c++)
+            w[3 * i + c] /= sum[c];
+}
+
+void cv_spectrum_rgb_weights(const float *lambda, size_t n, double *w)
+{
+    double nm[3 * CV_SPECTRUM_NM];
+    cv_spectrum_rgb_weights_nm(nm);
+    for (size_t k = 0; k < 3 * n; k++)
+        w[k] = 0;
+    for (int i = 0; i < CV_SPECTRUM_NM; i++) {
+        double l = CV_SPECTRUM_NM_MIN + i;
+        const double *rgb = nm + 3 * i;
         /* the hat functions of the nodes around l */
         size_t k = 0;
         while (k + 1 < n && lambda[k + 1] <= l)
@@ -122,17 +151,10 @@ void cv_spectrum_rgb_weights(const float *lambda, size_t n, double *w)
         if (k + 1 < n && l > lambda[k])
             t = (l - lambda[k]) / (lambda[k + 1] - lambda[k]);
         for (int c = 0; c < 3; c++) {
-            w[3 * k + c] += (1 - t) * e * rgb[c];
+            w[3 * k + c] += (1 - t) * rgb[c];
             if (t > 0)
-                w[3 * (k + 1) + c] += t * e * rgb[c];
+                w[3 * (k + 1) + c] += t * rgb[c];
         }
-    }
-    for (int c = 0; c < 3; c++) {
-        double sum = 0;
-        for (size_t k = 0; k < n; k++)
-            sum += w[3 * k + c];
-        for (size_t k = 0; k < n; k++)
-            w[3 * k + c] = sum != 0 ? w[3 * k + c] / sum : 0;
     }
 }
 
@@ -303,6 +325,62 @@ bool cv_b_color(struct cv_builder *b, struct cv_params *ps, const char *name,
             return cv_fail(err, "%s:%d:%d: \"%s\" is not finite", p->file, p->line, p->col, name);
     *found = true;
     return true;
+}
+
+bool cv_b_spectrum(struct cv_builder *b, struct cv_params *ps, const char *name,
+                   const char *dir, double **pairs, size_t *n, struct cv_error *err)
+{
+    *pairs = NULL;
+    *n = 0;
+    struct cv_param *p = NULL;
+    for (size_t i = ps->n; i-- > 0;)
+        if (strcmp(ps->v[i].name, name) == 0) {
+            p = &ps->v[i];
+            break;
+        }
+    if (!p)
+        return true;
+    if ((p->type == CV_PARAM_FLOAT && p->n_nums >= 1) ||
+        (p->type == CV_PARAM_SPECTRUM && !p->n_strs && p->n_nums >= 2 && p->n_nums % 2 == 0 &&
+         sorted_pairs(p->nums, p->n_nums / 2))) {
+        bool constant = p->type == CV_PARAM_FLOAT;
+        *n = constant ? 1 : p->n_nums / 2;
+        *pairs = cv_xmalloc(2 * *n * sizeof(double));
+        if (constant) {
+            (*pairs)[0] = 550;
+            (*pairs)[1] = p->nums[0];
+        } else {
+            memcpy(*pairs, p->nums, 2 * *n * sizeof(double));
+        }
+        return true;
+    }
+    if (p->type != CV_PARAM_SPECTRUM || !p->n_strs)
+        return true;
+    const char *s = p->strs[0];
+    size_t count;
+    const double *metal = cv_metal_spectrum(s, &count);
+    if (metal) {
+        *pairs = cv_xmalloc(2 * count * sizeof(double));
+        memcpy(*pairs, metal, 2 * count * sizeof(double));
+        *n = count;
+        return true;
+    }
+    for (size_t i = 0; i < CV_ARRAY_SIZE(named_rgb); i++)
+        if (strcmp(named_rgb[i].name, s) == 0)
+            return true;
+    if (strncmp(s, "stdillum-", 9) == 0 || strncmp(s, "illum-", 6) == 0)
+        return true;
+    char *path = cv_b_resolve(b, dir, s, err);
+    if (!path)
+        return false;
+    bool ok = read_spd(path, pairs, n, err);
+    free(path);
+    if (ok && !sorted_pairs(*pairs, *n)) {
+        free(*pairs);
+        *pairs = NULL;
+        *n = 0; /* cv_b_color reports it */
+    }
+    return ok;
 }
 
 bool cv_b_scalar_eta(struct cv_builder *b, struct cv_params *ps, const char *name,

@@ -17,4 +17,24 @@
  * here are a fit, a few tenths of a per cent off). n >= 1. */
 void cv_spectrum_rgb_weights(const float *lambda, size_t n, double *w);
 
+/* The wavelengths spectra are integrated over: every nm of
+ * [CV_SPECTRUM_NM_MIN, CV_SPECTRUM_NM_MIN + CV_SPECTRUM_NM). */
+#define CV_SPECTRUM_NM_MIN 360
+#define CV_SPECTRUM_NM 471
+
+/* The same weights for a spectrum sampled at every nm of that range:
+ * rgb[c] = sum over i of w[3i + c] * value(CV_SPECTRUM_NM_MIN + i); w has
+ * 3 * CV_SPECTRUM_NM entries, each channel's summing to 1. */
+void cv_spectrum_rgb_weights_nm(double *w);
+
+/* A piecewise-linear spectrum of n (lambda [nm], value) pairs with
+ * ascending lambda at lambda, as pbrt-v4 evaluates one: 0 beyond the
+ * pairs; one pair is a constant. */
+double cv_spectrum_at(const double *pairs, size_t n, double lambda);
+
+/* pbrt-v4's named spectra of metals' complex index (metal-Cu-eta,
+ * metal-Cu-k, and Ag, Al, Au, CuZn, MgO, TiO2; metal_spectra.c): its
+ * pairs and their count, or NULL for another name. */
+const double *cv_metal_spectrum(const char *name, size_t *n);
+
 #endif

@@ -58,5 +58,7 @@ GLSL_FILES += glsl/shared/perlin.h glsl/lib/noise.glsl glsl/trace/medium/cloud.g
 GLSL_FILES += glsl/shared/bssrdf.h glsl/trace/bsdf/bssrdf.glsl glsl/trace/bsdf/sss_exit.glsl \
 	glsl/trace/sss_probe.glsl glsl/trace/sss_vertex.glsl glsl/trace/test/bssrdf_probe.comp
 # --- end of subsurface ---
+# --- conductors given by spectra: Fresnel tables (issue 24) ---
+GLSL_FILES += glsl/shared/conductor_fresnel.h
 # --- the one BSDF query (issue 26) ---
 GLSL_FILES += glsl/trace/bsdf/bsdf_query.glsl

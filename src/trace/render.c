@@ -315,7 +315,7 @@ static void defines_plus(const char **out, const char *const *defines, int nd, c
 }
 
 /* the scene's defines, then a stage's own (defines_plus) and the NULL */
-enum { MAX_SCENE_DEFINES = 18 };
+enum { MAX_SCENE_DEFINES = 19 };
 
 /* The stage programs a render of gs with p runs: file and defines by stage
  * (file NULL: the stage has none, or the integrator's create makes it).
@@ -391,6 +391,10 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         defines[nd++] = "CV_HAS_SUBSURFACE";
     if (!gs->has_measured)
         defines[nd++] = "CV_NO_MEASURED";
+    /* conductors given by spectra: their Fresnel tables
+     * (glsl/shared/conductor_fresnel.h) */
+    if (gs->has_conductor_fresnel)
+        defines[nd++] = "CV_CONDUCTOR_TABLES";
     const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
     /* media are tracked by an integrator that renders them, in a scene
      * that has them */

@@ -8,6 +8,7 @@
 #include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/bssrdf.h"
+#include "glsl/shared/conductor_fresnel.h"
 #include "gpu/buffer.h"
 #include "gpu/buffer_pool.h"
 #include "gpu/gl_check.h"
@@ -157,6 +158,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
             g->has_measured = true;
         if (m->flags & CV_MATF_COAT_CLOSED)
             g->has_coat_closed = true;
+        if (m->flags & CV_MATF_CONDUCTOR_FRESNEL)
+            g->has_conductor_fresnel = true;
         if ((m->type != CV_MAT_DIFFUSE && m->type != CV_MAT_MIRROR) || m->reflectance_tex >= 0 ||
             m->displacement_tex >= 0 || m->normal_tex >= 0)
             g->basic_materials = false;
@@ -238,6 +241,15 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
             return false;
         }
     }
+    if (g.has_conductor_fresnel) {
+        size_t n = (size_t)s->n_conductor_fresnel * CV_CONDUCTOR_FRESNEL_N;
+        ok = up_texture(gpu, &g.conductor_fresnel, &g.conductor_fresnel_tex, GL_RGBA32F, n,
+                        4 * sizeof(float), s->conductor_fresnel, "conductor Fresnel tables", err);
+        if (!ok) {
+            cv_scene_gpu_release(&g);
+            return false;
+        }
+    }
     size_t n_curve4 = 0, n_motion4 = 0;
     float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, &n_curve4) : NULL;
     float *motion4 = g.has_motion ? cv_motion_bvh_pack(s, &n_motion4) : NULL;
@@ -297,6 +309,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         glBindTextureUnit(CV_TEXUNIT_BSSRDF, g->bssrdf_tex);
     if (g->measured_tex)
         glBindTextureUnit(CV_TEXUNIT_MEASURED, g->measured_tex);
+    if (g->conductor_fresnel_tex)
+        glBindTextureUnit(CV_TEXUNIT_CONDUCTOR_FRESNEL, g->conductor_fresnel_tex);
     if (g->bvh)
         cv_bvh_bind(g->bvh);
 }
@@ -316,10 +330,11 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
                    &g->textures, &g->texels, &g->lights, &g->light_cdf, &g->env_dist,
                    &g->tri_object, &g->curves, &g->media, &g->medium_grids,
                    &g->motion, &g->bssrdf,
-                   &g->measured};
+                   &g->measured, &g->conductor_fresnel};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
-    GLuint tex[] = {g->bssrdf_tex, g->curves_tex, g->motion_tex, g->measured_tex};
+    GLuint tex[] = {g->bssrdf_tex, g->curves_tex, g->motion_tex, g->measured_tex,
+                    g->conductor_fresnel_tex};
     for (size_t i = 0; i < CV_ARRAY_SIZE(tex); i++)
         if (tex[i])
             glDeleteTextures(1, &tex[i]);

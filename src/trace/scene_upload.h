@@ -45,6 +45,9 @@ struct cv_scene_gpu {
     GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
     GLuint measured_tex; /* that buffer as an r32ui buffer texture (CV_TEXUNIT_MEASURED) */
     bool has_measured; /* some material is measured (else CV_NO_MEASURED) */
+    GLuint conductor_fresnel; /* float[]: conductors' Fresnel tables (glsl/shared/conductor_fresnel.h), or 0 */
+    GLuint conductor_fresnel_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_CONDUCTOR_FRESNEL) */
+    bool has_conductor_fresnel; /* some conductor has a table (CV_CONDUCTOR_TABLES) */
     struct cv_bvh *bvh;
     struct cv_gpu *gpu;  /* whose buffer pool the BVH's buffers return to */
     /* A relit copy (cv_scene_gpu_relight): its lights and light_cdf are its

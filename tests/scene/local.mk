@@ -43,3 +43,8 @@ tests_scene_bssrdf_table_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/scene/rgl_tensor_test
 TESTS += tests/scene/rgl_tensor_test
 tests_scene_rgl_tensor_test_LDADD = $(CV_LIBS)
+
+# --- conductors given by spectra: Fresnel tables (issue 24) ---
+check_PROGRAMS += tests/scene/conductor_fresnel_test
+TESTS += tests/scene/conductor_fresnel_test
+tests_scene_conductor_fresnel_test_LDADD = $(CV_LIBS)

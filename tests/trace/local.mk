@@ -131,3 +131,8 @@ check_PROGRAMS += tests/trace/all_features_test
 TESTS += tests/trace/all_features_test
 tests_trace_all_features_test_LDADD = $(CV_LIBS)
 EXTRA_DIST += tests/data/trace/all_features.pbrt
+
+# --- conductors given by spectra: Fresnel tables in the GLSL (issue 24) ---
+check_PROGRAMS += tests/trace/bsdf_conductor_fresnel_test
+TESTS += tests/trace/bsdf_conductor_fresnel_test
+tests_trace_bsdf_conductor_fresnel_test_LDADD = $(CV_LIBS)

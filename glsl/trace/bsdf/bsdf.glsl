@@ -112,13 +112,20 @@ vec2 cv_material_alpha(CvMaterial m, float ru, float rv)
 }
 
 // Conductor eta and k; "reflectance" conductors as pbrt-v4: eta = 1,
-// k = 2 sqrt(r) / sqrt(1 - r), which reproduces r at normal incidence.
+// k = 2 sqrt(r) / sqrt(1 - r), which reproduces r at normal incidence;
+// conductors given by spectra: eta -1, k their Fresnel table
+// (cv_fr_complex reads it).
 void cv_material_conductor(CvMaterial m, vec3 refl, out vec3 eta, out vec3 k)
 {
     if ((m.flags & CV_MATF_CONDUCTOR_REFLECTANCE) != 0u) {
         vec3 r = clamp(refl, 0.0, 0.9999);
         eta = vec3(1.0);
         k = 2.0 * sqrt(r) / sqrt(1.0 - r);
+#ifdef CV_CONDUCTOR_TABLES
+    } else if ((m.flags & CV_MATF_CONDUCTOR_FRESNEL) != 0u) {
+        eta = vec3(-1.0);
+        k = vec3(m.k.w);
+#endif
     } else {
         eta = m.eta.rgb;
         k = m.k.rgb;
@@ -292,8 +299,10 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.thickness = m.roughness.z;
         b.c0 = ceta;
         b.c1 = ck;
-        b.c0 /= b.eta;
-        b.c1 /= b.eta;
+        if (ceta.x >= 0.0) {  // (a table holds the ratio already)
+            b.c0 /= b.eta;
+            b.c1 /= b.eta;
+        }
         b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
         b.walk = ivec2(m.roughness2.zw);
     } else if (b.type == CV_MAT_DIFFUSE_TRANSMISSION) {

@@ -59,8 +59,31 @@ float cv_fr_complex1(float cos_i, float eta_re, float k)
     return 0.5 * (cv_cnorm(r_parl) + cv_cnorm(r_perp));
 }
 
+#ifdef CV_CONDUCTOR_TABLES
+// The Fresnel tables of conductors given by spectra (glsl/shared/
+// conductor_fresnel.h): a buffer texture, not a storage block.
+#include "shared/bindings.h"
+#include "shared/conductor_fresnel.h"
+layout(binding = CV_TEXUNIT_CONDUCTOR_FRESNEL) uniform samplerBuffer cv_conductor_fresnel;
+
+vec3 cv_fr_table(float cos_i, int t)
+{
+    float x = clamp(cos_i, 0.0, 1.0) * float(CV_CONDUCTOR_FRESNEL_N - 1);
+    int i = min(int(x), CV_CONDUCTOR_FRESNEL_N - 2);
+    int at = t * CV_CONDUCTOR_FRESNEL_N + i;
+    return mix(texelFetch(cv_conductor_fresnel, at).rgb, texelFetch(cv_conductor_fresnel, at + 1).rgb,
+               x - float(i));
+}
+#endif
+
+// eta.x < 0 (CV_CONDUCTOR_TABLES only): a conductor given by spectra, k.x
+// its table (cv_material_conductor).
 vec3 cv_fr_complex(float cos_i, vec3 eta, vec3 k)
 {
+#ifdef CV_CONDUCTOR_TABLES
+    if (eta.x < 0.0)
+        return cv_fr_table(cos_i, int(k.x));
+#endif
     return vec3(cv_fr_complex1(cos_i, eta.x, k.x), cv_fr_complex1(cos_i, eta.y, k.y),
                 cv_fr_complex1(cos_i, eta.z, k.z));
 }

@@ -691,6 +691,25 @@ def nanovdb_scenes(nvdb="vol_nanovdb.nvdb"):
         + indent(box([-1.8, 0.005, -1.8], [1.8, 2.4, 1.8])) + "AttributeEnd\n")
 
 
+# pbrt-v4's own unbiased estimate of a rough coat: mat_coateddiffuse_rough
+# rendered by BSDF sampling alone (simplepath, no light sampling), which
+# uses the layered walk and not LayeredBxDF::f, whose exit weights through
+# a rough coat make pbrt-v4's path (light sampling with MIS) brighter
+# (oracle_test.c). Cavalry renders it with its path integrator.
+def bsdf_only_main():
+    name = "mat_coateddiffuse_rough_bsdf"
+    for m in MATERIALS:
+        if m[0] == "mat_coateddiffuse_rough":
+            scene(name, m[1] + ", by BSDF sampling alone", LIT + sphere(m[2]), maxdepth=8)
+    path = os.path.join(HERE, name + ".pbrt")
+    with open(path) as f:
+        text = f.read()
+    text = text.replace('Integrator "path" "integer maxdepth" [ 8 ]',
+                        'Integrator "simplepath" "integer maxdepth" [ 8 ] "bool samplelights" false')
+    with open(path, "w") as f:
+        f.write(text)
+
+
 if __name__ == "__main__":
     main()
     camera_main()
@@ -699,3 +718,4 @@ if __name__ == "__main__":
     bdpt_main()
     media_extra_main()
     nanovdb_scenes()
+    bsdf_only_main()
