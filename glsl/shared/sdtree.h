@@ -15,10 +15,16 @@
  * shader); texel indices are floats holding integers below 2^24:
  *   spatial node i (texels 0 .. n_spatial - 1, root 0):
  *     x: the split axis 0, 1, 2, or CV_SD_LEAF for a leaf;
- *     y: inner: the split coordinate (world); leaf: its guiding weight;
+ *     y: inner: the split coordinate (world); leaf: 0;
  *     z: inner: the first child (the second follows: the half above y);
- *        leaf: the texel of its quadtree's root;
+ *        leaf: the first of its CV_SD_CLASSES class texels;
  *     w: 0.
+ *   class texel c of a leaf (c: the orientation class of the surface
+ *   normal, on the side the path arrives from, as the Q-table's:
+ *   2 * axis of its largest component, + 1 if negative; the surfaces of a
+ *   leaf that face apart see apart):
+ *     x: the texel of the class's quadtree root; y: its guiding weight
+ *     (0: BSDF sampling alone); zw: 0.
  *   quadtree node at texel q (two texels):
  *     q:     the probabilities of its four quadrants (index ix + 2 iy,
  *            ix = u in the upper half, iy = v in the upper half), each
@@ -34,9 +40,10 @@
  * be sent, then CV_SD_MAX_RECORDS records of two texels each):
  *   t:     position xyz; w: the density the bounce was drawn with (solid
  *          angle; 0: not a guided vertex, the record is skipped);
- *   t + 1: the bounce direction (u, v) on the square; z: the channel mean
- *          of the path throughput after the bounce; w: the radiance found
- *          along it so far (channel mean).
+ *   t + 1: the bounce direction (u, v) on the square, u plus the vertex's
+ *          orientation class (an integer; u alone below 1); z: the
+ *          channel mean of the path throughput after the bounce; w: the
+ *          radiance found along it so far (channel mean).
  * Light that the path adds to the film from a later vertex (emission hit
  * or unoccluded shadow ray, MIS-weighted, times the throughput) adds its
  * channel mean over z to each earlier record's w: the path's own Monte
@@ -61,6 +68,7 @@
 #define CV_UBO_SDTREE 1         /* uniform block CvSdParams (rlpath's) */
 
 #define CV_SD_LEAF 3.0
+#define CV_SD_CLASSES 6u
 /* Vertices per path that record (the first ones: deeper bounces carry
  * little of the image). */
 #define CV_SD_MAX_RECORDS 6u

@@ -39,6 +39,10 @@ struct cv_integrator_ops {
     const char *escaped_define;
     /* The shadow stage is built with shadow_define added when not NULL. */
     const char *shadow_define;
+    /* The stages pass data to each other through images (rlpath's sdtree
+     * records): a barrier for image access after every stage (the shade
+     * programs of one iteration share none). */
+    bool image_stages;
     /* The stages track participating media (volpath: every stage built
      * with CV_MEDIA where the scene has media, glsl/trace/medium); else
      * media are ignored, as by pbrt-v4's path integrator. */

@@ -119,7 +119,10 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     sd->params.learn = (cv_uvec4){1, sd->cap, n_paths, 0};
     /* zero: no slot has a path waiting */
     size_t vbytes = (size_t)(n_paths ? n_paths : 1) * CV_SD_SLOT_TEXELS * 16;
-    const float empty[4] = {(float)CV_SD_LEAF, 0, 0, 0};   /* one leaf, weight 0 */
+    /* the empty table: one leaf, whose classes do not guide */
+    float(*empty)[4] = NULL;
+    size_t n_empty = 0;
+    cv_sdtree_build(bmin, bmax, NULL, 0, &sd->opts, &empty, &n_empty, NULL);
     bool ok = (sd->ubo = cv_buffer_create(sizeof(sd->params), &sd->params, "rlpath sd params", err)) &&
               (sd->verts = cv_buffer_create(vbytes, NULL, "rlpath sd path records", err)) &&
               (sd->out = cv_buffer_create((size_t)sd->cap * 32, NULL, "rlpath sd records", err)) &&
@@ -127,7 +130,8 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
               (sd->verts_tex = cv_buffer_texture(sd->verts, GL_RGBA32F, vbytes / 16, err)) &&
               (sd->out_tex = cv_buffer_texture(sd->out, GL_RGBA32F, (size_t)sd->cap * 2, err)) &&
               (sd->count_tex = cv_buffer_texture(sd->count, GL_R32UI, 4, err)) &&
-              tree_upload(sd, &empty, 1, err);
+              tree_upload(sd, (const float(*)[4])empty, n_empty, err);
+    free(empty);
     if (!ok) {
         cv_error_prefix(err, "rlpath sdtree for %u path slots: ", n_paths);
         cv_rlpath_sd_destroy(&sd);
@@ -173,9 +177,9 @@ bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, struct cv_sd_record *rec, size_
     bool ok = tree_upload(sd, (const float(*)[4])t, nt, err);
     free(t);
     sd->builds++;
-    cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %zu records, %u spatial leaves (%u guiding), %u quadtree "
-                 "nodes, depth %u", sd->builds, n, st.spatial_leaves, st.guiding_leaves,
-                 st.quad_nodes, st.max_quad_depth);
+    cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %zu records, %u spatial leaves (%u of their "
+           "classes guide), %u quadtree nodes, depth %u", sd->builds, n, st.spatial_leaves,
+           st.guiding, st.quad_nodes, st.max_quad_depth);
     return ok;
 }
 
@@ -282,6 +286,7 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .escaped_stage = true,   /* misses end paths that recorded */
     .escaped_define = "CV_RLPATH_SD",
     .shadow_define = "CV_RLPATH_SD",   /* shadow rays add to the records */
+    .image_stages = true,               /* ... which the next stages read */
     .n_shade = 3,
     .file = {"trace/rlpath/sd_shade.comp", "trace/rlpath/sd_shade.comp",
              "trace/rlpath/sd_shade.comp"},

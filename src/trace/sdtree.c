@@ -11,16 +11,23 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
     .mix = 0.5f,
     .split_c = 8.0f,
     .rho = 0.01f,
-    .min_split = 16,
+    /* the records of a llvmpipe-sized image are few: quadrants split on a
+     * handful of bright samples sent guided directions after noise
+     * (bench/RESULTS.md, "sdtree guide") */
+    .min_split = 64,
     .max_depth = CV_SD_MAX_DEPTH,
-    .floor = 0.1f,
+    .floor = 0.3f,
     .min_records = 32,
 };
 
 struct snode {
     uint32_t axis;    /* 0..2, or 3: leaf */
     float split;
-    uint32_t child;   /* inner: first child; leaf: quadtree root node */
+    uint32_t child;   /* inner: first child; leaf: its index among the leaves */
+};
+
+struct cnode {
+    uint32_t quad;    /* quadtree root node */
     float weight;
 };
 
@@ -36,10 +43,25 @@ struct build {
     size_t ns, cs;
     struct qnode *q;
     size_t nq, cq;
+    struct cnode *c;   /* CV_SD_CLASSES per leaf */
+    size_t nc, cc;
     struct cv_sdtree_stats st;
 };
 
-static double rec_value(const struct cv_sd_record *r) { return (double)r->L / r->pdf; }
+/* What a record adds to its quadtree: the Monte Carlo estimate of the
+ * integral of the incident radiance times the cosine to its class's axis
+ * (the normal of a wall that faces the axis) over directions; the guide
+ * then stands for the diffuse integrand, not the radiance alone, which
+ * sends samples to grazing and back-facing directions. The class is in
+ * beta once the build has read it (cv_sdtree_build). */
+static double rec_value(const struct cv_sd_record *r)
+{
+    int cls = (int)r->beta;
+    double z = 2.0 * r->u - 1, phi = 2 * M_PI * r->v - M_PI, s = sqrt(fmax(0, 1 - z * z));
+    double w[3] = {s * cos(phi), s * sin(phi), z};
+    double c = w[cls / 2] * (cls & 1 ? -1 : 1);
+    return c > 0 ? (double)r->L / r->pdf * c : 0;
+}
 
 static uint32_t push_s(struct build *b)
 {
@@ -62,13 +84,14 @@ static uint32_t push_q(struct build *b)
 }
 
 /* Moves the records with key(r) below `at` to the front; returns their
- * count. key: coordinate k of the position (0..2), or u (3) or v (4). */
+ * count. key: coordinate k of the position (0..2), u (3), v (4) or the
+ * class (5). */
 static size_t partition(struct cv_sd_record *r, size_t n, int key, double at)
 {
     size_t i = 0, j = n;
     while (i < j) {
         const struct cv_sd_record *x = &r[i];
-        double c = key < 3 ? x->p[key] : key == 3 ? x->u : x->v;
+        double c = key < 3 ? x->p[key] : key == 3 ? x->u : key == 4 ? x->v : x->beta;
         if (c < at) {
             i++;
         } else {
@@ -139,20 +162,34 @@ static void build_spatial(struct build *b, uint32_t node, struct cv_sd_record *r
         build_spatial(b, c + 1, r + m, n - m, l, h, depth + 1);
         return;
     }
-    double E = 0;
-    size_t lit = 0;
-    for (size_t i = 0; i < n; i++) {
-        double v = rec_value(&r[i]);
-        E += v;
-        lit += v > 0;
-    }
+    uint32_t leaf = (uint32_t)(b->nc / CV_SD_CLASSES);
     b->s[node].axis = 3;
-    b->s[node].weight = lit >= b->o->min_records && E > 0 ? b->o->mix : 0.0f;
+    b->s[node].child = leaf;
     b->st.spatial_leaves++;
-    b->st.guiding_leaves += b->s[node].weight > 0;
-    /* the floor spread over the square's unit area */
-    uint32_t q = build_quad(b, r, n, 0, 0, 1, 0, E, b->o->floor * E);
-    b->s[node].child = q;
+    if (b->nc + CV_SD_CLASSES > b->cc) {
+        b->cc = b->cc ? 2 * b->cc : 64 * CV_SD_CLASSES;
+        b->c = cv_xrealloc(b->c, b->cc * sizeof(*b->c));
+    }
+    b->nc += CV_SD_CLASSES;
+    /* one quadtree per orientation class, from that class's records */
+    for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
+        size_t m = partition(r, n, 5, cls + 0.5);
+        double E = 0;
+        size_t lit = 0;
+        for (size_t i = 0; i < m; i++) {
+            double v = rec_value(&r[i]);
+            E += v;
+            lit += v > 0;
+        }
+        struct cnode *c = &b->c[leaf * CV_SD_CLASSES + cls];
+        c->weight = lit >= b->o->min_records && E > 0 ? b->o->mix : 0.0f;
+        b->st.guiding += c->weight > 0;
+        /* the floor spread over the square's unit area */
+        uint32_t q = build_quad(b, r, m, 0, 0, 1, 0, E, b->o->floor * E);
+        b->c[leaf * CV_SD_CLASSES + cls].quad = q;
+        r += m;
+        n -= m;
+    }
 }
 
 void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_record *rec,
@@ -162,10 +199,15 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_reco
     /* the records that count: a positive density, a finite value >= 0 */
     size_t k = 0;
     for (size_t i = 0; i < n; i++) {
-        double v = rec_value(&rec[i]);
+        double v = (double)rec[i].L / rec[i].pdf;
+        float cls = floorf(rec[i].u);
         if (rec[i].pdf > 0 && isfinite(v) && v >= 0 && isfinite(rec[i].p[0]) &&
-            isfinite(rec[i].p[1]) && isfinite(rec[i].p[2]))
-            rec[k++] = rec[i];
+            isfinite(rec[i].p[1]) && isfinite(rec[i].p[2]) && cls >= 0 &&
+            cls < CV_SD_CLASSES) {
+            rec[k] = rec[i];
+            rec[k].u -= cls;
+            rec[k++].beta = cls;
+        }
     }
     n = k;
     /* a cube about the box, a little larger */
@@ -193,7 +235,8 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_reco
     b.st.spatial_nodes = (uint32_t)b.ns;
     b.st.quad_nodes = (uint32_t)b.nq;
 
-    size_t nt = b.ns + 2 * b.nq;
+    /* spatial nodes, class texels, quadtree nodes */
+    size_t qbase = b.ns + b.nc, nt = qbase + 2 * b.nq;
     float(*t)[4] = cv_xcalloc(nt, sizeof(*t));
     for (size_t i = 0; i < b.ns; i++) {
         const struct snode *s = &b.s[i];
@@ -202,19 +245,23 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_reco
             t[i][1] = s->split;
             t[i][2] = (float)s->child;
         } else {
-            t[i][1] = s->weight;
-            t[i][2] = (float)(b.ns + 2 * (size_t)s->child);
+            t[i][2] = (float)(b.ns + (size_t)s->child * CV_SD_CLASSES);
         }
     }
+    for (size_t i = 0; i < b.nc; i++) {
+        t[b.ns + i][0] = (float)(qbase + 2 * (size_t)b.c[i].quad);
+        t[b.ns + i][1] = b.c[i].weight;
+    }
     for (size_t j = 0; j < b.nq; j++) {
-        float *a = t[b.ns + 2 * j], *ch = t[b.ns + 2 * j + 1];
+        float *a = t[qbase + 2 * j], *ch = t[qbase + 2 * j + 1];
         for (int q = 0; q < 4; q++) {
             a[q] = b.q[j].p[q];
-            ch[q] = b.q[j].child[q] ? (float)(b.ns + 2 * (size_t)b.q[j].child[q]) : 0.0f;
+            ch[q] = b.q[j].child[q] ? (float)(qbase + 2 * (size_t)b.q[j].child[q]) : 0.0f;
         }
     }
     free(b.s);
     free(b.q);
+    free(b.c);
     *texels = t;
     *n_texels = nt;
     if (stats)

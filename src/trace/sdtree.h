@@ -15,8 +15,10 @@
 struct cv_sd_record {
     float p[3];      /* position (world) */
     float pdf;       /* solid-angle density the direction was drawn with, > 0 */
-    float u, v;      /* direction on the square [0,1)^2 (cylindrical map) */
-    float beta;      /* path throughput after the bounce (unused here) */
+    float u, v;      /* direction on the square [0,1)^2 (cylindrical map); as
+                        read back, u has the orientation class added */
+    float beta;      /* path throughput after the bounce (the shaders'; the
+                        build keeps the class here) */
     float L;         /* incident radiance found along the direction */
 };
 _Static_assert(sizeof(struct cv_sd_record) == 32, "two rgba32f texels");
@@ -31,7 +33,7 @@ struct cv_sdtree_opts {
     uint32_t min_split;     /* ... and with at least this many records */
     uint32_t max_depth;     /* quadtree depth limit (<= CV_SD_MAX_DEPTH) */
     float floor;            /* uniform share added to every leaf's distribution */
-    uint32_t min_records;   /* a spatial leaf guides with at least this many
+    uint32_t min_records;   /* a leaf's class guides with at least this many
                                records of positive radiance */
 };
 
@@ -39,7 +41,8 @@ struct cv_sdtree_opts {
 extern const struct cv_sdtree_opts cv_sdtree_defaults;
 
 struct cv_sdtree_stats {
-    uint32_t spatial_nodes, spatial_leaves, guiding_leaves, quad_nodes, max_quad_depth;
+    uint32_t spatial_nodes, spatial_leaves, quad_nodes, max_quad_depth;
+    uint32_t guiding;   /* (leaf, class) quadtrees that guide */
 };
 
 /* Builds the table (texels of 4 floats, glsl/shared/sdtree.h) from n
@@ -55,7 +58,8 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_reco
  * texel root of a table: the shaders' cv_sd_pdf_square, for tests. */
 double cv_sdtree_pdf_square(const float (*texels)[4], uint32_t root, double u, double v);
 
-/* The spatial leaf texel of point p (its quadtree root: texel z). */
+/* The spatial leaf texel of point p; its class texels start at texel z,
+ * each (quadtree root, weight). */
 uint32_t cv_sdtree_leaf(const float (*texels)[4], const float p[3]);
 
 #endif

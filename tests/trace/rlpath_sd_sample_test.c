@@ -96,6 +96,7 @@ static struct cv_sd_record *make_records(size_t n)
             r[i].v = (float)rnd();
             r[i].L = (float)rnd();
         }
+        r[i].u += 4;   /* the class of `normal` (+z); the other classes get none */
     }
     return r;
 }
@@ -147,8 +148,9 @@ int main(void)
     o.mix = 0.6f;
     cv_sdtree_build(lo, hi, copy, NR, &o, &t, &nt, NULL);
     uint32_t leaf = cv_sdtree_leaf((const float(*)[4])t, point);
-    uint32_t root = (uint32_t)t[leaf][2];
-    float m = t[leaf][1];
+    uint32_t key = (uint32_t)t[leaf][2] + 4;   /* +z */
+    uint32_t root = (uint32_t)t[key][0];
+    float m = t[key][1];
 
     float *out = malloc((size_t)N * 8 * sizeof(float));
     bool ok = tap_ok(cv_rlpath_sd_create(g.gpu, lo, hi, 64, o.mix, 0, &g.sd, &err),
@@ -158,7 +160,8 @@ int main(void)
     g.in = cv_buffer_create((size_t)256 * 256 * 16, NULL, "probe in", &err);
     if (!ok || !tap_ok(g.out && g.in, "probe buffers: %s", err.msg))
         return tap_done();
-    tap_ok(m == o.mix, "the test point's leaf guides with the weight %g", m);
+    tap_ok(m == o.mix && t[key - 1][1] == 0, "the test point's leaf guides with the weight %g "
+           "in the normal's class, not in another", m);
 
     for (int mode = 0; mode <= 1; mode++) {
         const char *what = mode ? "mixture" : "guide";

@@ -4,12 +4,12 @@
  * spatial tree whose leaves hold at most the split threshold, and every
  * record found again in the leaf that the lookup names; the flattened
  * table's links point where the layout says (spatial children inside the
- * spatial part, quadtree nodes at even offsets after it, the root never a
- * child); every node's four probabilities positive and summing to 1; every
+ * spatial part, each leaf to its six class texels in leaf order, quadtree
+ * nodes at even offsets after those, the root never a child); every node's four probabilities positive and summing to 1; every
  * leaf's density integrating to 1 over the square (exactly, by walking the
  * tree, and through the lookup the shaders mirror on a midpoint grid, exact
  * for trees at most 8 deep); a leaf guiding iff it has enough records of
- * positive radiance; the
+ * positive radiance (per orientation class); the
  * density following the recorded radiance (a bright spot of directions
  * gets many times the uniform density, a dark half less); records with a
  * non-finite value or no density are ignored. */
@@ -91,14 +91,20 @@ static void test_empty(void)
     size_t nt = 0;
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, NULL, 0, &cv_sdtree_defaults, &t, &nt, &st);
-    tap_ok(nt == 3 && t[0][0] == (float)CV_SD_LEAF && t[0][1] == 0 && t[0][2] == 1,
-           "no records: one leaf of weight 0, its quadtree at texel 1 (%zu texels)", nt);
-    tap_ok(t[1][0] == 0.25f && t[1][1] == 0.25f && t[1][2] == 0.25f && t[1][3] == 0.25f &&
-               t[2][0] == 0 && t[2][3] == 0,
-           "no records: one uniform quadtree node");
-    tap_ok(st.spatial_leaves == 1 && st.guiding_leaves == 0 && st.quad_nodes == 1,
+    uint32_t bad = 0;
+    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 3 * CV_SD_CLASSES; c++) {
+        const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + 2 * c], *ch = q + 4;
+        bad += k[0] != (float)(1 + CV_SD_CLASSES + 2 * c) || k[1] != 0;
+        bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0.25f;
+        bad += ch[0] != 0 || ch[1] != 0 || ch[2] != 0 || ch[3] != 0;
+    }
+    tap_ok(nt == 1 + 3 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
+           "no records: one leaf, its class texels at texel 1 (%zu texels)", nt);
+    tap_ok(bad == 0, "no records: every class of weight 0, one uniform quadtree node each "
+           "(%u wrong)", bad);
+    tap_ok(st.spatial_leaves == 1 && st.guiding == 0 && st.quad_nodes == CV_SD_CLASSES,
            "no records: stats %u leaves, %u guiding, %u quadtree nodes", st.spatial_leaves,
-           st.guiding_leaves, st.quad_nodes);
+           st.guiding, st.quad_nodes);
     free(t);
 }
 
@@ -114,6 +120,8 @@ static struct cv_sd_record *make_records(size_t n, double spot)
         r[i].p[2] = (float)rnd();
         r[i].pdf = (float)(1 / (4 * M_PI));
         r[i].beta = 1;
+        /* as read back: the class (0 .. 5) added to u */
+        r[i].beta = (float)(int)(6 * rnd());
         if (rnd() < spot) {
             r[i].u = (float)(0.8 + 0.01 * (rnd() - 0.5));
             r[i].v = (float)(0.3 + 0.01 * (rnd() - 0.5));
@@ -123,6 +131,7 @@ static struct cv_sd_record *make_records(size_t n, double spot)
             r[i].v = (float)rnd();
             r[i].L = rnd() < 0.5 ? 1 : 0;
         }
+        r[i].u += r[i].beta;
     }
     return r;
 }
@@ -143,21 +152,28 @@ static void test_build(void)
     struct cv_sdtree_stats st;
     struct cv_sdtree_opts o = cv_sdtree_defaults;
     cv_sdtree_build(lo, hi, r, N, &o, &t, &nt, &st);
-    uint32_t ns = st.spatial_nodes;
+    uint32_t ns = st.spatial_nodes, nc = CV_SD_CLASSES * st.spatial_leaves, qb = ns + nc;
     tap_ok(st.spatial_leaves > 8 && st.spatial_leaves * 2 - 1 == ns,
            "%u spatial leaves of %u nodes (a full binary tree)", st.spatial_leaves, ns);
-    tap_ok(nt == ns + 2 * (size_t)st.quad_nodes, "%zu texels: %u spatial + 2 x %u quadtree", nt,
-           ns, st.quad_nodes);
+    tap_ok(nt == qb + 2 * (size_t)st.quad_nodes && st.quad_nodes >= nc,
+           "%zu texels: %u spatial + %u class + 2 x %u quadtree", nt, ns, nc, st.quad_nodes);
     /* spatial links */
     uint32_t bad_s = 0, leaves = 0;
+    uint8_t *seen = calloc(st.spatial_leaves + 1, 1);
     for (uint32_t i = 0; i < ns; i++) {
         if (t[i][0] == (float)CV_SD_LEAF) {
+            uint32_t k = (uint32_t)t[i][2];
             leaves++;
-            uint32_t q = (uint32_t)t[i][2];
-            if (q < ns || (q - ns) % 2 || q + 1 >= nt)
+            /* a block of its own */
+            if (k < ns || k >= qb || (k - ns) % CV_SD_CLASSES || seen[(k - ns) / CV_SD_CLASSES]++)
                 bad_s++;
-            if (!(t[i][1] == 0 || t[i][1] == o.mix))
-                bad_s++;
+            for (uint32_t c = 0; c < CV_SD_CLASSES && k + c < qb; c++) {
+                uint32_t q = (uint32_t)t[k + c][0];
+                if (q < qb || (q - qb) % 2 || q + 1 >= nt)
+                    bad_s++;
+                if (!(t[k + c][1] == 0 || t[k + c][1] == o.mix))
+                    bad_s++;
+            }
         } else {
             uint32_t c = (uint32_t)t[i][2];
             if (!(t[i][0] == 0 || t[i][0] == 1 || t[i][0] == 2) || c <= i || c + 1 >= ns)
@@ -165,13 +181,15 @@ static void test_build(void)
         }
     }
     tap_ok(bad_s == 0 && leaves == st.spatial_leaves,
-           "spatial nodes link inside the spatial part, leaves to quadtree roots (%u bad)", bad_s);
+           "spatial nodes link inside the spatial part, each leaf to a block of class "
+           "texels of its own, those to quadtree roots (%u bad)", bad_s);
+    free(seen);
     /* counts per leaf through the lookup */
-    uint32_t *count = calloc(ns, sizeof(uint32_t)), *lit = calloc(ns, sizeof(uint32_t));
+    uint32_t *count = calloc(ns, sizeof(uint32_t)), *lit = calloc(nt, sizeof(uint32_t));
     for (size_t i = 3; i < N; i++) {
         uint32_t l = cv_sdtree_leaf((const float(*)[4])t, copy[i].p);
         count[l]++;
-        lit[l] += copy[i].L > 0;
+        lit[(uint32_t)t[l][2] + (uint32_t)copy[i].beta] += copy[i].L > 0;
     }
     double thresh = o.split_c * sqrt((double)(N - 3));
     uint32_t over = 0, misplaced = 0;
@@ -190,19 +208,17 @@ static void test_build(void)
     /* quadtrees */
     uint32_t bad_link = 0, bad_prob = 0, nodes = 0, bad_int = 0, bad_grid = 0, gridded = 0;
     uint32_t bad_weight = 0;
-    double spot_ratio = 1e30, dark_ratio = 0;
-    for (uint32_t i = 0; i < ns; i++) {
-        if (t[i][0] != (float)CV_SD_LEAF)
-            continue;
-        uint32_t q = (uint32_t)t[i][2], before = nodes;
-        check_quad((const float(*)[4])t, nt, ns, q, 0, &bad_link, &bad_prob, &nodes);
+    uint32_t guiding = 0, spot_high = 0;
+    double dark_ratio = 0;
+    for (uint32_t k = ns; k < qb; k++) {
+        uint32_t q = (uint32_t)t[k][0];
+        check_quad((const float(*)[4])t, nt, qb, q, 0, &bad_link, &bad_prob, &nodes);
         double s = integrate((const float(*)[4])t, q, 1, 1);
         if (fabs(s - 1) > 1e-5)
             bad_int++;
         /* the lookup on a 256^2 midpoint grid: exact where the quadtree
          * is at most 8 deep (its leaves are whole grid cells) */
-        uint32_t depth = quad_depth((const float(*)[4])t, q);
-        if (depth <= 8) {
+        if (quad_depth((const float(*)[4])t, q) <= 8) {
             const int G = 256;
             double g = 0;
             for (int a = 0; a < G; a++)
@@ -213,13 +229,12 @@ static void test_build(void)
             gridded++;
             bad_grid += fabs(g - 1) > 1e-5;
         }
-        (void)before;
-        bad_weight += (t[i][1] > 0) != (lit[i] >= o.min_records);
-        if (t[i][1] > 0) {
+        bad_weight += (t[k][1] > 0) != (lit[k] >= o.min_records);
+        if (t[k][1] > 0) {
             double ps = cv_sdtree_pdf_square((const float(*)[4])t, q, 0.8, 0.3);
             double pd = cv_sdtree_pdf_square((const float(*)[4])t, q, 0.25, 0.5);
-            if (ps < spot_ratio)
-                spot_ratio = ps;
+            guiding++;
+            spot_high += ps > 20;
             if (pd > dark_ratio)
                 dark_ratio = pd;
         }
@@ -232,11 +247,11 @@ static void test_build(void)
     tap_ok(bad_int == 0, "every leaf's density integrates to 1 over the square (%u not)", bad_int);
     tap_ok(gridded > 0 && bad_grid == 0, "... and through the lookup on a 256^2 midpoint grid "
            "(%u of the %u leaves at most 8 deep differ)", bad_grid, gridded);
-    tap_ok(bad_weight == 0, "a leaf guides iff it has %u records of positive radiance (%u not)",
+    tap_ok(bad_weight == 0, "a leaf's class guides iff it has %u records of positive radiance (%u not)",
            o.min_records, bad_weight);
     /* the spot holds most of the energy: 0.05 x 20 against 0.95 x 0.5 */
-    tap_ok(spot_ratio > 20, "the bright spot's density is many times uniform (at least %.1f)",
-           spot_ratio);
+    tap_ok(guiding > 0 && spot_high >= 0.9 * guiding, "the bright spot's density is above 20 "
+           "times uniform in %u of %u quadtrees that guide", spot_high, guiding);
     tap_ok(dark_ratio < 0.5, "the dark half keeps about the floor (at most %.3f)", dark_ratio);
     free(count);
     free(lit);
@@ -254,7 +269,7 @@ static void test_few(void)
     size_t nt = 0;
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, r, 20, &cv_sdtree_defaults, &t, &nt, &st);
-    tap_ok(st.spatial_leaves == 1 && t[0][1] == 0, "20 records: one leaf that does not guide");
+    tap_ok(st.spatial_leaves == 1 && st.guiding == 0, "20 records: one leaf that does not guide");
     free(t);
     free(r);
 }

@@ -39,6 +39,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 struct CvStrategy {
     vec3 Le;
     bool eligible;
+    uint cls;
     int root;
     float m;
     float pd;
@@ -54,7 +55,9 @@ void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool
 {
     g.eligible = !delta && cv_rl_guides(b);
     if (g.eligible) {
-        vec2 l = cv_sd_leaf(sf.p);
+        // the normal on the side the path came from
+        g.cls = cv_sd_class(dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns);
+        vec2 l = cv_sd_leaf(sf.p, g.cls);
         g.root = int(l.x);
         g.m = l.y;
     }
@@ -127,7 +130,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 {
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
-    CvStrategy g = CvStrategy(vec3(0.0), false, 0, 0.0, 0.0, false, 0.0);
+    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
     if (!cv_sd_learning())
         return;
@@ -141,7 +144,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     if (push_ray)
         // nr.d.w: the bounce's density, 0 for a delta lobe; only the
         // vertices the guide serves train it
-        cv_sd_record(slot, depth, nr.o.xyz, nr.d.xyz, g.eligible ? nr.d.w : 0.0,
+        cv_sd_record(slot, depth, nr.o.xyz, g.cls, nr.d.xyz, g.eligible ? nr.d.w : 0.0,
                      nr.beta.rgb);
     else
         cv_sd_path_end(slot, depth);

@@ -31,10 +31,18 @@ const float CV_SD_ONE_MINUS_EPS = 0.99999994;
 
 bool cv_sd_learning() { return u_sd.learn.x != 0u; }
 
-// The spatial leaf of p: its quadtree root (x, a texel index) and its
-// guiding weight (y; 0 before the first build: an empty table's root is a
-// leaf of weight 0).
-vec2 cv_sd_leaf(vec3 p)
+// The orientation class of a normal n (shared/sdtree.h).
+uint cv_sd_class(vec3 n)
+{
+    vec3 a = abs(n);
+    uint ax = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+    return 2u * ax + (n[ax] < 0.0 ? 1u : 0u);
+}
+
+// The quadtree of point p and orientation class cls: its root (x, a texel
+// index) and its guiding weight (y; 0 before the first build: the empty
+// table's classes have weight 0).
+vec2 cv_sd_leaf(vec3 p, uint cls)
 {
     int node = 0;
     vec4 n = imageLoad(sd_tree, 0);
@@ -43,7 +51,9 @@ vec2 cv_sd_leaf(vec3 p)
         node = int(n.z) + (p[axis] >= n.y ? 1 : 0);
         n = imageLoad(sd_tree, node);
     }
-    return n.x < CV_SD_LEAF ? vec2(0.0) : vec2(n.z, n.y);
+    if (n.x < CV_SD_LEAF)
+        return vec2(0.0);
+    return imageLoad(sd_tree, int(n.z) + int(cls)).xy;
 }
 
 // The square point of a unit direction, and back.
@@ -133,17 +143,18 @@ float cv_sd_pdf(int root, vec3 w)
 int cv_sd_slot_texel(uint slot) { return int(slot * CV_SD_SLOT_TEXELS); }
 int cv_sd_record_texel(uint slot, uint k) { return cv_sd_slot_texel(slot) + 1 + int(2u * k); }
 
-// The record of the bounce that leaves the vertex at depth from p in
-// direction wi drawn with solid-angle density pdf (0: not a vertex the
-// guide serves, skipped), with throughput beta after it.
-void cv_sd_record(uint slot, uint depth, vec3 p, vec3 wi, float pdf, vec3 beta)
+// The record of the bounce that leaves the vertex at depth from p (of
+// orientation class cls) in direction wi drawn with solid-angle density
+// pdf (0: not a vertex the guide serves, skipped), with throughput beta
+// after it.
+void cv_sd_record(uint slot, uint depth, vec3 p, uint cls, vec3 wi, float pdf, vec3 beta)
 {
     if (depth >= CV_SD_MAX_RECORDS)
         return;
     int t = cv_sd_record_texel(slot, depth);
     float b = (beta.x + beta.y + beta.z) * (1.0 / 3.0);
     imageStore(sd_verts, t, vec4(p, b > 0.0 ? pdf : 0.0));
-    imageStore(sd_verts, t + 1, vec4(cv_sd_square(wi), b, 0.0));
+    imageStore(sd_verts, t + 1, vec4(cv_sd_square(wi) + vec2(float(cls), 0.0), b, 0.0));
 }
 
 // Light L that the path adds to the film (times its throughput: an

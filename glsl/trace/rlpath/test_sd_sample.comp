@@ -1,6 +1,7 @@
 #version 450
 // glsl/trace/rlpath/test_sd_sample.comp: exercises sdtree.glsl for
-// tests/trace/rlpath_sd_sample_test.c at the spatial leaf of u_point, in a
+// tests/trace/rlpath_sd_sample_test.c at the quadtree of u_point and
+// TEST_NORMAL's orientation class, in a
 // tree the test built and uploaded. TEST_MODE 0: draw directions from the
 // leaf's quadtree (w, pdf at sampling; pdf evaluated again at w, the
 // leaf's weight m, its root). TEST_MODE 1: draw from the mixture of the
@@ -47,7 +48,7 @@ void main()
     uint i = cv_global_index();
     if (i >= u_n)
         return;
-    vec2 leaf = cv_sd_leaf(u_point);
+    vec2 leaf = cv_sd_leaf(u_point, cv_sd_class(TEST_NORMAL));
     int root = int(leaf.x);
     float m = leaf.y;
 #if TEST_MODE == 2
