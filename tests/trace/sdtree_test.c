@@ -1,18 +1,20 @@
 /* sdtree_test.c: the host build of rlpath's sdtree guide (trace/sdtree.c,
  * layout glsl/shared/sdtree.h) on synthetic records: no records give one
- * unguided leaf of uniform density; records spread over a box give a
- * spatial tree whose leaves hold at most the split threshold, and every
- * record found again in the leaf that the lookup names; the flattened
- * table's links point where the layout says (spatial children inside the
- * spatial part, each leaf to its six class texels in leaf order, quadtree
- * nodes at even offsets after those, the root never a child); every node's four probabilities positive and summing to 1; every
- * leaf's density integrating to 1 over the square (exactly, by walking the
- * tree, and through the lookup the shaders mirror on a midpoint grid, exact
- * for trees at most 8 deep); a leaf guiding iff it has enough records of
- * positive radiance (per orientation class); the
- * density following the recorded radiance (a bright spot of directions
- * gets many times the uniform density, a dark half less); records with a
- * non-finite value or no density are ignored. */
+ * leaf whose six orientation classes have uniform, unguided quadtrees;
+ * records spread over a box give a spatial tree whose leaves hold at most
+ * the split threshold, and every record found again in the leaf that the
+ * lookup names; the flattened table's links point where the layout says
+ * (spatial children inside the spatial part, each leaf to a block of six
+ * class texels of its own, quadtree nodes at even offsets after those, the
+ * root never a child); every node's four probabilities positive and
+ * summing to 1; every quadtree's density integrating to 1 over the square
+ * (exactly, by walking the tree, and through the lookup the shaders mirror
+ * on a midpoint grid, exact for trees at most 8 deep); a class guiding iff
+ * it has enough records of radiance in front of its axis (the build
+ * weights radiance by the cosine to the axis); the density following the
+ * recorded radiance (a bright spot of directions gets many times the
+ * uniform density in the classes that face it, a dark half about the
+ * floor); records with a non-finite value or no density are ignored. */
 #include "config.h"
 
 #include <math.h>
@@ -68,6 +70,14 @@ static void check_quad(const float (*t)[4], size_t nt, uint32_t ns, uint32_t q, 
         }
         check_quad(t, nt, ns, c, depth + 1, bad_link, bad_prob, nodes);
     }
+}
+
+/* The cosine of direction (u, v) on the square to the axis of class c. */
+static double class_cos(uint32_t c, double u, double v)
+{
+    double z = 2 * u - 1, phi = 2 * M_PI * v - M_PI, s = sqrt(fmax(0, 1 - z * z));
+    double w[3] = {s * cos(phi), s * sin(phi), z};
+    return w[c / 2] * (c & 1 ? -1 : 1);
 }
 
 static uint32_t quad_depth(const float (*t)[4], uint32_t q)
@@ -189,7 +199,9 @@ static void test_build(void)
     for (size_t i = 3; i < N; i++) {
         uint32_t l = cv_sdtree_leaf((const float(*)[4])t, copy[i].p);
         count[l]++;
-        lit[(uint32_t)t[l][2] + (uint32_t)copy[i].beta] += copy[i].L > 0;
+        /* radiance that arrives in front of the class's axis */
+        uint32_t c = (uint32_t)copy[i].beta;
+        lit[(uint32_t)t[l][2] + c] += copy[i].L > 0 && class_cos(c, copy[i].u - c, copy[i].v) > 0;
     }
     double thresh = o.split_c * sqrt((double)(N - 3));
     uint32_t over = 0, misplaced = 0;
@@ -230,7 +242,8 @@ static void test_build(void)
             bad_grid += fabs(g - 1) > 1e-5;
         }
         bad_weight += (t[k][1] > 0) != (lit[k] >= o.min_records);
-        if (t[k][1] > 0) {
+        /* the classes that face the spot */
+        if (t[k][1] > 0 && class_cos((k - ns) % CV_SD_CLASSES, 0.8, 0.3) > 0.2) {
             double ps = cv_sdtree_pdf_square((const float(*)[4])t, q, 0.8, 0.3);
             double pd = cv_sdtree_pdf_square((const float(*)[4])t, q, 0.25, 0.5);
             guiding++;
@@ -247,11 +260,12 @@ static void test_build(void)
     tap_ok(bad_int == 0, "every leaf's density integrates to 1 over the square (%u not)", bad_int);
     tap_ok(gridded > 0 && bad_grid == 0, "... and through the lookup on a 256^2 midpoint grid "
            "(%u of the %u leaves at most 8 deep differ)", bad_grid, gridded);
-    tap_ok(bad_weight == 0, "a leaf's class guides iff it has %u records of positive radiance (%u not)",
+    tap_ok(bad_weight == 0, "a leaf's class guides iff it has %u records of radiance in front of its axis "
+           "(%u not)",
            o.min_records, bad_weight);
     /* the spot holds most of the energy: 0.05 x 20 against 0.95 x 0.5 */
     tap_ok(guiding > 0 && spot_high >= 0.9 * guiding, "the bright spot's density is above 20 "
-           "times uniform in %u of %u quadtrees that guide", spot_high, guiding);
+           "times uniform in %u of the %u quadtrees that guide and face it", spot_high, guiding);
     tap_ok(dark_ratio < 0.5, "the dark half keeps about the floor (at most %.3f)", dark_ratio);
     free(count);
     free(lit);
