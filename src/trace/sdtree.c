@@ -4,11 +4,12 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "glsl/shared/rlpath.h"
 #include "glsl/shared/sdtree.h"
 #include "trace/sdtree.h"
 
 const struct cv_sdtree_opts cv_sdtree_defaults = {
-    .mix = 0.5f,
+    .mix = CV_RL_DEFAULT_MIX,   /* the Q-table's: 0.5 measured worse (bench/RESULTS.md) */
     .split_c = 8.0f,
     .rho = 0.01f,
     /* the records of a llvmpipe-sized image are few: quadrants split on a
