@@ -275,6 +275,13 @@ static bool ops_pass_done(void *state, uint32_t spp_done, struct cv_error *err)
     return cv_rlpath_sd_pass_done(state, spp_done, err);
 }
 
+/* the records of a path slot's path in flight (glsl/shared/sdtree.h) */
+static uint64_t ops_slot_bytes(uint32_t max_depth)
+{
+    (void)max_depth;
+    return (uint64_t)CV_SD_SLOT_TEXELS * 16;
+}
+
 static void ops_destroy(void **state)
 {
     struct cv_rlpath_sd *sd = *state;
@@ -299,5 +306,6 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .learn_spp = ops_learn_spp,
     .set_learning = ops_set_learning,
     .pass_done = ops_pass_done,
+    .slot_bytes = ops_slot_bytes,
     .prefetch = ops_prefetch,
 };
