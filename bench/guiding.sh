@@ -27,7 +27,9 @@
 #   --room-triangles N  triangles of the generated closed room (default 100k)
 #   --variants V   what is compared: path; rlpath (the defaults); rlpath-online
 #                  (rlpath.train: 0, Dahm and Keller's learning through the
-#                  whole render); rlpath-frozen-N (rlpath.train: N)
+#                  whole render); rlpath-frozen-N (rlpath.train: N);
+#                  rlpath-sdtree (rlpath.method: sdtree, Müller et al.'s
+#                  trees); rlpath-sdtree-N (the same trained over N spp)
 #   --rl SETTINGS  more rlpath settings for every rlpath variant, a YAML flow
 #                  mapping's inside ("mix: 0.5, grid: 8")
 #   --work DIR     references, images, logs, results (default bench/out/guiding)
@@ -120,6 +122,8 @@ variant_yaml() {
         [ -z "$rl_extra" ] || printf '    rlpath: {%s}\n' "$rl_extra" ;;
     rlpath-online) printf '    integrator: rlpath\n    rlpath: {train: 0%s}\n' "$extra" ;;
     rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "${1#rlpath-frozen-}" "$extra" ;;
+    rlpath-sdtree) printf '    integrator: rlpath\n    rlpath: {method: sdtree%s}\n' "$extra" ;;
+    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "${1#rlpath-sdtree-}" "$extra" ;;
     *) echo "guiding.sh: unknown variant $1" >&2; return 1 ;;
     esac
 }

@@ -41,6 +41,30 @@ void cv_rl_learn_escaped(CvRayItem r)
     cv_rl_update(st.x, (Le.x + Le.y + Le.z) * (1.0 / 3.0), 0.0);
 }
 #endif
+#ifdef CV_RLPATH_SD
+// rlpath's sdtree method (CV_RLPATH_SD): while training, the environment
+// light the path adds to the film adds to its records, which wait for the
+// slot's next path to send them to the host (rlpath/sdtree.glsl).
+#define CV_SD_RECORD
+#include "rlpath/sdtree.glsl"
+void cv_sd_escaped(CvRayItem r)
+{
+    if (!cv_sd_learning())
+        return;
+    uint slot = uint(r.o.w), depth = cv_ray_depth(r);
+    if (depth == 0u)
+        cv_sd_flush(slot);   // the slot's path before
+#ifndef CV_NO_ENV
+    // what main() adds to the film
+    else if (cv_n_lights() > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u)
+        cv_sd_found(slot, depth, r.beta.rgb * cv_env_Le(r.d.xyz) *
+                                     cv_power_heuristic(r.d.w, cv_env_pdf(r.d.xyz)));
+    else
+        cv_sd_found(slot, depth, r.beta.rgb * cv_env_Le(r.d.xyz));
+#endif
+    cv_sd_path_end(slot, depth);
+}
+#endif
 
 void main()
 {
@@ -51,6 +75,9 @@ void main()
         CvRayItem r = cv_ray_in(cv_escaped_ray(i));
 #ifdef CV_RLPATH
         cv_rl_learn_escaped(r);
+#endif
+#ifdef CV_RLPATH_SD
+        cv_sd_escaped(r);
 #endif
 #ifndef CV_NO_ENV
         vec3 Le = cv_env_Le(r.d.xyz);

@@ -29,6 +29,10 @@
 //       draws the bounce from q's answers: bs.wi and bs.f, pdf the density
 //       it was drawn with (for a delta lobe its probability, > 0),
 //       specular whether a delta lobe was chosen; false ends the path
+// and, where it defines CV_STRATEGY_FILM,
+//   void cv_strategy_film(inout CvStrategy g, vec3 L)
+//       the emission this hit adds to the film (MIS-weighted, times the
+//       path throughput)
 // The strategy only decides directions and densities; throughput, MIS,
 // roulette and the queued rays stay here, so the integrators' images differ
 // only by their sampling. Under volpath (CV_MEDIA) the shadow ray and the
@@ -127,6 +131,9 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
             if (depth > 0u && (flags & CV_RAYF_SPECULAR) == 0u && cv_n_lights() > 0u)
                 w = cv_power_heuristic(r.d.w, cv_light_pdf_area(uint(light), r.o.xyz, sf.p, sf.ng));
             cv_film_add(path, beta * Le * w);
+#ifdef CV_STRATEGY_FILM
+            cv_strategy_film(g, beta * Le * w);   // what the path added (rlpath/sd_shade.comp)
+#endif
         }
     }
 

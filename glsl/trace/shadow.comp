@@ -13,6 +13,24 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "tracing.glsl"
 #include "geometry.glsl"
 #include "materials.glsl"
+#ifdef CV_RLPATH_SD
+#define CV_SD_RECORD
+#include "rlpath/sdtree.glsl"
+#endif
+
+// An unoccluded shadow ray's contribution L goes to its path slot's film
+// entry and, while rlpath's sdtree method trains (CV_RLPATH_SD), to the
+// records of the bounces before the vertex that sent it (its depth in
+// s.m.z: rlpath/sd_shade.comp).
+void cv_shadow_add(CvShadowItem s, uint path, vec3 L)
+{
+    cv_film_add(path, L);
+#ifdef CV_RLPATH_SD
+    if (cv_sd_learning())
+        cv_sd_found(path, uint(s.m.z), L);
+#endif
+}
+
 #ifdef CV_MEDIA
 #include "medium/medium.glsl"
 
@@ -44,7 +62,7 @@ void cv_shadow_media(CvShadowItem s, uint path)
                 T *= cv_medium_transmittance(medium, (hit ? h.t : s.o.w) - seg0);
         }
         if (!hit) {
-            cv_film_add(path, s.L.rgb * T);
+            cv_shadow_add(s, path, s.L.rgb * T);
             return;
         }
 #ifdef CV_HAS_ALPHA
@@ -84,7 +102,7 @@ void main()
     CvHit h;
     for (uint k = 0u; k < 64u; k++) {
         if (!cv_trace_closest(s.o.xyz, s.d.xyz, tmin, s.o.w, h)) {
-            cv_film_add(path, s.L.rgb);
+            cv_shadow_add(s, path, s.L.rgb);
             return;
         }
         uint word = cv_prim_word(h.prim);
@@ -96,9 +114,9 @@ void main()
         tmin = h.t * (1.0 + 1e-5) + 1e-6;
     }
 #elif defined(CV_EMPTY_SCENE)
-    cv_film_add(path, s.L.rgb);
+    cv_shadow_add(s, path, s.L.rgb);
 #else
     if (!cv_trace_any(s.o.xyz, s.d.xyz, 0.0, s.o.w))
-        cv_film_add(path, s.L.rgb);
+        cv_shadow_add(s, path, s.L.rgb);
 #endif
 }

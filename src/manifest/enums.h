@@ -35,6 +35,13 @@ enum cv_rl_guide {
     CV_RL_GUIDE_COUNT
 };
 
+/* rlpath.method: how the guide learns. */
+enum cv_rl_method {
+    CV_RL_METHOD_QLEARN = 0,   /* Dahm and Keller's Q-table (the default) */
+    CV_RL_METHOD_SDTREE,       /* Müller et al.'s spatial-directional trees */
+    CV_RL_METHOD_COUNT
+};
+
 enum cv_format_bits {
     CV_FORMAT_EXR = 1u << 0,
     CV_FORMAT_PNG = 1u << 1,
@@ -62,6 +69,7 @@ extern const struct cv_names cv_exr_compression_names;
 /* The compressions a manifest offers: a subset, by name (exr.compression). */
 extern const struct cv_names cv_manifest_compression_names;
 extern const struct cv_names cv_rl_guide_names;
+extern const struct cv_names cv_rl_method_names;
 extern const struct cv_names cv_format_names;   /* file extensions: "exr", "png" */
 extern const struct cv_names cv_aov_names;
 

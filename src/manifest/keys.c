@@ -219,11 +219,17 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                     .has = AT(has_alpha), OUTPUT_SETTING, .def = 0, .def_text = "false",
                     .hash = CV_HASH_OFF_DEFAULT,
                     .help = "alpha from coverage; the environment seen directly is transparent"},
+    [CV_K_RLPATH_METHOD] = {.name = "rlpath.method", .type = CV_KT_ENUM,
+                            .names = &cv_rl_method_names, .offset = AT(rlpath.method),
+                            .has = AT(rlpath.has_method), .def = CV_RL_METHOD_QLEARN,
+                            .def_text = "qlearn", .hash = CV_HASH_OFF_DEFAULT,
+                            .help = "how the guide learns: a Q-table or spatial-directional trees"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&
                    sizeof(enum cv_exr_compression) == sizeof(unsigned) &&
-                   sizeof(enum cv_rl_guide) == sizeof(unsigned),
+                   sizeof(enum cv_rl_guide) == sizeof(unsigned) &&
+                   sizeof(enum cv_rl_method) == sizeof(unsigned),
                "ENUM keys are stored as unsigned");
 
 const struct cv_key *cv_key_find(const char *dotted)

@@ -57,6 +57,7 @@ enum cv_key_id {
     CV_K_LIGHTS_SCALE,
     CV_K_ENV_FILE,
     CV_K_ALPHA,
+    CV_K_RLPATH_METHOD,
     CV_K_COUNT
 };
 

@@ -59,6 +59,8 @@ struct cv_job_rlpath {
     float mix;                 /* [0,1]: share of guided vs. BSDF sampling */
     enum cv_rl_guide guide;    /* default CV_RL_GUIDE_ALL */
     uint32_t train;            /* spp during which the table learns; 0: every pass */
+    bool has_method;
+    enum cv_rl_method method;  /* default CV_RL_METHOD_QLEARN */
 };
 
 /* Overrides of the scene's environment (its LightSource "infinite"

@@ -6,6 +6,7 @@
 #include "trace/bdpt.h"
 #include "trace/integrator.h"
 #include "trace/rlpath.h"
+#include "trace/rlpath_sd.h"
 
 /* The path integrator shades each bin of the hit queue with its own build
  * of trace/shade.comp (CV_SHADE_BIN: diffuse hits with the BSDF code cut
@@ -43,4 +44,11 @@ const struct cv_integrator_ops *cv_integrator_find(enum cv_integrator id)
     if ((unsigned)id >= CV_INTEGRATOR_COUNT)
         return NULL;
     return integrators[id];
+}
+
+const struct cv_integrator_ops *cv_integrator_for(const struct cv_render_params *p)
+{
+    if (p->integrator == CV_INTEGRATOR_RLPATH && p->rl_sdtree)
+        return &cv_rlpath_sd_ops;
+    return cv_integrator_find(p->integrator);
 }

@@ -41,6 +41,12 @@ struct cv_integrator_ops {
      * escaped_define added when not NULL. */
     bool escaped_stage;
     const char *escaped_define;
+    /* The shadow stage is built with shadow_define added when not NULL. */
+    const char *shadow_define;
+    /* The stages pass data to each other through images (rlpath's sdtree
+     * records): a barrier for image access after every stage (the shade
+     * programs of one iteration share none). */
+    bool image_stages;
     /* The stages track participating media (volpath: every stage built
      * with CV_MEDIA where the scene has media, glsl/trace/medium); else
      * media are ignored, as by pbrt-v4's path integrator. */
@@ -102,9 +108,17 @@ struct cv_integrator_ops {
      * before) and no longer queues after_shade. */
     uint32_t (*learn_spp)(const void *state);
     void (*set_learning)(void *state, bool learning);
+    /* May be NULL: after each pass that learned, with the samples per pixel
+     * done (rlpath's sdtree: reads the pass's records back, builds the
+     * next guide); false fails the pass with err set. */
+    bool (*pass_done)(void *state, uint32_t spp_done, struct cv_error *err);
 };
 
 /* The operations of integrator id (CV_RENDER_*); NULL for an unknown id. */
 const struct cv_integrator_ops *cv_integrator_find(enum cv_integrator id);
+/* The operations that render parameters p run: their integrator's, or a
+ * variant of it that they choose (rlpath's sdtree method); NULL for an
+ * unknown integrator. */
+const struct cv_integrator_ops *cv_integrator_for(const struct cv_render_params *p);
 
 #endif

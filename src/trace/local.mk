@@ -6,7 +6,9 @@ libcavalry_a_SOURCES += \
 	src/trace/bdpt.c src/trace/bdpt.h \
 	src/trace/render.c src/trace/render.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h \
-	src/trace/shade_bins.c src/trace/shade_bins.h
+	src/trace/shade_bins.c src/trace/shade_bins.h \
+	src/trace/sdtree.c src/trace/sdtree.h \
+	src/trace/rlpath_sd.c src/trace/rlpath_sd.h
 
 GLSL_FILES += \
 	glsl/shared/trace.h \
@@ -39,7 +41,10 @@ libcavalry_a_SOURCES += src/trace/rlpath.c src/trace/rlpath.h
 GLSL_FILES += glsl/shared/rlpath.h \
 	glsl/trace/rlpath/guide.glsl glsl/trace/rlpath/shade.comp \
 	glsl/trace/rlpath/test_sample.comp \
-	glsl/trace/rlpath/rebuild.comp
+	glsl/trace/rlpath/rebuild.comp \
+	glsl/shared/sdtree.h glsl/trace/rlpath/sdtree.glsl glsl/trace/rlpath/sd_shade.comp \
+	glsl/trace/rlpath/guides.glsl glsl/trace/rlpath/sd_flush.comp \
+	glsl/trace/rlpath/test_sd_sample.comp
 # --- end of rlpath ---
 # --- hair BSDF and curves (issue 27 item 2) ---
 GLSL_FILES += glsl/trace/bsdf/hair.glsl glsl/bvh/curves.glsl

@@ -232,7 +232,7 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
     /* Only for speed, so never into a probed storage size, nor into memory
      * that scenes or other jobs might want. */
     uint64_t cap = CV_WAVE_PATHS < max_paths ? CV_WAVE_PATHS : max_paths;
-    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    const struct cv_integrator_ops *ops = cv_integrator_for(p);
     if (ops->max_paths && ops->max_paths < cap)
         cap = ops->max_paths;
     uint64_t known = cv_gpu_storage_known(gpu);
@@ -259,7 +259,7 @@ static bool choose_paths_per_pixel(struct cv_gpu *gpu, const struct cv_render_pa
 static bool check_params(const struct cv_scene *scene, const struct cv_render_params *p,
                          struct cv_error *err)
 {
-    if (!cv_integrator_find(p->integrator))
+    if (!cv_integrator_for(p))
         return cv_fail(err, "unknown integrator %d", (int)p->integrator);
     if (p->sampler != CV_SAMPLER_SOBOL && p->sampler != CV_SAMPLER_INDEPENDENT)
         return cv_fail(err, "unknown sampler %d", (int)p->sampler);
@@ -268,7 +268,7 @@ static bool check_params(const struct cv_scene *scene, const struct cv_render_pa
         return cv_fail(err, "scene has no film resolution");
     /* whole-sample integrators (bdpt) run no matte stage, and their
      * camera (glsl/trace/bdpt/endpoints.glsl) is a still perspective one */
-    if (cv_integrator_find(p->integrator)->whole_samples) {
+    if (cv_integrator_for(p)->whole_samples) {
         const char *name = cv_integrator_name(p->integrator);
         if (p->alpha || p->id_mattes || p->cryptomatte)
             return cv_fail(err, "integrator \"%s\" renders no alpha or ID mattes", name);
@@ -332,6 +332,7 @@ struct stage_programs {
     const char *matte[MAX_SCENE_DEFINES + 3];
     const char *resolve[MAX_SCENE_DEFINES + 3];
     const char *straight[MAX_SCENE_DEFINES + 5];
+    const char *shadow[MAX_SCENE_DEFINES + 3];
 };
 
 /* Words per path slot of the matte stage (trace.h), 0 when the job asks
@@ -395,7 +396,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * (glsl/shared/conductor_fresnel.h) */
     if (gs->has_conductor_fresnel)
         defines[nd++] = "CV_CONDUCTOR_TABLES";
-    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    const struct cv_integrator_ops *ops = cv_integrator_for(p);
     /* media are tracked by an integrator that renders them, in a scene
      * that has them */
     if (ops->media && gs->has_media)
@@ -418,6 +419,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
                  p->alpha ? "CV_FILM_TRANSPARENT" : ops->resolve_define,
                  p->alpha ? sp->stride : NULL);
     defines_plus(sp->straight, sp->resolve, nd + (p->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
+    defines_plus(sp->shadow, defines, nd, ops->shadow_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
     defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS",
                  escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
@@ -461,6 +463,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->resolve;
         else if (s == ST_RESOLVE_STRAIGHT)
             d = sp->straight;
+        else if (s == ST_SHADOW)
+            d = sp->shadow;
         sp->file[s] = file;
         sp->defines[s] = d;
     }
@@ -473,7 +477,7 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
     for (int s = 0; s < ST_COUNT; s++)
         if (sp->file[s])
             cv_program_request(gpu, sp->file[s], sp->defines[s]);
-    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    const struct cv_integrator_ops *ops = cv_integrator_for(p);
     if (ops->prefetch)
         ops->prefetch(gpu, p, sp->scene_defines);
 }
@@ -531,7 +535,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->passes = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){
                                              .names = pass_names, .n_names = 1});
     if (p->stage_times) {
-        const struct cv_integrator_ops *sops = cv_integrator_find(p->integrator);
+        const struct cv_integrator_ops *sops = cv_integrator_for(p);
         for (int k = 0; k < ST_COUNT; k++)
             r->stage_rows[k] = stage_names[k];
         r->stage_rows[PROF_AFTER_SHADE] =
@@ -543,7 +547,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 
     r->scene = gs;
 
-    const struct cv_integrator_ops *ops = cv_integrator_find(p->integrator);
+    const struct cv_integrator_ops *ops = cv_integrator_for(p);
     r->ops = ops;
     if (ops->whole_samples) {
         r->wave_paths = choose_wave_paths(gpu, p, ops, r->max_depth, r->n_paths);
@@ -674,7 +678,8 @@ static void bind_all(struct cv_renderer *r)
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
 {
     prof_begin(r, s);
-    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot), 0);
+    cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot),
+                                 r->ops->image_stages ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT : 0);
     prof_end(r);
 }
 
@@ -828,6 +833,8 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return false;
     r->iterations += it;
     r->spp_done += spp;
+    if (r->learning && r->ops->pass_done && !r->ops->pass_done(r->integrator, r->spp_done, err))
+        return false;
     return true;
 }
 

@@ -46,6 +46,9 @@ struct cv_render_params {
      * guide is frozen (0: CV_RL_DEFAULT_TRAIN; CV_RL_TRAIN_ALWAYS: every
      * pass) */
     uint32_t rl_train;
+    /* rlpath: learn Müller et al.'s spatial-directional trees
+     * (rlpath.method: sdtree, trace/rlpath_sd.h) instead of the Q-table */
+    bool rl_sdtree;
     /* Paths in flight per pixel (path slots, glsl/shared/trace.h). 0: as
      * many as keep the GPU busy (CV_WAVE_PATHS in all, at most
      * CV_MAX_PATHS_PER_PIXEL), within the advertised storage-buffer size and

@@ -56,6 +56,11 @@ EXTRA_DIST += tests/trace/rlpath_stats.h
 EXTRA_PROGRAMS = tests/trace/rlpath_bench
 tests_trace_rlpath_bench_LDADD = $(CV_LIBS)
 CLEANFILES += tests/trace/rlpath_bench
+# rlpath's sdtree method (Müller et al.'s guide)
+check_PROGRAMS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test
+TESTS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test
+tests_trace_sdtree_test_LDADD = $(CV_LIBS)
+tests_trace_rlpath_sd_sample_test_LDADD = $(CV_LIBS)
 # --- end of rlpath tests ---
 # --- HDR textures in float (issue 24, bug 5) ---
 check_PROGRAMS += tests/trace/hdr_envmap_test

@@ -7,9 +7,10 @@
  * Checked: the image means of path and of rlpath at mix 0, 0.3 and 1
  * (the table learning in the first pass of 16 spp, then frozen: the
  * default rlpath.train; at 0.3 and 1 also learning in every pass, Dahm and
- * Keller's online learning, rlpath.train 0) agree within 4 standard errors of their difference, which is below
+ * Keller's online learning, rlpath.train 0; and with rlpath.method:
+ * sdtree, trained over the first 16 spp) agree within 4 standard errors of their difference, which is below
  * 0.5 % of the mean, so a 2 % bias fails; and mix 0 is BSDF sampling
- * alone: the same image as path, bit for bit (the renderer once put the
+ * alone, with either method: the same image as path, bit for bit (the renderer once put the
  * default in its place). */
 #include "config.h"
 
@@ -70,14 +71,19 @@ int main(void)
     tap_ok(mp > 0.05 && sqrt(sp) < 0.004 * mp, "path: image mean %.5f +- %.5f (%.2f %%)", mp,
            sqrt(sp), 100 * sqrt(sp) / mp);
 
-    const float mixes[] = {0, 0.3f, 1, 0.3f, 1};
-    const uint32_t train[] = {0, 0, 0, CV_RL_TRAIN_ALWAYS, CV_RL_TRAIN_ALWAYS};
-    for (int k = 0; k < 5; k++) {
+    /* the Q-table, then the sdtree method (trained in passes of 1, 2, 4
+     * and 9 spp, frozen from 16 spp) */
+    const float mixes[] = {0, 0.3f, 1, 0.3f, 1, 0, 0.3f, 1};
+    const uint32_t train[] = {0, 0, 0, CV_RL_TRAIN_ALWAYS, CV_RL_TRAIN_ALWAYS, 0, 0, 0};
+    const bool sdtree[] = {false, false, false, false, false, true, true, true};
+    for (int k = 0; k < 8; k++) {
         struct cv_render_params pr = pp;
         pr.integrator = CV_INTEGRATOR_RLPATH;
         pr.rl_mix = mixes[k];
         pr.rl_train = train[k];
-        const char *how = train[k] ? "learning every pass" : "frozen after 16 spp";
+        pr.rl_sdtree = sdtree[k];
+        const char *how = sdtree[k] ? "sdtree, frozen after 16 spp"
+                          : train[k] ? "learning every pass" : "frozen after 16 spp";
         double mr, sr;
         int b = mixes[k] > 0 ? B_GUIDED : B_PATH;
         if (!tap_ok(image_mean(gpu, s, pr, b, &mr, &sr, &err),
@@ -89,22 +95,27 @@ int main(void)
                "z = %.2f)", mixes[k], how, mr, sqrt(sr), mr / mp, z);
     }
 
-    /* mix 0: path's image, sample for sample */
-    struct cv_render_params p0 = pp, r0 = pp;
-    p0.seed = r0.seed = 77;
-    r0.integrator = CV_INTEGRATOR_RLPATH;
-    r0.rl_mix = 0;
-    struct test_image a = {0}, b = {0};
-    const uint32_t passes[] = {8, 8, 0};
-    if (tap_ok(test_render(gpu, s, &p0, passes, &a, &err) && test_render(gpu, s, &r0, passes, &b, &err),
-               "path and rlpath mix 0, same seed: %s", err.msg)) {
-        size_t n = (size_t)a.w * a.h * 4, differ = 0;
-        for (size_t i = 0; i < n; i++)
-            differ += a.rgba[i] != b.rgba[i];
-        tap_ok(differ == 0, "rlpath mix 0 renders path's image bit for bit (%zu of %zu values differ)",
-               differ, n);
+    /* mix 0: path's image, sample for sample (both methods) */
+    for (int sd = 0; sd < 2; sd++) {
+        struct cv_render_params p0 = pp, r0 = pp;
+        p0.seed = r0.seed = 77;
+        r0.integrator = CV_INTEGRATOR_RLPATH;
+        r0.rl_mix = 0;
+        r0.rl_sdtree = sd;
+        const char *method = sd ? "sdtree" : "qlearn";
+        struct test_image a = {0}, b = {0};
+        const uint32_t passes[] = {8, 8, 0};
+        if (tap_ok(test_render(gpu, s, &p0, passes, &a, &err) &&
+                       test_render(gpu, s, &r0, passes, &b, &err),
+                   "path and rlpath %s mix 0, same seed: %s", method, err.msg)) {
+            size_t n = (size_t)a.w * a.h * 4, differ = 0;
+            for (size_t i = 0; i < n; i++)
+                differ += a.rgba[i] != b.rgba[i];
+            tap_ok(differ == 0, "rlpath %s mix 0 renders path's image bit for bit (%zu of %zu "
+                   "values differ)", method, differ, n);
+        }
+        free(a.rgba), free(b.rgba);
     }
-    free(a.rgba), free(b.rgba);
     cv_scene_destroy(&s);
     cv_gpu_destroy(&gpu);
     return tap_done();

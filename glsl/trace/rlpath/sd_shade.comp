@@ -1,0 +1,153 @@
+#version 450
+// glsl/trace/rlpath/sd_shade.comp: the surface stage of rlpath's sdtree
+// method (rlpath.method: sdtree): a path vertex (../path_vertex.glsl) whose
+// bounce is drawn from the one-sample mixture of the hit's spatial leaf's
+// directional quadtree (weight m, sdtree.glsl) and the BSDF (1 - m), whose
+// exact density divides the throughput and enters the MIS weights against
+// light sampling, so the estimator is unbiased for any tree and any m in
+// [0, 1]. Delta lobes stay the BSDF's, glossy ones too (guides.glsl), as in
+// the Q-learning method (shade.comp).
+// While the guide trains (u_sd.learn.x) each vertex records its bounce and
+// adds the emission it finds to the records of the bounces before it; a
+// path that ends sends its records to the host (sdtree.glsl), which builds
+// the next tree from them between passes (src/trace/rlpath_sd.c). Passes
+// after training pay only for the tree's lookups.
+// Built once per bin of the hit queue, as path's shade.comp.
+#include "shared/trace.h"
+layout(local_size_x = CV_TRACE_GROUP) in;
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
+#define CV_BSDF_DIFFUSE_ONLY
+#elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1
+#define CV_NO_LAYERED
+#endif
+#include "../common.glsl"
+#include "../sampler.glsl"
+#include "../geometry.glsl"
+#include "../materials.glsl"
+#include "../lights.glsl"
+#include "../surface_inputs.glsl"
+#define CV_SD_RECORD
+#include "sdtree.glsl"
+#include "guides.glsl"
+#define CV_STRATEGY_FILM
+
+// The guided strategy (../path_vertex.glsl). Le: what the emission at
+// this hit adds to the film (for the records); root, m: the hit's quadtree and guiding weight (0:
+// BSDF sampling alone); pd: the probability with which the BSDF picks a
+// delta lobe (those stay the BSDF's); guided, pq: the bounce is the
+// guide's draw, of guided density pq.
+struct CvStrategy {
+    vec3 Le;
+    bool eligible;
+    uint cls;
+    int root;
+    float m;
+    float pd;
+    bool guided;
+    float pq;
+};
+
+void cv_strategy_emitted(inout CvStrategy g, vec3 Le, uint flags) {}
+
+void cv_strategy_film(inout CvStrategy g, vec3 L) { g.Le = L; }
+
+void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool delta)
+{
+    g.eligible = !delta && cv_rl_guides(b);
+    if (g.eligible) {
+        // the normal on the side the path came from
+        g.cls = cv_sd_class(dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns);
+        vec2 l = cv_sd_leaf(sf.p, g.cls);
+        g.root = int(l.x);
+        g.m = l.y;
+    }
+    g.pd = g.m > 0.0 ? cv_bsdf_delta_prob(b, wo) : 0.0;
+}
+
+float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf)
+{
+    if (!(g.m > 0.0))
+        return bsdf_pdf;
+    return g.m * (1.0 - g.pd) * cv_sd_pdf(g.root, wi) + (1.0 - g.m) * bsdf_pdf;
+}
+
+// One-sample mixture as in shade.comp: u_bsdf.x picks the strategy and,
+// rescaled, drives it; a guided draw still lets the BSDF pick its lobe and
+// keeps a delta lobe it picks, so a delta lobe has the BSDF's probability
+// whatever m.
+void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bsdf, inout CvBsdfQuery q)
+{
+    float m = g.m;
+    g.guided = m > 0.0 && u_bsdf.x < m;
+    q.uc = u_bc.x;
+    q.u = m > 0.0 ? vec2(min((g.guided ? u_bsdf.x : u_bsdf.x - m) / (g.guided ? m : 1.0 - m),
+                             CV_ONE_MINUS_EPS),
+                         u_bsdf.y)
+                  : u_bsdf;
+    if (!g.guided || g.pd > 0.0)
+        q.ask |= CV_BQ_SAMPLE;
+    if (g.guided) {
+        q.wi1 = cv_sd_sample(g.root, q.u, g.pq);
+        q.ask |= CV_BQ_F1 | CV_BQ_PDF1;
+    }
+}
+
+bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvBsdfQuery q,
+                        out CvBsdfSample bs, out float pdf, out bool specular)
+{
+    float m = g.m;
+    pdf = 0.0;
+    specular = false;
+    bool guided = g.guided;
+    bs = q.s;
+    if (guided && g.pd > 0.0 && q.sampled && (bs.flags & CV_BSDF_SPECULAR) != 0u)
+        guided = false;   // the delta lobe the BSDF picked: bs stands
+    else if (!guided && !q.sampled)
+        return false;
+    float pq = 0.0;
+    if (guided) {
+        bs.wi = q.wi1;
+        bs.f = q.f1;
+        bs.pdf = q.pdf1;
+        pq = g.pq;
+    } else {
+        if (bs.pdf <= 0.0)
+            return false;
+        specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+        if (m > 0.0 && !specular)
+            pq = cv_sd_pdf(g.root, bs.wi);
+    }
+    // a delta lobe is chosen with its BSDF probability bs.pdf
+    pdf = specular ? bs.pdf : m * (1.0 - g.pd) * pq + (1.0 - m) * bs.pdf;
+    return pdf > 0.0;
+}
+
+#include "../path_vertex.glsl"
+
+// Shades hit i; while training, keeps the path's records (sdtree.glsl).
+void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ray,
+              out CvRayItem nr)
+{
+    CvHitItem h = hits[i];
+    CvRayItem r = cv_ray_in(h.ray);
+    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0);
+    cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
+    if (!cv_sd_learning())
+        return;
+    uint slot = uint(r.o.w), depth = cv_ray_depth(r);
+    if (depth == 0u)
+        cv_sd_flush(slot);   // the slot's path before (its shadow rays are done)
+    else
+        cv_sd_found(slot, depth, g.Le);
+    if (push_shadow)
+        s.m.z = float(depth);   // the shadow stage adds its light to the records
+    if (push_ray)
+        // nr.d.w: the bounce's density, 0 for a delta lobe; only the
+        // vertices the guide serves train it
+        cv_sd_record(slot, depth, nr.o.xyz, g.cls, nr.d.xyz, g.eligible ? nr.d.w : 0.0,
+                     nr.beta.rgb);
+    else
+        cv_sd_path_end(slot, depth);
+}
+
+#include "../shade_queue.glsl"

@@ -1,0 +1,214 @@
+// glsl/trace/rlpath/sdtree.glsl: the guide of rlpath's sdtree method
+// (layout in shared/sdtree.h): the spatial leaf of a point, sampling a
+// direction from its directional quadtree and the density of a direction,
+// and (CV_SD_RECORD) the training records of a path. Sampling reuses its
+// two random numbers down the quadtree: at each node u.x picks the column
+// of quadrants by their marginal and u.y the quadrant in it, each rescaled
+// to [0, 1) within the choice, and what is left of them places the point
+// in the last quadrant. The density of the point is the product of 4 times
+// each quadrant's probability; the pdf function walks the same quadrants
+// for a given point, so the two agree (a point on a quadrant edge, where
+// they may part, has measure zero).
+// Cost: a lookup is a walk down the spatial tree (one texel per level),
+// sampling or a pdf two texels per quadtree level.
+// Include after the local_size layout line. CV_SD_RECORD: the record
+// images read-write (shade and escaped stages while training).
+#ifndef CV_RLPATH_SDTREE_GLSL
+#define CV_RLPATH_SDTREE_GLSL
+
+#include "shared/sdtree.h"
+
+layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
+layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
+#ifdef CV_SD_RECORD
+layout(rgba32f, binding = CV_IMAGE_SD_VERTS) uniform imageBuffer sd_verts;
+layout(rgba32f, binding = CV_IMAGE_SD_OUT) uniform writeonly imageBuffer sd_out;
+layout(r32ui, binding = CV_IMAGE_SD_COUNT) uniform uimageBuffer sd_count;
+#endif
+
+const float CV_SD_PI = 3.14159265358979323846;
+const float CV_SD_ONE_MINUS_EPS = 0.99999994;
+
+bool cv_sd_learning() { return u_sd.learn.x != 0u; }
+
+// The orientation class of a normal n (shared/sdtree.h).
+uint cv_sd_class(vec3 n)
+{
+    vec3 a = abs(n);
+    uint ax = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+    return 2u * ax + (n[ax] < 0.0 ? 1u : 0u);
+}
+
+// The quadtree of point p and orientation class cls: its root (x, a texel
+// index) and its guiding weight (y; 0 before the first build: the empty
+// table's classes have weight 0).
+vec2 cv_sd_leaf(vec3 p, uint cls)
+{
+    int node = 0;
+    vec4 n = imageLoad(sd_tree, 0);
+    for (uint d = 0u; d < CV_SD_MAX_SPATIAL_DEPTH && n.x < CV_SD_LEAF; d++) {
+        int axis = int(n.x);
+        node = int(n.z) + (p[axis] >= n.y ? 1 : 0);
+        n = imageLoad(sd_tree, node);
+    }
+    if (n.x < CV_SD_LEAF)
+        return vec2(0.0);
+    return imageLoad(sd_tree, int(n.z) + int(cls)).xy;
+}
+
+// The square point of a unit direction, and back.
+vec2 cv_sd_square(vec3 w)
+{
+    float u = clamp((w.z + 1.0) * 0.5, 0.0, CV_SD_ONE_MINUS_EPS);
+    float v = (atan(w.y, w.x) + CV_SD_PI) * (0.5 / CV_SD_PI);
+    return vec2(u, clamp(v, 0.0, CV_SD_ONE_MINUS_EPS));
+}
+
+vec3 cv_sd_dir(vec2 s)
+{
+    float z = clamp(2.0 * s.x - 1.0, -1.0, 1.0);
+    float phi = 2.0 * CV_SD_PI * s.y - CV_SD_PI;
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+// Draws a point of the quadtree at texel root with u in [0,1)^2; returns
+// it on the square and its density there (on the square).
+vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
+{
+    int q = root;
+    vec2 lo = vec2(0.0);
+    float side = 1.0;
+    pdf = 1.0;
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        vec4 p = imageLoad(sd_tree, q);
+        vec4 c = imageLoad(sd_tree, q + 1);
+        // the column: ix 0 holds quadrants 0 and 2
+        float pc = p.x + p.z;
+        int ix = u.x < pc ? 0 : 1;
+        u.x = ix == 0 ? u.x / pc : (u.x - pc) / (1.0 - pc);
+        float a = ix == 0 ? p.x : p.y, s = ix == 0 ? pc : p.y + p.w;
+        float pr = a / s;
+        int iy = u.y < pr ? 0 : 1;
+        u.y = iy == 0 ? u.y / pr : (u.y - pr) / (1.0 - pr);
+        u = clamp(u, vec2(0.0), vec2(CV_SD_ONE_MINUS_EPS));
+        int k = ix + 2 * iy;
+        pdf *= 4.0 * p[k];
+        side *= 0.5;
+        lo += side * vec2(float(ix), float(iy));
+        int child = int(c[k]);
+        if (child == 0)
+            break;
+        q = child;
+    }
+    return lo + side * u;
+}
+
+// The density on the square of point s under the quadtree at texel root.
+float cv_sd_pdf_square(int root, vec2 s)
+{
+    int q = root;
+    float pdf = 1.0;
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        vec4 p = imageLoad(sd_tree, q);
+        vec4 c = imageLoad(sd_tree, q + 1);
+        int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
+        int k = ix + 2 * iy;
+        pdf *= 4.0 * p[k];
+        // the point in the quadrant, scaled to its square (exact in float)
+        s = 2.0 * s - vec2(float(ix), float(iy));
+        int child = int(c[k]);
+        if (child == 0)
+            break;
+        q = child;
+    }
+    return pdf;
+}
+
+// Solid-angle versions.
+vec3 cv_sd_sample(int root, vec2 u, out float pdf)
+{
+    vec2 s = cv_sd_sample_square(root, u, pdf);
+    pdf *= 1.0 / (4.0 * CV_SD_PI);
+    return cv_sd_dir(s);
+}
+
+float cv_sd_pdf(int root, vec3 w)
+{
+    return cv_sd_pdf_square(root, cv_sd_square(w)) * (1.0 / (4.0 * CV_SD_PI));
+}
+
+#ifdef CV_SD_RECORD
+// The slot's first texel: its pending count (x); its records follow.
+int cv_sd_slot_texel(uint slot) { return int(slot * CV_SD_SLOT_TEXELS); }
+int cv_sd_record_texel(uint slot, uint k) { return cv_sd_slot_texel(slot) + 1 + int(2u * k); }
+
+// The record of the bounce that leaves the vertex at depth from p (of
+// orientation class cls) in direction wi drawn with solid-angle density
+// pdf (0: not a vertex the guide serves, skipped), with throughput beta
+// after it.
+void cv_sd_record(uint slot, uint depth, vec3 p, uint cls, vec3 wi, float pdf, vec3 beta)
+{
+    if (depth >= CV_SD_MAX_RECORDS)
+        return;
+    int t = cv_sd_record_texel(slot, depth);
+    float b = (beta.x + beta.y + beta.z) * (1.0 / 3.0);
+    imageStore(sd_verts, t, vec4(p, b > 0.0 ? pdf : 0.0));
+    imageStore(sd_verts, t + 1, vec4(cv_sd_square(wi) + vec2(float(cls), 0.0), b, 0.0));
+}
+
+// Light L that the path adds to the film (times its throughput: an
+// emission hit or an unoccluded shadow ray) from the vertex at depth adds
+// to the incident radiance of each bounce before it: L over the
+// throughput after that bounce.
+void cv_sd_found(uint slot, uint depth, vec3 L)
+{
+    float c = dot(L, vec3(1.0 / 3.0));
+    if (!(c > 0.0) || isinf(c))
+        return;
+    uint n = min(depth, CV_SD_MAX_RECORDS);
+    for (uint k = 0u; k < n; k++) {
+        int t = cv_sd_record_texel(slot, k) + 1;
+        vec4 r = imageLoad(sd_verts, t);
+        if (r.z > 0.0)
+            imageStore(sd_verts, t, vec4(r.xyz, r.w + c / r.z));
+    }
+}
+
+// The path of the slot ended at depth: its records of the bounces before
+// wait for the shadow rays of its last vertex, until the slot's next path
+// starts (cv_sd_flush).
+void cv_sd_path_end(uint slot, uint depth)
+{
+    imageStore(sd_verts, cv_sd_slot_texel(slot), vec4(float(min(depth, CV_SD_MAX_RECORDS))));
+}
+
+// Sends the finished path's records to the host (appended at a counter),
+// before the slot's next path overwrites them: at its first vertex or
+// miss, and after each training pass (sd_flush.comp).
+void cv_sd_flush(uint slot)
+{
+    int h = cv_sd_slot_texel(slot);
+    uint n = uint(imageLoad(sd_verts, h).x);
+    if (n == 0u)
+        return;
+    imageStore(sd_verts, h, vec4(0.0));
+    uint keep = 0u;
+    for (uint k = 0u; k < n; k++)
+        keep += imageLoad(sd_verts, cv_sd_record_texel(slot, k)).w > 0.0 ? 1u : 0u;
+    if (keep == 0u)
+        return;
+    uint at = imageAtomicAdd(sd_count, 0, keep);
+    for (uint k = 0u; k < n && at < u_sd.learn.y; k++) {
+        int t = cv_sd_record_texel(slot, k);
+        vec4 a = imageLoad(sd_verts, t);
+        if (a.w > 0.0) {
+            imageStore(sd_out, int(2u * at), a);
+            imageStore(sd_out, int(2u * at + 1u), imageLoad(sd_verts, t + 1));
+            at++;
+        }
+    }
+}
+#endif
+
+#endif

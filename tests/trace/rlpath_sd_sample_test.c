@@ -1,0 +1,267 @@
+/* rlpath_sd_sample_test.c: rlpath's sdtree guide on the GPU (glsl/trace/
+ * rlpath/sdtree.glsl, through test_sd_sample.comp) against the host's
+ * table (trace/sdtree.c), for a tree built from synthetic records (a
+ * bright spot of directions over a dimmer half of the sphere) and uploaded
+ * as the renderer does (cv_rlpath_sd_build): the spatial lookup finds the
+ * host's leaf and weight; directions drawn from the leaf's quadtree are
+ * unit vectors whose pdf at sampling equals the pdf evaluated at them and
+ * the host's; their histogram over 64 x 64 equal-area cells follows the
+ * pdf (chi-square against the exact integral of the host's piecewise
+ * constant density over each cell, p >= 0.01); the same for the one-sample
+ * mixture with a Lambertian lobe as sd_shade.comp draws it (density m pQ +
+ * (1 - m) pBSDF); the GPU's pdf on a grid of directions equals the host's. */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "glsl/shared/sdtree.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/gl_check.h"
+#include "gpu/program.h"
+#include "tests/gpu/gpu_test_util.h"
+#include "tests/trace/rlpath_stats.h"
+#include "trace/rlpath_sd.h"
+#include "trace/sdtree.h"
+
+#define PI 3.14159265358979323846
+#define N 200000u
+#define H 64u
+
+static const double normal[3] = {0.3, -0.5, 0.812404};
+static const float point[3] = {0.5f, 0.25f, 0.75f};
+
+static uint64_t rng_state = 0x2545f4914f6cdd1dull;
+static double rnd(void)
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) * 0x1p-53;
+}
+
+static void square_of(const double w[3], double *u, double *v)
+{
+    *u = fmin(fmax((w[2] + 1) * 0.5, 0), 1 - 1e-12);
+    *v = fmin(fmax((atan2(w[1], w[0]) + PI) / (2 * PI), 0), 1 - 1e-12);
+}
+
+static void dir_of(double u, double v, double w[3])
+{
+    double z = 2 * u - 1, phi = 2 * PI * v - PI, r = sqrt(fmax(0, 1 - z * z));
+    w[0] = r * cos(phi);
+    w[1] = r * sin(phi);
+    w[2] = z;
+}
+
+static double lambert(const double w[3])
+{
+    return fmax(w[0] * normal[0] + w[1] * normal[1] + w[2] * normal[2], 0) / PI;
+}
+
+/* The integral of the quadtree's density over [x0,x1) x [y0,y1) (on the
+ * square), from its node q over the square at (ox, oy) of the given side
+ * with density `pdf` so far. */
+static double integrate_rect(const float (*t)[4], uint32_t q, double ox, double oy, double side,
+                             double pdf, double x0, double x1, double y0, double y1)
+{
+    double s = 0, h = side / 2;
+    for (int k = 0; k < 4; k++) {
+        double ax = ox + h * (k & 1), ay = oy + h * (k >> 1);
+        double ix = fmin(ax + h, x1) - fmax(ax, x0), iy = fmin(ay + h, y1) - fmax(ay, y0);
+        if (ix <= 0 || iy <= 0)
+            continue;
+        double p = pdf * 4 * t[q][k];
+        uint32_t c = (uint32_t)t[q + 1][k];
+        s += c ? integrate_rect(t, c, ax, ay, h, p, x0, x1, y0, y1) : p * ix * iy;
+    }
+    return s;
+}
+
+static struct cv_sd_record *make_records(size_t n)
+{
+    struct cv_sd_record *r = calloc(n, sizeof(*r));
+    for (size_t i = 0; i < n; i++) {
+        for (int a = 0; a < 3; a++)
+            r[i].p[a] = (float)rnd();
+        r[i].pdf = (float)(1 / (4 * PI));
+        r[i].beta = 1;
+        if (rnd() < 0.05) {
+            r[i].u = (float)(0.8 + 0.02 * (rnd() - 0.5));
+            r[i].v = (float)(0.3 + 0.02 * (rnd() - 0.5));
+            r[i].L = 20;
+        } else {
+            r[i].u = (float)(0.4 + 0.6 * rnd());
+            r[i].v = (float)rnd();
+            r[i].L = (float)rnd();
+        }
+        r[i].u += 4;   /* the class of `normal` (+z); the other classes get none */
+    }
+    return r;
+}
+
+struct rig {
+    struct cv_gpu *gpu;
+    struct cv_rlpath_sd *sd;
+    GLuint out, in;
+};
+
+/* Runs TEST_MODE mode over n items; out gets 8 floats per item. */
+static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
+                struct cv_error *err)
+{
+    char def[32];
+    snprintf(def, sizeof(def), "TEST_MODE=%d", mode);
+    const char *defines[] = {def, NULL};
+    struct cv_program *prog = cv_program_get(g->gpu, "trace/rlpath/test_sd_sample.comp", defines,
+                                             err);
+    if (!prog)
+        return false;
+    cv_rlpath_sd_bind(g->sd);
+    cv_buffer_bind(g->out, CV_BIND_RL_PROBE_OUT);
+    cv_buffer_bind(g->in, CV_BIND_RL_PROBE_IN);
+    glUseProgram(prog->id);
+    glUniform1ui(0, n);
+    glUniform1ui(1, seed);
+    glUniform3f(2, point[0], point[1], point[2]);
+    cv_program_dispatch_1d(prog, n);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    return cv_buffer_read(g->out, 0, (size_t)n * 8 * sizeof(float), out, err) &&
+           cv_gl_check(err, "test_sd_sample mode %d", mode);
+}
+
+int main(void)
+{
+    struct cv_error err = {{0}};
+    struct rig g = {0};
+    g.gpu = test_gpu_open(CV_BACKEND_AUTO);
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const size_t NR = 100000;
+    struct cv_sd_record *recs = make_records(NR);
+    struct cv_sd_record *copy = malloc(NR * sizeof(*recs));
+    memcpy(copy, recs, NR * sizeof(*recs));
+    /* the host's table, from the same records in the same order */
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_opts o = cv_sdtree_defaults;
+    o.mix = 0.6f;
+    cv_sdtree_build(lo, hi, copy, NR, &o, &t, &nt, NULL);
+    uint32_t leaf = cv_sdtree_leaf((const float(*)[4])t, point);
+    uint32_t key = (uint32_t)t[leaf][2] + 4;   /* +z */
+    uint32_t root = (uint32_t)t[key][0];
+    float m = t[key][1];
+
+    float *out = malloc((size_t)N * 8 * sizeof(float));
+    bool ok = tap_ok(cv_rlpath_sd_create(g.gpu, lo, hi, 64, o.mix, 0, &g.sd, &err),
+                     "create: %s", err.msg) &&
+              tap_ok(cv_rlpath_sd_build(g.sd, recs, NR, &err), "build and upload: %s", err.msg);
+    g.out = cv_buffer_create((size_t)N * 8 * sizeof(float), NULL, "probe out", &err);
+    g.in = cv_buffer_create((size_t)256 * 256 * 16, NULL, "probe in", &err);
+    if (!ok || !tap_ok(g.out && g.in, "probe buffers: %s", err.msg))
+        return tap_done();
+    tap_ok(m == o.mix && t[key - 1][1] == 0, "the test point's leaf guides with the weight %g "
+           "in the normal's class, not in another", m);
+
+    for (int mode = 0; mode <= 1; mode++) {
+        const char *what = mode ? "mixture" : "guide";
+        if (!tap_ok(run(&g, mode, N, 11 + mode, out, &err), "%s: sample %u: %s", what, N,
+                    err.msg))
+            continue;
+        double *obs = calloc((size_t)H * H, sizeof(double));
+        double *expc = calloc((size_t)H * H, sizeof(double));
+        uint32_t bad_len = 0, bad_pdf = 0, bad_ref = 0, bad_leaf = 0;
+        for (uint32_t i = 0; i < N; i++) {
+            const float *r = out + 8 * (size_t)i;
+            double w[3] = {r[0], r[1], r[2]}, u, v;
+            double len = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+            bad_len += fabs(len - 1) > 1e-4;
+            square_of(w, &u, &v);
+            uint32_t cu = (uint32_t)(u * H), cv = (uint32_t)(v * H);
+            obs[(size_t)(cu < H ? cu : H - 1) * H + (cv < H ? cv : H - 1)] += 1;
+            double pq = cv_sdtree_pdf_square((const float(*)[4])t, root, u, v) / (4 * PI);
+            if (mode == 0) {
+                bad_pdf += fabs(r[3] - r[4]) > 1e-4 * r[4];
+                bad_ref += fabs(r[4] - pq) > 1e-3 * pq;
+                bad_leaf += r[5] != m || (uint32_t)r[6] != root;
+            } else {
+                double mix = m * r[4] + (1 - m) * r[5];
+                bad_pdf += fabs(r[3] - mix) > 1e-5 * mix;
+                bad_ref += fabs(r[4] - pq) > 1e-3 * pq || fabs(r[5] - lambert(w)) > 1e-4;
+            }
+        }
+        tap_ok(bad_len == 0, "%s: unit directions (%u not)", what, bad_len);
+        if (mode == 0) {
+            tap_ok(bad_leaf == 0, "guide: the lookup finds the host's leaf (texel %u) and "
+                   "weight (%u differ)", root, bad_leaf);
+            tap_ok(bad_pdf <= N / 1000, "guide: pdf at sampling equals the pdf at w (%u of %u "
+                   "differ, quadrant edges allowed: %u)", bad_pdf, N, N / 1000);
+        } else {
+            tap_ok(bad_pdf == 0, "mixture: pdf m pQ + (1-m) pBSDF (%u differ)", bad_pdf);
+        }
+        tap_ok(bad_ref <= N / 1000, "%s: GPU pdfs equal the host's (%u of %u differ)", what,
+               bad_ref, N);
+        for (uint32_t a = 0; a < H; a++)
+            for (uint32_t b = 0; b < H; b++) {
+                double x0 = (double)a / H, y0 = (double)b / H;
+                double e = integrate_rect((const float(*)[4])t, root, 0, 0, 1, 1, x0, x0 + 1.0 / H,
+                                          y0, y0 + 1.0 / H);
+                if (mode) {
+                    /* the lobe by an 8 x 8 midpoint rule per cell (smooth) */
+                    double l = 0;
+                    for (int i = 0; i < 8; i++)
+                        for (int j = 0; j < 8; j++) {
+                            double w[3];
+                            dir_of(x0 + (i + 0.5) / (8.0 * H), y0 + (j + 0.5) / (8.0 * H), w);
+                            l += lambert(w);
+                        }
+                    l *= 4 * PI / (64.0 * H * H);
+                    e = m * e + (1 - m) * l;
+                }
+                expc[(size_t)a * H + b] = N * e;
+            }
+        int dof = 0;
+        double pv = rl_chi2_pvalue(obs, expc, (size_t)H * H, &dof);
+        tap_ok(pv >= 0.01, "%s: chi-square over %ux%u cells: p = %.4f (dof %d) >= 0.01", what, H,
+               H, pv, dof);
+        free(obs);
+        free(expc);
+    }
+
+    /* the pdf on a grid of directions */
+    const uint32_t G = 256;
+    float *in = calloc((size_t)G * G * 4, sizeof(float));
+    for (uint32_t a = 0; a < G; a++)
+        for (uint32_t b = 0; b < G; b++) {
+            double w[3];
+            dir_of((a + 0.5) / G, (b + 0.5) / G, w);
+            for (int k = 0; k < 3; k++)
+                in[4 * ((size_t)a * G + b) + k] = (float)w[k];
+        }
+    glNamedBufferSubData(g.in, 0, (GLsizeiptr)G * G * 16, in);
+    if (tap_ok(run(&g, 2, G * G, 0, out, &err), "evaluate on %ux%u directions: %s", G, G,
+               err.msg)) {
+        uint32_t bad = 0;
+        double sum = 0;
+        for (uint32_t i = 0; i < G * G; i++) {
+            double w[3] = {in[4 * i], in[4 * i + 1], in[4 * i + 2]}, u, v;
+            square_of(w, &u, &v);
+            double ref = cv_sdtree_pdf_square((const float(*)[4])t, root, u, v) / (4 * PI);
+            bad += fabs(out[8 * i] - ref) > 1e-4 * ref;
+            sum += out[8 * i];
+        }
+        tap_ok(bad == 0, "pdf on the grid equals the host's (%u of %u differ)", bad, G * G);
+        tap_ok(fabs(sum * 4 * PI / (G * G) - 1) < 0.05, "midpoint integral of the pdf %.4f",
+               sum * 4 * PI / (G * G));
+    }
+    free(in);
+    free(out);
+    free(t);
+    free(recs);
+    free(copy);
+    cv_buffer_destroy(&g.out);
+    cv_buffer_destroy(&g.in);
+    cv_rlpath_sd_destroy(&g.sd);
+    cv_gpu_destroy(&g.gpu);
+    return tap_done();
+}

@@ -1,0 +1,297 @@
+/* sdtree_test.c: the host build of rlpath's sdtree guide (trace/sdtree.c,
+ * layout glsl/shared/sdtree.h) on synthetic records: no records give one
+ * leaf whose six orientation classes have uniform, unguided quadtrees;
+ * records spread over a box give a spatial tree whose leaves hold at most
+ * the split threshold, and every record found again in the leaf that the
+ * lookup names; the flattened table's links point where the layout says
+ * (spatial children inside the spatial part, each leaf to a block of six
+ * class texels of its own, quadtree nodes at even offsets after those, the
+ * root never a child); every node's four probabilities positive and
+ * summing to 1; every quadtree's density integrating to 1 over the square
+ * (exactly, by walking the tree, and through the lookup the shaders mirror
+ * on a midpoint grid, exact for trees at most 8 deep); a class guiding iff
+ * it has enough records of radiance in front of its axis (the build
+ * weights radiance by the cosine to the axis); the density following the
+ * recorded radiance (a bright spot of directions gets many times the
+ * uniform density in the classes that face it, a dark half about the
+ * floor); records with a non-finite value or no density are ignored. */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "glsl/shared/sdtree.h"
+#include "tests/tap.h"
+#include "trace/sdtree.h"
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) * 0x1p-53;
+}
+
+/* The integral of a quadtree's density over its square, walking every
+ * node: sum over leaf quadrants of density times area. */
+static double integrate(const float (*t)[4], uint32_t q, double pdf, double area)
+{
+    double s = 0;
+    for (int k = 0; k < 4; k++) {
+        double p = pdf * 4 * t[q][k];
+        uint32_t c = (uint32_t)t[q + 1][k];
+        s += c ? integrate(t, c, p, area / 4) : p * area / 4;
+    }
+    return s;
+}
+
+/* Checks the links and probabilities of the quadtree at q; counts nodes. */
+static void check_quad(const float (*t)[4], size_t nt, uint32_t ns, uint32_t q, uint32_t depth,
+                       uint32_t *bad_link, uint32_t *bad_prob, uint32_t *nodes)
+{
+    (*nodes)++;
+    double sum = 0;
+    for (int k = 0; k < 4; k++) {
+        sum += t[q][k];
+        if (!(t[q][k] > 0))
+            (*bad_prob)++;
+    }
+    if (fabs(sum - 1) > 1e-6)
+        (*bad_prob)++;
+    for (int k = 0; k < 4; k++) {
+        uint32_t c = (uint32_t)t[q + 1][k];
+        if (!c)
+            continue;
+        if (c < ns || c + 1 >= nt || (c - ns) % 2 || depth + 1 >= CV_SD_MAX_DEPTH ||
+            (float)c != t[q + 1][k]) {
+            (*bad_link)++;
+            continue;
+        }
+        check_quad(t, nt, ns, c, depth + 1, bad_link, bad_prob, nodes);
+    }
+}
+
+/* The cosine of direction (u, v) on the square to the axis of class c. */
+static double class_cos(uint32_t c, double u, double v)
+{
+    double z = 2 * u - 1, phi = 2 * M_PI * v - M_PI, s = sqrt(fmax(0, 1 - z * z));
+    double w[3] = {s * cos(phi), s * sin(phi), z};
+    return w[c / 2] * (c & 1 ? -1 : 1);
+}
+
+static uint32_t quad_depth(const float (*t)[4], uint32_t q)
+{
+    uint32_t d = 0;
+    for (int k = 0; k < 4; k++) {
+        uint32_t c = (uint32_t)t[q + 1][k];
+        if (c) {
+            uint32_t e = quad_depth(t, c);
+            if (e > d)
+                d = e;
+        }
+    }
+    return d + 1;
+}
+
+static void test_empty(void)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_stats st;
+    cv_sdtree_build(lo, hi, NULL, 0, &cv_sdtree_defaults, &t, &nt, &st);
+    uint32_t bad = 0;
+    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 3 * CV_SD_CLASSES; c++) {
+        const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + 2 * c], *ch = q + 4;
+        bad += k[0] != (float)(1 + CV_SD_CLASSES + 2 * c) || k[1] != 0;
+        bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0.25f;
+        bad += ch[0] != 0 || ch[1] != 0 || ch[2] != 0 || ch[3] != 0;
+    }
+    tap_ok(nt == 1 + 3 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
+           "no records: one leaf, its class texels at texel 1 (%zu texels)", nt);
+    tap_ok(bad == 0, "no records: every class of weight 0, one uniform quadtree node each "
+           "(%u wrong)", bad);
+    tap_ok(st.spatial_leaves == 1 && st.guiding == 0 && st.quad_nodes == CV_SD_CLASSES,
+           "no records: stats %u leaves, %u guiding, %u quadtree nodes", st.spatial_leaves,
+           st.guiding, st.quad_nodes);
+    free(t);
+}
+
+/* n records in [0,2]x[0,1]x[0,1]: a share `spot` of them in a small
+ * bright spot of directions about (0.8, 0.3) on the square, radiance 20,
+ * the rest uniform in u >= 0.5 (radiance 1) with pdf 1 / (4 pi). */
+static struct cv_sd_record *make_records(size_t n, double spot)
+{
+    struct cv_sd_record *r = calloc(n, sizeof(*r));
+    for (size_t i = 0; i < n; i++) {
+        r[i].p[0] = (float)(2 * rnd());
+        r[i].p[1] = (float)rnd();
+        r[i].p[2] = (float)rnd();
+        r[i].pdf = (float)(1 / (4 * M_PI));
+        r[i].beta = 1;
+        /* as read back: the class (0 .. 5) added to u */
+        r[i].beta = (float)(int)(6 * rnd());
+        if (rnd() < spot) {
+            r[i].u = (float)(0.8 + 0.01 * (rnd() - 0.5));
+            r[i].v = (float)(0.3 + 0.01 * (rnd() - 0.5));
+            r[i].L = 20;
+        } else {
+            r[i].u = (float)(0.5 + 0.5 * rnd());
+            r[i].v = (float)rnd();
+            r[i].L = rnd() < 0.5 ? 1 : 0;
+        }
+        r[i].u += r[i].beta;
+    }
+    return r;
+}
+
+static void test_build(void)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 1};
+    const size_t N = 200000;
+    struct cv_sd_record *r = make_records(N, 0.05);
+    /* junk the build must ignore */
+    r[0].pdf = 0;
+    r[1].L = NAN;
+    r[2].pdf = -1;
+    struct cv_sd_record *copy = malloc(N * sizeof(*r));
+    memcpy(copy, r, N * sizeof(*r));
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_stats st;
+    struct cv_sdtree_opts o = cv_sdtree_defaults;
+    cv_sdtree_build(lo, hi, r, N, &o, &t, &nt, &st);
+    uint32_t ns = st.spatial_nodes, nc = CV_SD_CLASSES * st.spatial_leaves, qb = ns + nc;
+    tap_ok(st.spatial_leaves > 8 && st.spatial_leaves * 2 - 1 == ns,
+           "%u spatial leaves of %u nodes (a full binary tree)", st.spatial_leaves, ns);
+    tap_ok(nt == qb + 2 * (size_t)st.quad_nodes && st.quad_nodes >= nc,
+           "%zu texels: %u spatial + %u class + 2 x %u quadtree", nt, ns, nc, st.quad_nodes);
+    /* spatial links */
+    uint32_t bad_s = 0, leaves = 0;
+    uint8_t *seen = calloc(st.spatial_leaves + 1, 1);
+    for (uint32_t i = 0; i < ns; i++) {
+        if (t[i][0] == (float)CV_SD_LEAF) {
+            uint32_t k = (uint32_t)t[i][2];
+            leaves++;
+            /* a block of its own */
+            if (k < ns || k >= qb || (k - ns) % CV_SD_CLASSES || seen[(k - ns) / CV_SD_CLASSES]++)
+                bad_s++;
+            for (uint32_t c = 0; c < CV_SD_CLASSES && k + c < qb; c++) {
+                uint32_t q = (uint32_t)t[k + c][0];
+                if (q < qb || (q - qb) % 2 || q + 1 >= nt)
+                    bad_s++;
+                if (!(t[k + c][1] == 0 || t[k + c][1] == o.mix))
+                    bad_s++;
+            }
+        } else {
+            uint32_t c = (uint32_t)t[i][2];
+            if (!(t[i][0] == 0 || t[i][0] == 1 || t[i][0] == 2) || c <= i || c + 1 >= ns)
+                bad_s++;
+        }
+    }
+    tap_ok(bad_s == 0 && leaves == st.spatial_leaves,
+           "spatial nodes link inside the spatial part, each leaf to a block of class "
+           "texels of its own, those to quadtree roots (%u bad)", bad_s);
+    free(seen);
+    /* counts per leaf through the lookup */
+    uint32_t *count = calloc(ns, sizeof(uint32_t)), *lit = calloc(nt, sizeof(uint32_t));
+    for (size_t i = 3; i < N; i++) {
+        uint32_t l = cv_sdtree_leaf((const float(*)[4])t, copy[i].p);
+        count[l]++;
+        /* radiance that arrives in front of the class's axis */
+        uint32_t c = (uint32_t)copy[i].beta;
+        lit[(uint32_t)t[l][2] + c] += copy[i].L > 0 && class_cos(c, copy[i].u - c, copy[i].v) > 0;
+    }
+    double thresh = o.split_c * sqrt((double)(N - 3));
+    uint32_t over = 0, misplaced = 0;
+    size_t total = 0;
+    for (uint32_t i = 0; i < ns; i++) {
+        if (t[i][0] != (float)CV_SD_LEAF) {
+            misplaced += count[i] != 0;
+            continue;
+        }
+        total += count[i];
+        over += count[i] > thresh;
+    }
+    tap_ok(total == N - 3 && misplaced == 0, "every valid record in a leaf (%zu of %zu)", total,
+           N - 3);
+    tap_ok(over == 0, "no leaf above the split threshold %.0f (%u are)", thresh, over);
+    /* quadtrees */
+    uint32_t bad_link = 0, bad_prob = 0, nodes = 0, bad_int = 0, bad_grid = 0, gridded = 0;
+    uint32_t bad_weight = 0;
+    uint32_t guiding = 0, spot_high = 0;
+    double dark_ratio = 0;
+    for (uint32_t k = ns; k < qb; k++) {
+        uint32_t q = (uint32_t)t[k][0];
+        check_quad((const float(*)[4])t, nt, qb, q, 0, &bad_link, &bad_prob, &nodes);
+        double s = integrate((const float(*)[4])t, q, 1, 1);
+        if (fabs(s - 1) > 1e-5)
+            bad_int++;
+        /* the lookup on a 256^2 midpoint grid: exact where the quadtree
+         * is at most 8 deep (its leaves are whole grid cells) */
+        if (quad_depth((const float(*)[4])t, q) <= 8) {
+            const int G = 256;
+            double g = 0;
+            for (int a = 0; a < G; a++)
+                for (int b = 0; b < G; b++)
+                    g += cv_sdtree_pdf_square((const float(*)[4])t, q, (a + 0.5) / G,
+                                              (b + 0.5) / G);
+            g /= (double)G * G;
+            gridded++;
+            bad_grid += fabs(g - 1) > 1e-5;
+        }
+        bad_weight += (t[k][1] > 0) != (lit[k] >= o.min_records);
+        /* the classes that face the spot */
+        if (t[k][1] > 0 && class_cos((k - ns) % CV_SD_CLASSES, 0.8, 0.3) > 0.2) {
+            double ps = cv_sdtree_pdf_square((const float(*)[4])t, q, 0.8, 0.3);
+            double pd = cv_sdtree_pdf_square((const float(*)[4])t, q, 0.25, 0.5);
+            guiding++;
+            spot_high += ps > 20;
+            if (pd > dark_ratio)
+                dark_ratio = pd;
+        }
+    }
+    tap_ok(bad_link == 0, "quadtree links at even offsets past the spatial part, depth <= %u "
+           "(%u bad)", CV_SD_MAX_DEPTH, bad_link);
+    tap_ok(nodes == st.quad_nodes, "every quadtree node reached once (%u of %u)", nodes,
+           st.quad_nodes);
+    tap_ok(bad_prob == 0, "quadrant probabilities positive, summing to 1 (%u bad)", bad_prob);
+    tap_ok(bad_int == 0, "every leaf's density integrates to 1 over the square (%u not)", bad_int);
+    tap_ok(gridded > 0 && bad_grid == 0, "... and through the lookup on a 256^2 midpoint grid "
+           "(%u of the %u leaves at most 8 deep differ)", bad_grid, gridded);
+    tap_ok(bad_weight == 0, "a leaf's class guides iff it has %u records of radiance in front of its axis "
+           "(%u not)",
+           o.min_records, bad_weight);
+    /* the spot holds most of the energy: 0.05 x 20 against 0.95 x 0.5 */
+    tap_ok(guiding > 0 && spot_high >= 0.9 * guiding, "the bright spot's density is above 20 "
+           "times uniform in %u of the %u quadtrees that guide and face it", spot_high, guiding);
+    tap_ok(dark_ratio < 0.5, "the dark half keeps about the floor (at most %.3f)", dark_ratio);
+    free(count);
+    free(lit);
+    free(t);
+    free(r);
+    free(copy);
+}
+
+/* Fewer records than a leaf guides with: one leaf, weight 0. */
+static void test_few(void)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    struct cv_sd_record *r = make_records(20, 0);
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_stats st;
+    cv_sdtree_build(lo, hi, r, 20, &cv_sdtree_defaults, &t, &nt, &st);
+    tap_ok(st.spatial_leaves == 1 && st.guiding == 0, "20 records: one leaf that does not guide");
+    free(t);
+    free(r);
+}
+
+int main(void)
+{
+    test_empty();
+    test_build();
+    test_few();
+    return tap_done();
+}
