@@ -1,13 +1,14 @@
 /* all_features_test.c: a scene with every feature that adds a buffer,
  * texture or define to the trace kernels (tests/data/trace/all_features.pbrt:
- * media, curves, moving shapes, alpha, subsurface, measured and coated
- * materials, an environment map) gets a renderer with every integrator:
- * every stage program compiles and links. A kernel may use only so many
- * storage blocks (16 on Mesa), and features add their tables one by one:
- * a scene that uses them all together must still link, not fail with "too
- * many storage blocks". No pass is rendered: llvmpipe generates each
- * kernel's code at its first dispatch, minutes for all of these, and what
- * the images should look like is each feature's own test's job. */
+ * grid, cloud and homogeneous media, curves, moving shapes, alpha,
+ * subsurface, measured, coated and spectral conductor materials, an
+ * environment map) gets a renderer with every integrator: every stage
+ * program compiles and links. A kernel may use only so many storage blocks
+ * (16 on Mesa), and features add their tables one by one: a scene that
+ * uses them all together must still link, not fail with "too many storage
+ * blocks". No pass is rendered: llvmpipe generates each kernel's code at
+ * its first dispatch, minutes for all of these, and what the images should
+ * look like is each feature's own test's job. */
 #include "config.h"
 
 #include "tests/trace/trace_test_util.h"
