@@ -17,11 +17,11 @@
 // .key, from the shade stage's sampler) and the directions involved, so one
 // seed renders one image.
 //
-// The three estimators are one pair of loops (cv_layered_run: walks, and
-// a walk's events), reached from one call site per kernel (bsdf.glsl:
-// cv_bsdf_query), so a kernel holds one copy of the interfaces' code:
-// compilers inline every call, and the walk's copies were most of a shade
-// kernel's build time (tests/trace/bsdf_sites_test counts them).
+// The three estimators are one loop (cv_layered_run), reached from one
+// call site per kernel (bsdf.glsl: cv_bsdf_query), so a kernel holds one
+// copy of the interfaces' code: compilers inline every call, and the
+// walk's copies were most of a shade kernel's build time
+// (tests/trace/bsdf_sites_test counts them).
 //
 // Local frame, wo on +z (bsdf.glsl mirrors both directions when wo is
 // below). Cost class: O(n_samples * max_depth) interface evaluations per
@@ -252,44 +252,35 @@ float cv_layered_delta_prob(CvLayered L, vec3 wo)
 #define CV_LAY_MODE_PDF 1u   // the pdf of wi: the TRT lobe's estimate mixed with a uniform term
 #define CV_LAY_MODE_WALK 2u  // one walk out from wo, its first event at the coat drawn with (uc, u)
 
-// A connection through the coat that an event left (cv_layered_run).
+// Where a walk stands (cv_layered_run).
+#define CV_LAY_AT_ENTER_O 0  // the next event: into the slab along wo (WALK: the first event)
+#define CV_LAY_AT_ENTER_I 1  // the virtual light's way in along wi (F, PDF)
+#define CV_LAY_AT_BASE 2     // PDF: the one reflection at the base
+#define CV_LAY_AT_INSIDE 3   // F, WALK: events in the slab, `depth` of them so far
+
+// A connection through the coat that the last event left (cv_layered_run).
 #define CV_LAY_CONN_NONE 0
 #define CV_LAY_CONN_TOP 1    // F: reflection off the coat, wo to wi; PDF: its density
 #define CV_LAY_CONN_EXIT 2   // F: out along w through the coat towards wi
 #define CV_LAY_CONN_BASE 3   // PDF: out through the coat after the base, w
 
-// The layered BSDF's three estimators in one pair of loops, so that a
-// kernel holds one copy of the interfaces' code however many estimates it
-// asks for (GLSL compilers inline every call: bsdf.glsl's cv_bsdf_query
-// calls this from one site). mode CV_LAY_MODE_F returns f(wo, wi) in f (0
-// where either direction is below, since the base transmits nothing);
-// CV_LAY_MODE_PDF the pdf estimate in pdf; CV_LAY_MODE_WALK one walk out of
-// the layers in s (false: the walk died), whose s.pdf is proportional to
-// the density only (pbrt-v4's pdfIsProportional): a caller restates a
-// non-delta sample with the pdf estimate.
-//
-// The outer loop runs the estimate's walks (n_samples; the sampler's one),
-// the inner one a walk's events, one an iteration: its way in at the coat
-// (iteration 0 along wo, for F and PDF iteration 1 along wi), then the
-// events in the slab (PDF: the one reflection at the base). The events of
-// a step are of one kind for every invocation (without a medium the walk
-// alternates base and coat), so a warp's invocations sample the same
-// interface together, and one that ends its walk waits for the others at
-// the end of the inner loop instead of starting its next walk out of step
-// (with n_samples above 1, one loop over all of an estimate's events let
-// a warp pay the coat's and the base's samplers in one iteration). A
-// connection through the coat is evaluated in the iteration of the event
-// that leaves it, and the way in keeps only what the walk goes on with, so
-// only the walk's own state crosses the loops (the live registers of the
-// loop over events were most of the walk kernel's). Random numbers come in
-// the order of pbrt-v4's three separate loops.
+// The layered BSDF's three estimators as one walk, so that a kernel holds
+// one copy of the interfaces' code however many estimates it asks for
+// (GLSL compilers inline every call: bsdf.glsl's cv_bsdf_query calls this
+// from one site). mode CV_LAY_MODE_F returns f(wo, wi) in f (0 where either
+// direction is below, since the base transmits nothing); CV_LAY_MODE_PDF
+// the pdf estimate in pdf; CV_LAY_MODE_WALK one walk out of the layers in
+// s (false: the walk died), whose s.pdf is proportional to the density
+// only (pbrt-v4's pdfIsProportional): a caller restates a non-delta sample
+// with the pdf estimate. One iteration of the loop makes at most one
+// event (an interface sample, or a scattering in the slab) and evaluates
+// at most one connection through the coat, the one the event before left,
+// in the same order of random numbers as pbrt-v4's three separate loops.
 bool cv_layered_run(CvLayered L, uint mode, vec3 wo, vec3 wi, float uc0, vec2 u0, out vec3 f,
                     out float pdf, out CvBsdfSample s)
 {
     bool fm = mode == CV_LAY_MODE_F, pm = mode == CV_LAY_MODE_PDF, walk = mode == CV_LAY_MODE_WALK;
     s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
-    f = vec3(0.0);
-    pdf = 0.0;
     bool coat_smooth = cv_lay_coat_smooth(L), base_smooth = cv_lay_base_smooth(L);
     bool medium = cv_lay_has_medium(L);
     float n = float(L.n_samples), th = L.thickness;
@@ -299,250 +290,269 @@ bool cv_layered_run(CvLayered L, uint mode, vec3 wo, vec3 wi, float uc0, vec2 u0
     CvRng rng = cv_rng_init(cv_hash2(L.key, cv_lay_dir_hash(pm ? wi : wo)),
                             walk ? cv_hash3(floatBitsToUint(uc0), floatBitsToUint(u0.x), floatBitsToUint(u0.y))
                                  : cv_lay_dir_hash(pm ? wo : wi));
-    vec3 acc = vec3(0.0);  // F: the estimate's sum; PDF: its sum in x
+    vec3 fsum = vec3(0.0);  // F: the estimate's sum
+    float psum = 0.0;       // PDF: the estimate's sum
+    vec3 beta = vec3(0.0);  // F: throughput of the walk from wo; WALK: its f
+    float wpdf = 1.0;       // WALK: its pdf
+    bool specular = false;  // WALK: every event so far specular
+    CvBsdfSample wos = s, wis = s, bs = s;
+    bool wos_ok = false;
+    vec3 w = vec3(0.0);     // the walk's direction of travel
+    float z = th;
+    int depth = 0, smp = 0, at = CV_LAY_AT_ENTER_O;
+    int conn = CV_LAY_CONN_NONE;
+    float conn_pdf = 0.0;       // the density of w's sampling, for the exit's MIS weight
+    bool conn_weighted = true;  // EXIT: weigh it against the other strategy
+    float rpdf = 0.0;           // PDF: the base's density towards wis
     // F and PDF only where both directions are above (the base transmits
     // nothing); the all-delta layers are the one exact shortcut (every walk
     // of F adds 0)
     bool live = walk || (wo.z > 0.0 && wi.z > 0.0 && cv_layered_delta_prob(L, wo) < 1.0);
-    int walks = walk ? 1 : (live ? L.n_samples : 0);
-    int ins = walk ? 1 : 2;  // iterations of the way in
-    for (int smp = 0; smp < walks; smp++) {
-        vec3 beta = vec3(0.0);  // F: throughput of the walk from wo; WALK: its f
-        float wpdf = 1.0;       // WALK: its pdf
-        bool specular = false;  // WALK: every event so far specular
-        bool in_ok = false;     // PDF: the way in along wo took
-        vec3 w = vec3(0.0);     // the walk's direction of travel (PDF: in along wo)
-        float z = th;
-        vec3 wis_wi = vec3(0.0);  // F, PDF: the virtual light's way in along wi
-        float wis_f = 0.0, wis_pdf = 0.0;
-        int depth = 0;  // events in the slab so far
-        for (int it = 0; it < L.max_depth + 4; it++) {
-            bool enter = it < ins, end = false;
-            // The event's kind: an interface (the coat from above or
-            // below, or the base) seen from win, or a scattering in the slab.
-            bool at_base = false, scatter = false, radiance = true;
-            float zp = z;  // a scattering's height
-            vec3 win = wo;
-            uint mask = walk ? CV_LAY_RT : CV_LAY_T;
-            float uc = uc0;
-            vec2 u2 = u0;
-            int conn = smp == 0 && it == 0 && !walk ? CV_LAY_CONN_TOP : CV_LAY_CONN_NONE;
-            float conn_pdf = 0.0;       // the density of w's sampling, for the exit's MIS weight
-            bool conn_weighted = true;  // EXIT: weigh it against the other strategy
-            float rpdf = 0.0;           // PDF: the base's density towards wis
-            if (enter) {
-                radiance = it == 0;
-                win = radiance ? wo : wi;
-                if (!walk) {
-                    uc = cv_lay_next(rng);
-                    u2 = cv_lay_next2(rng);
-                }
-            } else if (pm) {
-                // transmission in, reflection at the base, transmission out
-                at_base = true;
-                win = -w;
+    if (live && !walk)
+        conn = CV_LAY_CONN_TOP;
+    int bound = L.n_samples * (L.max_depth + 4) + 4;
+    for (int it = 0; live && it < bound; it++) {
+        // The connection the last event left: f through the coat (F) and
+        // the coat's density the MIS weight or the pdf estimate needs.
+        if (conn != CV_LAY_CONN_NONE) {
+            vec3 ca = conn == CV_LAY_CONN_TOP ? wo : -w;
+            float fe = fm ? cv_lay_coat_f(L, ca, wi, true) : 0.0;
+            // exit: the density with which wis's strategy makes w (cv_lay_exit_pdf)
+            bool exit = conn == CV_LAY_CONN_EXIT;
+            float cp = 0.0;
+            if (pm || (exit && fe > 0.0 && conn_weighted))
+                cp = cv_lay_coat_pdf(L, exit ? wi : ca, exit ? -w : wi,
+                                     conn == CV_LAY_CONN_TOP ? CV_LAY_R : (exit ? CV_LAY_T : CV_LAY_RT));
+            if (conn == CV_LAY_CONN_TOP) {
+                if (fm)
+                    fsum = vec3(n * fe);
+                else
+                    psum = n * cp;
+            } else if (exit) {
+                if (fe > 0.0)
+                    fsum += beta * cv_lay_tr(th - z, w) * fe * (conn_weighted ? cv_lay_power(conn_pdf, cp) : 1.0);
+            } else if (base_smooth) {
+                psum += cp;
             } else {
-                if (depth == L.max_depth || w.z == 0.0)
-                    end = true;
-                if (!end && depth > 3) {
-                    // Russian roulette
-                    float rr = walk ? cv_max3(beta) / wpdf : cv_max3(beta);
-                    if (rr < 0.25) {
-                        float q = max(0.0, 1.0 - rr);
-                        if (cv_lay_next(rng) < q)
-                            end = true;
-                        else if (walk)
-                            wpdf *= 1.0 - q;
-                        else
-                            beta /= 1.0 - q;
-                    }
-                }
-                if (!end && medium) {
-                    float dz = -log(1.0 - cv_lay_next(rng)) * abs(w.z);
-                    zp = w.z > 0.0 ? z + dz : z - dz;
-                    if (zp == z) {
-                        // no progress: F goes on to its next depth, the walk dies
-                        if (walk)
-                            return false;
-                        depth++;
-                        continue;
-                    } else if (0.0 < zp && zp < th) {
-                        scatter = true;
-                        if (fm) {
-                            // next event: the phase function towards wis
-                            float ph = cv_lay_hg(dot(-w, -wis_wi), L.g);
-                            float wt = coat_smooth ? 1.0 : cv_lay_power(wis_pdf, ph);
-                            acc += beta * L.albedo * ph * wt * cv_lay_tr(zp - th, wis_wi) * wis_f / wis_pdf;
-                        }
-                    } else {
-                        z = clamp(zp, 0.0, th);
-                    }
-                } else if (!end) {
-                    z = (z == th) ? 0.0 : th;
-                    beta *= cv_lay_tr(th, w);
-                }
-                if (!end && !scatter) {
-                    at_base = z == 0.0;
-                    win = -w;
-                    mask = walk ? CV_LAY_RT : CV_LAY_R;
-                    uc = cv_lay_next(rng);
-                    u2 = cv_lay_next2(rng);
-                }
+                psum += cv_lay_power(wis.pdf, rpdf) * rpdf;
+                psum += cv_lay_power(conn_pdf, cp) * cp;
             }
-            if (!end && at_base && (pm || (fm && !base_smooth))) {
-                // the base towards wis: F's next event, PDF's TRT term
-                float bp = (pm || !coat_smooth) ? cv_lay_base_pdf(L, -w, -wis_wi) : 0.0;
-                if (fm) {
-                    float wt = coat_smooth ? 1.0 : cv_lay_power(wis_pdf, bp);
-                    acc += beta * cv_lay_base_f(L, -w, -wis_wi) * abs(wis_wi.z) * wt * cv_lay_tr(th, wis_wi) *
-                           wis_f / wis_pdf;
-                } else {
-                    rpdf = bp;
-                    if (coat_smooth) {
-                        acc.x += bp;
-                        end = true;
-                    } else {
-                        uc = cv_lay_next(rng);
-                        u2 = cv_lay_next2(rng);
-                    }
-                }
-            }
-            if (end && walk)
-                return false;
+            conn = CV_LAY_CONN_NONE;
+        }
 
-            // The event: the one place the interfaces and the phase
-            // function are sampled.
-            CvBsdfSample bs = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
-            bool ok = false;
-            float ppdf = 0.0;
-            if (end) {
-            } else if (scatter) {
-                bs.wi = cv_lay_hg_sample(-w, L.g, cv_lay_next2(rng), ppdf);
-                ok = ppdf > 0.0 && bs.wi.z != 0.0;
-            } else if (at_base) {
-                ok = cv_lay_base_sample(L, win, u2, bs);
-            } else {
-                ok = cv_lay_coat_sample(L, win, uc, u2, radiance, mask, bs);
-            }
-
-            // What it did to the walk.
-            if (end) {
-            } else if (enter && it == 0) {
-                bool good = ok && cv_lay_ok(bs);
-                if (walk) {
-                    if (!good)
-                        return false;
-                    if ((bs.flags & CV_BSDF_REFLECTION) != 0u) {
-                        s = bs;
-                        return true;
-                    }
-                    specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
-                    beta = bs.f * abs(bs.wi.z);
-                    wpdf = bs.pdf;
-                } else {
-                    beta = bs.f * abs(bs.wi.z) / bs.pdf;
-                }
-                w = bs.wi;
-                in_ok = ok && cv_max3(bs.f) > 0.0 && bs.pdf > 0.0;
-                end = fm && !good;
-            } else if (enter) {
-                wis_wi = bs.wi;
-                wis_f = bs.f.x;  // the coat's f is colourless
-                wis_pdf = bs.pdf;
-                end = fm ? !(ok && cv_lay_ok(bs))
-                         : !(in_ok && ok && cv_max3(bs.f) > 0.0 && bs.pdf > 0.0);
-            } else if (pm) {
-                if (ok && cv_max3(bs.f) > 0.0 && bs.pdf > 0.0) {
-                    w = bs.wi;
-                    conn = CV_LAY_CONN_BASE;
-                    conn_pdf = bs.pdf;
-                }
-                end = true;
-            } else if (scatter) {
-                depth++;
-                if (!ok) {
-                    if (walk)
-                        return false;
-                    continue;  // F goes on to its next depth
-                }
-                if (walk) {
-                    beta *= L.albedo * ppdf;
-                    wpdf *= ppdf;
-                    specular = false;
-                } else {
-                    beta *= L.albedo;
-                }
-                w = bs.wi;
-                z = zp;
-                if (fm && w.z > 0.0 && !coat_smooth) {
-                    // next event: the scattered direction out through the coat
-                    conn = CV_LAY_CONN_EXIT;
-                    conn_pdf = ppdf;
-                }
-            } else {
-                depth++;
-                if (!ok || !cv_lay_ok(bs)) {
-                    if (walk)
-                        return false;
-                    end = true;
-                } else {
-                    w = bs.wi;
-                    if (walk) {
-                        beta *= bs.f;
-                        wpdf *= bs.pdf;
-                        specular = specular && (bs.flags & CV_BSDF_SPECULAR) != 0u;
-                        if ((bs.flags & CV_BSDF_TRANSMISSION) != 0u) {
-                            uint flags = (w.z > 0.0 ? CV_BSDF_REFLECTION : CV_BSDF_TRANSMISSION) |
-                                         (specular ? CV_BSDF_SPECULAR : 0u);
-                            s = CvBsdfSample(w, beta, wpdf, flags);
-                            return true;
-                        }
-                        beta *= abs(bs.wi.z);
-                    } else {
-                        beta *= bs.f * abs(bs.wi.z) / bs.pdf;
-                        if (at_base && !coat_smooth) {
-                            // next event: the sampled direction out through the coat
-                            conn = CV_LAY_CONN_EXIT;
-                            conn_pdf = bs.pdf;
-                            conn_weighted = !base_smooth;
-                        }
-                    }
-                }
-            }
-
-            // The connection the event left: f through the coat (F) and the
-            // coat's density the MIS weight or the pdf estimate needs.
-            if (conn != CV_LAY_CONN_NONE) {
-                vec3 ca = conn == CV_LAY_CONN_TOP ? wo : -w;
-                float fe = fm ? cv_lay_coat_f(L, ca, wi, true) : 0.0;
-                // exit: the density with which wis's strategy makes w (cv_lay_exit_pdf)
-                bool exit = conn == CV_LAY_CONN_EXIT;
-                float cp = 0.0;
-                if (pm || (exit && fe > 0.0 && conn_weighted))
-                    cp = cv_lay_coat_pdf(L, exit ? wi : ca, exit ? -w : wi,
-                                         conn == CV_LAY_CONN_TOP ? CV_LAY_R : (exit ? CV_LAY_T : CV_LAY_RT));
-                if (conn == CV_LAY_CONN_TOP) {
-                    if (fm)
-                        acc = vec3(n * fe) + acc;
-                    else
-                        acc.x = n * cp + acc.x;
-                } else if (exit) {
-                    if (fe > 0.0)
-                        acc += beta * cv_lay_tr(th - z, w) * fe * (conn_weighted ? cv_lay_power(conn_pdf, cp) : 1.0);
-                } else if (base_smooth) {
-                    acc.x += cp;
-                } else {
-                    acc.x += cv_lay_power(wis_pdf, rpdf) * rpdf;
-                    acc.x += cv_lay_power(conn_pdf, cp) * cp;
-                }
-            }
-            if (end)
+        // The next event: an interface (the coat from above or below, or
+        // the base) seen from win, or a scattering in the slab.
+        bool at_base = false, scatter = false, radiance = true, end = false;
+        float zp = z;  // a scattering's height
+        vec3 win = wo;
+        uint mask = walk ? CV_LAY_RT : CV_LAY_T;
+        float uc = uc0;
+        vec2 u2 = u0;
+        if (at == CV_LAY_AT_ENTER_O || at == CV_LAY_AT_ENTER_I) {
+            if (!walk && smp == L.n_samples)
                 break;
+            radiance = at == CV_LAY_AT_ENTER_O;
+            win = radiance ? wo : wi;
+            if (!walk) {
+                uc = cv_lay_next(rng);
+                u2 = cv_lay_next2(rng);
+            }
+        } else if (at == CV_LAY_AT_BASE) {
+            at_base = true;
+            w = wos.wi;
+            win = -w;
+        } else {
+            if (depth == L.max_depth || w.z == 0.0)
+                end = true;
+            if (!end && depth > 3) {
+                // Russian roulette
+                float rr = walk ? cv_max3(beta) / wpdf : cv_max3(beta);
+                if (rr < 0.25) {
+                    float q = max(0.0, 1.0 - rr);
+                    if (cv_lay_next(rng) < q)
+                        end = true;
+                    else if (walk)
+                        wpdf *= 1.0 - q;
+                    else
+                        beta /= 1.0 - q;
+                }
+            }
+            if (!end && medium) {
+                float dz = -log(1.0 - cv_lay_next(rng)) * abs(w.z);
+                zp = w.z > 0.0 ? z + dz : z - dz;
+                if (zp == z) {
+                    // no progress: F goes on to its next depth, the walk dies
+                    end = walk;
+                    depth++;
+                    if (!end)
+                        continue;
+                } else if (0.0 < zp && zp < th) {
+                    scatter = true;
+                    if (fm) {
+                        // next event: the phase function towards wis
+                        float ph = cv_lay_hg(dot(-w, -wis.wi), L.g);
+                        float wt = coat_smooth ? 1.0 : cv_lay_power(wis.pdf, ph);
+                        fsum += beta * L.albedo * ph * wt * cv_lay_tr(zp - th, wis.wi) * wis.f / wis.pdf;
+                    }
+                } else {
+                    z = clamp(zp, 0.0, th);
+                }
+            } else if (!end) {
+                z = (z == th) ? 0.0 : th;
+                beta *= cv_lay_tr(th, w);
+            }
+            if (!end && !scatter) {
+                at_base = z == 0.0;
+                win = -w;
+                mask = walk ? CV_LAY_RT : CV_LAY_R;
+                uc = cv_lay_next(rng);
+                u2 = cv_lay_next2(rng);
+            }
+        }
+        if (!end && at_base && (pm || (fm && !base_smooth))) {
+            // the base towards wis: F's next event, PDF's TRT term
+            float bp = (pm || !coat_smooth) ? cv_lay_base_pdf(L, -w, -wis.wi) : 0.0;
+            if (fm) {
+                float wt = coat_smooth ? 1.0 : cv_lay_power(wis.pdf, bp);
+                fsum += beta * cv_lay_base_f(L, -w, -wis.wi) * abs(wis.wi.z) * wt * cv_lay_tr(th, wis.wi) *
+                        wis.f / wis.pdf;
+            } else {
+                rpdf = bp;
+                if (coat_smooth) {
+                    psum += bp;
+                    end = true;
+                } else {
+                    uc = cv_lay_next(rng);
+                    u2 = cv_lay_next2(rng);
+                }
+            }
+        }
+        if (end) {
+            if (walk)
+                return false;
+            smp++;
+            at = CV_LAY_AT_ENTER_O;
+            continue;
+        }
+
+        // The event: the one place the interfaces and the phase function
+        // are sampled.
+        bool ok;
+        float ppdf = 0.0;
+        if (scatter) {
+            bs.wi = cv_lay_hg_sample(-w, L.g, cv_lay_next2(rng), ppdf);
+            ok = ppdf > 0.0 && bs.wi.z != 0.0;
+        } else if (at_base) {
+            ok = cv_lay_base_sample(L, win, u2, bs);
+        } else {
+            ok = cv_lay_coat_sample(L, win, uc, u2, radiance, mask, bs);
+        }
+
+        // What it did to the walk.
+        if (at == CV_LAY_AT_ENTER_O) {
+            bool good = ok && cv_lay_ok(bs);
+            if (walk) {
+                if (!good)
+                    return false;
+                if ((bs.flags & CV_BSDF_REFLECTION) != 0u) {
+                    s = bs;
+                    return true;
+                }
+                w = bs.wi;
+                specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
+                beta = bs.f * abs(bs.wi.z);
+                wpdf = bs.pdf;
+                at = CV_LAY_AT_INSIDE;
+            } else if (fm && !good) {
+                smp++;
+            } else {
+                wos = bs;
+                wos_ok = ok;
+                at = CV_LAY_AT_ENTER_I;
+            }
+        } else if (at == CV_LAY_AT_ENTER_I) {
+            wis = bs;
+            at = CV_LAY_AT_ENTER_O;
+            if (fm) {
+                if (ok && cv_lay_ok(bs)) {
+                    beta = wos.f * abs(wos.wi.z) / wos.pdf;
+                    z = th;
+                    w = wos.wi;
+                    depth = 0;
+                    at = CV_LAY_AT_INSIDE;
+                } else {
+                    smp++;
+                }
+            } else if (wos_ok && ok && cv_max3(wos.f) > 0.0 && wos.pdf > 0.0 && cv_max3(wis.f) > 0.0 &&
+                       wis.pdf > 0.0) {
+                at = CV_LAY_AT_BASE;  // transmission in, reflection at the base, transmission out
+            } else {
+                smp++;
+            }
+        } else if (at == CV_LAY_AT_BASE) {
+            if (ok && cv_max3(bs.f) > 0.0 && bs.pdf > 0.0) {
+                w = bs.wi;
+                conn = CV_LAY_CONN_BASE;
+                conn_pdf = bs.pdf;
+            }
+            smp++;
+            at = CV_LAY_AT_ENTER_O;
+        } else if (scatter) {
+            depth++;
+            if (!ok) {
+                if (walk)
+                    return false;
+                continue;  // F goes on to its next depth
+            }
+            if (walk) {
+                beta *= L.albedo * ppdf;
+                wpdf *= ppdf;
+                specular = false;
+            } else {
+                beta *= L.albedo;
+            }
+            w = bs.wi;
+            z = zp;
+            if (fm && w.z > 0.0 && !coat_smooth) {
+                // next event: the scattered direction out through the coat
+                conn = CV_LAY_CONN_EXIT;
+                conn_pdf = ppdf;
+                conn_weighted = true;
+            }
+        } else {
+            depth++;
+            if (!ok || !cv_lay_ok(bs)) {
+                if (walk)
+                    return false;
+                smp++;
+                at = CV_LAY_AT_ENTER_O;
+                continue;
+            }
+            w = bs.wi;
+            if (walk) {
+                beta *= bs.f;
+                wpdf *= bs.pdf;
+                specular = specular && (bs.flags & CV_BSDF_SPECULAR) != 0u;
+                if ((bs.flags & CV_BSDF_TRANSMISSION) != 0u) {
+                    uint flags = (w.z > 0.0 ? CV_BSDF_REFLECTION : CV_BSDF_TRANSMISSION) |
+                                 (specular ? CV_BSDF_SPECULAR : 0u);
+                    s = CvBsdfSample(w, beta, wpdf, flags);
+                    return true;
+                }
+                beta *= abs(bs.wi.z);
+            } else {
+                beta *= bs.f * abs(bs.wi.z) / bs.pdf;
+                if (at_base && !coat_smooth) {
+                    // next event: the sampled direction out through the coat
+                    conn = CV_LAY_CONN_EXIT;
+                    conn_pdf = bs.pdf;
+                    conn_weighted = !base_smooth;
+                }
+            }
         }
     }
-    if (fm)
-        f = acc / n;
-    pdf = mix(CV_INV_4PI, acc.x / n, 0.9);
+    f = fsum / n;
+    pdf = mix(CV_INV_4PI, psum / n, 0.9);
     return false;
 }
 
