@@ -31,6 +31,7 @@
 #include "scene/scene.h"
 #include "scene/transform.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/trace/grid_probe.h"
 #include "trace/scene_upload.h"
 
 #define PER_CELL 16
@@ -160,28 +161,6 @@ static void to_render(const struct cloud_case *k, const double g[3], double p[3]
     cv_mat4_point(&k->ctm, q, p);
 }
 
-static bool run(struct cv_program *prog, unsigned mode, unsigned medium, const float *in,
-                size_t n_in4, size_t count, float *out, size_t n_out4, struct cv_error *err)
-{
-    GLuint bin = cv_buffer_create(n_in4 * 16, in, "cloud probe in", err);
-    GLuint bout = cv_buffer_create(n_out4 * 16, NULL, "cloud probe out", err);
-    bool ok = bin && bout;
-    if (ok) {
-        cv_buffer_bind(bin, CV_BIND_PROBE_IN);
-        cv_buffer_bind(bout, CV_BIND_PROBE_OUT);
-        glUseProgram(prog->id);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_mode"), mode);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_count"), (GLuint)count);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_medium"), medium);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_samples"), N_TRACK);
-        cv_program_dispatch_1d(prog, count);
-        ok = cv_buffer_read(bout, 0, n_out4 * 16, out, err);
-    }
-    cv_buffer_destroy(&bin);
-    cv_buffer_destroy(&bout);
-    return ok;
-}
-
 /* Noise, its differences and the density at medium-space points. */
 static void check_noise(struct cv_program *prog, const struct cloud_case *k, unsigned medium)
 {
@@ -195,7 +174,8 @@ static void check_noise(struct cv_program *prog, const struct cloud_case *k, uns
             in[4 * i + a] = (float)(lo + span * rnd());
         in[4 * i + 3] = 0;
     }
-    if (!tap_ok(run(prog, 4, medium, in, n, n, out, 2 * n, &err), "%s: noise probe runs %s",
+    if (!tap_ok(grid_probe_run(prog, 4, medium, N_TRACK, in, n, n, out, 2 * n, &err),
+                "%s: noise probe runs %s",
                 k->name, err.msg))
         goto done;
     double worst_n = 0, worst_dn = 0, worst_d = 0, swapped = 0;
@@ -238,31 +218,16 @@ static void check_lookups(struct cv_program *prog, const struct cloud_case *k, u
 {
     struct cv_error err = {{0}};
     const unsigned R = CV_MAJORANT_RES;
-    size_t n_cells = (size_t)R * R * R, n = n_cells * (PER_CELL + 8) + 4096;
-    double *g = cv_xmalloc(n * 3 * sizeof(double));
+    size_t n_cells = (size_t)R * R * R, n, i;
+    double *g = grid_probe_cell_points(PER_CELL, rnd, &n);
     float *in = cv_xmalloc(n * 16), *out = cv_xmalloc(n * 64);
-    size_t i = 0;
-    for (size_t c = 0; c < n_cells; c++) {
-        int cx = (int)(c % R), cy = (int)(c / R % R), cz = (int)(c / (R * R));
-        for (int j = 0; j < PER_CELL + 8; j++, i++) {
-            double t[3] = {rnd(), rnd(), rnd()};
-            if (j >= PER_CELL)
-                for (int a = 0; a < 3; a++)
-                    t[a] = ((j - PER_CELL) >> a) & 1 ? 0.999 : 0.001;
-            g[3 * i] = (cx + t[0]) / R;
-            g[3 * i + 1] = (cy + t[1]) / R;
-            g[3 * i + 2] = (cz + t[2]) / R;
-        }
-    }
-    for (; i < n; i++) /* beside and outside the bounds */
-        for (int a = 0; a < 3; a++)
-            g[3 * i + a] = -0.1 + 1.2 * rnd();
     for (i = 0; i < n; i++) {
         double p[3];
         to_render(k, g + 3 * i, p);
         memcpy(in + 4 * i, (float[4]){(float)p[0], (float)p[1], (float)p[2], 0}, 16);
     }
-    if (!tap_ok(run(prog, 0, medium, in, n, n, out, 4 * n, &err), "%s: probe runs %s", k->name,
+    if (!tap_ok(grid_probe_run(prog, 0, medium, N_TRACK, in, n, n, out, 4 * n, &err),
+                "%s: probe runs %s", k->name,
                 err.msg))
         goto done;
     double worst = 0, worst_ratio = 0, scale = 0;
@@ -348,8 +313,8 @@ static void check_walks(struct cv_program *prog, const struct cloud_case *k, uns
         memcpy(in + 8 * i, (float[8]){(float)o[i][0], (float)o[i][1], (float)o[i][2], (float)t1[i],
                                        (float)d[i][0], (float)d[i][1], (float)d[i][2], 0}, 32);
     }
-    if (!tap_ok(run(prog, 2, medium, in, 2 * N_RAYS, n_est, ratio, 2 * n_est, &err) &&
-                    run(prog, 3, medium, in, 2 * N_RAYS, n_est, delta, 2 * n_est, &err),
+    if (!tap_ok(grid_probe_run(prog, 2, medium, N_TRACK, in, 2 * N_RAYS, n_est, ratio, 2 * n_est, &err) &&
+                    grid_probe_run(prog, 3, medium, N_TRACK, in, 2 * N_RAYS, n_est, delta, 2 * n_est, &err),
                 "%s: walk probes run %s", k->name, err.msg))
         goto done;
     double worst_ratio = 0, worst_pass = 0, worst_coll = 0, deepest = 0;
