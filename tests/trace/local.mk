@@ -39,7 +39,8 @@ tests_trace_bsdf_material_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/light_sampling_test
 TESTS += tests/trace/light_sampling_test
 tests_trace_light_sampling_test_LDADD = $(CV_LIBS)
-EXTRA_DIST += tests/trace/grid_probe.h tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h tests/trace/fresnel_ref.h \
+EXTRA_DIST += tests/trace/grid_probe.h \
+	tests/trace/bsdf_probe.h tests/trace/bsdf_stats.h tests/trace/fresnel_ref.h \
 	glsl/trace/test/light_probe.comp \
 	glsl/trace/test/shade_compile.comp \
 	glsl/trace/test/bsdf_probe.comp
