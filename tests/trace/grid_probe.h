@@ -20,6 +20,7 @@
 #include "gpu/buffer.h"
 #include "gpu/program.h"
 #include "scene/transform.h"
+#include "tests/gpu/probe.h"
 #include "tests/tap.h"
 
 /* Runs prog (grid_probe.comp) in mode on medium for count invocations,
@@ -29,23 +30,10 @@ static inline bool grid_probe_run(struct cv_program *prog, unsigned mode, unsign
                                   unsigned samples, const float *in, size_t n_in4, size_t count,
                                   float *out, size_t n_out4, struct cv_error *err)
 {
-    GLuint bin = cv_buffer_create(n_in4 * 16, in, "grid probe in", err);
-    GLuint bout = cv_buffer_create(n_out4 * 16, NULL, "grid probe out", err);
-    bool ok = bin && bout;
-    if (ok) {
-        cv_buffer_bind(bin, CV_BIND_PROBE_IN);
-        cv_buffer_bind(bout, CV_BIND_PROBE_OUT);
-        glUseProgram(prog->id);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_mode"), mode);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_count"), (GLuint)count);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_medium"), medium);
-        glUniform1ui(glGetUniformLocation(prog->id, "u_samples"), samples);
-        cv_program_dispatch_1d(prog, count);
-        ok = cv_buffer_read(bout, 0, n_out4 * 16, out, err);
-    }
-    cv_buffer_destroy(&bin);
-    cv_buffer_destroy(&bout);
-    return ok;
+    GLuint id = probe_use(prog);
+    glUniform1ui(glGetUniformLocation(id, "u_medium"), medium);
+    glUniform1ui(glGetUniformLocation(id, "u_samples"), samples);
+    return probe_dispatch(prog, mode, in, n_in4 * 16, count, out, n_out4 * 16, err);
 }
 
 /* Unit-cube points (3 doubles each, *n of them): per_cell random points
