@@ -1,6 +1,6 @@
 /* grid_probe.h: what the grid-medium probe tests share (medium_grid_test.c,
- * medium_cloud_test.c): a run of glsl/trace/test/grid_probe.comp in one
- * of its modes; the lookups at unit-cube points that cover every majorant
+ * medium_cloud_test.c, medium_nanovdb_test.c): a run of
+ * glsl/trace/test/grid_probe.comp in one of its modes; the lookups at unit-cube points that cover every majorant
  * cell (random points, then each cell's corners pulled a hair inside, then
  * points beside and outside the bounds); random rays about the bounds; and
  * ratio and delta tracking along them, measured against a transmittance in
