@@ -104,3 +104,23 @@ GLuint cv_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_err
     }
     return tex;
 }
+
+bool cv_buffer_image_create(struct cv_buffer_image *im, GLuint buf, size_t texels, unsigned unit,
+                            GLenum format, GLenum access, struct cv_error *err)
+{
+    *im = (struct cv_buffer_image){.unit = unit, .format = format, .access = access};
+    im->tex = cv_buffer_texture(buf, format, texels, err);
+    return im->tex != 0;
+}
+
+void cv_buffer_image_bind(const struct cv_buffer_image *im)
+{
+    glBindImageTexture(im->unit, im->tex, 0, GL_FALSE, 0, im->access, im->format);
+}
+
+void cv_buffer_image_destroy(struct cv_buffer_image *im)
+{
+    if (im->tex)
+        glDeleteTextures(1, &im->tex);
+    im->tex = 0;
+}

@@ -46,4 +46,22 @@ void cv_buffer_bind(GLuint buf, unsigned binding);
  * glDeleteTextures. */
 GLuint cv_buffer_texture(GLuint buf, GLenum format, size_t texels, struct cv_error *err);
 
+/* A buffer the shaders see as an imageBuffer: its buffer texture and how
+ * it is bound, so the format is written once, where the view is made. */
+struct cv_buffer_image {
+    GLuint tex;        /* 0: none */
+    unsigned unit;     /* CV_IMAGE_* (glsl/shared/bindings.h) */
+    GLenum format;     /* e.g. GL_R32UI */
+    GLenum access;     /* GL_READ_ONLY, GL_WRITE_ONLY or GL_READ_WRITE */
+};
+
+/* Makes *im a view of `texels` texels of buf (cv_buffer_texture) for unit
+ * with format and access; false with err set, *im then without a texture. */
+bool cv_buffer_image_create(struct cv_buffer_image *im, GLuint buf, size_t texels, unsigned unit,
+                            GLenum format, GLenum access, struct cv_error *err);
+/* Binds im at its unit. */
+void cv_buffer_image_bind(const struct cv_buffer_image *im);
+/* Deletes im's texture (not the buffer) and clears it; none: nothing. */
+void cv_buffer_image_destroy(struct cv_buffer_image *im);
+
 #endif

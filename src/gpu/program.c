@@ -178,30 +178,78 @@ static bool parse_include(const char *line, const char *end, const char **name, 
     return true;
 }
 
+/* The logical line at p: a physical line whose newline follows a backslash
+ * goes on into the next, as in a C preprocessor's phase 2. Every driver then
+ * sees joined lines (NVIDIA's GLSL compiler does not join a #define's).
+ * Returns where the next line starts; [*s, *e) is the line without its
+ * newline, in *joined (the caller frees it) where lines were joined, and
+ * *extra counts the newlines joined away. */
+static const char *logical_line(const char *p, const char **s, const char **e, char **joined,
+                                int *extra)
+{
+    const char *q = p, *end, *next;
+    *extra = 0;
+    for (;;) {
+        const char *nl = strchr(q, '\n');
+        if (!nl) {
+            end = next = q + strlen(q);
+            break;
+        }
+        if (nl > p && nl[-1] == '\\') {
+            (*extra)++;
+            q = nl + 1;
+            continue;
+        }
+        end = nl;
+        next = nl + 1;
+        break;
+    }
+    *joined = NULL;
+    *s = p;
+    *e = end;
+    if (*extra) {
+        char *j = cv_xmalloc((size_t)(end - p) + 1), *w = j;
+        for (const char *r = p; r < end; r++) {
+            if (r[0] == '\\' && r + 1 < end && r[1] == '\n')
+                r++;
+            else
+                *w++ = *r;
+        }
+        *w = '\0';
+        *joined = j;
+        *s = j;
+        *e = w;
+    }
+    return next;
+}
+
 static bool expand(struct assembly *a, int file, const char *text, int depth, int first_line,
                    struct cv_error *err)
 {
     int line_no = 1;
-    const char *line = text;
-    while (*line) {
-        const char *end = strchr(line, '\n');
-        const char *next = end ? end + 1 : line + strlen(line);
-        if (!end)
-            end = next;
+    for (const char *at = text; *at;) {
+        const char *line, *end;
+        char *joined;
+        int extra;
+        const char *next = logical_line(at, &line, &end, &joined, &extra);
+        /* the line after this one, in the file's own numbering */
+        int after = line_no + extra + 1;
         const char *inc;
         size_t inc_len;
         if (line_no < first_line) {
             /* already emitted (the #version line) */
         } else if (!a->spliced && is_marker(a->splice, line, end)) {
             /* the generated text, numbered as a file of its own */
-            if (a->n_names >= CV_GLSL_MAX_FILES - 1)
+            if (a->n_names >= CV_GLSL_MAX_FILES - 1) {
+                free(joined);
                 return cv_fail(err, "glsl/%s:%d: too many files", a->names[file], line_no);
+            }
             int id = a->n_names++;
             a->names[id] = cv_xstrdup(a->splice->name);
             a->spliced = true;
             sb_addf(&a->out, "#line %d %d\n", id * CV_GLSL_LINE_STRIDE + 1, id);
             sb_add(&a->out, a->splice->text, strlen(a->splice->text));
-            sb_addf(&a->out, "\n#line %d %d\n", file * CV_GLSL_LINE_STRIDE + line_no + 1, file);
+            sb_addf(&a->out, "\n#line %d %d\n", file * CV_GLSL_LINE_STRIDE + after, file);
         } else if (parse_include(line, end, &inc, &inc_len)) {
             char *rel = cv_xmalloc(inc_len + 1);
             memcpy(rel, inc, inc_len);
@@ -238,23 +286,26 @@ static bool expand(struct assembly *a, int file, const char *text, int depth, in
                     a->names[id] = cv_xstrdup(cand[which]);
                     sb_addf(&a->out, "#line %d %d\n", id * CV_GLSL_LINE_STRIDE + 1, id);
                     ok = expand(a, id, body, depth + 1, 1, err);
-                    sb_addf(&a->out, "#line %d %d\n", file * CV_GLSL_LINE_STRIDE + line_no + 1,
-                            file);
+                    sb_addf(&a->out, "#line %d %d\n", file * CV_GLSL_LINE_STRIDE + after, file);
                 }
             }
             free(body);
             free(rel);
             free(cand[0]);
             free(cand[1]);
-            if (!ok)
+            if (!ok) {
+                free(joined);
                 return false;
+            }
         } else {
-            sb_add(&a->out, line, (size_t)(next - line));
-            if (next == end && *end == '\0' && end > line)
+            sb_add(&a->out, line, (size_t)(end - line));
+            /* one newline per physical line: later lines keep their numbers */
+            for (int i = 0; i <= extra; i++)
                 sb_add(&a->out, "\n", 1);
         }
-        line = next;
-        line_no++;
+        free(joined);
+        at = next;
+        line_no = after;
     }
     return true;
 }

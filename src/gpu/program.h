@@ -1,7 +1,8 @@
 /* program.h: compute programs built from glsl/ files. The loader resolves
- * #include "..." (relative to the including file, then to glsl/), injects
- * #defines after #version, and maps driver logs ("0(42)", "0:42(7)") back to
- * glsl/<file>:<line>. Programs are cached per context by path and defines,
+ * #include "..." (relative to the including file, then to glsl/), joins
+ * lines continued by a backslash (as C does; not every driver does), injects
+ * #defines after #version, and maps driver logs ("0(42)", "0:42(7)") back
+ * to glsl/<file>:<line>. Programs are cached per context by path and defines,
  * so a batch compiles each once, and their linked binaries on disk (see
  * program_disk_cache.h: $CAVALRY_CACHE_DIR, else $XDG_CACHE_HOME/cavalry,
  * else ~/.cache/cavalry), so the next process on the machine need not

@@ -11,10 +11,11 @@
 #include "gpu/buffer.h"
 #include "gpu/storage.h"
 #include "trace/bdpt.h"
+#include "trace/scene_defines.h"
 
 #define KERNEL "trace/bdpt/bdpt.comp"
-/* defines of the kernel at most, with the NULL */
-#define CV_MAX_DEFINES 24
+/* defines of the kernel at most, with the NULL: the scene's and two */
+#define CV_MAX_DEFINES (CV_SCENE_DEFINES_MAX + 3)
 
 struct cv_bdpt {
     GLuint vertices;   /* CvBdptVertex[wave_paths * CV_BDPT_VERTS(max_depth)] */
@@ -43,7 +44,7 @@ static const char *const *kernel_defines(struct kernel_defines *k, const struct 
                                          const char *const *defines)
 {
     int n = 0;
-    while (defines[n] && n < CV_MAX_DEFINES - 3)
+    while (defines[n])
         k->list[n] = defines[n], n++;
     if (p->bdpt_t > 0) {
         snprintf(k->only_s, sizeof(k->only_s), "CV_BDPT_ONLY_S=%uu", p->bdpt_s);

@@ -21,7 +21,8 @@ struct cv_integrator_setup {
     struct cv_gpu *gpu;
     const struct cv_scene *scene;
     const struct cv_render_params *params;
-    const char *const *defines;   /* the scene's program defines, NULL-terminated */
+    const char *const *defines;   /* the scene's program defines, NULL-terminated
+                                   * (at most CV_SCENE_DEFINES_MAX: scene_defines.h) */
     uint32_t n_paths;             /* path slots (glsl/shared/trace.h) */
     /* whole samples: the slots one dispatch runs, at most n_paths (the
      * columns of the integrator's own storage; render.c:

@@ -4,7 +4,7 @@ libcavalry_a_SOURCES += \
 	src/trace/camera_motion.c src/trace/camera_motion.h \
 	src/trace/integrator.c src/trace/integrator.h \
 	src/trace/bdpt.c src/trace/bdpt.h \
-	src/trace/render.c src/trace/render.h \
+	src/trace/render.c src/trace/render.h src/trace/scene_defines.h \
 	src/trace/scene_upload.c src/trace/scene_upload.h \
 	src/trace/shade_bins.c src/trace/shade_bins.h \
 	src/trace/sdtree.c src/trace/sdtree.h \

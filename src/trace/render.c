@@ -31,6 +31,7 @@
 #include "trace/integrator.h"
 #include "trace/render.h"
 #include "trace/rlpath.h"
+#include "trace/scene_defines.h"
 #include "trace/scene_upload.h"
 
 /* Iterations queued between looks at whether the pass is over. Small, so
@@ -314,25 +315,24 @@ static void defines_plus(const char **out, const char *const *defines, int nd, c
     out[nd] = NULL;
 }
 
-/* the scene's defines, then a stage's own (defines_plus) and the NULL */
-enum { MAX_SCENE_DEFINES = 19 };
-
 /* The stage programs a render of gs with p runs: file and defines by stage
  * (file NULL: the stage has none, or the integrator's create makes it).
  * One home for the choice, for cv_renderer_create_shared and for
  * cv_renderer_prefetch. */
 struct stage_programs {
-    const char *scene_defines[MAX_SCENE_DEFINES + 1];
+    /* each list: the scene's defines (trace/scene_defines.h), then a
+     * stage's own (defines_plus) and the NULL */
+    const char *scene_defines[CV_SCENE_DEFINES_MAX + 1];
     const char *file[ST_COUNT];
     const char *const *defines[ST_COUNT];
-    const char *escaped[MAX_SCENE_DEFINES + 3];
-    const char *intersect[MAX_SCENE_DEFINES + 3];
-    const char *shade[CV_SHADE_PROGRAMS][MAX_SCENE_DEFINES + 3];
+    const char *escaped[CV_SCENE_DEFINES_MAX + 3];
+    const char *intersect[CV_SCENE_DEFINES_MAX + 3];
+    const char *shade[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 3];
     char stride[32];  /* CV_MATTE_STRIDE=N */
-    const char *matte[MAX_SCENE_DEFINES + 3];
-    const char *resolve[MAX_SCENE_DEFINES + 3];
-    const char *straight[MAX_SCENE_DEFINES + 5];
-    const char *shadow[MAX_SCENE_DEFINES + 3];
+    const char *matte[CV_SCENE_DEFINES_MAX + 3];
+    const char *resolve[CV_SCENE_DEFINES_MAX + 3];
+    const char *straight[CV_SCENE_DEFINES_MAX + 5];
+    const char *shadow[CV_SCENE_DEFINES_MAX + 3];
 };
 
 /* Words per path slot of the matte stage (trace.h), 0 when the job asks
@@ -351,62 +351,12 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     memset(sp, 0, sizeof(*sp));
     const char **defines = sp->scene_defines;
     int nd = 0;
-    if (gs->empty)
-        defines[nd++] = "CV_EMPTY_SCENE";
-    if (p->aovs)
-        defines[nd++] = "CV_AOVS";
-    if (gs->has_alpha)
-        defines[nd++] = "CV_HAS_ALPHA";
-    if (gs->basic_materials)
-        defines[nd++] = "CV_BSDF_BASIC";
-    /* Code for what the scene lacks stays out of the kernels: the texture
-     * loops' arrays live in local memory and take registers, which made the
-     * shade stages several times slower on scenes without textures
-     * (bench/RESULTS.md, "Figures behind the code"). */
-    if (!gs->has_env)
-        defines[nd++] = "CV_NO_ENV";
-    if (!gs->has_textures)
-        defines[nd++] = "CV_NO_TEXTURES";
-    /* a tree deeper than the default stack allows is traced with a larger
-     * one (bvh/bvh.h) */
-    if (cv_bvh_stack_define(gs->bvh))
-        defines[nd++] = cv_bvh_stack_define(gs->bvh);
-    /* curves: their own tree beside the triangles' (glsl/bvh/curves.glsl) */
-    if (gs->has_curves)
-        defines[nd++] = "CV_HAS_CURVES";
-    /* moving shapes: their own trees beside (glsl/bvh/motion.glsl) */
-    if (gs->has_motion)
-        defines[nd++] = "CV_HAS_MOTION";
-    if ((gs->has_curves || gs->has_motion) && gs->no_triangles)
-        defines[nd++] = "CV_NO_TRIANGLES";
-    /* BSDF code for materials the scene lacks stays out of the shade
-     * kernels: every material of a bin pays for the registers of its
-     * largest case (bench/RESULTS.md, "Merged main against f42fcef") */
-    if (!gs->has_hair)
-        defines[nd++] = "CV_NO_HAIR";
-    if (!gs->has_coat_closed)
-        defines[nd++] = "CV_NO_COAT_CLOSED";
-    /* BSSRDF probes in the intersect and shade stages (sss_probe.glsl,
-     * sss_vertex.glsl): only where a material is subsurface */
-    if (gs->has_subsurface)
-        defines[nd++] = "CV_HAS_SUBSURFACE";
-    if (!gs->has_measured)
-        defines[nd++] = "CV_NO_MEASURED";
-    /* conductors given by spectra: their Fresnel tables
-     * (glsl/shared/conductor_fresnel.h) */
-    if (gs->has_conductor_fresnel)
-        defines[nd++] = "CV_CONDUCTOR_TABLES";
     const struct cv_integrator_ops *ops = cv_integrator_for(p);
-    /* media are tracked by an integrator that renders them, in a scene
-     * that has them */
-    if (ops->media && gs->has_media)
-        defines[nd++] = "CV_MEDIA";
-    /* grid media's lookups and majorant walk (glsl/trace/medium/grid.glsl) */
-    if (ops->media && gs->has_medium_grids)
-        defines[nd++] = "CV_MEDIUM_GRIDS";
-    /* the cloud's noise (glsl/trace/medium/cloud.glsl) */
-    if (ops->media && gs->has_medium_cloud)
-        defines[nd++] = "CV_MEDIUM_CLOUDS";
+#define ADD_SCENE_DEFINE(name, when) \
+    if (when)                        \
+        defines[nd++] = (name);
+    CV_SCENE_DEFINES(ADD_SCENE_DEFINE)
+#undef ADD_SCENE_DEFINE
     defines[nd] = NULL;
     bool escaped_stage = ops->escaped_stage || gs->has_env;
     defines_plus(sp->escaped, defines, nd, ops->escaped_define,

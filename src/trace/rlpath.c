@@ -23,8 +23,8 @@ struct cv_rlpath {
     uint32_t train;                     /* learns until this spp; 0: in every pass */
     struct cv_program rebuild;          /* a copy (see render.c) */
     GLuint ubo, table, guide, path;
-    GLuint table_tex, table_ftex, guide_tex, path_tex;   /* buffer textures over table
-                                                            (r32ui, r32f), guide and path */
+    /* the shaders' views: the table as r32ui and as r32f, guide, path */
+    struct cv_buffer_image images[4];
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -143,18 +143,18 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
     if (rl->guide)
         rl->path = cv_buffer_create(path_bytes, none, "rlpath path state", err);
     free(none);
-    if (rl->path)
-        rl->table_tex = cv_buffer_texture(rl->table, GL_R32UI,
-                                          cv_rlpath_table_bytes(layout) / 4, err);
-    if (rl->table_tex)
-        rl->table_ftex = cv_buffer_texture(rl->table, GL_R32F,
-                                           cv_rlpath_table_bytes(layout) / 4, err);
-    if (rl->table_ftex)
-        rl->guide_tex = cv_buffer_texture(rl->guide, GL_RGBA32F,
-                                          cv_rlpath_guide_bytes(layout) / 16, err);
-    if (rl->guide_tex)
-        rl->path_tex = cv_buffer_texture(rl->path, GL_RG32UI, path_bytes / 8, err);
-    if (!rl->path_tex) {
+    size_t table_texels = (size_t)cv_rlpath_table_bytes(layout) / 4;
+    bool ok = rl->path &&
+              cv_buffer_image_create(&rl->images[0], rl->table, table_texels, CV_IMAGE_RL_Q,
+                                     GL_R32UI, GL_READ_WRITE, err) &&
+              cv_buffer_image_create(&rl->images[1], rl->table, table_texels, CV_IMAGE_RL_QF,
+                                     GL_R32F, GL_READ_WRITE, err) &&
+              cv_buffer_image_create(&rl->images[2], rl->guide,
+                                     (size_t)cv_rlpath_guide_bytes(layout) / 16,
+                                     CV_IMAGE_RL_GUIDE, GL_RGBA32F, GL_READ_WRITE, err) &&
+              cv_buffer_image_create(&rl->images[3], rl->path, path_bytes / 8, CV_IMAGE_RL_PATH,
+                                     GL_RG32UI, GL_READ_WRITE, err);
+    if (!ok) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);
         cv_rlpath_destroy(&rl);
@@ -167,12 +167,8 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
 void cv_rlpath_bind(const struct cv_rlpath *rl)
 {
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
-    glBindImageTexture(CV_IMAGE_RL_Q, rl->table_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(CV_IMAGE_RL_PATH, rl->path_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
-                       GL_RG32UI);
-    glBindImageTexture(CV_IMAGE_RL_QF, rl->table_ftex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    glBindImageTexture(CV_IMAGE_RL_GUIDE, rl->guide_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
-                       GL_RGBA32F);
+    for (size_t i = 0; i < CV_ARRAY_SIZE(rl->images); i++)
+        cv_buffer_image_bind(&rl->images[i]);
 }
 
 uint32_t cv_rlpath_train_spp(uint32_t train)
@@ -212,14 +208,8 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
     if (!rlp || !*rlp)
         return;
     struct cv_rlpath *rl = *rlp;
-    if (rl->table_tex)
-        glDeleteTextures(1, &rl->table_tex);
-    if (rl->table_ftex)
-        glDeleteTextures(1, &rl->table_ftex);
-    if (rl->guide_tex)
-        glDeleteTextures(1, &rl->guide_tex);
-    if (rl->path_tex)
-        glDeleteTextures(1, &rl->path_tex);
+    for (size_t i = 0; i < CV_ARRAY_SIZE(rl->images); i++)
+        cv_buffer_image_destroy(&rl->images[i]);
     cv_buffer_destroy(&rl->ubo);
     cv_buffer_destroy(&rl->table);
     cv_buffer_destroy(&rl->guide);

@@ -33,6 +33,9 @@
 #define SD_MAX_RECORDS_PER_PASS (1u << 22)
 #define SD_RECORDS_PER_SLOT 64u
 
+/* The buffers the shaders see as images, in cv_rlpath_sd.images. */
+enum { SD_VERTS, SD_OUT, SD_COUNT, SD_TREE, SD_IMAGES };
+
 struct cv_rlpath_sd {
     CvSdParams params;
     uint32_t train;        /* training ends at this spp; 0: never */
@@ -44,7 +47,7 @@ struct cv_rlpath_sd {
     struct cv_program flush;   /* a copy (see render.c) */
     uint32_t n_paths;
     GLuint ubo, verts, out, count, tree;
-    GLuint verts_tex, out_tex, count_tex, tree_tex;
+    struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
     size_t tree_texels;    /* the tree buffer's capacity */
     struct cv_sd_record *recs;   /* the iteration's records so far */
     size_t n_recs, c_recs;
@@ -71,19 +74,16 @@ static bool tree_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *err
     size_t cap = sd->tree_texels ? sd->tree_texels : 256;
     while (cap < n)
         cap *= 2;
-    if (sd->tree_tex)
-        glDeleteTextures(1, &sd->tree_tex);
-    sd->tree_tex = 0;
+    struct cv_buffer_image *im = &sd->images[SD_TREE];
+    cv_buffer_image_destroy(im);
     cv_buffer_destroy(&sd->tree);
     /* the caller writes the tree before any lookup */
     sd->tree = cv_buffer_create(cap * 16, NULL, "rlpath sdtree", err);
-    if (!sd->tree)
-        return false;
-    sd->tree_tex = cv_buffer_texture(sd->tree, GL_RGBA32F, cap, err);
-    if (!sd->tree_tex)
+    if (!sd->tree ||
+        !cv_buffer_image_create(im, sd->tree, cap, CV_IMAGE_SD_TREE, GL_RGBA32F, GL_READ_ONLY, err))
         return false;
     sd->tree_texels = cap;
-    glBindImageTexture(CV_IMAGE_SD_TREE, sd->tree_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    cv_buffer_image_bind(im);
     return true;
 }
 
@@ -127,9 +127,12 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
               (sd->verts = cv_buffer_create(vbytes, NULL, "rlpath sd path records", err)) &&
               (sd->out = cv_buffer_create((size_t)sd->cap * 32, NULL, "rlpath sd records", err)) &&
               (sd->count = cv_buffer_create(16, NULL, "rlpath sd record count", err)) &&
-              (sd->verts_tex = cv_buffer_texture(sd->verts, GL_RGBA32F, vbytes / 16, err)) &&
-              (sd->out_tex = cv_buffer_texture(sd->out, GL_RGBA32F, (size_t)sd->cap * 2, err)) &&
-              (sd->count_tex = cv_buffer_texture(sd->count, GL_R32UI, 4, err)) &&
+              cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16,
+                                     CV_IMAGE_SD_VERTS, GL_RGBA32F, GL_READ_WRITE, err) &&
+              cv_buffer_image_create(&sd->images[SD_OUT], sd->out, (size_t)sd->cap * 2,
+                                     CV_IMAGE_SD_OUT, GL_RGBA32F, GL_WRITE_ONLY, err) &&
+              cv_buffer_image_create(&sd->images[SD_COUNT], sd->count, 4, CV_IMAGE_SD_COUNT,
+                                     GL_R32UI, GL_READ_WRITE, err) &&
               tree_upload(sd, (const float(*)[4])empty, n_empty, err);
     free(empty);
     if (!ok) {
@@ -144,11 +147,8 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
 void cv_rlpath_sd_bind(const struct cv_rlpath_sd *sd)
 {
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_SDTREE, sd->ubo);
-    glBindImageTexture(CV_IMAGE_SD_OUT, sd->out_tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(CV_IMAGE_SD_VERTS, sd->verts_tex, 0, GL_FALSE, 0, GL_READ_WRITE,
-                       GL_RGBA32F);
-    glBindImageTexture(CV_IMAGE_SD_COUNT, sd->count_tex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(CV_IMAGE_SD_TREE, sd->tree_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    for (size_t i = 0; i < CV_ARRAY_SIZE(sd->images); i++)
+        cv_buffer_image_bind(&sd->images[i]);
 }
 
 uint32_t cv_rlpath_sd_learn_until(const struct cv_rlpath_sd *sd)
@@ -224,10 +224,8 @@ void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sdp)
     if (!sdp || !*sdp)
         return;
     struct cv_rlpath_sd *sd = *sdp;
-    GLuint tex[] = {sd->verts_tex, sd->out_tex, sd->count_tex, sd->tree_tex};
-    for (size_t i = 0; i < sizeof(tex) / sizeof(tex[0]); i++)
-        if (tex[i])
-            glDeleteTextures(1, &tex[i]);
+    for (size_t i = 0; i < CV_ARRAY_SIZE(sd->images); i++)
+        cv_buffer_image_destroy(&sd->images[i]);
     cv_buffer_destroy(&sd->ubo);
     cv_buffer_destroy(&sd->verts);
     cv_buffer_destroy(&sd->out);

@@ -15,7 +15,8 @@ tests_gpu_buffer_pool_test_LDADD = $(CV_LIBS)
 tests_gpu_storage_test_LDADD = $(CV_LIBS)
 tests_gpu_timer_test_LDADD = $(CV_LIBS)
 tests_gpu_buf_test_LDADD = $(CV_LIBS)
-EXTRA_DIST += tests/gpu/gpu_test_util.h tests/gpu/list_gpus_test.sh tests/gpu/embedded_glsl_test.sh \
+EXTRA_DIST += tests/gpu/gpu_test_util.h tests/gpu/probe.h tests/gpu/list_gpus_test.sh tests/gpu/embedded_glsl_test.sh \
 	tests/gpu/bindings_test.sh \
 	tests/data/gpu/glsl/broken.comp tests/data/gpu/glsl/inc/fine.glsl tests/data/gpu/glsl/inc/bad.glsl \
-	tests/data/gpu/glsl/good.comp
+	tests/data/gpu/glsl/good.comp tests/data/gpu/glsl/continued.comp \
+	tests/data/gpu/glsl/inc/continued.glsl

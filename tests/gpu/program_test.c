@@ -1,6 +1,8 @@
 /* program_test.c: the GLSL loader. Includes resolve with their line numbers,
  * driver logs of both styles map back to glsl/<file>:<line>, and a broken
- * shader's error names its file and line when compiled by the real driver.
+ * shader's error names its file and line when compiled by the real driver,
+ * and lines continued by a backslash reach the driver joined, keeping the
+ * line numbers after them.
  * Requests (compiling ahead, gpu/program.h): a program requested and never
  * got is no error, a failure is reported at the first get with its
  * file:line, and the build statistics count what happened. */
@@ -50,6 +52,22 @@ int main(void)
         free(names);
         free(src);
     }
+    /* Lines continued by a backslash reach the driver joined (NVIDIA's
+     * compiler does not join a #define's), padded with empty lines so the
+     * lines after them keep their numbers. */
+    ok = cv_glsl_assemble("continued.comp", NULL, &src, &names, &err);
+    tap_ok(ok, "assembles continued.comp: %s", ok ? "" : err.msg);
+    if (ok) {
+        tap_ok(!strstr(src, "\\\n"), "no backslash-newline reaches the driver");
+        tap_ok(strstr(src, "\n#define SUM3     (1.0 +      2.0 + 3.0)\n\n\nlayout") != NULL,
+               "a continued #define is one line, then one empty line per line joined");
+        tap_ok(strstr(src, "\n#define PAIR_SUM     (4.0 + 5.0)\n\n#line 5 0\n") != NULL,
+               "and in an included file, where the #line back names the line after it");
+        for (char **n = names; *n; n++)
+            free(*n);
+        free(names);
+        free(src);
+    }
     tap_ok(!cv_glsl_assemble("missing.comp", NULL, &src, &names, &err) &&
                strstr(err.msg, "missing.comp"),
            "missing shader names the file: %s", err.msg);
@@ -59,6 +77,13 @@ int main(void)
     tap_ok(p == NULL, "broken shader fails");
     tap_ok(strstr(err.msg, "glsl/inc/bad.glsl:4") != NULL && !strstr(err.msg, "broken.comp:4"),
            "every error line names glsl/inc/bad.glsl:4");
+    tap_diag("%s", err.msg);
+    p = cv_program_get(gpu, "continued.comp", NULL, &err);
+    tap_ok(p == NULL && strstr(err.msg, "glsl/continued.comp:9") != NULL &&
+               strstr(err.msg, "undeclared_after_define") != NULL,
+           "an error after continued #defines names glsl/continued.comp:9");
+    tap_ok(!strstr(err.msg, "SUM") && !strstr(err.msg, "continued.glsl"),
+           "and no other error: the joined #defines compiled");
     tap_diag("%s", err.msg);
 
     struct cv_program_build_stats st;

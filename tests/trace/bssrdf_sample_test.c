@@ -24,6 +24,7 @@
 #include "gpu/program.h"
 #include "scene/bssrdf_table.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/gpu/probe.h"
 #include "tests/trace/bsdf_stats.h"
 #include "trace/rlpath.h"
 
@@ -49,26 +50,12 @@ static double cell_edge(int k, double r_max)
 static bool run(struct cv_program *prog, unsigned mode, const struct sr_case *c, const float *in,
                 size_t n, float *out, struct cv_error *err)
 {
-    GLuint bin = cv_buffer_create(in ? n * 16 : 16, in, "bssrdf probe in", err);
-    GLuint bout = cv_buffer_create(n * 16, NULL, "bssrdf probe out", err);
-    bool ok = bin && bout;
-    if (ok) {
-        cv_buffer_bind(bin, CV_BIND_PROBE_IN);
-        cv_buffer_bind(bout, CV_BIND_PROBE_OUT);
-        GLuint id = prog->id;
-        glUseProgram(id);
-        glUniform1ui(glGetUniformLocation(id, "u_mode"), mode);
-        glUniform1ui(glGetUniformLocation(id, "u_count"), (GLuint)n);
-        glUniform1ui(glGetUniformLocation(id, "u_seed"), 91);
-        glUniform1ui(glGetUniformLocation(id, "u_table"), c->table);
-        glUniform1f(glGetUniformLocation(id, "u_rho"), c->rho);
-        glUniform1f(glGetUniformLocation(id, "u_sigma_t"), c->sigma_t);
-        cv_program_dispatch_1d(prog, n);
-        ok = cv_buffer_read(bout, 0, n * 16, out, err);
-    }
-    cv_buffer_destroy(&bin);
-    cv_buffer_destroy(&bout);
-    return ok;
+    GLuint id = probe_use(prog);
+    glUniform1ui(glGetUniformLocation(id, "u_seed"), 91);
+    glUniform1ui(glGetUniformLocation(id, "u_table"), c->table);
+    glUniform1f(glGetUniformLocation(id, "u_rho"), c->rho);
+    glUniform1f(glGetUniformLocation(id, "u_sigma_t"), c->sigma_t);
+    return probe_dispatch(prog, mode, in, n * 16, n, out, n * 16, err);
 }
 
 static void check_case(struct cv_program *prog, const float *tables, const struct sr_case *c, double alpha)

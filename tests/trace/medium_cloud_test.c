@@ -105,9 +105,8 @@ static void dnoise(const float p[3], float out[3])
 struct cloud_case {
     const char *name;
     double density, wispiness, frequency;
-    double p0[3], p1[3];
+    struct grid_probe_box box;
     double sa[3], ss[3];
-    struct cv_mat4 ctm;
 };
 
 /* pbrt-v4's CloudMedium::Density at medium-space p, in float as there
@@ -145,20 +144,12 @@ static void props(const struct cloud_case *k, const double g[3], double sa[3], d
     bool in = g[0] >= 0 && g[0] <= 1 && g[1] >= 0 && g[1] <= 1 && g[2] >= 0 && g[2] <= 1;
     float p[3];
     for (int a = 0; a < 3; a++)
-        p[a] = (float)k->p0[a] + (float)g[a] * (float)(k->p1[a] - k->p0[a]);
+        p[a] = (float)k->box.p0[a] + (float)g[a] * (float)(k->box.p1[a] - k->box.p0[a]);
     double d = in ? density(k, p) : 0;
     for (int c = 0; c < 3; c++) {
         sa[c] = k->sa[c] * d;
         ss[c] = k->ss[c] * d;
     }
-}
-
-static void to_render(const struct cloud_case *k, const double g[3], double p[3])
-{
-    double q[3];
-    for (int a = 0; a < 3; a++)
-        q[a] = k->p0[a] + g[a] * (k->p1[a] - k->p0[a]);
-    cv_mat4_point(&k->ctm, q, p);
 }
 
 /* Noise, its differences and the density at medium-space points. */
@@ -219,17 +210,9 @@ static void check_lookups(struct cv_program *prog, const struct cloud_case *k, u
     struct cv_error err = {{0}};
     const unsigned R = CV_MAJORANT_RES;
     size_t n_cells = (size_t)R * R * R, n, i;
-    double *g = grid_probe_cell_points(PER_CELL, rnd, &n);
-    float *in = cv_xmalloc(n * 16), *out = cv_xmalloc(n * 64);
-    for (i = 0; i < n; i++) {
-        double p[3];
-        to_render(k, g + 3 * i, p);
-        memcpy(in + 4 * i, (float[4]){(float)p[0], (float)p[1], (float)p[2], 0}, 16);
-    }
-    if (!tap_ok(grid_probe_run(prog, 0, medium, N_TRACK, in, n, n, out, 4 * n, &err),
-                "%s: probe runs %s", k->name,
-                err.msg))
-        goto done;
+    float *out = grid_probe_lookups(prog, medium, &k->box, PER_CELL, rnd, &n, &err);
+    if (!tap_ok(out != NULL, "%s: probe runs %s", k->name, err.msg))
+        return;
     double worst = 0, worst_ratio = 0, scale = 0;
     size_t above = 0, inside = 0;
     for (int c = 0; c < 3; c++)
@@ -260,9 +243,6 @@ static void check_lookups(struct cv_program *prog, const struct cloud_case *k, u
      * lower would fail the check above */
     tap_ok(worst_ratio > 0.98, "%s: the check catches a majorant 2 %% too low (sigma_t up to "
                                "%.4f of it)", k->name, worst_ratio);
-done:
-    free(g);
-    free(in);
     free(out);
 }
 
@@ -271,7 +251,7 @@ static void quadrature(const struct cloud_case *k, const double o[3], const doub
                        double t1, double tau[3])
 {
     struct cv_mat4 inv;
-    cv_mat4_inverse(&k->ctm, &inv);
+    cv_mat4_inverse(&k->box.ctm, &inv);
     const int steps = 20000;
     double dt = t1 / steps;
     tau[0] = tau[1] = tau[2] = 0;
@@ -281,7 +261,7 @@ static void quadrature(const struct cloud_case *k, const double o[3], const doub
             p[a] = o[a] + (i + 0.5) * dt * d[a];
         cv_mat4_point(&inv, p, q);
         for (int a = 0; a < 3; a++)
-            g[a] = (q[a] - k->p0[a]) / (k->p1[a] - k->p0[a]);
+            g[a] = (q[a] - k->box.p0[a]) / (k->box.p1[a] - k->box.p0[a]);
         props(k, g, sa, ss);
         for (int c = 0; c < 3; c++)
             tau[c] += (sa[c] + ss[c]) * dt;
@@ -292,62 +272,17 @@ static void check_walks(struct cv_program *prog, const struct cloud_case *k, uns
 {
     struct cv_error err = {{0}};
     float in[N_RAYS * 8];
-    size_t n_est = (size_t)N_RAYS * N_TRACK;
-    float *ratio = cv_xmalloc(n_est * 32), *delta = cv_xmalloc(n_est * 32);
+    float *ratio = cv_xmalloc((size_t)N_RAYS * N_TRACK * 32);
+    float *delta = cv_xmalloc((size_t)N_RAYS * N_TRACK * 32);
     double o[N_RAYS][3], d[N_RAYS][3], t1[N_RAYS];
-    for (int i = 0; i < N_RAYS; i++) {
-        double ga[3], gb[3], pa[3], pb[3], len = 0;
-        for (int a = 0; a < 3; a++) {
-            ga[a] = -0.3 + 1.6 * rnd();
-            gb[a] = -0.3 + 1.6 * rnd();
-        }
-        to_render(k, ga, pa);
-        to_render(k, gb, pb);
-        for (int a = 0; a < 3; a++)
-            len += (pb[a] - pa[a]) * (pb[a] - pa[a]);
-        t1[i] = len = sqrt(len);
-        for (int a = 0; a < 3; a++) {
-            o[i][a] = pa[a];
-            d[i][a] = (pb[a] - pa[a]) / len;
-        }
-        memcpy(in + 8 * i, (float[8]){(float)o[i][0], (float)o[i][1], (float)o[i][2], (float)t1[i],
-                                       (float)d[i][0], (float)d[i][1], (float)d[i][2], 0}, 32);
-    }
-    if (!tap_ok(grid_probe_run(prog, 2, medium, N_TRACK, in, 2 * N_RAYS, n_est, ratio, 2 * n_est, &err) &&
-                    grid_probe_run(prog, 3, medium, N_TRACK, in, 2 * N_RAYS, n_est, delta, 2 * n_est, &err),
+    grid_probe_rays(&k->box, rnd, N_RAYS, o, d, t1, in);
+    if (!tap_ok(grid_probe_track(prog, medium, N_TRACK, in, N_RAYS, ratio, delta, &err),
                 "%s: walk probes run %s", k->name, err.msg))
         goto done;
-    double worst_ratio = 0, worst_pass = 0, worst_coll = 0, deepest = 0;
-    for (int i = 0; i < N_RAYS; i++) {
-        double tau[3];
-        quadrature(k, o[i], d[i], t1[i], tau);
-        for (int c = 0; c < 3; c++) {
-            double T = exp(-tau[c]);
-            deepest = fmax(deepest, tau[c]);
-            double m[3] = {0, 0, 0}, q[3] = {0, 0, 0};
-            for (int j = 0; j < N_TRACK; j++) {
-                const float *e = ratio + 8 * ((size_t)i * N_TRACK + j);
-                const float *f = delta + 8 * ((size_t)i * N_TRACK + j);
-                double v[3] = {e[c], f[c], f[4 + c]};
-                for (int x = 0; x < 3; x++) {
-                    m[x] += v[x] / N_TRACK;
-                    q[x] += v[x] * v[x] / N_TRACK;
-                }
-            }
-            double se[3];
-            for (int x = 0; x < 3; x++)
-                se[x] = sqrt(fmax(q[x] - m[x] * m[x], 0) / N_TRACK) + 1e-4;
-            worst_ratio = fmax(worst_ratio, fabs(m[0] - T) / se[0]);
-            worst_pass = fmax(worst_pass, fabs(m[1] - T) / se[1]);
-            worst_coll = fmax(worst_coll, fabs(m[2] - (1 - T)) / se[2]);
-        }
-    }
-    tap_ok(worst_ratio < 4.5 && deepest > 0.5,
-           "%s: ratio tracking averages to exp(-optical depth) per channel (worst %.2f standard "
-           "errors; optical depths up to %.2f)", k->name, worst_ratio, deepest);
-    tap_ok(worst_pass < 4.5 && worst_coll < 4.5,
-           "%s: delta tracking's pass and collision weights average to T and 1 - T per channel "
-           "(worst %.2f and %.2f standard errors)", k->name, worst_pass, worst_coll);
+    double tau[N_RAYS][3];
+    for (int i = 0; i < N_RAYS; i++)
+        quadrature(k, o[i], d[i], t1[i], tau[i]);
+    grid_probe_check_tracking(k->name, ratio, delta, N_RAYS, N_TRACK, tau, 0.5);
 done:
     free(ratio);
     free(delta);
@@ -359,13 +294,14 @@ int main(void)
     struct cv_error err = {{0}};
     struct cloud_case cases[2] = {
         {.name = "wispy cloud", .density = 1.2, .wispiness = 1.5, .frequency = 3,
-         .p0 = {-1, -0.5, 0}, .p1 = {1.5, 2, 1}, .sa = {0.3, 0.5, 0.2}, .ss = {1, 0.7, 1.4}},
-        {.name = "plain cloud", .density = 2, .wispiness = 0, .frequency = 7, .p0 = {0, 0, 0},
-         .p1 = {1, 1, 1}, .sa = {1, 1, 1}, .ss = {1, 1, 1}},
+         .box = {.p0 = {-1, -0.5, 0}, .p1 = {1.5, 2, 1}}, .sa = {0.3, 0.5, 0.2},
+         .ss = {1, 0.7, 1.4}},
+        {.name = "plain cloud", .density = 2, .wispiness = 0, .frequency = 7,
+         .box = {.p0 = {0, 0, 0}, .p1 = {1, 1, 1}}, .sa = {1, 1, 1}, .ss = {1, 1, 1}},
     };
     struct cv_mat4 t = cv_mat4_translate(0.3, -0.2, 0.5), r = cv_mat4_rotate(25, 1, 1, 0);
-    cases[0].ctm = cv_mat4_mul(&t, &r);
-    cases[1].ctm = cv_mat4_scale(1, 2, 0.5);
+    cases[0].box.ctm = cv_mat4_mul(&t, &r);
+    cases[1].box.ctm = cv_mat4_scale(1, 2, 0.5);
     const char *text =
         "WorldBegin\nAttributeBegin\nTranslate 0.3 -0.2 0.5\nRotate 25 1 1 0\n"
         "MakeNamedMedium \"a\" \"string type\" \"cloud\" \"float density\" 1.2\n"

@@ -49,10 +49,9 @@ static double rnd(void)
 struct grid_case {
     const char *name;
     int n[3], comps;
-    double p0[3], p1[3];
+    struct grid_probe_box box;
     double sa[3], ss[3], Le[3]; /* the medium's constants (rgbgrid: scale, Lescale) */
     double *a, *s, *e;          /* the grids (e: NULL = pbrt-v4's one-sample Lescale) */
-    struct cv_mat4 ctm;
 };
 
 static double *random_grid(size_t n, double lo, double hi)
@@ -154,31 +153,15 @@ static double cell_max(const struct grid_case *k, int x, int y, int z)
     return best;
 }
 
-static void to_render(const struct grid_case *k, const double g[3], double p[3])
-{
-    double q[3];
-    for (int a = 0; a < 3; a++)
-        q[a] = k->p0[a] + g[a] * (k->p1[a] - k->p0[a]);
-    cv_mat4_point(&k->ctm, q, p);
-}
-
 static void check_lookups(struct cv_program *prog, const struct grid_case *k, unsigned medium,
                           const struct cv_scene *s)
 {
     struct cv_error err = {{0}};
     const unsigned R = CV_MAJORANT_RES;
     size_t n_cells = (size_t)R * R * R, n, i;
-    double *g = grid_probe_cell_points(PER_CELL, rnd, &n);
-    float *in = cv_xmalloc(n * 16), *out = cv_xmalloc(n * 64);
-    for (i = 0; i < n; i++) {
-        double p[3];
-        to_render(k, g + 3 * i, p);
-        memcpy(in + 4 * i, (float[4]){(float)p[0], (float)p[1], (float)p[2], 0}, 16);
-    }
-    if (!tap_ok(grid_probe_run(prog, 0, medium, N_TRACK, in, n, n, out, 4 * n, &err),
-                "%s: probe runs %s", k->name,
-                err.msg))
-        goto done;
+    float *out = grid_probe_lookups(prog, medium, &k->box, PER_CELL, rnd, &n, &err);
+    if (!tap_ok(out != NULL, "%s: probe runs %s", k->name, err.msg))
+        return;
     double worst = 0, worst_ratio = 0, worst_low = 0;
     size_t below = 0, wrong_max = 0;
     const float *maj = s->medium_grids + s->media[medium].res.w;
@@ -224,9 +207,6 @@ static void check_lookups(struct cv_program *prog, const struct grid_case *k, un
                               "%.4f of it)", k->name, worst_low);
     tap_ok(wrong_max == 0, "%s: each majorant is pbrt-v4's MaxValue of its cell (%zu differ)",
            k->name, wrong_max);
-done:
-    free(g);
-    free(in);
     free(out);
 }
 
@@ -237,7 +217,7 @@ static void quadrature(const struct grid_case *k, const struct cv_scene *s, unsi
                        double *maj_int, double *maj_max)
 {
     struct cv_mat4 inv;
-    cv_mat4_inverse(&k->ctm, &inv);
+    cv_mat4_inverse(&k->box.ctm, &inv);
     const int steps = 40000;
     const unsigned R = CV_MAJORANT_RES;
     const float *maj = s->medium_grids + s->media[medium].res.w;
@@ -252,7 +232,7 @@ static void quadrature(const struct grid_case *k, const struct cv_scene *s, unsi
         cv_mat4_point(&inv, p, q);
         bool in = true;
         for (int a = 0; a < 3; a++) {
-            g[a] = (q[a] - k->p0[a]) / (k->p1[a] - k->p0[a]);
+            g[a] = (q[a] - k->box.p0[a]) / (k->box.p1[a] - k->box.p0[a]);
             in = in && g[a] >= 0 && g[a] <= 1;
         }
         props(k, g, sa, ss, le);
@@ -276,73 +256,27 @@ static void check_walks(struct cv_program *prog, const struct grid_case *k, unsi
     float *ratio = cv_xmalloc((size_t)N_RAYS * N_TRACK * 32);
     float *delta = cv_xmalloc((size_t)N_RAYS * N_TRACK * 32);
     double o[N_RAYS][3], d[N_RAYS][3], t1[N_RAYS];
-    for (int i = 0; i < N_RAYS; i++) {
-        /* from a point near the medium towards another: some rays start
-         * inside, some end inside, some miss */
-        double ga[3], gb[3], pa[3], pb[3], len = 0;
-        for (int a = 0; a < 3; a++) {
-            ga[a] = -0.3 + 1.6 * rnd();
-            gb[a] = -0.3 + 1.6 * rnd();
-        }
-        to_render(k, ga, pa);
-        to_render(k, gb, pb);
-        for (int a = 0; a < 3; a++)
-            len += (pb[a] - pa[a]) * (pb[a] - pa[a]);
-        len = sqrt(len);
-        t1[i] = len;
-        for (int a = 0; a < 3; a++) {
-            o[i][a] = pa[a];
-            d[i][a] = (pb[a] - pa[a]) / len;
-        }
-        memcpy(in + 8 * i, (float[8]){(float)o[i][0], (float)o[i][1], (float)o[i][2], (float)t1[i],
-                                       (float)d[i][0], (float)d[i][1], (float)d[i][2], 0}, 32);
-    }
-    size_t n_est = (size_t)N_RAYS * N_TRACK;
-    if (!tap_ok(grid_probe_run(prog, 1, medium, N_TRACK, in, 2 * N_RAYS, N_RAYS, walk, N_RAYS, &err) &&
-                    grid_probe_run(prog, 2, medium, N_TRACK, in, 2 * N_RAYS, n_est, ratio, 2 * n_est, &err) &&
-                    grid_probe_run(prog, 3, medium, N_TRACK, in, 2 * N_RAYS, n_est, delta, 2 * n_est, &err),
+    grid_probe_rays(&k->box, rnd, N_RAYS, o, d, t1, in);
+    if (!tap_ok(grid_probe_run(prog, 1, medium, 1, in, 2 * N_RAYS, N_RAYS, walk, N_RAYS, &err) &&
+                    grid_probe_track(prog, medium, N_TRACK, in, N_RAYS, ratio, delta, &err),
                 "%s: walk probes run %s", k->name, err.msg)) {
         free(ratio);
         free(delta);
         return;
     }
-    double worst_walk = 0, worst_ratio = 0, worst_pass = 0, worst_coll = 0;
+    double worst_walk = 0, tau[N_RAYS][3];
     int entered = 0;
     for (int i = 0; i < N_RAYS; i++) {
-        double tau[3], mi, mm;
-        quadrature(k, s, medium, o[i], d[i], t1[i], tau, &mi, &mm);
+        double mi, mm;
+        quadrature(k, s, medium, o[i], d[i], t1[i], tau[i], &mi, &mm);
         worst_walk = fmax(worst_walk, fabs(walk[4 * i] - mi) / fmax(mm * t1[i], 1e-6));
         entered += walk[4 * i + 1] > 0;
-        for (int c = 0; c < 3; c++) {
-            double T = exp(-tau[c]);
-            /* each estimator's standard error from its samples */
-            double m[3] = {0, 0, 0}, q[3] = {0, 0, 0};
-            for (int j = 0; j < N_TRACK; j++) {
-                const float *e = ratio + 8 * ((size_t)i * N_TRACK + j);
-                const float *f = delta + 8 * ((size_t)i * N_TRACK + j);
-                double v[3] = {e[c], f[c], f[4 + c]};
-                for (int x = 0; x < 3; x++) {
-                    m[x] += v[x] / N_TRACK;
-                    q[x] += v[x] * v[x] / N_TRACK;
-                }
-            }
-            double se[3];
-            for (int x = 0; x < 3; x++)
-                se[x] = sqrt(fmax(q[x] - m[x] * m[x], 0) / N_TRACK) + 1e-4;
-            worst_ratio = fmax(worst_ratio, fabs(m[0] - T) / se[0]);
-            worst_pass = fmax(worst_pass, fabs(m[1] - T) / se[1]);
-            worst_coll = fmax(worst_coll, fabs(m[2] - (1 - T)) / se[2]);
-        }
     }
     tap_ok(worst_walk < 2e-3 && entered > N_RAYS / 4,
            "%s: the DDA walk integrates the majorant as a fine quadrature does (worst %.2g of "
            "the largest majorant times the length; %d of %d rays enter)", k->name, worst_walk,
            entered, N_RAYS);
-    tap_ok(worst_ratio < 4.5, "%s: ratio tracking averages to exp(-optical depth) per channel "
-                              "(worst %.2f standard errors)", k->name, worst_ratio);
-    tap_ok(worst_pass < 4.5 && worst_coll < 4.5,
-           "%s: delta tracking's pass and collision weights average to T and 1 - T per channel "
-           "(worst %.2f and %.2f standard errors)", k->name, worst_pass, worst_coll);
+    grid_probe_check_tracking(k->name, ratio, delta, N_RAYS, N_TRACK, tau, 0);
     free(ratio);
     free(delta);
 }
@@ -352,12 +286,15 @@ int main(void)
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct cv_error err = {{0}};
     struct grid_case cases[3] = {
-        {.name = "uniformgrid", .n = {5, 3, 7}, .comps = 1, .p0 = {-1, -0.5, 0}, .p1 = {1.5, 2, 1},
-         .sa = {0.3, 0.5, 0.2}, .ss = {1, 0.7, 1.4}, .Le = {1, 2, 3}},
-        {.name = "rgbgrid", .n = {37, 20, 3}, .comps = 3, .p0 = {0, 0, 0}, .p1 = {2, 1, 0.5},
-         .sa = {0.7, 0.7, 0.7}, .ss = {0.7, 0.7, 0.7}, .Le = {2, 2, 2}},
-        {.name = "uniformgrid Lescale", .n = {2, 2, 2}, .comps = 1, .p0 = {0, 0, 0},
-         .p1 = {1, 1, 1}, .sa = {2, 1, 0.5}, .ss = {0, 0, 0}, .Le = {0.5, 1, 1.5}},
+        {.name = "uniformgrid", .n = {5, 3, 7}, .comps = 1,
+         .box = {.p0 = {-1, -0.5, 0}, .p1 = {1.5, 2, 1}}, .sa = {0.3, 0.5, 0.2},
+         .ss = {1, 0.7, 1.4}, .Le = {1, 2, 3}},
+        {.name = "rgbgrid", .n = {37, 20, 3}, .comps = 3,
+         .box = {.p0 = {0, 0, 0}, .p1 = {2, 1, 0.5}}, .sa = {0.7, 0.7, 0.7},
+         .ss = {0.7, 0.7, 0.7}, .Le = {2, 2, 2}},
+        {.name = "uniformgrid Lescale", .n = {2, 2, 2}, .comps = 1,
+         .box = {.p0 = {0, 0, 0}, .p1 = {1, 1, 1}}, .sa = {2, 1, 0.5}, .ss = {0, 0, 0},
+         .Le = {0.5, 1, 1.5}},
     };
     cases[0].a = cases[0].s = random_grid(5 * 3 * 7, 0, 3);
     cases[1].a = random_grid(37 * 20 * 3 * 3, 0, 0.5);
@@ -366,9 +303,9 @@ int main(void)
     cases[2].a = cases[2].s = random_grid(8, 0, 1);
     cases[2].e = random_grid(8, 0, 4);
     struct cv_mat4 t = cv_mat4_translate(0.3, -0.2, 0.5), r = cv_mat4_rotate(25, 1, 1, 0);
-    cases[0].ctm = cv_mat4_mul(&t, &r);
-    cases[1].ctm = cv_mat4_identity();
-    cases[2].ctm = cv_mat4_scale(1, 2, 0.5);
+    cases[0].box.ctm = cv_mat4_mul(&t, &r);
+    cases[1].box.ctm = cv_mat4_identity();
+    cases[2].box.ctm = cv_mat4_scale(1, 2, 0.5);
 
     char *text = NULL;
     size_t len = 0;

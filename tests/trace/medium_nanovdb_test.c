@@ -25,6 +25,7 @@
 #include "scene/scene.h"
 #include "scene/transform.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/trace/grid_probe.h"
 #include "trace/scene_upload.h"
 
 #define N_POINTS 20000
@@ -111,22 +112,8 @@ int main(void)
                 cv_mat4_point(&ctm, pm + 3 * i, p);
                 memcpy(in + 4 * i, (float[4]){(float)p[0], (float)p[1], (float)p[2], 0}, 16);
             }
-            GLuint bin = cv_buffer_create(N_POINTS * 16, in, "probe in", &err);
-            GLuint bout = cv_buffer_create(N_POINTS * 64, NULL, "probe out", &err);
-            bool ran = bin && bout;
-            if (ran) {
-                cv_buffer_bind(bin, CV_BIND_PROBE_IN);
-                cv_buffer_bind(bout, CV_BIND_PROBE_OUT);
-                glUseProgram(prog->id);
-                glUniform1ui(glGetUniformLocation(prog->id, "u_mode"), 0);
-                glUniform1ui(glGetUniformLocation(prog->id, "u_count"), N_POINTS);
-                glUniform1ui(glGetUniformLocation(prog->id, "u_medium"), 1);
-                glUniform1ui(glGetUniformLocation(prog->id, "u_samples"), 1);
-                cv_program_dispatch_1d(prog, N_POINTS);
-                ran = cv_buffer_read(bout, 0, N_POINTS * 64, out, &err);
-            }
-            cv_buffer_destroy(&bin);
-            cv_buffer_destroy(&bout);
+            bool ran = grid_probe_run(prog, 0, 1, 1, in, N_POINTS, N_POINTS, out, 4 * N_POINTS,
+                                      &err);
             if (tap_ok(ran, "the probe runs: %s", err.msg)) {
                 double worst = 0, worst_le = 0, worst_maj = 0;
                 size_t inside = 0, hot = 0, skipped = 0;

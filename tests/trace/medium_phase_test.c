@@ -21,6 +21,7 @@
 #include "gpu/buffer.h"
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/gpu/probe.h"
 #include "tests/trace/bsdf_stats.h"
 
 #define N 200000
@@ -49,25 +50,11 @@ static double hg(double cos_theta, double g)
 static bool run(struct cv_program *prog, unsigned mode, const struct phase_case *c,
                 const float *in, size_t n, float *out, struct cv_error *err)
 {
-    GLuint bin = cv_buffer_create(in ? n * 16 : 16, in, "phase probe in", err);
-    GLuint bout = cv_buffer_create(n * 16, NULL, "phase probe out", err);
-    bool ok = bin && bout;
-    if (ok) {
-        cv_buffer_bind(bin, CV_BIND_PROBE_IN);
-        cv_buffer_bind(bout, CV_BIND_PROBE_OUT);
-        GLuint id = prog->id;
-        glUseProgram(id);
-        glUniform1ui(glGetUniformLocation(id, "u_mode"), mode);
-        glUniform1ui(glGetUniformLocation(id, "u_count"), (GLuint)n);
-        glUniform1ui(glGetUniformLocation(id, "u_seed"), 77);
-        glUniform3f(glGetUniformLocation(id, "u_wo"), c->wo[0], c->wo[1], c->wo[2]);
-        glUniform1f(glGetUniformLocation(id, "u_g"), c->g);
-        cv_program_dispatch_1d(prog, n);
-        ok = cv_buffer_read(bout, 0, n * 16, out, err);
-    }
-    cv_buffer_destroy(&bin);
-    cv_buffer_destroy(&bout);
-    return ok;
+    GLuint id = probe_use(prog);
+    glUniform1ui(glGetUniformLocation(id, "u_seed"), 77);
+    glUniform3f(glGetUniformLocation(id, "u_wo"), c->wo[0], c->wo[1], c->wo[2]);
+    glUniform1f(glGetUniformLocation(id, "u_g"), c->g);
+    return probe_dispatch(prog, mode, in, n * 16, n, out, n * 16, err);
 }
 
 static void check_case(struct cv_program *prog, const struct phase_case *c, double alpha)
