@@ -20,6 +20,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1
 #define CV_NO_LAYERED
 #endif
+#include "unroll_hint.glsl"
 #include "common.glsl"
 #include "sampler.glsl"
 #include "geometry.glsl"

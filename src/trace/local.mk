@@ -16,6 +16,7 @@ GLSL_FILES += \
 	glsl/trace/geometry.glsl glsl/trace/tracing.glsl \
 	glsl/trace/materials.glsl glsl/trace/bsdf_basic.glsl glsl/trace/lights.glsl glsl/trace/scene_buffers.glsl \
 	glsl/trace/surface_inputs.glsl glsl/trace/path_vertex.glsl glsl/trace/shade_queue.glsl \
+	glsl/trace/unroll_hint.glsl \
 	glsl/trace/generate.comp glsl/trace/intersect.comp glsl/trace/queue_args.glsl \
 	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
