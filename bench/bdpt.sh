@@ -1,19 +1,21 @@
 #!/bin/sh
-# bdpt.sh: the bdpt integrator against path at equal render time, on
-# scenes with caustics: per scene a converged reference (bdpt at --ref-spp,
-# rendered with cavalry-batch to EXR), then bench/converge.sh's series of
-# relMSE against render time for path and bdpt, both against that
-# reference (CSV and a plot per scene). A bdpt sample costs several path
-# samples, so path's series runs to more samples (--path-spp), for the two
-# to span the same render times.
+# bdpt.sh: the bdpt integrator against path (or volpath, --against) at
+# equal render time, on scenes with caustics: per scene a converged
+# reference (bdpt at --ref-spp, rendered with cavalry-batch to EXR), then
+# bench/converge.sh's series of relMSE against render time for the two,
+# both against that reference (CSV and a plot per scene). A bdpt sample
+# costs several path samples, so path's series runs to more samples
+# (--path-spp), for the two to span the same render times.
 #
 # usage: bench/bdpt.sh [--ref-spp N] [--spp N] [--path-spp N] [--size WxH]
-#                      [--out DIR] SCENE.pbrt...
+#                      [--against path|volpath] [--out DIR] SCENE.pbrt...
 #   --ref-spp N  the reference's samples per pixel (default 4096)
 #   --spp N      bdpt's series runs to N spp at doubling counts (default 256)
 #   --path-spp N path's series runs to N spp (default 32 times --spp)
 #   --size WxH   film size (default: the scene's)
-#   --out DIR    default bench/out/bdpt: DIR/NAME/{ref.exr,path.csv,
+#   --against I  the unidirectional integrator bdpt runs against: path
+#                (default), or volpath for scenes with participating media
+#   --out DIR    default bench/out/bdpt: DIR/NAME/{ref.exr,I.csv,
 #                bdpt.csv,convergence.png}, NAME the scene file's name
 # e.g. bench/bdpt.sh ../shared/scenes/veach-bidir/scene-v4.pbrt \
 #          ../shared/scenes/caustic-glass/caustic-glass-v4.pbrt
@@ -25,6 +27,7 @@ spp=256
 path_spp=
 size=
 out=
+against=path
 scenes=
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -33,6 +36,11 @@ while [ $# -gt 0 ]; do
     --path-spp) path_spp=$2; shift 2 ;;
     --size) size=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
+    --against)
+        case "$2" in path|volpath) against=$2 ;;
+        *) echo "bdpt.sh: --against takes path or volpath, not $2" >&2; exit 2 ;;
+        esac
+        shift 2 ;;
     -h|--help) bench_usage "$0"; exit 0 ;;
     -*) echo "bdpt.sh: unknown option $1" >&2; exit 2 ;;
     *) scenes="$scenes $1"; shift ;;
@@ -71,12 +79,12 @@ for scene in $scenes; do
     # one series at a time, each to its own sample count, then one plot
     # shellcheck disable=SC2086
     "$here/converge.sh" --reference "$dir/ref.exr" --spp "$path_spp" $size_args --out "$dir" \
-        "path=$scene@path" || exit 1
+        "$against=$scene@$against" || exit 1
     # shellcheck disable=SC2086
     "$here/converge.sh" --reference "$dir/ref.exr" --spp "$spp" $size_args --out "$dir" \
         "bdpt=$scene@bdpt" || exit 1
     "$plot" --out "$dir/convergence.png" --title "$name: relMSE vs render time" --x seconds \
-        --y relmse --xlabel "render time (s)" --ylabel "relMSE" "$dir/path.csv=path" \
+        --y relmse --xlabel "render time (s)" --ylabel "relMSE" "$dir/$against.csv=$against" \
         "$dir/bdpt.csv=bdpt" || exit 1
     echo "bdpt.sh: wrote $dir/convergence.png" >&2
 done
