@@ -498,6 +498,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 {
     if (!check_params(scene, p, err))
         return false;
+    /* the ID mattes read each triangle's object from a buffer texture */
+    if ((p->id_mattes || p->cryptomatte) && scene->n_triangles && !gs->tri_object_tex)
+        return cv_fail(err, "ID mattes of %u triangles: more than this GPU's buffer textures "
+                            "hold", scene->n_triangles);
 
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
