@@ -13,8 +13,9 @@
 #include "trace/bdpt.h"
 
 #define KERNEL "trace/bdpt/bdpt.comp"
-/* defines of the kernel at most, with the NULL */
-#define CV_MAX_DEFINES 24
+/* defines of the kernel at most, with the NULL: the scene's, the
+ * mattes' (render.c: stride, Cryptomatte, transparent film), a strategy's */
+#define CV_MAX_DEFINES 26
 
 struct cv_bdpt {
     GLuint vertices;   /* CvBdptVertex[wave_paths * CV_BDPT_VERTS(max_depth)] */
