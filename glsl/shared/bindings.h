@@ -23,15 +23,14 @@
 #define CV_BIND_TEXTURES 4     /* CvTexture[] */
 #define CV_BIND_TEXELS 5       /* uvec2[]: half RGBA */
 #define CV_BIND_LIGHTS 6       /* CvLight[] */
-#define CV_BIND_LIGHT_CDF 7    /* float[]: light selection CDF by power */
+/* 7: free (the light selection CDF is a buffer texture: CV_TEXUNIT_LIGHT_CDF) */
 #define CV_BIND_BVH_NODES 8    /* src/bvh node layout (glsl/bvh/layout.h) */
 #define CV_BIND_BVH_PRIMS 9    /* src/bvh leaf primitive order */
 /* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
  * the stage-private range so no stage's own buffers displace it. */
 #define CV_BIND_BVH_TRIS 26
-/* uint[]: each triangle's ID-matte object (src/scene/scene.h), read only
- * by trace/matte.comp; above the stage-private range, as CV_BIND_BVH_TRIS */
-#define CV_BIND_TRI_OBJECT 27
+/* 27: free (each triangle's ID-matte object is a buffer texture:
+ * CV_TEXUNIT_TRI_OBJECT) */
 /* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
  * above the stage-private range */
 #define CV_BIND_MEDIA 29
@@ -59,6 +58,13 @@
 /* rgba32f: conductors' spectral Fresnel tables (glsl/shared/conductor_fresnel.h),
  * bound where the scene has one (CV_CONDUCTOR_TABLES) */
 #define CV_TEXUNIT_CONDUCTOR_FRESNEL 4
+/* r32f: the light selection CDF by power (glsl/trace/light/light_buffers.glsl):
+ * bdpt's kernel, with alpha and ID mattes, would pass 16 blocks otherwise */
+#define CV_TEXUNIT_LIGHT_CDF 5
+/* r32ui: each triangle's ID-matte object (src/scene/scene.h), read by the
+ * mattes (glsl/trace/matte.glsl); bound where the scene's triangles fit a
+ * buffer texture (trace/scene_upload.h) */
+#define CV_TEXUNIT_TRI_OBJECT 6
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

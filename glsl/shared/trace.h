@@ -188,8 +188,9 @@ CV_STRUCT(CvFilmPixel) {
 CV_CHECK_SIZE(CvFilmPixel, 48);
 
 /* Coverage and ID mattes, per path slot, for a job with alpha or ID AOVs
- * (CV_BIND_MATTE; trace/matte.comp writes them at each camera ray's first
- * hit): CV_MATTE_STRIDE uints a slot (the host defines it: CV_MATTE_WORDS
+ * (CV_BIND_MATTE; trace/matte.glsl writes them at each camera ray's first
+ * hit, for the matte stage and bdpt's camera subpaths): CV_MATTE_STRIDE
+ * uints a slot (the host defines it: CV_MATTE_WORDS
  * without Cryptomatte, CV_MATTE_WORDS_CRYPTO with it), slot s from
  * s * CV_MATTE_STRIDE on, all starting at 0:
  * - [CV_MATTE_COVERAGE]: the filter weight of the slot's camera rays that

@@ -92,15 +92,10 @@ static const char *const media_integrators[] = {"simplevolpath", "bdpt", "mlt"};
 static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *scene,
                               const CvCamera *cam)
 {
+    (void)job;  /* its alpha and ID mattes: rendered (issue 27) */
+    (void)cam;  /* orthographic or moving: rendered (issue 27) */
     if (scene->n_media > 0)
         return "participating media";
-    if (cam->type == CV_CAMERA_ORTHOGRAPHIC)
-        return "an orthographic camera";
-    if (memcmp(cam->to_world, cam->to_world_end, sizeof(cam->to_world)) != 0)
-        return "camera motion blur";
-    if (job->alpha || (job->aovs & (CV_AOV_OBJECT_ID | CV_AOV_MATERIAL_ID | CV_AOV_CRYPTO_OBJECT |
-                                    CV_AOV_CRYPTO_MATERIAL)))
-        return "alpha and ID mattes";
     return NULL;
 }
 

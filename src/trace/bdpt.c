@@ -14,8 +14,10 @@
 #include "trace/scene_defines.h"
 
 #define KERNEL "trace/bdpt/bdpt.comp"
-/* defines of the kernel at most, with the NULL: the scene's and two */
-#define CV_MAX_DEFINES (CV_SCENE_DEFINES_MAX + 3)
+/* defines of the kernel at most, with the NULL: the scene's, the
+ * mattes' (render.c: stride, Cryptomatte, transparent film), a strategy's
+ * two */
+#define CV_MAX_DEFINES (CV_SCENE_DEFINES_MAX + 6)
 
 struct cv_bdpt {
     GLuint vertices;   /* CvBdptVertex[wave_paths * CV_BDPT_VERTS(max_depth)] */

@@ -68,3 +68,5 @@ GLSL_FILES += glsl/shared/bssrdf.h glsl/trace/bsdf/bssrdf.glsl glsl/trace/bsdf/s
 GLSL_FILES += glsl/shared/conductor_fresnel.h
 # --- the one BSDF query (issue 26) ---
 GLSL_FILES += glsl/trace/bsdf/bsdf_query.glsl
+# --- a camera ray's first hit for the mattes, shared by matte.comp and bdpt (issue 27) ---
+GLSL_FILES += glsl/trace/matte.glsl

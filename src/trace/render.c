@@ -267,17 +267,6 @@ static bool check_params(const struct cv_scene *scene, const struct cv_render_pa
     const CvCamera *c = p->camera ? p->camera : &scene->camera;
     if (c->film.x == 0 || c->film.y == 0 || c->crop.x == 0 || c->crop.y == 0)
         return cv_fail(err, "scene has no film resolution");
-    /* whole-sample integrators (bdpt) run no matte stage, and their
-     * camera (glsl/trace/bdpt/endpoints.glsl) is a still perspective one */
-    if (cv_integrator_for(p)->whole_samples) {
-        const char *name = cv_integrator_name(p->integrator);
-        if (p->alpha || p->id_mattes || p->cryptomatte)
-            return cv_fail(err, "integrator \"%s\" renders no alpha or ID mattes", name);
-        if (c->type == CV_CAMERA_ORTHOGRAPHIC)
-            return cv_fail(err, "integrator \"%s\" renders no orthographic camera", name);
-        if (memcmp(c->to_world, c->to_world_end, sizeof(c->to_world)) != 0)
-            return cv_fail(err, "integrator \"%s\" renders no camera motion blur", name);
-    }
     return true;
 }
 
@@ -303,11 +292,11 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
 }
 
 /* out = the nd defines plus `a` and `b` where not NULL, NULL-terminated;
- * out has room for nd + 3 entries. */
+ * out has room for nd + 3 entries and may be defines itself (appending). */
 static void defines_plus(const char **out, const char *const *defines, int nd, const char *a,
                          const char *b)
 {
-    memcpy(out, defines, (size_t)nd * sizeof(*out));
+    memmove(out, defines, (size_t)nd * sizeof(*out));
     if (a)
         out[nd++] = a;
     if (b)
@@ -330,8 +319,13 @@ struct stage_programs {
     const char *shade[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 3];
     char stride[32];  /* CV_MATTE_STRIDE=N */
     const char *matte[CV_SCENE_DEFINES_MAX + 3];
-    const char *resolve[CV_SCENE_DEFINES_MAX + 3];
+    const char *resolve[CV_SCENE_DEFINES_MAX + 4];
     const char *straight[CV_SCENE_DEFINES_MAX + 5];
+    /* a whole-sample integrator's program (ops->create, ops->prefetch):
+     * the scene's defines, and the matte stage's and escaped stage's
+     * where the job asks for mattes (it runs neither stage) */
+    const char *integrator[CV_SCENE_DEFINES_MAX + 4];
+    const char *const *integrator_defines;
     const char *shadow[CV_SCENE_DEFINES_MAX + 3];
 };
 
@@ -365,10 +359,19 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     uint32_t words = matte_words(p);
     snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
     defines_plus(sp->matte, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
-    defines_plus(sp->resolve, defines, nd,
-                 p->alpha ? "CV_FILM_TRANSPARENT" : ops->resolve_define,
-                 p->alpha ? sp->stride : NULL);
-    defines_plus(sp->straight, sp->resolve, nd + (p->alpha ? 2 : 0), "CV_RESOLVE_STRAIGHT", NULL);
+    const char *transparent = p->alpha ? "CV_FILM_TRANSPARENT" : NULL;
+    defines_plus(sp->resolve, defines, nd, transparent, p->alpha ? sp->stride : NULL);
+    int nr = nd + (p->alpha ? 2 : 0);
+    if (ops->resolve_define)
+        defines_plus(sp->resolve, sp->resolve, nr++, ops->resolve_define, NULL);
+    defines_plus(sp->straight, sp->resolve, nr, "CV_RESOLVE_STRAIGHT", NULL);
+    sp->integrator_defines = defines;
+    if (ops->whole_samples && words) {
+        defines_plus(sp->integrator, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
+        int ni = nd + 1 + (p->cryptomatte ? 1 : 0);
+        defines_plus(sp->integrator, sp->integrator, ni, transparent, NULL);
+        sp->integrator_defines = sp->integrator;
+    }
     defines_plus(sp->shadow, defines, nd, ops->shadow_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
     defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS",
@@ -429,7 +432,7 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
             cv_program_request(gpu, sp->file[s], sp->defines[s]);
     const struct cv_integrator_ops *ops = cv_integrator_for(p);
     if (ops->prefetch)
-        ops->prefetch(gpu, p, sp->scene_defines);
+        ops->prefetch(gpu, p, sp->integrator_defines);
 }
 
 void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
@@ -448,6 +451,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
 {
     if (!check_params(scene, p, err))
         return false;
+    /* the ID mattes read each triangle's object from a buffer texture */
+    if ((p->id_mattes || p->cryptomatte) && scene->n_triangles && !gs->tri_object_tex)
+        return cv_fail(err, "ID mattes of %u triangles: more than this GPU's buffer textures "
+                            "hold", scene->n_triangles);
 
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
@@ -531,7 +538,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             return false;
         }
     }
-    const char *const *defines = sp.scene_defines;
+    const char *const *defines = sp.integrator_defines;
 
     if (ops->create) {
         struct cv_integrator_setup setup = {

@@ -113,6 +113,27 @@ static bool up_texture(struct cv_gpu *gpu, GLuint *b, GLuint *tex, GLenum format
            (*tex = cv_buffer_texture(*b, format, n, err)) != 0;
 }
 
+/* The light-selection CDF of n lights (one texel at least) as a buffer
+ * texture. */
+static bool up_light_cdf(struct cv_gpu *gpu, struct cv_scene_gpu *g, uint32_t n, const float *cdf,
+                         const char *label, struct cv_error *err)
+{
+    return up_texture(gpu, &g->light_cdf, &g->light_cdf_tex, GL_R32F, n ? n : 1, sizeof(float),
+                      cdf, label, err);
+}
+
+/* Each triangle's ID-matte object as a buffer texture, where the driver's
+ * buffer textures hold them all (else tri_object_tex stays 0). */
+static bool up_tri_object(const struct cv_scene *s, struct cv_scene_gpu *g, struct cv_error *err)
+{
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max);
+    if (s->n_triangles == 0 || (max > 0 && s->n_triangles > (uint32_t)max))
+        return true;
+    g->tri_object_tex = cv_buffer_texture(g->tri_object, GL_R32UI, s->n_triangles, err);
+    return g->tri_object_tex != 0;
+}
+
 /* The build's scratch (about 260 bytes per triangle) stays pooled for the
  * next scene's build, a batch's next job, while it is under a quarter of
  * the GPU's free memory: fresh scratch costs a build GPU time in
@@ -212,7 +233,8 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
            err) &&
         up(gpu, &g.texels, (size_t)s->n_texels * 8, s->texels, "scene texels", err) &&
         up(gpu, &g.lights, s->n_lights * sizeof(CvLight), lights, "scene lights", err) &&
-        up(gpu, &g.light_cdf, s->n_lights * sizeof(float), cdf, "scene light cdf", err) &&
+        up_light_cdf(gpu, &g, s->n_lights, cdf, "scene light cdf", err) &&
+        up_tri_object(s, &g, err) &&
         up(gpu, &g.env_dist, n_env * sizeof(float), env, "environment distributions", err) &&
         up(gpu, &g.media, s->n_media * sizeof(CvMedium), s->media, "scene media", err) &&
         (s->n_medium_grids == 0 ||
@@ -294,9 +316,10 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
     cv_buffer_bind(g->textures, CV_BIND_TEXTURES);
     cv_buffer_bind(g->texels, CV_BIND_TEXELS);
     cv_buffer_bind(g->lights, CV_BIND_LIGHTS);
-    cv_buffer_bind(g->light_cdf, CV_BIND_LIGHT_CDF);
+    glBindTextureUnit(CV_TEXUNIT_LIGHT_CDF, g->light_cdf_tex);
     cv_buffer_bind(g->env_dist, CV_BIND_ENV_DIST);
-    cv_buffer_bind(g->tri_object, CV_BIND_TRI_OBJECT);
+    if (g->tri_object_tex)
+        glBindTextureUnit(CV_TEXUNIT_TRI_OBJECT, g->tri_object_tex);
     if (g->curves_tex)
         glBindTextureUnit(CV_TEXUNIT_CURVES, g->curves_tex);
     if (g->media)
@@ -323,6 +346,8 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
         for (size_t i = 0; i < CV_ARRAY_SIZE(own); i++)
             if (*own[i] != theirs[i])
                 cv_buffer_destroy(own[i]);
+        if (g->light_cdf_tex && g->light_cdf_tex != g->base->light_cdf_tex)
+            glDeleteTextures(1, &g->light_cdf_tex);
         memset(g, 0, sizeof(*g));
         return;
     }
@@ -334,7 +359,7 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     GLuint tex[] = {g->bssrdf_tex, g->curves_tex, g->motion_tex, g->measured_tex,
-                    g->conductor_fresnel_tex};
+                    g->conductor_fresnel_tex, g->tri_object_tex, g->light_cdf_tex};
     for (size_t i = 0; i < CV_ARRAY_SIZE(tex); i++)
         if (tex[i])
             glDeleteTextures(1, &tex[i]);
@@ -413,7 +438,7 @@ bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
 {
     struct cv_scene_gpu g = *base;
     g.base = base;
-    g.lights = g.light_cdf = 0;
+    g.lights = g.light_cdf = g.light_cdf_tex = 0;
     uint32_t n = s->n_lights;
     CvLight *l = cv_xcalloc(n ? n : 1, sizeof(CvLight));
     float *cdf = cv_xcalloc(n ? n : 1, sizeof(float));
@@ -426,7 +451,7 @@ bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
         env_offsets(s, l);
     cv_light_cdf(power, n, cdf);
     ok = ok && up(gpu, &g.lights, n * sizeof(CvLight), l, "scene lights (relit)", err) &&
-         up(gpu, &g.light_cdf, n * sizeof(float), cdf, "scene light cdf (relit)", err);
+         up_light_cdf(gpu, &g, n, cdf, "scene light cdf (relit)", err);
     free(l);
     free(cdf);
     if (!ok) {

@@ -18,6 +18,11 @@ struct cv_scene_gpu {
     GLuint vertices, triangles, tri_light, materials, textures, texels, lights, light_cdf;
     GLuint env_dist;  /* environment-map distributions (glsl/shared/envmap.h) */
     GLuint tri_object; /* uint[]: each triangle's ID-matte object (scene.h) */
+    /* tri_object as an r32ui buffer texture (CV_TEXUNIT_TRI_OBJECT); 0
+     * where the scene has no triangles or more than a buffer texture holds
+     * (GL_MAX_TEXTURE_BUFFER_SIZE: jobs with ID mattes then fail) */
+    GLuint tri_object_tex;
+    GLuint light_cdf_tex; /* light_cdf as an r32f buffer texture (CV_TEXUNIT_LIGHT_CDF) */
     GLuint media;     /* CvMedium[] (glsl/shared/medium.h) */
     bool has_media;   /* the scene names participating media */
     GLuint medium_grids; /* float[]: grid media's samples and majorants, or 0 */

@@ -37,3 +37,6 @@ EXTRA_DIST += tests/batch/mattes_test.sh tests/data/batch/mattes.pbrt tests/data
 # --- rlpath renders: never black, never NaN; non-finite values reported ---
 TESTS += tests/batch/rlpath_finite_test.sh
 EXTRA_DIST += tests/batch/rlpath_finite_test.sh tests/data/batch/cornell_box.pbrt
+# --- bdpt's mattes are path's (issue 27) ---
+TESTS += tests/batch/mattes_bdpt_test.sh
+EXTRA_DIST += tests/batch/mattes_bdpt_test.sh

@@ -10,7 +10,10 @@
  *                                        TYPE sum to A (within 1e-5), fall
  *                                        with the rank, and an id is 0 iff
  *                                        its coverage is 0 (exit 1 if not)
- *   matte_probe png FILE X Y             "r g b a" of an 8-bit RGBA PNG */
+ *   matte_probe png FILE X Y             "r g b a" of an 8-bit RGBA PNG
+ *   matte_probe same FILE1 FILE2 CH...   every pixel of each channel CH is
+ *                                        the same in both files, bit for
+ *                                        bit (exit 1 if not) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -141,6 +144,28 @@ static int png(const char *path, uint32_t x, uint32_t y)
     return 0;
 }
 
+static int same(const char *a, const char *b, char **names, int n)
+{
+    int bad = 0;
+    for (int k = 0; k < n; k++) {
+        uint32_t wa, ha, wb, hb;
+        float *x = channel(a, names[k], &wa, &ha), *y = channel(b, names[k], &wb, &hb);
+        if (wa != wb || ha != hb) {
+            fprintf(stderr, "%s: %ux%u against %ux%u\n", names[k], wa, ha, wb, hb);
+            bad = 1;
+        }
+        for (uint32_t i = 0; !bad && i < wa * ha; i++)
+            if (memcmp(&x[i], &y[i], sizeof(float)) != 0) {
+                fprintf(stderr, "%s, pixel %u: %.9g against %.9g\n", names[k], i, (double)x[i],
+                        (double)y[i]);
+                bad = 1;
+            }
+        free(x);
+        free(y);
+    }
+    return bad;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 6 && strcmp(argv[1], "value") == 0) {
@@ -157,6 +182,8 @@ int main(int argc, char **argv)
         return sums(argv[2], argv[3]);
     if (argc == 5 && strcmp(argv[1], "png") == 0)
         return png(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]));
-    fprintf(stderr, "usage: matte_probe value|rank|sums|png ...\n");
+    if (argc >= 5 && strcmp(argv[1], "same") == 0)
+        return same(argv[2], argv[3], argv + 4, argc - 4);
+    fprintf(stderr, "usage: matte_probe value|rank|sums|png|same ...\n");
     return 2;
 }

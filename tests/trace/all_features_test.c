@@ -2,8 +2,8 @@
  * texture or define to the trace kernels (tests/data/trace/all_features.pbrt:
  * grid, cloud and homogeneous media, curves, moving shapes, alpha,
  * subsurface, measured, coated and spectral conductor materials, an
- * environment map) gets a renderer with every integrator: every stage
- * program compiles and links. A kernel may use only so many storage blocks
+ * environment map) gets a renderer with every integrator, with and without
+ * alpha and ID mattes: every stage program compiles and links. A kernel may use only so many storage blocks
  * (16 on Mesa), and features add their tables one by one: a scene that
  * uses them all together must still link, not fail with "too many storage
  * blocks". No pass is rendered: llvmpipe generates each kernel's code at
@@ -30,6 +30,13 @@ int main(void)
         struct cv_renderer *r = NULL;
         struct cv_error err = {{0}};
         tap_ok(cv_renderer_create(gpu, s, &p, &r, &err), "%s: every stage program links: %s",
+               integrators[i].name, err.msg);
+        cv_renderer_destroy(&r);
+        /* a job's alpha, ID mattes, Cryptomatte and AOVs add the matte
+         * buffers (to bdpt's own kernel: issue 27) */
+        p.alpha = p.id_mattes = p.cryptomatte = p.aovs = true;
+        tap_ok(cv_renderer_create(gpu, s, &p, &r, &err),
+               "%s with alpha, ID mattes, Cryptomatte and AOVs: every stage program links: %s",
                integrators[i].name, err.msg);
         cv_renderer_destroy(&r);
     }

@@ -4,13 +4,17 @@
  *    image) that bdpt renders: diffuse, glossy, specular and coated
  *    materials, area, point, spot, distant, constant and image infinite
  *    lights; and bdpt_caustic, a glass sphere's caustic under a lamp, whose reference
- *    pbrt-v4's bdpt made (README there). Whole image, quadrants and centre
- *    within BDPT_TOL, as oracle_test.c measures them.
+ *    pbrt-v4's bdpt made (README there); the same spheres through an
+ *    orthographic camera (bdpt_ortho: pbrt-v4's bdpt takes none, its path
+ *    made the reference) and through a moving camera while the glass
+ *    slides (bdpt_motion, by pbrt-v4's bdpt). Whole image, quadrants and
+ *    centre within BDPT_TOL, as oracle_test.c measures them.
  * 2. Each strategy (s, t) of one path length alone, unweighted: the same
  *    image mean (strategies()).
  * 3. bdpt's AOVs are path's (aovs()).
  * 4. Unbiasedness against our own path integrator on bdpt_caustic_gaussian
- *    (light tracing's splats under a filter wider than a pixel): the
+ *    (light tracing's splats under a filter wider than a pixel) and
+ *    bdpt_ortho_lens (light tracing into an orthographic thin lens): the
  *    regions' means agree within BDPT_TOL_PATH.
  * 5. The vertex store holds one wave of path slots (waves()): a film whose
  *    slots pass bdpt_slots, or whose store would pass the driver's
@@ -158,8 +162,14 @@ static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uin
 static const char *const oracle_scenes[] = {
     "light_area", "light_point", "light_spot", "light_distant", "light_env_const", "light_env_map",
     "mat_diffuse", "mat_conductor_rough", "mat_dielectric", "mat_coateddiffuse",
-    "bdpt_caustic", "bdpt_caustic_sun",
+    "bdpt_caustic", "bdpt_caustic_sun", "bdpt_ortho", "bdpt_motion",
 };
+
+/* the scenes without a reference, held to our path integrator: light
+ * tracing's splats under a filter wider than a pixel; an orthographic
+ * thin lens (pbrt-v4's renders its rays from the lens about the camera's
+ * origin, not about the film point: README) */
+static const char *const path_scenes[] = {"bdpt_caustic_gaussian", "bdpt_ortho_lens"};
 
 /* bdpt's camera subpaths take the path integrator's random numbers, so
  * its AOVs (albedo at the first non-specular hit, normal and depth at the
@@ -296,7 +306,8 @@ static void waves(struct cv_gpu *gpu, uint64_t seed)
 static bool in_check(const char *name)
 {
     return strcmp(name, "light_area") == 0 || strcmp(name, "light_distant") == 0 ||
-           strcmp(name, "bdpt_caustic") == 0;
+           strcmp(name, "bdpt_caustic") == 0 || strcmp(name, "bdpt_ortho") == 0 ||
+           strcmp(name, "bdpt_motion") == 0;
 }
 
 /* bdpt_test [all | SCENE [SEED]] */
@@ -313,8 +324,9 @@ int main(int argc, char **argv)
         aovs(gpu, "light_area", seed);
     if (!only || strcmp(only, "strategies") == 0)
         strategies(gpu, "light_area", 2, seed);
-    if (!only || strcmp(only, "path") == 0)
-        against_path(gpu, "bdpt_caustic_gaussian", seed);
+    for (size_t i = 0; i < sizeof(path_scenes) / sizeof(path_scenes[0]); i++)
+        if (!only || strcmp(only, "path") == 0 || strcmp(only, path_scenes[i]) == 0)
+            against_path(gpu, path_scenes[i], seed);
     if (!only || strcmp(only, "waves") == 0)
         waves(gpu, seed);
     cv_gpu_destroy(&gpu);

@@ -44,6 +44,7 @@ static uint16_t half_from_float(float f)
 
 struct gpu_scene {
     GLuint lights, cdf, env, vertices, triangles, textures, texels, in, out;
+    GLuint cdf_tex;  /* cdf as the kernels read it (CV_TEXUNIT_LIGHT_CDF) */
 };
 
 static void destroy_scene(struct gpu_scene *s)
@@ -52,6 +53,9 @@ static void destroy_scene(struct gpu_scene *s)
                    &s->in, &s->out};
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
+    if (s->cdf_tex)
+        glDeleteTextures(1, &s->cdf_tex);
+    s->cdf_tex = 0;
 }
 
 static bool run(struct cv_program *prog, struct gpu_scene *s, unsigned mode, unsigned seed, const float p[3],
@@ -70,7 +74,9 @@ static bool run(struct cv_program *prog, struct gpu_scene *s, unsigned mode, uns
     cv_buffer_bind(s->textures, CV_BIND_TEXTURES);
     cv_buffer_bind(s->texels, CV_BIND_TEXELS);
     cv_buffer_bind(s->lights, CV_BIND_LIGHTS);
-    cv_buffer_bind(s->cdf, CV_BIND_LIGHT_CDF);
+    if (!s->cdf_tex && !(s->cdf_tex = cv_buffer_texture(s->cdf, GL_R32F, 1, err)))
+        return false;
+    glBindTextureUnit(CV_TEXUNIT_LIGHT_CDF, s->cdf_tex);
     cv_buffer_bind(s->env, CV_BIND_ENV_DIST);
     cv_buffer_bind(s->in, CV_BIND_PROBE_IN);
     cv_buffer_bind(s->out, CV_BIND_PROBE_OUT);

@@ -18,7 +18,13 @@
 // integrator's; t = 1 ones to the splat film. No Russian roulette (pbrt-v4's
 // BDPT has none): subpaths end at the maximum depth. Media are not
 // rendered. Light subpaths start from area, point, spot, distant and
-// infinite lights.
+// infinite lights. The camera is perspective or orthographic, still or
+// moving: both subpaths, every connection and every moving shape are
+// seen at the time the camera ray drew (path_time.glsl, as the path
+// integrator's). With CV_MATTE_STRIDE (a job with alpha or ID AOVs) the
+// camera subpath's first hit writes the mattes as the path integrators'
+// matte stage does (matte.glsl); with CV_FILM_TRANSPARENT the
+// environment seen directly adds nothing, as escaped.comp.
 #include "shared/trace.h"
 #include "shared/bdpt.h"
 #define CV_NO_QUEUES
@@ -32,6 +38,9 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../surface_inputs.glsl"
 #include "../regenerate.glsl"
 #include "endpoints.glsl"
+#ifdef CV_MATTE_STRIDE
+#include "../matte.glsl"
+#endif
 
 layout(std430, binding = CV_BIND_BDPT_VERTICES) buffer CvBdptStore { CvBdptVertex bv[]; };
 layout(std430, binding = CV_BIND_BDPT_SPLAT) buffer CvBdptSplat { uint splat[]; };
@@ -292,6 +301,10 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, vec3 beta, float pdf_fwd, uin
         v.uv = vec4(sf.uv, u_bsdf);
         v.id = uvec4(CV_BDPT_SURFACE, 0u, sf.material, light >= 0 ? uint(light) + 1u : 0u);
         v.ng.w = cv_bdpt_convert(pdf_fwd, prev.p.xyz, v);
+#ifdef CV_MATTE_STRIDE
+        if (!light_side && n == 1u)
+            cv_matte_first_hit(g_slot, h.prim);
+#endif
         uint vi = cv_bdpt_index(light_side, n);
         bv[vi] = v;
         n++;
@@ -459,6 +472,10 @@ vec3 cv_bdpt_connect_s0(uint t, float splat_scale)
 {
     CvBdptVertex pt = cv_bdpt_cam(t - 1u), pm = cv_bdpt_cam(t - 2u);
     if (cv_bdpt_infinite(pt)) {
+#ifdef CV_FILM_TRANSPARENT
+        if (t == 2u)
+            return vec3(0.0);  // the environment seen directly: alpha 0
+#endif
 #ifndef CV_NO_ENV
         vec3 d = -pt.wo.xyz;  // the escaped ray's direction
         vec3 L = cv_env_Le(d) * pt.beta.rgb;
@@ -737,6 +754,13 @@ void main()
     g_sample = j;
     g_fp = cv_film_pixel(cv_path_pixel(slot));
     CvRayItem r = cv_camera_sample(slot, j);  // the filter weight, the path in flight
+    // the path's time, as its camera ray drew it: the camera's pose for
+    // the connections to the lens, the moving shapes' for every ray
+    float u_time = cv_time_sampled() ? cv_time_u(g_fp, j) : 0.0;
+    cv_bdpt_camera_at(u_time);
+#ifdef CV_HAS_MOTION
+    cv_trace_time = cv_path_time(slot);
+#endif
 
     CvBdptVertex c0;
     c0.p = vec4(r.o.xyz, 0.0);
@@ -746,7 +770,7 @@ void main()
     c0.beta = vec4(1.0, 1.0, 1.0, 0.0);
     c0.dpdu = vec4(0.0);
     c0.uv = vec4(0.0);
-    c0.id = uvec4(CV_BDPT_CAMERA, 0u, 0u, 0u);
+    c0.id = uvec4(CV_BDPT_CAMERA, cv_bdpt_camera_delta() ? CV_BDPT_DELTA : 0u, 0u, 0u);
     bv[cv_bdpt_index(false, 0u)] = c0;
     uint n_cam = cv_bdpt_walk(false, r.o.xyz, r.d.xyz, vec3(1.0), cv_bdpt_camera_pdf_dir(r.d.xyz),
                               CV_BDPT_CAMERA_VERTS(cv_max_depth()));
@@ -758,7 +782,7 @@ void main()
     uint max_depth = cv_max_depth();
     vec3 L = vec3(0.0);
     // t = 1: light tracing
-    for (uint s = 2u; s <= n_light && s - 1u <= max_depth; s++) {
+    for (uint s = 2u; s <= n_light && s - 1u <= max_depth && cv_bdpt_camera_connectible(); s++) {
         CvBdptVertex qs = cv_bdpt_light(s - 1u);
         CvBsdf bq = cv_bdpt_bsdf(qs);
         if (!cv_bsdf_is_delta(bq) && cv_bdpt_runs(s, 1u))

@@ -1,31 +1,52 @@
 // glsl/trace/bdpt/endpoints.glsl: the ends of bdpt's subpaths, as pbrt-v4's
 // BDPT sees them: the camera's importance We, its density of directions
 // (PDF_We) and its sampling of a point on the lens towards a scene point
-// (SampleWi), for a perspective camera, pinhole or thin lens, that does not
-// move; the lights' emission sampling (SampleLe) and its densities (PDF_Le)
-// for area (one triangle, diffuse), point and spot lights (infinite lights:
-// bdpt.comp). Include after lights.glsl and camera.glsl.
+// (SampleWi), for a perspective camera (pinhole or thin lens) and an
+// orthographic one (pinhole, or thin lens as glsl/trace/camera.glsl makes
+// its rays), at the pose of the path's time (a moving camera); the lights'
+// emission sampling (SampleLe) and its densities (PDF_Le) for area (one
+// triangle, diffuse), point and spot lights (infinite lights: bdpt.comp).
+// Include after lights.glsl and camera.glsl.
 #ifndef CV_TRACE_BDPT_ENDPOINTS_GLSL
 #define CV_TRACE_BDPT_ENDPOINTS_GLSL
 
 // ---- camera --------------------------------------------------------------
 
-// The camera's rows (camera to world), for a still camera.
-mat3 cv_bdpt_cam_rot()
+// The camera's pose at the time of the path in flight (cv_bdpt_camera_at):
+// camera to world (columns; it may mirror, as pbrt's Scale -1 1 1), its
+// inverse, and the camera-space origin in world space.
+mat3 g_cam_m = mat3(1.0), g_cam_inv = mat3(1.0);
+vec3 g_cam_o = vec3(0.0);
+
+// Sets the pose at the time of the uniform u_time (camera.glsl: a still
+// camera ignores it), as the path's camera ray saw it, so that every
+// connection to the lens (t = 1) finds the camera where that ray left it.
+void cv_bdpt_camera_at(float u_time)
 {
-    return transpose(mat3(u_pass.cam_to_world[0].xyz, u_pass.cam_to_world[1].xyz,
-                          u_pass.cam_to_world[2].xyz));
-}
-vec3 cv_bdpt_cam_pos()
-{
-    return vec3(u_pass.cam_to_world[0].w, u_pass.cam_to_world[1].w, u_pass.cam_to_world[2].w);
+    g_cam_m = mat3(cv_camera_to_world(vec3(1.0, 0.0, 0.0), 0.0, u_time),
+                   cv_camera_to_world(vec3(0.0, 1.0, 0.0), 0.0, u_time),
+                   cv_camera_to_world(vec3(0.0, 0.0, 1.0), 0.0, u_time));
+    g_cam_o = cv_camera_to_world(vec3(0.0), 1.0, u_time);
+    g_cam_inv = inverse(g_cam_m);
 }
 
-// Area of the screen window on the camera-space plane z = 1 (pbrt-v4's A).
+bool cv_bdpt_ortho() { return u_pass.orthographic == 1.0; }
+
+// Whether a light subpath vertex can be joined to the lens (t = 1): not
+// through an orthographic pinhole, whose rays all leave in one direction
+// (a delta density: pbrt-v4's bdpt takes no such camera; its camera
+// vertex is marked delta, cv_bdpt_camera_delta, so that the MIS weights
+// count no strategy that would need it).
+bool cv_bdpt_camera_connectible() { return !cv_bdpt_ortho() || u_pass.lens_radius > 0.0; }
+bool cv_bdpt_camera_delta() { return !cv_bdpt_camera_connectible(); }
+
+// Area of the screen window: on the camera-space plane z = 1 for a
+// perspective camera (pbrt-v4's A), on the plane z = 0 (the film itself,
+// the area camera rays start from) for an orthographic one.
 float cv_bdpt_film_area()
 {
     vec4 s = u_pass.screen;
-    float t = u_pass.tan_half_fov;
+    float t = cv_bdpt_ortho() ? 1.0 : u_pass.tan_half_fov;
     return abs((s.y - s.x) * (s.w - s.z)) * t * t;
 }
 
@@ -35,45 +56,60 @@ float cv_bdpt_lens_area()
     return r > 0.0 ? CV_PI * r * r : 1.0;
 }
 
-// Raster position (full film pixels) of camera-space direction dc from
-// the lens centre (cv_camera_ray's inverse); false behind the camera.
+// Raster position (full film pixels) of screen position sc (camera.glsl's
+// sx, sy).
+vec2 cv_bdpt_screen_raster(vec2 sc)
+{
+    vec4 s = u_pass.screen;
+    vec2 film = vec2(u_pass.film.xy);
+    return vec2((sc.x - s.x) / (s.y - s.x) * film.x, (s.w - sc.y) / (s.w - s.z) * film.y);
+}
+
+// Raster position of camera-space direction dc from the lens centre of a
+// perspective camera (cv_camera_ray's inverse); false behind the camera.
 bool cv_bdpt_raster(vec3 dc, out vec2 raster)
 {
     raster = vec2(0.0);
     if (!(dc.z > 0.0))
         return false;
-    vec4 s = u_pass.screen;
-    float sx = dc.x / (dc.z * u_pass.tan_half_fov), sy = dc.y / (dc.z * u_pass.tan_half_fov);
-    vec2 film = vec2(u_pass.film.xy);
-    raster = vec2((sx - s.x) / (s.y - s.x) * film.x, (s.w - sy) / (s.w - s.z) * film.y);
+    raster = cv_bdpt_screen_raster(dc.xy / (dc.z * u_pass.tan_half_fov));
     return true;
 }
 
-// Camera-space direction of world direction w (the camera's rotation may
-// mirror, as pbrt's Scale -1 1 1; it does not scale).
-vec3 cv_bdpt_to_camera_dir(vec3 w) { return inverse(cv_bdpt_cam_rot()) * w; }
-vec3 cv_bdpt_to_camera_point(vec3 p) { return inverse(cv_bdpt_cam_rot()) * (p - cv_bdpt_cam_pos()); }
+vec3 cv_bdpt_to_camera_dir(vec3 w) { return g_cam_inv * w; }
+vec3 cv_bdpt_to_camera_point(vec3 p) { return g_cam_inv * (p - g_cam_o); }
 
 // pbrt-v4's PerspectiveCamera::PDF_We: density per solid angle of a camera
 // ray leaving the lens in world direction w. The film is not bounded here:
 // the camera rays of border pixels leave it by the filter's radius, and
-// light tracing splats there too (cv_bdpt_splat).
+// light tracing splats there too (cv_bdpt_splat). An orthographic thin
+// lens sends the ray of lens offset pl along (-pl, focal distance) from
+// any film point: the lens's uniform density seen as directions; an
+// orthographic pinhole's one direction is a delta (0 here, as a specular
+// bounce's, which the MIS weights take as such).
 float cv_bdpt_camera_pdf_dir(vec3 w)
 {
-    float c = cv_bdpt_to_camera_dir(w).z;
+    vec3 dc = cv_bdpt_to_camera_dir(w);
+    float c = dc.z / length(dc);
     if (!(c > 0.0))
         return 0.0;
+    if (cv_bdpt_ortho()) {
+        float r = u_pass.lens_radius, fd = u_pass.focal_distance;
+        if (!(r > 0.0) || length(dc.xy) * fd > r * dc.z)
+            return 0.0;
+        return fd * fd / (cv_bdpt_lens_area() * c * c * c);
+    }
     return 1.0 / (cv_bdpt_film_area() * c * c * c);
 }
 
 // pbrt-v4's SampleWi: a point on the lens seen from world point pref with
 // uniform u_lens: the lens point, the raster position its ray through pref
 // lands on, and We / pdf (pdf per solid angle at pref). False: behind the
-// camera.
+// camera, or an orthographic pinhole (cv_bdpt_camera_connectible).
 bool cv_bdpt_camera_sample(vec3 pref, vec2 u_lens, out vec3 p_lens, out vec2 raster,
                            out float we_over_pdf, out float cos_lens)
 {
-    p_lens = cv_bdpt_cam_pos();
+    p_lens = g_cam_o;
     raster = vec2(0.0);
     we_over_pdf = 0.0;
     cos_lens = 0.0;
@@ -81,6 +117,23 @@ bool cv_bdpt_camera_sample(vec3 pref, vec2 u_lens, out vec3 p_lens, out vec2 ras
     vec3 pl = vec3(0.0);
     if (u_pass.lens_radius > 0.0)
         pl = vec3(u_pass.lens_radius * cv_sample_disk_concentric(u_lens), 0.0);
+    if (cv_bdpt_ortho()) {
+        // the ray of lens offset pl runs along (-pl, fd): it reaches pref
+        // from the film point pc - (pc.z / fd) (-pl, fd) - pl. With the
+        // camera ray's density 1 / (A pi r^2) fd^2 / cos^3 and the lens
+        // point's pdf per area (fd / pc.z)^2 / (pi r^2), We / pdf comes to
+        // 1 / (A cos), A the film's area.
+        float fd = u_pass.focal_distance;
+        if (!cv_bdpt_camera_connectible() || !(pc.z > 0.0) || !(fd > 0.0))
+            return false;
+        vec2 o = pc.xy + pl.xy * (pc.z / fd);
+        raster = cv_bdpt_screen_raster(o - pl.xy);
+        p_lens = g_cam_m * vec3(o, 0.0) + g_cam_o;
+        float c = fd * inversesqrt(dot(pl.xy, pl.xy) + fd * fd);
+        cos_lens = c;
+        we_over_pdf = 1.0 / (cv_bdpt_film_area() * c);
+        return true;
+    }
     vec3 dl = pc - pl;  // camera space, from the lens point
     if (!(dl.z > 0.0))
         return false;
@@ -90,7 +143,7 @@ bool cv_bdpt_camera_sample(vec3 pref, vec2 u_lens, out vec3 p_lens, out vec2 ras
         dir = pl + dl * (u_pass.focal_distance / dl.z);
     if (!cv_bdpt_raster(dir, raster))
         return false;
-    p_lens = cv_bdpt_cam_rot() * pl + cv_bdpt_cam_pos();
+    p_lens = g_cam_m * pl + g_cam_o;
     float d2 = dot(dl, dl);
     float c = dl.z * inversesqrt(d2);
     cos_lens = c;

@@ -2,7 +2,7 @@
 // the emitted radiance / pdfs MIS needs when a path hits a light. Include
 // light_buffers.glsl first.
 //
-// A light is picked by the power CDF (light_cdf), then sampled: point and
+// A light is picked by the power CDF (cv_light_cdf_at), then sampled: point and
 // spot (pbrt-v4 smoothstep falloff) and distant lights are delta lights;
 // area lights (one triangle each) are sampled uniformly by area; constant
 // infinite lights uniformly over the sphere; image infinite lights by their
@@ -29,7 +29,7 @@ uint cv_light_count() { return uint(lights.length()); }
 
 float cv_light_pmf(uint i)
 {
-    return light_cdf[i] - (i > 0u ? light_cdf[i - 1u] : 0.0);
+    return cv_light_cdf_at(i) - (i > 0u ? cv_light_cdf_at(i - 1u) : 0.0);
 }
 
 uint cv_light_pick(float u)
@@ -38,7 +38,7 @@ uint cv_light_pick(float u)
     uint lo = 0u, hi = n - 1u;
     while (lo < hi) {  // first i with u < cdf[i]
         uint mid = (lo + hi) / 2u;
-        if (u < light_cdf[mid])
+        if (u < cv_light_cdf_at(mid))
             hi = mid;
         else
             lo = mid + 1u;

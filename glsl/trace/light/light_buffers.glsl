@@ -3,8 +3,9 @@
 // scene geometry and textures (declared once, in glsl/bvh/mesh_buffers.glsl
 // and glsl/trace/bsdf/texture_buffers.glsl).
 //
-// light_cdf has one entry per light: light_cdf[i] = sum of the selection
-// probabilities of lights 0..i (by power), the last entry 1.
+// The light-selection CDF has one entry per light (cv_light_cdf_at): the
+// sum of the selection probabilities of lights 0..i (by power), the last
+// entry 1; a buffer texture (shared/bindings.h says why).
 // Infinite lights (CV_LIGHT_INFINITE, CV_LIGHT_INFINITE_MAP) must come
 // first in lights[]: cv_env_Le / cv_env_pdf stop at the first other light.
 // The scene builder orders them so (src/scene/scene.h).
@@ -18,7 +19,8 @@
 #include "../bsdf/texture_buffers.glsl"
 
 layout(std430, binding = CV_BIND_LIGHTS) readonly buffer CvLights { CvLight lights[]; };
-layout(std430, binding = CV_BIND_LIGHT_CDF) readonly buffer CvLightCdf { float light_cdf[]; };
+layout(binding = CV_TEXUNIT_LIGHT_CDF) uniform samplerBuffer cv_light_cdf_tex;
+float cv_light_cdf_at(uint i) { return texelFetch(cv_light_cdf_tex, int(i)).x; }
 layout(std430, binding = CV_BIND_ENV_DIST) readonly buffer CvEnvDist { float env_dist[]; };
 
 #endif
