@@ -32,13 +32,6 @@
 /* uint[]: each triangle's ID-matte object (src/scene/scene.h), read only
  * by trace/matte.comp; above the stage-private range, as CV_BIND_BVH_TRIS */
 #define CV_BIND_TRI_OBJECT 27
-/* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
- * above the stage-private range */
-#define CV_BIND_MEDIA 29
-/* float[]: grid media's samples and majorant grids (glsl/shared/medium.h),
- * with the scene, only where it has grid media; above the stage-private
- * range */
-#define CV_BIND_MEDIUM_GRIDS 30
 
 /* Texture units of the scene's read-only tables, read as buffer textures
  * (texelFetch): a kernel may use only 16 storage blocks (Mesa's limit),
@@ -59,6 +52,12 @@
 /* rgba32f: conductors' spectral Fresnel tables (glsl/shared/conductor_fresnel.h),
  * bound where the scene has one (CV_CONDUCTOR_TABLES) */
 #define CV_TEXUNIT_CONDUCTOR_FRESNEL 4
+/* rgba32f: participating media (glsl/shared/medium.h), CV_MEDIUM_TEXELS a
+ * medium, bound where the scene has media */
+#define CV_TEXUNIT_MEDIA 5
+/* r32f: grid media's samples and majorant grids (glsl/shared/medium.h),
+ * bound where the scene has grid media */
+#define CV_TEXUNIT_MEDIUM_GRIDS 6
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

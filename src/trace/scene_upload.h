@@ -18,9 +18,11 @@ struct cv_scene_gpu {
     GLuint vertices, triangles, tri_light, materials, textures, texels, lights, light_cdf;
     GLuint env_dist;  /* environment-map distributions (glsl/shared/envmap.h) */
     GLuint tri_object; /* uint[]: each triangle's ID-matte object (scene.h) */
-    GLuint media;     /* CvMedium[] (glsl/shared/medium.h) */
+    GLuint media;     /* CvMedium[] (glsl/shared/medium.h), or 0 */
+    GLuint media_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_MEDIA) */
     bool has_media;   /* the scene names participating media */
     GLuint medium_grids; /* float[]: grid media's samples and majorants, or 0 */
+    GLuint medium_grids_tex; /* that buffer as an r32f buffer texture (CV_TEXUNIT_MEDIUM_GRIDS) */
     bool has_medium_grids; /* some medium is a grid (CV_MEDIUM_GRIDS) */
     bool has_medium_cloud; /* some medium is a cloud (CV_MEDIUM_CLOUDS; its data is in the grids) */
     bool has_env;     /* an infinite light exists */
