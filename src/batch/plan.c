@@ -92,8 +92,6 @@ static const char *const media_integrators[] = {"simplevolpath", "bdpt", "mlt"};
 static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *scene,
                               const CvCamera *cam)
 {
-    if (scene->n_media > 0)
-        return "participating media";
     if (cam->type == CV_CAMERA_ORTHOGRAPHIC)
         return "an orthographic camera";
     if (memcmp(cam->to_world, cam->to_world_end, sizeof(cam->to_world)) != 0)
@@ -135,8 +133,10 @@ static bool plan_integrator(const struct cv_job *job, const struct cv_scene *sce
                            job->name, lacks);
     } else if (asked) {
         int id = cv_name_find(&cv_integrator_names, asked);
-        /* sppm is for caustics, as bdpt: rendered with it, substituted */
-        bool sppm = strcmp(asked, "sppm") == 0;
+        /* sppm is for caustics, as bdpt: rendered with it, substituted;
+         * but pbrt-v4's sppm ignores media, which bdpt renders: with
+         * media it is an integrator Cavalry does not have */
+        bool sppm = strcmp(asked, "sppm") == 0 && !media;
         if ((id == CV_INTEGRATOR_BDPT || sppm) && !lacks) {
             p->integrator = CV_INTEGRATOR_BDPT;
             if (sppm) {
@@ -173,7 +173,7 @@ static bool plan_integrator(const struct cv_job *job, const struct cv_scene *sce
                     at, asked, job->name, with);
         }
     }
-    if (media && p->integrator != CV_INTEGRATOR_VOLPATH)
+    if (media && p->integrator != CV_INTEGRATOR_VOLPATH && p->integrator != CV_INTEGRATOR_BDPT)
         cv_warn("%s: the scene has participating media, which integrator \"%s\" ignores (as "
                 "pbrt-v4's path does): job \"%s\"; use \"volpath\" to render them",
                 job->has_integrator ? o->manifest_path : at,
