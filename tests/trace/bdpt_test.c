@@ -4,14 +4,19 @@
  *    image) that bdpt renders: diffuse, glossy, specular and coated
  *    materials, area, point, spot, distant, constant and image infinite
  *    lights; and bdpt_caustic, a glass sphere's caustic under a lamp, whose reference
- *    pbrt-v4's bdpt made (README there). Whole image, quadrants and centre
- *    within BDPT_TOL, as oracle_test.c measures them.
+ *    pbrt-v4's bdpt made (README there); participating media: the
+ *    bdpt_vol scenes (references by pbrt-v4's bdpt: a lamp inside fog, a
+ *    volumetric caustic, the camera and a point light in chromatic fog)
+ *    and the vol scenes (by pbrt-v4's volpath: grids, cloud, nanovdb,
+ *    glass, emission). Whole image, quadrants and centre within
+ *    BDPT_TOL, as oracle_test.c measures them.
  * 2. Each strategy (s, t) of one path length alone, unweighted: the same
  *    image mean (strategies()).
  * 3. bdpt's AOVs are path's (aovs()).
  * 4. Unbiasedness against our own path integrator on bdpt_caustic_gaussian
- *    (light tracing's splats under a filter wider than a pixel): the
- *    regions' means agree within BDPT_TOL_PATH.
+ *    (light tracing's splats under a filter wider than a pixel), and
+ *    against volpath on bdpt_vol_lamp: the regions' means agree within
+ *    BDPT_TOL_PATH; and each strategy alone on bdpt_vol_lamp (2.).
  * 5. The vertex store holds one wave of path slots (waves()): a film whose
  *    slots pass bdpt_slots, or whose store would pass the driver's
  *    per-buffer limit, renders in several dispatches a round, with the
@@ -112,15 +117,16 @@ static void against_pbrt(struct cv_gpu *gpu, const char *name, uint64_t seed)
     free(ref);
 }
 
-/* bdpt and path converge to the same image. */
-static void against_path(struct cv_gpu *gpu, const char *name, uint64_t seed)
+/* bdpt and path (volpath in a scene with media) converge to the same
+ * image. */
+static void against_path(struct cv_gpu *gpu, const char *name, enum cv_integrator in, uint64_t seed)
 {
     struct test_image a, b;
     if (render(gpu, name, CV_INTEGRATOR_BDPT, seed, BDPT_SPP, &a) &&
-        render(gpu, name, CV_INTEGRATOR_PATH, seed + 1, 2 * BDPT_SPP, &b)) {
+        render(gpu, name, in, seed + 1, 2 * BDPT_SPP, &b)) {
         double dev = worst_dev(name, a.rgba, 4, b.rgba, 4);
-        tap_ok(dev <= BDPT_TOL_PATH, "%s: bdpt within %.0f%% of path (worst region off by %.4f)",
-               name, 100 * BDPT_TOL_PATH, dev);
+        tap_ok(dev <= BDPT_TOL_PATH, "%s: bdpt within %.0f%% of %s (worst region off by %.4f)",
+               name, 100 * BDPT_TOL_PATH, cv_integrator_name(in), dev);
     }
     free(a.rgba);
     free(b.rgba);
@@ -159,6 +165,11 @@ static const char *const oracle_scenes[] = {
     "light_area", "light_point", "light_spot", "light_distant", "light_env_const", "light_env_map",
     "mat_diffuse", "mat_conductor_rough", "mat_dielectric", "mat_coateddiffuse",
     "bdpt_caustic", "bdpt_caustic_sun",
+    /* participating media: pbrt-v4's bdpt made the references of the
+     * bdpt_vol scenes, its volpath those of the vol scenes */
+    "bdpt_vol_lamp", "bdpt_vol_caustic", "bdpt_vol_chromatic",
+    "vol_cube", "vol_chromatic", "vol_fog_room", "vol_glass", "vol_grid_gradient", "vol_grid_rgb",
+    "vol_grid_emission", "vol_cloud", "vol_nanovdb",
 };
 
 /* bdpt's camera subpaths take the path integrator's random numbers, so
@@ -296,7 +307,8 @@ static void waves(struct cv_gpu *gpu, uint64_t seed)
 static bool in_check(const char *name)
 {
     return strcmp(name, "light_area") == 0 || strcmp(name, "light_distant") == 0 ||
-           strcmp(name, "bdpt_caustic") == 0;
+           strcmp(name, "bdpt_caustic") == 0 || strcmp(name, "bdpt_vol_lamp") == 0 ||
+           strcmp(name, "bdpt_vol_chromatic") == 0;
 }
 
 /* bdpt_test [all | SCENE [SEED]] */
@@ -314,7 +326,11 @@ int main(int argc, char **argv)
     if (!only || strcmp(only, "strategies") == 0)
         strategies(gpu, "light_area", 2, seed);
     if (!only || strcmp(only, "path") == 0)
-        against_path(gpu, "bdpt_caustic_gaussian", seed);
+        against_path(gpu, "bdpt_caustic_gaussian", CV_INTEGRATOR_PATH, seed);
+    if (!only || strcmp(only, "volpath") == 0)
+        against_path(gpu, "bdpt_vol_lamp", CV_INTEGRATOR_VOLPATH, seed);
+    if (!only || strcmp(only, "strategies_media") == 0)
+        strategies(gpu, "bdpt_vol_lamp", 2, seed);
     if (!only || strcmp(only, "waves") == 0)
         waves(gpu, seed);
     cv_gpu_destroy(&gpu);
