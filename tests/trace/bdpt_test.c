@@ -15,7 +15,7 @@
  * 3. bdpt's AOVs are path's (aovs()).
  * 4. Unbiasedness against our own path integrator on bdpt_caustic_gaussian
  *    (light tracing's splats under a filter wider than a pixel), and
- *    against volpath on bdpt_vol_lamp: the regions' means agree within
+ *    against volpath on vol_cube: the regions' means agree within
  *    BDPT_TOL_PATH; and each strategy alone on bdpt_vol_lamp (2.).
  * 5. The vertex store holds one wave of path slots (waves()): a film whose
  *    slots pass bdpt_slots, or whose store would pass the driver's
@@ -358,7 +358,7 @@ int main(int argc, char **argv)
     if (!only || strcmp(only, "path") == 0)
         against_path(gpu, "bdpt_caustic_gaussian", CV_INTEGRATOR_PATH, seed);
     if (!only || strcmp(only, "volpath") == 0)
-        against_path(gpu, "bdpt_vol_lamp", CV_INTEGRATOR_VOLPATH, seed);
+        against_path(gpu, "vol_cube", CV_INTEGRATOR_VOLPATH, seed);
     if (all && (!only || strcmp(only, "bdpt_vol_caustic") == 0))
         caustic_mean(gpu, seed);
     if (!only || strcmp(only, "strategies_media") == 0)
