@@ -50,7 +50,7 @@
 
 /* One subpath vertex. p.w: how far rays leaving p start off the surface
  * (cv_point_error); ng.xyz: geometric normal (0 where not on a surface:
- * the camera, point and spot lights); ng.w: pdfFwd; ns.xyz: shading
+ * the camera, point and spot lights, medium vertices); ng.w: pdfFwd; ns.xyz: shading
  * normal; ns.w: pdfRev; wo.xyz: unit direction towards the previous
  * vertex; wo.w: the material-mix number the BSDF was resolved with;
  * beta.rgb: throughput (for a light vertex its emitted radiance or

@@ -1,6 +1,6 @@
 #version 450
 // glsl/trace/bdpt/bdpt.comp: the bdpt integrator: pbrt-v4's BDPTIntegrator
-// (Veach's bidirectional path tracing) over surfaces. One invocation runs
+// (Veach's bidirectional path tracing), media included. One invocation runs
 // one pixel sample of its path slot (trace.h; the host dispatches one round
 // of samples at a time, u_pass.iteration counting the rounds, in waves of
 // at most u_wave_paths slots that the vertex store holds): the camera
