@@ -29,6 +29,7 @@
 #define CV_BDPT_CAMERA 0u
 #define CV_BDPT_LIGHT 1u     /* a light subpath's first vertex: id.w its light */
 #define CV_BDPT_SURFACE 2u   /* id.z its material; id.w 1 + its area light, 0 if none */
+#define CV_BDPT_MEDIUM 3u    /* a scattering event in a medium: id.z the medium */
 /* CvBdptVertex.id.y: flags. */
 #define CV_BDPT_DELTA 1u        /* the bounce from here was specular (pbrt-v4's Vertex::delta) */
 #define CV_BDPT_DELTA_LIGHT 2u  /* a point or spot light (no position to connect to by area) */
@@ -37,6 +38,10 @@
  * subpath escaped (wo.xyz: back along its ray). Densities towards it are
  * per solid angle. */
 #define CV_BDPT_INFINITE 4u
+/* id.y bits 8..15: the medium the ray that found the vertex travelled in
+ * (glsl/shared/medium.h; the camera's, the light's for the first vertex):
+ * where rays leave the vertex, unless its surface is a medium transition. */
+#define CV_BDPT_MEDIUM_SHIFT 8u
 
 /* The splat film's first floats: the scene's bounding sphere (centre,
  * radius), from which light subpaths leave infinite lights (pbrt-v4's
@@ -45,7 +50,7 @@
 
 /* One subpath vertex. p.w: how far rays leaving p start off the surface
  * (cv_point_error); ng.xyz: geometric normal (0 where not on a surface:
- * the camera, point and spot lights); ng.w: pdfFwd; ns.xyz: shading
+ * the camera, point and spot lights, medium vertices); ng.w: pdfFwd; ns.xyz: shading
  * normal; ns.w: pdfRev; wo.xyz: unit direction towards the previous
  * vertex; wo.w: the material-mix number the BSDF was resolved with;
  * beta.rgb: throughput (for a light vertex its emitted radiance or

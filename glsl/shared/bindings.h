@@ -29,15 +29,9 @@
 /* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
  * the stage-private range so no stage's own buffers displace it. */
 #define CV_BIND_BVH_TRIS 26
-/* 27: free (each triangle's ID-matte object is a buffer texture:
- * CV_TEXUNIT_TRI_OBJECT) */
-/* CvMedium[]: participating media (glsl/shared/medium.h), with the scene;
- * above the stage-private range */
-#define CV_BIND_MEDIA 29
-/* float[]: grid media's samples and majorant grids (glsl/shared/medium.h),
- * with the scene, only where it has grid media; above the stage-private
- * range */
-#define CV_BIND_MEDIUM_GRIDS 30
+/* 27, 29 and 30: free (the ID-matte objects, the media and the grid
+ * media's samples are buffer textures: CV_TEXUNIT_TRI_OBJECT,
+ * CV_TEXUNIT_MEDIA, CV_TEXUNIT_MEDIUM_GRIDS) */
 
 /* Texture units of the scene's read-only tables, read as buffer textures
  * (texelFetch): a kernel may use only 16 storage blocks (Mesa's limit),
@@ -65,6 +59,12 @@
  * mattes (glsl/trace/matte.glsl); bound where the scene's triangles fit a
  * buffer texture (trace/scene_upload.h) */
 #define CV_TEXUNIT_TRI_OBJECT 6
+/* rgba32f: participating media (glsl/shared/medium.h), CV_MEDIUM_TEXELS a
+ * medium, bound where the scene has media */
+#define CV_TEXUNIT_MEDIA 7
+/* r32f: grid media's samples and majorant grids (glsl/shared/medium.h),
+ * bound where the scene has grid media */
+#define CV_TEXUNIT_MEDIUM_GRIDS 8
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -74,5 +74,7 @@ CV_STRUCT(CvMedium) {
     cv_vec4 temperature; /* x: temperatureoffset, y: temperaturescale, z: the table's top */
 } CV_END(CvMedium)
 CV_CHECK_SIZE(CvMedium, 192);
+/* A medium's texels in its buffer texture (CV_TEXUNIT_MEDIA) */
+#define CV_MEDIUM_TEXELS 12
 
 #endif

@@ -87,18 +87,6 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
  * (cpu/render.cpp warns for the others, which ignore media). */
 static const char *const media_integrators[] = {"simplevolpath", "bdpt", "mlt"};
 
-/* Why bdpt (trace/bdpt.h) cannot render job on scene with camera cam, or
- * NULL: what its kernel leaves out. */
-static const char *bdpt_lacks(const struct cv_job *job, const struct cv_scene *scene,
-                              const CvCamera *cam)
-{
-    (void)job;  /* its alpha and ID mattes: rendered (issue 27) */
-    (void)cam;  /* orthographic or moving: rendered (issue 27) */
-    if (scene->n_media > 0)
-        return "participating media";
-    return NULL;
-}
-
 /* The manifest's integrator, else the scene's where Cavalry has it, else
  * the one that renders the same image: volpath where the scene has
  * participating media and pbrt-v4's integrator renders them (volpath is
@@ -121,39 +109,24 @@ static bool plan_integrator(const struct cv_job *job, const struct cv_scene *sce
                                                    : scene->path;
     p->integrator = fallback;
     p->substituted = NULL;
-    const char *lacks = bdpt_lacks(job, scene, &p->camera);
     if (job->has_integrator) {
         p->integrator = job->integrator;
-        if (p->integrator == CV_INTEGRATOR_BDPT && lacks)
-            return cv_fail(err, "%s:%u:%u: job \"%s\": integrator \"bdpt\" does not render %s "
-                                "yet (path or volpath does)", o->manifest_path, job->line, job->col,
-                           job->name, lacks);
     } else if (asked) {
         int id = cv_name_find(&cv_integrator_names, asked);
-        /* sppm is for caustics, as bdpt: rendered with it, substituted */
-        bool sppm = strcmp(asked, "sppm") == 0;
-        if ((id == CV_INTEGRATOR_BDPT || sppm) && !lacks) {
+        /* sppm is for caustics, as bdpt: rendered with it, substituted;
+         * but pbrt-v4's sppm ignores media, which bdpt renders: with
+         * media it is an integrator Cavalry does not have */
+        bool sppm = strcmp(asked, "sppm") == 0 && !media;
+        if (sppm) {
             p->integrator = CV_INTEGRATOR_BDPT;
-            if (sppm) {
-                p->substituted = asked;
-                if (o->strict)
-                    return cv_fail(err, "%s: integrator \"sppm\" is not supported (--strict): "
-                                        "job \"%s\" would render with \"bdpt\" (%s:%u:%u; set "
-                                        "integrator there)", at, job->name, o->manifest_path,
-                                   job->line, job->col);
-                cv_warn("%s: integrator \"sppm\" is not supported: job \"%s\" renders with "
-                        "\"bdpt\", which converges to the same image", at, job->name);
-            }
-        } else if (id == CV_INTEGRATOR_BDPT || sppm) {
             p->substituted = asked;
-            const char *with = cv_integrator_name(fallback);
             if (o->strict)
-                return cv_fail(err, "%s: integrator \"%s\" would render with \"%s\" (--strict): "
-                                    "bdpt does not render %s yet (%s:%u:%u, job \"%s\"; set "
-                                    "integrator there)", at, asked, with, lacks, o->manifest_path,
-                               job->line, job->col, job->name);
-            cv_warn("%s: integrator \"%s\": job \"%s\" renders with \"%s\": bdpt does not "
-                    "render %s yet", at, asked, job->name, with, lacks);
+                return cv_fail(err, "%s: integrator \"sppm\" is not supported (--strict): "
+                                    "job \"%s\" would render with \"bdpt\" (%s:%u:%u; set "
+                                    "integrator there)", at, job->name, o->manifest_path,
+                               job->line, job->col);
+            cv_warn("%s: integrator \"sppm\" is not supported: job \"%s\" renders with "
+                    "\"bdpt\", which converges to the same image", at, job->name);
         } else if (id >= 0) {
             p->integrator = (enum cv_integrator)id;
         } else {
@@ -168,7 +141,7 @@ static bool plan_integrator(const struct cv_job *job, const struct cv_scene *sce
                     at, asked, job->name, with);
         }
     }
-    if (media && p->integrator != CV_INTEGRATOR_VOLPATH)
+    if (media && p->integrator != CV_INTEGRATOR_VOLPATH && p->integrator != CV_INTEGRATOR_BDPT)
         cv_warn("%s: the scene has participating media, which integrator \"%s\" ignores (as "
                 "pbrt-v4's path does): job \"%s\"; use \"volpath\" to render them",
                 job->has_integrator ? o->manifest_path : at,

@@ -236,6 +236,7 @@ uint32_t cv_b_add_light(struct cv_builder *b, const CvLight *l, float power)
     struct cv_scene *s = b->s;
     size_t cap = b->cap_l, n = s->n_lights;
     CV_PUSH(s->lights, n, b->cap_l, *l);
+    s->lights[n - 1].flags |= (uint32_t)b->gs.medium_outside << CV_LIGHTF_MEDIUM_SHIFT;
     if (cap != b->cap_l) {
         s->light_power = cv_xrealloc(s->light_power, b->cap_l * sizeof(float));
         s->light_source = cv_xrealloc(s->light_source, b->cap_l * sizeof(uint32_t));

@@ -123,6 +123,7 @@ static uint64_t slot_bytes(uint32_t max_depth)
 const struct cv_integrator_ops cv_bdpt_ops = {
     .slot_bytes = slot_bytes,
     .whole_samples = true,
+    .media = true,
     .max_paths = CV_BDPT_MAX_PATHS,
     .resolve_define = "CV_BDPT_SPLAT",
     .n_shade = 1,

@@ -236,10 +236,12 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         up_light_cdf(gpu, &g, s->n_lights, cdf, "scene light cdf", err) &&
         up_tri_object(s, &g, err) &&
         up(gpu, &g.env_dist, n_env * sizeof(float), env, "environment distributions", err) &&
-        up(gpu, &g.media, s->n_media * sizeof(CvMedium), s->media, "scene media", err) &&
+        (s->n_media == 0 ||
+         up_texture(gpu, &g.media, &g.media_tex, GL_RGBA32F,
+                    (size_t)s->n_media * CV_MEDIUM_TEXELS, 16, s->media, "scene media", err)) &&
         (s->n_medium_grids == 0 ||
-         up(gpu, &g.medium_grids, s->n_medium_grids * sizeof(float), s->medium_grids,
-            "scene medium grids", err));
+         up_texture(gpu, &g.medium_grids, &g.medium_grids_tex, GL_R32F, s->n_medium_grids,
+                    sizeof(float), s->medium_grids, "scene medium grids", err));
     free(cdf);
     free(lights);
     free(env);
@@ -322,10 +324,10 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         glBindTextureUnit(CV_TEXUNIT_TRI_OBJECT, g->tri_object_tex);
     if (g->curves_tex)
         glBindTextureUnit(CV_TEXUNIT_CURVES, g->curves_tex);
-    if (g->media)
-        cv_buffer_bind(g->media, CV_BIND_MEDIA);
-    if (g->medium_grids)
-        cv_buffer_bind(g->medium_grids, CV_BIND_MEDIUM_GRIDS);
+    if (g->media_tex)
+        glBindTextureUnit(CV_TEXUNIT_MEDIA, g->media_tex);
+    if (g->medium_grids_tex)
+        glBindTextureUnit(CV_TEXUNIT_MEDIUM_GRIDS, g->medium_grids_tex);
     if (g->motion_tex)
         glBindTextureUnit(CV_TEXUNIT_MOTION, g->motion_tex);
     if (g->bssrdf_tex)
@@ -359,7 +361,8 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     for (size_t i = 0; i < CV_ARRAY_SIZE(b); i++)
         cv_buffer_destroy(b[i]);
     GLuint tex[] = {g->bssrdf_tex, g->curves_tex, g->motion_tex, g->measured_tex,
-                    g->conductor_fresnel_tex, g->tri_object_tex, g->light_cdf_tex};
+                    g->conductor_fresnel_tex, g->tri_object_tex, g->light_cdf_tex,
+                    g->media_tex, g->medium_grids_tex};
     for (size_t i = 0; i < CV_ARRAY_SIZE(tex); i++)
         if (tex[i])
             glDeleteTextures(1, &tex[i]);

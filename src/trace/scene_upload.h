@@ -23,9 +23,11 @@ struct cv_scene_gpu {
      * (GL_MAX_TEXTURE_BUFFER_SIZE: jobs with ID mattes then fail) */
     GLuint tri_object_tex;
     GLuint light_cdf_tex; /* light_cdf as an r32f buffer texture (CV_TEXUNIT_LIGHT_CDF) */
-    GLuint media;     /* CvMedium[] (glsl/shared/medium.h) */
+    GLuint media;     /* CvMedium[] (glsl/shared/medium.h), or 0 */
+    GLuint media_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_MEDIA) */
     bool has_media;   /* the scene names participating media */
     GLuint medium_grids; /* float[]: grid media's samples and majorants, or 0 */
+    GLuint medium_grids_tex; /* that buffer as an r32f buffer texture (CV_TEXUNIT_MEDIUM_GRIDS) */
     bool has_medium_grids; /* some medium is a grid (CV_MEDIUM_GRIDS) */
     bool has_medium_cloud; /* some medium is a cloud (CV_MEDIUM_CLOUDS; its data is in the grids) */
     bool has_env;     /* an infinite light exists */

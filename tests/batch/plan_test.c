@@ -285,31 +285,35 @@ static void test_rlpath_train(void)
     cv_manifest_destroy(&m);
 }
 
-/* Issue 27: volpath renders media; a scene with media that asks for bdpt
- * or nothing renders with volpath, one that asks for path ignores them
- * (pbrt-v4's path does too). */
+/* Issue 27: volpath and bdpt render media; a scene with media that asks
+ * for nothing renders with volpath, one that asks for path ignores them
+ * (pbrt-v4's path does too), and so does one that asks for sppm (pbrt-v4's
+ * sppm ignores them: path, not bdpt). */
 static void test_media_integrator(void)
 {
     const char *media = "WorldBegin\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
     char text[512];
-    struct cv_scene *sc[4];
-    const char *asked[4] = {"volpath", "bdpt", NULL, "path"};
-    for (int i = 0; i < 4; i++) {
+    struct cv_scene *sc[5];
+    const char *asked[5] = {"volpath", "bdpt", NULL, "path", "sppm"};
+    for (int i = 0; i < 5; i++) {
         snprintf(text, sizeof(text), "Camera \"perspective\"\n%s%s%s%s", asked[i] ? "Integrator \"" : "",
                  asked[i] ? asked[i] : "", asked[i] ? "\"\n" : "", media);
         sc[i] = scene_of(text);
     }
     struct cv_manifest *m = manifest_of("version: 1\njobs:\n  - {name: a, scene: s.pbrt}\n");
-    if (tap_ok(sc[0] && sc[1] && sc[2] && sc[3] && m, "media scenes and manifest load")) {
+    if (tap_ok(sc[0] && sc[1] && sc[2] && sc[3] && sc[4] && m, "media scenes and manifest load")) {
         struct cv_plan_options o = {.manifest_path = m->path};
         struct cv_render_plan p;
         struct cv_error err = {{0}};
         tap_ok(cv_plan_make(&m->jobs[0], sc[0], &o, &p, &err) && !p.substituted &&
                    p.integrator == CV_INTEGRATOR_VOLPATH,
                "volpath is rendered with volpath, not substituted");
-        tap_ok(cv_plan_make(&m->jobs[0], sc[1], &o, &p, &err) && p.substituted &&
-                   p.integrator == CV_INTEGRATOR_VOLPATH,
-               "bdpt in a scene with media is rendered with volpath, and the plan says so");
+        tap_ok(cv_plan_make(&m->jobs[0], sc[1], &o, &p, &err) && !p.substituted &&
+                   p.integrator == CV_INTEGRATOR_BDPT,
+               "bdpt in a scene with media is rendered with bdpt, not substituted");
+        tap_ok(cv_plan_make(&m->jobs[0], sc[4], &o, &p, &err) && p.substituted &&
+                   p.integrator == CV_INTEGRATOR_PATH,
+               "sppm in a scene with media is rendered with path (pbrt-v4's sppm ignores media)");
         tap_ok(cv_plan_make(&m->jobs[0], sc[2], &o, &p, &err) && !p.substituted &&
                    p.integrator == CV_INTEGRATOR_VOLPATH,
                "no integrator in a scene with media: volpath (pbrt-v4's default)");
@@ -320,7 +324,7 @@ static void test_media_integrator(void)
         tap_ok(cv_plan_make(&m->jobs[0], sc[0], &o, &p, &err),
                "--strict accepts volpath: %s", err.msg);
     }
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 5; i++)
         cv_scene_destroy(&sc[i]);
     cv_manifest_destroy(&m);
 }

@@ -7,15 +7,21 @@
  *    pbrt-v4's bdpt made (README there); the same spheres through an
  *    orthographic camera (bdpt_ortho: pbrt-v4's bdpt takes none, its path
  *    made the reference) and through a moving camera while the glass
- *    slides (bdpt_motion, by pbrt-v4's bdpt). Whole image, quadrants and
- *    centre within BDPT_TOL, as oracle_test.c measures them.
+ *    slides (bdpt_motion, by pbrt-v4's bdpt); participating media: the
+ *    bdpt_vol scenes (references by pbrt-v4's bdpt: a lamp inside fog, a
+ *    volumetric caustic, the camera and a point light in chromatic fog)
+ *    and the vol scenes (by pbrt-v4's volpath: grids, cloud, nanovdb,
+ *    glass, emission). Whole image, quadrants and centre within
+ *    BDPT_TOL, as oracle_test.c measures them.
  * 2. Each strategy (s, t) of one path length alone, unweighted: the same
  *    image mean (strategies()).
  * 3. bdpt's AOVs are path's (aovs()).
  * 4. Unbiasedness against our own path integrator on bdpt_caustic_gaussian
  *    (light tracing's splats under a filter wider than a pixel) and
- *    bdpt_ortho_lens (light tracing into an orthographic thin lens): the
- *    regions' means agree within BDPT_TOL_PATH.
+ *    bdpt_ortho_lens (light tracing into an orthographic thin lens), and
+ *    against volpath on vol_cube: the regions' means agree within
+ *    BDPT_TOL_PATH; and next-event estimation against light tracing,
+ *    alone, on bdpt_vol_lamp (strategies_media()).
  * 5. The vertex store holds one wave of path slots (waves()): a film whose
  *    slots pass bdpt_slots, or whose store would pass the driver's
  *    per-buffer limit, renders in several dispatches a round, with the
@@ -116,15 +122,46 @@ static void against_pbrt(struct cv_gpu *gpu, const char *name, uint64_t seed)
     free(ref);
 }
 
-/* bdpt and path converge to the same image. */
-static void against_path(struct cv_gpu *gpu, const char *name, uint64_t seed)
+/* bdpt_vol_caustic: the glass sphere in the middle shows the caustic in
+ * the fog behind it, by paths few strategies find: at BDPT_SPP its 4x4
+ * blocks scatter by up to 14 % around pbrt-v4's (whose own reference is
+ * noisy there), both ways, so the regions cannot be held to BDPT_TOL; its
+ * image mean, at CAUSTIC_SPP, is (within 0.4 % at seed 5). Not in make
+ * check: minutes on llvmpipe. */
+#define CAUSTIC_SPP 2048
+static void caustic_mean(struct cv_gpu *gpu, uint64_t seed)
+{
+    const char *name = "bdpt_vol_caustic";
+    char why[4400] = "";
+    const char *dir = getenv("CV_TEST_DATA");
+    char *ref_path = cv_xasprintf("%s/trace/oracle/%s.exr", dir ? dir : "tests/data", name);
+    float *ref = NULL;
+    uint32_t rw = 0, rh = 0;
+    bool read = exr_ref_read_rgb(ref_path, &ref, &rw, &rh, why, sizeof(why));
+    free(ref_path);
+    struct test_image img = {0};
+    if (tap_ok(read && rw == RES && rh == RES, "%s: reference read %s", name, why) &&
+        render(gpu, name, CV_INTEGRATOR_BDPT, seed, CAUSTIC_SPP, &img)) {
+        worst_dev(name, img.rgba, 4, ref, 3);  /* the regions, for the log */
+        double a = exr_ref_region_mean(img.rgba, RES, 4, 0, 0, RES, RES);
+        double b = exr_ref_region_mean(ref, RES, 3, 0, 0, RES, RES);
+        tap_ok(fabs(a - b) <= BDPT_TOL * b, "%s: image mean within %.0f%% of pbrt-v4's (ratio %.4f)",
+               name, 100 * BDPT_TOL, a / b);
+    }
+    free(img.rgba);
+    free(ref);
+}
+
+/* bdpt and path (volpath in a scene with media) converge to the same
+ * image. */
+static void against_path(struct cv_gpu *gpu, const char *name, enum cv_integrator in, uint64_t seed)
 {
     struct test_image a, b;
     if (render(gpu, name, CV_INTEGRATOR_BDPT, seed, BDPT_SPP, &a) &&
-        render(gpu, name, CV_INTEGRATOR_PATH, seed + 1, 2 * BDPT_SPP, &b)) {
+        render(gpu, name, in, seed + 1, 2 * BDPT_SPP, &b)) {
         double dev = worst_dev(name, a.rgba, 4, b.rgba, 4);
-        tap_ok(dev <= BDPT_TOL_PATH, "%s: bdpt within %.0f%% of path (worst region off by %.4f)",
-               name, 100 * BDPT_TOL_PATH, dev);
+        tap_ok(dev <= BDPT_TOL_PATH, "%s: bdpt within %.0f%% of %s (worst region off by %.4f)",
+               name, 100 * BDPT_TOL_PATH, cv_integrator_name(in), dev);
     }
     free(a.rgba);
     free(b.rgba);
@@ -158,11 +195,38 @@ static void strategies(struct cv_gpu *gpu, const char *name, uint32_t depth, uin
     free(ref.rgba);
 }
 
+/* In media, the two strategies that join a subpath vertex to a sampled
+ * end, unweighted: next-event estimation (1, depth + 1) and light tracing
+ * (depth + 1, 1), each joining medium vertices to the lamp or the lens,
+ * make the same image mean. The others are left out here: joining two
+ * medium vertices (2, 2) weighs by 1 / d^2 with no cosine to tame it, an
+ * estimate of infinite variance alone (its mean came out 16 % high at
+ * BDPT_SPP), and s = 0 through fog onto a small lamp is too noisy alone. */
+static void strategies_media(struct cv_gpu *gpu, const char *name, uint32_t depth, uint64_t seed)
+{
+    struct test_image a, b;
+    if (render_st(gpu, name, CV_INTEGRATOR_BDPT, seed, BDPT_SPP, 1, depth + 1, &a) &&
+        render_st(gpu, name, CV_INTEGRATOR_BDPT, seed + depth + 1, BDPT_SPP, depth + 1, 1, &b)) {
+        double x = exr_ref_region_mean(b.rgba, RES, 4, 0, 0, RES, RES);
+        double y = exr_ref_region_mean(a.rgba, RES, 4, 0, 0, RES, RES);
+        tap_ok(fabs(x - y) <= BDPT_TOL_STRATEGY * y,
+               "%s: strategy (%u, 1) alone: image mean within %.0f%% of (1, %u)'s (ratio %.4f)",
+               name, depth + 1, 100 * BDPT_TOL_STRATEGY, depth + 1, x / y);
+    }
+    free(a.rgba);
+    free(b.rgba);
+}
+
 /* the oracle scenes of lights and materials that bdpt renders */
 static const char *const oracle_scenes[] = {
     "light_area", "light_point", "light_spot", "light_distant", "light_env_const", "light_env_map",
     "mat_diffuse", "mat_conductor_rough", "mat_dielectric", "mat_coateddiffuse",
     "bdpt_caustic", "bdpt_caustic_sun", "bdpt_ortho", "bdpt_motion",
+    /* participating media: pbrt-v4's bdpt made the references of the
+     * bdpt_vol scenes, its volpath those of the vol scenes */
+    "bdpt_vol_lamp", "bdpt_vol_chromatic",
+    "vol_cube", "vol_chromatic", "vol_fog_room", "vol_glass", "vol_grid_gradient", "vol_grid_rgb",
+    "vol_grid_emission", "vol_cloud", "vol_nanovdb",
 };
 
 /* the scenes without a reference, held to our path integrator: light
@@ -307,7 +371,8 @@ static bool in_check(const char *name)
 {
     return strcmp(name, "light_area") == 0 || strcmp(name, "light_distant") == 0 ||
            strcmp(name, "bdpt_caustic") == 0 || strcmp(name, "bdpt_ortho") == 0 ||
-           strcmp(name, "bdpt_motion") == 0;
+           strcmp(name, "bdpt_motion") == 0 || strcmp(name, "bdpt_vol_lamp") == 0 ||
+           strcmp(name, "bdpt_vol_chromatic") == 0;
 }
 
 /* bdpt_test [all | SCENE [SEED]] */
@@ -326,7 +391,13 @@ int main(int argc, char **argv)
         strategies(gpu, "light_area", 2, seed);
     for (size_t i = 0; i < sizeof(path_scenes) / sizeof(path_scenes[0]); i++)
         if (!only || strcmp(only, "path") == 0 || strcmp(only, path_scenes[i]) == 0)
-            against_path(gpu, path_scenes[i], seed);
+            against_path(gpu, path_scenes[i], CV_INTEGRATOR_PATH, seed);
+    if (!only || strcmp(only, "volpath") == 0)
+        against_path(gpu, "vol_cube", CV_INTEGRATOR_VOLPATH, seed);
+    if (all && (!only || strcmp(only, "bdpt_vol_caustic") == 0))
+        caustic_mean(gpu, seed);
+    if (!only || strcmp(only, "strategies_media") == 0)
+        strategies_media(gpu, "bdpt_vol_lamp", 2, seed);
     if (!only || strcmp(only, "waves") == 0)
         waves(gpu, seed);
     cv_gpu_destroy(&gpu);

@@ -1,6 +1,6 @@
 #version 450
 // glsl/trace/bdpt/bdpt.comp: the bdpt integrator: pbrt-v4's BDPTIntegrator
-// (Veach's bidirectional path tracing) over surfaces. One invocation runs
+// (Veach's bidirectional path tracing), media included. One invocation runs
 // one pixel sample of its path slot (trace.h; the host dispatches one round
 // of samples at a time, u_pass.iteration counting the rounds, in waves of
 // at most u_wave_paths slots that the vertex store holds): the camera
@@ -16,15 +16,19 @@
 // Visibility is traced here, inline. Contributions of t >= 2 go to the
 // slot's film entry with the sample's filter weight, as the path
 // integrator's; t = 1 ones to the splat film. No Russian roulette (pbrt-v4's
-// BDPT has none): subpaths end at the maximum depth. Media are not
-// rendered. Light subpaths start from area, point, spot, distant and
-// infinite lights. The camera is perspective or orthographic, still or
-// moving: both subpaths, every connection and every moving shape are
-// seen at the time the camera ray drew (path_time.glsl, as the path
-// integrator's). With CV_MATTE_STRIDE (a job with alpha or ID AOVs) the
-// camera subpath's first hit writes the mattes as the path integrators'
-// matte stage does (matte.glsl); with CV_FILM_TRANSPARENT the
-// environment seen directly adds nothing, as escaped.comp.
+// BDPT has none): subpaths end at the maximum depth. Participating media
+// (CV_MEDIA) as pbrt-v4's BDPT has them (media.glsl): subpaths scatter in
+// them, connections carry the transmittance between their ends; a
+// medium's emission is found by the camera subpath alone (pbrt-v4's BDPT
+// drops it; volpath does not), so it is added unweighted. Light subpaths
+// start from area, point, spot, distant and infinite lights. The camera
+// is perspective or orthographic, still or moving: both subpaths, every
+// connection and every moving shape are seen at the time the camera ray
+// drew (path_time.glsl, as the path integrator's). With CV_MATTE_STRIDE
+// (a job with alpha or ID AOVs) the camera subpath's first hit writes the
+// mattes as the path integrators' matte stage does (matte.glsl); with
+// CV_FILM_TRANSPARENT the environment seen directly adds nothing, as
+// escaped.comp.
 #include "shared/trace.h"
 #include "shared/bdpt.h"
 #define CV_NO_QUEUES
@@ -68,6 +72,8 @@ vec2 cv_bdpt_u(uint pair)
 {
     return cv_sample_2d(g_fp, g_sample, pair, uvec2(u_pass.seed_lo, u_pass.seed_hi), u_pass.sampler);
 }
+#include "media.glsl"
+
 uint cv_bdpt_cam_pair(uint vertex, uint which) { return 2u + (vertex - 1u) * CV_PAIRS_PER_BOUNCE + which; }
 uint cv_bdpt_light_pair(uint vertex, uint which) { return CV_BDPT_LIGHT_PAIRS + vertex * CV_PAIRS_PER_BOUNCE + which; }
 
@@ -107,6 +113,14 @@ float cv_bdpt_env_density(vec3 w)
 }
 float cv_bdpt_remap0(float f) { return f != 0.0 ? f : 1.0; }
 
+// The cosine at vertex v towards w in the connection's G: 1 in a medium.
+float cv_bdpt_cos(CvBdptVertex v, vec3 w) { return cv_bdpt_in_medium(v) ? 1.0 : abs(dot(v.ns.xyz, w)); }
+// A planar density (an infinite light's) at vertex v, per unit area there.
+float cv_bdpt_planar_at(CvBdptVertex v, vec3 w)
+{
+    return cv_bdpt_pdf_planar() * (cv_bdpt_on_surface(v) ? abs(dot(v.ng.xyz, w)) : 1.0);
+}
+
 // The BSDF of a surface vertex, as resolved when the subpath was made.
 CvBsdf cv_bdpt_bsdf(CvBdptVertex v)
 {
@@ -141,6 +155,8 @@ float cv_bdpt_importance_scale(CvBsdf b, vec3 wo, vec3 wi)
 
 vec3 cv_bdpt_f(CvBdptVertex v, CvBsdf b, vec3 wi, bool importance)
 {
+    if (cv_bdpt_in_medium(v))
+        return vec3(cv_bdpt_phase(v, wi));
     vec3 f = cv_bsdf_f(b, v.wo.xyz, wi);
     return importance ? f * cv_bdpt_importance_scale(b, v.wo.xyz, wi) : f;
 }
@@ -161,14 +177,18 @@ float cv_bdpt_convert(float pdf, vec3 p, CvBdptVertex next)
     return pdf * inv;
 }
 
-// Vertex::PDF of a surface vertex v (BSDF b): the area density at next of
-// a bounce at v from the direction of p_prev.
+// Vertex::PDF of a surface vertex v (BSDF b) or a medium vertex (its
+// phase function): the area density at next of a bounce at v from the
+// direction of p_prev.
 float cv_bdpt_pdf_surface(CvBdptVertex v, CvBsdf b, vec3 p_prev, CvBdptVertex next)
 {
     vec3 wp = p_prev - v.p.xyz, wn = next.p.xyz - v.p.xyz;
     if (!(dot(wp, wp) > 0.0) || !(dot(wn, wn) > 0.0))
         return 0.0;
-    return cv_bdpt_convert(cv_bsdf_pdf(b, normalize(wp), normalize(wn)), v.p.xyz, next);
+    wp = normalize(wp);
+    wn = normalize(wn);
+    float pdf = cv_bdpt_in_medium(v) ? cv_bdpt_hg(v, wp, wn) : cv_bsdf_pdf(b, wp, wn);
+    return cv_bdpt_convert(pdf, v.p.xyz, next);
 }
 
 // Vertex::PDF of the camera at p_cam towards next.
@@ -260,16 +280,70 @@ bool cv_bdpt_trace(vec3 o, vec3 d, uint key, out CvHit h)
 #endif
 }
 
+bool cv_bdpt_runs(uint s, uint t);
+
+// The emission of media that the camera subpath met (media.glsl): found
+// by no other strategy, so added with weight 1.
+vec3 g_medium_Le = vec3(0.0);
+
 // pbrt-v4's RandomWalk: extends the subpath whose vertex 0 is stored, from
-// ray o + t d with throughput beta and pdf_fwd (solid angle) the density
-// of d, up to max_verts vertices in all; returns how many there are.
-uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, vec3 beta, float pdf_fwd, uint max_verts)
+// ray o + t d in medium `medium` with throughput beta and pdf_fwd (solid
+// angle) the density of d, up to max_verts vertices in all; returns how
+// many there are.
+uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, uint medium, vec3 beta, float pdf_fwd,
+                  uint max_verts)
 {
     uint n = 1u;
     bool albedo_done = false;
+    uint hero = cv_bdpt_hero(light_side);
+    vec3 ratios = vec3(1.0);
     while (n < max_verts) {
         CvHit h;
-        if (!cv_bdpt_trace(o, d, (light_side ? 0x8000u : 0u) + n, h)) {
+        uint key = (light_side ? 0x8000u : 0u) + n;
+        uint found = cv_bdpt_track(o, d, key, hero, medium, beta, ratios, h);
+        if (found == 2u) {
+#ifdef CV_MEDIA
+            // a scattering event: a medium vertex, the bounce from its
+            // phase function (f / pdf = 1)
+            vec3 p = o + h.t * d;
+            vec3 sigma_a, sigma_s, Le;
+            cv_medium_point(medium, p, sigma_a, sigma_s, Le);
+            if (!light_side && cv_media(medium).emissive != 0u && n <= cv_max_depth() &&
+                cv_bdpt_runs(0u, n + 1u))
+                g_medium_Le += beta * sigma_a * Le;
+            beta *= sigma_s;
+            if (!cv_finite3(beta)) {
+                cv_film_reject();
+                break;
+            }
+            if (!(cv_max3(beta) > 0.0))
+                break;
+            uint prev_i = cv_bdpt_index(light_side, n - 1u);
+            CvBdptVertex v = CvBdptVertex(vec4(p, 0.0), vec4(0.0), vec4(0.0), vec4(-d, 0.0),
+                                          vec4(beta, 0.0), vec4(0.0), vec4(0.0),
+                                          uvec4(CV_BDPT_MEDIUM, medium << CV_BDPT_MEDIUM_SHIFT,
+                                                medium, 0u));
+            v.ng.w = cv_bdpt_convert(pdf_fwd, bv[prev_i].p.xyz, v);
+            bv[cv_bdpt_index(light_side, n)] = v;
+            n++;
+            if (n >= max_verts)
+                break;
+            uint pair = light_side ? cv_bdpt_light_pair(n - 1u, CV_PAIR_BSDF_U2)
+                                   : cv_bdpt_cam_pair(n - 1u, CV_PAIR_BSDF_U2);
+            float pdf;
+            vec3 wi = cv_hg_sample(-d, cv_media(medium).sigma_a.w, cv_bdpt_u(pair), pdf);
+            if (!(pdf > 0.0))
+                break;
+            bv[prev_i].ns.w = cv_bdpt_convert(pdf, p, bv[prev_i]);
+            o = p;
+            d = wi;
+            pdf_fwd = pdf;
+#endif
+            continue;
+        }
+        if (found == 0u) {
+            if (!(cv_max3(beta) > 0.0))
+                break;  // the tracking ended the subpath
 #ifndef CV_NO_ENV
             // a camera subpath that escapes ends on the infinite lights
             if (!light_side) {
@@ -299,10 +373,11 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, vec3 beta, float pdf_fwd, uin
         v.beta = vec4(beta, 0.0);
         v.dpdu = vec4(sf.dpdu, 0.0);
         v.uv = vec4(sf.uv, u_bsdf);
-        v.id = uvec4(CV_BDPT_SURFACE, 0u, sf.material, light >= 0 ? uint(light) + 1u : 0u);
+        v.id = uvec4(CV_BDPT_SURFACE, medium << CV_BDPT_MEDIUM_SHIFT, sf.material,
+                     light >= 0 ? uint(light) + 1u : 0u);
         v.ng.w = cv_bdpt_convert(pdf_fwd, prev.p.xyz, v);
-#ifdef CV_MATTE_STRIDE
-        if (!light_side && n == 1u)
+#if defined(CV_MATTE_STRIDE) && !defined(CV_MEDIA)
+        if (!light_side && n == 1u)  // with media: cv_bdpt_track
             cv_matte_first_hit(g_slot, h.prim);
 #endif
         uint vi = cv_bdpt_index(light_side, n);
@@ -357,6 +432,7 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, vec3 beta, float pdf_fwd, uin
         o = cv_spawn_origin(sf, bs.wi);
         d = bs.wi;
         pdf_fwd = pf;
+        medium = cv_bdpt_medium_towards(v, d);
     }
     return n;
 }
@@ -481,7 +557,7 @@ vec3 cv_bdpt_connect_s0(uint t, float splat_scale)
         vec3 L = cv_env_Le(d) * pt.beta.rgb;
         if (!(cv_max3(L) > 0.0))
             return vec3(0.0);
-        float ptm_rev = cv_bdpt_pdf_planar() * (cv_bdpt_on_surface(pm) ? abs(dot(pm.ng.xyz, d)) : 1.0);
+        float ptm_rev = cv_bdpt_planar_at(pm, d);
         return L * cv_bdpt_mis(0u, t, cv_env_pdf(d), ptm_rev, 0.0, 0.0, 0.0, false, splat_scale);
 #endif
         return vec3(0.0);
@@ -537,14 +613,18 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
         }
         if (!(cv_max3(Li) > 0.0) || !(pdf > 0.0))
             return vec3(0.0);
-        vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * abs(dot(wi, pt.ns.xyz));
+        vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * cv_bdpt_cos(pt, wi);
         vec3 pl = pt.p.xyz + wi * (2.0 * max(cv_bdpt_sphere().w, 1.0));
-        if (!(cv_max3(L) > 0.0) || !cv_bdpt_visible(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, 0.0, vec3(0.0)))
+        if (!(cv_max3(L) > 0.0))
+            return vec3(0.0);
+        L *= cv_bdpt_transmittance(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, 0.0, vec3(0.0),
+                                   cv_bdpt_medium_towards(pt, wi), 0x10000u + t);
+        if (!(cv_max3(L) > 0.0))
             return vec3(0.0);
         CvBdptVertex qs = CvBdptVertex(vec4(pl, 0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
                                        vec4(0.0), vec4(0.0),
                                        uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, li));
-        float pt_rev = cv_bdpt_pdf_planar() * abs(dot(pt.ng.xyz, wi));
+        float pt_rev = cv_bdpt_planar_at(pt, wi);
         float ptm_rev = cv_bdpt_pdf_surface(pt, bt, pl, pm);
         float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
         return L * cv_bdpt_mis(1u, t, pt_rev, ptm_rev, qs_rev, 0.0, cv_bdpt_env_density(wi),
@@ -576,8 +656,12 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
     }
     if (!(cv_max3(Li) > 0.0) || !(pdf > 0.0))
         return vec3(0.0);
-    vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * abs(dot(wi, pt.ns.xyz));
-    if (!(cv_max3(L) > 0.0) || !cv_bdpt_visible(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, errl, nl))
+    vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * cv_bdpt_cos(pt, wi);
+    if (!(cv_max3(L) > 0.0))
+        return vec3(0.0);
+    L *= cv_bdpt_transmittance(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, errl, nl,
+                               cv_bdpt_medium_towards(pt, wi), 0x10000u + t);
+    if (!(cv_max3(L) > 0.0))
         return vec3(0.0);
     // the sampled light vertex, for the densities
     CvBdptVertex qs = CvBdptVertex(vec4(pl, errl), vec4(nl, 0.0), vec4(nl, 0.0), vec4(0.0),
@@ -599,8 +683,12 @@ void cv_bdpt_connect_t1(uint s, CvBdptVertex qs, CvBsdf bq, float splat_scale)
     if (!cv_bdpt_camera_sample(qs.p.xyz, u_lens, p_lens, raster, we_pdf, cos_lens))
         return;
     vec3 wi = normalize(p_lens - qs.p.xyz);
-    vec3 L = qs.beta.rgb * cv_bdpt_f(qs, bq, wi, true) * (we_pdf * abs(dot(wi, qs.ns.xyz)));
-    if (!(cv_max3(L) > 0.0) || !cv_bdpt_visible(qs.p.xyz, qs.p.w, qs.ng.xyz, p_lens, 0.0, vec3(0.0)))
+    vec3 L = qs.beta.rgb * cv_bdpt_f(qs, bq, wi, true) * (we_pdf * cv_bdpt_cos(qs, wi));
+    if (!(cv_max3(L) > 0.0))
+        return;
+    L *= cv_bdpt_transmittance(qs.p.xyz, qs.p.w, qs.ng.xyz, p_lens, 0.0, vec3(0.0),
+                               cv_bdpt_medium_towards(qs, wi), 0x20000u + s);
+    if (!(cv_max3(L) > 0.0))
         return;
     L *= splat_scale;
     // the sampled camera vertex, for the densities
@@ -629,9 +717,12 @@ vec3 cv_bdpt_connect(uint s, uint t, CvBdptVertex qs, CvBsdf bq, CvBdptVertex pt
         return vec3(0.0);
     vec3 w = d * inversesqrt(d2);  // from qs to pt
     vec3 L = qs.beta.rgb * cv_bdpt_f(qs, bq, w, true) * cv_bdpt_f(pt, bt, -w, false) * pt.beta.rgb;
-    L *= abs(dot(qs.ns.xyz, w)) * abs(dot(pt.ns.xyz, w)) / d2;
-    if (!(cv_max3(L) > 0.0) ||
-        !cv_bdpt_visible(pt.p.xyz, pt.p.w, pt.ng.xyz, qs.p.xyz, qs.p.w, qs.ng.xyz))
+    L *= cv_bdpt_cos(qs, w) * cv_bdpt_cos(pt, w) / d2;
+    if (!(cv_max3(L) > 0.0))
+        return vec3(0.0);
+    L *= cv_bdpt_transmittance(pt.p.xyz, pt.p.w, pt.ng.xyz, qs.p.xyz, qs.p.w, qs.ng.xyz,
+                               cv_bdpt_medium_towards(pt, -w), 0x30000u + s * 64u + t);
+    if (!(cv_max3(L) > 0.0))
         return vec3(0.0);
     CvBdptVertex qm = cv_bdpt_light(s - 2u), pm = cv_bdpt_cam(t - 2u);
     float pt_rev = cv_bdpt_pdf_surface(qs, bq, qm.p.xyz, pt);
@@ -663,6 +754,11 @@ uint cv_bdpt_light_subpath()
     if (!(pmf > 0.0))
         return 0u;
     uint type = lights[li].type;
+    // the medium the light sits in (an area light's surface may part two)
+    uint light_medium = 0u;
+#ifdef CV_MEDIA
+    light_medium = (lights[li].flags >> CV_LIGHTF_MEDIUM_SHIFT) & 255u;
+#endif
     bool distant = type == CV_LIGHT_DISTANT;
     if (distant || type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
         // pbrt-v4's SampleLe of an infinite or distant light: a direction
@@ -695,14 +791,15 @@ uint cv_bdpt_light_subpath()
         uint flags = CV_BDPT_INFINITE | (distant ? CV_BDPT_DELTA_LIGHT : 0u);
         bv[cv_bdpt_index(true, 0u)] = CvBdptVertex(
             vec4(o, 0.0), vec4(0.0, 0.0, 0.0, pmf * pdf_pos), vec4(0.0), vec4(0.0), vec4(Le, 0.0),
-            vec4(0.0), vec4(0.0), uvec4(CV_BDPT_LIGHT, flags, 0u, li));
-        uint n_inf = cv_bdpt_walk(true, o, -wl, Le / (pmf * pdf_pos * pdf_dir), pdf_dir,
-                                  CV_BDPT_LIGHT_VERTS(cv_max_depth()));
+            vec4(0.0), vec4(0.0),
+            uvec4(CV_BDPT_LIGHT, flags | (light_medium << CV_BDPT_MEDIUM_SHIFT), 0u, li));
+        uint n_inf = cv_bdpt_walk(true, o, -wl, light_medium, Le / (pmf * pdf_pos * pdf_dir),
+                                  pdf_dir, CV_BDPT_LIGHT_VERTS(cv_max_depth()));
         // the densities pbrt-v4 corrects for an infinite light's start:
         // vertex 1 per unit area of the disk, vertex 0 per solid angle
         if (n_inf > 1u) {
             uint i1 = cv_bdpt_index(true, 1u);
-            bv[i1].ng.w = pdf_pos * abs(dot(wl, bv[i1].ng.xyz));
+            bv[i1].ng.w = pdf_pos * (cv_bdpt_on_surface(bv[i1]) ? abs(dot(wl, bv[i1].ng.xyz)) : 1.0);
         }
         bv[cv_bdpt_index(true, 0u)].ng.w = cv_bdpt_env_density(wl);
         return n_inf;
@@ -727,13 +824,20 @@ uint cv_bdpt_light_subpath()
     v.beta = vec4(Le, 0.0);
     v.dpdu = vec4(0.0);
     v.uv = vec4(uv, 0.0, 0.0);
-    v.id = uvec4(CV_BDPT_LIGHT, cv_bdpt_light_is_delta(li) ? CV_BDPT_DELTA_LIGHT : 0u, 0u, li);
+    v.id = uvec4(CV_BDPT_LIGHT,
+                 (cv_bdpt_light_is_delta(li) ? CV_BDPT_DELTA_LIGHT : 0u) | (light_medium << CV_BDPT_MEDIUM_SHIFT),
+                 0u, li);
     bv[cv_bdpt_index(true, 0u)] = v;
     bool area = dot(n, n) > 0.0;
     float c = area ? abs(dot(n, w)) : 1.0;
     vec3 beta = Le * (c / (pmf * pdf_pos * pdf_dir));
     vec3 o = area ? cv_offset_ray(p, err, dot(w, n) > 0.0 ? n : -n) : p;
-    return cv_bdpt_walk(true, o, w, beta, pdf_dir, CV_BDPT_LIGHT_VERTS(cv_max_depth()));
+#ifdef CV_MEDIA
+    if (area)
+        light_medium = cv_medium_across(cv_prim_word(lights[li].prim) & CV_TRI_MATERIAL_MASK, n, w,
+                                        light_medium);
+#endif
+    return cv_bdpt_walk(true, o, w, light_medium, beta, pdf_dir, CV_BDPT_LIGHT_VERTS(cv_max_depth()));
 }
 
 void main()
@@ -770,10 +874,16 @@ void main()
     c0.beta = vec4(1.0, 1.0, 1.0, 0.0);
     c0.dpdu = vec4(0.0);
     c0.uv = vec4(0.0);
-    c0.id = uvec4(CV_BDPT_CAMERA, cv_bdpt_camera_delta() ? CV_BDPT_DELTA : 0u, 0u, 0u);
+    uint cam_medium = 0u;
+#ifdef CV_MEDIA
+    cam_medium = u_pass.camera_medium;
+#endif
+    c0.id = uvec4(CV_BDPT_CAMERA,
+                  (cv_bdpt_camera_delta() ? CV_BDPT_DELTA : 0u) | (cam_medium << CV_BDPT_MEDIUM_SHIFT),
+                  0u, 0u);
     bv[cv_bdpt_index(false, 0u)] = c0;
-    uint n_cam = cv_bdpt_walk(false, r.o.xyz, r.d.xyz, vec3(1.0), cv_bdpt_camera_pdf_dir(r.d.xyz),
-                              CV_BDPT_CAMERA_VERTS(cv_max_depth()));
+    uint n_cam = cv_bdpt_walk(false, r.o.xyz, r.d.xyz, cam_medium, vec3(1.0),
+                              cv_bdpt_camera_pdf_dir(r.d.xyz), CV_BDPT_CAMERA_VERTS(cv_max_depth()));
     uint n_light = cv_bdpt_light_subpath();
 
     // pbrt-v4's splat scale: light subpaths start from the crop's pixel
@@ -784,30 +894,42 @@ void main()
     // t = 1: light tracing
     for (uint s = 2u; s <= n_light && s - 1u <= max_depth && cv_bdpt_camera_connectible(); s++) {
         CvBdptVertex qs = cv_bdpt_light(s - 1u);
-        CvBsdf bq = cv_bdpt_bsdf(qs);
-        if (!cv_bsdf_is_delta(bq) && cv_bdpt_runs(s, 1u))
+        CvBsdf bq;
+        if (!cv_bdpt_in_medium(qs)) {
+            bq = cv_bdpt_bsdf(qs);
+            if (cv_bsdf_is_delta(bq))
+                continue;
+        }
+        if (cv_bdpt_runs(s, 1u))
             cv_bdpt_connect_t1(s, qs, bq, splat_scale);
     }
     for (uint t = 2u; t <= n_cam; t++) {
         CvBdptVertex pt = cv_bdpt_cam(t - 1u);
         if (t - 2u <= max_depth && cv_bdpt_runs(0u, t))
             L += cv_bdpt_connect_s0(t, splat_scale);
-        if (pt.id.x != CV_BDPT_SURFACE)
+        CvBsdf bt;
+        if (cv_bdpt_in_medium(pt)) {
+        } else if (pt.id.x != CV_BDPT_SURFACE) {
             continue;  // escaped: s = 0 alone
-        CvBsdf bt = cv_bdpt_bsdf(pt);
-        if (cv_bsdf_is_delta(bt))
-            continue;
+        } else {
+            bt = cv_bdpt_bsdf(pt);
+            if (cv_bsdf_is_delta(bt))
+                continue;
+        }
         if (n_light >= 1u && t - 1u <= max_depth && cv_bdpt_runs(1u, t))
             L += cv_bdpt_connect_s1(t, pt, bt, splat_scale);
         for (uint s = 2u; s <= n_light && s + t - 2u <= max_depth; s++) {
             if (!cv_bdpt_runs(s, t))
                 continue;
             CvBdptVertex qs = cv_bdpt_light(s - 1u);
-            CvBsdf bq = cv_bdpt_bsdf(qs);
-            if (cv_bsdf_is_delta(bq))
-                continue;
+            CvBsdf bq;
+            if (!cv_bdpt_in_medium(qs)) {
+                bq = cv_bdpt_bsdf(qs);
+                if (cv_bsdf_is_delta(bq))
+                    continue;
+            }
             L += cv_bdpt_connect(s, t, qs, bq, pt, bt, splat_scale);
         }
     }
-    cv_film_add(slot, L);
+    cv_film_add(slot, L + g_medium_Le);
 }

@@ -41,11 +41,11 @@ float cv_cloud_density(vec3 p, float density, float wispiness, float frequency)
 // medium space) lie in the grid buffer at grids.x.
 float cv_cloud_density_at(uint m, vec3 g)
 {
-    uint k = media[m].grids.x;
-    vec3 lo = vec3(medium_grids[k + 3u], medium_grids[k + 4u], medium_grids[k + 5u]);
-    vec3 size = vec3(medium_grids[k + 6u], medium_grids[k + 7u], medium_grids[k + 8u]);
-    return cv_cloud_density(lo + g * size, medium_grids[k], medium_grids[k + 1u],
-                            medium_grids[k + 2u]);
+    uint k = cv_media(m).grids.x;
+    vec3 lo = vec3(cv_grid_float(k + 3u), cv_grid_float(k + 4u), cv_grid_float(k + 5u));
+    vec3 size = vec3(cv_grid_float(k + 6u), cv_grid_float(k + 7u), cv_grid_float(k + 8u));
+    return cv_cloud_density(lo + g * size, cv_grid_float(k), cv_grid_float(k + 1u),
+                            cv_grid_float(k + 2u));
 }
 
 #endif

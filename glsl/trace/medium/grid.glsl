@@ -18,10 +18,10 @@
 #ifndef CV_TRACE_MEDIUM_GRID_GLSL
 #define CV_TRACE_MEDIUM_GRID_GLSL
 
-layout(std430, binding = CV_BIND_MEDIUM_GRIDS) readonly buffer CvMediumGridBlock
-{
-    float medium_grids[];
-};
+// The grid buffer as a buffer texture (CV_TEXUNIT_MEDIUM_GRIDS), as the
+// media table (medium.glsl): float i of it.
+layout(binding = CV_TEXUNIT_MEDIUM_GRIDS) uniform samplerBuffer cv_medium_grid_tex;
+float cv_grid_float(uint i) { return texelFetch(cv_medium_grid_tex, int(i)).x; }
 
 #ifdef CV_MEDIUM_CLOUDS
 #include "cloud.glsl"
@@ -29,10 +29,10 @@ layout(std430, binding = CV_BIND_MEDIUM_GRIDS) readonly buffer CvMediumGridBlock
 
 bool cv_grid_medium(uint m)
 {
-    return media[m].type == CV_MEDIUM_UNIFORMGRID || media[m].type == CV_MEDIUM_RGBGRID ||
-           media[m].type == CV_MEDIUM_NANOVDB
+    return cv_media(m).type == CV_MEDIUM_UNIFORMGRID || cv_media(m).type == CV_MEDIUM_RGBGRID ||
+           cv_media(m).type == CV_MEDIUM_NANOVDB
 #ifdef CV_MEDIUM_CLOUDS
-           || media[m].type == CV_MEDIUM_CLOUD  // a procedural density (cloud.glsl)
+           || cv_media(m).type == CV_MEDIUM_CLOUD  // a procedural density (cloud.glsl)
 #endif
         ;
 }
@@ -40,8 +40,8 @@ bool cv_grid_medium(uint m)
 // Render space to the grid's unit cube (a point with w 1, a vector with 0).
 vec3 cv_grid_space(uint m, vec4 p)
 {
-    return vec3(dot(media[m].to_grid[0], p), dot(media[m].to_grid[1], p),
-                dot(media[m].to_grid[2], p));
+    return vec3(dot(cv_media(m).to_grid[0], p), dot(cv_media(m).to_grid[1], p),
+                dot(cv_media(m).to_grid[2], p));
 }
 
 // Sample i of a grid (comps numbers per sample) at offset off, zero
@@ -51,8 +51,8 @@ vec3 cv_grid_sample(uint off, uvec3 res, uint comps, ivec3 i)
     if (any(lessThan(i, ivec3(0))) || any(greaterThanEqual(i, ivec3(res))))
         return vec3(0.0);
     uint k = off + ((uint(i.z) * res.y + uint(i.y)) * res.x + uint(i.x)) * comps;
-    return comps == 3u ? vec3(medium_grids[k], medium_grids[k + 1u], medium_grids[k + 2u])
-                       : vec3(medium_grids[k]);
+    return comps == 3u ? vec3(cv_grid_float(k), cv_grid_float(k + 1u), cv_grid_float(k + 2u))
+                       : vec3(cv_grid_float(k));
 }
 
 // The trilinear lookup at s in sample units (sample i at s = i); 1 for
@@ -81,7 +81,7 @@ vec3 cv_grid_lookup_at(uint off, uvec3 res, uint comps, vec3 s)
 // m: at cell centres, or a nanovdb lattice's corners.
 vec3 cv_grid_samples(uint m, uvec3 res, vec3 g)
 {
-    return media[m].type == CV_MEDIUM_NANOVDB ? g * vec3(res - 1u) : g * vec3(res) - 0.5;
+    return cv_media(m).type == CV_MEDIUM_NANOVDB ? g * vec3(res - 1u) : g * vec3(res) - 0.5;
 }
 
 // pbrt-v4's SampledGrid::Lookup at g in the unit cube; 1 for an absent grid.
@@ -100,27 +100,27 @@ void cv_grid_point(uint m, vec3 g, out vec3 sigma_a, out vec3 sigma_s, out vec3 
     if (any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(1.0))))
         return;
 #ifdef CV_MEDIUM_CLOUDS
-    if (media[m].type == CV_MEDIUM_CLOUD) {
+    if (cv_media(m).type == CV_MEDIUM_CLOUD) {
         float d = cv_cloud_density_at(m, g);
-        sigma_a = media[m].sigma_a.rgb * d;
-        sigma_s = media[m].sigma_s.rgb * d;
+        sigma_a = cv_media(m).sigma_a.rgb * d;
+        sigma_s = cv_media(m).sigma_s.rgb * d;
         return;
     }
 #endif
-    uvec4 grids = media[m].grids;
-    uvec3 res = media[m].res.xyz;
+    uvec4 grids = cv_media(m).grids;
+    uvec3 res = cv_media(m).res.xyz;
     uint comps = grids.w != 0u ? 3u : 1u;
     vec3 s = cv_grid_samples(m, res, g);
-    sigma_a = media[m].sigma_a.rgb * cv_grid_lookup_at(grids.x, res, comps, s);
-    sigma_s = media[m].sigma_s.rgb * cv_grid_lookup_at(grids.y, res, comps, s);
-    if (media[m].emissive == 0u)
+    sigma_a = cv_media(m).sigma_a.rgb * cv_grid_lookup_at(grids.x, res, comps, s);
+    sigma_s = cv_media(m).sigma_s.rgb * cv_grid_lookup_at(grids.y, res, comps, s);
+    if (cv_media(m).emissive == 0u)
         return;
-    uvec3 le_res = media[m].le_res.xyz;
-    Le = media[m].Le.rgb * cv_grid_lookup_at(grids.z, le_res, comps, cv_grid_samples(m, le_res, g));
-    uvec4 tg = media[m].temperature_grids;
+    uvec3 le_res = cv_media(m).le_res.xyz;
+    Le = cv_media(m).Le.rgb * cv_grid_lookup_at(grids.z, le_res, comps, cv_grid_samples(m, le_res, g));
+    uvec4 tg = cv_media(m).temperature_grids;
     if (tg.x != CV_NO_GRID) {
         // blackbody emission: the table's linear interpolation
-        vec4 tp = media[m].temperature;
+        vec4 tp = cv_media(m).temperature;
         float T = (cv_grid_lookup_at(tg.x, res, 1u, s).x - tp.x) * tp.y;
         if (!(T > 100.0)) {
             Le = vec3(0.0);
@@ -129,8 +129,8 @@ void cv_grid_point(uint m, vec3 g, out vec3 sigma_a, out vec3 sigma_s, out vec3 
         float x = clamp((T - 100.0) / (tp.z - 100.0), 0.0, 1.0) * float(CV_BLACKBODY_STEPS - 1u);
         uint i = min(uint(x), CV_BLACKBODY_STEPS - 2u);
         uint k = tg.y + 3u * i;
-        vec3 b0 = vec3(medium_grids[k], medium_grids[k + 1u], medium_grids[k + 2u]);
-        vec3 b1 = vec3(medium_grids[k + 3u], medium_grids[k + 4u], medium_grids[k + 5u]);
+        vec3 b0 = vec3(cv_grid_float(k), cv_grid_float(k + 1u), cv_grid_float(k + 2u));
+        vec3 b1 = vec3(cv_grid_float(k + 3u), cv_grid_float(k + 4u), cv_grid_float(k + 5u));
         Le *= mix(b0, b1, x - float(i));
     }
 }
@@ -139,7 +139,7 @@ void cv_grid_point(uint m, vec3 g, out vec3 sigma_a, out vec3 sigma_s, out vec3 
 float cv_grid_majorant(uint m, ivec3 c)
 {
     const uint R = CV_MAJORANT_RES;
-    return medium_grids[media[m].res.w + (uint(c.z) * R + uint(c.y)) * R + uint(c.x)];
+    return cv_grid_float(cv_media(m).res.w + (uint(c.z) * R + uint(c.y)) * R + uint(c.x));
 }
 
 // A 3D DDA over the majorant cells along a ray (pbrt-v4's

@@ -25,9 +25,33 @@
 #include "shared/bindings.h"
 #include "../../lib/frame.glsl"
 
-layout(std430, binding = CV_BIND_MEDIA) readonly buffer CvMediaBlock { CvMedium media[]; };
+// The media table as a buffer texture (CV_TEXUNIT_MEDIA): texture units
+// do not count against a kernel's 16 storage blocks, which bdpt's would
+// pass (glsl/shared/bindings.h). Medium m, field by field (medium.h).
+layout(binding = CV_TEXUNIT_MEDIA) uniform samplerBuffer cv_media_tex;
+CvMedium cv_media(uint m)
+{
+    int b = int(m) * CV_MEDIUM_TEXELS;
+    CvMedium r;
+    r.sigma_a = texelFetch(cv_media_tex, b);
+    r.sigma_s = texelFetch(cv_media_tex, b + 1);
+    r.Le = texelFetch(cv_media_tex, b + 2);
+    uvec4 w = floatBitsToUint(texelFetch(cv_media_tex, b + 3));
+    r.type = w.x;
+    r.emissive = w.y;
+    r.pad0 = w.z;
+    r.pad1 = w.w;
+    for (int i = 0; i < 3; i++)
+        r.to_grid[i] = texelFetch(cv_media_tex, b + 4 + i);
+    r.res = floatBitsToUint(texelFetch(cv_media_tex, b + 7));
+    r.grids = floatBitsToUint(texelFetch(cv_media_tex, b + 8));
+    r.le_res = floatBitsToUint(texelFetch(cv_media_tex, b + 9));
+    r.temperature_grids = floatBitsToUint(texelFetch(cv_media_tex, b + 10));
+    r.temperature = texelFetch(cv_media_tex, b + 11);
+    return r;
+}
 
-vec3 cv_medium_sigma_t(uint m) { return media[m].sigma_a.rgb + media[m].sigma_s.rgb; }
+vec3 cv_medium_sigma_t(uint m) { return cv_media(m).sigma_a.rgb + cv_media(m).sigma_s.rgb; }
 
 #ifdef CV_MEDIUM_GRIDS
 #include "grid.glsl"
@@ -45,9 +69,9 @@ void cv_medium_point(uint m, vec3 p, out vec3 sigma_a, out vec3 sigma_s, out vec
         return;
     }
 #endif
-    sigma_a = media[m].sigma_a.rgb;
-    sigma_s = media[m].sigma_s.rgb;
-    Le = media[m].Le.rgb;
+    sigma_a = cv_media(m).sigma_a.rgb;
+    sigma_s = cv_media(m).sigma_s.rgb;
+    Le = cv_media(m).Le.rgb;
 }
 
 // The medium a ray in direction w is in after crossing (or leaving) the

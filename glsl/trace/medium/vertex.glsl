@@ -33,12 +33,12 @@ void cv_medium_vertex(CvHitItem h, CvRayItem r, out bool push_shadow, out CvShad
     vec3 wo = -r.d.xyz;
     vec3 sigma_a, sigma_s, Le;
     cv_medium_point(medium, p, sigma_a, sigma_s, Le);
-    if (media[medium].emissive != 0u)
+    if (cv_media(medium).emissive != 0u)
         cv_film_add(path, beta * sigma_a * Le);
     beta *= sigma_s;
     if (!cv_finite3(beta) || cv_max3(beta) <= 0.0)
         return;
-    float g = media[medium].sigma_a.w;
+    float g = cv_media(medium).sigma_a.w;
     vec2 u_phase = cv_bounce_2d(path, depth, CV_PAIR_BSDF_U2);
     vec2 u_light = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_U2);
     vec2 u_lc = cv_bounce_2d(path, depth, CV_PAIR_LIGHT_UC);

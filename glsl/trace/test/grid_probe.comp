@@ -50,10 +50,10 @@ void main()
 #ifdef CV_MEDIUM_CLOUDS
     } else if (u_mode == 4u) {
         vec3 p = probe_in[i].xyz;
-        uint k = media[m].grids.x;
+        uint k = cv_media(m).grids.x;
         probe_out[2u * i] = vec4(cv_noise(p), cv_dnoise(p));
-        probe_out[2u * i + 1u] = vec4(cv_cloud_density(p, medium_grids[k], medium_grids[k + 1u],
-                                                       medium_grids[k + 2u]), 0.0, 0.0, 0.0);
+        probe_out[2u * i + 1u] = vec4(cv_cloud_density(p, cv_grid_float(k), cv_grid_float(k + 1u),
+                                                       cv_grid_float(k + 2u)), 0.0, 0.0, 0.0);
 #endif
     } else if (u_mode == 2u || u_mode == 3u) {
         // one estimate per invocation (llvmpipe cuts long loops short)

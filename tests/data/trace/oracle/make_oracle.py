@@ -748,6 +748,56 @@ def bdpt_camera_main():
         text = text.replace('Integrator "path"', 'Integrator "bdpt"').replace(perspective, camera)
         with open(path, "w") as f:
             f.write(text)
+# Participating media in bdpt (issue 27, tests/trace/bdpt_test.c): the
+# references made by pbrt-v4's bdpt. bdpt_media_main() writes them last
+# (the earlier files come out unchanged).
+def bdpt_media_main():
+    def bdpt_scene(name, what, body, maxdepth=6, before_camera=""):
+        volpath_scene(name, what, body, maxdepth=maxdepth, before_camera=before_camera)
+        path = os.path.join(HERE, name + ".pbrt")
+        with open(path) as f:
+            text = f.read()
+        with open(path, "w") as f:
+            f.write(text.replace('Integrator "volpath"', 'Integrator "bdpt"'))
+
+    def lamp(half, y, L, interface):
+        return ('AttributeBegin\n  %s\n  AreaLightSource "diffuse" "rgb L" [ %g %g %g ]\n'
+                '  Material "diffuse" "rgb reflectance" [ 0 0 0 ]\n  ' % (interface, L, L, L)
+                + quad_y(half, y, down=True).replace("\n", "\n  ").rstrip() + "\nAttributeEnd\n")
+    fog_box = ('AttributeBegin\n  MediumInterface "fog" ""\n  Material "interface"\n'
+               + indent(box([-1.5, 0.01, -1.5], [1.5, 2.5, 1.5])) + "AttributeEnd\n")
+    # (a) a small lamp inside a box of fog (the lamp's own MediumInterface
+    # puts it in the fog on both sides), over a diffuse sphere in the fog
+    bdpt_scene(
+        "bdpt_vol_lamp", "small area lamp inside a box of homogeneous fog (sigma_s 0.6, sigma_a "
+        "0.1, g 0.3) over a diffuse sphere in it",
+        FLOOR + 'MakeNamedMedium "fog" "string type" "homogeneous"\n'
+                '  "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.6 0.6 0.6 ] "float g" [ 0.3 ]\n'
+        + lamp(0.25, 2.3, 30, 'MediumInterface "fog" "fog"') + fog_box
+        + sphere('MediumInterface "fog" "fog"\n  Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]'))
+    # (b) a tiny volumetric caustic: a small bright lamp above a glass
+    # sphere (vacuum inside) in a box of fog, as ../shared's
+    # volumetric-caustic: the lamp's interface has the fog outside
+    bdpt_scene(
+        "bdpt_vol_caustic", "small bright lamp above a glass sphere (eta 1.5) in a box of fog "
+        "(sigma_s 0.5, sigma_a 0): a volumetric caustic",
+        FLOOR + 'MakeNamedMedium "fog" "string type" "homogeneous"\n'
+                '  "rgb sigma_a" [ 0 0 0 ] "rgb sigma_s" [ 0.5 0.5 0.5 ]\n'
+        + lamp(0.2, 2.4, 60, 'MediumInterface "" "fog"') + fog_box
+        + sphere('MediumInterface "" "fog"\n  Material "dielectric" "float eta" [ 1.5 ]',
+                 at=(0, 1.1, 0)))
+    # (c) the camera and a point light inside a closed room of mildly
+    # chromatic fog
+    room = ('AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]\n'
+            + indent(box([-3, 0, -6.5], [3, 4, 3], inward=True)) + "AttributeEnd\n")
+    bdpt_scene(
+        "bdpt_vol_chromatic", "camera and point light inside a closed room of chromatic fog "
+        "(sigma_s 0.06 0.1 0.16, sigma_a 0.02, g -0.2), diffuse sphere",
+        'LightSource "point" "point3 from" [ 1 3 -1 ] "rgb I" [ 10 10 10 ]\n' + room + GREY_SPHERE,
+        before_camera='MakeNamedMedium "fog" "string type" "homogeneous"\n'
+                      '  "rgb sigma_a" [ 0.02 0.02 0.02 ] "rgb sigma_s" [ 0.06 0.1 0.16 ]'
+                      ' "float g" [ -0.2 ]\n'
+                      'MediumInterface "" "fog"\n')
 
 
 if __name__ == "__main__":
@@ -760,3 +810,4 @@ if __name__ == "__main__":
     nanovdb_scenes()
     bsdf_only_main()
     bdpt_camera_main()
+    bdpt_media_main()
