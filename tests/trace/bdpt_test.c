@@ -101,17 +101,24 @@ static double worst_dev(const char *name, const float *a, int sa, const float *b
     return worst;
 }
 
-static void against_pbrt(struct cv_gpu *gpu, const char *name, uint64_t seed)
+/* Reads scene name's pbrt-v4 reference (RES x RES, RGB) into *ref: one
+ * TAP check. */
+static bool oracle_ref(const char *name, float **ref)
 {
     char why[4400] = "";
     const char *dir = getenv("CV_TEST_DATA");
-    char *ref_path = cv_xasprintf("%s/trace/oracle/%s.exr", dir ? dir : "tests/data", name);
-    float *ref = NULL;
+    char *path = cv_xasprintf("%s/trace/oracle/%s.exr", dir ? dir : "tests/data", name);
     uint32_t rw = 0, rh = 0;
-    bool read = exr_ref_read_rgb(ref_path, &ref, &rw, &rh, why, sizeof(why));
-    free(ref_path);
-    struct test_image img;
-    if (tap_ok(read && rw == RES && rh == RES, "%s: reference read %s", name, why) &&
+    bool read = exr_ref_read_rgb(path, ref, &rw, &rh, why, sizeof(why));
+    free(path);
+    return tap_ok(read && rw == RES && rh == RES, "%s: reference read %s", name, why);
+}
+
+static void against_pbrt(struct cv_gpu *gpu, const char *name, uint64_t seed)
+{
+    float *ref = NULL;
+    struct test_image img = {0};
+    if (oracle_ref(name, &ref) &&
         render(gpu, name, CV_INTEGRATOR_BDPT, seed, BDPT_SPP, &img)) {
         double dev = worst_dev(name, img.rgba, 4, ref, 3);
         tap_ok(dev <= BDPT_TOL, "%s: bdpt within %.0f%% of pbrt-v4 (worst region off by %.4f)",
@@ -132,15 +139,9 @@ static void against_pbrt(struct cv_gpu *gpu, const char *name, uint64_t seed)
 static void caustic_mean(struct cv_gpu *gpu, uint64_t seed)
 {
     const char *name = "bdpt_vol_caustic";
-    char why[4400] = "";
-    const char *dir = getenv("CV_TEST_DATA");
-    char *ref_path = cv_xasprintf("%s/trace/oracle/%s.exr", dir ? dir : "tests/data", name);
     float *ref = NULL;
-    uint32_t rw = 0, rh = 0;
-    bool read = exr_ref_read_rgb(ref_path, &ref, &rw, &rh, why, sizeof(why));
-    free(ref_path);
     struct test_image img = {0};
-    if (tap_ok(read && rw == RES && rh == RES, "%s: reference read %s", name, why) &&
+    if (oracle_ref(name, &ref) &&
         render(gpu, name, CV_INTEGRATOR_BDPT, seed, CAUSTIC_SPP, &img)) {
         worst_dev(name, img.rgba, 4, ref, 3);  /* the regions, for the log */
         double a = exr_ref_region_mean(img.rgba, RES, 4, 0, 0, RES, RES);
