@@ -555,8 +555,8 @@ bool cv_bsdf_walks(CvBsdf b)
 }
 
 // Answers q (bsdf_query.glsl): every BSDF function a vertex needs, from
-// this one call site, so that each lobe's code (the coated walk's above
-// all) is inlined once per kernel. The steps run in one loop (bit k of
+// this one call site, so that each lobe's code is inlined once per kernel
+// (the coated walk's once per estimator: layered.glsl). The steps run in one loop (bit k of
 // `todo`: 0 f at wi0, 1 pdf at wi0, 2 the sample, 3 the pdf at the
 // sample's direction, which restates a coated walk's proportional pdf as
 // pbrt-v4's LayeredBxDF::Sample does, 4 f at wi1, 5 pdf at wi1).
@@ -609,7 +609,7 @@ void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
         bool ok = false;
 #if !defined(CV_NO_LAYERED) && !defined(CV_BSDF_DIFFUSE_ONLY)
         if (walks)
-            ok = cv_layered_run(cv_bsdf_layered(b), mode, wo, wi, q.uc, q.u, f, pdf, s);
+            ok = cv_layered_estimate(cv_bsdf_layered(b), mode, wo, wi, q.uc, q.u, f, pdf, s);
         else
 #endif
         if (mode == CV_LAY_MODE_F)

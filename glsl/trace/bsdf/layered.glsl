@@ -17,10 +17,11 @@
 // .key, from the shade stage's sampler) and the directions involved, so one
 // seed renders one image.
 //
-// The three estimators are one loop (cv_layered_run), reached from one
-// call site per kernel (bsdf.glsl: cv_bsdf_query), so a kernel holds one
-// copy of the interfaces' code: compilers inline every call, and the
-// walk's copies were most of a shade kernel's build time
+// The three estimators are one loop (cv_layered_run), written once and
+// reached from one call site per kernel (bsdf.glsl: cv_bsdf_query), which
+// asks it once per mode with the mode a constant (cv_layered_estimate):
+// compilers inline every call, and the walk's copies were most of a shade
+// kernel's build time, so a kernel holds three folded copies, no more
 // (tests/trace/bsdf_sites_test counts them).
 //
 // Local frame, wo on +z (bsdf.glsl mirrors both directions when wo is
@@ -265,9 +266,9 @@ float cv_layered_delta_prob(CvLayered L, vec3 wo)
 #define CV_LAY_CONN_BASE 3   // PDF: out through the coat after the base, w
 
 // The layered BSDF's three estimators as one walk, so that a kernel holds
-// one copy of the interfaces' code however many estimates it asks for
-// (GLSL compilers inline every call: bsdf.glsl's cv_bsdf_query calls this
-// from one site). mode CV_LAY_MODE_F returns f(wo, wi) in f (0 where either
+// one copy of the interfaces' code per mode however many estimates it asks
+// for (GLSL compilers inline every call: bsdf.glsl's cv_bsdf_query calls
+// this through cv_layered_estimate from one site). mode CV_LAY_MODE_F returns f(wo, wi) in f (0 where either
 // direction is below, since the base transmits nothing); CV_LAY_MODE_PDF
 // the pdf estimate in pdf; CV_LAY_MODE_WALK one walk out of the layers in
 // s (false: the walk died), whose s.pdf is proportional to the density
@@ -554,6 +555,21 @@ bool cv_layered_run(CvLayered L, uint mode, vec3 wo, vec3 wi, float uc0, vec2 u0
     f = fsum / n;
     pdf = mix(CV_INV_4PI, psum / n, 0.9);
     return false;
+}
+
+// cv_layered_run with its mode a constant in each call, so each inlined
+// copy folds to one estimator. With the mode known only at run time, one
+// copy keeps every mode's state and branches live through the loop, and
+// NVIDIA's compiled walk runs far slower (bench/RESULTS.md, issue 26);
+// three folded copies cost some build time instead.
+bool cv_layered_estimate(CvLayered L, uint mode, vec3 wo, vec3 wi, float uc, vec2 u, out vec3 f,
+                         out float pdf, out CvBsdfSample s)
+{
+    if (mode == CV_LAY_MODE_F)
+        return cv_layered_run(L, CV_LAY_MODE_F, wo, wi, uc, u, f, pdf, s);
+    if (mode == CV_LAY_MODE_PDF)
+        return cv_layered_run(L, CV_LAY_MODE_PDF, wo, wi, uc, u, f, pdf, s);
+    return cv_layered_run(L, CV_LAY_MODE_WALK, wo, wi, uc, u, f, pdf, s);
 }
 
 #endif
