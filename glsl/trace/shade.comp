@@ -17,8 +17,8 @@
 layout(local_size_x = CV_TRACE_GROUP) in;
 #if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
 #define CV_BSDF_DIFFUSE_ONLY
-#elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1
-#define CV_NO_LAYERED
+#elif defined(CV_SHADE_BIN) && CV_SHADE_BIN == 1 && !defined(CV_NO_LAYERED)
+#define CV_NO_LAYERED  // (a scene without the walk defines it already)
 #endif
 #include "unroll_hint.glsl"
 #include "common.glsl"

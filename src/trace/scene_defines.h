@@ -10,6 +10,8 @@
 #ifndef CV_TRACE_SCENE_DEFINES_H
 #define CV_TRACE_SCENE_DEFINES_H
 
+#include "trace/shade_bins.h"
+
 #define CV_SCENE_DEFINES(X) \
     X("CV_EMPTY_SCENE", gs->empty) \
     X("CV_AOVS", p->aovs) \
@@ -32,6 +34,10 @@
      * kernels: every material of a bin pays for the registers of its \
      * largest case (bench/RESULTS.md, "Merged main against f42fcef") */ \
     X("CV_NO_HAIR", !gs->has_hair) \
+    /* the coated walk (bsdf/layered.glsl), where no material takes it: \
+     * path's and rlpath's shade bins leave it out by bin, and this keeps \
+     * it out of the one-kernel integrators (bdpt) too */ \
+    X("CV_NO_LAYERED", !(gs->shade_bins & (1u << CV_SHADE_BIN_WALK))) \
     X("CV_NO_COAT_CLOSED", !gs->has_coat_closed) \
     /* BSSRDF probes in the intersect and shade stages (sss_probe.glsl, \
      * sss_vertex.glsl): only where a material is subsurface */ \
