@@ -113,6 +113,7 @@ void cv_b_free(struct cv_builder *b)
         free(b->objects[i].name);
         free(b->objects[i].v);
         free(b->objects[i].t);
+        free(b->objects[i].c);
     }
     free(b->objects);
     free(b->color_space);
@@ -465,6 +466,12 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
 bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err)
 {
     struct cv_object *o = &b->objects[index];
+    if (!o->matte_object && b->cur_object < 0 && (o->nt || o->nc))
+        o->matte_object = cv_b_add_object(b, o->name) + 1;
+    /* the definition's curves, placed as its triangles are */
+    if (o->nc && !cv_b_place_curves(b, o->c, o->nc, &b->gs.ctm, b->cur_object < 0 ? o->matte_object - 1 : UINT32_MAX,
+                                    loc, err))
+        return false;
     if (o->nt == 0)
         return true;
     /* Object vertices are already in the space of their definition; the
@@ -493,8 +500,6 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
     struct cv_gstate saved = b->gs;
     b->gs.reverse = false;
     b->gs.area.on = false;
-    if (!o->matte_object && b->cur_object < 0)
-        o->matte_object = cv_b_add_object(b, o->name) + 1;
     struct cv_mesh m = {o->nv, o->nt, P, N, uv, idx, false, o->name, o->matte_object};
     size_t nt0 = b->s->n_triangles;
     bool ok = cv_b_emit_mesh(b, &m, loc, err);
