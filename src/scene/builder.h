@@ -134,7 +134,7 @@ struct cv_builder {
     uint32_t light_source;       /* the directive of the lights added next */
     size_t cap_motions;
     struct cv_mat4 motion_ctm;   /* the start transform of the moving shape being emitted */
-    uint32_t motion_nt0, motion_nv0;
+    uint32_t motion_nt0, motion_nv0, motion_nc0;
     struct cv_named *measured_files; /* path -> word offset in the scene's measured tables */
     size_t n_measured_files, cap_measured_files, cap_measured;
     size_t cap_light_sources;

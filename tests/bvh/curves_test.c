@@ -57,7 +57,7 @@ static bool trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *ray
                   struct cv_error *err)
 {
     size_t n4;
-    float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
+    float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &n4);
     GLuint cb = cv_buffer_create(n4 * 16, packed, "curves", err);
     free(packed);
     GLuint ct = cb ? cv_buffer_texture(cb, GL_RGBA32F, n4, err) : 0;
