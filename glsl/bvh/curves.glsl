@@ -13,10 +13,14 @@
 //
 // One buffer texture holds everything (CV_TEXUNIT_CURVES, read with
 // texelFetch: it uses no storage block, of which a kernel may bind few):
-// vec4 0 is the header (node count, curve count, first curve's vec4), then
-// the nodes, 4 vec4 each as a binary CvBvhNode (glsl/shared/bvh.h: a leaf
-// child's word is its first curve, its count the curves), then the curves,
-// 7 vec4 each as CvCurve, in leaf order.
+// vec4 0 is the header (node count, curve count, first curve's vec4,
+// static curve count), then the nodes, 4 vec4 each as a binary CvBvhNode
+// (glsl/shared/bvh.h: a leaf child's word is its first curve, its count
+// the curves), then one record per moving shape (its tree's root node,
+// first curve, curve count), then the curves, 7 vec4 each as CvCurve, in
+// leaf order: the static ones (their tree from node 0) first, then each
+// moving shape's, in its object space (walked by motion.glsl with the ray
+// carried there; CvCurve.info.w = 1 + the shape).
 #ifndef CV_BVH_CURVES_GLSL
 #define CV_BVH_CURVES_GLSL
 
@@ -31,6 +35,13 @@ vec4 cv_curve_word(uint i) { return texelFetch(cv_curve_tex, int(i)); }
 #define CV_CURVE_SPLIT_STACK 12
 
 uint cv_curve_count() { return floatBitsToUint(cv_curve_word(0).y); }
+
+// Moving shape g's curves: (root node, first curve, count); count 0 when
+// it has none.
+uvec4 cv_curve_shape(uint g)
+{
+    return floatBitsToUint(cv_curve_word(1u + 4u * floatBitsToUint(cv_curve_word(0).x) + g));
+}
 
 CvCurve cv_curve_at(uint i)
 {
@@ -231,21 +242,22 @@ bool cv_curves_in_range(uint first, uint last, vec3 o, vec3 d, float tmin, bool 
     return found;
 }
 
-// Walks the curve tree for hits below hit_t (closest, or any hit); replaces
-// the hit (prim CV_PRIM_CURVE | curve, b1 = u, b2 = v) by a
+// Walks the curve tree from node `root` (0: the static curves'; a moving
+// shape's, cv_curve_shape) for hits below hit_t (closest, or any hit);
+// replaces the hit (prim CV_PRIM_CURVE | curve, b1 = u, b2 = v) by a
 // nearer one. Ties keep the earlier hit (triangles, then lower curves).
 // Never trusts the node words (see traverse.glsl's top): children and
 // leaf ranges are clipped and the walk stops after as many steps as nodes.
-bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, inout uint hit_prim,
-                    inout float hit_u, inout float hit_v)
+bool cv_curves_walk_from(int root, vec3 o, vec3 d, float tmin, bool any, inout float hit_t,
+                         inout uint hit_prim, inout float hit_u, inout float hit_v)
 {
     uint n_nodes = floatBitsToUint(cv_curve_word(0).x), n_curves = cv_curve_count();
-    if (n_nodes == 0u)
+    if (n_nodes == 0u || uint(root) >= n_nodes)
         return false;
     vec3 inv = 1.0 / mix(d, mix(vec3(1e-30), vec3(-1e-30), lessThan(d, vec3(0.0))), lessThan(abs(d), vec3(1e-30)));
     int stack[CV_CURVE_STACK];
     int sp = 0;
-    int node = 0;
+    int node = root;
     bool found = false;
     for (uint steps = 0u; steps <= n_nodes; steps++) {
         uint b = 1u + 4u * uint(node);
@@ -284,11 +296,19 @@ bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, ino
     return found;
 }
 
-// Brute force over every curve, for the tests.
+// The static curves' tree.
+bool cv_curves_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, inout uint hit_prim,
+                    inout float hit_u, inout float hit_v)
+{
+    return cv_curves_walk_from(0, o, d, tmin, any, hit_t, hit_prim, hit_u, hit_v);
+}
+
+// Brute force over every static curve, for the tests.
 bool cv_curves_brute(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, inout uint hit_prim,
                      inout float hit_u, inout float hit_v)
 {
-    return cv_curves_in_range(0u, cv_curve_count(), o, d, tmin, any, hit_t, hit_prim, hit_u, hit_v);
+    return cv_curves_in_range(0u, floatBitsToUint(cv_curve_word(0).w), o, d, tmin, any, hit_t, hit_prim, hit_u,
+                              hit_v);
 }
 
 // The surface at a curve hit (u, v) of ray o + t d, as pbrt-v4 builds its

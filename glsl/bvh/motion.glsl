@@ -11,7 +11,10 @@
 // with the same watertight test as static ones. The transform is affine,
 // so a hit's t is the same along the world ray. A top tree over the
 // shapes' motion boxes (world space: each holds its shape at every time)
-// picks the shapes a ray may meet.
+// picks the shapes a ray may meet. A moving shape's curves (with
+// CV_HAS_CURVES) are in its object space too, in a tree of their own in
+// curves.glsl's buffer (cv_curve_shape), walked with the same object-space
+// ray after its triangles; curves.glsl comes first where both are used.
 //
 // One buffer texture holds everything: vec4 0 is the header (shape count,
 // first shape record, first triangle, the first moving triangle's index
@@ -214,6 +217,12 @@ bool cv_motion_shape(uint g, vec3 o, vec3 d, float time, float tmin, bool any, i
             break;
         }
     }
+#ifdef CV_HAS_CURVES
+    uvec4 cs = cv_curve_shape(g);
+    if (!(any && found) && cs.z > 0u &&
+        cv_curves_walk_from(int(cs.x), oo, od, tmin, any, hit_t, hit_prim, hit_b1, hit_b2))
+        found = true;
+#endif
     return found;
 }
 
@@ -269,8 +278,8 @@ bool cv_motion_walk(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, ino
     return found;
 }
 
-// Brute force for the tests: every moving triangle, each shape's
-// transform at `time`, no tree.
+// Brute force for the tests: every moving triangle (and curve), each
+// shape's transform at `time`, no tree.
 bool cv_motion_brute(vec3 o, vec3 d, float time, float tmin, bool any, inout float hit_t,
                      inout uint hit_prim, inout float hit_b1, inout float hit_b2)
 {
@@ -299,6 +308,11 @@ bool cv_motion_brute(vec3 o, vec3 d, float time, float tmin, bool any, inout flo
                     break;
             }
         }
+#ifdef CV_HAS_CURVES
+        uvec4 cs = cv_curve_shape(g);
+        if (!(any && found) && cv_curves_in_range(cs.y, cs.y + cs.z, oo, od, tmin, any, hit_t, hit_prim, hit_b1, hit_b2))
+            found = true;
+#endif
         if (any && found)
             break;
         slot += n;

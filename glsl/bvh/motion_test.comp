@@ -7,7 +7,16 @@
 // after 65535 turns, which the brute-force queries together would pass
 // (answers then went missing). Out, one per ray:
 // (t, prim, b1, b2), bits as uints, prim 0xffffffff on a miss; the
-// any-hit forms (found, -, -, -).
+// any-hit forms (found, -, -, -). With CV_HAS_CURVES, the moving shapes'
+// curves too (the curves' buffer bound as the renderer binds it).
+// (Included files expand once, where first named, whatever #ifdef is
+// around them: curves.glsl's own includes come first, outside it.)
+#include "shared/scene.h"
+#include "shared/bvh.h"
+#include "shared/bindings.h"
+#ifdef CV_HAS_CURVES
+#include "curves.glsl"
+#endif
 #include "motion.glsl"
 
 layout(local_size_x = 64) in;

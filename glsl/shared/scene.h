@@ -52,12 +52,14 @@ CV_CHECK_SIZE(CvTriangle, 16);
 #define CV_CURVE_RIBBON 2u   /* oriented by the normals n0, n1 */
 #define CV_PRIM_CURVE 0x80000000u
 
-/* cp[k].xyz: the piece's control points (render space); cp[0].w, cp[1].w:
+/* cp[k].xyz: the piece's control points (render space, or a moving
+ * shape's object space); cp[0].w, cp[1].w:
  * width at u 0 and 1; cp[2].w, cp[3].w: u_min, u_max. n0, n1: ribbon
  * normals at u 0 and 1, n0.w the angle between them, n1.w 1 / its sine.
  * info.x: material word as a triangle's (material, CV_TRI_REVERSE);
  * info.y: CV_CURVE_*; info.z: its ID-matte object (scene.h tri_object's
- * numbering). */
+ * numbering); info.w: 0 for a static curve, 1 + its moving shape's index
+ * (src/scene/scene.h, cv_motion) for a moving one. */
 CV_STRUCT(CvCurve) {
     cv_vec4 cp[4];
     cv_vec4 n0;

@@ -121,8 +121,28 @@ CvSurface cv_surface_ray(uint prim, float b1, float b2, vec3 o, vec3 d, float t)
         CvSurface s;
         vec3 n;
         uint word;
-        cv_curve_frame(prim & ~CV_PRIM_CURVE, b1, b2, d, s.dpdu, n, s.p_err, word);
+        uint ci = prim & ~CV_PRIM_CURVE;
         s.p = o + t * d;
+#ifdef CV_HAS_MOTION
+        uint shape = cv_curve_at(ci).info.w;
+        if (shape != 0u) {
+            // A moving shape's curve (object space) at the time of the ray
+            // that hit it, as pbrt-v4 transforms an AnimatedPrimitive's
+            // intersection: the frame built in object space with the ray
+            // carried there, then dp/du by the transform and the normal by
+            // its inverse transpose. Rays leave it by the margin of the
+            // moving triangles (cv_surface).
+            mat3 m;
+            vec3 T;
+            cv_motion_xf(shape - 1u, cv_trace_time, m, T);
+            cv_curve_frame(ci, b1, b2, inverse(m) * d, s.dpdu, n, s.p_err, word);
+            s.dpdu = m * s.dpdu;
+            n = normalize(transpose(inverse(m)) * n);
+            s.p_err = s.p_err * max(length(m[0]), max(length(m[1]), length(m[2]))) +
+                      (1.0 / 524288.0) * (cv_max3(abs(s.p)) + cv_max3(abs(T)));
+        } else
+#endif
+            cv_curve_frame(ci, b1, b2, d, s.dpdu, n, s.p_err, word);
         s.ng = n;
         s.ns = n;
         s.uv = vec2(b1, b2);

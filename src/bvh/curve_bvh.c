@@ -100,29 +100,56 @@ static void build_node(struct build *b, uint32_t node, uint32_t first, uint32_t 
     }
 }
 
-float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, size_t *n_vec4)
+float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, uint32_t n_shapes, size_t *n_vec4)
 {
     struct build b = {0};
     b.lo = cv_xcalloc(n, sizeof(*b.lo));
     b.hi = cv_xcalloc(n, sizeof(*b.hi));
     b.order = cv_xcalloc(n, sizeof(uint32_t));
+    /* order[]: the static curves, then each shape's, each group in scene
+     * order; first[g + 1], count[g + 1]: shape g's group (g + 1 = info.w) */
+    uint32_t *first = cv_xcalloc((size_t)n_shapes + 2, sizeof(uint32_t));
+    uint32_t *count = cv_xcalloc((size_t)n_shapes + 1, sizeof(uint32_t));
     for (uint32_t i = 0; i < n; i++) {
         cv_curve_box(&curves[i], b.lo[i], b.hi[i]);
-        b.order[i] = i;
+        uint32_t g = curves[i].info.w <= n_shapes ? curves[i].info.w : 0;
+        count[g]++;
     }
-    /* a binary tree of leaves of 1..CV_CURVE_LEAF curves has fewer than n nodes */
-    size_t max_nodes = n > 1 ? n : 1;
-    size_t curve_base = 1 + 4 * max_nodes;
-    b.out = cv_xcalloc((curve_base + 7 * (size_t)n) * 4, sizeof(float));
+    for (uint32_t g = 0; g <= n_shapes; g++)
+        first[g + 1] = first[g] + count[g];
+    for (uint32_t g = 0; g <= n_shapes; g++)
+        count[g] = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t g = curves[i].info.w <= n_shapes ? curves[i].info.w : 0;
+        b.order[first[g] + count[g]++] = i;
+    }
+    /* a binary tree of leaves of 1..CV_CURVE_LEAF curves has fewer nodes
+     * than curves, and at least one */
+    size_t max_nodes = (size_t)n + n_shapes + 1;
+    b.out = cv_xcalloc((1 + 4 * max_nodes + n_shapes + 7 * (size_t)n) * 4, sizeof(float));
     b.n_nodes = 1;
-    build_node(&b, 0, 0, n);
-    /* the nodes used, then the curves in leaf order right after them */
-    curve_base = 1 + 4 * (size_t)b.n_nodes;
-    uint32_t hdr[4] = {b.n_nodes, n, (uint32_t)curve_base, 0};
+    build_node(&b, 0, 0, count[0]);
+    uint32_t *roots = cv_xcalloc((size_t)n_shapes + 1, sizeof(uint32_t));
+    for (uint32_t g = 1; g <= n_shapes; g++)
+        if (count[g]) {
+            roots[g] = b.n_nodes++;
+            build_node(&b, roots[g], first[g], count[g]);
+        }
+    /* the nodes used, the shapes' records (root node, first curve, count),
+     * then the curves in leaf order */
+    size_t shape_base = 1 + 4 * (size_t)b.n_nodes, curve_base = shape_base + n_shapes;
+    uint32_t hdr[4] = {b.n_nodes, n, (uint32_t)curve_base, count[0]};
     memcpy(b.out, hdr, sizeof(hdr));
+    for (uint32_t g = 1; g <= n_shapes; g++) {
+        uint32_t rec[4] = {roots[g], first[g], count[g], 0};
+        memcpy(b.out + 4 * (shape_base + g - 1), rec, sizeof(rec));
+    }
     for (uint32_t k = 0; k < n; k++)
         memcpy(b.out + 4 * (curve_base + 7 * (size_t)k), &curves[b.order[k]], sizeof(CvCurve));
     *n_vec4 = curve_base + 7 * (size_t)n;
+    free(first);
+    free(count);
+    free(roots);
     free(b.lo);
     free(b.hi);
     free(b.order);

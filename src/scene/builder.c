@@ -113,6 +113,7 @@ void cv_b_free(struct cv_builder *b)
         free(b->objects[i].name);
         free(b->objects[i].v);
         free(b->objects[i].t);
+        free(b->objects[i].c);
     }
     free(b->objects);
     free(b->color_space);
@@ -465,6 +466,12 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
 bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err)
 {
     struct cv_object *o = &b->objects[index];
+    if (!o->matte_object && b->cur_object < 0 && (o->nt || o->nc))
+        o->matte_object = cv_b_add_object(b, o->name) + 1;
+    /* the definition's curves, placed as its triangles are */
+    if (o->nc && !cv_b_place_curves(b, o->c, o->nc, &b->gs.ctm, b->cur_object < 0 ? o->matte_object - 1 : UINT32_MAX,
+                                    loc, err))
+        return false;
     if (o->nt == 0)
         return true;
     /* Object vertices are already in the space of their definition; the
@@ -493,8 +500,6 @@ bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, st
     struct cv_gstate saved = b->gs;
     b->gs.reverse = false;
     b->gs.area.on = false;
-    if (!o->matte_object && b->cur_object < 0)
-        o->matte_object = cv_b_add_object(b, o->name) + 1;
     struct cv_mesh m = {o->nv, o->nt, P, N, uv, idx, false, o->name, o->matte_object};
     size_t nt0 = b->s->n_triangles;
     bool ok = cv_b_emit_mesh(b, &m, loc, err);
@@ -537,8 +542,6 @@ bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why)
         *why = "shapes moving inside an object definition are not rendered moving";
     else if (b->gs.area.on && type)
         *why = "moving area lights are not rendered moving (nor by pbrt-v4)";
-    else if (type && strcmp(type, "curve") == 0)
-        *why = "moving curves are not rendered moving";
     else if (b->gs.ctm.m[3][0] != 0 || b->gs.ctm.m[3][1] != 0 || b->gs.ctm.m[3][2] != 0 ||
              b->gs.ctm_end.m[3][0] != 0 || b->gs.ctm_end.m[3][1] != 0 || b->gs.ctm_end.m[3][2] != 0 ||
              !cv_animated_init(&a, m0, b->transform_times[0], m1, b->transform_times[1]))
@@ -548,24 +551,39 @@ bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why)
     return *why == NULL;
 }
 
+/* Grows [lo, hi] by curve c: its control points bound the piece, half
+ * the wider end's width around them (float rounding: within
+ * cv_animated_bounds's margin). */
+static void curve_box_grow(const CvCurve *c, float lo[3], float hi[3])
+{
+    float r = 0.5f * fmaxf(c->cp[0].w, c->cp[1].w);
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = fminf(lo[a], (&c->cp[k].x)[a] - r);
+            hi[a] = fmaxf(hi[a], (&c->cp[k].x)[a] + r);
+        }
+}
+
 void cv_b_motion_begin(struct cv_builder *b)
 {
     b->motion_ctm = b->gs.ctm;
     b->gs.ctm = cv_mat4_identity();
     b->motion_nt0 = b->s->n_triangles;
     b->motion_nv0 = b->s->n_vertices;
+    b->motion_nc0 = b->s->n_curves;
 }
 
 void cv_b_motion_end(struct cv_builder *b)
 {
     struct cv_scene *s = b->s;
     b->gs.ctm = b->motion_ctm;
-    if (s->n_triangles == b->motion_nt0)
+    if (s->n_triangles == b->motion_nt0 && s->n_curves == b->motion_nc0)
         return;
     s->motions = cv_xgrow(s->motions, &b->cap_motions, s->n_motions + 1, sizeof(*s->motions));
     struct cv_motion *m = &s->motions[s->n_motions++];
     *m = (struct cv_motion){.first = b->motion_nt0, .count = s->n_triangles - b->motion_nt0,
-                            .first_vertex = b->motion_nv0, .n_vertices = s->n_vertices - b->motion_nv0};
+                            .first_vertex = b->motion_nv0, .n_vertices = s->n_vertices - b->motion_nv0,
+                            .first_curve = b->motion_nc0, .n_curves = s->n_curves - b->motion_nc0};
     double m0[3][4], m1[3][4];
     rows3x4(&b->gs.ctm, m0);
     rows3x4(&b->gs.ctm_end, m1);
@@ -576,6 +594,11 @@ void cv_b_motion_end(struct cv_builder *b)
             lo[c] = fminf(lo[c], (&s->vertices[v].pos_u.x)[c]);
             hi[c] = fmaxf(hi[c], (&s->vertices[v].pos_u.x)[c]);
         }
+    for (uint32_t i = m->first_curve; i < m->first_curve + m->n_curves; i++) {
+        CvCurve *cu = &s->curves[i];
+        cu->info.w = s->n_motions; /* 1 + the shape's index */
+        curve_box_grow(cu, lo, hi);
+    }
     cv_animated_bounds(&m->xf, lo, hi, m->lo, m->hi);
 }
 
@@ -689,6 +712,8 @@ bool cv_b_finish(struct cv_builder *b, struct cv_error *err)
     for (size_t i = 0; i < s->n_curves; i++) {
         /* control points bound the piece; half the widest width around them */
         const CvCurve *cu = &s->curves[i];
+        if (cu->info.w) /* moving: in its shape's motion box */
+            continue;
         double r = 0.5 * fmax(cu->cp[0].w, cu->cp[1].w);
         for (int k = 0; k < 4; k++) {
             const float *p = &cu->cp[k].x;

@@ -74,6 +74,8 @@ struct cv_object {
     size_t nv, cap_v;
     CvTriangle *t;
     size_t nt, cap_t;
+    CvCurve *c;             /* curves in the definition's space (curves.c) */
+    size_t nc, cap_c;
     uint32_t matte_object;  /* 1 + its object id in the scene (scene.h); 0 before an instance */
 };
 
@@ -132,7 +134,7 @@ struct cv_builder {
     uint32_t light_source;       /* the directive of the lights added next */
     size_t cap_motions;
     struct cv_mat4 motion_ctm;   /* the start transform of the moving shape being emitted */
-    uint32_t motion_nt0, motion_nv0;
+    uint32_t motion_nt0, motion_nv0, motion_nc0;
     struct cv_named *measured_files; /* path -> word offset in the scene's measured tables */
     size_t n_measured_files, cap_measured_files, cap_measured;
     size_t cap_light_sources;
@@ -195,6 +197,13 @@ void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *nam
 /* Directives (see the files named). */
 /* Shape "curve" with the current transform and material (curves.c). */
 bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, struct cv_error *err);
+/* Appends curves src[0..n) placed by M (control points, widths by M's
+ * mean scale, ribbon normals) to the open object definition, or else to
+ * the scene; CV_TRI_REVERSE flips in their words when M swaps
+ * handedness, and object (when not UINT32_MAX) becomes their ID-matte
+ * object. (curves.c) */
+bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const struct cv_mat4 *M,
+                       uint32_t object, const struct cv_loc *loc, struct cv_error *err);
 /* The material index new shapes get (pbrt's default diffuse made on first use). */
 uint32_t cv_b_current_material(struct cv_builder *b);
 bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,

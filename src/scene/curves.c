@@ -4,9 +4,13 @@
  * Curve::Create), the widths interpolated per piece, each piece split into
  * 2^splitdepth primitives over its u range. Control points go to render
  * space; widths scale with the transform's mean scale (pbrt-v4 intersects
- * in object space, which is the same for uniform scales). */
+ * in object space, which is the same for uniform scales). Inside an
+ * ObjectBegin definition they go to the definition's space, placed again
+ * by each instance (builder.c, cv_b_instance); a moving curve's stay in
+ * its object space (scene.h, cv_motion). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "base/mem.h"
@@ -66,7 +70,6 @@ static void normalize3(double v[3])
 
 bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, struct cv_error *err)
 {
-    struct cv_scene *s = b->s;
     double width = cv_params_float(ps, "width", 1);
     double w0 = cv_params_float(ps, "width0", width), w1 = cv_params_float(ps, "width1", width);
     int degree = cv_params_int(ps, "degree", 3);
@@ -118,61 +121,101 @@ bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc 
     }
     if (split < 0 || split > 10)
         return FAIL("splitdepth %d outside 0..10", loc->file, loc->line, loc->col, split);
-    if (b->cur_object >= 0)
-        return cv_b_warn(b, err, loc, "curves inside object definitions are not rendered; skipped");
-
     uint32_t mat = cv_b_current_material(b);
-    const struct cv_mat4 *M = &b->gs.ctm;
-    struct cv_mat4 inv;
-    cv_mat4_inverse(M, &inv);
-    bool swaps = cv_mat4_det3(M) < 0;
-    double scale = cbrt(fabs(cv_mat4_det3(M)));
-    uint32_t word = mat | (b->gs.reverse != swaps ? CV_TRI_REVERSE : 0u);
-    /* one ID-matte object per Shape directive, as a triangle mesh's */
-    uint32_t object = cv_b_add_object_at(b, loc);
-
-    size_t per = (size_t)1 << split, need = s->n_curves + (size_t)nseg * per;
-    if (need > CV_PRIM_CURVE)
-        return FAIL("more than 2^31 curve primitives", loc->file, loc->line, loc->col);
-    s->curves = cv_xgrow(s->curves, &b->cap_curves, need, sizeof(CvCurve));
+    uint32_t word = mat | (b->gs.reverse ? CV_TRI_REVERSE : 0u);
+    /* one ID-matte object per Shape directive, as a triangle mesh's;
+     * inside a definition, each instance's (cv_b_instance) */
+    uint32_t object = b->cur_object >= 0 ? 0 : cv_b_add_object_at(b, loc);
+    /* the pieces in object space, then placed by the CTM */
+    size_t per = (size_t)1 << split;
+    CvCurve *pieces = cv_xcalloc((size_t)nseg * per, sizeof(CvCurve));
     for (long seg = 0; seg < nseg; seg++) {
         double bz[4][3];
         piece(P->nums, (int)seg, degree, bspline, bz);
         CvCurve c;
         memset(&c, 0, sizeof(c));
-        for (int k = 0; k < 4; k++) {
-            double w[3];
-            cv_mat4_point(M, bz[k], w);
-            c.cp[k] = (cv_vec4){(float)w[0], (float)w[1], (float)w[2], 0};
-            if (!isfinite(c.cp[k].x) || !isfinite(c.cp[k].y) || !isfinite(c.cp[k].z))
-                return FAIL("control points are not finite after the transform", loc->file, loc->line, loc->col);
-        }
+        for (int k = 0; k < 4; k++)
+            c.cp[k] = (cv_vec4){(float)bz[k][0], (float)bz[k][1], (float)bz[k][2], 0};
         double t0 = (double)seg / nseg, t1 = (double)(seg + 1) / nseg;
-        c.cp[0].w = (float)(((1 - t0) * w0 + t0 * w1) * scale);
-        c.cp[1].w = (float)(((1 - t1) * w0 + t1 * w1) * scale);
+        c.cp[0].w = (float)((1 - t0) * w0 + t0 * w1);
+        c.cp[1].w = (float)((1 - t1) * w0 + t1 * w1);
         if (N) {
-            double n[2][3];
-            for (int k = 0; k < 2; k++) {
-                double o[3] = {N->nums[3 * (seg + k)], N->nums[3 * (seg + k) + 1], N->nums[3 * (seg + k) + 2]};
-                cv_mat4_normal(&inv, o, n[k]);
-                normalize3(n[k]);
-            }
-            double d = n[0][0] * n[1][0] + n[0][1] * n[1][1] + n[0][2] * n[1][2];
-            /* pbrt-v4's AngleBetween, robust near 0 and pi */
-            double e[3] = {n[0][0] - n[1][0], n[0][1] - n[1][1], n[0][2] - n[1][2]},
-                   f[3] = {n[0][0] + n[1][0], n[0][1] + n[1][1], n[0][2] + n[1][2]};
-            double angle = d < 0 ? M_PI - 2 * asin(fmin(1, sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 2))
-                                 : 2 * asin(fmin(1, sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / 2));
-            c.n0 = (cv_vec4){(float)n[0][0], (float)n[0][1], (float)n[0][2], (float)angle};
-            c.n1 = (cv_vec4){(float)n[1][0], (float)n[1][1], (float)n[1][2], angle > 0 ? (float)(1 / sin(angle)) : 0};
+            const double *n = N->nums + 3 * seg;
+            c.n0 = (cv_vec4){(float)n[0], (float)n[1], (float)n[2], 0};
+            c.n1 = (cv_vec4){(float)n[3], (float)n[4], (float)n[5], 0};
         }
         c.info = (cv_uvec4){word, ctype, object, 0};
         for (size_t k = 0; k < per; k++) {
             c.cp[2].w = (float)((double)k / per);
             c.cp[3].w = (float)((double)(k + 1) / per);
-            s->curves[s->n_curves++] = c;
+            pieces[(size_t)seg * per + k] = c;
         }
     }
-#undef FAIL
+    bool ok = cv_b_place_curves(b, pieces, (size_t)nseg * per, &b->gs.ctm, UINT32_MAX, loc, err);
+    free(pieces);
+    return ok;
+}
+
+bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const struct cv_mat4 *M,
+                       uint32_t object, const struct cv_loc *loc, struct cv_error *err)
+{
+    struct cv_scene *s = b->s;
+    struct cv_object *obj = b->cur_object >= 0 ? &b->objects[b->cur_object] : NULL;
+    size_t n0 = obj ? obj->nc : s->n_curves;
+    if (n0 + n > CV_PRIM_CURVE)
+        return FAIL("more than 2^31 curve primitives", loc->file, loc->line, loc->col);
+    CvCurve *dst;
+    if (obj) {
+        obj->c = cv_xgrow(obj->c, &obj->cap_c, n0 + n, sizeof(CvCurve));
+        dst = obj->c + n0;
+    } else {
+        s->curves = cv_xgrow(s->curves, &b->cap_curves, n0 + n, sizeof(CvCurve));
+        dst = s->curves + n0;
+    }
+    struct cv_mat4 inv;
+    cv_mat4_inverse(M, &inv);
+    bool swaps = cv_mat4_det3(M) < 0;
+    /* widths scale with the transform's mean scale (file comment) */
+    double scale = cbrt(fabs(cv_mat4_det3(M)));
+    for (size_t i = 0; i < n; i++) {
+        CvCurve c = src[i];
+        for (int k = 0; k < 4; k++) {
+            double p[3] = {c.cp[k].x, c.cp[k].y, c.cp[k].z}, w[3];
+            cv_mat4_point(M, p, w);
+            c.cp[k] = (cv_vec4){(float)w[0], (float)w[1], (float)w[2], c.cp[k].w};
+            if (!isfinite(c.cp[k].x) || !isfinite(c.cp[k].y) || !isfinite(c.cp[k].z))
+                return FAIL("control points are not finite after the transform", loc->file, loc->line, loc->col);
+        }
+        c.cp[0].w = (float)(c.cp[0].w * scale);
+        c.cp[1].w = (float)(c.cp[1].w * scale);
+        if (c.info.y == CV_CURVE_RIBBON) {
+            double nn[2][3];
+            for (int k = 0; k < 2; k++) {
+                const cv_vec4 *v = k ? &c.n1 : &c.n0;
+                double o[3] = {v->x, v->y, v->z};
+                cv_mat4_normal(&inv, o, nn[k]);
+                normalize3(nn[k]);
+            }
+            double d = nn[0][0] * nn[1][0] + nn[0][1] * nn[1][1] + nn[0][2] * nn[1][2];
+            /* pbrt-v4's AngleBetween, robust near 0 and pi */
+            double e[3] = {nn[0][0] - nn[1][0], nn[0][1] - nn[1][1], nn[0][2] - nn[1][2]},
+                   f[3] = {nn[0][0] + nn[1][0], nn[0][1] + nn[1][1], nn[0][2] + nn[1][2]};
+            double angle = d < 0 ? M_PI - 2 * asin(fmin(1, sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 2))
+                                 : 2 * asin(fmin(1, sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / 2));
+            c.n0 = (cv_vec4){(float)nn[0][0], (float)nn[0][1], (float)nn[0][2], (float)angle};
+            c.n1 = (cv_vec4){(float)nn[1][0], (float)nn[1][1], (float)nn[1][2],
+                             angle > 0 ? (float)(1 / sin(angle)) : 0};
+        }
+        if (swaps)
+            c.info.x ^= CV_TRI_REVERSE;
+        if (object != UINT32_MAX)
+            c.info.z = object;
+        dst[i] = c;
+    }
+    if (obj)
+        obj->nc = n0 + n;
+    else
+        s->n_curves = (uint32_t)(n0 + n);
     return true;
 }
+#undef FAIL

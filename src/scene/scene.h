@@ -64,14 +64,17 @@ struct cv_render_settings {
  * - Infinite lights come first in lights[] (in file order), then the others
  *   (in file order): the GPU sums the environment over the leading infinite
  *   lights alone (glsl/trace/light/light.glsl). tri_light indices follow.
- * - Instanced objects are flattened (copied per instance).
+ * - Instanced objects are flattened (copied per instance), curves too.
  * - Quadrics are tessellated (see shapes.c for the accuracy).
  * - Moving shapes (below) keep object-space vertices; their triangles come
- *   after every static one. */
+ *   after every static one. Their curves keep object-space control points
+ *   and widths, in any place among the curves, CvCurve.info.w naming the
+ *   shape. */
 
 /* A shape (or object instance) under an animated transform, pbrt-v4's
- * AnimatedPrimitive: triangles [first, first + count) and vertices
- * [first_vertex, first_vertex + n_vertices) are in its object space, xf
+ * AnimatedPrimitive: triangles [first, first + count), vertices
+ * [first_vertex, first_vertex + n_vertices) and curves [first_curve,
+ * first_curve + n_curves) are in its object space, xf
  * takes them to world space at a ray's time (scene/animated.h); their
  * CV_TRI_REVERSE is ReverseOrientation alone, the renderer flipping for a
  * transform that swaps handedness at that time (glsl/bvh/motion.glsl). lo,
@@ -79,6 +82,7 @@ struct cv_render_settings {
 struct cv_motion {
     uint32_t first, count;
     uint32_t first_vertex, n_vertices;
+    uint32_t first_curve, n_curves;
     struct cv_animated xf;
     float lo[3], hi[3];
 };

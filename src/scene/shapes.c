@@ -514,7 +514,8 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
     } else if (strcmp(type, "curve") == 0) {
         ok = cv_b_curve(b, ps, loc, err);
         if (ok && b->gs.area.on)
-            ok = cv_b_warn(b, err, loc, "curves do not emit light (as in pbrt-v4); the area light is ignored");
+            ok = cv_b_warn(b, err, loc, "curves do not emit light: pbrt-v4 cannot sample a point on a curve "
+                           "(its Curve::Sample is not implemented), so there is no reference; the area light is ignored");
     } else {
         for (size_t i = 0; i < ps->n; i++)
             ps->v[i].used = true;

@@ -10,7 +10,11 @@
  *   the ray), a flat one's along
  *   the ray, a ribbon's width shrunk by the cosine of its normal to the ray;
  * - the scene conversions: bspline and quadratic pieces, splitdepth,
- *   widths per piece, errors for malformed input.
+ *   widths per piece, errors for malformed input;
+ * - curves in an ObjectBegin definition, instanced under several
+ *   transforms (a mirror and a non-uniform scale among them): the same
+ *   curves as written out under each instance's transform, one ID-matte
+ *   object for all, and the walk equals the brute force over them.
  * Fixed seeds. */
 #include "config.h"
 
@@ -53,7 +57,7 @@ static bool trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *ray
                   struct cv_error *err)
 {
     size_t n4;
-    float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, &n4);
+    float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &n4);
     GLuint cb = cv_buffer_create(n4 * 16, packed, "curves", err);
     free(packed);
     GLuint ct = cb ? cv_buffer_texture(cb, GL_RGBA32F, n4, err) : 0;
@@ -327,12 +331,101 @@ static void test_conversions(void)
     }
 }
 
+/* ---- curves inside ObjectBegin, instanced ---- */
+static const char *const tuft_shapes =
+    "Translate 0.1 0 0.2\n"
+    "Shape \"curve\" \"string type\" \"flat\" \"point3 P\" [0 0 0 0.3 0.5 0.1 -0.2 1 0 0.1 1.5 0.2]"
+    " \"float width0\" 0.2 \"float width1\" 0.1\n"
+    "ReverseOrientation\n"
+    "Shape \"curve\" \"string type\" \"ribbon\" \"integer degree\" 2 \"point3 P\" [0.5 0 0 0.6 0.7 0.2 0.4 1.4 0]"
+    " \"normal N\" [0 0 1 0.5 0.2 1] \"float width\" 0.15 \"integer splitdepth\" 2\n"
+    "Shape \"curve\" \"string type\" \"cylinder\" \"string basis\" \"bspline\""
+    " \"point3 P\" [-0.5 0 0 -0.4 0.4 0.1 -0.6 0.8 0 -0.5 1.2 -0.1 -0.4 1.6 0] \"float width\" 0.1\n";
+static const char *const tuft_places[] = {
+    "Translate 1 2 3\nRotate 30 1 1 0\nScale 2 2 2\n",
+    "Translate -2 0 1\nScale -1 1 1\n",
+    "Rotate 90 0 0 1\nScale 1 3 1\n",
+};
+
+static bool near_curve(const CvCurve *a, const CvCurve *b)
+{
+    for (int k = 0; k < 4; k++)
+        if (!near3(&a->cp[k], b->cp[k].x, b->cp[k].y, b->cp[k].z) || fabsf(a->cp[k].w - b->cp[k].w) > 1e-5f)
+            return false;
+    return near3(&a->n0, b->n0.x, b->n0.y, b->n0.z) && near3(&a->n1, b->n1.x, b->n1.y, b->n1.z) &&
+           fabsf(a->n0.w - b->n0.w) < 1e-5f && fabsf(a->n1.w - b->n1.w) < 1e-3f * fabsf(b->n1.w) + 1e-6f &&
+           a->info.x == b->info.x && a->info.y == b->info.y;
+}
+
+static void test_instance(struct cv_gpu *gpu)
+{
+    char inst[4096], flat[4096];
+    size_t li = (size_t)snprintf(inst, sizeof(inst), "WorldBegin\nObjectBegin \"tuft\"\n%sObjectEnd\n", tuft_shapes);
+    size_t lf = (size_t)snprintf(flat, sizeof(flat), "WorldBegin\n");
+    for (int k = 0; k < 3; k++) {
+        li += (size_t)snprintf(inst + li, sizeof(inst) - li, "AttributeBegin\n%sObjectInstance \"tuft\"\nAttributeEnd\n",
+                               tuft_places[k]);
+        lf += (size_t)snprintf(flat + lf, sizeof(flat) - lf, "AttributeBegin\n%s%sAttributeEnd\n", tuft_places[k],
+                               tuft_shapes);
+    }
+    struct cv_error err = {{0}};
+    struct cv_scene *s = NULL, *f = NULL;
+    struct cv_scene_load_params p = {.strict = true};
+    bool ok = cv_scene_load_string("/tmp/inst.pbrt", inst, li, &p, &s, &err);
+    ok = ok && cv_scene_load_string("/tmp/flat.pbrt", flat, lf, &p, &f, &err);
+    if (!tap_ok(ok && s->n_curves > 0 && s->n_curves == f->n_curves && s->warnings == 0,
+                "three instances of a curve object load in strict mode: as many curves as written out (%u, %u)%s%s",
+                s ? s->n_curves : 0, f ? f->n_curves : 0, ok ? "" : ": ", ok ? "" : err.msg)) {
+        cv_scene_destroy(&s);
+        cv_scene_destroy(&f);
+        return;
+    }
+    uint32_t same = 0, one_object = 0;
+    for (uint32_t i = 0; i < s->n_curves; i++) {
+        same += near_curve(&s->curves[i], &f->curves[i]);
+        one_object += s->curves[i].info.z == s->curves[0].info.z;
+    }
+    tap_ok(same == s->n_curves, "instanced curves equal the curves written under each instance's transform: points, "
+           "widths, ribbon normals, type, material word with ReverseOrientation and the mirror (%u of %u)",
+           same, s->n_curves);
+    tap_ok(one_object == s->n_curves && strcmp(s->object_names[s->curves[0].info.z], "tuft") == 0,
+           "every instance's curves are the ID-matte object \"tuft\"");
+    /* walk against brute force over the instanced curves */
+    uint32_t n = 2048;
+    float *rays = calloc((size_t)n * 8, sizeof(float));
+    for (uint32_t i = 0; i < n; i++) {
+        const CvCurve *c = &s->curves[(uint32_t)(rnd() * s->n_curves) % s->n_curves];
+        double o[3] = {rnd() * 16 - 8, rnd() * 16 - 8, rnd() * 16 - 8}, d[3];
+        for (int k = 0; k < 3; k++)
+            d[k] = i % 4 == 3 ? rnd() - 0.5 : (&c->cp[1].x)[k] + (rnd() - 0.5) * 0.3 - o[k];
+        set_ray(rays + 8 * i, o, d, i % 5 == 0 ? 0.3 : 0, i % 7 == 0 ? 0.6 : 1e30);
+    }
+    struct run r = {0};
+    if (tap_ok(trace(gpu, s, rays, n, &r, &err), "GPU run: %s", err.msg)) {
+        uint32_t hits = 0, diff = 0, any_diff = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            const uint32_t *o = r.out + 16 * i;
+            hits += o[1] != 0xffffffffu;
+            diff += memcmp(o, o + 4, 16) != 0;
+            any_diff += o[8] != o[9] || o[8] != (o[5] != 0xffffffffu);
+        }
+        tap_ok(hits > n / 8 && diff == 0 && any_diff == 0,
+               "instanced curves: the walk equals the brute force (%u hits of %u; %u differ, any-hit %u)", hits, n,
+               diff, any_diff);
+        free(r.out);
+    }
+    free(rays);
+    cv_scene_destroy(&s);
+    cv_scene_destroy(&f);
+}
+
 int main(void)
 {
     test_conversions();
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     test_straight(gpu);
     test_random(gpu);
+    test_instance(gpu);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

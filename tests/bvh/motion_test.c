@@ -9,7 +9,11 @@
  *   (cv_animated_at, in double) places it at that time: the point the
  *   barycentrics give is the point o + t d, so the shader's transform is
  *   the host's (a rotation slerped, not vertices lerped);
- * - rays aimed at a shape's place at one time miss it at another.
+ * - rays aimed at a shape's place at one time miss it at another;
+ * - moving curves (shapes, and instances of curve objects, beside moving
+ *   triangles): the walk equals the brute force bit for bit, and each
+ *   curve hit lies within half the width of its curve as the host's
+ *   interpolation places it at that time.
  * Fixed seeds. */
 #include "config.h"
 
@@ -19,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bvh/curve_bvh.h"
 #include "bvh/motion_bvh.h"
 #include "glsl/shared/bindings.h"
 #include "gpu/buffer.h"
@@ -51,18 +56,28 @@ static float fbits(uint32_t u)
 static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *rays, uint32_t n,
                        float time, struct cv_error *err)
 {
-    size_t n4;
+    size_t n4, nc4 = 0;
     float *packed = cv_motion_bvh_pack(s, &n4);
     GLuint mb = cv_buffer_create(n4 * 16, packed, "motion", err);
     free(packed);
     GLuint mt = mb ? cv_buffer_texture(mb, GL_RGBA32F, n4, err) : 0;
+    /* the curves' buffer, moving shapes' curves in it, where there are any */
+    GLuint cb = 0, ct = 0;
+    if (s->n_curves) {
+        float *c4 = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &nc4);
+        cb = cv_buffer_create(nc4 * 16, c4, "curves", err);
+        free(c4);
+        ct = cb ? cv_buffer_texture(cb, GL_RGBA32F, nc4, err) : 0;
+        if (!ct)
+            mt = 0;
+    }
     GLuint rb = mt ? cv_buffer_create((size_t)n * 32, rays, "rays", err) : 0;
     GLuint ob = rb ? cv_buffer_create((size_t)n * 16, NULL, "results", err) : 0;
     uint32_t *out = ob ? calloc((size_t)n * 12, sizeof(uint32_t)) : NULL, *one = malloc((size_t)n * 16);
     for (int q = 0; q < 4 && out; q++) {
         char def[32];
         snprintf(def, sizeof(def), "MOTION_QUERY=%d", q);
-        const char *defs[] = {def, NULL};
+        const char *defs[] = {def, s->n_curves ? "CV_HAS_CURVES" : NULL, NULL};
         struct cv_program *p = cv_program_get(gpu, "bvh/motion_test.comp", defs, err);
         if (!p) {
             free(out);
@@ -70,6 +85,8 @@ static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float
             break;
         }
         glBindTextureUnit(CV_TEXUNIT_MOTION, mt);
+        if (ct)
+            glBindTextureUnit(CV_TEXUNIT_CURVES, ct);
         cv_buffer_bind(rb, CV_BIND_PROBE_IN);
         cv_buffer_bind(ob, CV_BIND_PROBE_OUT);
         glProgramUniform1ui(p->id, glGetUniformLocation(p->id, "u_n_rays"), n);
@@ -90,6 +107,9 @@ static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float
     free(one);
     if (mt)
         glDeleteTextures(1, &mt);
+    if (ct)
+        glDeleteTextures(1, &ct);
+    cv_buffer_destroy(&cb);
     cv_buffer_destroy(&mb);
     cv_buffer_destroy(&rb);
     cv_buffer_destroy(&ob);
@@ -276,11 +296,177 @@ static void test_arc(struct cv_gpu *gpu)
     cv_scene_destroy(&s);
 }
 
+/* A random strand of `type` (bspline, 7 points) near the origin. */
+static size_t strand(char *text, size_t cap, const char *type)
+{
+    size_t len = (size_t)snprintf(text, cap,
+                                  "Shape \"curve\" \"string type\" \"%s\" \"string basis\" \"bspline\""
+                                  " \"float width0\" %.3f \"float width1\" %.3f \"point3 P\" [",
+                                  type, 0.15 + 0.2 * rnd(), 0.05 + 0.1 * rnd());
+    double p[3] = {0, -0.9, 0};
+    for (int k = 0; k < 7; k++) {
+        for (int c = 0; c < 3; c++)
+            p[c] += c == 1 ? 0.3 : rnd() * 0.6 - 0.3;
+        len += (size_t)snprintf(text + len, cap - len, " %.4f %.4f %.4f", p[0], p[1], p[2]);
+    }
+    len += (size_t)snprintf(text + len, cap - len, " ]");
+    if (strcmp(type, "ribbon") == 0)
+        len += (size_t)snprintf(text + len, cap - len, " \"normal N\" [0 0 1 0.3 0 1 -0.2 0.1 1 0 0.4 1 0.5 0 1]");
+    return len + (size_t)snprintf(text + len, cap - len, "\n");
+}
+
+static void bezier(const CvCurve *c, double u, double out[3])
+{
+    for (int a = 0; a < 3; a++) {
+        double p[4] = {(&c->cp[0].x)[a], (&c->cp[1].x)[a], (&c->cp[2].x)[a], (&c->cp[3].x)[a]};
+        double q0 = p[0] + u * (p[1] - p[0]), q1 = p[1] + u * (p[2] - p[1]), q2 = p[2] + u * (p[3] - p[2]);
+        double r0 = q0 + u * (q1 - q0), r1 = q1 + u * (q2 - q1);
+        out[a] = r0 + u * (r1 - r0);
+    }
+}
+
+/* Moving curves: strands of each type as moving shapes and a moving
+ * instance of a curve object, beside a moving triangle shape. */
+static void test_curves(struct cv_gpu *gpu)
+{
+    static const char *const types[] = {"flat", "cylinder", "ribbon"};
+    size_t cap = 1 << 16, len = 0;
+    char *text = malloc(cap);
+    len += (size_t)snprintf(text + len, cap - len, "WorldBegin\nObjectBegin \"tuft\"\n");
+    for (int k = 0; k < 3; k++)
+        len += strand(text + len, cap - len, types[k]);
+    len += (size_t)snprintf(text + len, cap - len, "ObjectEnd\n");
+    for (int k = 0; k < 9; k++) {
+        len += (size_t)snprintf(text + len, cap - len,
+                                "AttributeBegin\nTranslate %.4f %.4f %.4f\nActiveTransform EndTime\n"
+                                "Translate %.4f %.4f %.4f\nRotate %.2f %.3f %.3f %.3f\nScale %.3f %.3f %.3f\n"
+                                "ActiveTransform All\n",
+                                rnd() * 8 - 4, rnd() * 2 - 1, rnd() * 8 - 4, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5,
+                                rnd() * 200 - 100, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, 0.7 + rnd() * 0.6,
+                                0.7 + rnd() * 0.6, 0.7 + rnd() * 0.6);
+        if (k % 3 == 2)
+            len += (size_t)snprintf(text + len, cap - len, "ObjectInstance \"tuft\"\n");
+        else if (k == 4)
+            len += (size_t)snprintf(text + len, cap - len, "Shape \"sphere\" \"float radius\" 0.5\n");
+        else
+            len += strand(text + len, cap - len, types[k % 3]);
+        len += (size_t)snprintf(text + len, cap - len, "AttributeEnd\n");
+    }
+    struct cv_scene *s = NULL;
+    struct cv_error err = {{0}};
+    struct cv_scene_load_params p = {.strict = true};
+    bool loaded = cv_scene_load_string("/tmp/motion_curves.pbrt", text, len, &p, &s, &err);
+    free(text);
+    if (!tap_ok(loaded && s->n_motions == 9 && s->n_curves > 0 && s->warnings == 0,
+                "moving curves and moving instances of a curve object load in strict mode (%u shapes): %s",
+                loaded ? s->n_motions : 0, err.msg)) {
+        cv_scene_destroy(&s);
+        return;
+    }
+    size_t nc4;
+    float *c4 = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &nc4);
+    uint32_t curve_base;
+    memcpy(&curve_base, &c4[2], 4);
+    static const float times[] = {0.0f, 0.25f, 0.5f, 0.9f, 1.0f, -1.0f, 2.0f};
+    uint32_t n = 1024;
+    float *rays = calloc((size_t)n * 8, sizeof(float));
+    uint32_t diff = 0, any_diff = 0, any_wrong = 0, curve_hits = 0, off = 0, total = 0;
+    double worst = 0;
+    for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
+        float time = times[ti];
+        for (uint32_t i = 0; i < n; i++) {
+            double o[3] = {rnd() * 20 - 10, rnd() * 6 + 4, rnd() * 20 - 10}, d[3];
+            /* at a point of a curve where its shape puts it at this time,
+             * jittered by about a width; some rays at random */
+            const CvCurve *c = &s->curves[(uint32_t)(rnd() * s->n_curves) % s->n_curves];
+            double mt[3][4], x[3], w[3];
+            cv_animated_at(&s->motions[c->info.w - 1].xf, time, mt);
+            bezier(c, rnd(), x);
+            apply(mt, x, w);
+            for (int k = 0; k < 3; k++)
+                d[k] = i % 4 == 3 ? rnd() - 0.5 : w[k] + (rnd() - 0.5) * 0.3 - o[k];
+            float *r = rays + 8 * i;
+            for (int k = 0; k < 3; k++) {
+                r[k] = (float)o[k];
+                r[4 + k] = (float)d[k];
+            }
+            r[3] = i % 5 == 0 ? 0.3f : 0.0f;
+            r[7] = i % 7 == 0 ? 0.6f : 1e30f;
+        }
+        uint32_t *out = trace(gpu, s, rays, n, time, &err);
+        if (!tap_ok(out != NULL, "GPU run with curves at time %g: %s", time, err.msg))
+            break;
+        for (uint32_t i = 0; i < n; i++) {
+            const uint32_t *h = out + 12 * i;
+            total++;
+            if (memcmp(h, h + 4, 16) != 0) {
+                if (diff < 3)
+                    tap_diag("time %g ray %u: walk t %.9g prim %x, brute t %.9g prim %x", time, i, fbits(h[0]), h[1],
+                             fbits(h[4]), h[5]);
+                diff++;
+            }
+            if (h[8] != h[9])
+                any_diff++;
+            if (h[8] != (h[5] != 0xffffffffu))
+                any_wrong++;
+            if (h[1] == 0xffffffffu || (h[1] & CV_PRIM_CURVE) == 0)
+                continue;
+            curve_hits++;
+            /* the hit, carried back into its curve's object space by the
+             * host's transform at this time, lies within half the width
+             * of the curve's point at the hit's u */
+            CvCurve c;
+            memcpy(&c, c4 + 4 * (curve_base + 7 * (size_t)(h[1] & ~CV_PRIM_CURVE)), sizeof(c));
+            double mt[3][4], P[3], x[3];
+            cv_animated_at(&s->motions[c.info.w - 1].xf, time, mt);
+            const float *r = rays + 8 * i;
+            double t = fbits(h[0]), u = fbits(h[2]);
+            for (int k = 0; k < 3; k++)
+                P[k] = r[k] + t * r[4 + k] - mt[k][3];
+            /* P = A x: solve by Cramer's rule */
+            double det = mt[0][0] * (mt[1][1] * mt[2][2] - mt[1][2] * mt[2][1]) -
+                         mt[0][1] * (mt[1][0] * mt[2][2] - mt[1][2] * mt[2][0]) +
+                         mt[0][2] * (mt[1][0] * mt[2][1] - mt[1][1] * mt[2][0]);
+            for (int k = 0; k < 3; k++) {
+                double A[3][3];
+                for (int rr = 0; rr < 3; rr++)
+                    for (int cc = 0; cc < 3; cc++)
+                        A[rr][cc] = cc == k ? P[rr] : mt[rr][cc];
+                x[k] = (A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                        A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                        A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0])) / det;
+            }
+            double axis[3], e = 0;
+            bezier(&c, u, axis);
+            for (int k = 0; k < 3; k++)
+                e += (x[k] - axis[k]) * (x[k] - axis[k]);
+            double hw = 0.5 * (c.cp[0].w + u * (c.cp[1].w - c.cp[0].w));
+            e = sqrt(e) / hw;
+            worst = fmax(worst, e);
+            if (e > 1.05)
+                off++;
+        }
+        free(out);
+    }
+    tap_ok(curve_hits > total / 8, "rays hit the moving curves (%u of %u)", curve_hits, total);
+    tap_ok(diff == 0, "closest hit through the trees equals the brute force, curves too (%u of %u differ)", diff,
+           total);
+    tap_ok(any_diff == 0 && any_wrong == 0,
+           "any-hit with curves equals the brute force (%u differ) and the closest query (%u differ)", any_diff,
+           any_wrong);
+    tap_ok(off == 0, "every curve hit lies within half the width of its curve where pbrt-v4's interpolation puts "
+           "it (%u off; worst %.3g of the half width)", off, worst);
+    free(c4);
+    free(rays);
+    cv_scene_destroy(&s);
+}
+
 int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     test_arc(gpu);
     test_walk(gpu);
+    test_curves(gpu);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

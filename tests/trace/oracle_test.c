@@ -115,6 +115,9 @@ static const struct {
     /* object_motion: where the moving shapes' blur moves light between
      * blocks */
     {"object_motion", REGIONS_GRID8},
+    /* curve_motion: the same for a moving curve and a moving instance of
+     * a curve object */
+    {"curve_motion", REGIONS_GRID8},
 };
 
 static enum oracle_regions regions_of(const char *name)
@@ -175,6 +178,10 @@ static const struct oracle_scene scenes[] = {
     /* issue 27: curve shapes (flat, cylinder, ribbon) and the hair BSDF */
     {"curve_diffuse", NULL},
     {"curve_hair", NULL},
+    /* issue 27: curves in an ObjectBegin definition, instanced three
+     * times; a moving curve and a moving instance of them */
+    {"curve_instance", NULL},
+    {"curve_motion", NULL},
     /* participating media, rendered with volpath */
     {"vol_cube", NULL},
     {"vol_chromatic", NULL},
