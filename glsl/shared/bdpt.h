@@ -38,10 +38,6 @@
  * subpath escaped (wo.xyz: back along its ray). Densities towards it are
  * per solid angle. */
 #define CV_BDPT_INFINITE 4u
-/* A surface whose BSDF is specular only (cv_bsdf_is_delta): no strategy
- * joins it to the other subpath. Set where the walk makes the vertex, so
- * that the joins need not build its BSDF to know. */
-#define CV_BDPT_BSDF_DELTA 8u
 /* id.y bits 8..15: the medium the ray that found the vertex travelled in
  * (glsl/shared/medium.h; the camera's, the light's for the first vertex):
  * where rays leave the vertex, unless its surface is a medium transition. */

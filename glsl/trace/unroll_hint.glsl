@@ -6,9 +6,7 @@
 // kernel keeps its unrolling, which it runs faster with. Other drivers
 // ignore the pragma, as GLSL asks of pragmas they do not know. Included
 // after the kernel's bin defines and before its code: the pragma holds
-// for the loops that follow it. bdpt.comp includes it too, where loops
-// over the subpaths' sides and the joins' ends hold one copy each of the
-// walk and of the BSDF code.
+// for the loops that follow it.
 #if !defined(CV_BSDF_DIFFUSE_ONLY)
 #pragma optionNV(unroll none)
 #endif

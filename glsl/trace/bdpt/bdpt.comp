@@ -33,9 +33,6 @@
 #include "shared/bdpt.h"
 #define CV_NO_QUEUES
 layout(local_size_x = CV_TRACE_GROUP) in;
-// the walk and the joins are each one copy in a loop (main's sides, the
-// joins' ends): unrolled, the loops would copy them again
-#include "../unroll_hint.glsl"
 #include "../common.glsl"
 #include "../sampler.glsl"
 #include "../tracing.glsl"
@@ -156,6 +153,14 @@ float cv_bdpt_importance_scale(CvBsdf b, vec3 wo, vec3 wi)
 #endif
 }
 
+vec3 cv_bdpt_f(CvBdptVertex v, CvBsdf b, vec3 wi, bool importance)
+{
+    if (cv_bdpt_in_medium(v))
+        return vec3(cv_bdpt_phase(v, wi));
+    vec3 f = cv_bsdf_f(b, v.wo.xyz, wi);
+    return importance ? f * cv_bdpt_importance_scale(b, v.wo.xyz, wi) : f;
+}
+
 // pbrt-v4's Vertex::ConvertDensity: a density per solid angle at p towards
 // vertex next, per unit area at next.
 float cv_bdpt_convert(float pdf, vec3 p, CvBdptVertex next)
@@ -172,78 +177,18 @@ float cv_bdpt_convert(float pdf, vec3 p, CvBdptVertex next)
     return pdf * inv;
 }
 
-// What the walk or a join asks of a stored vertex's scattering (its BSDF,
-// or a medium vertex's phase function), cv_bdpt_ask.
-#define CV_BDPT_ASK_NONE 0u    // the BSDF alone
-#define CV_BDPT_ASK_JOIN 1u    // f towards a given direction wc, the densities both ways
-#define CV_BDPT_ASK_BOUNCE 2u  // a sampled direction wc, its f, the densities both ways
-
-struct CvBdptAnswer {
-    vec3 f;          // f(v.wo, wc), as light carrying importance where asked
-    float pdf_fwd;   // solid-angle density of wc from v.wo (pbrt-v4's Vertex::PDF)
-    float pdf_rev;   // of v.wo from wc
-    bool sampled;    // BOUNCE: s holds the sample, wc = s.wi
-    CvBsdfSample s;
-};
-
-// The one place a bdpt kernel asks a BSDF anything: the walk calls it once
-// and the joins once (cv_bdpt_join), and its one cv_bsdf_query serves both
-// directions in turn. GLSL compilers inline every call, so each call site
-// of a BSDF function is a copy of all its lobes, the coated walk's above
-// all (tests/trace/bsdf_sites_test counts them). For BOUNCE, uc and u draw
-// the sample; a stochastic BSDF's sample comes with its pdf restated by
-// the query (pbrt-v4's pdfIsProportional), which is its forward density
-// too. b is the vertex's BSDF (a surface's).
-CvBdptAnswer cv_bdpt_ask(CvBdptVertex v, uint ask, vec3 wc, bool importance, float uc, vec2 u,
-                         out CvBsdf b)
+// Vertex::PDF of a surface vertex v (BSDF b) or a medium vertex (its
+// phase function): the area density at next of a bounce at v from the
+// direction of p_prev.
+float cv_bdpt_pdf_surface(CvBdptVertex v, CvBsdf b, vec3 p_prev, CvBdptVertex next)
 {
-    CvBdptAnswer a = CvBdptAnswer(vec3(0.0), 0.0, 0.0, false, CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u));
-    vec3 wo = v.wo.xyz;
-    if (cv_bdpt_in_medium(v)) {
-        // Henyey-Greenstein: f is the density, the same both ways
-        a.f = vec3(cv_bdpt_hg(v, wo, wc));
-        a.pdf_fwd = a.pdf_rev = a.f.x;
-        return a;
-    }
-    b = cv_bdpt_bsdf(v);
-    // step 0: f and the forward density (or the sample) from wo; step 1:
-    // the reverse density, back from wc; where f is 0 or the sample is
-    // specular, step 1 is not needed
-    int steps = ask == CV_BDPT_ASK_NONE ? 0 : 2;
-    for (int k = 0; k < steps; k++) {
-        CvBsdfQuery q = cv_bsdf_query_new(k == 0 ? wo : wc);
-        if (k == 1) {
-            q.ask = CV_BQ_PDF0;
-            q.wi0 = wo;
-        } else if (ask == CV_BDPT_ASK_BOUNCE) {
-            q.ask = CV_BQ_SAMPLE;
-            q.uc = uc;
-            q.u = u;
-        } else {
-            q.ask = CV_BQ_F0 | CV_BQ_PDF0 | CV_BQ_GATE0;
-            q.wi0 = wc;
-        }
-        cv_bsdf_query(b, q);
-        if (k == 1) {
-            a.pdf_rev = q.pdf0;
-        } else if (ask == CV_BDPT_ASK_BOUNCE) {
-            a.sampled = q.sampled;
-            a.s = q.s;
-            a.f = q.s.f;
-            a.pdf_fwd = q.s.pdf;
-            wc = q.s.wi;
-            if (!q.sampled || (q.s.flags & CV_BSDF_SPECULAR) != 0u)
-                break;
-        } else {
-            a.f = q.f0;
-            a.pdf_fwd = q.pdf0;
-            if (!(cv_max3(q.f0) > 0.0))
-                break;
-        }
-    }
-    if (importance && steps > 0)
-        a.f *= cv_bdpt_importance_scale(b, wo, wc);
-    return a;
+    vec3 wp = p_prev - v.p.xyz, wn = next.p.xyz - v.p.xyz;
+    if (!(dot(wp, wp) > 0.0) || !(dot(wn, wn) > 0.0))
+        return 0.0;
+    wp = normalize(wp);
+    wn = normalize(wn);
+    float pdf = cv_bdpt_in_medium(v) ? cv_bdpt_hg(v, wp, wn) : cv_bsdf_pdf(b, wp, wn);
+    return cv_bdpt_convert(pdf, v.p.xyz, next);
 }
 
 // Vertex::PDF of the camera at p_cam towards next.
@@ -436,14 +381,9 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, uint medium, vec3 beta, float
             cv_matte_first_hit(g_slot, h.prim);
 #endif
         uint vi = cv_bdpt_index(light_side, n);
-        n++;
-        // the vertex's BSDF and, unless it is the subpath's last, the bounce
-        CvBsdf b;
-        CvBdptAnswer ans = cv_bdpt_ask(v, n >= max_verts ? CV_BDPT_ASK_NONE : CV_BDPT_ASK_BOUNCE, vec3(0.0),
-                                       light_side, u_bc.x, u_bsdf, b);
-        if (cv_bsdf_is_delta(b))
-            v.id.y |= CV_BDPT_BSDF_DELTA;
         bv[vi] = v;
+        n++;
+        CvBsdf b = cv_bdpt_bsdf(v);
 #ifdef CV_AOVS
         if (!light_side) {
             float aov_w = cv_path_weight(g_slot);
@@ -459,13 +399,24 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, uint medium, vec3 beta, float
 #endif
         if (n >= max_verts)
             break;
-        if (!ans.sampled)
+        CvBsdfSample bs;
+        if (!cv_bsdf_sample(b, -d, u_bc.x, u_bsdf, bs))
             break;
-        CvBsdfSample bs = ans.s;
         bool specular = (bs.flags & CV_BSDF_SPECULAR) != 0u;
-        float pf = ans.pdf_fwd;
-        beta *= ans.f * (abs(dot(bs.wi, sf.ns)) / bs.pdf);
-        float pr = ans.pdf_rev;
+        // a stochastic BSDF's sample density is proportional only (pbrt-v4's
+        // pdfIsProportional): its PDF goes into the MIS densities
+        float pf = bs.pdf;
+#ifndef CV_BSDF_BASIC
+        bool walked = (b.type == CV_MAT_COATED_DIFFUSE || b.type == CV_MAT_COATED_CONDUCTOR) &&
+                      !cv_bsdf_coat_closed(b);
+        if (walked && !specular)
+            pf = cv_bsdf_pdf(b, -d, bs.wi);
+#endif
+        vec3 f = bs.f;
+        if (light_side)
+            f *= cv_bdpt_importance_scale(b, -d, bs.wi);
+        beta *= f * (abs(dot(bs.wi, sf.ns)) / bs.pdf);
+        float pr = cv_bsdf_pdf(b, bs.wi, -d);
         if (specular) {
             bv[vi].id.y |= CV_BDPT_DELTA;
             pr = 0.0;
@@ -626,177 +577,159 @@ vec3 cv_bdpt_connect_s0(uint t, float splat_scale)
     return L * cv_bdpt_mis(0u, t, pt_rev, ptm_rev, 0.0, 0.0, 0.0, false, splat_scale);
 }
 
-// The strategies that join the subpaths, pbrt-v4's ConnectBDPT for s + t
-// >= 3 but s = 0: the light end qs (light vertex s - 1, or for s = 1 a
-// point or direction sampled on a light) joined to the camera end pt
-// (camera vertex t - 1, or for t = 1 a point sampled on the lens, whose
-// contribution is splatted here: the return is 0 then). One function for
-// the three kinds, so that a kernel holds one copy of the BSDF code (one
-// cv_bdpt_ask at the stored ends) and of the visibility and transmittance
-// test.
-vec3 cv_bdpt_join(uint s, uint t, float splat_scale)
+// s = 1: a point sampled on a light, joined to camera vertex t - 1 (BSDF bt).
+vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
 {
-    CvBdptVertex qs, pt;
-    // where an end was sampled: its factor (the light's radiance over its
-    // density; the lens's importance density), and for s = 1 the MIS's
-    // density of the light vertex at pt and of its own sampling
-    vec3 sampled = vec3(1.0);
-    float light_rev = 0.0, light_fwd = 0.0;
-    bool light_delta = false;
-    vec2 raster = vec2(0.0);
-    vec3 w;  // from qs to pt
-    float g = 1.0;  // the geometric term's 1 / d^2 where both ends are stored
-    if (t == 1u) {
-        qs = cv_bdpt_light(s - 1u);
-        vec2 u_lens = cv_bdpt_u(cv_bdpt_light_pair(s - 1u, CV_BDPT_PAIR_LENS));
-        vec3 p_lens;
-        float we_pdf, cos_lens;
-        if (!cv_bdpt_camera_sample(qs.p.xyz, u_lens, p_lens, raster, we_pdf, cos_lens))
-            return vec3(0.0);
-        w = normalize(p_lens - qs.p.xyz);
-        sampled = vec3(we_pdf);
-        pt = CvBdptVertex(vec4(p_lens, 0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
-                          vec4(0.0), uvec4(CV_BDPT_CAMERA, 0u, 0u, 0u));
-    } else if (s == 1u) {
-        pt = cv_bdpt_cam(t - 1u);
-        vec2 u_light = cv_bdpt_u(cv_bdpt_cam_pair(t - 1u, CV_PAIR_LIGHT_U2));
-        vec2 u_lc = cv_bdpt_u(cv_bdpt_cam_pair(t - 1u, CV_PAIR_LIGHT_UC));
-        uint li = cv_light_pick(u_lc.x);
-        float pmf = cv_light_pmf(li);
-        uint type = lights[li].type;
-        if (!(pmf > 0.0))
-            return vec3(0.0);
-        bool distant = type == CV_LIGHT_DISTANT;
+    vec2 u_light = cv_bdpt_u(cv_bdpt_cam_pair(t - 1u, CV_PAIR_LIGHT_U2));
+    vec2 u_lc = cv_bdpt_u(cv_bdpt_cam_pair(t - 1u, CV_PAIR_LIGHT_UC));
+    uint li = cv_light_pick(u_lc.x);
+    float pmf = cv_light_pmf(li);
+    uint type = lights[li].type;
+    if (!(pmf > 0.0))
+        return vec3(0.0);
+    CvBdptVertex pm = cv_bdpt_cam(t - 2u);
+    bool distant = type == CV_LIGHT_DISTANT;
+    if (distant || type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
+        // a direction from the chosen light alone, as pbrt-v4's SampleLi:
+        // a distant light's one direction (a delta density), or one of an
+        // infinite light's; the MIS densities count the infinite lights
+        // all (cv_bdpt_env_density)
+        CvLight l = lights[li];
         vec3 wi, Li;
         float pdf = pmf;
-        if (distant || type == CV_LIGHT_INFINITE || type == CV_LIGHT_INFINITE_MAP) {
-            // a direction from the chosen light alone, as pbrt-v4's SampleLi:
-            // a distant light's one direction (a delta density), or one of an
-            // infinite light's; the MIS densities count the infinite lights
-            // all (cv_bdpt_env_density)
-            CvLight l = lights[li];
-            if (distant) {
-                wi = -normalize(l.direction.xyz);
-                Li = l.L.rgb;
-            } else {
-#ifndef CV_NO_ENV
-                float pdf_l = CV_INV_4PI;
-                wi = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_light)
-                                               : cv_env_map_sample(l, u_light, pdf_l);
-                Li = cv_env_light_Le(l, wi);
-                pdf *= pdf_l;
-#else
-                return vec3(0.0);
-#endif
-            }
-            vec3 pl = pt.p.xyz + wi * (2.0 * max(cv_bdpt_sphere().w, 1.0));
-            qs = CvBdptVertex(vec4(pl, 0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
-                              vec4(0.0), uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, li));
-            light_rev = cv_bdpt_planar_at(pt, wi);
-            light_fwd = cv_bdpt_env_density(wi);
-            light_delta = distant;
+        if (distant) {
+            wi = -normalize(l.direction.xyz);
+            Li = l.L.rgb;
         } else {
-            if (type != CV_LIGHT_AREA && type != CV_LIGHT_POINT && type != CV_LIGHT_SPOT)
-                return vec3(0.0);
-            vec3 pl, nl;
-            vec2 uvl;
-            float errl;
-            cv_bdpt_light_point(li, u_light, pl, nl, uvl, errl);
-            vec3 d = pl - pt.p.xyz;
-            float d2 = dot(d, d);
-            if (!(d2 > 0.0))
-                return vec3(0.0);
-            wi = d * inversesqrt(d2);
-            // radiance arriving over its density per solid angle
-            if (type == CV_LIGHT_AREA) {
-                float c = abs(dot(nl, wi));
-                if (!(c > 0.0))
-                    return vec3(0.0);
-                Li = cv_light_Le_area(li, -wi, uvl, dot(-wi, nl) > 0.0);
-                pdf = pmf * cv_bdpt_light_pdf_pos(li) * d2 / c;
-            } else {
-                Li = cv_bdpt_light_I(li, -wi) / d2;
-            }
-            // the sampled light vertex, for the densities
-            qs = CvBdptVertex(vec4(pl, errl), vec4(nl, 0.0), vec4(nl, 0.0), vec4(0.0), vec4(0.0),
-                              vec4(0.0), vec4(uvl, 0.0, 0.0), uvec4(CV_BDPT_LIGHT, 0u, 0u, li));
-            light_rev = cv_bdpt_pdf_light(li, pl, nl, pt);
-            light_fwd = cv_bdpt_pdf_light_origin(li);
-            light_delta = cv_bdpt_light_is_delta(li);
+#ifndef CV_NO_ENV
+            float pdf_l = CV_INV_4PI;
+            wi = type == CV_LIGHT_INFINITE ? cv_sample_uniform_sphere(u_light)
+                                           : cv_env_map_sample(l, u_light, pdf_l);
+            Li = cv_env_light_Le(l, wi);
+            pdf *= pdf_l;
+#else
+            return vec3(0.0);
+#endif
         }
         if (!(cv_max3(Li) > 0.0) || !(pdf > 0.0))
             return vec3(0.0);
-        w = -wi;
-        sampled = Li / pdf;
-    } else {
-        qs = cv_bdpt_light(s - 1u);
-        pt = cv_bdpt_cam(t - 1u);
-        vec3 d = pt.p.xyz - qs.p.xyz;
-        float d2 = dot(d, d);
-        if (!(d2 > 0.0))
-            return vec3(0.0);
-        w = d * inversesqrt(d2);
-        g = 1.0 / d2;
-    }
-
-    // the stored ends' scattering towards each other: e = 0 the light end
-    // (as light carrying importance), e = 1 the camera end
-    vec3 L = sampled * g;
-    float q_fwd = 0.0, q_rev = 0.0, t_fwd = 0.0, t_rev = 0.0;
-    for (uint e = 0u; e < 2u; e++) {
-        if (e == 0u ? s < 2u : t < 2u)
-            continue;
-        CvBdptVertex v = e == 0u ? qs : pt;
-        vec3 wc = e == 0u ? w : -w;
-        CvBsdf b;
-        CvBdptAnswer ans = cv_bdpt_ask(v, CV_BDPT_ASK_JOIN, wc, e == 0u, 0.0, vec2(0.0), b);
-        L *= v.beta.rgb * ans.f * cv_bdpt_cos(v, wc);
+        vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * cv_bdpt_cos(pt, wi);
+        vec3 pl = pt.p.xyz + wi * (2.0 * max(cv_bdpt_sphere().w, 1.0));
         if (!(cv_max3(L) > 0.0))
             return vec3(0.0);
-        if (e == 0u) {
-            q_fwd = ans.pdf_fwd;
-            q_rev = ans.pdf_rev;
-        } else {
-            t_fwd = ans.pdf_fwd;
-            t_rev = ans.pdf_rev;
-        }
-    }
-    if (!(cv_max3(L) > 0.0))
-        return vec3(0.0);
-    // visibility and the media between the ends, from the camera end (the
-    // light end for light tracing)
-    CvBdptVertex from = t == 1u ? qs : pt, to = t == 1u ? pt : qs;
-    vec3 wft = t == 1u ? w : -w;
-    uint key = t == 1u ? 0x20000u + s : (s == 1u ? 0x10000u + t : 0x30000u + s * 64u + t);
-    L *= cv_bdpt_transmittance(from.p.xyz, from.p.w, from.ng.xyz, to.p.xyz, to.p.w, to.ng.xyz,
-                               cv_bdpt_medium_towards(from, wft), key);
-    if (!(cv_max3(L) > 0.0))
-        return vec3(0.0);
-
-    // the MIS weight's reverse densities at the ends and their predecessors
-    float pt_rev = light_rev, ptm_rev = 0.0, qs_rev = 0.0, qsm_rev = 0.0;
-    if (s >= 2u) {
-        pt_rev = cv_bdpt_convert(q_fwd, qs.p.xyz, pt);
-        qsm_rev = cv_bdpt_convert(q_rev, qs.p.xyz, cv_bdpt_light(s - 2u));
-    }
-    if (t >= 2u) {
-        qs_rev = cv_bdpt_convert(t_fwd, pt.p.xyz, qs);
-        ptm_rev = cv_bdpt_convert(t_rev, pt.p.xyz, cv_bdpt_cam(t - 2u));
-    } else {
-        qs_rev = cv_bdpt_pdf_camera(pt.p.xyz, qs);
-    }
-    L *= cv_bdpt_mis(s, t, pt_rev, ptm_rev, qs_rev, qsm_rev, light_fwd, light_delta, splat_scale);
-    if (t == 1u) {
-        L *= splat_scale;
-        if (!cv_finite3(L)) {
-            cv_film_reject();
+        L *= cv_bdpt_transmittance(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, 0.0, vec3(0.0),
+                                   cv_bdpt_medium_towards(pt, wi), 0x10000u + t);
+        if (!(cv_max3(L) > 0.0))
             return vec3(0.0);
-        }
-        if (cv_max3(abs(L)) > 0.0)
-            cv_bdpt_splat(raster, L);
-        return vec3(0.0);
+        CvBdptVertex qs = CvBdptVertex(vec4(pl, 0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
+                                       vec4(0.0), vec4(0.0),
+                                       uvec4(CV_BDPT_LIGHT, CV_BDPT_INFINITE, 0u, li));
+        float pt_rev = cv_bdpt_planar_at(pt, wi);
+        float ptm_rev = cv_bdpt_pdf_surface(pt, bt, pl, pm);
+        float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
+        return L * cv_bdpt_mis(1u, t, pt_rev, ptm_rev, qs_rev, 0.0, cv_bdpt_env_density(wi),
+                               distant, splat_scale);
     }
-    return L;
+    if (type != CV_LIGHT_AREA && type != CV_LIGHT_POINT && type != CV_LIGHT_SPOT)
+        return vec3(0.0);
+    vec3 pl, nl;
+    vec2 uvl;
+    float errl;
+    cv_bdpt_light_point(li, u_light, pl, nl, uvl, errl);
+    vec3 d = pl - pt.p.xyz;
+    float d2 = dot(d, d);
+    if (!(d2 > 0.0))
+        return vec3(0.0);
+    vec3 wi = d * inversesqrt(d2);
+    // radiance arriving over its density per solid angle
+    vec3 Li;
+    float pdf;
+    if (type == CV_LIGHT_AREA) {
+        float c = abs(dot(nl, wi));
+        if (!(c > 0.0))
+            return vec3(0.0);
+        Li = cv_light_Le_area(li, -wi, uvl, dot(-wi, nl) > 0.0);
+        pdf = pmf * cv_bdpt_light_pdf_pos(li) * d2 / c;
+    } else {
+        Li = cv_bdpt_light_I(li, -wi) / d2;
+        pdf = pmf;
+    }
+    if (!(cv_max3(Li) > 0.0) || !(pdf > 0.0))
+        return vec3(0.0);
+    vec3 L = pt.beta.rgb * cv_bdpt_f(pt, bt, wi, false) * (Li / pdf) * cv_bdpt_cos(pt, wi);
+    if (!(cv_max3(L) > 0.0))
+        return vec3(0.0);
+    L *= cv_bdpt_transmittance(pt.p.xyz, pt.p.w, pt.ng.xyz, pl, errl, nl,
+                               cv_bdpt_medium_towards(pt, wi), 0x10000u + t);
+    if (!(cv_max3(L) > 0.0))
+        return vec3(0.0);
+    // the sampled light vertex, for the densities
+    CvBdptVertex qs = CvBdptVertex(vec4(pl, errl), vec4(nl, 0.0), vec4(nl, 0.0), vec4(0.0),
+                                   vec4(0.0), vec4(0.0), vec4(uvl, 0.0, 0.0), uvec4(CV_BDPT_LIGHT, 0u, 0u, li));
+    float pt_rev = cv_bdpt_pdf_light(li, pl, nl, pt);
+    float ptm_rev = cv_bdpt_pdf_surface(pt, bt, pl, pm);
+    float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
+    return L * cv_bdpt_mis(1u, t, pt_rev, ptm_rev, qs_rev, 0.0, cv_bdpt_pdf_light_origin(li),
+                           cv_bdpt_light_is_delta(li), splat_scale);
+}
+
+// t = 1: light vertex s - 1 (BSDF bq) seen through the lens: splatted.
+void cv_bdpt_connect_t1(uint s, CvBdptVertex qs, CvBsdf bq, float splat_scale)
+{
+    vec2 u_lens = cv_bdpt_u(cv_bdpt_light_pair(s - 1u, CV_BDPT_PAIR_LENS));
+    vec3 p_lens;
+    vec2 raster;
+    float we_pdf, cos_lens;
+    if (!cv_bdpt_camera_sample(qs.p.xyz, u_lens, p_lens, raster, we_pdf, cos_lens))
+        return;
+    vec3 wi = normalize(p_lens - qs.p.xyz);
+    vec3 L = qs.beta.rgb * cv_bdpt_f(qs, bq, wi, true) * (we_pdf * cv_bdpt_cos(qs, wi));
+    if (!(cv_max3(L) > 0.0))
+        return;
+    L *= cv_bdpt_transmittance(qs.p.xyz, qs.p.w, qs.ng.xyz, p_lens, 0.0, vec3(0.0),
+                               cv_bdpt_medium_towards(qs, wi), 0x20000u + s);
+    if (!(cv_max3(L) > 0.0))
+        return;
+    L *= splat_scale;
+    // the sampled camera vertex, for the densities
+    CvBdptVertex pt = CvBdptVertex(vec4(p_lens, 0.0), vec4(0.0), vec4(0.0), vec4(0.0),
+                                   vec4(0.0), vec4(0.0), vec4(0.0), uvec4(CV_BDPT_CAMERA, 0u, 0u, 0u));
+    CvBdptVertex qm = cv_bdpt_light(s - 2u);
+    float pt_rev = cv_bdpt_pdf_surface(qs, bq, qm.p.xyz, pt);
+    float qs_rev = cv_bdpt_pdf_camera(p_lens, qs);
+    float qsm_rev = cv_bdpt_pdf_surface(qs, bq, p_lens, qm);
+    L *= cv_bdpt_mis(s, 1u, pt_rev, 0.0, qs_rev, qsm_rev, 0.0, false, splat_scale);
+    if (!cv_finite3(L)) {
+        cv_film_reject();
+        return;
+    }
+    if (cv_max3(abs(L)) > 0.0)
+        cv_bdpt_splat(raster, L);
+}
+
+// s, t >= 2: light vertex s - 1 (BSDF bq) joined to camera vertex t - 1 (bt).
+vec3 cv_bdpt_connect(uint s, uint t, CvBdptVertex qs, CvBsdf bq, CvBdptVertex pt, CvBsdf bt,
+                     float splat_scale)
+{
+    vec3 d = pt.p.xyz - qs.p.xyz;
+    float d2 = dot(d, d);
+    if (!(d2 > 0.0))
+        return vec3(0.0);
+    vec3 w = d * inversesqrt(d2);  // from qs to pt
+    vec3 L = qs.beta.rgb * cv_bdpt_f(qs, bq, w, true) * cv_bdpt_f(pt, bt, -w, false) * pt.beta.rgb;
+    L *= cv_bdpt_cos(qs, w) * cv_bdpt_cos(pt, w) / d2;
+    if (!(cv_max3(L) > 0.0))
+        return vec3(0.0);
+    L *= cv_bdpt_transmittance(pt.p.xyz, pt.p.w, pt.ng.xyz, qs.p.xyz, qs.p.w, qs.ng.xyz,
+                               cv_bdpt_medium_towards(pt, -w), 0x30000u + s * 64u + t);
+    if (!(cv_max3(L) > 0.0))
+        return vec3(0.0);
+    CvBdptVertex qm = cv_bdpt_light(s - 2u), pm = cv_bdpt_cam(t - 2u);
+    float pt_rev = cv_bdpt_pdf_surface(qs, bq, qm.p.xyz, pt);
+    float ptm_rev = cv_bdpt_pdf_surface(pt, bt, qs.p.xyz, pm);
+    float qs_rev = cv_bdpt_pdf_surface(pt, bt, pm.p.xyz, qs);
+    float qsm_rev = cv_bdpt_pdf_surface(qs, bq, pt.p.xyz, qm);
+    return L * cv_bdpt_mis(s, t, pt_rev, ptm_rev, qs_rev, qsm_rev, 0.0, false, splat_scale);
 }
 
 // Whether strategy (s, t) runs: all of them, unless the host asks for one
@@ -810,23 +743,16 @@ bool cv_bdpt_runs(uint s, uint t)
 #endif
 }
 
-// The start of pbrt-v4's GenerateLightSubpath: the light vertex, stored,
-// and the ray the walk leaves it by (o, d in medium, throughput beta, d's
-// density pdf_dir); false: no light subpath. An infinite or distant light's
-// start (inf) also gives its direction wl and its disk's density pdf_pos,
-// with which main corrects the first two vertices' densities after the
-// walk, as pbrt-v4 does.
-bool cv_bdpt_light_start(out vec3 o, out vec3 d, out uint medium, out vec3 beta, out float pdf_dir,
-                         out bool inf, out vec3 wl, out float pdf_pos)
+// pbrt-v4's GenerateLightSubpath: the light vertex and the walk from it;
+// returns the light subpath's vertex count (0: none).
+uint cv_bdpt_light_subpath()
 {
-    inf = false;
-    medium = 0u;
     if (cv_n_lights() == 0u)
-        return false;
+        return 0u;
     uint li = cv_light_pick(cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT)).x);
     float pmf = cv_light_pmf(li);
     if (!(pmf > 0.0))
-        return false;
+        return 0u;
     uint type = lights[li].type;
     // the medium the light sits in (an area light's surface may part two)
     uint light_medium = 0u;
@@ -840,8 +766,8 @@ bool cv_bdpt_light_start(out vec3 o, out vec3 d, out uint medium, out vec3 beta,
         // that no strategy but s >= 1 finds it, pbrt-v4's IsDeltaLight),
         // and a point on the disk of the scene's radius across it
         CvLight l = lights[li];
-        pdf_dir = 1.0;
-        vec3 Le;
+        float pdf_dir = 1.0;
+        vec3 wl, Le;
         if (distant) {
             wl = -normalize(l.direction.xyz);
             Le = l.L.rgb;
@@ -853,37 +779,43 @@ bool cv_bdpt_light_start(out vec3 o, out vec3 d, out uint medium, out vec3 beta,
                                            : cv_env_map_sample(l, u_dir, pdf_dir);
             Le = cv_env_light_Le(l, wl);
 #else
-            return false;
+            return 0u;
 #endif
         }
         vec4 sph = cv_bdpt_sphere();
-        pdf_pos = cv_bdpt_pdf_planar();
+        float pdf_pos = cv_bdpt_pdf_planar();
         if (!(pdf_dir > 0.0) || !(pdf_pos > 0.0) || !(cv_max3(Le) > 0.0))
-            return false;
+            return 0u;
         vec2 cd = cv_sample_disk_concentric(cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_POS)));
-        o = sph.xyz + sph.w * cv_from_local(cv_frame_from_z(-wl), vec3(cd, 0.0)) + sph.w * wl;
+        vec3 o = sph.xyz + sph.w * cv_from_local(cv_frame_from_z(-wl), vec3(cd, 0.0)) + sph.w * wl;
         uint flags = CV_BDPT_INFINITE | (distant ? CV_BDPT_DELTA_LIGHT : 0u);
         bv[cv_bdpt_index(true, 0u)] = CvBdptVertex(
             vec4(o, 0.0), vec4(0.0, 0.0, 0.0, pmf * pdf_pos), vec4(0.0), vec4(0.0), vec4(Le, 0.0),
             vec4(0.0), vec4(0.0),
             uvec4(CV_BDPT_LIGHT, flags | (light_medium << CV_BDPT_MEDIUM_SHIFT), 0u, li));
-        d = -wl;
-        medium = light_medium;
-        beta = Le / (pmf * pdf_pos * pdf_dir);
-        inf = true;
-        return true;
+        uint n_inf = cv_bdpt_walk(true, o, -wl, light_medium, Le / (pmf * pdf_pos * pdf_dir),
+                                  pdf_dir, CV_BDPT_LIGHT_VERTS(cv_max_depth()));
+        // the densities pbrt-v4 corrects for an infinite light's start:
+        // vertex 1 per unit area of the disk, vertex 0 per solid angle
+        if (n_inf > 1u) {
+            uint i1 = cv_bdpt_index(true, 1u);
+            bv[i1].ng.w = pdf_pos * (cv_bdpt_on_surface(bv[i1]) ? abs(dot(wl, bv[i1].ng.xyz)) : 1.0);
+        }
+        bv[cv_bdpt_index(true, 0u)].ng.w = cv_bdpt_env_density(wl);
+        return n_inf;
     }
     vec3 p, n;
     vec2 uv;
     float err;
     cv_bdpt_light_point(li, cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_POS)), p, n, uv, err);
     vec3 w;
+    float pdf_dir;
     if (!cv_bdpt_light_dir(li, n, cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_DIR)), w, pdf_dir))
-        return false;
+        return 0u;
     vec3 Le = cv_bdpt_light_emit(li, n, uv, w);
-    pdf_pos = cv_bdpt_light_pdf_pos(li);
+    float pdf_pos = cv_bdpt_light_pdf_pos(li);
     if (!(cv_max3(Le) > 0.0) || !(pdf_pos > 0.0))
-        return false;
+        return 0u;
     CvBdptVertex v;
     v.p = vec4(p, err);
     v.ng = vec4(n, pmf * pdf_pos);
@@ -898,16 +830,14 @@ bool cv_bdpt_light_start(out vec3 o, out vec3 d, out uint medium, out vec3 beta,
     bv[cv_bdpt_index(true, 0u)] = v;
     bool area = dot(n, n) > 0.0;
     float c = area ? abs(dot(n, w)) : 1.0;
-    beta = Le * (c / (pmf * pdf_pos * pdf_dir));
-    o = area ? cv_offset_ray(p, err, dot(w, n) > 0.0 ? n : -n) : p;
+    vec3 beta = Le * (c / (pmf * pdf_pos * pdf_dir));
+    vec3 o = area ? cv_offset_ray(p, err, dot(w, n) > 0.0 ? n : -n) : p;
 #ifdef CV_MEDIA
     if (area)
         light_medium = cv_medium_across(cv_prim_word(lights[li].prim) & CV_TRI_MATERIAL_MASK, n, w,
                                         light_medium);
 #endif
-    d = w;
-    medium = light_medium;
-    return true;
+    return cv_bdpt_walk(true, o, w, light_medium, beta, pdf_dir, CV_BDPT_LIGHT_VERTS(cv_max_depth()));
 }
 
 void main()
@@ -936,72 +866,69 @@ void main()
     cv_trace_time = cv_path_time(slot);
 #endif
 
-    // both subpaths, each walked from its start by the one walk (one copy
-    // of it in the kernel): 0 the camera's (with the path integrator's
-    // random numbers), 1 the light's
-    uint n_cam = 0u, n_light = 0u;
-    for (uint side = 0u; side < 2u; side++) {
-        vec3 o, d, beta, wl = vec3(0.0);
-        uint medium;
-        float pdf_dir, pdf_pos = 0.0;
-        bool inf = false;
-        if (side == 0u) {
-            o = r.o.xyz;
-            d = r.d.xyz;
-            beta = vec3(1.0);
-            pdf_dir = cv_bdpt_camera_pdf_dir(r.d.xyz);
-            medium = 0u;
+    CvBdptVertex c0;
+    c0.p = vec4(r.o.xyz, 0.0);
+    c0.ng = vec4(0.0);
+    c0.ns = vec4(0.0);
+    c0.wo = vec4(0.0);
+    c0.beta = vec4(1.0, 1.0, 1.0, 0.0);
+    c0.dpdu = vec4(0.0);
+    c0.uv = vec4(0.0);
+    uint cam_medium = 0u;
 #ifdef CV_MEDIA
-            medium = u_pass.camera_medium;
+    cam_medium = u_pass.camera_medium;
 #endif
-            bv[cv_bdpt_index(false, 0u)] = CvBdptVertex(
-                vec4(r.o.xyz, 0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0),
-                vec4(0.0),
-                uvec4(CV_BDPT_CAMERA,
-                      (cv_bdpt_camera_delta() ? CV_BDPT_DELTA : 0u) | (medium << CV_BDPT_MEDIUM_SHIFT), 0u, 0u));
-        } else if (!cv_bdpt_light_start(o, d, medium, beta, pdf_dir, inf, wl, pdf_pos)) {
-            break;
-        }
-        uint max_verts = side == 0u ? CV_BDPT_CAMERA_VERTS(cv_max_depth()) : CV_BDPT_LIGHT_VERTS(cv_max_depth());
-        uint n = cv_bdpt_walk(side == 1u, o, d, medium, beta, pdf_dir, max_verts);
-        if (side == 0u) {
-            n_cam = n;
-        } else {
-            n_light = n;
-            if (inf) {
-                // the densities pbrt-v4 corrects for an infinite light's
-                // start: vertex 1 per unit area of the disk, vertex 0 per
-                // solid angle
-                if (n > 1u) {
-                    uint i1 = cv_bdpt_index(true, 1u);
-                    bv[i1].ng.w = pdf_pos * (cv_bdpt_on_surface(bv[i1]) ? abs(dot(wl, bv[i1].ng.xyz)) : 1.0);
-                }
-                bv[cv_bdpt_index(true, 0u)].ng.w = cv_bdpt_env_density(wl);
-            }
-        }
-    }
+    c0.id = uvec4(CV_BDPT_CAMERA,
+                  (cv_bdpt_camera_delta() ? CV_BDPT_DELTA : 0u) | (cam_medium << CV_BDPT_MEDIUM_SHIFT),
+                  0u, 0u);
+    bv[cv_bdpt_index(false, 0u)] = c0;
+    uint n_cam = cv_bdpt_walk(false, r.o.xyz, r.d.xyz, cam_medium, vec3(1.0),
+                              cv_bdpt_camera_pdf_dir(r.d.xyz), CV_BDPT_CAMERA_VERTS(cv_max_depth()));
+    uint n_light = cv_bdpt_light_subpath();
 
     // pbrt-v4's splat scale: light subpaths start from the crop's pixel
     // samples alone but land anywhere on the film
     float splat_scale = float(u_pass.film.x) * float(u_pass.film.y) / float(P);
     uint max_depth = cv_max_depth();
     vec3 L = vec3(0.0);
-    // every strategy: t = 1 light tracing (splatted), s = 0 the camera
-    // subpath on a lamp, the rest joins (one call site of cv_bdpt_join)
-    for (uint t = 1u; t <= n_cam; t++) {
-        if (t == 1u) {
-            if (!cv_bdpt_camera_connectible())
+    // t = 1: light tracing
+    for (uint s = 2u; s <= n_light && s - 1u <= max_depth && cv_bdpt_camera_connectible(); s++) {
+        CvBdptVertex qs = cv_bdpt_light(s - 1u);
+        CvBsdf bq;
+        if (!cv_bdpt_in_medium(qs)) {
+            bq = cv_bdpt_bsdf(qs);
+            if (cv_bsdf_is_delta(bq))
                 continue;
-        } else {
-            CvBdptVertex pt = cv_bdpt_cam(t - 1u);
-            if (t - 2u <= max_depth && cv_bdpt_runs(0u, t))
-                L += cv_bdpt_connect_s0(t, splat_scale);
-            if (!cv_bdpt_in_medium(pt) && (pt.id.x != CV_BDPT_SURFACE || (pt.id.y & CV_BDPT_BSDF_DELTA) != 0u))
-                continue;  // escaped (s = 0 alone), or no strategy joins it
         }
-        for (uint s = t == 1u ? 2u : 1u; s <= n_light && s + t - 2u <= max_depth; s++) {
-            if (cv_bdpt_runs(s, t) && (s < 2u || (cv_bdpt_light(s - 1u).id.y & CV_BDPT_BSDF_DELTA) == 0u))
-                L += cv_bdpt_join(s, t, splat_scale);
+        if (cv_bdpt_runs(s, 1u))
+            cv_bdpt_connect_t1(s, qs, bq, splat_scale);
+    }
+    for (uint t = 2u; t <= n_cam; t++) {
+        CvBdptVertex pt = cv_bdpt_cam(t - 1u);
+        if (t - 2u <= max_depth && cv_bdpt_runs(0u, t))
+            L += cv_bdpt_connect_s0(t, splat_scale);
+        CvBsdf bt;
+        if (cv_bdpt_in_medium(pt)) {
+        } else if (pt.id.x != CV_BDPT_SURFACE) {
+            continue;  // escaped: s = 0 alone
+        } else {
+            bt = cv_bdpt_bsdf(pt);
+            if (cv_bsdf_is_delta(bt))
+                continue;
+        }
+        if (n_light >= 1u && t - 1u <= max_depth && cv_bdpt_runs(1u, t))
+            L += cv_bdpt_connect_s1(t, pt, bt, splat_scale);
+        for (uint s = 2u; s <= n_light && s + t - 2u <= max_depth; s++) {
+            if (!cv_bdpt_runs(s, t))
+                continue;
+            CvBdptVertex qs = cv_bdpt_light(s - 1u);
+            CvBsdf bq;
+            if (!cv_bdpt_in_medium(qs)) {
+                bq = cv_bdpt_bsdf(qs);
+                if (cv_bsdf_is_delta(bq))
+                    continue;
+            }
+            L += cv_bdpt_connect(s, t, qs, bq, pt, bt, splat_scale);
         }
     }
     cv_film_add(slot, L + g_medium_Le);
