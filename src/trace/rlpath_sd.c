@@ -52,6 +52,7 @@ struct cv_rlpath_sd {
     struct cv_program flush;   /* a copy (see render.c) */
     uint32_t n_paths;
     GLuint ubo, verts, out, count, tree;
+    GLuint staging;        /* the records' way back, as large as out */
     struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
     size_t tree_texels;    /* the tree buffer's capacity */
     struct cv_sd_record *recs;   /* the iteration's records so far */
@@ -156,6 +157,8 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
               (sd->verts = cv_buffer_create(vbytes, NULL, "rlpath sd path records", err)) &&
               (sd->out = cv_buffer_create((size_t)sd->cap * 32, NULL, "rlpath sd records", err)) &&
               (sd->count = cv_buffer_create(16, NULL, "rlpath sd record count", err)) &&
+              (sd->staging = cv_buffer_create_uninit((size_t)sd->cap * 32,
+                                                     "rlpath sd records read-back", err)) &&
               cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16,
                                      CV_IMAGE_SD_VERTS, GL_RGBA32F, GL_READ_WRITE, err) &&
               cv_buffer_image_create(&sd->images[SD_OUT], sd->out, (size_t)sd->cap * 2,
@@ -229,7 +232,8 @@ bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct c
     if (n) {
         if (!sd->recs)   /* the iteration's capacity, once */
             sd->recs = cv_xcalloc(sd->cap, sizeof(*sd->recs));
-        if (!cv_buffer_read_staged(sd->out, 0, (size_t)n * 32, 0, sd->recs + sd->n_recs, err))
+        if (!cv_buffer_read_staged(sd->out, 0, (size_t)n * 32, sd->staging, sd->recs + sd->n_recs,
+                                   err))
             return false;
         sd->n_recs += n;
     }
@@ -267,6 +271,7 @@ void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sdp)
     cv_buffer_destroy(&sd->verts);
     cv_buffer_destroy(&sd->out);
     cv_buffer_destroy(&sd->count);
+    cv_buffer_destroy(&sd->staging);
     cv_buffer_destroy(&sd->tree);
     free(sd->recs);
     free(sd);
