@@ -59,7 +59,7 @@ struct cv_rlpath_sd {
     size_t n_recs;
     uint32_t builds;
     uint32_t last_spp;     /* spp done when the last training pass ended */
-    double wanted_per_spp; /* records the paths of one spp offer (0: not known yet) */
+    double wanted_per_spp; /* records the paths of one spp offer (the last pass's) */
 };
 
 /* Where the training iteration that starts at spp s with length len ends:
@@ -108,13 +108,12 @@ static void keep_for_next_pass(struct cv_rlpath_sd *sd, uint32_t spp_done)
 {
     uint32_t left = sd->cap - (uint32_t)sd->n_recs;
     double offered = sd->wanted_per_spp * (sd->end > spp_done ? sd->end - spp_done : 1);
-    /* the pass's hashes differ from the last's (keep.y) */
     /* a little below, so that a pass offering more than the last does not
      * overrun the capacity (whose last paths would then be dropped) */
     double share = offered > 0.95 * left ? 0.95 * left / offered : 1.0;
     sd->params.learn.y = left;
     sd->params.keep.x = share >= 1.0 ? CV_SD_KEEP_ALL : (uint32_t)(share * 0x1p32);
-    sd->params.keep.y++;
+    sd->params.keep.y++;   /* the pass's hashes differ from the last's */
 }
 
 bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bmax[3],
