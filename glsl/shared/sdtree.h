@@ -79,10 +79,18 @@
 #define CV_SD_MAX_DEPTH 12u
 #define CV_SD_MAX_SPATIAL_DEPTH 48u
 
+/* A training iteration keeps a uniform share of the paths' records (keep.x),
+ * so that the host's build sees a bounded number spread over the whole
+ * image rather than the first ones flushed (src/trace/rlpath_sd.c). */
+#define CV_SD_KEEP_ALL 0xffffffffu
+
 CV_STRUCT(CvSdParams) {
-    cv_uvec4 learn;        /* x: 1 while training passes record; y: record capacity;
-                              z: path slots; w: 0 */
+    cv_uvec4 learn;        /* x: 1 while training passes record; y: record capacity
+                              left in this pass; z: path slots; w: 0 */
+    cv_uvec4 keep;         /* x: a path's records are kept iff a hash of it is at
+                              most x (CV_SD_KEEP_ALL: all); y: the pass (the hash's
+                              seed); zw: 0 */
 } CV_END(CvSdParams)
-CV_CHECK_SIZE(CvSdParams, 16);
+CV_CHECK_SIZE(CvSdParams, 32);
 
 #endif

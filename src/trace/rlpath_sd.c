@@ -7,7 +7,11 @@
  * class: once per training pass, a wait for the GPU), and at the end of
  * each training iteration the host builds the next guide from that
  * iteration's records alone (trace/sdtree.c: earlier, smaller iterations
- * learned from a worse guide) and uploads it. Passes after training
+ * learned from a worse guide) and uploads it. An iteration keeps at most
+ * SD_MAX_RECORDS_PER_ITERATION records, a uniform share of its paths' (the
+ * shaders hash each path against a threshold set here from the records the
+ * passes before wanted): the build's cost grows with the records, not with
+ * the image or the iteration's length. Passes after training
  * sample the last tree, frozen. The renderer owns one through
  * cv_rlpath_sd_ops (cv_integrator_for). */
 #include <math.h>
@@ -28,9 +32,10 @@
 #include "trace/rlpath_sd.h"
 #include "trace/sdtree.h"
 
-/* Records kept per pass at most (those past it are dropped): two texels
- * each. */
-#define SD_MAX_RECORDS_PER_PASS (1u << 22)
+/* Records a training iteration keeps at most (the record buffer's
+ * capacity: two texels each; those past it in a pass are dropped): the
+ * host build's time is linear in it (bench/sdtree_build). */
+#define SD_MAX_RECORDS_PER_ITERATION (1u << 20)
 #define SD_RECORDS_PER_SLOT 64u
 
 /* The buffers the shaders see as images, in cv_rlpath_sd.images. */
@@ -47,11 +52,14 @@ struct cv_rlpath_sd {
     struct cv_program flush;   /* a copy (see render.c) */
     uint32_t n_paths;
     GLuint ubo, verts, out, count, tree;
+    GLuint staging;        /* the records' way back, as large as out */
     struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
     size_t tree_texels;    /* the tree buffer's capacity */
     struct cv_sd_record *recs;   /* the iteration's records so far */
-    size_t n_recs, c_recs;
+    size_t n_recs;
     uint32_t builds;
+    uint32_t last_spp;     /* spp done when the last training pass ended */
+    double wanted_per_spp; /* records the paths of one spp offer (the last pass's) */
 };
 
 /* Where the training iteration that starts at spp s with length len ends:
@@ -93,8 +101,24 @@ static bool tree_upload(struct cv_rlpath_sd *sd, const float (*t)[4], size_t n,
     return tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err);
 }
 
+/* The next pass's share of paths that keep their records: the capacity
+ * left in the iteration over what its remaining spp would offer, so that
+ * the kept records spread over all of them; and that capacity. */
+static void keep_for_next_pass(struct cv_rlpath_sd *sd, uint32_t spp_done)
+{
+    uint32_t left = sd->cap - (uint32_t)sd->n_recs;
+    double offered = sd->wanted_per_spp * (sd->end > spp_done ? sd->end - spp_done : 1);
+    /* a little below, so that a pass offering more than the last does not
+     * overrun the capacity (whose last paths would then be dropped) */
+    double share = offered > 0.95 * left ? 0.95 * left / offered : 1.0;
+    sd->params.learn.y = left;
+    sd->params.keep.x = share >= 1.0 ? CV_SD_KEEP_ALL : (uint32_t)(share * 0x1p32);
+    sd->params.keep.y++;   /* the pass's hashes differ from the last's */
+}
+
 bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bmax[3],
-                         uint32_t n_paths, float mix, uint32_t train, struct cv_rlpath_sd **out,
+                         uint32_t n_paths, uint32_t n_pixels, float mix, uint32_t train,
+                         struct cv_rlpath_sd **out,
                          struct cv_error *err)
 {
     struct cv_rlpath_sd *sd = cv_xcalloc(1, sizeof(*sd));
@@ -115,8 +139,13 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     sd->len = 1;
     sd->end = iteration_end(sd->train, 0, 1);
     uint64_t cap = (uint64_t)(n_paths ? n_paths : 1) * SD_RECORDS_PER_SLOT;
-    sd->cap = cap < SD_MAX_RECORDS_PER_PASS ? (uint32_t)cap : SD_MAX_RECORDS_PER_PASS;
+    sd->cap = cap < SD_MAX_RECORDS_PER_ITERATION ? (uint32_t)cap : SD_MAX_RECORDS_PER_ITERATION;
     sd->params.learn = (cv_uvec4){1, sd->cap, n_paths, 0};
+    /* what the first pass's paths offer is not known yet: at most every
+     * pixel's path recording at every vertex it may (a smaller share than
+     * needed, rather than the first paths flushed only) */
+    sd->wanted_per_spp = (double)(n_pixels ? n_pixels : n_paths) * CV_SD_MAX_RECORDS;
+    keep_for_next_pass(sd, 0);
     /* zero: no slot has a path waiting */
     size_t vbytes = (size_t)(n_paths ? n_paths : 1) * CV_SD_SLOT_TEXELS * 16;
     /* the empty table: one leaf, whose classes do not guide */
@@ -127,6 +156,8 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
               (sd->verts = cv_buffer_create(vbytes, NULL, "rlpath sd path records", err)) &&
               (sd->out = cv_buffer_create((size_t)sd->cap * 32, NULL, "rlpath sd records", err)) &&
               (sd->count = cv_buffer_create(16, NULL, "rlpath sd record count", err)) &&
+              (sd->staging = cv_buffer_create_uninit((size_t)sd->cap * 32,
+                                                     "rlpath sd records read-back", err)) &&
               cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16,
                                      CV_IMAGE_SD_VERTS, GL_RGBA32F, GL_READ_WRITE, err) &&
               cv_buffer_image_create(&sd->images[SD_OUT], sd->out, (size_t)sd->cap * 2,
@@ -195,26 +226,35 @@ bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct c
     uint32_t wanted = 0;
     if (!cv_buffer_read(sd->count, 0, sizeof(wanted), &wanted, err))
         return false;
-    uint32_t n = wanted < sd->cap ? wanted : sd->cap;
+    uint32_t left = sd->cap - (uint32_t)sd->n_recs;
+    uint32_t n = wanted < left ? wanted : left;
     if (n) {
-        if (sd->n_recs + n > sd->c_recs) {
-            sd->c_recs = 2 * (sd->n_recs + n);
-            sd->recs = cv_xrealloc(sd->recs, sd->c_recs * sizeof(*sd->recs));
-        }
-        if (!cv_buffer_read_staged(sd->out, 0, (size_t)n * 32, 0, sd->recs + sd->n_recs, err))
+        if (!sd->recs)   /* the iteration's capacity, once */
+            sd->recs = cv_xcalloc(sd->cap, sizeof(*sd->recs));
+        if (!cv_buffer_read_staged(sd->out, 0, (size_t)n * 32, sd->staging, sd->recs + sd->n_recs,
+                                   err))
             return false;
         sd->n_recs += n;
     }
     const uint32_t zero = 0;
     glNamedBufferSubData(sd->count, 0, sizeof(zero), &zero);
-    if (spp_done < sd->end)
-        return true;
-    /* the iteration is over: the next guide learns from its records alone */
-    bool ok = cv_rlpath_sd_build(sd, sd->recs, sd->n_recs, err);
-    sd->n_recs = 0;
-    sd->start = sd->end;
-    sd->len *= 2;
-    sd->end = iteration_end(sd->train, sd->start, sd->len);
+    /* what the pass's paths offered: the counter holds the kept share's */
+    uint32_t pass_spp = spp_done - sd->last_spp;
+    double share = sd->params.keep.x == CV_SD_KEEP_ALL ? 1.0 : sd->params.keep.x * 0x1p-32;
+    if (pass_spp > 0 && share > 0)
+        sd->wanted_per_spp = wanted / share / pass_spp;
+    sd->last_spp = spp_done;
+    bool ok = true;
+    if (spp_done >= sd->end) {
+        /* the iteration is over: the next guide learns from its records alone */
+        ok = cv_rlpath_sd_build(sd, sd->recs, sd->n_recs, err);
+        sd->n_recs = 0;
+        sd->start = sd->end;
+        sd->len *= 2;
+        sd->end = iteration_end(sd->train, sd->start, sd->len);
+    }
+    keep_for_next_pass(sd, spp_done);
+    glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return ok && cv_gl_check(err, "rlpath sdtree after %u spp", spp_done);
 }
@@ -230,6 +270,7 @@ void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sdp)
     cv_buffer_destroy(&sd->verts);
     cv_buffer_destroy(&sd->out);
     cv_buffer_destroy(&sd->count);
+    cv_buffer_destroy(&sd->staging);
     cv_buffer_destroy(&sd->tree);
     free(sd->recs);
     free(sd);
@@ -244,8 +285,8 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     (void)shade;   /* the renderer's (cv_rlpath_sd_ops.file) */
     if (p->rl_mix > 1 || isnan(p->rl_mix))
         return cv_fail(err, "rlpath mix %g is not in [0, 1]", (double)p->rl_mix);
-    if (!cv_rlpath_sd_create(s->gpu, s->scene->bounds_min, s->scene->bounds_max, s->n_paths, p->rl_mix,
-                             p->rl_train, &sd, err))
+    if (!cv_rlpath_sd_create(s->gpu, s->scene->bounds_min, s->scene->bounds_max, s->n_paths,
+                             s->n_pixels, p->rl_mix, p->rl_train, &sd, err))
         return false;
     *state = sd;
     return true;

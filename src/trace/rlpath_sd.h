@@ -15,11 +15,12 @@
 struct cv_rlpath_sd;
 
 /* Creates the record buffers and the flush program for n_paths path slots and an empty guide
- * (one unguided leaf) over the box [bmin, bmax]. mix: guiding weight of a
+ * (one unguided leaf) over the box [bmin, bmax]; n_pixels: the paths one
+ * spp starts (a first estimate of the records a pass offers). mix: guiding weight of a
  * leaf that learned (negative: cv_sdtree_defaults.mix); train: the render
  * parameter rl_train (cv_rlpath_train_spp). */
 bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bmax[3],
-                         uint32_t n_paths, float mix, uint32_t train, struct cv_rlpath_sd **out,
+                         uint32_t n_paths, uint32_t n_pixels, float mix, uint32_t train, struct cv_rlpath_sd **out,
                          struct cv_error *err);
 
 /* Binds the parameter block and images (after the renderer's bindings). */

@@ -53,11 +53,11 @@ struct build {
  * integral of the incident radiance times the cosine to its class's axis
  * (the normal of a wall that faces the axis) over directions; the guide
  * then stands for the diffuse integrand, not the radiance alone, which
- * sends samples to grazing and back-facing directions. The class is in
- * beta once the build has read it (cv_sdtree_build). */
-static double rec_value(const struct cv_sd_record *r)
+ * sends samples to grazing and back-facing directions. Computed once per
+ * record (cv_sdtree_build keeps it in pdf, the class in beta): the tree
+ * levels sum it again at every depth. */
+static double rec_value(const struct cv_sd_record *r, int cls)
 {
-    int cls = (int)r->beta;
     double z = 2.0 * r->u - 1, phi = 2 * M_PI * r->v - M_PI, s = sqrt(fmax(0, 1 - z * z));
     double w[3] = {s * cos(phi), s * sin(phi), z};
     double c = w[cls / 2] * (cls & 1 ? -1 : 1);
@@ -124,7 +124,7 @@ static uint32_t build_quad(struct build *b, struct cv_sd_record *r, size_t n, do
     for (int k = 0; k < 4; k++) {
         e[k] = 0;
         for (size_t i = 0; i < cnt[k]; i++)
-            e[k] += rec_value(&r[first[k] + i]);
+            e[k] += r[first[k] + i].pdf;
         w[k] = e[k] + fe * h * h;
         sum += w[k];
     }
@@ -178,7 +178,7 @@ static void build_spatial(struct build *b, uint32_t node, struct cv_sd_record *r
         double E = 0;
         size_t lit = 0;
         for (size_t i = 0; i < m; i++) {
-            double v = rec_value(&r[i]);
+            double v = r[i].pdf;
             E += v;
             lit += v > 0;
         }
@@ -207,7 +207,9 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_reco
             cls < CV_SD_CLASSES) {
             rec[k] = rec[i];
             rec[k].u -= cls;
-            rec[k++].beta = cls;
+            rec[k].beta = cls;
+            rec[k].pdf = (float)rec_value(&rec[k], (int)cls);
+            k++;
         }
     }
     n = k;

@@ -17,6 +17,9 @@
 #define CV_RLPATH_SDTREE_GLSL
 
 #include "shared/sdtree.h"
+#ifdef CV_SD_RECORD
+#include "../../lib/rng.glsl"
+#endif
 
 layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
 layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
@@ -197,6 +200,12 @@ void cv_sd_flush(uint slot)
     for (uint k = 0u; k < n; k++)
         keep += imageLoad(sd_verts, cv_sd_record_texel(slot, k)).w > 0.0 ? 1u : 0u;
     if (keep == 0u)
+        return;
+    // a uniform share of the paths, each kept or not whole (the first
+    // record's position tells apart a slot's paths within a pass)
+    if (u_sd.keep.x != CV_SD_KEEP_ALL &&
+        cv_hash3(slot, u_sd.keep.y, floatBitsToUint(imageLoad(sd_verts, cv_sd_record_texel(slot, 0u)).x)) >
+            u_sd.keep.x)
         return;
     uint at = imageAtomicAdd(sd_count, 0, keep);
     for (uint k = 0u; k < n && at < u_sd.learn.y; k++) {
