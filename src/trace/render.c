@@ -574,7 +574,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
     if (r->matte_stride)
         r->matte = make(gpu, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
-    if (r->media && ok) {
+    /* a whole-sample integrator (bdpt) keeps its ratios in registers */
+    if (r->media && !ops->whole_samples && ok) {
         /* starts cleared: no slot's ratios belong to a path yet (track.glsl) */
         float *zero = cv_xcalloc(n, 4 * sizeof(float));
         r->medium_paths = make(gpu, n * 4 * sizeof(float), "trace medium paths", &ok, err);
