@@ -62,8 +62,8 @@
 /* rgba32f: participating media (glsl/shared/medium.h), CV_MEDIUM_TEXELS a
  * medium, bound where the scene has media */
 #define CV_TEXUNIT_MEDIA 7
-/* r32f: grid media's samples and majorant grids (glsl/shared/medium.h),
- * bound where the scene has grid media */
+/* rgba32f, four floats a texel: grid media's samples and majorant grids
+ * (glsl/shared/medium.h), bound where the scene has grid media */
 #define CV_TEXUNIT_MEDIUM_GRIDS 8
 
 /* 10 to 25: stage-private, named below per stage. */

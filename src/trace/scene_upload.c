@@ -113,6 +113,50 @@ static bool up_texture(struct cv_gpu *gpu, GLuint *b, GLuint *tex, GLenum format
            (*tex = cv_buffer_texture(*b, format, n, err)) != 0;
 }
 
+/* The grid media's floats as an rgba32f buffer texture, four a texel
+ * (glsl/trace/medium/grid.glsl), the last texel padded with zeros: it
+ * reaches 4 x GL_MAX_TEXTURE_BUFFER_SIZE floats. A scene beyond that fails
+ * here, before any rendering, at the first medium whose floats do not fit,
+ * with its statement's location. The buffer is never bound as a storage
+ * block, so the storage block size does not bound it. */
+static bool up_medium_grids(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu *g,
+                            struct cv_error *err)
+{
+    size_t n = s->n_medium_grids, texels = (n + 3) / 4;
+    long long max = gpu->info.max_texture_buffer_texels;
+    if (max > 0 && texels > (unsigned long long)max) {
+        /* the first medium that ends beyond the store (a scene made by
+         * hand has no sources) */
+        const char *at = "grid media";
+        size_t start = 0, end = n;
+        for (uint32_t i = 1; s->medium_sources && i < s->n_media; i++) {
+            if (s->medium_sources[i].grid_end > 4 * (size_t)max) {
+                at = s->medium_sources[i].at;
+                end = s->medium_sources[i].grid_end;
+                break;
+            }
+            start = s->medium_sources[i].grid_end;
+        }
+        return cv_fail(err, "%s: its grids take %zu floats (%.1f MiB), floats %zu to %zu of the "
+                            "scene's grid store; this GPU's holds %lld floats (%.1f MiB: four a "
+                            "texel of one buffer texture of GL_MAX_TEXTURE_BUFFER_SIZE %lld "
+                            "texels)", at, end - start, (end - start) * 4.0 / (1024 * 1024),
+                       start, end, 4 * max, 16.0 * max / (1024 * 1024), max);
+    }
+    g->medium_grids = cv_buffer_create_uninit(texels * 16, "scene medium grids", err);
+    if (!g->medium_grids)
+        return false;
+    const float zero[3] = {0, 0, 0};
+    glNamedBufferSubData(g->medium_grids, 0, (GLsizeiptr)(n * sizeof(float)), s->medium_grids);
+    if (texels * 4 > n)
+        glNamedBufferSubData(g->medium_grids, (GLintptr)(n * sizeof(float)),
+                             (GLsizeiptr)((texels * 4 - n) * sizeof(float)), zero);
+    if (!cv_gl_check(err, "uploading %zu floats of grid media", n))
+        return false;
+    g->medium_grids_tex = cv_buffer_texture(g->medium_grids, GL_RGBA32F, texels, err);
+    return g->medium_grids_tex != 0;
+}
+
 /* The light-selection CDF of n lights (one texel at least) as a buffer
  * texture. */
 static bool up_light_cdf(struct cv_gpu *gpu, struct cv_scene_gpu *g, uint32_t n, const float *cdf,
@@ -239,9 +283,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         (s->n_media == 0 ||
          up_texture(gpu, &g.media, &g.media_tex, GL_RGBA32F,
                     (size_t)s->n_media * CV_MEDIUM_TEXELS, 16, s->media, "scene media", err)) &&
-        (s->n_medium_grids == 0 ||
-         up_texture(gpu, &g.medium_grids, &g.medium_grids_tex, GL_R32F, s->n_medium_grids,
-                    sizeof(float), s->medium_grids, "scene medium grids", err));
+        (s->n_medium_grids == 0 || up_medium_grids(gpu, s, &g, err));
     free(cdf);
     free(lights);
     free(env);

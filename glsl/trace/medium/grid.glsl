@@ -18,10 +18,11 @@
 #ifndef CV_TRACE_MEDIUM_GRID_GLSL
 #define CV_TRACE_MEDIUM_GRID_GLSL
 
-// The grid buffer as a buffer texture (CV_TEXUNIT_MEDIUM_GRIDS), as the
-// media table (medium.glsl): float i of it.
+// The grid buffer as a buffer texture (CV_TEXUNIT_MEDIUM_GRIDS), four
+// floats a texel so that it reaches four times the driver's texel limit
+// (GL_MAX_TEXTURE_BUFFER_SIZE; trace/scene_upload.c): float i of it.
 layout(binding = CV_TEXUNIT_MEDIUM_GRIDS) uniform samplerBuffer cv_medium_grid_tex;
-float cv_grid_float(uint i) { return texelFetch(cv_medium_grid_tex, int(i)).x; }
+float cv_grid_float(uint i) { return texelFetch(cv_medium_grid_tex, int(i >> 2u))[i & 3u]; }
 
 #ifdef CV_MEDIUM_CLOUDS
 #include "cloud.glsl"
