@@ -41,6 +41,9 @@ struct cv_gpu_info {
      * grid media's store reads it, trace/scene_upload.c; tests lower it to
      * act as a smaller driver) */
     long long max_texture_buffer_texels;
+    /* GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS: samplers one kernel may use (so
+     * how many pages the grid store may have) */
+    int max_compute_texture_units;
     bool has_int64;        /* GL_ARB_gpu_shader_int64 */
     bool has_shader_ballot;/* GL_KHR_shader_subgroup or ARB_shader_ballot */
     bool has_nvx_memory_info;

@@ -1,14 +1,16 @@
 /* medium_grid_store_test.c: the grid media's store on the GPU
- * (trace/scene_upload.c: four floats a texel of one rgba32f buffer
- * texture, whose reach is 4 x GL_MAX_TEXTURE_BUFFER_SIZE floats), through
- * the shipped lookups (glsl/trace/medium/grid.glsl, driven by
- * glsl/trace/test/grid_probe.comp):
+ * (trace/scene_upload.c: four floats a texel of rgba32f buffer textures of
+ * GL_MAX_TEXTURE_BUFFER_SIZE texels, in pages where one is too few, as many
+ * as GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS leaves room for), through the
+ * shipped lookups (glsl/trace/medium/grid.glsl, driven by
+ * glsl/trace/test/grid_probe.comp); smaller drivers are simulated by
+ * lowering those limits in gpu->info:
  * - a scene whose grids do not fit fails at upload, before anything
  *   renders, at the first medium beyond the store, with its statement's
- *   location, its size and the limit (a smaller driver is simulated by
- *   lowering gpu->info.max_texture_buffer_texels);
- * - a store that fits exactly, its last texel padded, reads back every
- *   lane: lookups and majorants of the last medium equal the host's;
+ *   location, its size and the limit;
+ * - stores in one page (one float in its last texel), two full pages and
+ *   three pages (a medium across each boundary) read back every float:
+ *   lookups and majorants of both media equal the host's;
  * - a density grid of more than 2^26 samples (the old limit of nanovdb
  *   media; 270 MB) looks up as pbrt-v4's trilinear interpolation does at
  *   points whose samples lie on both sides of float 2^26 and at the grid's
@@ -104,79 +106,128 @@ static bool probe_points(struct cv_program *prog, unsigned m, const double *g, s
     return ok;
 }
 
-static void limits(struct cv_gpu *gpu, struct cv_scene *s)
+/* Uploads s with the driver's limits lowered to `texels` a buffer texture
+ * and room for `pages` textures (0: the driver's own); the upload's
+ * result, g uploaded where true. */
+static bool upload_as(struct cv_gpu *gpu, struct cv_scene *s, long long texels, int pages,
+                      struct cv_scene_gpu *g, struct cv_error *err)
+{
+    struct cv_gpu_info real = gpu->info;
+    if (texels)
+        gpu->info.max_texture_buffer_texels = texels;
+    if (pages)
+        gpu->info.max_compute_texture_units = CV_TEXUNIT_MEDIUM_GRID_PAGES + pages - 1;
+    *err = (struct cv_error){{0}};
+    *g = (struct cv_scene_gpu){0};
+    bool ok = cv_scene_upload(gpu, s, NULL, g, err);
+    gpu->info = real;
+    return ok;
+}
+
+/* Lookups (sigma_a: the density, sigma_a 1) and majorants of media a and
+ * b of the uploaded store g at random points and each one's last cell,
+ * against the host's floats, through the probe built with g's page
+ * defines. */
+static void check_media(struct cv_gpu *gpu, const struct cv_scene *s, const struct cv_scene_gpu *g,
+                        const char *what)
 {
     struct cv_error err = {{0}};
-    struct cv_scene_gpu g = {0};
-    long long real = gpu->info.max_texture_buffer_texels;
+    const char *defines[3] = {NULL, NULL, NULL};
+    int nd = 0;
+    if (g->grid_pages_define[0]) {
+        defines[nd++] = g->grid_pages_define;
+        defines[nd++] = g->grid_page_texels_define;
+    }
+    cv_scene_bind(g);
+    struct cv_program *prog = cv_program_get(gpu, "trace/test/grid_probe.comp", defines, &err);
+    if (!tap_ok(prog != NULL, "%s: grid_probe.comp compiles: %s", what, prog ? "" : err.msg))
+        return;
+    const unsigned R = CV_MAJORANT_RES;
+    size_t np = 2000;
+    double *pts = cv_xmalloc(np * 3 * sizeof(double));
+    float *out = cv_xmalloc(np * 64);
+    double worst = 0;
+    size_t wrong_maj = 0;
+    bool ran = true;
+    for (unsigned m = 1; m <= 2 && ran; m++) {
+        const int nm[3] = {m == 1 ? 2 : 3, m == 1 ? 2 : 3, m == 1 ? 2 : 3};
+        const CvMedium *md = &s->media[m];
+        for (size_t i = 0; i < np * 3; i++)
+            pts[i] = 0.001 + 0.998 * rnd();
+        pts[0] = pts[1] = pts[2] = 0.999;  /* the last cell */
+        ran = probe_points(prog, m, pts, np, out, &err);
+        for (size_t i = 0; ran && i < np; i++) {
+            const float *o = out + 16 * i;
+            double gg[3] = {o[12], o[13], o[14]};
+            double want = lookup(stored, s->medium_grids + md->grids.x, nm, gg);
+            worst = fmax(worst, fabs(o[0] - want) / (m == 1 ? 8 : 13.5));
+            int c[3];
+            for (int a = 0; a < 3; a++)
+                c[a] = (int)fmin(floor(gg[a] * R), R - 1);
+            wrong_maj += o[3] != s->medium_grids[md->res.w + ((size_t)c[2] * R + c[1]) * R + c[0]];
+        }
+    }
+    if (tap_ok(ran, "%s: probe runs %s", what, err.msg))
+        tap_ok(worst < 2e-6 && wrong_maj == 0,
+               "%s: every float reads back: lookups of both media within %.2g of the largest "
+               "value, %zu majorants differ", what, worst, wrong_maj);
+    free(pts);
+    free(out);
+}
+
+static void limits(struct cv_gpu *gpu, struct cv_scene *s)
+{
+    struct cv_error err;
+    struct cv_scene_gpu g;
     size_t n = s->n_medium_grids;
     tap_ok(n == FLOATS_A + FLOATS_B, "the scene's grid store holds %zu floats (%d expected)", n,
            FLOATS_A + FLOATS_B);
 
-    /* one texel short: medium b ends beyond the store */
-    gpu->info.max_texture_buffer_texels = (long long)(n + 3) / 4 - 1;
-    bool ok = cv_scene_upload(gpu, s, NULL, &g, &err);
+    /* two pages of 1028 texels, 8224 floats: medium b ends beyond */
+    bool ok = upload_as(gpu, s, 1028, 2, &g, &err);
     char want[256];
     snprintf(want, sizeof(want),
              "store.pbrt:4:1: medium \"b\": its grids take %d floats (0.0 MiB), floats %d to "
-             "%zu of the scene's grid store; this GPU's holds %lld floats",
-             FLOATS_B, FLOATS_A, n, 4 * gpu->info.max_texture_buffer_texels);
+             "%zu of the scene's grid store; this GPU's holds 8224 floats",
+             FLOATS_B, FLOATS_A, n);
     tap_ok(!ok && strstr(err.msg, want) &&
-               strstr(err.msg, "GL_MAX_TEXTURE_BUFFER_SIZE 2057 texels"),
-           "a store one texel short fails at the medium beyond it, with its size and the "
+               strstr(err.msg, "2 buffer textures of GL_MAX_TEXTURE_BUFFER_SIZE 1028 texels, "
+                               "GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS 17"),
+           "a store 5 floats short fails at the medium beyond it, with its size and the "
            "limit: %s", err.msg);
     cv_scene_gpu_release(&g);
 
-    /* medium a alone is too large */
-    gpu->info.max_texture_buffer_texels = 1000;
-    err = (struct cv_error){{0}};
-    ok = cv_scene_upload(gpu, s, NULL, &g, &err);
+    /* medium a alone is too large for 2 pages of 500 texels */
+    ok = upload_as(gpu, s, 500, 2, &g, &err);
     tap_ok(!ok && strstr(err.msg, "store.pbrt:2:1: medium \"a\": its grids take 4105 floats") &&
                strstr(err.msg, "holds 4000 floats"),
            "the first medium beyond the store is named: %s", err.msg);
     cv_scene_gpu_release(&g);
 
-    /* an exact fit, one float in the last texel */
-    gpu->info.max_texture_buffer_texels = (long long)(n + 3) / 4;
-    err = (struct cv_error){{0}};
-    ok = cv_scene_upload(gpu, s, NULL, &g, &err);
-    if (tap_ok(ok, "a store that fits exactly uploads: %s", err.msg)) {
-        cv_scene_bind(&g);
-        struct cv_program *prog = cv_program_get(gpu, "trace/test/grid_probe.comp", NULL, &err);
-        if (tap_ok(prog != NULL, "grid_probe.comp compiles: %s", prog ? "" : err.msg)) {
-            const CvMedium *mb = &s->media[2];
-            const int nb[3] = {3, 3, 3};
-            const unsigned R = CV_MAJORANT_RES;
-            size_t np = 2000;
-            double *pts = cv_xmalloc(np * 3 * sizeof(double));
-            float *out = cv_xmalloc(np * 64);
-            for (size_t i = 0; i < np * 3; i++)
-                pts[i] = 0.001 + 0.998 * rnd();
-            /* the last cell, whose majorant is the store's last float */
-            pts[0] = pts[1] = pts[2] = 0.999;
-            double worst = 0;
-            size_t wrong_maj = 0;
-            if (tap_ok(probe_points(prog, 2, pts, np, out, &err), "probe runs %s", err.msg)) {
-                for (size_t i = 0; i < np; i++) {
-                    const float *o = out + 16 * i;
-                    double gg[3] = {o[12], o[13], o[14]};
-                    double want_sa = lookup(stored, s->medium_grids + mb->grids.x, nb, gg);
-                    worst = fmax(worst, fabs(o[0] - want_sa) / 13.5);
-                    int c[3];
-                    for (int a = 0; a < 3; a++)
-                        c[a] = (int)fmin(floor(gg[a] * R), R - 1);
-                    wrong_maj += o[3] != s->medium_grids[mb->res.w + ((size_t)c[2] * R + c[1]) * R + c[0]];
-                }
-                tap_ok(worst < 2e-6 && wrong_maj == 0 && mb->res.w + R * R * R == n,
-                       "every lane reads back, the padded last texel too: lookups within %.2g of "
-                       "the largest value, %zu majorants differ", worst, wrong_maj);
-            }
-            free(pts);
-            free(out);
-        }
-    }
+    /* one texture, an exact fit with one float in its last texel */
+    ok = upload_as(gpu, s, (long long)(n + 3) / 4, 0, &g, &err);
+    if (tap_ok(ok && g.n_grid_pages == 1 && !g.grid_pages_define[0],
+               "a store that fits one texture exactly uploads as one page: %s", err.msg))
+        check_media(gpu, s, &g, "one page");
     cv_scene_gpu_release(&g);
-    gpu->info.max_texture_buffer_texels = real;
+
+    /* two pages that fit exactly: 2 x 1029 texels */
+    ok = upload_as(gpu, s, 1029, 2, &g, &err);
+    if (tap_ok(ok && g.n_grid_pages == 2 &&
+                   strcmp(g.grid_page_texels_define, "CV_MEDIUM_GRID_PAGE_TEXELS=1029u") == 0,
+               "a store of two full pages uploads: %s", err.msg))
+        check_media(gpu, s, &g, "two pages");
+    cv_scene_gpu_release(&g);
+
+    /* three pages of 1000, 1000 and 58 texels: medium a's majorants
+     * and medium b each cross a page */
+    ok = upload_as(gpu, s, 1000, 0, &g, &err);
+    if (tap_ok(ok && g.n_grid_pages == 3 &&
+                   strcmp(g.grid_pages_define, "CV_MEDIUM_GRID_PAGES=3") == 0,
+               "with the driver's texture units, a store of 2058 texels takes 3 pages of "
+               "1000: %s", err.msg))
+        check_media(gpu, s, &g, "three pages");
+    cv_scene_gpu_release(&g);
 }
 
 /* Medium a becomes a grid of nx x ny x nz samples (over 2^26) by hand: its
