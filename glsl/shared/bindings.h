@@ -62,9 +62,14 @@
 /* rgba32f: participating media (glsl/shared/medium.h), CV_MEDIUM_TEXELS a
  * medium, bound where the scene has media */
 #define CV_TEXUNIT_MEDIA 7
-/* r32f: grid media's samples and majorant grids (glsl/shared/medium.h),
- * bound where the scene has grid media */
+/* rgba32f, four floats a texel: grid media's samples and majorant grids
+ * (glsl/shared/medium.h), bound where the scene has grid media */
 #define CV_TEXUNIT_MEDIUM_GRIDS 8
+/* rgba32f: pages 1, 2 ... of a grid store that one buffer texture does not
+ * hold (trace/scene_upload.c), at units CV_TEXUNIT_MEDIUM_GRID_PAGES + page
+ * - 1 up to GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS; the units below stay the
+ * other tables' */
+#define CV_TEXUNIT_MEDIUM_GRID_PAGES 16
 
 /* 10 to 25: stage-private, named below per stage. */
 #define CV_BIND_STAGE0 10

@@ -71,6 +71,10 @@ static void fill_info(struct cv_gpu_info *info)
     GLint64 bytes = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
     info->max_ssbo_bytes = bytes;
+    bytes = 0;
+    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &bytes);
+    info->max_texture_buffer_texels = bytes;
+    glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &info->max_compute_texture_units);
     info->has_int64 = cv_gl_has_extension("GL_ARB_gpu_shader_int64");
     info->has_shader_ballot = cv_gl_has_extension("GL_KHR_shader_subgroup") ||
                               cv_gl_has_extension("GL_ARB_shader_ballot");

@@ -37,6 +37,13 @@ struct cv_gpu_info {
     int max_ssbo_bindings;
     int max_workgroup_invocations;
     long long max_ssbo_bytes;
+    /* GL_MAX_TEXTURE_BUFFER_SIZE: texels one buffer texture may span (the
+     * grid media's store reads it, trace/scene_upload.c; tests lower it to
+     * act as a smaller driver) */
+    long long max_texture_buffer_texels;
+    /* GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS: samplers one kernel may use (so
+     * how many pages the grid store may have) */
+    int max_compute_texture_units;
     bool has_int64;        /* GL_ARB_gpu_shader_int64 */
     bool has_shader_ballot;/* GL_KHR_shader_subgroup or ARB_shader_ballot */
     bool has_nvx_memory_info;

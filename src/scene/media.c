@@ -15,7 +15,10 @@
 /* pbrt-v4's HomogeneousMedium defaults. */
 #define DEFAULT_SIGMA 1.0
 
-static uint32_t add_medium(struct cv_builder *b, const CvMedium *m)
+/* Adds m, made by the statement at loc, with its source (scene.h:
+ * medium_sources) and the end of its floats in the grid buffer. */
+static uint32_t add_medium(struct cv_builder *b, const CvMedium *m, const char *name,
+                           const struct cv_loc *loc)
 {
     struct cv_scene *s = b->s;
     size_t n = s->n_media;
@@ -25,6 +28,12 @@ static uint32_t add_medium(struct cv_builder *b, const CvMedium *m)
         CV_PUSH(s->media, n, b->cap_media, vacuum);
     }
     CV_PUSH(s->media, n, b->cap_media, *m);
+    s->medium_sources = cv_xrealloc(s->medium_sources, n * sizeof(*s->medium_sources));
+    if (n == 2)
+        s->medium_sources[0] = (struct cv_medium_source){NULL, 0};
+    s->medium_sources[n - 1] = (struct cv_medium_source){
+        cv_xasprintf("%s:%d:%d: medium \"%s\"", loc->file, loc->line, loc->col, name),
+        s->n_medium_grids};
     s->n_media = (uint32_t)n;
     return (uint32_t)(n - 1);
 }
@@ -132,7 +141,7 @@ bool cv_b_medium(struct cv_builder *b, const char *name, struct cv_params *ps,
     if (b->s->n_media >= CV_MAX_MEDIA + 1)
         return cv_fail(err, "%s:%d:%d: medium \"%s\": more than %u media", loc->file, loc->line,
                        loc->col, name, CV_MAX_MEDIA);
-    uint32_t idx = add_medium(b, &m);
+    uint32_t idx = add_medium(b, &m, name, loc);
     cv_b_set_named(&b->media_named, &b->n_media_named, &b->cap_media_named, name, (int)idx);
     return true;
 }

@@ -65,17 +65,20 @@ static bool read_grid(struct cv_builder *b, struct cv_params *ps, const char *me
     return true;
 }
 
-/* The largest value of channel c of a grid of comps numbers per sample (a
- * grid of one is the same in every channel) over the samples
- * that a lookup in [lo, hi] of the unit cube reads: pbrt-v4's
+/* The largest value of each channel of a grid of comps numbers per sample
+ * (a grid of one is the same in every channel) over the samples that a
+ * lookup in [lo, hi] of the unit cube reads: pbrt-v4's
  * SampledGrid::MaxValue (samples at cell centres) or, with corners, a
  * nanovdb medium's lattice (samples from corner to corner). 1 for an
- * absent grid (its lookup is 1). */
-static double grid_max(const struct cv_scene *s, uint32_t off, const uint32_t res[3], int comps,
-                       int c, const double lo[3], const double hi[3], bool corners)
+ * absent grid (its lookup is 1). One pass over the samples for all three
+ * channels: a large lattice's majorants cost a read of each sample (about
+ * once: neighbouring cells share one plane). */
+static void grid_max(const struct cv_scene *s, uint32_t off, const uint32_t res[3], int comps,
+                     const double lo[3], const double hi[3], bool corners, double m[3])
 {
+    m[0] = m[1] = m[2] = off == CV_NO_GRID ? 1 : 0;
     if (off == CV_NO_GRID)
-        return 1;
+        return;
     int i0[3], i1[3];
     for (int a = 0; a < 3; a++) {
         int n = (int)res[a];
@@ -85,14 +88,18 @@ static double grid_max(const struct cv_scene *s, uint32_t off, const uint32_t re
         i0[a] = i0[a] < 0 ? 0 : i0[a];
         i1[a] = i1[a] > n - 1 ? n - 1 : i1[a];
     }
-    double m = 0;
+    /* values are finite and not negative (checked as read) */
+    float v[3] = {0, 0, 0};
     for (int z = i0[2]; z <= i1[2]; z++)
-        for (int y = i0[1]; y <= i1[1]; y++)
-            for (int x = i0[0]; x <= i1[0]; x++) {
-                size_t i = ((size_t)z * res[1] + (size_t)y) * res[0] + (size_t)x;
-                m = fmax(m, s->medium_grids[off + i * (size_t)comps + (size_t)(comps == 3 ? c : 0)]);
-            }
-    return m;
+        for (int y = i0[1]; y <= i1[1]; y++) {
+            const float *row = s->medium_grids + off +
+                               (((size_t)z * res[1] + (size_t)y) * res[0]) * (size_t)comps;
+            for (int x = i0[0]; x <= i1[0]; x++)
+                for (int c = 0; c < comps; c++)
+                    v[c] = row[(size_t)x * comps + c] > v[c] ? row[(size_t)x * comps + c] : v[c];
+        }
+    for (int c = 0; c < 3; c++)
+        m[c] = comps == 3 ? v[c] : v[0];
 }
 
 /* The majorant grid: per cell, the largest sigma_t of any channel that
@@ -112,10 +119,15 @@ static void majorants(struct cv_builder *b, CvMedium *m)
             for (uint32_t x = 0; x < R; x++) {
                 double lo[3] = {(double)x / R, (double)y / R, (double)z / R};
                 double hi[3] = {(double)(x + 1) / R, (double)(y + 1) / R, (double)(z + 1) / R};
-                double v = 0;
+                double ma[3], ms[3], v = 0;
+                grid_max(b->s, m->grids.x, res, comps, lo, hi, corners, ma);
+                /* uniformgrid and nanovdb: A and S are one grid */
+                if (m->grids.y == m->grids.x)
+                    memcpy(ms, ma, sizeof(ms));
+                else
+                    grid_max(b->s, m->grids.y, res, comps, lo, hi, corners, ms);
                 for (int c = 0; c < 3; c++)
-                    v = fmax(v, sa[c] * grid_max(b->s, m->grids.x, res, comps, c, lo, hi, corners) +
-                                    ss[c] * grid_max(b->s, m->grids.y, res, comps, c, lo, hi, corners));
+                    v = fmax(v, sa[c] * ma[c] + ss[c] * ms[c]);
                 maj[(z * R + y) * R + x] = v * (1 + 1e-5);
             }
     m->res.w = cv_b_medium_floats(b, maj, (size_t)R * R * R, 1);

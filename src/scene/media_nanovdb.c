@@ -11,11 +11,11 @@
 #include "scene/builder.h"
 #include "scene/nanovdb.h"
 
-/* A nanovdb medium's lattice may hold at most this many samples per grid
- * (a float each): the grids are resampled densely (below), so memory
- * grows with the volume of the active voxels' bounds, not with the
- * number of active voxels as in the file. */
-#define NANOVDB_MAX_SAMPLES (1u << 26)
+/* The grids are resampled densely (below), a float a sample, so memory
+ * grows with the volume of the active voxels' bounds, not with the number
+ * of active voxels as in the file. How many floats the GPU holds is
+ * checked at upload against the driver's limits (trace/scene_upload.c);
+ * here only the grid buffer's 32-bit offsets bound them. */
 
 /* Grid `grid` of a nanovdb medium's file, or absent (*found false) when
  * optional; errors at the statement. */
@@ -42,11 +42,12 @@ static bool nanovdb_lattice(struct cv_builder *b, const struct cv_nvdb_grid *g, 
                             uint32_t *at, struct cv_error *err)
 {
     size_t count = (size_t)n[0] * n[1] * n[2];
-    float *v = cv_xmalloc(count * sizeof(float));
-    cv_nvdb_fill(g, lo, n, v);
     struct cv_scene *s = b->s;
     size_t base = s->n_medium_grids;
+    /* filled in place: a large lattice is not held twice */
     s->medium_grids = cv_xgrow(s->medium_grids, &b->cap_medium_grids, base + count, sizeof(float));
+    float *v = s->medium_grids + base;
+    cv_nvdb_fill(g, lo, n, v);
     *top = -off * scale;
     for (size_t i = 0; i < count; i++) {
         if (!(v[i] >= 0) || !isfinite(v[i])) {
@@ -55,15 +56,12 @@ static bool nanovdb_lattice(struct cv_builder *b, const struct cv_nvdb_grid *g, 
                                    "(%d, %d, %d); values must be finite and not negative",
                               loc->file, loc->line, loc->col, medium, what, v[i],
                               lo[0] + (int)x, lo[1] + (int)y, lo[2] + (int)z);
-            free(v);
             return ok;
         }
-        s->medium_grids[base + i] = v[i];
         *top = fmax(*top, (v[i] - off) * scale);
     }
     s->n_medium_grids = base + count;
     *at = (uint32_t)base;
-    free(v);
     return true;
 }
 
@@ -162,17 +160,23 @@ bool cv_b_medium_nanovdb(struct cv_builder *b, const char *name, struct cv_param
                                  gname, tname);
         }
     }
-    /* in double: damaged bounds may span more than 2^32 voxels */
+    /* in double: damaged bounds may span more than 2^32 voxels; the
+     * lattices, the majorant grid and the blackbody table must end below
+     * CV_NO_GRID, the last offset a float index reaches */
     double span[3], samples = 1;
     for (int a = 0; a < 3; a++) {
         span[a] = (double)hi[a] - lo[a] + 1;
         samples *= span[a] + 1;
     }
-    if (ok && samples > NANOVDB_MAX_SAMPLES)
+    double floats = (double)b->s->n_medium_grids + samples * (has_t ? 2 : 1) +
+                    (double)CV_MAJORANT_RES * CV_MAJORANT_RES * CV_MAJORANT_RES +
+                    3.0 * CV_BLACKBODY_STEPS;
+    if (ok && floats > CV_NO_GRID)
         ok = cv_fail(err, "%s:%d:%d: medium \"%s\": the grids' bounds span %.0f x %.0f x %.0f "
-                          "voxels; Cavalry copies nanovdb grids densely, at most %u voxels "
-                          "with the plane beyond the bounds on each axis", loc->file, loc->line,
-                     loc->col, name, span[0], span[1], span[2], NANOVDB_MAX_SAMPLES);
+                          "voxels; Cavalry copies nanovdb grids densely, %.0f samples with the "
+                          "plane beyond the bounds on each axis, and a scene's grid media "
+                          "address at most %u floats", loc->file, loc->line, loc->col, name,
+                     span[0], span[1], span[2], samples, CV_NO_GRID);
     for (int a = 0; a < 3; a++)
         n[a] = ok ? (uint32_t)span[a] + 1 : 0;
     /* pbrt-v4 bounds the medium by the grids' stored world boxes; with a

@@ -33,6 +33,9 @@ static void scene_free(struct cv_scene *s)
     free(s->texels);
     free(s->lights);
     free(s->media);
+    for (uint32_t i = 0; i < s->n_media; i++)
+        free(s->medium_sources[i].at);
+    free(s->medium_sources);
     free(s->medium_grids);
     free(s->bssrdf);
     free(s->bssrdf_keys);

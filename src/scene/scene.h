@@ -134,6 +134,13 @@ struct cv_scene {
     uint32_t camera_medium;          /* the medium the camera sits in (0: vacuum) */
     float *medium_grids;             /* grid media's samples and majorants (medium.h) */
     size_t n_medium_grids;           /* in floats; 0 without grid media */
+    /* Per medium, parallel to media: "file:line:col: medium \"name\"" of its
+     * MakeNamedMedium (NULL for vacuum, number 0) and where its floats end
+     * in medium_grids, for errors about the grid store's size. */
+    struct cv_medium_source {
+        char *at;
+        size_t grid_end;
+    } *medium_sources;
 
     /* pbrt-v4's BSSRDF tables of the subsurface materials
      * (glsl/shared/bssrdf.h: CV_BSSRDF_FLOATS each), one per (g, eta):

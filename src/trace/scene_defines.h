@@ -51,6 +51,9 @@
     X("CV_MEDIA", ops->media && gs->has_media) \
     /* grid media's lookups and majorant walk (glsl/trace/medium/grid.glsl) */ \
     X("CV_MEDIUM_GRIDS", ops->media && gs->has_medium_grids) \
+    /* a grid store in pages (trace/scene_upload.h) */ \
+    X(gs->grid_pages_define, ops->media && gs->grid_pages_define[0]) \
+    X(gs->grid_page_texels_define, ops->media && gs->grid_page_texels_define[0]) \
     /* the cloud's noise (glsl/trace/medium/cloud.glsl) */ \
     X("CV_MEDIUM_CLOUDS", ops->media && gs->has_medium_cloud)
 

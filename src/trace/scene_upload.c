@@ -1,4 +1,5 @@
 /* scene_upload.c: see scene_upload.h. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -111,6 +112,84 @@ static bool up_texture(struct cv_gpu *gpu, GLuint *b, GLuint *tex, GLenum format
 {
     return up(gpu, b, n * texel_bytes, data, label, err) &&
            (*tex = cv_buffer_texture(*b, format, n, err)) != 0;
+}
+
+/* Page k of the grid store: texels [k x page, k x page + texels) as a
+ * buffer and its rgba32f texture, what lies beyond the floats zero. */
+static bool up_grid_page(const struct cv_scene *s, size_t page, size_t k, size_t texels,
+                         GLuint *buf, GLuint *tex, struct cv_error *err)
+{
+    size_t first = k * page * 4, n = s->n_medium_grids - first;
+    n = n < texels * 4 ? n : texels * 4;
+    *buf = cv_buffer_create_uninit(texels * 16, "scene medium grids", err);
+    if (!*buf)
+        return false;
+    const float zero[3] = {0, 0, 0};
+    glNamedBufferSubData(*buf, 0, (GLsizeiptr)(n * sizeof(float)), s->medium_grids + first);
+    if (texels * 4 > n)
+        glNamedBufferSubData(*buf, (GLintptr)(n * sizeof(float)),
+                             (GLsizeiptr)((texels * 4 - n) * sizeof(float)), zero);
+    if (!cv_gl_check(err, "uploading %zu floats of grid media", n))
+        return false;
+    *tex = cv_buffer_texture(*buf, GL_RGBA32F, texels, err);
+    return *tex != 0;
+}
+
+/* The grid media's floats as rgba32f buffer textures, four a texel
+ * (glsl/trace/medium/grid.glsl), the last texel padded with zeros: one
+ * texture holds GL_MAX_TEXTURE_BUFFER_SIZE texels, and where that is too
+ * few the store goes on in pages of that many, one texture unit each from
+ * CV_TEXUNIT_MEDIUM_GRID_PAGES up to GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS. A
+ * scene beyond that fails here, before any rendering, at the first medium
+ * whose floats do not fit, with its statement's location. The buffers are
+ * never storage blocks, so the storage block size does not bound them. */
+static bool up_medium_grids(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_scene_gpu *g,
+                            struct cv_error *err)
+{
+    size_t n = s->n_medium_grids, texels = (n + 3) / 4;
+    long long max = gpu->info.max_texture_buffer_texels;
+    size_t page = max > 0 ? (size_t)max : texels;
+    int units = gpu->info.max_compute_texture_units - CV_TEXUNIT_MEDIUM_GRID_PAGES + 1;
+    size_t max_pages = units > 1 ? (size_t)units : 1, pages = (texels + page - 1) / page;
+    if (pages > max_pages) {
+        /* the first medium that ends beyond the store (a scene made by
+         * hand has no sources) */
+        size_t limit = max_pages * page * 4, start = 0, end = n;
+        const char *at = "grid media";
+        for (uint32_t i = 1; s->medium_sources && i < s->n_media; i++) {
+            if (s->medium_sources[i].grid_end > limit) {
+                at = s->medium_sources[i].at;
+                end = s->medium_sources[i].grid_end;
+                break;
+            }
+            start = s->medium_sources[i].grid_end;
+        }
+        return cv_fail(err, "%s: its grids take %zu floats (%.1f MiB), floats %zu to %zu of the "
+                            "scene's grid store; this GPU's holds %zu floats (%.1f MiB: four a "
+                            "texel of %zu buffer textures of GL_MAX_TEXTURE_BUFFER_SIZE %zu "
+                            "texels, GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS %d)", at, end - start,
+                       (end - start) * 4.0 / (1024 * 1024), start, end, limit,
+                       limit * 4.0 / (1024 * 1024), max_pages, page,
+                       gpu->info.max_compute_texture_units);
+    }
+    if (!up_grid_page(s, page, 0, texels < page ? texels : page, &g->medium_grids,
+                      &g->medium_grids_tex, err))
+        return false;
+    g->n_grid_pages = (uint32_t)pages;
+    if (pages == 1)
+        return true;
+    g->grid_pages = cv_xcalloc(pages - 1, sizeof(GLuint));
+    g->grid_pages_tex = cv_xcalloc(pages - 1, sizeof(GLuint));
+    for (size_t k = 1; k < pages; k++) {
+        size_t t = texels - k * page < page ? texels - k * page : page;
+        if (!up_grid_page(s, page, k, t, &g->grid_pages[k - 1], &g->grid_pages_tex[k - 1], err))
+            return false;
+    }
+    snprintf(g->grid_pages_define, sizeof(g->grid_pages_define), "CV_MEDIUM_GRID_PAGES=%zu",
+             pages);
+    snprintf(g->grid_page_texels_define, sizeof(g->grid_page_texels_define),
+             "CV_MEDIUM_GRID_PAGE_TEXELS=%zuu", page);
+    return true;
 }
 
 /* The light-selection CDF of n lights (one texel at least) as a buffer
@@ -239,9 +318,7 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         (s->n_media == 0 ||
          up_texture(gpu, &g.media, &g.media_tex, GL_RGBA32F,
                     (size_t)s->n_media * CV_MEDIUM_TEXELS, 16, s->media, "scene media", err)) &&
-        (s->n_medium_grids == 0 ||
-         up_texture(gpu, &g.medium_grids, &g.medium_grids_tex, GL_R32F, s->n_medium_grids,
-                    sizeof(float), s->medium_grids, "scene medium grids", err));
+        (s->n_medium_grids == 0 || up_medium_grids(gpu, s, &g, err));
     free(cdf);
     free(lights);
     free(env);
@@ -328,6 +405,8 @@ void cv_scene_bind(const struct cv_scene_gpu *g)
         glBindTextureUnit(CV_TEXUNIT_MEDIA, g->media_tex);
     if (g->medium_grids_tex)
         glBindTextureUnit(CV_TEXUNIT_MEDIUM_GRIDS, g->medium_grids_tex);
+    for (uint32_t k = 1; k < g->n_grid_pages; k++)
+        glBindTextureUnit(CV_TEXUNIT_MEDIUM_GRID_PAGES + k - 1, g->grid_pages_tex[k - 1]);
     if (g->motion_tex)
         glBindTextureUnit(CV_TEXUNIT_MOTION, g->motion_tex);
     if (g->bssrdf_tex)
@@ -366,6 +445,14 @@ void cv_scene_gpu_release(struct cv_scene_gpu *g)
     for (size_t i = 0; i < CV_ARRAY_SIZE(tex); i++)
         if (tex[i])
             glDeleteTextures(1, &tex[i]);
+    for (uint32_t k = 1; k < g->n_grid_pages; k++) {
+        if (g->grid_pages_tex && g->grid_pages_tex[k - 1])
+            glDeleteTextures(1, &g->grid_pages_tex[k - 1]);
+        if (g->grid_pages)
+            cv_buffer_destroy(&g->grid_pages[k - 1]);
+    }
+    free(g->grid_pages);
+    free(g->grid_pages_tex);
     bool had_bvh = g->bvh != NULL;
     cv_bvh_destroy(&g->bvh);
     if (had_bvh && g->gpu)

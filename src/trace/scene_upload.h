@@ -27,7 +27,15 @@ struct cv_scene_gpu {
     GLuint media_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_MEDIA) */
     bool has_media;   /* the scene names participating media */
     GLuint medium_grids; /* float[]: grid media's samples and majorants, or 0 */
-    GLuint medium_grids_tex; /* that buffer as an r32f buffer texture (CV_TEXUNIT_MEDIUM_GRIDS) */
+    GLuint medium_grids_tex; /* that buffer as an rgba32f buffer texture (CV_TEXUNIT_MEDIUM_GRIDS) */
+    /* Where one buffer texture does not hold the grid store: its pages
+     * 1 .. n - 1 (n_grid_pages of them in all), each a buffer and its
+     * texture (CV_TEXUNIT_MEDIUM_GRID_PAGES up), medium_grids being page 0;
+     * and the defines that the kernels then need ("CV_MEDIUM_GRID_PAGES=n",
+     * "CV_MEDIUM_GRID_PAGE_TEXELS=t"; empty strings with one page). */
+    uint32_t n_grid_pages;
+    GLuint *grid_pages, *grid_pages_tex;
+    char grid_pages_define[40], grid_page_texels_define[48];
     bool has_medium_grids; /* some medium is a grid (CV_MEDIUM_GRIDS) */
     bool has_medium_cloud; /* some medium is a cloud (CV_MEDIUM_CLOUDS; its data is in the grids) */
     bool has_env;     /* an infinite light exists */

@@ -284,8 +284,33 @@ int main(void)
         int32_t far = -2000000000;
         memcpy(bad + grid0 + 672 + 64, &far, 4);
         th_write("huge.nvdb", bad, raw_len);
-        fails("huge.nvdb", "", "Cavalry copies nanovdb grids densely, at most 67108864 voxels",
+        fails("huge.nvdb", "", "and a scene's grid media address at most 4294967295 floats",
               "bounds over 2^32 voxels");
+        /* bounds damaged to span more than 2^26 samples (the old limit
+         * of a nanovdb medium): the lattice is copied whole, its voxels
+         * in place; the GPU's limit is checked at upload
+         * (tests/trace/medium_grid_store_test.c) */
+        memcpy(bad, raw, raw_len);
+        int32_t wide = -680000;
+        memcpy(bad + grid0 + 672 + 64, &wide, 4);
+        th_write("wide.nvdb", bad, raw_len);
+        {
+            char text[1024];
+            write_scene_with("wide.nvdb", " \"string temperaturename\" \"none\"", text,
+                             sizeof(text));
+            struct cv_scene *s = th_load(text, false, &err);
+            const CvMedium *m = s ? &s->media[1] : NULL;
+            size_t nx = 14 + 1 - (size_t)wide + 1;
+            int x = 5 - wide, y = 4, z = 3;
+            tap_ok(m && m->res.x == nx && m->res.y == 11 && m->res.z == 9 &&
+                       (double)nx * 11 * 9 > (1u << 26) &&
+                       fabs(s->medium_grids[m->grids.x + ((size_t)z * 11 + y) * nx + x] -
+                            density_of(5, 5 + y, 2 + z)) < 6e-5 &&
+                       s->medium_grids[m->grids.x + ((size_t)z * 11 + y) * nx + 7] == 0,
+                   "bounds of %zu x 11 x 9 samples, over 2^26, are copied whole, the voxels in "
+                   "place: %s", nx, err.msg);
+            cv_scene_destroy(&s);
+        }
         /* codec 7 */
         memcpy(bad, raw, raw_len);
         bad[14] = 7;

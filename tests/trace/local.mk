@@ -142,3 +142,7 @@ EXTRA_DIST += tests/data/trace/all_features.pbrt
 check_PROGRAMS += tests/trace/bsdf_conductor_fresnel_test
 TESTS += tests/trace/bsdf_conductor_fresnel_test
 tests_trace_bsdf_conductor_fresnel_test_LDADD = $(CV_LIBS)
+
+check_PROGRAMS += tests/trace/medium_grid_store_test
+TESTS += tests/trace/medium_grid_store_test
+tests_trace_medium_grid_store_test_LDADD = $(CV_LIBS)

@@ -18,10 +18,32 @@
 #ifndef CV_TRACE_MEDIUM_GRID_GLSL
 #define CV_TRACE_MEDIUM_GRID_GLSL
 
-// The grid buffer as a buffer texture (CV_TEXUNIT_MEDIUM_GRIDS), as the
-// media table (medium.glsl): float i of it.
+// The grid buffer as a buffer texture (CV_TEXUNIT_MEDIUM_GRIDS), four
+// floats a texel so that it reaches four times the driver's texel limit
+// (GL_MAX_TEXTURE_BUFFER_SIZE; trace/scene_upload.c): float i of it.
+// Beyond that limit the store goes on in pages of CV_MEDIUM_GRID_PAGE_TEXELS
+// texels, pages 1 .. CV_MEDIUM_GRID_PAGES - 1 at units
+// CV_TEXUNIT_MEDIUM_GRID_PAGES up (the loop's index is the same in every
+// invocation, as GLSL asks of an index into an array of samplers).
 layout(binding = CV_TEXUNIT_MEDIUM_GRIDS) uniform samplerBuffer cv_medium_grid_tex;
-float cv_grid_float(uint i) { return texelFetch(cv_medium_grid_tex, int(i)).x; }
+#ifdef CV_MEDIUM_GRID_PAGES
+layout(binding = CV_TEXUNIT_MEDIUM_GRID_PAGES) uniform samplerBuffer
+    cv_medium_grid_pages[CV_MEDIUM_GRID_PAGES - 1];
+float cv_grid_float(uint i)
+{
+    uint t = i >> 2u, page = t / CV_MEDIUM_GRID_PAGE_TEXELS;
+    int at = int(t - page * CV_MEDIUM_GRID_PAGE_TEXELS);
+    vec4 v = vec4(0.0);
+    if (page == 0u)
+        v = texelFetch(cv_medium_grid_tex, at);
+    for (uint k = 1u; k < uint(CV_MEDIUM_GRID_PAGES); k++)
+        if (page == k)
+            v = texelFetch(cv_medium_grid_pages[k - 1u], at);
+    return v[i & 3u];
+}
+#else
+float cv_grid_float(uint i) { return texelFetch(cv_medium_grid_tex, int(i >> 2u))[i & 3u]; }
+#endif
 
 #ifdef CV_MEDIUM_CLOUDS
 #include "cloud.glsl"
