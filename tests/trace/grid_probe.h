@@ -23,6 +23,30 @@
 #include "tests/gpu/probe.h"
 #include "tests/tap.h"
 
+/* pbrt-v4's SampledGrid::Lookup at g in the unit cube: trilinear over the
+ * n[0] x n[1] x n[2] samples that value(ctx, x, y, z) gives, samples past
+ * the bounds 0 (the tests' reference for the GPU's grid lookups). */
+static inline double grid_probe_ref_lookup(double (*value)(const void *ctx, int x, int y, int z),
+                                           const void *ctx, const int n[3], const double g[3])
+{
+    double s[3], d[3];
+    int i[3];
+    for (int a = 0; a < 3; a++) {
+        s[a] = g[a] * n[a] - 0.5;
+        i[a] = (int)floor(s[a]);
+        d[a] = s[a] - i[a];
+    }
+    double r = 0;
+    for (int k = 0; k < 8; k++) {
+        int x = i[0] + (k & 1), y = i[1] + ((k >> 1) & 1), z = i[2] + (k >> 2);
+        double w = ((k & 1) ? d[0] : 1 - d[0]) * (((k >> 1) & 1) ? d[1] : 1 - d[1]) *
+                   ((k >> 2) ? d[2] : 1 - d[2]);
+        if (x >= 0 && y >= 0 && z >= 0 && x < n[0] && y < n[1] && z < n[2])
+            r += w * value(ctx, x, y, z);
+    }
+    return r;
+}
+
 /* Runs prog (grid_probe.comp) in mode on medium for count invocations,
  * samples estimates each where the mode tracks; n_in4 vec4s in, n_out4
  * read back into out. */

@@ -58,27 +58,26 @@ static double rnd(void)
     return (lcg >> 8) / 16777216.0;
 }
 
+/* A density grid's samples, value(v, n, x, y, z) (grid_probe_ref_lookup). */
+struct density {
+    double (*value)(const float *, const int *, int, int, int);
+    const float *v;
+    const int *n;
+};
+
+static double density_at(const void *ctx, int x, int y, int z)
+{
+    const struct density *d = ctx;
+    return d->value(d->v, d->n, x, y, z);
+}
+
 /* pbrt-v4's SampledGrid::Lookup at g in the unit cube, of a density grid of
  * n samples given by value(x, y, z). */
 static double lookup(double (*value)(const float *, const int *, int, int, int), const float *v,
                      const int n[3], const double g[3])
 {
-    double s[3], d[3];
-    int i[3];
-    for (int a = 0; a < 3; a++) {
-        s[a] = g[a] * n[a] - 0.5;
-        i[a] = (int)floor(s[a]);
-        d[a] = s[a] - i[a];
-    }
-    double r = 0;
-    for (int k = 0; k < 8; k++) {
-        int x = i[0] + (k & 1), y = i[1] + ((k >> 1) & 1), z = i[2] + (k >> 2);
-        double w = ((k & 1) ? d[0] : 1 - d[0]) * (((k >> 1) & 1) ? d[1] : 1 - d[1]) *
-                   ((k >> 2) ? d[2] : 1 - d[2]);
-        if (x >= 0 && y >= 0 && z >= 0 && x < n[0] && y < n[1] && z < n[2])
-            r += w * value(v, n, x, y, z);
-    }
-    return r;
+    struct density d = {value, v, n};
+    return grid_probe_ref_lookup(density_at, &d, n, g);
 }
 
 static double stored(const float *v, const int *n, int x, int y, int z)

@@ -85,28 +85,26 @@ static void append_grid(char **text, size_t *len, const char *type, const char *
     append(text, len, " ]\n");
 }
 
-/* pbrt-v4's SampledGrid::Lookup of channel c at g (double). */
+/* One channel of a grid case's samples (grid_probe_ref_lookup). */
+struct channel {
+    const double *v;
+    const int *n;
+    int comps, c;
+};
+
+static double channel_at(const void *ctx, int x, int y, int z)
+{
+    const struct channel *ch = ctx;
+    return ch->v[(((size_t)z * ch->n[1] + y) * ch->n[0] + x) * ch->comps + (ch->comps == 3 ? ch->c : 0)];
+}
+
+/* pbrt-v4's SampledGrid::Lookup of channel c at g (double); 1 without a grid. */
 static double lookup(const double *v, const int n[3], int comps, int c, const double g[3])
 {
     if (!v)
         return 1;
-    double s[3], d[3];
-    int i[3];
-    for (int a = 0; a < 3; a++) {
-        s[a] = g[a] * n[a] - 0.5;
-        i[a] = (int)floor(s[a]);
-        d[a] = s[a] - i[a];
-    }
-    double r = 0;
-    for (int k = 0; k < 8; k++) {
-        int x = i[0] + (k & 1), y = i[1] + ((k >> 1) & 1), z = i[2] + (k >> 2);
-        double w = ((k & 1) ? d[0] : 1 - d[0]) * (((k >> 1) & 1) ? d[1] : 1 - d[1]) *
-                   ((k >> 2) ? d[2] : 1 - d[2]);
-        if (x < 0 || y < 0 || z < 0 || x >= n[0] || y >= n[1] || z >= n[2])
-            continue;
-        r += w * v[(((size_t)z * n[1] + y) * n[0] + x) * comps + (comps == 3 ? c : 0)];
-    }
-    return r;
+    struct channel ch = {v, n, comps, c};
+    return grid_probe_ref_lookup(channel_at, &ch, n, g);
 }
 
 static void props(const struct grid_case *k, const double g[3], double sa[3], double ss[3],
