@@ -554,10 +554,10 @@ bool cv_bsdf_walks(CvBsdf b)
 #endif
 }
 
-// Answers q (bsdf_query.glsl): every BSDF function a vertex needs, from
-// this one call site, so that each lobe's code is inlined once per kernel
-// (the coated walk's once per estimator: layered.glsl). The steps run in one loop (bit k of
-// `todo`: 0 f at wi0, 1 pdf at wi0, 2 the sample, 3 the pdf at the
+// Answers q (bsdf_query.glsl): every BSDF function a vertex needs, from this
+// one call site, so that each lobe's code is inlined once per kernel (the
+// coated walk's once per estimator: layered.glsl). The steps run in one loop
+// (bit k of `todo`: 0 f at wi0, 1 pdf at wi0, 2 the sample, 3 the pdf at the
 // sample's direction, which restates a coated walk's proportional pdf as
 // pbrt-v4's LayeredBxDF::Sample does, 4 f at wi1, 5 pdf at wi1).
 void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)

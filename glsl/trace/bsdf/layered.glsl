@@ -268,15 +268,16 @@ float cv_layered_delta_prob(CvLayered L, vec3 wo)
 // The layered BSDF's three estimators as one walk, so that a kernel holds
 // one copy of the interfaces' code per mode however many estimates it asks
 // for (GLSL compilers inline every call: bsdf.glsl's cv_bsdf_query calls
-// this through cv_layered_estimate from one site). mode CV_LAY_MODE_F returns f(wo, wi) in f (0 where either
-// direction is below, since the base transmits nothing); CV_LAY_MODE_PDF
-// the pdf estimate in pdf; CV_LAY_MODE_WALK one walk out of the layers in
-// s (false: the walk died), whose s.pdf is proportional to the density
-// only (pbrt-v4's pdfIsProportional): a caller restates a non-delta sample
-// with the pdf estimate. One iteration of the loop makes at most one
-// event (an interface sample, or a scattering in the slab) and evaluates
-// at most one connection through the coat, the one the event before left,
-// in the same order of random numbers as pbrt-v4's three separate loops.
+// this through cv_layered_estimate from one site). mode CV_LAY_MODE_F
+// returns f(wo, wi) in f (0 where either direction is below, since the base
+// transmits nothing); CV_LAY_MODE_PDF the pdf estimate in pdf;
+// CV_LAY_MODE_WALK one walk out of the layers in s (false: the walk died),
+// whose s.pdf is proportional to the density only (pbrt-v4's
+// pdfIsProportional): a caller restates a non-delta sample with the pdf
+// estimate. One iteration of the loop makes at most one event (an interface
+// sample, or a scattering in the slab) and evaluates at most one connection
+// through the coat, the one the event before left, in the same order of
+// random numbers as pbrt-v4's three separate loops.
 bool cv_layered_run(CvLayered L, uint mode, vec3 wo, vec3 wi, float uc0, vec2 u0, out vec3 f,
                     out float pdf, out CvBsdfSample s)
 {
