@@ -136,6 +136,44 @@ static const struct cv_motion *motion_of(const struct cv_scene *s, uint32_t prim
  * TransformTimes 0 1, and a static floor. One sphere (16128 triangles):
  * llvmpipe ends a loop after 65535 turns, which the brute force over
  * several would pass. */
+/* Ray i of a batch for trace(): origin o, direction d; every fifth ray
+ * starts past 0 and every seventh ends short, so the walks' t ranges are
+ * checked too. */
+static void put_ray(float *rays, uint32_t i, const double o[3], const double d[3])
+{
+    float *r = rays + 8 * i;
+    for (int k = 0; k < 3; k++) {
+        r[k] = (float)o[k];
+        r[4 + k] = (float)d[k];
+    }
+    r[3] = i % 5 == 0 ? 0.3f : 0.0f;
+    r[7] = i % 7 == 0 ? 0.6f : 1e30f;
+}
+
+/* How trace()'s walks compared with its brute force over a batch. */
+struct agreement {
+    uint32_t diff;       /* closest hits that differ */
+    uint32_t any_diff;   /* any-hit answers that differ */
+    uint32_t any_wrong;  /* any-hit answers against the closest hit's */
+    uint32_t total;
+};
+
+/* Counts ray i's record h (trace(): walk, brute force, any-hit pair). */
+static void agree(struct agreement *a, const uint32_t *h, float time, uint32_t i)
+{
+    a->total++;
+    if (memcmp(h, h + 4, 16) != 0) {
+        if (a->diff < 3)
+            tap_diag("time %g ray %u: walk t %.9g prim %x, brute t %.9g prim %x", time, i, fbits(h[0]), h[1],
+                     fbits(h[4]), h[5]);
+        a->diff++;
+    }
+    if (h[8] != h[9])
+        a->any_diff++;
+    if (h[8] != (h[5] != 0xffffffffu))
+        a->any_wrong++;
+}
+
 static struct cv_scene *make_scene(double centres[][3], int *n_centres)
 {
     size_t cap = 1 << 16, len = 0;
@@ -184,7 +222,8 @@ static void test_walk(struct cv_gpu *gpu)
     static const float times[] = {0.0f, 0.3f, 0.5f, 0.77f, 1.0f, -0.5f, 1.5f};
     uint32_t n = 1024;
     float *rays = calloc((size_t)n * 8, sizeof(float));
-    uint32_t diff = 0, any_diff = 0, any_wrong = 0, hits = 0, off_plane = 0, total = 0;
+    struct agreement a = {0};
+    uint32_t hits = 0, off_plane = 0;
     double worst = 0;
     for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
         float time = times[ti];
@@ -202,13 +241,7 @@ static void test_walk(struct cv_gpu *gpu)
                 for (int k = 0; k < 3; k++)
                     d[k] = rnd() - 0.5;
             }
-            float *r = rays + 8 * i;
-            for (int k = 0; k < 3; k++) {
-                r[k] = (float)o[k];
-                r[4 + k] = (float)d[k];
-            }
-            r[3] = i % 5 == 0 ? 0.3f : 0.0f;
-            r[7] = i % 7 == 0 ? 0.6f : 1e30f;
+            put_ray(rays, i, o, d);
         }
         struct cv_error err = {{0}};
         uint32_t *out = trace(gpu, s, rays, n, time, &err);
@@ -216,17 +249,7 @@ static void test_walk(struct cv_gpu *gpu)
             break;
         for (uint32_t i = 0; i < n; i++) {
             const uint32_t *w = out + 12 * i;
-            total++;
-            if (memcmp(w, w + 4, 16) != 0) {
-                if (diff < 3)
-                    tap_diag("time %g ray %u: walk t %.9g prim %u, brute t %.9g prim %u", time, i, fbits(w[0]),
-                             w[1], fbits(w[4]), w[5]);
-                diff++;
-            }
-            if (w[8] != w[9])
-                any_diff++;
-            if (w[8] != (w[5] != 0xffffffffu))
-                any_wrong++;
+            agree(&a, w, time, i);
             if (w[1] == 0xffffffffu)
                 continue;
             hits++;
@@ -257,12 +280,12 @@ static void test_walk(struct cv_gpu *gpu)
         }
         free(out);
     }
-    tap_ok(hits > total / 4, "rays hit the moving shapes (%u of %u)", hits, total);
-    tap_ok(diff == 0, "closest hit through the trees equals the brute force at 7 times (%u of %u differ)", diff,
-           total);
-    tap_ok(any_diff == 0 && any_wrong == 0,
+    tap_ok(hits > a.total / 4, "rays hit the moving shapes (%u of %u)", hits, a.total);
+    tap_ok(a.diff == 0, "closest hit through the trees equals the brute force at 7 times (%u of %u differ)", a.diff,
+           a.total);
+    tap_ok(a.any_diff == 0 && a.any_wrong == 0,
            "any-hit through the trees equals the brute force (%u differ) and the closest query (%u differ)",
-           any_diff, any_wrong);
+           a.any_diff, a.any_wrong);
     tap_ok(off_plane == 0, "every hit lies where pbrt-v4's interpolation puts its triangle (%u off, worst %.2g)",
            off_plane, worst);
     free(rays);
@@ -370,7 +393,8 @@ static void test_curves(struct cv_gpu *gpu)
     static const float times[] = {0.0f, 0.25f, 0.5f, 0.9f, 1.0f, -1.0f, 2.0f};
     uint32_t n = 1024;
     float *rays = calloc((size_t)n * 8, sizeof(float));
-    uint32_t diff = 0, any_diff = 0, any_wrong = 0, curve_hits = 0, off = 0, total = 0;
+    struct agreement a = {0};
+    uint32_t curve_hits = 0, off = 0;
     double worst = 0;
     for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
         float time = times[ti];
@@ -385,30 +409,14 @@ static void test_curves(struct cv_gpu *gpu)
             apply(mt, x, w);
             for (int k = 0; k < 3; k++)
                 d[k] = i % 4 == 3 ? rnd() - 0.5 : w[k] + (rnd() - 0.5) * 0.3 - o[k];
-            float *r = rays + 8 * i;
-            for (int k = 0; k < 3; k++) {
-                r[k] = (float)o[k];
-                r[4 + k] = (float)d[k];
-            }
-            r[3] = i % 5 == 0 ? 0.3f : 0.0f;
-            r[7] = i % 7 == 0 ? 0.6f : 1e30f;
+            put_ray(rays, i, o, d);
         }
         uint32_t *out = trace(gpu, s, rays, n, time, &err);
         if (!tap_ok(out != NULL, "GPU run with curves at time %g: %s", time, err.msg))
             break;
         for (uint32_t i = 0; i < n; i++) {
             const uint32_t *h = out + 12 * i;
-            total++;
-            if (memcmp(h, h + 4, 16) != 0) {
-                if (diff < 3)
-                    tap_diag("time %g ray %u: walk t %.9g prim %x, brute t %.9g prim %x", time, i, fbits(h[0]), h[1],
-                             fbits(h[4]), h[5]);
-                diff++;
-            }
-            if (h[8] != h[9])
-                any_diff++;
-            if (h[8] != (h[5] != 0xffffffffu))
-                any_wrong++;
+            agree(&a, h, time, i);
             if (h[1] == 0xffffffffu || (h[1] & CV_PRIM_CURVE) == 0)
                 continue;
             curve_hits++;
@@ -448,12 +456,12 @@ static void test_curves(struct cv_gpu *gpu)
         }
         free(out);
     }
-    tap_ok(curve_hits > total / 8, "rays hit the moving curves (%u of %u)", curve_hits, total);
-    tap_ok(diff == 0, "closest hit through the trees equals the brute force, curves too (%u of %u differ)", diff,
-           total);
-    tap_ok(any_diff == 0 && any_wrong == 0,
-           "any-hit with curves equals the brute force (%u differ) and the closest query (%u differ)", any_diff,
-           any_wrong);
+    tap_ok(curve_hits > a.total / 8, "rays hit the moving curves (%u of %u)", curve_hits, a.total);
+    tap_ok(a.diff == 0, "closest hit through the trees equals the brute force, curves too (%u of %u differ)", a.diff,
+           a.total);
+    tap_ok(a.any_diff == 0 && a.any_wrong == 0,
+           "any-hit with curves equals the brute force (%u differ) and the closest query (%u differ)", a.any_diff,
+           a.any_wrong);
     tap_ok(off == 0, "every curve hit lies within half the width of its curve where pbrt-v4's interpolation puts "
            "it (%u off; worst %.3g of the half width)", off, worst);
     free(c4);
