@@ -9,6 +9,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "gpu/context_platform.h"
+#include "gpu/program_disk_cache.h"
 
 #define CV_EGL_KIND_DEVICE 0
 #define CV_EGL_KIND_SURFACELESS 1
@@ -48,6 +49,9 @@ static int query_devices(EGLDeviceEXT *devices, int max)
 
 int cv_egl_candidates(struct cv_gpu_candidate *out, int max)
 {
+    /* The first EGL call of every path that opens a device: the driver
+     * reads its cache's place when loaded. */
+    cv_program_disk_cache_place_driver_cache();
     EGLDeviceEXT devices[CV_EGL_MAX_DEVICES];
     int n_dev = query_devices(devices, CV_EGL_MAX_DEVICES);
     int n = 0;

@@ -52,6 +52,25 @@ char *cv_program_disk_cache_dir(void)
     return NULL;
 }
 
+void cv_program_disk_cache_place_driver_cache(void)
+{
+    if (getenv("__GL_SHADER_DISK_CACHE_PATH"))
+        return;
+    char *dir = cv_program_disk_cache_dir();
+    if (!dir)
+        return;
+    char *sub = cv_path_join(dir, "driver");
+    char *probe = cv_path_join(sub, "x");
+    struct cv_error err = {{0}};
+    if (cv_mkdir_parents(probe, &err))
+        setenv("__GL_SHADER_DISK_CACHE_PATH", sub, 0);
+    else
+        cv_debug("program cache: %s unusable for the driver's cache (%s)", sub, err.msg);
+    free(probe);
+    free(sub);
+    free(dir);
+}
+
 struct cv_program_disk_cache *cv_program_disk_cache_open(const struct cv_gpu_info *info)
 {
     struct cv_program_disk_cache *dc = cv_xcalloc(1, sizeof(*dc));

@@ -24,6 +24,14 @@
  * allocated; the folder is not created here. */
 char *cv_program_disk_cache_dir(void);
 
+/* The binaries NVIDIA hands back hold its assembly, which its driver turns
+ * into machine code on first use in every process unless its own disk
+ * cache has it. So that one shared folder spares a fresh process both
+ * steps, that cache goes to the "driver" subfolder of ours, unless the
+ * user placed it (__GL_SHADER_DISK_CACHE_PATH) or there is no folder.
+ * Sets the environment: call before the first EGL call of the process. */
+void cv_program_disk_cache_place_driver_cache(void);
+
 /* Counts since the cache was opened; what tests and -v logs look at. */
 struct cv_program_disk_stats {
     bool enabled;          /* a folder is in use and the driver has formats */

@@ -198,6 +198,32 @@ static long file_size(const char *path)
     return stat(path, &st) == 0 ? (long)st.st_size : -1;
 }
 
+/* The driver's own cache goes below ours unless the user placed it. */
+static void check_driver_cache_placement(const char *root)
+{
+    char *ours = cv_xasprintf("%s/placed", root);
+    char *want = cv_xasprintf("%s/driver", ours);
+    setenv("CAVALRY_CACHE_DIR", ours, 1);
+    unsetenv("__GL_SHADER_DISK_CACHE_PATH");
+    cv_program_disk_cache_place_driver_cache();
+    const char *v = getenv("__GL_SHADER_DISK_CACHE_PATH");
+    struct stat st;
+    tap_ok(v && strcmp(v, want) == 0 && stat(want, &st) == 0 && S_ISDIR(st.st_mode),
+           "driver cache placed in %s (%s)", want, v ? v : "unset");
+    setenv("__GL_SHADER_DISK_CACHE_PATH", "/x/user", 1);
+    cv_program_disk_cache_place_driver_cache();
+    v = getenv("__GL_SHADER_DISK_CACHE_PATH");
+    tap_ok(v && strcmp(v, "/x/user") == 0, "a user's __GL_SHADER_DISK_CACHE_PATH stays (%s)",
+           v ? v : "unset");
+    unsetenv("__GL_SHADER_DISK_CACHE_PATH");
+    setenv("CAVALRY_CACHE_DIR", "off", 1);
+    cv_program_disk_cache_place_driver_cache();
+    tap_ok(!getenv("__GL_SHADER_DISK_CACHE_PATH"), "CAVALRY_CACHE_DIR=off: driver cache left alone");
+    unsetenv("CAVALRY_CACHE_DIR");
+    free(want);
+    free(ours);
+}
+
 int main(void)
 {
     check_dir_resolution();
@@ -208,6 +234,7 @@ int main(void)
         free(templ);
         return tap_skip_all("cannot make a temporary folder");
     }
+    check_driver_cache_placement(templ);
     /* A folder below the temporary one: the cache must create it. */
     cache_dir = cv_xasprintf("%s/cache", templ);
     setenv("CAVALRY_CACHE_DIR", cache_dir, 1);
