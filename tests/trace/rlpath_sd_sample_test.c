@@ -153,7 +153,7 @@ int main(void)
     float m = t[key][1];
 
     float *out = malloc((size_t)N * 8 * sizeof(float));
-    bool ok = tap_ok(cv_rlpath_sd_create(g.gpu, lo, hi, 64, 64, o.mix, 0, &g.sd, &err),
+    bool ok = tap_ok(cv_rlpath_sd_create(g.gpu, lo, hi, 64, o.mix, 0, &g.sd, &err),
                      "create: %s", err.msg) &&
               tap_ok(cv_rlpath_sd_build(g.sd, recs, NR, &err), "build and upload: %s", err.msg);
     g.out = cv_buffer_create((size_t)N * 8 * sizeof(float), NULL, "probe out", &err);
