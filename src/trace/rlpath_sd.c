@@ -41,6 +41,7 @@ struct cv_rlpath_sd {
     struct cv_sdtree_opts opts;
     struct cv_sdtree *guide;   /* the host's copy of the table's trees */
     struct cv_program flush;   /* a copy (see render.c) */
+    struct cv_gpu *gpu;
     uint32_t n_paths;
     GLuint ubo, verts, stats, tree;
     struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
@@ -132,6 +133,7 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
         return false;
     }
     sd->flush = *fp;
+    sd->gpu = gpu;
     sd->n_paths = n_paths;
     sd->opts = cv_sdtree_defaults;
     if (mix >= 0)
@@ -208,6 +210,46 @@ bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
     sd->builds++;
     log_guide(sd, &st, dt);
     return guide_upload(sd, err);
+}
+
+bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
+                        bool cas, uint32_t **stats, size_t *words, struct cv_error *err)
+{
+    *stats = NULL;
+    *words = cv_sdtree_stat_words(sd->guide);
+    const char *defines[] = {"CV_SD_CAS", NULL};
+    struct cv_program *fp = cv_program_get(sd->gpu, "trace/rlpath/sd_flush.comp",
+                                           cas ? defines : NULL, err);
+    if (!fp)
+        return false;
+    cv_buffer_zero(sd->stats);
+    size_t per = (size_t)sd->n_paths * CV_SD_MAX_RECORDS;
+    float(*v)[4] = cv_xcalloc((size_t)sd->n_paths * CV_SD_SLOT_TEXELS, sizeof(*v));
+    bool ok = true;
+    cv_rlpath_sd_bind(sd);
+    for (size_t at = 0; ok && at < n; at += per) {
+        memset(v, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * sizeof(*v));
+        for (size_t i = at; i < n && i < at + per; i++) {
+            size_t slot = (i - at) / CV_SD_MAX_RECORDS, k = (i - at) % CV_SD_MAX_RECORDS;
+            float *h = v[slot * CV_SD_SLOT_TEXELS], *r = v[slot * CV_SD_SLOT_TEXELS + 1 + 2 * k];
+            h[0] = (float)(k + 1);
+            memcpy(r, rec[i].p, sizeof(rec[i].p));
+            r[3] = rec[i].pdf;
+            r[4] = rec[i].u;
+            r[5] = rec[i].v;
+            r[6] = rec[i].beta;
+            r[7] = rec[i].L;
+        }
+        ok = cv_buffer_upload(sd->verts, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * 16, v, err);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (ok)
+            cv_program_dispatch_1d(fp, sd->n_paths);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    free(v);
+    *stats = cv_xcalloc(*words, sizeof(**stats));
+    return ok && cv_buffer_read(sd->stats, 0, *words * sizeof(**stats), *stats, err) &&
+           cv_gl_check(err, "rlpath sdtree splat of %zu records", n);
 }
 
 /* The end of a training iteration: the statistics back, the tree refined

@@ -44,6 +44,14 @@ bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct c
 bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
                         struct cv_error *err);
 
+/* Splats n records (as the shaders keep them) through the shaders' flush
+ * (sd_flush.comp, the shipped splat; cas: its compare-and-swap adds even
+ * where the driver has float atomics) into zeroed statistics of the
+ * current guide's training tree, and reads them back: *stats is allocated
+ * (free it, also on failure), *words its length; tests. */
+bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
+                        bool cas, uint32_t **stats, size_t *words, struct cv_error *err);
+
 /* Accepts NULL; clears the pointer. */
 void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sd);
 

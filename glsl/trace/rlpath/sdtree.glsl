@@ -30,7 +30,9 @@ layout(rgba32f, binding = CV_IMAGE_SD_VERTS) uniform imageBuffer sd_verts;
 #endif
 #ifdef CV_SD_SPLAT
 layout(r32ui, binding = CV_IMAGE_SD_STATS) uniform coherent uimageBuffer sd_stats;
-#ifdef GL_NV_shader_atomic_float
+// CV_SD_CAS (tests): compare-and-swap even where float atomics are there
+#if defined(GL_NV_shader_atomic_float) && !defined(CV_SD_CAS)
+#define CV_SD_FLOAT_ATOMICS
 layout(r32f, binding = CV_IMAGE_SD_FLUX) uniform coherent imageBuffer sd_flux;
 #endif
 #endif
@@ -204,7 +206,7 @@ void cv_sd_path_end(uint slot, uint depth)
 // until no other thread changed the word in between (exact, as the add).
 void cv_sd_add(int w, float v)
 {
-#ifdef GL_NV_shader_atomic_float
+#ifdef CV_SD_FLOAT_ATOMICS
     imageAtomicAdd(sd_flux, w, v);
 #else
     uint old = imageLoad(sd_stats, w).x;
