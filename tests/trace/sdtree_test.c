@@ -1,6 +1,9 @@
-/* sdtree_test.c: the host build of rlpath's sdtree guide (trace/sdtree.c,
- * layout glsl/shared/sdtree.h) on synthetic records: no records give one
- * leaf whose six orientation classes have uniform, unguided quadtrees;
+/* sdtree_test.c: rlpath's sdtree guide learned on the host (trace/sdtree.c:
+ * the records splatted as the shaders do and the tree refined from the
+ * statistics until it stops changing; layout glsl/shared/sdtree.h) from
+ * synthetic records: no records give one leaf whose six orientation
+ * classes have uniform, unguided sampling quadtrees and one training node
+ * each, its statistics words where the layout says;
  * records spread over a box give a spatial tree whose leaves hold at most
  * the split threshold, and every record found again in the leaf that the
  * lookup names; the flattened table's links point where the layout says
