@@ -9,7 +9,7 @@
 # time per scene.
 #
 # usage: bench/guiding.sh [--batch PATH] [--bench PATH] [--scenes DIR]
-#                         [--times "2 4 8"] [--seeds "1 2 3"]
+#                         [--times "2 4 8"] [--spp N] [--seeds "1 2 3"]
 #                         [--size WxH] [--ref-spp N] [--room-triangles N]
 #                         [--variants "path rlpath rlpath-online"]
 #                         [--rl "KEY: V, ..."] [--work DIR] [--summarize]
@@ -20,6 +20,8 @@
 #   --scenes DIR   the shared scenes (default $CV_SHARED_SCENES, else
 #                  ../shared/scenes of the tree, else shared/scenes in it)
 #   --times T      wall-time limits in seconds (default "2 4 8")
+#   --spp N        equal samples instead of equal time: every render takes N
+#                  spp with no time limit (its limit column reads 0)
 #   --seeds S      seeds of every render (default "1 2 3")
 #   --size WxH     film size of every render (default: each scene's own)
 #   --ref-spp N    samples per pixel of the path reference (default 8192;
@@ -58,6 +60,7 @@ ref_spp=8192
 room_tris=100k
 variants="path rlpath rlpath-online"
 rl_extra=
+spp_only=
 work=
 scenes=
 summarize_only=0
@@ -69,6 +72,7 @@ while [ $# -gt 0 ]; do
     --bench) benchbin=$2; shift 2 ;;
     --scenes) shared=$2; shift 2 ;;
     --times) times=$2; shift 2 ;;
+    --spp) spp_only=$2; times=0; shift 2 ;;
     --seeds) seeds=$2; shift 2 ;;
     --size) size=$2; shift 2 ;;
     --ref-spp) ref_spp=$2; shift 2 ;;
@@ -190,7 +194,7 @@ for s in $scenes; do
         for seed in $seeds; do
             for v in $variants; do
                 id=$name-$v-$t-s$seed
-                r=$(render "$id" "$file" "$v" "$seed" 1000000 "$t") || exit 1
+                r=$(render "$id" "$file" "$v" "$seed" "${spp_only:-1000000}" "$t") || exit 1
                 e=$("$benchbin" --relmse "$work/img/$id.exr" "$ref" | awk '{ print $1 }')
                 set -- $r
                 echo "$name,$v,$t,$seed,$1,$2,$3,$e" >> "$runs"

@@ -37,7 +37,7 @@ bench-multigpu: src/cavalry-batch bench/gen_scene
 EXTRA_DIST += bench/multigpu.sh bench/bdpt.sh
 # the register proxy of shade kernels (bench/amd_regs/stats.sh: RADV, no GPU)
 EXTRA_DIST += bench/amd_regs/stats.sh bench/amd_regs/assemble.c bench/amd_regs/vkstats.c bench/amd_regs/remap.py
-# the CPU time of rlpath sdtree's host build on synthetic records
+# the CPU time of rlpath sdtree's host refinement from splatted statistics
 noinst_PROGRAMS += bench/sdtree_build
 bench_sdtree_build_SOURCES = bench/sdtree_build.c
 bench_sdtree_build_LDADD = $(CV_LIBS) -lm

@@ -1,12 +1,13 @@
-/* sdtree_build.c: the CPU time of the host build of rlpath's sdtree guide
- * (trace/sdtree.c: cv_sdtree_build) on synthetic training records, as a
- * training pass of a large image reads them back: points on the walls of a
+/* sdtree_build.c: the CPU time of the host's work at the end of a training
+ * iteration of rlpath's sdtree guide (trace/sdtree.c: cv_sdtree_refine and
+ * cv_sdtree_table, from the statistics the shaders splatted), for N
+ * synthetic training records splatted on the host: points on the walls of a
  * closed box (the orientation class of each wall's normal), directions
  * spread over the hemisphere in front of it, radiance from a bright patch of
  * the ceiling and a dim rest. A benchmark, not a test: figures go to
  * bench/RESULTS.md.
  *
- * usage: bench/sdtree_build [N ...]   (records per build; default 4194304) */
+ * usage: bench/sdtree_build [N ...]   (records per iteration; default 4194304) */
 #include "config.h"
 
 #include <math.h>
@@ -67,17 +68,33 @@ int main(int argc, char **argv)
         struct cv_sd_record *rec = cv_xcalloc(n ? n : 1, sizeof(*rec));
         for (size_t k = 0; k < n; k++)
             synth(&rec[k]);
+        /* a guide learned from the records (untimed: the tree a render's
+         * iterations reach), then the records splatted into its training
+         * tree's statistics (untimed: the shaders' work) */
+        struct cv_sdtree *g = cv_sdtree_create(bmin, bmax);
+        cv_sdtree_learn_records(g, rec, n, &cv_sdtree_defaults, NULL);
         float(*t)[4] = NULL;
         size_t nt = 0;
+        cv_sdtree_table(g, &t, &nt);
+        size_t words = cv_sdtree_stat_words(g);
+        uint32_t *stats = cv_xcalloc(words, sizeof(*stats));
+        for (size_t k = 0; k < n; k++)
+            cv_sdtree_splat((const float(*)[4])t, stats, &rec[k]);
+        free(t);
+        /* the host's work at the end of a training iteration */
         struct cv_sdtree_stats st;
         double t0 = cpu_seconds();
-        cv_sdtree_build(bmin, bmax, rec, n, &cv_sdtree_defaults, &t, &nt, &st);
+        cv_sdtree_refine(g, stats, &cv_sdtree_defaults, &st);
+        cv_sdtree_table(g, &t, &nt);
         double dt = cpu_seconds() - t0;
-        printf("records %zu: build %.3f s CPU (%.1f ns per record), %u spatial leaves, "
-               "%u quadtree nodes, depth %u, table %zu kB\n",
-               n, dt, 1e9 * dt / (double)(n ? n : 1), st.spatial_leaves, st.quad_nodes,
+        printf("records %zu: refine and table %.3f ms CPU, statistics read back %zu kB, "
+               "%u spatial leaves, %u sampling and %u training quadtree nodes, depth %u, "
+               "table %zu kB\n",
+               n, 1e3 * dt, words * 4 / 1024, st.spatial_leaves, st.quad_nodes, st.train_nodes,
                st.max_quad_depth, nt * 16 / 1024);
         free(t);
+        free(stats);
+        cv_sdtree_destroy(&g);
         free(rec);
     }
     return 0;

@@ -10,9 +10,12 @@
  * equal-area map u = (cos(theta) + 1) / 2 (cos(theta) = w.z), v = (phi +
  * pi) / (2 pi): a density p on the square is p / (4 pi) in solid angle.
  *
- * Tree table (image unit CV_IMAGE_SD_TREE, rgba32f texels), built on the
- * host between training passes and uploaded whole (never written by a
- * shader); texel indices are floats holding integers below 2^24:
+ * Tree table (image unit CV_IMAGE_SD_TREE, rgba32f texels), made on the
+ * host at the end of each training iteration and uploaded whole (never
+ * written by a shader); texel indices and statistics words are floats
+ * holding integers below 2^24. It holds two quadtrees per (leaf, class),
+ * as Müller et al.'s: the one that samples (learned in the last iteration)
+ * and the one that trains (refined from it, its statistics zeroed):
  *   spatial node i (texels 0 .. n_spatial - 1, root 0):
  *     x: the split axis 0, 1, 2, or CV_SD_LEAF for a leaf;
  *     y: inner: the split coordinate (world); leaf: 0;
@@ -23,13 +26,18 @@
  *   normal, on the side the path arrives from, as the Q-table's:
  *   2 * axis of its largest component, + 1 if negative; the surfaces of a
  *   leaf that face apart see apart):
- *     x: the texel of the class's quadtree root; y: its guiding weight
- *     (0: BSDF sampling alone); zw: 0.
- *   quadtree node at texel q (two texels):
+ *     x: the texel of the class's sampling quadtree root; y: its guiding
+ *     weight (0: BSDF sampling alone); z: the texel of its training
+ *     quadtree root; w: the class's first statistics word.
+ *   sampling quadtree node at texel q (two texels):
  *     q:     the probabilities of its four quadrants (index ix + 2 iy,
  *            ix = u in the upper half, iy = v in the upper half), each
  *            above 0, summing to 1;
  *     q + 1: the texels of the quadrants' nodes, 0 for a leaf quadrant.
+ *   Leaves that split in space share their parent's sampling quadtrees.
+ *   training quadtree node at texel q (two texels):
+ *     q:     the texels of the quadrants' nodes, 0 for a leaf quadrant;
+ *     q + 1: x: the node's first statistics word; yzw: 0.
  * The density of a point is the product over the nodes it passes of 4
  * times its quadrant's probability, on the square; sampling descends the
  * same quadrants (sdtree.glsl), so the pdf it returns is the one it draws.
@@ -37,7 +45,7 @@
  * Training records: while the guide learns, every vertex that bounces
  * writes a record of its path slot (CV_IMAGE_SD_VERTS, CV_SD_SLOT_TEXELS
  * per slot: x of the first the records of a path that ended and waits to
- * be sent, then CV_SD_MAX_RECORDS records of two texels each):
+ * be splatted, then CV_SD_MAX_RECORDS records of two texels each):
  *   t:     position xyz; w: the density the bounce was drawn with (solid
  *          angle; 0: not a guided vertex, the record is skipped);
  *   t + 1: the bounce direction (u, v) on the square, u plus the vertex's
@@ -49,10 +57,18 @@
  * channel mean over z to each earlier record's w: the path's own Monte
  * Carlo estimate of the incident radiance along the bounce. Once the path
  * has ended and its last shadow rays are traced (when its slot's next path
- * starts, or after the pass), its guided records are appended to
- * CV_IMAGE_SD_OUT (two texels each, as above) at an index taken from the
- * counter CV_IMAGE_SD_COUNT (r32ui texel 0: records wanted; those past the
- * capacity are dropped), read back by the host after each training pass. */
+ * starts, or at the end of the iteration), its guided records are splatted
+ * into the statistics.
+ *
+ * Statistics (CV_IMAGE_SD_STATS, r32ui words; the float words also through
+ * the r32f view CV_IMAGE_SD_FLUX where the driver has float atomics),
+ * zeroed at the start of each training iteration and read back by the
+ * host at its end (its size is the tree's, not the records'):
+ *   class word w (class texel's w): the records of the class in its leaf;
+ *   w + 1: those of them with a value above 0;
+ *   training node word b (its q + 1 texel's x): b + k, float bits: the sum
+ *   of the values (sdtree.glsl: cv_sd_value) of the records in quadrant k;
+ *   b + 4 + k: their count. */
 #ifndef CV_SHARED_SDTREE_H
 #define CV_SHARED_SDTREE_H
 
@@ -61,9 +77,9 @@
 
 /* rlpath's image units (shared/rlpath.h): the Q-learning method's tables
  * are not bound with this one. */
-#define CV_IMAGE_SD_OUT 0       /* imageBuffer rgba32f: appended records */
+#define CV_IMAGE_SD_FLUX 0      /* imageBuffer r32f: the statistics, float view */
 #define CV_IMAGE_SD_VERTS 1     /* imageBuffer rgba32f: records per path slot */
-#define CV_IMAGE_SD_COUNT 2     /* uimageBuffer r32ui: records wanted */
+#define CV_IMAGE_SD_STATS 2     /* uimageBuffer r32ui: the statistics */
 #define CV_IMAGE_SD_TREE 3      /* imageBuffer rgba32f: the tree table */
 #define CV_UBO_SDTREE 1         /* uniform block CvSdParams (rlpath's) */
 
@@ -79,18 +95,14 @@
 #define CV_SD_MAX_DEPTH 12u
 #define CV_SD_MAX_SPATIAL_DEPTH 48u
 
-/* A training iteration keeps a uniform share of the paths' records (keep.x),
- * so that the host's build sees a bounded number spread over the whole
- * image rather than the first ones flushed (src/trace/rlpath_sd.c). */
-#define CV_SD_KEEP_ALL 0xffffffffu
+/* Statistics words of a class, and of a training quadtree node. */
+#define CV_SD_CLASS_WORDS 2u
+#define CV_SD_NODE_WORDS 8u
 
 CV_STRUCT(CvSdParams) {
-    cv_uvec4 learn;        /* x: 1 while training passes record; y: record capacity
-                              left in this pass; z: path slots; w: 0 */
-    cv_uvec4 keep;         /* x: a path's records are kept iff a hash of it is at
-                              most x (CV_SD_KEEP_ALL: all); y: the pass (the hash's
-                              seed); zw: 0 */
+    cv_uvec4 learn;        /* x: 1 while training passes record; y: 0; z: path
+                              slots; w: 0 */
 } CV_END(CvSdParams)
-CV_CHECK_SIZE(CvSdParams, 32);
+CV_CHECK_SIZE(CvSdParams, 16);
 
 #endif

@@ -44,8 +44,10 @@ void cv_rl_learn_escaped(CvRayItem r)
 #ifdef CV_RLPATH_SD
 // rlpath's sdtree method (CV_RLPATH_SD): while training, the environment
 // light the path adds to the film adds to its records, which wait for the
-// slot's next path to send them to the host (rlpath/sdtree.glsl).
+// slot's next path to splat them into the tree's statistics
+// (rlpath/sdtree.glsl).
 #define CV_SD_RECORD
+#define CV_SD_SPLAT
 #include "rlpath/sdtree.glsl"
 void cv_sd_escaped(CvRayItem r)
 {

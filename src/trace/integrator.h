@@ -110,8 +110,9 @@ struct cv_integrator_ops {
     uint32_t (*learn_spp)(const void *state);
     void (*set_learning)(void *state, bool learning);
     /* May be NULL: after each pass that learned, with the samples per pixel
-     * done (rlpath's sdtree: reads the pass's records back, builds the
-     * next guide); false fails the pass with err set. */
+     * done (rlpath's sdtree: at the end of a training iteration, reads
+     * the splatted statistics back and refines the guide); false fails the
+     * pass with err set. */
     bool (*pass_done)(void *state, uint32_t spp_done, struct cv_error *err);
 };
 

@@ -1,22 +1,20 @@
 /* rlpath_sd.c: rlpath's sdtree method (rlpath.method: sdtree), after
  * Müller, Gross and Novák, "Practical Path Guiding" (2017): training
- * passes of doubling length (1, 2, 4, ... spp; the last runs to
- * rlpath.train), in which the shade and escaped stages record each guided
- * bounce with the radiance its path then found (glsl/trace/rlpath/
- * sdtree.glsl); after each training pass the records are read back (cost
- * class: once per training pass, a wait for the GPU), and at the end of
- * each training iteration the host builds the next guide from that
- * iteration's records alone (trace/sdtree.c: earlier, smaller iterations
- * learned from a worse guide) and uploads it. An iteration keeps at most
- * SD_MAX_RECORDS_PER_ITERATION records, a uniform share of its paths' (the
- * shaders hash each path against a threshold set here from the records the
- * passes before wanted): the build's cost grows with the records, not with
- * the image or the iteration's length. Passes after training
- * sample the last tree, frozen. The renderer owns one through
- * cv_rlpath_sd_ops (cv_integrator_for). */
+ * iterations of doubling length (1, 2, 4, ... spp; the last runs to
+ * rlpath.train), in which every guided bounce's record, once its path has
+ * found its radiance, is splatted by the shaders into the statistics of
+ * the tree being trained (glsl/trace/rlpath/sdtree.glsl); at the end of
+ * each iteration the host reads back only those statistics (the tree's
+ * size; cost class: once per training iteration, a wait for the GPU),
+ * refines the tree from them (trace/sdtree.c: the next sampling quadtrees
+ * learn from that iteration alone, as earlier, shorter iterations learned
+ * from a worse guide) and uploads it. Passes after training sample the
+ * last tree, frozen. The renderer owns one through cv_rlpath_sd_ops
+ * (cv_integrator_for). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <epoxy/gl.h>
 
@@ -32,34 +30,24 @@
 #include "trace/rlpath_sd.h"
 #include "trace/sdtree.h"
 
-/* Records a training iteration keeps at most (the record buffer's
- * capacity: two texels each; those past it in a pass are dropped): the
- * host build's time is linear in it (bench/sdtree_build). */
-#define SD_MAX_RECORDS_PER_ITERATION (1u << 20)
-#define SD_RECORDS_PER_SLOT 64u
-
 /* The buffers the shaders see as images, in cv_rlpath_sd.images. */
-enum { SD_VERTS, SD_OUT, SD_COUNT, SD_TREE, SD_IMAGES };
+enum { SD_VERTS, SD_FLUX, SD_STATS, SD_TREE, SD_IMAGES };
 
 struct cv_rlpath_sd {
     CvSdParams params;
     uint32_t train;        /* training ends at this spp; 0: never */
     uint32_t start, len;   /* the training iteration: first spp, length */
     uint32_t end;          /* ... and where it ends */
-    uint32_t cap;          /* records per pass */
-    float bmin[3], bmax[3];
     struct cv_sdtree_opts opts;
+    struct cv_sdtree *guide;   /* the host's copy of the table's trees */
     struct cv_program flush;   /* a copy (see render.c) */
+    struct cv_gpu *gpu;
     uint32_t n_paths;
-    GLuint ubo, verts, out, count, tree;
-    GLuint staging;        /* the records' way back, as large as out */
+    GLuint ubo, verts, stats, tree;
     struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
     size_t tree_texels;    /* the tree buffer's capacity */
-    struct cv_sd_record *recs;   /* the iteration's records so far */
-    size_t n_recs;
+    size_t stat_words;     /* the statistics buffer's capacity */
     uint32_t builds;
-    uint32_t last_spp;     /* spp done when the last training pass ended */
-    double wanted_per_spp; /* records the paths of one spp offer (the last pass's) */
 };
 
 /* Where the training iteration that starts at spp s with length len ends:
@@ -95,30 +83,47 @@ static bool tree_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *err
     return true;
 }
 
-static bool tree_upload(struct cv_rlpath_sd *sd, const float (*t)[4], size_t n,
-                        struct cv_error *err)
+/* (Re)creates the statistics buffer and its two views for at least n
+ * words. */
+static bool stats_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *err)
 {
-    return tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err);
+    if (n <= sd->stat_words && sd->stats)
+        return true;
+    size_t cap = sd->stat_words ? sd->stat_words : 1024;
+    while (cap < n)
+        cap *= 2;
+    cv_buffer_image_destroy(&sd->images[SD_FLUX]);
+    cv_buffer_image_destroy(&sd->images[SD_STATS]);
+    cv_buffer_destroy(&sd->stats);
+    if (!(sd->stats = cv_buffer_create(cap * 4, NULL, "rlpath sdtree statistics", err)) ||
+        !cv_buffer_image_create(&sd->images[SD_FLUX], sd->stats, cap, CV_IMAGE_SD_FLUX, GL_R32F,
+                                GL_READ_WRITE, err) ||
+        !cv_buffer_image_create(&sd->images[SD_STATS], sd->stats, cap, CV_IMAGE_SD_STATS,
+                                GL_R32UI, GL_READ_WRITE, err))
+        return false;
+    sd->stat_words = cap;
+    cv_buffer_image_bind(&sd->images[SD_FLUX]);
+    cv_buffer_image_bind(&sd->images[SD_STATS]);
+    return true;
 }
 
-/* The next pass's share of paths that keep their records: the capacity
- * left in the iteration over what its remaining spp would offer, so that
- * the kept records spread over all of them; and that capacity. */
-static void keep_for_next_pass(struct cv_rlpath_sd *sd, uint32_t spp_done)
+/* Uploads the guide's table and zeroes the statistics of its training
+ * tree. */
+static bool guide_upload(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
-    uint32_t left = sd->cap - (uint32_t)sd->n_recs;
-    double offered = sd->wanted_per_spp * (sd->end > spp_done ? sd->end - spp_done : 1);
-    /* a little below, so that a pass offering more than the last does not
-     * overrun the capacity (whose last paths would then be dropped) */
-    double share = offered > 0.95 * left ? 0.95 * left / offered : 1.0;
-    sd->params.learn.y = left;
-    sd->params.keep.x = share >= 1.0 ? CV_SD_KEEP_ALL : (uint32_t)(share * 0x1p32);
-    sd->params.keep.y++;   /* the pass's hashes differ from the last's */
+    float(*t)[4] = NULL;
+    size_t n = 0;
+    cv_sdtree_table(sd->guide, &t, &n);
+    bool ok = tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err) &&
+              stats_reserve(sd, cv_sdtree_stat_words(sd->guide), err);
+    free(t);
+    if (ok)
+        cv_buffer_zero(sd->stats);
+    return ok;
 }
 
 bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bmax[3],
-                         uint32_t n_paths, uint32_t n_pixels, float mix, uint32_t train,
-                         struct cv_rlpath_sd **out,
+                         uint32_t n_paths, float mix, uint32_t train, struct cv_rlpath_sd **out,
                          struct cv_error *err)
 {
     struct cv_rlpath_sd *sd = cv_xcalloc(1, sizeof(*sd));
@@ -128,9 +133,8 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
         return false;
     }
     sd->flush = *fp;
+    sd->gpu = gpu;
     sd->n_paths = n_paths;
-    memcpy(sd->bmin, bmin, sizeof(sd->bmin));
-    memcpy(sd->bmax, bmax, sizeof(sd->bmax));
     sd->opts = cv_sdtree_defaults;
     if (mix >= 0)
         sd->opts.mix = mix;
@@ -138,34 +142,16 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     sd->start = 0;
     sd->len = 1;
     sd->end = iteration_end(sd->train, 0, 1);
-    uint64_t cap = (uint64_t)(n_paths ? n_paths : 1) * SD_RECORDS_PER_SLOT;
-    sd->cap = cap < SD_MAX_RECORDS_PER_ITERATION ? (uint32_t)cap : SD_MAX_RECORDS_PER_ITERATION;
-    sd->params.learn = (cv_uvec4){1, sd->cap, n_paths, 0};
-    /* what the first pass's paths offer is not known yet: at most every
-     * pixel's path recording at every vertex it may (a smaller share than
-     * needed, rather than the first paths flushed only) */
-    sd->wanted_per_spp = (double)(n_pixels ? n_pixels : n_paths) * CV_SD_MAX_RECORDS;
-    keep_for_next_pass(sd, 0);
+    sd->params.learn = (cv_uvec4){1, 0, n_paths, 0};
+    /* the empty guide: one leaf, whose classes do not guide */
+    sd->guide = cv_sdtree_create(bmin, bmax);
     /* zero: no slot has a path waiting */
     size_t vbytes = (size_t)(n_paths ? n_paths : 1) * CV_SD_SLOT_TEXELS * 16;
-    /* the empty table: one leaf, whose classes do not guide */
-    float(*empty)[4] = NULL;
-    size_t n_empty = 0;
-    cv_sdtree_build(bmin, bmax, NULL, 0, &sd->opts, &empty, &n_empty, NULL);
     bool ok = (sd->ubo = cv_buffer_create(sizeof(sd->params), &sd->params, "rlpath sd params", err)) &&
               (sd->verts = cv_buffer_create(vbytes, NULL, "rlpath sd path records", err)) &&
-              (sd->out = cv_buffer_create((size_t)sd->cap * 32, NULL, "rlpath sd records", err)) &&
-              (sd->count = cv_buffer_create(16, NULL, "rlpath sd record count", err)) &&
-              (sd->staging = cv_buffer_create_uninit((size_t)sd->cap * 32,
-                                                     "rlpath sd records read-back", err)) &&
               cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16,
                                      CV_IMAGE_SD_VERTS, GL_RGBA32F, GL_READ_WRITE, err) &&
-              cv_buffer_image_create(&sd->images[SD_OUT], sd->out, (size_t)sd->cap * 2,
-                                     CV_IMAGE_SD_OUT, GL_RGBA32F, GL_WRITE_ONLY, err) &&
-              cv_buffer_image_create(&sd->images[SD_COUNT], sd->count, 4, CV_IMAGE_SD_COUNT,
-                                     GL_R32UI, GL_READ_WRITE, err) &&
-              tree_upload(sd, (const float(*)[4])empty, n_empty, err);
-    free(empty);
+              guide_upload(sd, err);
     if (!ok) {
         cv_error_prefix(err, "rlpath sdtree for %u path slots: ", n_paths);
         cv_rlpath_sd_destroy(&sd);
@@ -198,63 +184,109 @@ void cv_rlpath_sd_set_learning(struct cv_rlpath_sd *sd, bool learning)
     glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
 }
 
-bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, struct cv_sd_record *rec, size_t n,
+static double cpu_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void log_guide(const struct cv_rlpath_sd *sd, const struct cv_sdtree_stats *st,
+                      double host_s)
+{
+    cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %llu records, %u spatial leaves (%u of their "
+           "classes guide), %u sampling and %u training quadtree nodes, depth %u, host "
+           "refine %.3f ms", sd->builds, (unsigned long long)st->records, st->spatial_leaves,
+           st->guiding, st->quad_nodes, st->train_nodes, st->max_quad_depth, 1e3 * host_s);
+}
+
+bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
                         struct cv_error *err)
 {
-    float(*t)[4] = NULL;
-    size_t nt = 0;
     struct cv_sdtree_stats st;
-    cv_sdtree_build(sd->bmin, sd->bmax, rec, n, &sd->opts, &t, &nt, &st);
-    bool ok = tree_upload(sd, (const float(*)[4])t, nt, err);
-    free(t);
+    double t0 = cpu_seconds();
+    cv_sdtree_learn_records(sd->guide, rec, n, &sd->opts, &st);
+    double dt = cpu_seconds() - t0;
     sd->builds++;
-    cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %zu records, %u spatial leaves (%u of their "
-           "classes guide), %u quadtree nodes, depth %u", sd->builds, n, st.spatial_leaves,
-           st.guiding, st.quad_nodes, st.max_quad_depth);
-    return ok;
+    log_guide(sd, &st, dt);
+    return guide_upload(sd, err);
+}
+
+bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
+                        bool cas, uint32_t **stats, size_t *words, struct cv_error *err)
+{
+    *stats = NULL;
+    *words = cv_sdtree_stat_words(sd->guide);
+    const char *defines[] = {"CV_SD_CAS", NULL};
+    struct cv_program *fp = cv_program_get(sd->gpu, "trace/rlpath/sd_flush.comp",
+                                           cas ? defines : NULL, err);
+    if (!fp)
+        return false;
+    cv_buffer_zero(sd->stats);
+    size_t per = (size_t)sd->n_paths * CV_SD_MAX_RECORDS;
+    float(*v)[4] = cv_xcalloc((size_t)sd->n_paths * CV_SD_SLOT_TEXELS, sizeof(*v));
+    bool ok = true;
+    cv_rlpath_sd_bind(sd);
+    for (size_t at = 0; ok && at < n; at += per) {
+        memset(v, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * sizeof(*v));
+        for (size_t i = at; i < n && i < at + per; i++) {
+            size_t slot = (i - at) / CV_SD_MAX_RECORDS, k = (i - at) % CV_SD_MAX_RECORDS;
+            float *h = v[slot * CV_SD_SLOT_TEXELS], *r = v[slot * CV_SD_SLOT_TEXELS + 1 + 2 * k];
+            h[0] = (float)(k + 1);
+            memcpy(r, rec[i].p, sizeof(rec[i].p));
+            r[3] = rec[i].pdf;
+            r[4] = rec[i].u;
+            r[5] = rec[i].v;
+            r[6] = rec[i].beta;
+            r[7] = rec[i].L;
+        }
+        ok = cv_buffer_upload(sd->verts, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * 16, v, err);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (ok)
+            cv_program_dispatch_1d(fp, sd->n_paths);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    free(v);
+    *stats = cv_xcalloc(*words, sizeof(**stats));
+    return ok && cv_buffer_read(sd->stats, 0, *words * sizeof(**stats), *stats, err) &&
+           cv_gl_check(err, "rlpath sdtree splat of %zu records", n);
+}
+
+/* The end of a training iteration: the statistics back, the tree refined
+ * and uploaded with zeroed statistics. */
+static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
+{
+    /* the records of each slot's last path (the stages wrote them through
+     * images) */
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    cv_program_dispatch_1d(&sd->flush, sd->n_paths);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    size_t words = cv_sdtree_stat_words(sd->guide);
+    uint32_t *stats = cv_xmalloc(words * sizeof(*stats));
+    if (!cv_buffer_read(sd->stats, 0, words * sizeof(*stats), stats, err)) {
+        free(stats);
+        return false;
+    }
+    struct cv_sdtree_stats st;
+    double t0 = cpu_seconds();
+    cv_sdtree_refine(sd->guide, stats, &sd->opts, &st);
+    double dt = cpu_seconds() - t0;
+    free(stats);
+    sd->builds++;
+    log_guide(sd, &st, dt);
+    return guide_upload(sd, err);
 }
 
 bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct cv_error *err)
 {
-    if (!sd->params.learn.x)
+    /* a pass inside an iteration leaves its paths' records to the slots'
+     * next paths, which splat them into the same statistics */
+    if (!sd->params.learn.x || spp_done < sd->end)
         return true;
-    /* the records of each slot's last path, then the pass's (the stages
-     * wrote them through images) */
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    cv_program_dispatch_1d(&sd->flush, sd->n_paths);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    uint32_t wanted = 0;
-    if (!cv_buffer_read(sd->count, 0, sizeof(wanted), &wanted, err))
-        return false;
-    uint32_t left = sd->cap - (uint32_t)sd->n_recs;
-    uint32_t n = wanted < left ? wanted : left;
-    if (n) {
-        if (!sd->recs)   /* the iteration's capacity, once */
-            sd->recs = cv_xcalloc(sd->cap, sizeof(*sd->recs));
-        if (!cv_buffer_read_staged(sd->out, 0, (size_t)n * 32, sd->staging, sd->recs + sd->n_recs,
-                                   err))
-            return false;
-        sd->n_recs += n;
-    }
-    const uint32_t zero = 0;
-    glNamedBufferSubData(sd->count, 0, sizeof(zero), &zero);
-    /* what the pass's paths offered: the counter holds the kept share's */
-    uint32_t pass_spp = spp_done - sd->last_spp;
-    double share = sd->params.keep.x == CV_SD_KEEP_ALL ? 1.0 : sd->params.keep.x * 0x1p-32;
-    if (pass_spp > 0 && share > 0)
-        sd->wanted_per_spp = wanted / share / pass_spp;
-    sd->last_spp = spp_done;
-    bool ok = true;
-    if (spp_done >= sd->end) {
-        /* the iteration is over: the next guide learns from its records alone */
-        ok = cv_rlpath_sd_build(sd, sd->recs, sd->n_recs, err);
-        sd->n_recs = 0;
-        sd->start = sd->end;
-        sd->len *= 2;
-        sd->end = iteration_end(sd->train, sd->start, sd->len);
-    }
-    keep_for_next_pass(sd, spp_done);
-    glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
+    bool ok = iteration_done(sd, err);
+    sd->start = sd->end;
+    sd->len *= 2;
+    sd->end = iteration_end(sd->train, sd->start, sd->len);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return ok && cv_gl_check(err, "rlpath sdtree after %u spp", spp_done);
 }
@@ -268,11 +300,9 @@ void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sdp)
         cv_buffer_image_destroy(&sd->images[i]);
     cv_buffer_destroy(&sd->ubo);
     cv_buffer_destroy(&sd->verts);
-    cv_buffer_destroy(&sd->out);
-    cv_buffer_destroy(&sd->count);
-    cv_buffer_destroy(&sd->staging);
+    cv_buffer_destroy(&sd->stats);
     cv_buffer_destroy(&sd->tree);
-    free(sd->recs);
+    cv_sdtree_destroy(&sd->guide);
     free(sd);
     *sdp = NULL;
 }
@@ -286,7 +316,7 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     if (p->rl_mix > 1 || isnan(p->rl_mix))
         return cv_fail(err, "rlpath mix %g is not in [0, 1]", (double)p->rl_mix);
     if (!cv_rlpath_sd_create(s->gpu, s->scene->bounds_min, s->scene->bounds_max, s->n_paths,
-                             s->n_pixels, p->rl_mix, p->rl_train, &sd, err))
+                             p->rl_mix, p->rl_train, &sd, err))
         return false;
     *state = sd;
     return true;

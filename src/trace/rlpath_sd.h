@@ -14,13 +14,13 @@
 
 struct cv_rlpath_sd;
 
-/* Creates the record buffers and the flush program for n_paths path slots and an empty guide
- * (one unguided leaf) over the box [bmin, bmax]; n_pixels: the paths one
- * spp starts (a first estimate of the records a pass offers). mix: guiding weight of a
- * leaf that learned (negative: cv_sdtree_defaults.mix); train: the render
- * parameter rl_train (cv_rlpath_train_spp). */
+/* Creates the record and statistics buffers and the flush program for
+ * n_paths path slots and an empty guide (one unguided leaf) over the box
+ * [bmin, bmax]. mix: guiding weight of a leaf that learned (negative:
+ * cv_sdtree_defaults.mix); train: the render parameter rl_train
+ * (cv_rlpath_train_spp). */
 bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bmax[3],
-                         uint32_t n_paths, uint32_t n_pixels, float mix, uint32_t train, struct cv_rlpath_sd **out,
+                         uint32_t n_paths, float mix, uint32_t train, struct cv_rlpath_sd **out,
                          struct cv_error *err);
 
 /* Binds the parameter block and images (after the renderer's bindings). */
@@ -33,15 +33,24 @@ uint32_t cv_rlpath_sd_learn_until(const struct cv_rlpath_sd *sd);
 /* Starts or stops recording from the next pass on (between passes). */
 void cv_rlpath_sd_set_learning(struct cv_rlpath_sd *sd, bool learning);
 
-/* After a pass that ends with spp_done samples per pixel: while training,
- * reads its records back and, at the end of a training iteration, builds
- * and uploads the next guide. Waits for the GPU: once per training pass. */
+/* After a pass that ends with spp_done samples per pixel: at the end of a
+ * training iteration, reads the statistics the shaders splatted back,
+ * refines the guide and uploads it. Waits for the GPU: once per training
+ * iteration. */
 bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct cv_error *err);
 
-/* Builds the guide from n records (reordered) and uploads it; tests call
- * it with records of their own. */
-bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, struct cv_sd_record *rec, size_t n,
+/* Learns the guide from n records on the host (cv_sdtree_learn_records)
+ * and uploads it; tests call it with records of their own. */
+bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
                         struct cv_error *err);
+
+/* Splats n records (as the shaders keep them) through the shaders' flush
+ * (sd_flush.comp, the shipped splat; cas: its compare-and-swap adds even
+ * where the driver has float atomics) into zeroed statistics of the
+ * current guide's training tree, and reads them back: *stats is allocated
+ * (free it, also on failure), *words its length; tests. */
+bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,
+                        bool cas, uint32_t **stats, size_t *words, struct cv_error *err);
 
 /* Accepts NULL; clears the pointer. */
 void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sd);

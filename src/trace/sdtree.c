@@ -1,5 +1,6 @@
 /* sdtree.c: see sdtree.h. */
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,6 +22,10 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
     .min_records = 32,
 };
 
+/* a training or sampling node's "no node" (a child 0 is a leaf quadrant:
+ * a root is never a child) */
+#define NONE UINT32_MAX
+
 struct snode {
     uint32_t axis;    /* 0..2, or 3: leaf */
     float split;
@@ -28,191 +33,71 @@ struct snode {
 };
 
 struct cnode {
-    uint32_t quad;    /* quadtree root node */
+    uint32_t samp;    /* sampling quadtree root */
     float weight;
+    uint32_t train;   /* training quadtree root */
 };
 
-struct qnode {
+struct qnode {        /* sampling */
     float p[4];
-    uint32_t child[4];   /* quadtree node, 0: leaf quadrant (the root is never a child) */
+    uint32_t child[4];
 };
 
-struct build {
-    const struct cv_sdtree_opts *o;
-    double thresh;
+struct tnode {        /* training */
+    uint32_t child[4];
+};
+
+struct cv_sdtree {
+    double lo[3], hi[3];
     struct snode *s;
     size_t ns, cs;
+    struct cnode *c;  /* CV_SD_CLASSES per leaf */
+    size_t nc, cc;
     struct qnode *q;
     size_t nq, cq;
-    struct cnode *c;   /* CV_SD_CLASSES per leaf */
-    size_t nc, cc;
-    struct cv_sdtree_stats st;
+    struct tnode *t;
+    size_t nt, ct;
 };
 
-/* What a record adds to its quadtree: the Monte Carlo estimate of the
- * integral of the incident radiance times the cosine to its class's axis
- * (the normal of a wall that faces the axis) over directions; the guide
- * then stands for the diffuse integrand, not the radiance alone, which
- * sends samples to grazing and back-facing directions. Computed once per
- * record (cv_sdtree_build keeps it in pdf, the class in beta): the tree
- * levels sum it again at every depth. */
-static double rec_value(const struct cv_sd_record *r, int cls)
+static uint32_t push_s(struct cv_sdtree *t)
 {
-    double z = 2.0 * r->u - 1, phi = 2 * M_PI * r->v - M_PI, s = sqrt(fmax(0, 1 - z * z));
-    double w[3] = {s * cos(phi), s * sin(phi), z};
-    double c = w[cls / 2] * (cls & 1 ? -1 : 1);
-    return c > 0 ? (double)r->L / r->pdf * c : 0;
+    t->s = cv_xgrow(t->s, &t->cs, t->ns + 1, sizeof(*t->s));
+    memset(&t->s[t->ns], 0, sizeof(*t->s));
+    return (uint32_t)t->ns++;
 }
 
-static uint32_t push_s(struct build *b)
+static uint32_t push_c(struct cv_sdtree *t)
 {
-    if (b->ns == b->cs) {
-        b->cs = b->cs ? 2 * b->cs : 64;
-        b->s = cv_xrealloc(b->s, b->cs * sizeof(*b->s));
-    }
-    memset(&b->s[b->ns], 0, sizeof(*b->s));
-    return (uint32_t)b->ns++;
+    t->c = cv_xgrow(t->c, &t->cc, t->nc + 1, sizeof(*t->c));
+    memset(&t->c[t->nc], 0, sizeof(*t->c));
+    return (uint32_t)t->nc++;
 }
 
-static uint32_t push_q(struct build *b)
+static uint32_t push_q(struct cv_sdtree *t)
 {
-    if (b->nq == b->cq) {
-        b->cq = b->cq ? 2 * b->cq : 256;
-        b->q = cv_xrealloc(b->q, b->cq * sizeof(*b->q));
-    }
-    memset(&b->q[b->nq], 0, sizeof(*b->q));
-    return (uint32_t)b->nq++;
+    t->q = cv_xgrow(t->q, &t->cq, t->nq + 1, sizeof(*t->q));
+    memset(&t->q[t->nq], 0, sizeof(*t->q));
+    return (uint32_t)t->nq++;
 }
 
-/* Moves the records with key(r) below `at` to the front; returns their
- * count. key: coordinate k of the position (0..2), u (3), v (4) or the
- * class (5). */
-static size_t partition(struct cv_sd_record *r, size_t n, int key, double at)
+static uint32_t push_t(struct cv_sdtree *t)
 {
-    size_t i = 0, j = n;
-    while (i < j) {
-        const struct cv_sd_record *x = &r[i];
-        double c = key < 3 ? x->p[key] : key == 3 ? x->u : key == 4 ? x->v : x->beta;
-        if (c < at) {
-            i++;
-        } else {
-            struct cv_sd_record t = r[i];
-            r[i] = r[--j];
-            r[j] = t;
-        }
-    }
-    return i;
+    t->t = cv_xgrow(t->t, &t->ct, t->nt + 1, sizeof(*t->t));
+    memset(&t->t[t->nt], 0, sizeof(*t->t));
+    return (uint32_t)t->nt++;
 }
 
-/* The quadtree node over the square [u0, u0 + side) x [v0, v0 + side) at
- * depth, from its n records; E: the leaf's energy, fe: the floor's energy
- * per unit area of the square. */
-static uint32_t build_quad(struct build *b, struct cv_sd_record *r, size_t n, double u0,
-                           double v0, double side, uint32_t depth, double E, double fe)
+static void free_arrays(struct cv_sdtree *t)
 {
-    uint32_t node = push_q(b);
-    if (depth + 1 > b->st.max_quad_depth)
-        b->st.max_quad_depth = depth + 1;
-    double h = side / 2;
-    size_t nl = partition(r, n, 3, u0 + h);
-    size_t nll = partition(r, nl, 4, v0 + h);
-    size_t nrl = partition(r + nl, n - nl, 4, v0 + h);
-    /* quadrant k = ix + 2 iy: its first record and count */
-    size_t first[4] = {0, nl, nll, nl + nrl};
-    size_t cnt[4] = {nll, nrl, nl - nll, n - nl - nrl};
-    double e[4], w[4], sum = 0;
-    for (int k = 0; k < 4; k++) {
-        e[k] = 0;
-        for (size_t i = 0; i < cnt[k]; i++)
-            e[k] += r[first[k] + i].pdf;
-        w[k] = e[k] + fe * h * h;
-        sum += w[k];
-    }
-    for (int k = 0; k < 4; k++)
-        b->q[node].p[k] = sum > 0 ? (float)(w[k] / sum) : 0.25f;
-    for (int k = 0; k < 4; k++) {
-        if (depth + 1 < b->o->max_depth && E > 0 && e[k] > b->o->rho * E &&
-            cnt[k] >= b->o->min_split) {
-            uint32_t c = build_quad(b, r + first[k], cnt[k], u0 + h * (k & 1), v0 + h * (k >> 1),
-                                    h, depth + 1, E, fe);
-            b->q[node].child[k] = c;
-        }
-    }
-    return node;
+    free(t->s);
+    free(t->c);
+    free(t->q);
+    free(t->t);
 }
 
-static void build_spatial(struct build *b, uint32_t node, struct cv_sd_record *r, size_t n,
-                          const double lo[3], const double hi[3], uint32_t depth)
+struct cv_sdtree *cv_sdtree_create(const float bmin[3], const float bmax[3])
 {
-    if ((double)n > b->thresh && depth < CV_SD_MAX_SPATIAL_DEPTH) {
-        int axis = (int)(depth % 3);
-        double mid = 0.5 * (lo[axis] + hi[axis]);
-        size_t m = partition(r, n, axis, (float)mid);
-        uint32_t c = push_s(b);
-        push_s(b);
-        b->s[node].axis = (uint32_t)axis;
-        b->s[node].split = (float)mid;
-        b->s[node].child = c;
-        double l[3], h[3];
-        memcpy(l, lo, sizeof(l));
-        memcpy(h, hi, sizeof(h));
-        h[axis] = mid;
-        build_spatial(b, c, r, m, l, h, depth + 1);
-        h[axis] = hi[axis];
-        l[axis] = mid;
-        build_spatial(b, c + 1, r + m, n - m, l, h, depth + 1);
-        return;
-    }
-    uint32_t leaf = (uint32_t)(b->nc / CV_SD_CLASSES);
-    b->s[node].axis = 3;
-    b->s[node].child = leaf;
-    b->st.spatial_leaves++;
-    if (b->nc + CV_SD_CLASSES > b->cc) {
-        b->cc = b->cc ? 2 * b->cc : 64 * CV_SD_CLASSES;
-        b->c = cv_xrealloc(b->c, b->cc * sizeof(*b->c));
-    }
-    b->nc += CV_SD_CLASSES;
-    /* one quadtree per orientation class, from that class's records */
-    for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
-        size_t m = partition(r, n, 5, cls + 0.5);
-        double E = 0;
-        size_t lit = 0;
-        for (size_t i = 0; i < m; i++) {
-            double v = r[i].pdf;
-            E += v;
-            lit += v > 0;
-        }
-        struct cnode *c = &b->c[leaf * CV_SD_CLASSES + cls];
-        c->weight = lit >= b->o->min_records && E > 0 ? b->o->mix : 0.0f;
-        b->st.guiding += c->weight > 0;
-        /* the floor spread over the square's unit area */
-        uint32_t q = build_quad(b, r, m, 0, 0, 1, 0, E, b->o->floor * E);
-        b->c[leaf * CV_SD_CLASSES + cls].quad = q;
-        r += m;
-        n -= m;
-    }
-}
-
-void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_record *rec,
-                     size_t n, const struct cv_sdtree_opts *o, float (**texels)[4],
-                     size_t *n_texels, struct cv_sdtree_stats *stats)
-{
-    /* the records that count: a positive density, a finite value >= 0 */
-    size_t k = 0;
-    for (size_t i = 0; i < n; i++) {
-        double v = (double)rec[i].L / rec[i].pdf;
-        float cls = floorf(rec[i].u);
-        if (rec[i].pdf > 0 && isfinite(v) && v >= 0 && isfinite(rec[i].p[0]) &&
-            isfinite(rec[i].p[1]) && isfinite(rec[i].p[2]) && cls >= 0 &&
-            cls < CV_SD_CLASSES) {
-            rec[k] = rec[i];
-            rec[k].u -= cls;
-            rec[k].beta = cls;
-            rec[k].pdf = (float)rec_value(&rec[k], (int)cls);
-            k++;
-        }
-    }
-    n = k;
+    struct cv_sdtree *t = cv_xcalloc(1, sizeof(*t));
     /* a cube about the box, a little larger */
     double c[3], ext = 0;
     for (int a = 0; a < 3; a++) {
@@ -224,51 +109,360 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_reco
             ext = h - l;
     }
     ext = ext > 0 ? ext * 1.002 : 1;
-    double lo[3], hi[3];
     for (int a = 0; a < 3; a++) {
-        lo[a] = c[a] - ext / 2;
-        hi[a] = c[a] + ext / 2;
+        t->lo[a] = c[a] - ext / 2;
+        t->hi[a] = c[a] + ext / 2;
     }
-    struct build b = {.o = o};
-    b.thresh = o->split_c * sqrt((double)n);
-    if (b.thresh < 2 * o->min_records)
-        b.thresh = 2 * o->min_records;
-    uint32_t root = push_s(&b);
-    build_spatial(&b, root, rec, n, lo, hi, 0);
-    b.st.spatial_nodes = (uint32_t)b.ns;
-    b.st.quad_nodes = (uint32_t)b.nq;
+    uint32_t root = push_s(t);
+    t->s[root].axis = 3;
+    for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
+        uint32_t ci = push_c(t), q = push_q(t);
+        for (int k = 0; k < 4; k++)
+            t->q[q].p[k] = 0.25f;
+        t->c[ci].samp = q;
+        t->c[ci].train = push_t(t);
+    }
+    return t;
+}
 
-    /* spatial nodes, class texels, quadtree nodes */
-    size_t qbase = b.ns + b.nc, nt = qbase + 2 * b.nq;
-    float(*t)[4] = cv_xcalloc(nt, sizeof(*t));
-    for (size_t i = 0; i < b.ns; i++) {
-        const struct snode *s = &b.s[i];
-        t[i][0] = (float)s->axis;
+void cv_sdtree_destroy(struct cv_sdtree **tp)
+{
+    if (!tp || !*tp)
+        return;
+    free_arrays(*tp);
+    free(*tp);
+    *tp = NULL;
+}
+
+size_t cv_sdtree_stat_words(const struct cv_sdtree *t)
+{
+    return CV_SD_CLASS_WORDS * t->nc + CV_SD_NODE_WORDS * t->nt;
+}
+
+/* The first statistics word of training node j. */
+static size_t train_word(const struct cv_sdtree *t, uint32_t j)
+{
+    return CV_SD_CLASS_WORDS * t->nc + CV_SD_NODE_WORDS * (size_t)j;
+}
+
+void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels)
+{
+    /* spatial nodes, class texels, sampling nodes, training nodes */
+    size_t sbase = t->ns + t->nc, tbase = sbase + 2 * t->nq, nt = tbase + 2 * t->nt;
+    float(*x)[4] = cv_xcalloc(nt, sizeof(*x));
+    for (size_t i = 0; i < t->ns; i++) {
+        const struct snode *s = &t->s[i];
+        x[i][0] = (float)s->axis;
         if (s->axis < 3) {
-            t[i][1] = s->split;
-            t[i][2] = (float)s->child;
+            x[i][1] = s->split;
+            x[i][2] = (float)s->child;
         } else {
-            t[i][2] = (float)(b.ns + (size_t)s->child * CV_SD_CLASSES);
+            x[i][2] = (float)(t->ns + (size_t)s->child * CV_SD_CLASSES);
         }
     }
-    for (size_t i = 0; i < b.nc; i++) {
-        t[b.ns + i][0] = (float)(qbase + 2 * (size_t)b.c[i].quad);
-        t[b.ns + i][1] = b.c[i].weight;
+    for (size_t i = 0; i < t->nc; i++) {
+        x[t->ns + i][0] = (float)(sbase + 2 * (size_t)t->c[i].samp);
+        x[t->ns + i][1] = t->c[i].weight;
+        x[t->ns + i][2] = (float)(tbase + 2 * (size_t)t->c[i].train);
+        x[t->ns + i][3] = (float)(CV_SD_CLASS_WORDS * i);
     }
-    for (size_t j = 0; j < b.nq; j++) {
-        float *a = t[qbase + 2 * j], *ch = t[qbase + 2 * j + 1];
-        for (int q = 0; q < 4; q++) {
-            a[q] = b.q[j].p[q];
-            ch[q] = b.q[j].child[q] ? (float)(qbase + 2 * (size_t)b.q[j].child[q]) : 0.0f;
+    for (size_t j = 0; j < t->nq; j++) {
+        float *a = x[sbase + 2 * j], *ch = x[sbase + 2 * j + 1];
+        for (int k = 0; k < 4; k++) {
+            a[k] = t->q[j].p[k];
+            ch[k] = t->q[j].child[k] ? (float)(sbase + 2 * (size_t)t->q[j].child[k]) : 0.0f;
         }
     }
-    free(b.s);
-    free(b.q);
-    free(b.c);
-    *texels = t;
+    for (size_t j = 0; j < t->nt; j++) {
+        float *ch = x[tbase + 2 * j];
+        for (int k = 0; k < 4; k++)
+            ch[k] = t->t[j].child[k] ? (float)(tbase + 2 * (size_t)t->t[j].child[k]) : 0.0f;
+        x[tbase + 2 * j + 1][0] = (float)train_word(t, (uint32_t)j);
+    }
+    *texels = x;
     *n_texels = nt;
-    if (stats)
-        *stats = b.st;
+}
+
+/* What a record adds to its quadtree (the shaders' cv_sd_value): the Monte
+ * Carlo estimate of the integral of the incident radiance times the cosine
+ * to its class's axis (the normal of a wall that faces the axis) over
+ * directions; the guide then stands for the diffuse integrand, not the
+ * radiance alone, which sends samples to grazing and back-facing
+ * directions. -1: the record does not count (no density, a value not
+ * finite or below 0, a position not finite). */
+static float rec_value(const struct cv_sd_record *r, int cls, double u)
+{
+    double L = (double)r->L / r->pdf;
+    if (!(r->pdf > 0) || !isfinite(L) || !(L >= 0) || !isfinite(r->p[0]) ||
+        !isfinite(r->p[1]) || !isfinite(r->p[2]))
+        return -1;
+    double z = 2.0 * u - 1, phi = 2 * M_PI * r->v - M_PI, s = sqrt(fmax(0, 1 - z * z));
+    double w[3] = {s * cos(phi), s * sin(phi), z};
+    double c = w[cls / 2] * (cls & 1 ? -1 : 1);
+    return c > 0 ? (float)(L * c) : 0.0f;
+}
+
+static void add_float(uint32_t *word, float v)
+{
+    float f;
+    memcpy(&f, word, sizeof(f));
+    f += v;
+    memcpy(word, &f, sizeof(f));
+}
+
+void cv_sdtree_splat(const float (*x)[4], uint32_t *stats, const struct cv_sd_record *r)
+{
+    float cls = floorf(r->u);
+    if (!(cls >= 0 && cls < CV_SD_CLASSES))
+        return;
+    double su = r->u - cls, sv = r->v;
+    float v = rec_value(r, (int)cls, su);
+    if (v < 0)
+        return;
+    uint32_t leaf = cv_sdtree_leaf(x, r->p);
+    if (x[leaf][0] != (float)CV_SD_LEAF)
+        return;
+    const float *ct = x[(uint32_t)x[leaf][2] + (uint32_t)cls];
+    uint32_t w = (uint32_t)ct[3];
+    stats[w]++;
+    stats[w + 1] += v > 0;
+    uint32_t q = (uint32_t)ct[2];
+    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
+        uint32_t base = (uint32_t)x[q + 1][0];
+        int ix = su < 0.5 ? 0 : 1, iy = sv < 0.5 ? 0 : 1, k = ix + 2 * iy;
+        if (v > 0)
+            add_float(&stats[base + k], v);
+        stats[base + 4 + k]++;
+        su = 2 * su - ix;
+        sv = 2 * sv - iy;
+        uint32_t c = (uint32_t)x[q][k];
+        if (!c)
+            break;
+        q = c;
+    }
+}
+
+/* One refinement: the old guide and its statistics, the new guide. */
+struct refine {
+    const struct cv_sdtree *old;
+    const uint32_t *stats;   /* NULL: all zero */
+    const struct cv_sdtree_opts *o;
+    struct cv_sdtree *n;
+    double thresh;
+    struct cv_sdtree_stats st;
+};
+
+/* The flux (e) and record counts (cnt) of old training node j's quadrants. */
+static void node_stats(const struct refine *r, uint32_t j, double e[4], double cnt[4])
+{
+    size_t w = train_word(r->old, j);
+    for (int k = 0; k < 4; k++) {
+        float f = 0;
+        if (r->stats)
+            memcpy(&f, &r->stats[w + k], sizeof(f));
+        e[k] = isfinite(f) && f > 0 ? f : 0;
+        cnt[k] = r->stats ? r->stats[w + 4 + k] : 0;
+    }
+}
+
+/* The sampling node of old training node j, whose square has side `side`,
+ * at depth: its quadrants' flux plus the floor's share fe per unit area,
+ * normalized. */
+static uint32_t make_sampling(struct refine *r, uint32_t j, double side, uint32_t depth,
+                              double fe)
+{
+    uint32_t node = push_q(r->n);
+    if (depth + 1 > r->st.max_quad_depth)
+        r->st.max_quad_depth = depth + 1;
+    double e[4], cnt[4], w[4], sum = 0, h = side / 2;
+    node_stats(r, j, e, cnt);
+    for (int k = 0; k < 4; k++) {
+        w[k] = e[k] + fe * h * h;
+        sum += w[k];
+    }
+    for (int k = 0; k < 4; k++)
+        r->n->q[node].p[k] = sum > 0 ? (float)(w[k] / sum) : 0.25f;
+    for (int k = 0; k < 4; k++) {
+        uint32_t oc = r->old->t[j].child[k];
+        if (oc) {
+            uint32_t c = make_sampling(r, oc, h, depth + 1, fe);
+            r->n->q[node].child[k] = c;
+        }
+    }
+    return node;
+}
+
+/* The next training node at depth, from old training node j (NONE: a new
+ * one) with its quadrants' flux e and counts cnt; E: its class's flux. A
+ * quadrant over rho E with min_split records subdivides; a new node takes a
+ * quarter of its quadrant's flux and count in each of its own, so that a
+ * bright quadrant may subdivide several levels at once (Müller et al.). */
+static uint32_t make_training(struct refine *r, uint32_t j, const double e[4],
+                              const double cnt[4], uint32_t depth, double E)
+{
+    const struct cv_sdtree_opts *o = r->o;
+    uint32_t node = push_t(r->n);
+    for (int k = 0; k < 4; k++) {
+        uint32_t c = 0;
+        if (depth + 1 < o->max_depth && E > 0 && e[k] > o->rho * E && cnt[k] >= o->min_split) {
+            uint32_t oc = j != NONE ? r->old->t[j].child[k] : 0;
+            double ce[4], cc[4];
+            if (oc) {
+                node_stats(r, oc, ce, cc);
+            } else {
+                for (int m = 0; m < 4; m++) {
+                    ce[m] = e[k] / 4;
+                    cc[m] = cnt[k] / 4;
+                }
+            }
+            c = make_training(r, oc ? oc : NONE, ce, cc, depth + 1, E);
+        }
+        r->n->t[node].child[k] = c;
+    }
+    return node;
+}
+
+/* What an old leaf's class learned, handed to the leaves it splits into. */
+struct learned {
+    uint32_t samp;
+    float weight;
+    uint32_t train;   /* the old training root */
+    double e[4], cnt[4], E;
+};
+
+/* New spatial node `node` over [lo, hi] at depth, for an old leaf that
+ * learned lc and holds `count` records: splits at the middle while the
+ * count (halved per level, as the records are unknown) is over the
+ * threshold, then makes the leaves, which share the sampling quadtrees. */
+static void split_leaf(struct refine *r, uint32_t node, const struct learned *lc, double count,
+                       const double lo[3], const double hi[3], uint32_t depth)
+{
+    if (count > r->thresh && depth < CV_SD_MAX_SPATIAL_DEPTH) {
+        int axis = (int)(depth % 3);
+        double mid = 0.5 * (lo[axis] + hi[axis]);
+        uint32_t c = push_s(r->n);
+        push_s(r->n);
+        r->n->s[node] = (struct snode){(uint32_t)axis, (float)mid, c};
+        double l[3], h[3];
+        memcpy(l, lo, sizeof(l));
+        memcpy(h, hi, sizeof(h));
+        h[axis] = mid;
+        split_leaf(r, c, lc, count / 2, l, h, depth + 1);
+        h[axis] = hi[axis];
+        l[axis] = mid;
+        split_leaf(r, c + 1, lc, count / 2, l, h, depth + 1);
+        return;
+    }
+    r->n->s[node] = (struct snode){3, 0.0f, (uint32_t)(r->n->nc / CV_SD_CLASSES)};
+    for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
+        uint32_t ci = push_c(r->n);
+        r->n->c[ci].samp = lc[cls].samp;
+        r->n->c[ci].weight = lc[cls].weight;
+        r->st.guiding += lc[cls].weight > 0;
+        uint32_t t = make_training(r, lc[cls].train, lc[cls].e, lc[cls].cnt, 0, lc[cls].E);
+        r->n->c[ci].train = t;
+    }
+}
+
+static void refine_spatial(struct refine *r, uint32_t old, uint32_t node, const double lo[3],
+                           const double hi[3], uint32_t depth)
+{
+    const struct snode *os = &r->old->s[old];
+    if (os->axis < 3) {
+        uint32_t c = push_s(r->n), oc = os->child;
+        push_s(r->n);
+        int axis = (int)os->axis;
+        r->n->s[node] = r->old->s[old];
+        r->n->s[node].child = c;
+        double mid = 0.5 * (lo[axis] + hi[axis]), l[3], h[3];
+        memcpy(l, lo, sizeof(l));
+        memcpy(h, hi, sizeof(h));
+        h[axis] = mid;
+        refine_spatial(r, oc, c, l, h, depth + 1);
+        h[axis] = hi[axis];
+        l[axis] = mid;
+        refine_spatial(r, oc + 1, c + 1, l, h, depth + 1);
+        return;
+    }
+    struct learned lc[CV_SD_CLASSES];
+    double count = 0;
+    for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
+        size_t ci = (size_t)os->child * CV_SD_CLASSES + cls, w = CV_SD_CLASS_WORDS * ci;
+        const struct cnode *oc = &r->old->c[ci];
+        double n = r->stats ? r->stats[w] : 0, lit = r->stats ? r->stats[w + 1] : 0;
+        count += n;
+        struct learned *l = &lc[cls];
+        l->train = oc->train;
+        node_stats(r, oc->train, l->e, l->cnt);
+        l->E = l->e[0] + l->e[1] + l->e[2] + l->e[3];
+        /* the floor spread over the square's unit area */
+        l->samp = make_sampling(r, oc->train, 1, 0, r->o->floor * l->E);
+        l->weight = lit >= r->o->min_records && l->E > 0 ? r->o->mix : 0.0f;
+    }
+    split_leaf(r, node, lc, count, lo, hi, depth);
+}
+
+void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
+                      struct cv_sdtree_stats *st)
+{
+    struct cv_sdtree n = {0};
+    memcpy(n.lo, t->lo, sizeof(n.lo));
+    memcpy(n.hi, t->hi, sizeof(n.hi));
+    struct refine r = {.old = t, .stats = stats, .o = o, .n = &n};
+    for (size_t ci = 0; stats && ci < t->nc; ci++)
+        r.st.records += stats[CV_SD_CLASS_WORDS * ci];
+    r.thresh = o->split_c * sqrt((double)r.st.records);
+    if (r.thresh < 2 * o->min_records)
+        r.thresh = 2 * o->min_records;
+    uint32_t root = push_s(&n);
+    refine_spatial(&r, 0, root, t->lo, t->hi, 0);
+    free_arrays(t);
+    *t = n;
+    r.st.spatial_nodes = (uint32_t)t->ns;
+    r.st.spatial_leaves = (uint32_t)(t->nc / CV_SD_CLASSES);
+    r.st.quad_nodes = (uint32_t)t->nq;
+    r.st.train_nodes = (uint32_t)t->nt;
+    if (st)
+        *st = r.st;
+}
+
+void cv_sdtree_learn_records(struct cv_sdtree *t, const struct cv_sd_record *rec, size_t n,
+                             const struct cv_sdtree_opts *o, struct cv_sdtree_stats *st)
+{
+    /* each round adds at least a level where the tree changes: the depth
+     * limits bound the rounds */
+    for (uint32_t round = 0; round < CV_SD_MAX_SPATIAL_DEPTH + CV_SD_MAX_DEPTH + 2; round++) {
+        float(*x)[4] = NULL;
+        size_t nx = 0;
+        cv_sdtree_table(t, &x, &nx);
+        uint32_t *stats = cv_xcalloc(cv_sdtree_stat_words(t) + 1, sizeof(*stats));
+        for (size_t i = 0; i < n; i++)
+            cv_sdtree_splat((const float(*)[4])x, stats, &rec[i]);
+        size_t ns = t->ns, nt = t->nt;
+        struct snode *s = cv_xmalloc(ns * sizeof(*s));
+        struct tnode *tn = cv_xmalloc(nt * sizeof(*tn));
+        memcpy(s, t->s, ns * sizeof(*s));
+        memcpy(tn, t->t, nt * sizeof(*tn));
+        cv_sdtree_refine(t, stats, o, st);
+        bool same = t->ns == ns && t->nt == nt && !memcmp(s, t->s, ns * sizeof(*s)) &&
+                    !memcmp(tn, t->t, nt * sizeof(*tn));
+        free(s);
+        free(tn);
+        free(stats);
+        free(x);
+        if (same)
+            break;
+    }
+}
+
+void cv_sdtree_build(const float bmin[3], const float bmax[3], const struct cv_sd_record *rec,
+                     size_t n, const struct cv_sdtree_opts *o, float (**texels)[4],
+                     size_t *n_texels, struct cv_sdtree_stats *stats)
+{
+    struct cv_sdtree *t = cv_sdtree_create(bmin, bmax);
+    cv_sdtree_learn_records(t, rec, n, o, stats);
+    cv_sdtree_table(t, texels, n_texels);
+    cv_sdtree_destroy(&t);
 }
 
 double cv_sdtree_pdf_square(const float (*t)[4], uint32_t root, double u, double v)

@@ -1,33 +1,37 @@
-/* sdtree.h: the host build of rlpath's sdtree guide (after Müller, Gross
+/* sdtree.h: the host side of rlpath's sdtree guide (after Müller, Gross
  * and Novák, "Practical Path Guiding", 2017; table layout in
- * glsl/shared/sdtree.h): from the training records of one pass of doubling
- * length, a spatial binary tree over a cube around the scene whose leaves
- * each hold a directional quadtree of the incident radiance they recorded.
- * Pure C, no GPU: src/trace/rlpath_sd.c uploads the table. Cost class: one
- * pass over the records per tree level, once per training pass. */
+ * glsl/shared/sdtree.h): a spatial binary tree over a cube around the
+ * scene whose leaves each hold directional quadtrees of the incident
+ * radiance. The shaders splat each training iteration's records into the
+ * statistics of the tree being trained (glsl/trace/rlpath/sdtree.glsl); at
+ * the iteration's end cv_sdtree_refine makes from them the next sampling
+ * quadtrees and the next tree to train, as Müller et al.: leaves split in
+ * space by record count, quadrants by their share of the flux. Pure C, no
+ * GPU: src/trace/rlpath_sd.c uploads the table. Cost class: one walk of
+ * the tree per refinement, nothing per record. */
 #ifndef CV_TRACE_SDTREE_H
 #define CV_TRACE_SDTREE_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-/* One training record as the shaders append it (two rgba32f texels). */
+/* One training record as the shaders keep it per path slot (two rgba32f
+ * texels, glsl/shared/sdtree.h). */
 struct cv_sd_record {
     float p[3];      /* position (world) */
     float pdf;       /* solid-angle density the direction was drawn with, > 0 */
-    float u, v;      /* direction on the square [0,1)^2 (cylindrical map); as
-                        read back, u has the orientation class added */
-    float beta;      /* path throughput after the bounce (the shaders'; the
-                        build keeps the class here) */
+    float u, v;      /* direction on the square [0,1)^2 (cylindrical map); u
+                        has the orientation class added */
+    float beta;      /* path throughput after the bounce (unused here) */
     float L;         /* incident radiance found along the direction */
 };
 _Static_assert(sizeof(struct cv_sd_record) == 32, "two rgba32f texels");
 
 struct cv_sdtree_opts {
     float mix;              /* guiding weight of a leaf that learned, in [0, 1] */
-    /* A spatial node splits while it holds more than split_c *
-     * sqrt(records) records (Müller et al.'s c sqrt(2^k) per pixel, for
-     * the whole image). */
+    /* A spatial leaf splits while it holds more than split_c *
+     * sqrt(records of the iteration) records (Müller et al.'s c sqrt(2^k)
+     * per pixel, for the whole image). */
     float split_c;
     float rho;              /* a quadrant splits above this share of its leaf's energy */
     uint32_t min_split;     /* ... and with at least this many records */
@@ -41,16 +45,59 @@ struct cv_sdtree_opts {
 extern const struct cv_sdtree_opts cv_sdtree_defaults;
 
 struct cv_sdtree_stats {
-    uint32_t spatial_nodes, spatial_leaves, quad_nodes, max_quad_depth;
+    uint32_t spatial_nodes, spatial_leaves;
+    uint32_t quad_nodes, max_quad_depth;   /* the sampling quadtrees' */
+    uint32_t train_nodes;                  /* the training quadtrees' */
     uint32_t guiding;   /* (leaf, class) quadtrees that guide */
+    uint64_t records;   /* the statistics' records */
 };
 
-/* Builds the table (texels of 4 floats, glsl/shared/sdtree.h) from n
- * records (reordered in place; records with pdf <= 0 or a non-finite
- * value are ignored) for the box [bmin, bmax]. *texels is allocated (free
- * it), *n_texels its length; never fails (no records: one unguided leaf).
- * stats may be NULL. */
-void cv_sdtree_build(const float bmin[3], const float bmax[3], struct cv_sd_record *rec,
+/* The guide between iterations: the tree being trained and the sampling
+ * quadtrees learned before. */
+struct cv_sdtree;
+
+/* The untrained guide over the box [bmin, bmax] (a cube about it): one
+ * leaf, whose classes do not guide. */
+struct cv_sdtree *cv_sdtree_create(const float bmin[3], const float bmax[3]);
+
+/* Accepts NULL; clears the pointer. */
+void cv_sdtree_destroy(struct cv_sdtree **t);
+
+/* The table of the guide (glsl/shared/sdtree.h): *texels is allocated
+ * (free it), *n_texels its length. */
+void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels);
+
+/* Words of the statistics the table's training tree takes. */
+size_t cv_sdtree_stat_words(const struct cv_sdtree *t);
+
+/* Splats record r (as the shaders keep it: u with the class added) into
+ * the statistics of the table's training tree, as the shaders'
+ * cv_sd_splat does (the host's copy of it, for tests and
+ * cv_sdtree_learn_records). */
+void cv_sdtree_splat(const float (*texels)[4], uint32_t *stats, const struct cv_sd_record *r);
+
+/* The end of a training iteration: from the statistics splatted into the
+ * table's training tree (cv_sdtree_stat_words words), the next sampling
+ * quadtrees (the training ones with the flux as their probabilities, and
+ * the guiding weights) and the next training tree (leaves over split_c *
+ * sqrt(records) records split in space, halving the count per level;
+ * quadrants over rho of their class's flux, with min_split records,
+ * subdivided, a new quadrant taking a quarter of its parent's, and the
+ * others pruned). stats may be NULL. */
+void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
+                      struct cv_sdtree_stats *st);
+
+/* Learns from n records on the host: splats them and refines, again and
+ * again until the tree no longer changes, so that the sampling quadtrees
+ * follow the records alone (tests, bench). Records with pdf <= 0 or a
+ * non-finite value are ignored. st may be NULL. */
+void cv_sdtree_learn_records(struct cv_sdtree *t, const struct cv_sd_record *rec, size_t n,
+                             const struct cv_sdtree_opts *o, struct cv_sdtree_stats *st);
+
+/* The table of a guide learned from n records alone (cv_sdtree_create,
+ * cv_sdtree_learn_records, cv_sdtree_table); never fails (no records: one
+ * unguided leaf). stats may be NULL. */
+void cv_sdtree_build(const float bmin[3], const float bmax[3], const struct cv_sd_record *rec,
                      size_t n, const struct cv_sdtree_opts *o, float (**texels)[4],
                      size_t *n_texels, struct cv_sdtree_stats *stats);
 

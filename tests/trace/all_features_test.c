@@ -20,13 +20,16 @@ int main(void)
     tap_ok(s->warnings == 0, "the scene loads without warnings (%u)", s->warnings);
     static const struct {
         enum cv_integrator id;
+        bool sdtree;   /* rlpath.method: sdtree (its own stages and images) */
         const char *name;
-    } integrators[] = {{CV_INTEGRATOR_PATH, "path"},
-                       {CV_INTEGRATOR_VOLPATH, "volpath"},
-                       {CV_INTEGRATOR_RLPATH, "rlpath"},
-                       {CV_INTEGRATOR_BDPT, "bdpt"}};
+    } integrators[] = {{CV_INTEGRATOR_PATH, false, "path"},
+                       {CV_INTEGRATOR_VOLPATH, false, "volpath"},
+                       {CV_INTEGRATOR_RLPATH, false, "rlpath"},
+                       {CV_INTEGRATOR_RLPATH, true, "rlpath sdtree"},
+                       {CV_INTEGRATOR_BDPT, false, "bdpt"}};
     for (size_t i = 0; i < CV_ARRAY_SIZE(integrators); i++) {
-        struct cv_render_params p = {.seed = 1, .integrator = integrators[i].id, .rl_mix = -1};
+        struct cv_render_params p = {.seed = 1, .integrator = integrators[i].id, .rl_mix = -1,
+                                     .rl_sdtree = integrators[i].sdtree};
         struct cv_renderer *r = NULL;
         struct cv_error err = {{0}};
         tap_ok(cv_renderer_create(gpu, s, &p, &r, &err), "%s: every stage program links: %s",

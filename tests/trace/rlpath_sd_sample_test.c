@@ -131,6 +131,74 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
            cv_gl_check(err, "test_sd_sample mode %d", mode);
 }
 
+/* The shaders' splat (sd_flush.comp, with float atomics where the driver
+ * has them, then with compare-and-swap) into the statistics of the
+ * uploaded guide's training tree equals the host's (cv_sdtree_splat) of
+ * the same records: counts exactly, flux within float rounding of a sum
+ * in another order. The records: the build's, in every class, some dark,
+ * some without density, one not finite. */
+static void splat_test(struct rig *g, const float (*t)[4])
+{
+    const size_t n = 30000;
+    struct cv_sd_record *r = make_records(n);
+    for (size_t i = 0; i < n; i++) {
+        r[i].u = r[i].u - 4 + (float)(i % CV_SD_CLASSES);
+        if (i % 7 == 0)
+            r[i].L = 0;
+        if (i % 101 == 0)
+            r[i].pdf = 0;
+    }
+    r[5].L = NAN;
+    for (int cas = 0; cas <= 1; cas++) {
+        struct cv_error err = {{0}};
+        uint32_t *gs = NULL;
+        size_t words = 0;
+        bool ok = cv_rlpath_sd_splat(g->sd, r, n, cas, &gs, &words, &err);
+        if (!tap_ok(ok, "splat %zu records on the GPU (%s): %s", n,
+                    cas ? "compare-and-swap" : "float atomics where there", err.msg)) {
+            free(gs);
+            continue;
+        }
+        uint32_t *hs = calloc(words, sizeof(*hs));
+        for (size_t i = 0; i < n; i++)
+            cv_sdtree_splat(t, hs, &r[i]);
+        /* the flux words: the first four of each training node's eight,
+         * after the classes' (the spatial nodes end at the first class
+         * texel, the lowest a leaf names) */
+        uint32_t ns = UINT32_MAX, classes = 0, bad_count = 0, bad_flux = 0;
+        for (uint32_t k = 0; k < ns; k++)
+            if (t[k][0] == (float)CV_SD_LEAF && (uint32_t)t[k][2] < ns)
+                ns = (uint32_t)t[k][2];
+        for (uint32_t k = 0; k < ns; k++)
+            classes += t[k][0] == (float)CV_SD_LEAF ? CV_SD_CLASSES : 0;
+        uint64_t counted = 0;
+        double flux = 0;
+        size_t node0 = CV_SD_CLASS_WORDS * classes;
+        for (size_t w = 0; w < words; w++) {
+            bool is_flux = w >= node0 && (w - node0) % CV_SD_NODE_WORDS < 4;
+            if (is_flux) {
+                float a, b;
+                memcpy(&a, &gs[w], 4);
+                memcpy(&b, &hs[w], 4);
+                bad_flux += !(fabs(a - b) <= 1e-4 * fabs(b) + 1e-6);
+                flux += b;
+            } else {
+                bad_count += gs[w] != hs[w];
+                counted += w < node0 && w % 2 == 0 ? hs[w] : 0;
+            }
+        }
+        tap_ok(bad_count == 0 && counted > n / 2,
+               "%s: record counts equal the host's (%u of %zu words differ; %llu records)",
+               cas ? "compare-and-swap" : "float atomics", bad_count, words,
+               (unsigned long long)counted);
+        tap_ok(bad_flux == 0 && flux > 0, "%s: flux sums equal the host's within 1e-4 (%u differ)",
+               cas ? "compare-and-swap" : "float atomics", bad_flux);
+        free(hs);
+        free(gs);
+    }
+    free(r);
+}
+
 int main(void)
 {
     struct cv_error err = {{0}};
@@ -153,7 +221,7 @@ int main(void)
     float m = t[key][1];
 
     float *out = malloc((size_t)N * 8 * sizeof(float));
-    bool ok = tap_ok(cv_rlpath_sd_create(g.gpu, lo, hi, 64, 64, o.mix, 0, &g.sd, &err),
+    bool ok = tap_ok(cv_rlpath_sd_create(g.gpu, lo, hi, 64, o.mix, 0, &g.sd, &err),
                      "create: %s", err.msg) &&
               tap_ok(cv_rlpath_sd_build(g.sd, recs, NR, &err), "build and upload: %s", err.msg);
     g.out = cv_buffer_create((size_t)N * 8 * sizeof(float), NULL, "probe out", &err);
@@ -256,6 +324,7 @@ int main(void)
     }
     free(in);
     free(out);
+    splat_test(&g, (const float(*)[4])t);
     free(t);
     free(recs);
     free(copy);

@@ -1,6 +1,9 @@
-/* sdtree_test.c: the host build of rlpath's sdtree guide (trace/sdtree.c,
- * layout glsl/shared/sdtree.h) on synthetic records: no records give one
- * leaf whose six orientation classes have uniform, unguided quadtrees;
+/* sdtree_test.c: rlpath's sdtree guide learned on the host (trace/sdtree.c:
+ * the records splatted as the shaders do and the tree refined from the
+ * statistics until it stops changing; layout glsl/shared/sdtree.h) from
+ * synthetic records: no records give one leaf whose six orientation
+ * classes have uniform, unguided sampling quadtrees and one training node
+ * each, its statistics words where the layout says;
  * records spread over a box give a spatial tree whose leaves hold at most
  * the split threshold, and every record found again in the leaf that the
  * lookup names; the flattened table's links point where the layout says
@@ -102,16 +105,22 @@ static void test_empty(void)
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, NULL, 0, &cv_sdtree_defaults, &t, &nt, &st);
     uint32_t bad = 0;
-    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 3 * CV_SD_CLASSES; c++) {
+    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 5 * CV_SD_CLASSES; c++) {
         const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + 2 * c], *ch = q + 4;
+        const float *tr = t[1 + 3 * CV_SD_CLASSES + 2 * c];
         bad += k[0] != (float)(1 + CV_SD_CLASSES + 2 * c) || k[1] != 0;
+        /* the training root and its statistics: the class's two words,
+         * then the node's eight */
+        bad += k[2] != (float)(1 + 3 * CV_SD_CLASSES + 2 * c) || k[3] != (float)(2 * c);
+        bad += tr[0] != 0 || tr[1] != 0 || tr[2] != 0 || tr[3] != 0 ||
+               tr[4] != (float)(2 * CV_SD_CLASSES + 8 * c);
         bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0.25f;
         bad += ch[0] != 0 || ch[1] != 0 || ch[2] != 0 || ch[3] != 0;
     }
-    tap_ok(nt == 1 + 3 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
+    tap_ok(nt == 1 + 5 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
            "no records: one leaf, its class texels at texel 1 (%zu texels)", nt);
-    tap_ok(bad == 0, "no records: every class of weight 0, one uniform quadtree node each "
-           "(%u wrong)", bad);
+    tap_ok(bad == 0, "no records: every class of weight 0, one uniform sampling quadtree node "
+           "and one training node each (%u wrong)", bad);
     tap_ok(st.spatial_leaves == 1 && st.guiding == 0 && st.quad_nodes == CV_SD_CLASSES,
            "no records: stats %u leaves, %u guiding, %u quadtree nodes", st.spatial_leaves,
            st.guiding, st.quad_nodes);
@@ -165,8 +174,10 @@ static void test_build(void)
     uint32_t ns = st.spatial_nodes, nc = CV_SD_CLASSES * st.spatial_leaves, qb = ns + nc;
     tap_ok(st.spatial_leaves > 8 && st.spatial_leaves * 2 - 1 == ns,
            "%u spatial leaves of %u nodes (a full binary tree)", st.spatial_leaves, ns);
-    tap_ok(nt == qb + 2 * (size_t)st.quad_nodes && st.quad_nodes >= nc,
-           "%zu texels: %u spatial + %u class + 2 x %u quadtree", nt, ns, nc, st.quad_nodes);
+    uint32_t qe = qb + 2 * st.quad_nodes;   /* the training nodes' first texel */
+    tap_ok(nt == qe + 2 * (size_t)st.train_nodes && st.quad_nodes >= nc && st.train_nodes >= nc,
+           "%zu texels: %u spatial + %u class + 2 x %u sampling + 2 x %u training quadtree", nt,
+           ns, nc, st.quad_nodes, st.train_nodes);
     /* spatial links */
     uint32_t bad_s = 0, leaves = 0;
     uint8_t *seen = calloc(st.spatial_leaves + 1, 1);
@@ -179,7 +190,7 @@ static void test_build(void)
                 bad_s++;
             for (uint32_t c = 0; c < CV_SD_CLASSES && k + c < qb; c++) {
                 uint32_t q = (uint32_t)t[k + c][0];
-                if (q < qb || (q - qb) % 2 || q + 1 >= nt)
+                if (q < qb || (q - qb) % 2 || q + 1 >= qe)
                     bad_s++;
                 if (!(t[k + c][1] == 0 || t[k + c][1] == o.mix))
                     bad_s++;
@@ -224,7 +235,7 @@ static void test_build(void)
     double dark_ratio = 0;
     for (uint32_t k = ns; k < qb; k++) {
         uint32_t q = (uint32_t)t[k][0];
-        check_quad((const float(*)[4])t, nt, qb, q, 0, &bad_link, &bad_prob, &nodes);
+        check_quad((const float(*)[4])t, qe, qb, q, 0, &bad_link, &bad_prob, &nodes);
         double s = integrate((const float(*)[4])t, q, 1, 1);
         if (fabs(s - 1) > 1e-5)
             bad_int++;

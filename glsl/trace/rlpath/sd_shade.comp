@@ -1,4 +1,5 @@
 #version 450
+#extension GL_NV_shader_atomic_float : enable
 // glsl/trace/rlpath/sd_shade.comp: the surface stage of rlpath's sdtree
 // method (rlpath.method: sdtree): a path vertex (../path_vertex.glsl) whose
 // bounce is drawn from the one-sample mixture of the hit's spatial leaf's
@@ -9,8 +10,9 @@
 // the Q-learning method (shade.comp).
 // While the guide trains (u_sd.learn.x) each vertex records its bounce and
 // adds the emission it finds to the records of the bounces before it; a
-// path that ends sends its records to the host (sdtree.glsl), which builds
-// the next tree from them between passes (src/trace/rlpath_sd.c). Passes
+// path that ends splats its records into the statistics of the tree being
+// trained (sdtree.glsl), from which the host refines the next tree at the
+// end of each training iteration (src/trace/rlpath_sd.c). Passes
 // after training pay only for the tree's lookups.
 // Built once per bin of the hit queue, as path's shade.comp.
 #include "shared/trace.h"
@@ -28,6 +30,7 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../lights.glsl"
 #include "../surface_inputs.glsl"
 #define CV_SD_RECORD
+#define CV_SD_SPLAT
 #include "sdtree.glsl"
 #include "guides.glsl"
 #define CV_STRATEGY_FILM

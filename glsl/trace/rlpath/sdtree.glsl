@@ -1,7 +1,8 @@
 // glsl/trace/rlpath/sdtree.glsl: the guide of rlpath's sdtree method
 // (layout in shared/sdtree.h): the spatial leaf of a point, sampling a
 // direction from its directional quadtree and the density of a direction,
-// and (CV_SD_RECORD) the training records of a path. Sampling reuses its
+// (CV_SD_RECORD) the training records of a path, and (CV_SD_SPLAT) their
+// splat into the statistics of the tree being trained. Sampling reuses its
 // two random numbers down the quadtree: at each node u.x picks the column
 // of quadrants by their marginal and u.y the quadrant in it, each rescaled
 // to [0, 1) within the choice, and what is left of them places the point
@@ -12,21 +13,28 @@
 // Cost: a lookup is a walk down the spatial tree (one texel per level),
 // sampling or a pdf two texels per quadtree level.
 // Include after the local_size layout line. CV_SD_RECORD: the record
-// images read-write (shade and escaped stages while training).
+// images read-write (shade, escaped and shadow stages while training);
+// CV_SD_SPLAT (with it): the statistics too (stages that end a path's
+// records: shade, escaped, sd_flush.comp), whose float adds need
+// "#extension GL_NV_shader_atomic_float : enable" at the top of the file
+// where the driver has it (NVIDIA, Mesa's llvmpipe), else compare-and-swap.
 #ifndef CV_RLPATH_SDTREE_GLSL
 #define CV_RLPATH_SDTREE_GLSL
 
 #include "shared/sdtree.h"
-#ifdef CV_SD_RECORD
-#include "../../lib/rng.glsl"
-#endif
 
 layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
 layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
 #ifdef CV_SD_RECORD
 layout(rgba32f, binding = CV_IMAGE_SD_VERTS) uniform imageBuffer sd_verts;
-layout(rgba32f, binding = CV_IMAGE_SD_OUT) uniform writeonly imageBuffer sd_out;
-layout(r32ui, binding = CV_IMAGE_SD_COUNT) uniform uimageBuffer sd_count;
+#endif
+#ifdef CV_SD_SPLAT
+layout(r32ui, binding = CV_IMAGE_SD_STATS) uniform coherent uimageBuffer sd_stats;
+// CV_SD_CAS (tests): compare-and-swap even where float atomics are there
+#if defined(GL_NV_shader_atomic_float) && !defined(CV_SD_CAS)
+#define CV_SD_FLOAT_ATOMICS
+layout(r32f, binding = CV_IMAGE_SD_FLUX) uniform coherent imageBuffer sd_flux;
+#endif
 #endif
 
 const float CV_SD_PI = 3.14159265358979323846;
@@ -42,10 +50,9 @@ uint cv_sd_class(vec3 n)
     return 2u * ax + (n[ax] < 0.0 ? 1u : 0u);
 }
 
-// The quadtree of point p and orientation class cls: its root (x, a texel
-// index) and its guiding weight (y; 0 before the first build: the empty
-// table's classes have weight 0).
-vec2 cv_sd_leaf(vec3 p, uint cls)
+// The class texel of point p and orientation class cls (shared/sdtree.h),
+// -1 past the depth limit (a malformed table).
+int cv_sd_class_texel(vec3 p, uint cls)
 {
     int node = 0;
     vec4 n = imageLoad(sd_tree, 0);
@@ -54,9 +61,16 @@ vec2 cv_sd_leaf(vec3 p, uint cls)
         node = int(n.z) + (p[axis] >= n.y ? 1 : 0);
         n = imageLoad(sd_tree, node);
     }
-    if (n.x < CV_SD_LEAF)
-        return vec2(0.0);
-    return imageLoad(sd_tree, int(n.z) + int(cls)).xy;
+    return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
+}
+
+// The quadtree of point p and orientation class cls: its root (x, a texel
+// index) and its guiding weight (y; 0 before the first build: the empty
+// table's classes have weight 0).
+vec2 cv_sd_leaf(vec3 p, uint cls)
+{
+    int c = cv_sd_class_texel(p, cls);
+    return c < 0 ? vec2(0.0) : imageLoad(sd_tree, c).xy;
 }
 
 // The square point of a unit direction, and back.
@@ -186,9 +200,74 @@ void cv_sd_path_end(uint slot, uint depth)
     imageStore(sd_verts, cv_sd_slot_texel(slot), vec4(float(min(depth, CV_SD_MAX_RECORDS))));
 }
 
-// Sends the finished path's records to the host (appended at a counter),
-// before the slot's next path overwrites them: at its first vertex or
-// miss, and after each training pass (sd_flush.comp).
+#ifdef CV_SD_SPLAT
+// Adds the float v to word w of the statistics: one atomic add where the
+// driver has float atomics, else compare-and-swap on the bits, retried
+// until no other thread changed the word in between (exact, as the add).
+void cv_sd_add(int w, float v)
+{
+#ifdef CV_SD_FLOAT_ATOMICS
+    imageAtomicAdd(sd_flux, w, v);
+#else
+    uint old = imageLoad(sd_stats, w).x;
+    for (;;) {
+        uint seen = imageAtomicCompSwap(sd_stats, w, old, floatBitsToUint(uintBitsToFloat(old) + v));
+        if (seen == old)
+            break;
+        old = seen;
+    }
+#endif
+}
+
+// What a record adds to its quadtree (src/trace/sdtree.c, rec_value: the
+// same formula): the Monte Carlo estimate of the incident radiance times
+// the cosine to its class's axis, L / pdf * max(0, cos); -1 for a record
+// that does not count (no density, a value not finite or below 0).
+float cv_sd_value(vec3 p, float pdf, uint cls, vec2 s, float L)
+{
+    float v = L / pdf;
+    if (!(pdf > 0.0) || isinf(v) || isnan(v) || !(v >= 0.0) || any(isinf(p)) || any(isnan(p)))
+        return -1.0;
+    vec3 w = cv_sd_dir(s);
+    float c = w[cls / 2u] * ((cls & 1u) != 0u ? -1.0 : 1.0);
+    return c > 0.0 ? v * c : 0.0;
+}
+
+// Splats one record into the tree being trained (shared/sdtree.h,
+// "Statistics"): its class's record counts, then the flux and count of the
+// quadrant it falls in at each node of the class's training quadtree.
+// No filter: the record counts in its own spatial leaf and quadrant only.
+void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
+{
+    float v = cv_sd_value(p, pdf, cls, s, L);
+    int c = v < 0.0 ? -1 : cv_sd_class_texel(p, cls);
+    if (c < 0)
+        return;
+    vec4 ct = imageLoad(sd_tree, c);
+    int w = int(ct.w);
+    imageAtomicAdd(sd_stats, w, 1u);
+    if (v > 0.0)
+        imageAtomicAdd(sd_stats, w + 1, 1u);
+    int q = int(ct.z);
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        vec4 ch = imageLoad(sd_tree, q);
+        int base = int(imageLoad(sd_tree, q + 1).x);
+        int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
+        int k = ix + 2 * iy;
+        if (v > 0.0)
+            cv_sd_add(base + k, v);
+        imageAtomicAdd(sd_stats, base + 4 + k, 1u);
+        s = 2.0 * s - vec2(float(ix), float(iy));
+        int child = int(ch[k]);
+        if (child == 0)
+            break;
+        q = child;
+    }
+}
+
+// Splats the finished path's records into the tree's statistics, before
+// the slot's next path overwrites them: at its first vertex or miss, and
+// at the end of each training iteration (sd_flush.comp).
 void cv_sd_flush(uint slot)
 {
     int h = cv_sd_slot_texel(slot);
@@ -196,28 +275,18 @@ void cv_sd_flush(uint slot)
     if (n == 0u)
         return;
     imageStore(sd_verts, h, vec4(0.0));
-    uint keep = 0u;
-    for (uint k = 0u; k < n; k++)
-        keep += imageLoad(sd_verts, cv_sd_record_texel(slot, k)).w > 0.0 ? 1u : 0u;
-    if (keep == 0u)
-        return;
-    // a uniform share of the paths, each kept or not whole (the first
-    // record's position tells apart a slot's paths within a pass)
-    if (u_sd.keep.x != CV_SD_KEEP_ALL &&
-        cv_hash3(slot, u_sd.keep.y, floatBitsToUint(imageLoad(sd_verts, cv_sd_record_texel(slot, 0u)).x)) >
-            u_sd.keep.x)
-        return;
-    uint at = imageAtomicAdd(sd_count, 0, keep);
-    for (uint k = 0u; k < n && at < u_sd.learn.y; k++) {
+    for (uint k = 0u; k < n; k++) {
         int t = cv_sd_record_texel(slot, k);
         vec4 a = imageLoad(sd_verts, t);
         if (a.w > 0.0) {
-            imageStore(sd_out, int(2u * at), a);
-            imageStore(sd_out, int(2u * at + 1u), imageLoad(sd_verts, t + 1));
-            at++;
+            vec4 b = imageLoad(sd_verts, t + 1);
+            float cls = floor(b.x);
+            if (cls >= 0.0 && cls < float(CV_SD_CLASSES))
+                cv_sd_splat(a.xyz, a.w, uint(cls), vec2(b.x - cls, b.y), b.w);
         }
     }
 }
+#endif
 #endif
 
 #endif
