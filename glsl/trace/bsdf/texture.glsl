@@ -196,8 +196,6 @@ vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
             gb = v;
         else
             gamt = v;
-        if (j == 3)
-            ga = gb = gamt = vec4(0.0);
     }
     return result;
 #endif
