@@ -98,7 +98,10 @@ static int grow(struct forest *f, int depth)
     return id;
 }
 
-static float half_to_float(uint32_t h) { return h ? ldexpf(1 + (h & 1023) / 1024.0f, (int)(h >> 10) - 15) : 0; }
+static float half_to_float(uint32_t h)
+{
+    return h ? ldexpf(1 + (h & 1023) / 1024.0f, (int)(h >> 10) - 15) : 0;
+}
 
 /* The documented semantics, recursively: composites below depth 2 read as
  * their value_a. */
@@ -154,8 +157,9 @@ int main(void)
         m[i].reflectance_tex = roots[i];
     }
     struct probe p;
-    if (!tap_ok(probe_open_tex(gpu, &p, m, TREES, f.tex, f.n_tex, f.texels, f.n_texels ? f.n_texels : 1, &err),
-                "probe: %s", err.msg))
+    size_t n_texels = f.n_texels ? f.n_texels : 1;
+    if (!tap_ok(probe_open_tex(gpu, &p, m, TREES, f.tex, f.n_tex, f.texels, n_texels, &err), "probe: %s",
+                err.msg))
         return tap_done();
     /* one point in each checker square of uv_map 2 */
     float q[4 * QUERIES] = {0.2f, 0.3f, 0, 0, 0.7f, 0.3f, 0, 0, 0.2f, 0.8f, 0, 0, 0.7f, 0.8f, 0, 0};
