@@ -217,26 +217,51 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
 
     // Every texture the material reads, evaluated in one loop (one inlined
     // copy of the texture code): reflectance, specular, eta, roughness u, v,
-    // normal map, displacement at uv, uv + du, uv + dv.
-    int ids[9] = int[9](m.reflectance_tex, m.specular_tex, m.eta_tex, m.roughness_u_tex, m.roughness_v_tex,
-                        m.normal_tex, m.displacement_tex, m.displacement_tex, m.displacement_tex);
-    vec4 vals[9] = vec4[9](m.reflectance, m.specular, vec4(m.eta.x), vec4(m.roughness.x), vec4(m.roughness.y),
-                           vec4(0.5, 0.5, 1.0, 1.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    // normal map, displacement at uv, uv + du, uv + dv. Step k's texture and
+    // result are picked by selects into named variables, not an array
+    // indexed by k (which the driver places in local memory).
+    vec4 refl4 = m.reflectance, spec4 = m.specular, nmap = vec4(0.5, 0.5, 1.0, 1.0);
+    float eta = m.eta.x, rough_u = m.roughness.x, rough_v = m.roughness.y;
+    float disp = 0.0, disp_du = 0.0, disp_dv = 0.0;
 #ifndef CV_NO_TEXTURES
-    // (without textures every value is the constant: no loop, whose
-    // dynamic indexing puts vals[] in local memory)
+    // (without textures every value is the constant: no loop)
     int n_tex = m.displacement_tex >= 0 ? 9 : 6;
     for (int k = 0; k < n_tex; k++) {
 #ifdef CV_BSDF_DIFFUSE_ONLY
         if (k >= 1 && k <= 4)
             continue;  // specular, eta, roughness: not diffuse's
 #endif
+        int id = k == 0 ? m.reflectance_tex
+               : k == 1 ? m.specular_tex
+               : k == 2 ? m.eta_tex
+               : k == 3 ? m.roughness_u_tex
+               : k == 4 ? m.roughness_v_tex
+               : k == 5 ? m.normal_tex : m.displacement_tex;
+        if (id < 0)
+            continue;  // the constant stands
         vec2 tuv = uv + (k == 7 ? vec2(CV_BUMP_DELTA, 0.0) : (k == 8 ? vec2(0.0, CV_BUMP_DELTA) : vec2(0.0)));
-        vals[k] = cv_tex_eval(ids[k], vals[k], tuv, lod);
+        vec4 v = cv_tex_eval(id, vec4(0.0), tuv, lod);  // (id >= 0: no fallback)
+        if (k == 0)
+            refl4 = v;
+        else if (k == 1)
+            spec4 = v;
+        else if (k == 2)
+            eta = v.x;
+        else if (k == 3)
+            rough_u = v.x;
+        else if (k == 4)
+            rough_v = v.x;
+        else if (k == 5)
+            nmap = v;
+        else if (k == 6)
+            disp = v.x;
+        else if (k == 7)
+            disp_du = v.x;
+        else
+            disp_dv = v.x;
     }
 #endif
-    vec3 refl = vals[0].rgb, spec = vals[1].rgb;
-    float eta = vals[2].x;
+    vec3 refl = refl4.rgb, spec = spec4.rgb;
 
     vec3 ns = sp.ns;
     if (!(dot(ns, ns) > 0.0))
@@ -246,15 +271,15 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         ns = -ns;
 #ifndef CV_NO_TEXTURES
     if (m.normal_tex >= 0)
-        ns = cv_normal_map(vals[5].rgb, ns, sp.dpdu);
+        ns = cv_normal_map(nmap.rgb, ns, sp.dpdu);
     else if (m.displacement_tex >= 0)
-        ns = cv_bump_normal(vals[6].x, vals[7].x, vals[8].x, ns, sp.dpdu);
+        ns = cv_bump_normal(disp, disp_du, disp_dv, ns, sp.dpdu);
 #endif
     b.frame = cv_frame_from_xz(sp.dpdu, ns);
 #ifdef CV_BSDF_DIFFUSE_ONLY
     b.c0 = clamp(refl, 0.0, 1.0);
 #else
-    vec2 alpha = cv_material_alpha(m, vals[3].x, vals[4].x);
+    vec2 alpha = cv_material_alpha(m, rough_u, rough_v);
     vec3 ceta, ck;
     cv_material_conductor(m, refl, ceta, ck);
 

@@ -124,9 +124,13 @@ vec4 cv_tex_combine(CvTexture tx, vec4 a, vec4 b, float amount, vec2 uv)
 // id < 0. Float textures return their value in every channel. The host
 // defines CV_NO_TEXTURES for a scene without textures, so that the stage
 // kernels carry none of this code (every id is -1 there).
-// The tree (root, its operands a/b/amount, their operands) is flattened into
-// 13 slots and evaluated bottom-up in one loop, so the image lookup is
-// compiled once: llvmpipe's compile time grows fast with inlined copies.
+// The tree (the root, its operands a/b/amount, their operands) is walked in
+// post-order by one loop of at most 13 steps, so the leaf lookup is compiled
+// once (llvmpipe's compile time grows fast with inlined copies). Step k < 12
+// is operand j = k % 4 of the root's operand c = k / 4 (j = 3: that operand
+// itself); step 12 is the root. Values live in named variables written by
+// selects, never in an array indexed by the step: a dynamically indexed
+// array is placed in local memory, which costs every shade kernel occupancy.
 vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
 {
 #ifdef CV_NO_TEXTURES
@@ -134,53 +138,66 @@ vec4 cv_tex_eval(int id, vec4 fallback, vec2 uv, float lod)
 #else
     if (id < 0)
         return fallback;
-    int ids[13];
-    vec4 vals[13];
-    ids[0] = id;
-    vals[0] = fallback;
-    int n = 1;
     CvTexture root = textures[id];
-    if (!cv_tex_is_leaf(root.type)) {
-        ids[1] = root.tex_a;
-        vals[1] = root.value_a;
-        ids[2] = root.tex_b;
-        vals[2] = root.value_b;
-        ids[3] = root.amount_tex;
-        vals[3] = vec4(root.amount);
-        n = 4;
-        for (int c = 1; c < 4; c++) {
-            int g = 4 + 3 * (c - 1);
-            ids[g] = ids[g + 1] = ids[g + 2] = -1;
-            vals[g] = vals[g + 1] = vals[g + 2] = vec4(0.0);
-            if (ids[c] >= 0) {
-                CvTexture t = textures[ids[c]];
-                if (!cv_tex_is_leaf(t.type)) {
-                    ids[g] = t.tex_a;
-                    vals[g] = t.value_a;
-                    ids[g + 1] = t.tex_b;
-                    vals[g + 1] = t.value_b;
-                    ids[g + 2] = t.amount_tex;
-                    vals[g + 2] = vec4(t.amount);
-                    n = 13;
-                }
+    // operands of the root (ca, cb, camt) and of the operand being walked
+    // (ga, gb, gamt); kid: the operand being walked
+    vec4 ca = root.value_a, cb = root.value_b, camt = vec4(root.amount);
+    vec4 ga = vec4(0.0), gb = vec4(0.0), gamt = vec4(0.0);
+    CvTexture kid = root;
+    int kid_id = -1;
+    vec4 result = fallback;
+    for (int k = cv_tex_is_leaf(root.type) ? 12 : 0; k < 13; k++) {
+        int c = k >> 2, j = k & 3;
+        int t;
+        vec4 v;
+        if (k == 12) {
+            t = id;
+            v = fallback;
+        } else if (j == 0) {
+            // a new operand of the root: its own operands come first
+            kid_id = c == 0 ? root.tex_a : (c == 1 ? root.tex_b : root.amount_tex);
+            if (kid_id >= 0)
+                kid = textures[kid_id];
+            if (kid_id < 0 || cv_tex_is_leaf(kid.type)) {
+                k += 2;  // no operands of its own: on to the operand itself
+                continue;
             }
-        }
-    }
-    for (int k = n - 1; k >= 0; k--) {
-        int t = ids[k];
-        if (t < 0)
-            continue;
-        CvTexture tx = textures[t];
-        if (cv_tex_is_leaf(tx.type)) {
-            vals[k] = cv_tex_leaf(tx, uv, lod);
-        } else if (k < 4) {
-            int f = k == 0 ? 1 : 4 + 3 * (k - 1);
-            vals[k] = cv_tex_combine(tx, vals[f], vals[f + 1], vals[f + 2].x, uv);
+            t = kid.tex_a;
+            v = kid.value_a;
+        } else if (j == 3) {
+            t = kid_id;
+            v = c == 0 ? root.value_a : (c == 1 ? root.value_b : vec4(root.amount));
         } else {
-            vals[k] = tx.value_a;  // nested deeper than two composites
+            t = j == 1 ? kid.tex_b : kid.amount_tex;
+            v = j == 1 ? kid.value_b : vec4(kid.amount);
         }
+        if (t >= 0) {
+            CvTexture tx = textures[t];
+            bool depth2 = k != 12 && j != 3;  // an operand's operand
+            if (cv_tex_is_leaf(tx.type))
+                v = cv_tex_leaf(tx, uv, lod);
+            else if (depth2)
+                v = tx.value_a;  // nested deeper than two composites
+            else
+                v = cv_tex_combine(tx, k == 12 ? ca : ga, k == 12 ? cb : gb, k == 12 ? camt.x : gamt.x, uv);
+        }
+        if (k == 12)
+            result = v;
+        else if (j == 3) {
+            if (c == 0)
+                ca = v;
+            else if (c == 1)
+                cb = v;
+            else
+                camt = v;
+        } else if (j == 0)
+            ga = v;
+        else if (j == 1)
+            gb = v;
+        else
+            gamt = v;
     }
-    return vals[0];
+    return result;
 #endif
 }
 
