@@ -564,10 +564,38 @@ static void curve_box_grow(const CvCurve *c, float lo[3], float hi[3])
         }
 }
 
-void cv_b_motion_begin(struct cv_builder *b)
+/* pbrt-v4's render space origin (its default "cameraworld"): the camera's
+ * position at the middle of its transform times. pbrt-v4 interpolates a
+ * moving shape's render-from-object transform, which differs from
+ * world-from-object by a fixed translation, so the interpolation is the
+ * same; but a moving instance's render-from-instance is
+ * render-from-world * world-from-instance * world-from-render, whose
+ * interpolated translation moves the instance's point at the camera's
+ * position (not its origin) along a line. Emitting the instance about
+ * that point and interpolating world-from-instance * translate(c)
+ * reproduces it: a turning instance sweeps about the camera as there. */
+static void render_origin(const struct cv_builder *b, double c[3])
+{
+    double m0[3][4], m1[3][4], m[3][4];
+    rows3x4(&b->camera_to_world, m0);
+    rows3x4(&b->camera_to_world_end, m1);
+    struct cv_animated a;
+    if (cv_animated_init(&a, m0, b->transform_times[0], m1, b->transform_times[1]))
+        cv_animated_at(&a, 0.5 * (b->transform_times[0] + b->transform_times[1]), m);
+    else
+        memcpy(m, m0, sizeof(m));
+    for (int i = 0; i < 3; i++)
+        c[i] = m[i][3];
+}
+
+void cv_b_motion_begin(struct cv_builder *b, bool instance)
 {
     b->motion_ctm = b->gs.ctm;
-    b->gs.ctm = cv_mat4_identity();
+    double c[3] = {0, 0, 0};
+    if (instance)
+        render_origin(b, c);
+    b->motion_pivot = cv_mat4_translate(c[0], c[1], c[2]);
+    b->gs.ctm = cv_mat4_translate(-c[0], -c[1], -c[2]);
     b->motion_nt0 = b->s->n_triangles;
     b->motion_nv0 = b->s->n_vertices;
     b->motion_nc0 = b->s->n_curves;
@@ -585,8 +613,10 @@ void cv_b_motion_end(struct cv_builder *b)
                             .first_vertex = b->motion_nv0, .n_vertices = s->n_vertices - b->motion_nv0,
                             .first_curve = b->motion_nc0, .n_curves = s->n_curves - b->motion_nc0};
     double m0[3][4], m1[3][4];
-    rows3x4(&b->gs.ctm, m0);
-    rows3x4(&b->gs.ctm_end, m1);
+    struct cv_mat4 w0 = cv_mat4_mul(&b->gs.ctm, &b->motion_pivot),
+                   w1 = cv_mat4_mul(&b->gs.ctm_end, &b->motion_pivot);
+    rows3x4(&w0, m0);
+    rows3x4(&w1, m1);
     cv_animated_init(&m->xf, m0, b->transform_times[0], m1, b->transform_times[1]); /* cv_b_can_move checked it */
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t v = m->first_vertex; v < m->first_vertex + m->n_vertices; v++)

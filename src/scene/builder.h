@@ -134,6 +134,8 @@ struct cv_builder {
     uint32_t light_source;       /* the directive of the lights added next */
     size_t cap_motions;
     struct cv_mat4 motion_ctm;   /* the start transform of the moving shape being emitted */
+    struct cv_mat4 motion_pivot; /* object space from emitted space: the camera's position
+                                  * for a moving instance, else identity (render_origin) */
     uint32_t motion_nt0, motion_nv0, motion_nc0;
     struct cv_named *measured_files; /* path -> word offset in the scene's measured tables */
     size_t n_measured_files, cap_measured_files, cap_measured;
@@ -163,8 +165,10 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
 bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why);
 /* Between these two, geometry is emitted in object space (the start
  * transform set aside); the end records what was emitted as one moving
- * shape. */
-void cv_b_motion_begin(struct cv_builder *b);
+ * shape. An instance (`instance` true) is emitted relative to the camera's
+ * position and its transforms interpolated about it, as pbrt-v4 does
+ * (builder.c, render_origin). */
+void cv_b_motion_begin(struct cv_builder *b, bool instance);
 void cv_b_motion_end(struct cv_builder *b);
 bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err);
 uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);

@@ -74,8 +74,10 @@ struct cv_render_settings {
 /* A shape (or object instance) under an animated transform, pbrt-v4's
  * AnimatedPrimitive: triangles [first, first + count), vertices
  * [first_vertex, first_vertex + n_vertices) and curves [first_curve,
- * first_curve + n_curves) are in its object space, xf
- * takes them to world space at a ray's time (scene/animated.h); their
+ * first_curve + n_curves) are in its object space (an instance's moved
+ * by minus the camera's position, about which pbrt-v4 interpolates it:
+ * builder.c, render_origin), xf takes them to world space at a ray's time
+ * (scene/animated.h); their
  * CV_TRI_REVERSE is ReverseOrientation alone, the renderer flipping for a
  * transform that swaps handedness at that time (glsl/bvh/motion.glsl). lo,
  * hi: the world-space box the shape stays in while it moves. */

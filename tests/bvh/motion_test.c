@@ -319,6 +319,37 @@ static void test_arc(struct cv_gpu *gpu)
     cv_scene_destroy(&s);
 }
 
+/* The same bar as an object instance turning 90 degrees about z, with the
+ * camera at (4, 0, 5): pbrt-v4 interpolates render-from-instance, the
+ * instance's transform conjugated by the camera's position, so at half
+ * time the instance's point (4, 0, 5) lies halfway along the chord from
+ * (4, 0, 5) to (0, 4, 5), and the bar, still at 45 degrees, runs from
+ * (2, 2) - (2.83, 2.83) to 2 further along: through (-0.4, -0.4), not
+ * through (1.3, 1.3) where a turn about the origin puts it. */
+static void test_pivot(struct cv_gpu *gpu)
+{
+    const char *text = "LookAt 4 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+                       "ObjectBegin \"bar\"\nShape \"trianglemesh\" \"point3 P\" [0 -0.05 0 2 -0.05 0 2 0.05 0 0 0.05 0]"
+                       " \"integer indices\" [0 1 2 0 2 3]\nObjectEnd\n"
+                       "ActiveTransform EndTime\nRotate 90 0 0 1\nActiveTransform All\nObjectInstance \"bar\"\n";
+    struct cv_scene *s = NULL;
+    struct cv_error err = {{0}};
+    struct cv_scene_load_params p = {.strict = true};
+    if (!tap_ok(cv_scene_load_string("/tmp/pivot.pbrt", text, strlen(text), &p, &s, &err) && s->n_motions == 1,
+                "a turning instance loads: %s", err.msg)) {
+        cv_scene_destroy(&s);
+        return;
+    }
+    float rays[16] = {-0.4f, -0.4f, 1, 0, 0, 0, -1, 1e30f, 1.3f, 1.3f, 1, 0, 0, 0, -1, 1e30f};
+    uint32_t *out = trace(gpu, s, rays, 2, 0.5f, &err);
+    if (tap_ok(out != NULL, "GPU run: %s", err.msg))
+        tap_ok(out[1] != 0xffffffffu && fabsf(fbits(out[0]) - 1) < 1e-5f && out[13] == 0xffffffffu,
+               "at half time the instance has turned about the camera's position (hit at (-0.4, -0.4): t %g), "
+               "not about its origin (%s at (1.3, 1.3))", fbits(out[0]), out[13] == 0xffffffffu ? "missed" : "hit");
+    free(out);
+    cv_scene_destroy(&s);
+}
+
 /* A random strand of `type` (bspline, 7 points) near the origin. */
 static size_t strand(char *text, size_t cap, const char *type)
 {
@@ -473,6 +504,7 @@ int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     test_arc(gpu);
+    test_pivot(gpu);
     test_walk(gpu);
     test_curves(gpu);
     cv_gpu_destroy(&gpu);

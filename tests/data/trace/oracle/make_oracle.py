@@ -805,9 +805,8 @@ def bdpt_media_main():
 # different transforms; then a strand sliding and turning over the
 # shutter beside a moving instance of a curve object. Uniform scales: under
 # others pbrt-v4's widths (object space) differ from Cavalry's (the mean
-# scale, curves.c). The moving instance does not turn: pbrt-v4 interpolates
-# an instance's transform in render space (about the camera), Cavalry in
-# world space, which differ by an arc when it turns.
+# scale, curves.c). The moving instance does not turn: turning instances
+# are instance_turn's.
 # curve_instance_main() writes them last (the earlier files come out
 # unchanged).
 def curve_instance_main():
@@ -837,6 +836,27 @@ def curve_instance_main():
           CURVE_LIGHTS + tuft + mover + turning)
 
 
+# Moving instances that turn (issue 27): pbrt-v4 interpolates a moving
+# instance's transform in render space, conjugated by the camera's position
+# (its default "cameraworld"), so the instance's point at the camera, not
+# its origin, moves along a line: a turning instance sweeps other arcs than
+# a turning shape does. An object of a plank and a cylinder curve, turning
+# about the vertical on the left and tilting about z on the right.
+# instance_turn_main() writes it last (the earlier files come out unchanged).
+def instance_turn_main():
+    obj = ('ObjectBegin "plank"\n  Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
+           + indent(box([-0.8, 0, -0.15], [0.8, 0.6, 0.15]))
+           + "  " + strand(0.0, "cylinder", "bspline", 3, '"float width" [ 0.3 ]') + "ObjectEnd\n")
+    turn = ("AttributeBegin\n  Translate -1.1 0 0.3\n"
+            "  ActiveTransform EndTime\n  Rotate 50 0 1 0\n  ActiveTransform All\n"
+            "  ObjectInstance \"plank\"\nAttributeEnd\n")
+    tilt = ("AttributeBegin\n  Translate 1.1 0 0.3\n"
+            "  ActiveTransform EndTime\n  Rotate -30 0 0 1\n  ActiveTransform All\n"
+            "  ObjectInstance \"plank\"\nAttributeEnd\n")
+    scene("instance_turn", "an object of a plank and a cylinder curve, instanced moving: turning 50 "
+          "degrees about the vertical, tilting 30 degrees about z", CURVE_LIGHTS + obj + turn + tilt)
+
+
 if __name__ == "__main__":
     main()
     camera_main()
@@ -849,3 +869,4 @@ if __name__ == "__main__":
     bdpt_camera_main()
     bdpt_media_main()
     curve_instance_main()
+    instance_turn_main()
