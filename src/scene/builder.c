@@ -554,14 +554,22 @@ bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why)
 /* Grows [lo, hi] by curve c: its control points bound the piece, half
  * the wider end's width around them (float rounding: within
  * cv_animated_bounds's margin). */
-static void curve_box_grow(const CvCurve *c, float lo[3], float hi[3])
+static void curve_box_grow(const struct cv_scene *s, const CvCurve *c, float lo[3], float hi[3])
 {
-    float r = 0.5f * fmaxf(c->cp[0].w, c->cp[1].w);
+    double r = 0.5 * fmax(c->cp[0].w, c->cp[1].w), l[3] = {INFINITY, INFINITY, INFINITY},
+           h[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < 4; k++)
         for (int a = 0; a < 3; a++) {
-            lo[a] = fminf(lo[a], (&c->cp[k].x)[a] - r);
-            hi[a] = fmaxf(hi[a], (&c->cp[k].x)[a] + r);
+            l[a] = fmin(l[a], (&c->cp[k].x)[a] - r);
+            h[a] = fmax(h[a], (&c->cp[k].x)[a] + r);
         }
+    uint32_t xf = c->info.y >> CV_CURVE_XF_SHIFT;
+    if (xf) /* in the curve's own object space (scene.h, CvCurveXform) */
+        cv_curve_xform_box(&s->curve_xforms[xf - 1], l, h, l, h);
+    for (int a = 0; a < 3; a++) {
+        lo[a] = fminf(lo[a], (float)l[a]);
+        hi[a] = fmaxf(hi[a], (float)h[a]);
+    }
 }
 
 /* pbrt-v4's render space origin (its default "cameraworld"): the camera's
@@ -627,7 +635,7 @@ void cv_b_motion_end(struct cv_builder *b)
     for (uint32_t i = m->first_curve; i < m->first_curve + m->n_curves; i++) {
         CvCurve *cu = &s->curves[i];
         cu->info.w = s->n_motions; /* 1 + the shape's index */
-        curve_box_grow(cu, lo, hi);
+        curve_box_grow(s, cu, lo, hi);
     }
     cv_animated_bounds(&m->xf, lo, hi, m->lo, m->hi);
 }

@@ -89,6 +89,7 @@ struct cv_builder {
     size_t cap_v, cap_t, cap_m, cap_tex, cap_texel, cap_l;
     size_t cap_object_names;
     size_t cap_curves;
+    size_t cap_curve_xforms;
 
     struct cv_gstate gs;
     struct cv_gstate *stack;
@@ -201,9 +202,11 @@ void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *nam
 /* Directives (see the files named). */
 /* Shape "curve" with the current transform and material (curves.c). */
 bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, struct cv_error *err);
-/* Appends curves src[0..n) placed by M (control points, widths by M's
- * mean scale, ribbon normals) to the open object definition, or else to
- * the scene; CV_TRI_REVERSE flips in their words when M swaps
+/* Appends curves src[0..n) placed by M to the open object definition, or
+ * else to the scene: carried by M (control points, widths by its scale,
+ * ribbon normals) when M is a similarity and src are not kept in their
+ * object space, else kept there with M composed into their CvCurveXform
+ * (glsl/shared/scene.h); CV_TRI_REVERSE flips in their words when M swaps
  * handedness, and object (when not UINT32_MAX) becomes their ID-matte
  * object. (curves.c) */
 bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const struct cv_mat4 *M,
