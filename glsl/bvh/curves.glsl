@@ -20,7 +20,8 @@
 // first curve, curve count), then the curves, 7 vec4 each as CvCurve, in
 // leaf order: the static ones (their tree from node 0) first, then each
 // moving shape's, in its object space (walked by motion.glsl with the ray
-// carried there; CvCurve.info.w = 1 + the shape).
+// carried there; CvCurve.info.w = 1 + the shape); then the transforms of
+// curves kept in their own object space, 6 vec4 each as CvCurveXform.
 #ifndef CV_BVH_CURVES_GLSL
 #define CV_BVH_CURVES_GLSL
 
@@ -53,6 +54,32 @@ CvCurve cv_curve_at(uint i)
     c.n1 = cv_curve_word(b + 5u);
     c.info = floatBitsToUint(cv_curve_word(b + 6u));
     return c;
+}
+
+uint cv_curve_type(CvCurve c) { return c.info.y & CV_CURVE_TYPE_MASK; }
+
+// The transform of curve c kept in its object space (CvCurveXform), as
+// the vec4 where its six rows start; 0 for a curve in the tree's space.
+// They follow the curves: header.z + 7 * the curve count.
+uint cv_curve_xform_base(CvCurve c)
+{
+    uint xf = c.info.y >> CV_CURVE_XF_SHIFT;
+    if (xf == 0u)
+        return 0u;
+    return floatBitsToUint(cv_curve_word(0).z) + 7u * cv_curve_count() + 6u * (xf - 1u);
+}
+
+// The 3x4 transform whose rows (3x3 row, translation) start at vec4 b,
+// applied to point p or direction v.
+vec3 cv_curve_xf_point(uint b, vec3 p)
+{
+    return vec3(dot(cv_curve_word(b).xyz, p) + cv_curve_word(b).w,
+                dot(cv_curve_word(b + 1u).xyz, p) + cv_curve_word(b + 1u).w,
+                dot(cv_curve_word(b + 2u).xyz, p) + cv_curve_word(b + 2u).w);
+}
+vec3 cv_curve_xf_dir(uint b, vec3 v)
+{
+    return vec3(dot(cv_curve_word(b).xyz, v), dot(cv_curve_word(b + 1u).xyz, v), dot(cv_curve_word(b + 2u).xyz, v));
 }
 
 // Blossom of the cubic Bezier p at (a, b, c): the control points of its
@@ -114,6 +141,13 @@ bool cv_curve_intersect(uint ci, vec3 o, vec3 d, float tmin, float tmax, bool an
     u_hit = 0.0;
     v_hit = 0.0;
     CvCurve c = cv_curve_at(ci);
+    uint xb = cv_curve_xform_base(c);
+    if (xb != 0u) {
+        // into the curve's object space, as pbrt-v4 intersects every
+        // curve: an affine map keeps the ray's parameter t
+        o = cv_curve_xf_point(xb + 3u, o);
+        d = cv_curve_xf_dir(xb + 3u, d);
+    }
     float umin = c.cp[2].w, umax = c.cp[3].w;
     vec3 pw[4] = vec3[4](c.cp[0].xyz, c.cp[1].xyz, c.cp[2].xyz, c.cp[3].xyz);
     vec3 seg[4];
@@ -149,7 +183,7 @@ bool cv_curve_intersect(uint ci, vec3 o, vec3 d, float tmin, float tmax, bool an
         float x = 1.41421356237 * 6.0 * l0 / (8.0 * eps);
         max_depth = x > 0.0 ? clamp(cv_curve_log2_int(x) / 2, 0, 10) : 0;
     }
-    bool ribbon = c.info.y == CV_CURVE_RIBBON;
+    bool ribbon = cv_curve_type(c) == CV_CURVE_RIBBON;
     bool found = false;
     vec3 stack[CV_CURVE_SPLIT_STACK];  // (u0, u1, depth) of segments whose boxes the ray meets
     int sp = 0;
@@ -316,22 +350,28 @@ bool cv_curves_brute(vec3 o, vec3 d, float tmin, bool any, inout float hit_t, in
 // perpendicular to the ray (flat), turned about dp/du by up to 90 degrees
 // towards the edges (cylinder), or across the ribbon's normal; the normal
 // dp/du x dp/dv, flipped by ReverseOrientation and handedness. p_err as
-// pbrt-v4's: the width, along each axis.
+// pbrt-v4's: the width, along each axis. A curve kept in its object space
+// builds the frame there with the ray's direction taken there, then takes
+// dp/du, the normal (by the inverse transpose) and the error bounds out,
+// as pbrt-v4 transforms its SurfaceInteraction.
 void cv_curve_frame(uint ci, float u, float v, vec3 d, out vec3 dpdu, out vec3 n, out float p_err,
                     out uint word)
 {
     CvCurve c = cv_curve_at(ci);
+    uint xb = cv_curve_xform_base(c);
+    if (xb != 0u)
+        d = cv_curve_xf_dir(xb + 3u, d);
     vec3 pw[4] = vec3[4](c.cp[0].xyz, c.cp[1].xyz, c.cp[2].xyz, c.cp[3].xyz);
     cv_curve_eval(pw, u, dpdu);
     float hw = cv_curve_width(c, u);
     vec3 dpdv;
-    if (c.info.y == CV_CURVE_RIBBON) {
+    if (cv_curve_type(c) == CV_CURVE_RIBBON) {
         vec3 nh = cv_curve_ribbon_normal(c, u);
         hw *= abs(dot(nh, d)) / length(d);
         dpdv = normalize(cross(nh, dpdu)) * hw;
     } else {
         dpdv = normalize(cross(normalize(d), dpdu)) * hw;
-        if (c.info.y == CV_CURVE_CYLINDER) {
+        if (cv_curve_type(c) == CV_CURVE_CYLINDER) {
             float phi = -radians(mix(-90.0, 90.0, v));
             vec3 k = normalize(dpdu);
             dpdv = dpdv * cos(phi) + cross(k, dpdv) * sin(phi);
@@ -341,7 +381,15 @@ void cv_curve_frame(uint ci, float u, float v, vec3 d, out vec3 dpdu, out vec3 n
     word = c.info.x;
     if ((word & CV_TRI_REVERSE) != 0u)
         n = -n;
-    p_err = hw * (abs(n.x) + abs(n.y) + abs(n.z));
+    vec3 err = vec3(hw);
+    if (xb != 0u) {
+        dpdu = cv_curve_xf_dir(xb, dpdu);
+        n = normalize(n.x * cv_curve_word(xb + 3u).xyz + n.y * cv_curve_word(xb + 4u).xyz +
+                      n.z * cv_curve_word(xb + 5u).xyz);
+        err = hw * vec3(dot(abs(cv_curve_word(xb).xyz), vec3(1.0)), dot(abs(cv_curve_word(xb + 1u).xyz), vec3(1.0)),
+                        dot(abs(cv_curve_word(xb + 2u).xyz), vec3(1.0)));
+    }
+    p_err = dot(abs(n), err);
 }
 
 #endif

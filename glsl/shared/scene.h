@@ -57,7 +57,9 @@ CV_CHECK_SIZE(CvTriangle, 16);
  * width at u 0 and 1; cp[2].w, cp[3].w: u_min, u_max. n0, n1: ribbon
  * normals at u 0 and 1, n0.w the angle between them, n1.w 1 / its sine.
  * info.x: material word as a triangle's (material, CV_TRI_REVERSE);
- * info.y: CV_CURVE_*; info.z: its ID-matte object (scene.h tri_object's
+ * info.y: CV_CURVE_* in its low byte (CV_CURVE_TYPE_MASK), above it
+ * (CV_CURVE_XF_SHIFT) 0, or 1 + the index of the CvCurveXform whose
+ * object space cp, widths and normals are in; info.z: its ID-matte object (scene.h tri_object's
  * numbering); info.w: 0 for a static curve, 1 + its moving shape's index
  * (src/scene/scene.h, cv_motion) for a moving one. */
 CV_STRUCT(CvCurve) {
@@ -67,6 +69,22 @@ CV_STRUCT(CvCurve) {
     cv_uvec4 info;
 } CV_END(CvCurve)
 CV_CHECK_SIZE(CvCurve, 112);
+
+/* A curve whose transform is no similarity (a non-uniform scale or a
+ * shear) is kept in its object space, as pbrt-v4 keeps every curve: its
+ * width is an object-space width there, which no one scale factor carries
+ * to render space. The ray is taken into that space to be intersected
+ * and the hit's frame back (glsl/bvh/curves.glsl). to_world: rows of the
+ * 3x4 affine transform from the curve's object space to the space its
+ * tree lives in (render space, or a moving shape's object space);
+ * to_object: its inverse. */
+#define CV_CURVE_TYPE_MASK 0xffu
+#define CV_CURVE_XF_SHIFT 8u
+CV_STRUCT(CvCurveXform) {
+    cv_vec4 to_world[3];
+    cv_vec4 to_object[3];
+} CV_END(CvCurveXform)
+CV_CHECK_SIZE(CvCurveXform, 96);
 
 /* ---- textures ---------------------------------------------------------- */
 

@@ -8,6 +8,7 @@
 #include "base/mem.h"
 #include "bvh/median_split.h"
 #include "glsl/shared/bvh.h"
+#include "scene/scene.h"
 
 static double blossom(const double p[4], double a, double b, double c)
 {
@@ -16,19 +17,25 @@ static double blossom(const double p[4], double a, double b, double c)
     return r0 + c * (r1 - r0);
 }
 
-void cv_curve_box(const CvCurve *c, float lo[3], float hi[3])
+void cv_curve_box(const CvCurve *c, const CvCurveXform *xforms, float lo[3], float hi[3])
 {
     double u0 = c->cp[2].w, u1 = c->cp[3].w;
     double w0 = c->cp[0].w + u0 * (c->cp[1].w - c->cp[0].w), w1 = c->cp[0].w + u1 * (c->cp[1].w - c->cp[0].w);
-    double r = 0.5 * fmax(w0, w1);
+    double r = 0.5 * fmax(w0, w1), l[3], h[3];
     for (int a = 0; a < 3; a++) {
         double p[4] = {(&c->cp[0].x)[a], (&c->cp[1].x)[a], (&c->cp[2].x)[a], (&c->cp[3].x)[a]};
         double q[4] = {blossom(p, u0, u0, u0), blossom(p, u0, u0, u1), blossom(p, u0, u1, u1),
                        blossom(p, u1, u1, u1)};
-        double l = fmin(fmin(q[0], q[1]), fmin(q[2], q[3])), h = fmax(fmax(q[0], q[1]), fmax(q[2], q[3]));
-        /* a float ulp outwards beside the width: the box must hold the piece */
-        lo[a] = nextafterf((float)(l - r), -INFINITY);
-        hi[a] = nextafterf((float)(h + r), INFINITY);
+        l[a] = fmin(fmin(q[0], q[1]), fmin(q[2], q[3])) - r;
+        h[a] = fmax(fmax(q[0], q[1]), fmax(q[2], q[3])) + r;
+    }
+    uint32_t xf = c->info.y >> CV_CURVE_XF_SHIFT;
+    if (xf) /* the object-space box's image holds the piece's */
+        cv_curve_xform_box(&xforms[xf - 1], l, h, l, h);
+    for (int a = 0; a < 3; a++) {
+        /* a float ulp outwards: the box must hold the piece */
+        lo[a] = nextafterf((float)l[a], -INFINITY);
+        hi[a] = nextafterf((float)h[a], INFINITY);
     }
 }
 
@@ -100,7 +107,8 @@ static void build_node(struct build *b, uint32_t node, uint32_t first, uint32_t 
     }
 }
 
-float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, uint32_t n_shapes, size_t *n_vec4)
+float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, const CvCurveXform *xforms, uint32_t n_xforms,
+                         uint32_t n_shapes, size_t *n_vec4)
 {
     struct build b = {0};
     b.lo = cv_xcalloc(n, sizeof(*b.lo));
@@ -111,7 +119,7 @@ float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, uint32_t n_shapes, s
     uint32_t *first = cv_xcalloc((size_t)n_shapes + 2, sizeof(uint32_t));
     uint32_t *count = cv_xcalloc((size_t)n_shapes + 1, sizeof(uint32_t));
     for (uint32_t i = 0; i < n; i++) {
-        cv_curve_box(&curves[i], b.lo[i], b.hi[i]);
+        cv_curve_box(&curves[i], xforms, b.lo[i], b.hi[i]);
         uint32_t g = curves[i].info.w <= n_shapes ? curves[i].info.w : 0;
         count[g]++;
     }
@@ -126,7 +134,7 @@ float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, uint32_t n_shapes, s
     /* a binary tree of leaves of 1..CV_CURVE_LEAF curves has fewer nodes
      * than curves, and at least one */
     size_t max_nodes = (size_t)n + n_shapes + 1;
-    b.out = cv_xcalloc((1 + 4 * max_nodes + n_shapes + 7 * (size_t)n) * 4, sizeof(float));
+    b.out = cv_xcalloc((1 + 4 * max_nodes + n_shapes + 7 * (size_t)n + 6 * (size_t)n_xforms) * 4, sizeof(float));
     b.n_nodes = 1;
     build_node(&b, 0, 0, count[0]);
     uint32_t *roots = cv_xcalloc((size_t)n_shapes + 1, sizeof(uint32_t));
@@ -146,7 +154,10 @@ float *cv_curve_bvh_pack(const CvCurve *curves, uint32_t n, uint32_t n_shapes, s
     }
     for (uint32_t k = 0; k < n; k++)
         memcpy(b.out + 4 * (curve_base + 7 * (size_t)k), &curves[b.order[k]], sizeof(CvCurve));
-    *n_vec4 = curve_base + 7 * (size_t)n;
+    /* the transforms of curves kept in their object space, after them */
+    if (n_xforms)
+        memcpy(b.out + 4 * (curve_base + 7 * (size_t)n), xforms, n_xforms * sizeof(CvCurveXform));
+    *n_vec4 = curve_base + 7 * (size_t)n + 6 * (size_t)n_xforms;
     free(first);
     free(count);
     free(roots);

@@ -554,20 +554,56 @@ bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why)
 /* Grows [lo, hi] by curve c: its control points bound the piece, half
  * the wider end's width around them (float rounding: within
  * cv_animated_bounds's margin). */
-static void curve_box_grow(const CvCurve *c, float lo[3], float hi[3])
+static void curve_box_grow(const struct cv_scene *s, const CvCurve *c, float lo[3], float hi[3])
 {
-    float r = 0.5f * fmaxf(c->cp[0].w, c->cp[1].w);
+    double r = 0.5 * fmax(c->cp[0].w, c->cp[1].w), l[3] = {INFINITY, INFINITY, INFINITY},
+           h[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < 4; k++)
         for (int a = 0; a < 3; a++) {
-            lo[a] = fminf(lo[a], (&c->cp[k].x)[a] - r);
-            hi[a] = fmaxf(hi[a], (&c->cp[k].x)[a] + r);
+            l[a] = fmin(l[a], (&c->cp[k].x)[a] - r);
+            h[a] = fmax(h[a], (&c->cp[k].x)[a] + r);
         }
+    uint32_t xf = c->info.y >> CV_CURVE_XF_SHIFT;
+    if (xf) /* in the curve's own object space (scene.h, CvCurveXform) */
+        cv_curve_xform_box(&s->curve_xforms[xf - 1], l, h, l, h);
+    for (int a = 0; a < 3; a++) {
+        lo[a] = fminf(lo[a], (float)l[a]);
+        hi[a] = fmaxf(hi[a], (float)h[a]);
+    }
 }
 
-void cv_b_motion_begin(struct cv_builder *b)
+/* pbrt-v4's render space origin (its default "cameraworld"): the camera's
+ * position at the middle of its transform times. pbrt-v4 interpolates a
+ * moving shape's render-from-object transform, which differs from
+ * world-from-object by a fixed translation, so the interpolation is the
+ * same; but a moving instance's render-from-instance is
+ * render-from-world * world-from-instance * world-from-render, whose
+ * interpolated translation moves the instance's point at the camera's
+ * position (not its origin) along a line. Emitting the instance about
+ * that point and interpolating world-from-instance * translate(c)
+ * reproduces it: a turning instance sweeps about the camera as there. */
+static void render_origin(const struct cv_builder *b, double c[3])
+{
+    double m0[3][4], m1[3][4], m[3][4];
+    rows3x4(&b->camera_to_world, m0);
+    rows3x4(&b->camera_to_world_end, m1);
+    struct cv_animated a;
+    if (cv_animated_init(&a, m0, b->transform_times[0], m1, b->transform_times[1]))
+        cv_animated_at(&a, 0.5 * (b->transform_times[0] + b->transform_times[1]), m);
+    else
+        memcpy(m, m0, sizeof(m));
+    for (int i = 0; i < 3; i++)
+        c[i] = m[i][3];
+}
+
+void cv_b_motion_begin(struct cv_builder *b, bool instance)
 {
     b->motion_ctm = b->gs.ctm;
-    b->gs.ctm = cv_mat4_identity();
+    double c[3] = {0, 0, 0};
+    if (instance)
+        render_origin(b, c);
+    b->motion_pivot = cv_mat4_translate(c[0], c[1], c[2]);
+    b->gs.ctm = cv_mat4_translate(-c[0], -c[1], -c[2]);
     b->motion_nt0 = b->s->n_triangles;
     b->motion_nv0 = b->s->n_vertices;
     b->motion_nc0 = b->s->n_curves;
@@ -585,8 +621,10 @@ void cv_b_motion_end(struct cv_builder *b)
                             .first_vertex = b->motion_nv0, .n_vertices = s->n_vertices - b->motion_nv0,
                             .first_curve = b->motion_nc0, .n_curves = s->n_curves - b->motion_nc0};
     double m0[3][4], m1[3][4];
-    rows3x4(&b->gs.ctm, m0);
-    rows3x4(&b->gs.ctm_end, m1);
+    struct cv_mat4 w0 = cv_mat4_mul(&b->gs.ctm, &b->motion_pivot),
+                   w1 = cv_mat4_mul(&b->gs.ctm_end, &b->motion_pivot);
+    rows3x4(&w0, m0);
+    rows3x4(&w1, m1);
     cv_animated_init(&m->xf, m0, b->transform_times[0], m1, b->transform_times[1]); /* cv_b_can_move checked it */
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t v = m->first_vertex; v < m->first_vertex + m->n_vertices; v++)
@@ -597,7 +635,7 @@ void cv_b_motion_end(struct cv_builder *b)
     for (uint32_t i = m->first_curve; i < m->first_curve + m->n_curves; i++) {
         CvCurve *cu = &s->curves[i];
         cu->info.w = s->n_motions; /* 1 + the shape's index */
-        curve_box_grow(cu, lo, hi);
+        curve_box_grow(s, cu, lo, hi);
     }
     cv_animated_bounds(&m->xf, lo, hi, m->lo, m->hi);
 }

@@ -89,6 +89,7 @@ struct cv_builder {
     size_t cap_v, cap_t, cap_m, cap_tex, cap_texel, cap_l;
     size_t cap_object_names;
     size_t cap_curves;
+    size_t cap_curve_xforms;
 
     struct cv_gstate gs;
     struct cv_gstate *stack;
@@ -134,6 +135,8 @@ struct cv_builder {
     uint32_t light_source;       /* the directive of the lights added next */
     size_t cap_motions;
     struct cv_mat4 motion_ctm;   /* the start transform of the moving shape being emitted */
+    struct cv_mat4 motion_pivot; /* object space from emitted space: the camera's position
+                                  * for a moving instance, else identity (render_origin) */
     uint32_t motion_nt0, motion_nv0, motion_nc0;
     struct cv_named *measured_files; /* path -> word offset in the scene's measured tables */
     size_t n_measured_files, cap_measured_files, cap_measured;
@@ -163,8 +166,10 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
 bool cv_b_can_move(struct cv_builder *b, const char *type, const char **why);
 /* Between these two, geometry is emitted in object space (the start
  * transform set aside); the end records what was emitted as one moving
- * shape. */
-void cv_b_motion_begin(struct cv_builder *b);
+ * shape. An instance (`instance` true) is emitted relative to the camera's
+ * position and its transforms interpolated about it, as pbrt-v4 does
+ * (builder.c, render_origin). */
+void cv_b_motion_begin(struct cv_builder *b, bool instance);
 void cv_b_motion_end(struct cv_builder *b);
 bool cv_b_instance(struct cv_builder *b, int index, const struct cv_loc *loc, struct cv_error *err);
 uint32_t cv_b_add_material(struct cv_builder *b, const CvMaterial *m, const char *name);
@@ -197,9 +202,11 @@ void cv_b_set_named(struct cv_named **v, size_t *n, size_t *cap, const char *nam
 /* Directives (see the files named). */
 /* Shape "curve" with the current transform and material (curves.c). */
 bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc, struct cv_error *err);
-/* Appends curves src[0..n) placed by M (control points, widths by M's
- * mean scale, ribbon normals) to the open object definition, or else to
- * the scene; CV_TRI_REVERSE flips in their words when M swaps
+/* Appends curves src[0..n) placed by M to the open object definition, or
+ * else to the scene: carried by M (control points, widths by its scale,
+ * ribbon normals) when M is a similarity and src are not kept in their
+ * object space, else kept there with M composed into their CvCurveXform
+ * (glsl/shared/scene.h); CV_TRI_REVERSE flips in their words when M swaps
  * handedness, and object (when not UINT32_MAX) becomes their ID-matte
  * object. (curves.c) */
 bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const struct cv_mat4 *M,

@@ -2,9 +2,13 @@
  * bases of degree 2 and 3 become cubic Bezier pieces (quadratics raised to
  * cubics, uniform b-splines blossomed to Bezier points, as pbrt-v4's
  * Curve::Create), the widths interpolated per piece, each piece split into
- * 2^splitdepth primitives over its u range. Control points go to render
- * space; widths scale with the transform's mean scale (pbrt-v4 intersects
- * in object space, which is the same for uniform scales). Inside an
+ * 2^splitdepth primitives over its u range. pbrt-v4 intersects a curve
+ * in its object space. Under a similarity (rotation, mirror, one scale,
+ * translation) that is the same as intersecting it in render space with
+ * its width scaled, so such curves go to render space; under any other
+ * transform a curve keeps its object-space points, widths and normals and
+ * names its transform (CvCurveXform), with which the renderer carries the
+ * ray there and the hit's frame back. Inside an
  * ObjectBegin definition they go to the definition's space, placed again
  * by each instance (builder.c, cv_b_instance); a moving curve's stay in
  * its object space (scene.h, cv_motion). */
@@ -156,6 +160,92 @@ bool cv_b_curve(struct cv_builder *b, struct cv_params *ps, const struct cv_loc 
     return ok;
 }
 
+/* A ribbon's normals n0, n1 through inv's transpose (NULL: as they
+ * are), unit length, with the angle between them in n0.w and 1 / its sine
+ * in n1.w (0 for none), for the slerp. */
+static void ribbon_normals(CvCurve *c, const struct cv_mat4 *inv)
+{
+    double nn[2][3];
+    for (int k = 0; k < 2; k++) {
+        const cv_vec4 *v = k ? &c->n1 : &c->n0;
+        double o[3] = {v->x, v->y, v->z};
+        if (inv)
+            cv_mat4_normal(inv, o, nn[k]);
+        else
+            memcpy(nn[k], o, sizeof(o));
+        normalize3(nn[k]);
+    }
+    double d = nn[0][0] * nn[1][0] + nn[0][1] * nn[1][1] + nn[0][2] * nn[1][2];
+    /* pbrt-v4's AngleBetween, robust near 0 and pi */
+    double e[3] = {nn[0][0] - nn[1][0], nn[0][1] - nn[1][1], nn[0][2] - nn[1][2]},
+           f[3] = {nn[0][0] + nn[1][0], nn[0][1] + nn[1][1], nn[0][2] + nn[1][2]};
+    double angle = d < 0 ? M_PI - 2 * asin(fmin(1, sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 2))
+                         : 2 * asin(fmin(1, sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / 2));
+    c->n0 = (cv_vec4){(float)nn[0][0], (float)nn[0][1], (float)nn[0][2], (float)angle};
+    c->n1 = (cv_vec4){(float)nn[1][0], (float)nn[1][1], (float)nn[1][2], angle > 0 ? (float)(1 / sin(angle)) : 0};
+}
+
+/* Whether M's 3x3 is one scale times a rotation or mirror (its columns
+ * orthogonal and of one length), to rounding. */
+static bool similarity(const struct cv_mat4 *M)
+{
+    double g[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            g[i][j] = M->m[0][i] * M->m[0][j] + M->m[1][i] * M->m[1][j] + M->m[2][i] * M->m[2][j];
+    double s2 = (g[0][0] + g[1][1] + g[2][2]) / 3;
+    if (!(s2 > 0))
+        return false;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (fabs(g[i][j] - (i == j ? s2 : 0)) > 1e-9 * s2)
+                return false;
+    return true;
+}
+
+static struct cv_mat4 xform_matrix(const CvCurveXform *x)
+{
+    struct cv_mat4 m = cv_mat4_identity();
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            m.m[r][c] = (&x->to_world[r].x)[c];
+    return m;
+}
+
+/* A new CvCurveXform for X (invertible); its 1-based index. */
+static uint32_t add_xform(struct cv_builder *b, const struct cv_mat4 *X, const struct cv_mat4 *inv)
+{
+    struct cv_scene *s = b->s;
+    s->curve_xforms = cv_xgrow(s->curve_xforms, &b->cap_curve_xforms, s->n_curve_xforms + 1,
+                               sizeof(CvCurveXform));
+    CvCurveXform *x = &s->curve_xforms[s->n_curve_xforms++];
+    for (int r = 0; r < 3; r++) {
+        x->to_world[r] = (cv_vec4){(float)X->m[r][0], (float)X->m[r][1], (float)X->m[r][2], (float)X->m[r][3]};
+        x->to_object[r] = (cv_vec4){(float)inv->m[r][0], (float)inv->m[r][1], (float)inv->m[r][2],
+                                    (float)inv->m[r][3]};
+    }
+    return s->n_curve_xforms;
+}
+
+void cv_curve_xform_box(const CvCurveXform *x, const double lo[3], const double hi[3], double out_lo[3],
+                        double out_hi[3])
+{
+    double l[3] = {lo[0], lo[1], lo[2]}, h[3] = {hi[0], hi[1], hi[2]}; /* out may be in */
+    for (int a = 0; a < 3; a++) {
+        out_lo[a] = INFINITY;
+        out_hi[a] = -INFINITY;
+    }
+    for (int k = 0; k < 8; k++) {
+        double p[3] = {(k & 1) ? h[0] : l[0], (k & 2) ? h[1] : l[1], (k & 4) ? h[2] : l[2]};
+        for (int a = 0; a < 3; a++) {
+            const cv_vec4 *r = &x->to_world[a];
+            double w = (double)r->x * p[0] + (double)r->y * p[1] + (double)r->z * p[2] + r->w;
+            out_lo[a] = fmin(out_lo[a], w);
+            out_hi[a] = fmax(out_hi[a], w);
+        }
+    }
+}
+
 bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const struct cv_mat4 *M,
                        uint32_t object, const struct cv_loc *loc, struct cv_error *err)
 {
@@ -173,12 +263,45 @@ bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const
         dst = s->curves + n0;
     }
     struct cv_mat4 inv;
-    cv_mat4_inverse(M, &inv);
+    bool invertible = cv_mat4_inverse(M, &inv) && cv_mat4_det3(M) != 0;
     bool swaps = cv_mat4_det3(M) < 0;
-    /* widths scale with the transform's mean scale (file comment) */
+    /* a similarity's scale carries the widths (file comment) */
     double scale = cbrt(fabs(cv_mat4_det3(M)));
+    bool to_render = similarity(M) || !invertible;
+    uint32_t last_src = UINT32_MAX, last_xf = 0; /* one transform per source transform */
     for (size_t i = 0; i < n; i++) {
         CvCurve c = src[i];
+        uint32_t src_xf = c.info.y >> CV_CURVE_XF_SHIFT;
+        if (src_xf || !to_render) {
+            /* stays in its object space: the transform composed */
+            if (src_xf != last_src) {
+                struct cv_mat4 X = *M, Xinv;
+                if (src_xf) {
+                    struct cv_mat4 prev = xform_matrix(&s->curve_xforms[src_xf - 1]);
+                    X = cv_mat4_mul(M, &prev);
+                }
+                if (!cv_mat4_inverse(&X, &Xinv) || !(cv_mat4_det3(&X) != 0))
+                    return FAIL("the curve's transform is singular", loc->file, loc->line, loc->col);
+                for (int r = 0; r < 3; r++)
+                    for (int k = 0; k < 4; k++)
+                        if (!isfinite(X.m[r][k]) || !isfinite(Xinv.m[r][k]))
+                            return FAIL("the curve's transform is not finite", loc->file, loc->line, loc->col);
+                if (s->n_curve_xforms >= (1u << (32 - CV_CURVE_XF_SHIFT)) - 1)
+                    return FAIL("more than 2^%u curve transforms", loc->file, loc->line, loc->col,
+                                32 - CV_CURVE_XF_SHIFT);
+                last_xf = add_xform(b, &X, &Xinv);
+                last_src = src_xf;
+            }
+            c.info.y = (c.info.y & CV_CURVE_TYPE_MASK) | last_xf << CV_CURVE_XF_SHIFT;
+            if ((c.info.y & CV_CURVE_TYPE_MASK) == CV_CURVE_RIBBON) /* in object space, as pbrt-v4 */
+                ribbon_normals(&c, NULL);
+            if (swaps)
+                c.info.x ^= CV_TRI_REVERSE;
+            if (object != UINT32_MAX)
+                c.info.z = object;
+            dst[i] = c;
+            continue;
+        }
         for (int k = 0; k < 4; k++) {
             double p[3] = {c.cp[k].x, c.cp[k].y, c.cp[k].z}, w[3];
             cv_mat4_point(M, p, w);
@@ -188,24 +311,8 @@ bool cv_b_place_curves(struct cv_builder *b, const CvCurve *src, size_t n, const
         }
         c.cp[0].w = (float)(c.cp[0].w * scale);
         c.cp[1].w = (float)(c.cp[1].w * scale);
-        if (c.info.y == CV_CURVE_RIBBON) {
-            double nn[2][3];
-            for (int k = 0; k < 2; k++) {
-                const cv_vec4 *v = k ? &c.n1 : &c.n0;
-                double o[3] = {v->x, v->y, v->z};
-                cv_mat4_normal(&inv, o, nn[k]);
-                normalize3(nn[k]);
-            }
-            double d = nn[0][0] * nn[1][0] + nn[0][1] * nn[1][1] + nn[0][2] * nn[1][2];
-            /* pbrt-v4's AngleBetween, robust near 0 and pi */
-            double e[3] = {nn[0][0] - nn[1][0], nn[0][1] - nn[1][1], nn[0][2] - nn[1][2]},
-                   f[3] = {nn[0][0] + nn[1][0], nn[0][1] + nn[1][1], nn[0][2] + nn[1][2]};
-            double angle = d < 0 ? M_PI - 2 * asin(fmin(1, sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 2))
-                                 : 2 * asin(fmin(1, sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / 2));
-            c.n0 = (cv_vec4){(float)nn[0][0], (float)nn[0][1], (float)nn[0][2], (float)angle};
-            c.n1 = (cv_vec4){(float)nn[1][0], (float)nn[1][1], (float)nn[1][2],
-                             angle > 0 ? (float)(1 / sin(angle)) : 0};
-        }
+        if ((c.info.y & CV_CURVE_TYPE_MASK) == CV_CURVE_RIBBON)
+            ribbon_normals(&c, &inv);
         if (swaps)
             c.info.x ^= CV_TRI_REVERSE;
         if (object != UINT32_MAX)

@@ -326,7 +326,7 @@ static bool place(struct cv_builder *b, const char *type, struct cv_params *ps, 
     if (why && !cv_b_warn(b, err, loc, "animated transform: %s; taken at its start time", why))
         return false;
     if (moving)
-        cv_b_motion_begin(b);
+        cv_b_motion_begin(b, type == NULL);
     bool ok = type ? cv_b_shape(b, type, ps, loc, dir, err) : cv_b_instance(b, index, loc, err);
     if (moving)
         cv_b_motion_end(b);

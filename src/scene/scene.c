@@ -17,6 +17,7 @@ static void scene_free(struct cv_scene *s)
     free(s->tri_light);
     free(s->tri_object);
     free(s->curves);
+    free(s->curve_xforms);
     free(s->motions);
     for (uint32_t i = 0; i < s->n_objects; i++)
         free(s->object_names[i]);

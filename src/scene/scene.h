@@ -74,8 +74,10 @@ struct cv_render_settings {
 /* A shape (or object instance) under an animated transform, pbrt-v4's
  * AnimatedPrimitive: triangles [first, first + count), vertices
  * [first_vertex, first_vertex + n_vertices) and curves [first_curve,
- * first_curve + n_curves) are in its object space, xf
- * takes them to world space at a ray's time (scene/animated.h); their
+ * first_curve + n_curves) are in its object space (an instance's moved
+ * by minus the camera's position, about which pbrt-v4 interpolates it:
+ * builder.c, render_origin), xf takes them to world space at a ray's time
+ * (scene/animated.h); their
  * CV_TRI_REVERSE is ReverseOrientation alone, the renderer flipping for a
  * transform that swaps handedness at that time (glsl/bvh/motion.glsl). lo,
  * hi: the world-space box the shape stays in while it moves. */
@@ -95,6 +97,8 @@ struct cv_scene {
     int32_t *tri_light;              /* per triangle: light index or -1 */
     CvCurve *curves;                 /* curve primitives (src/scene/curves.c) */
     uint32_t n_curves;
+    CvCurveXform *curve_xforms;      /* object spaces of curves under non-similarity transforms */
+    uint32_t n_curve_xforms;
     struct cv_motion *motions;       /* moving shapes, their triangles in this order */
     uint32_t n_motions;
 
@@ -201,6 +205,11 @@ void cv_scene_destroy(struct cv_scene **scene);
 
 /* How many triangles are static: those before the moving shapes'. */
 uint32_t cv_scene_static_triangles(const struct cv_scene *s);
+
+/* The box [out_lo, out_hi] holding the box [lo, hi] of a curve's object
+ * space under its transform x (its eight corners' images; curves.c). */
+void cv_curve_xform_box(const CvCurveXform *x, const double lo[3], const double hi[3], double out_lo[3],
+                        double out_hi[3]);
 
 /* Texel i (counted over the mip chain, level 0 first) of image texture t,
  * as linear RGBA, whichever way it is stored. i must lie inside the

@@ -352,7 +352,9 @@ bool cv_scene_upload(struct cv_gpu *gpu, const struct cv_scene *s,
         }
     }
     size_t n_curve4 = 0, n_motion4 = 0;
-    float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &n_curve4) : NULL;
+    float *curve4 = g.has_curves ? cv_curve_bvh_pack(s->curves, s->n_curves, s->curve_xforms, s->n_curve_xforms,
+                                                     s->n_motions, &n_curve4)
+                                 : NULL;
     float *motion4 = g.has_motion ? cv_motion_bvh_pack(s, &n_motion4) : NULL;
     if (curve4)
         ok = up_texture(gpu, &g.curves, &g.curves_tex, GL_RGBA32F, n_curve4, 16, curve4,

@@ -57,7 +57,8 @@ static bool trace(struct cv_gpu *gpu, const struct cv_scene *s, const float *ray
                   struct cv_error *err)
 {
     size_t n4;
-    float *packed = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &n4);
+    float *packed =
+        cv_curve_bvh_pack(s->curves, s->n_curves, s->curve_xforms, s->n_curve_xforms, s->n_motions, &n4);
     GLuint cb = cv_buffer_create(n4 * 16, packed, "curves", err);
     free(packed);
     GLuint ct = cb ? cv_buffer_texture(cb, GL_RGBA32F, n4, err) : 0;
@@ -101,7 +102,36 @@ static void set_ray(float *r, const double o[3], const double d[3], double tmin,
 }
 
 /* ---- walk against brute force on random strands ---- */
-static void test_random(struct cv_gpu *gpu)
+/* A random affine transform with non-uniform scale and shear, as pbrt-v4's
+ * Transform directive writes it (columns), and applied to a point. */
+static void random_warp(double m[3][4])
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            m[r][c] = r == c ? 0.5 + 1.5 * rnd() : c == 3 ? rnd() - 0.5 : (rnd() - 0.5) * 0.8;
+}
+
+static size_t put_warp(char *text, size_t cap, const double m[3][4])
+{
+    size_t len = (size_t)snprintf(text, cap, "Transform [");
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++)
+            len += (size_t)snprintf(text + len, cap - len, " %.6f", r < 3 ? m[r][c] : c == 3 ? 1.0 : 0.0);
+    return len + (size_t)snprintf(text + len, cap - len, " ]\n");
+}
+
+static void warp_point(const double m[3][4], double p[3])
+{
+    double q[3];
+    for (int r = 0; r < 3; r++)
+        q[r] = m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3];
+    memcpy(p, q, sizeof(q));
+}
+
+/* warped: each strand under a transform of its own, which is no
+ * similarity, so kept in its object space (the tree's boxes are its
+ * boxes' images) */
+static void test_random(struct cv_gpu *gpu, bool warped)
 {
     static const char *types[] = {"flat", "cylinder", "ribbon"};
     static const char *bases[] = {"bspline", "bezier"};
@@ -115,7 +145,12 @@ static void test_random(struct cv_gpu *gpu)
         const char *type = types[sidx % 3], *basis = bases[(sidx / 3) % 2];
         int degree = (sidx / 6) % 2 ? 2 : 3;
         int ncp = strcmp(basis, "bezier") == 0 ? 1 + degree * 3 : 7;
-        double base[3] = {rnd() * 4 - 2, rnd() * 4 - 2, rnd() * 4 - 2};
+        double base[3] = {rnd() * 4 - 2, rnd() * 4 - 2, rnd() * 4 - 2}, warp[3][4];
+        if (warped) {
+            random_warp(warp);
+            len += (size_t)snprintf(text + len, cap - len, "AttributeBegin\n");
+            len += put_warp(text + len, cap - len, warp);
+        }
         len += (size_t)snprintf(text + len, cap - len,
                                 "Shape \"curve\" \"string type\" \"%s\" \"string basis\" \"%s\" \"integer degree\" %d"
                                 " \"float width0\" %g \"float width1\" %g \"integer splitdepth\" %d \"point3 P\" [",
@@ -125,8 +160,12 @@ static void test_random(struct cv_gpu *gpu)
             for (int c = 0; c < 3; c++)
                 p[c] += rnd() * 0.8 - 0.4;
             len += (size_t)snprintf(text + len, cap - len, " %.6f %.6f %.6f", p[0], p[1], p[2]);
-            if (n_aim < 64 && k == ncp / 2)
-                memcpy(aim[n_aim++], p, sizeof(p));
+            if (n_aim < 64 && k == ncp / 2) {
+                memcpy(aim[n_aim], p, sizeof(p));
+                if (warped)
+                    warp_point(warp, aim[n_aim]);
+                n_aim++;
+            }
         }
         len += (size_t)snprintf(text + len, cap - len, " ]");
         if (strcmp(type, "ribbon") == 0) {
@@ -136,14 +175,23 @@ static void test_random(struct cv_gpu *gpu)
                 len += (size_t)snprintf(text + len, cap - len, " %.4f %.4f %.4f", rnd() - 0.5, rnd() - 0.5, 0.5 + rnd());
             len += (size_t)snprintf(text + len, cap - len, " ]");
         }
-        len += (size_t)snprintf(text + len, cap - len, "\n");
+        len += (size_t)snprintf(text + len, cap - len, "\n%s", warped ? "AttributeEnd\n" : "");
     }
     struct cv_error err = {{0}};
     struct cv_scene *s = load(text, &err);
     free(text);
-    if (!tap_ok(s != NULL && s->n_curves > 0, "random strands load (%u primitives)%s%s", s ? s->n_curves : 0,
+    const char *what = warped ? "sheared, unevenly scaled strands" : "strands";
+    if (!tap_ok(s != NULL && s->n_curves > 0, "random %s load (%u primitives)%s%s", what, s ? s->n_curves : 0,
                 s ? "" : ": ", s ? "" : err.msg))
         return;
+    if (warped) {
+        uint32_t kept = 0;
+        for (uint32_t i = 0; i < s->n_curves; i++)
+            kept += (s->curves[i].info.y >> CV_CURVE_XF_SHIFT) != 0;
+        tap_ok(kept == s->n_curves && s->n_curve_xforms == (uint32_t)n_strands,
+               "each is kept in its object space, one transform a strand (%u of %u, %u transforms)", kept,
+               s->n_curves, s->n_curve_xforms);
+    }
     uint32_t n = 8192;
     float *rays = calloc((size_t)n * 8, sizeof(float));
     for (uint32_t i = 0; i < n; i++) {
@@ -183,33 +231,42 @@ static void test_random(struct cv_gpu *gpu)
         if (o[8] != (o[5] != 0xffffffffu))
             any_wrong++;
     }
-    tap_ok(hits > n / 8, "rays hit the strands (%u of %u)", hits, n);
-    tap_ok(diff == 0, "closest hit through the curve tree equals the brute force (%u of %u differ)", diff, n);
+    tap_ok(hits > n / 8, "rays hit the %s (%u of %u)", what, hits, n);
+    tap_ok(diff == 0, "%s: closest hit through the curve tree equals the brute force (%u of %u differ)", what, diff,
+           n);
     tap_ok(any_diff == 0 && any_wrong == 0,
-           "any-hit through the tree equals the brute force (%u differ) and the closest query (%u differ)", any_diff,
-           any_wrong);
+           "%s: any-hit through the tree equals the brute force (%u differ) and the closest query (%u differ)", what,
+           any_diff, any_wrong);
     free(r.out);
     free(rays);
     cv_scene_destroy(&s);
 }
 
 /* ---- a straight curve along x, seen from +z ---- */
-static void test_straight(struct cv_gpu *gpu)
+/* Under "Scale 1 sy 1" (sy 1: none): pbrt-v4 takes the width in object
+ * space, so the curve is sy times as wide in y, its v and normals those of
+ * object space carried out (normals by the inverse transpose). */
+static void test_straight(struct cv_gpu *gpu, double sy)
 {
     static const char *const kinds[] = {"flat", "cylinder", "ribbon"};
     for (int kind = 0; kind < 3; kind++) {
-        char text[512];
+        char text[512], xf[64] = "", label[64] = "";
+        if (sy != 1) {
+            snprintf(xf, sizeof(xf), "Scale 1 %g 1\n", sy);
+            snprintf(label, sizeof(label), "under Scale 1 %g 1, ", sy);
+        }
         /* ribbon: normal tilted 60 degrees from the ray (towards +y): width halves */
         snprintf(text, sizeof(text),
-                 "WorldBegin\nShape \"curve\" \"string type\" \"%s\" \"point3 P\" [-1 0 0 -0.3333333 0 0 0.3333333 0 0 "
+                 "WorldBegin\n%sShape \"curve\" \"string type\" \"%s\" \"point3 P\" [-1 0 0 -0.3333333 0 0 0.3333333 0 0 "
                  "1 0 0] \"float width\" 0.2 %s\n",
-                 kinds[kind], kind == 2 ? "\"normal N\" [0 0.8660254 0.5 0 0.8660254 0.5]" : "");
+                 xf, kinds[kind], kind == 2 ? "\"normal N\" [0 0.8660254 0.5 0 0.8660254 0.5]" : "");
         struct cv_error err = {{0}};
         struct cv_scene *s = load(text, &err);
-        if (!tap_ok(s && s->n_curves == 8, "%s straight curve loads (%u primitives)%s", kinds[kind],
+        if (!tap_ok(s && s->n_curves == 8, "%s%s straight curve loads (%u primitives)%s", label, kinds[kind],
                     s ? s->n_curves : 0, s ? "" : err.msg))
             continue;
-        double half = kind == 2 ? 0.05 : 0.1;
+        /* half the width: in object space, and seen along -z */
+        double half_o = kind == 2 ? 0.05 : 0.1, half = half_o * sy;
         uint32_t n = 1024;
         float *rays = calloc((size_t)n * 8, sizeof(float));
         double *off = calloc(n, sizeof(double)), *xs = calloc(n, sizeof(double));
@@ -242,33 +299,41 @@ static void test_straight(struct cv_gpu *gpu)
             /* u: the piece's own parameter, pieces of 1/8 (splitdepth 3) */
             if (fabs(u - (xs[i] + 1) / 2) > 1e-4)
                 bad_u++;
-            double dv = fabs(fabs(v - 0.5) - a / (2 * half));
+            double dv = fabs(fabs(v - 0.5) - a / (2 * half));  /* the same fraction in object space */
             worst_v = fmax(worst_v, dv);
             if (dv > 1e-4)
                 bad_v++;
             double nx = fbits(o[12]), ny = fbits(o[13]), nz = fbits(o[14]), dn;
+            /* the object-space normal (0, ey, ez), carried out: (0, ey / sy, ez) */
+            double ey, ez;
             if (kind == 0) {
-                dn = 1 - fabs(nz);  /* faces the ray */
+                ey = 0;  /* faces the ray */
+                ez = 1;
             } else if (kind == 1) {
                 /* pbrt-v4's tube: turned from the flat normal by an angle
                  * linear in the offset, 90 degrees at the edges, on the
                  * side away from the ray (its flat normal faces away too) */
                 double ang = M_PI / 2 * off[i] / half;
-                dn = 1 - fabs(ny * sin(ang) - nz * cos(ang));
+                ey = sin(ang);
+                ez = -cos(ang);
             } else {
-                dn = 1 - fabs(ny * 0.8660254 + nz * 0.5);
+                ey = 0.8660254;
+                ez = 0.5;
             }
+            ey /= sy;
+            dn = 1 - fabs(ny * ey + nz * ez) / sqrt(ey * ey + ez * ez);
             dn = fmax(dn, fabs(nx));
             worst_n = fmax(worst_n, dn);
             if (dn > 1e-3)
                 bad_n++;
         }
         tap_ok(wrong_hit == 0 && hits > n / 2,
-               "%s: hit exactly within %.2f of the axis (%u wrong of %u, %u hits)", kinds[kind], half, wrong_hit, n,
-               hits);
-        tap_ok(bad_t == 0 && bad_u == 0, "%s: t at the axis, u along it (%u, %u off)", kinds[kind], bad_t, bad_u);
-        tap_ok(bad_v == 0, "%s: |v - 0.5| = offset / width (worst %.2g)", kinds[kind], worst_v);
-        tap_ok(bad_n == 0, "%s: normal %s (worst 1 - |cos| %.2g)", kinds[kind],
+               "%s%s: hit exactly within %.2f of the axis (%u wrong of %u, %u hits)", label, kinds[kind], half, wrong_hit,
+               n, hits);
+        tap_ok(bad_t == 0 && bad_u == 0, "%s%s: t at the axis, u along it (%u, %u off)", label, kinds[kind], bad_t,
+               bad_u);
+        tap_ok(bad_v == 0, "%s%s: |v - 0.5| = offset / width (worst %.2g)", label, kinds[kind], worst_v);
+        tap_ok(bad_n == 0, "%s%s: normal %s (worst 1 - |cos| %.2g)", label, kinds[kind],
                kind == 0 ? "faces the ray" : kind == 1 ? "of a round tube" : "the ribbon's", worst_n);
         free(r.out);
         free(rays);
@@ -347,14 +412,49 @@ static const char *const tuft_places[] = {
     "Rotate 90 0 0 1\nScale 1 3 1\n",
 };
 
-static bool near_curve(const CvCurve *a, const CvCurve *b)
+/* Curve c of scene s as the tree sees it: control point v (or a ribbon
+ * normal's direction, with normal) carried out of the curve's own object
+ * space where it keeps one. */
+static cv_vec4 placed(const struct cv_scene *s, const CvCurve *c, const cv_vec4 *v, bool normal)
 {
-    for (int k = 0; k < 4; k++)
-        if (!near3(&a->cp[k], b->cp[k].x, b->cp[k].y, b->cp[k].z) || fabsf(a->cp[k].w - b->cp[k].w) > 1e-5f)
+    uint32_t xf = c->info.y >> CV_CURVE_XF_SHIFT;
+    if (!xf)
+        return *v;
+    const CvCurveXform *x = &s->curve_xforms[xf - 1];
+    double o[3];
+    for (int r = 0; r < 3; r++)
+        o[r] = normal ? (&x->to_object[0].x)[r] * v->x + (&x->to_object[1].x)[r] * v->y +
+                            (&x->to_object[2].x)[r] * v->z
+                      : x->to_world[r].x * v->x + x->to_world[r].y * v->y + x->to_world[r].z * v->z +
+                            x->to_world[r].w;
+    double l = normal ? sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]) : 1;
+    return (cv_vec4){(float)(o[0] / l), (float)(o[1] / l), (float)(o[2] / l), v->w};
+}
+
+/* Curves a of scene sa and b of sb are the same shape in the tree's
+ * space. Widths and the ribbon's angle are compared as stored: the
+ * definition's own transform (tuft_shapes) is a translation, so an
+ * instance's curve and its written-out twin keep them in spaces of the
+ * same scale. */
+static bool near_curve(const struct cv_scene *sa, const CvCurve *a, const struct cv_scene *sb, const CvCurve *b)
+{
+    for (int k = 0; k < 4; k++) {
+        cv_vec4 p = placed(sa, a, &a->cp[k], false), q = placed(sb, b, &b->cp[k], false);
+        if (!near3(&p, q.x, q.y, q.z) || fabsf(a->cp[k].w - b->cp[k].w) > 1e-5f)
             return false;
-    return near3(&a->n0, b->n0.x, b->n0.y, b->n0.z) && near3(&a->n1, b->n1.x, b->n1.y, b->n1.z) &&
+    }
+    bool ribbon = (a->info.y & CV_CURVE_TYPE_MASK) == CV_CURVE_RIBBON;
+    cv_vec4 n0a = a->n0, n0b = b->n0, n1a = a->n1, n1b = b->n1; /* unused but for ribbons */
+    if (ribbon) {
+        n0a = placed(sa, a, &a->n0, true);
+        n0b = placed(sb, b, &b->n0, true);
+        n1a = placed(sa, a, &a->n1, true);
+        n1b = placed(sb, b, &b->n1, true);
+    }
+    return near3(&n0a, n0b.x, n0b.y, n0b.z) && near3(&n1a, n1b.x, n1b.y, n1b.z) &&
            fabsf(a->n0.w - b->n0.w) < 1e-5f && fabsf(a->n1.w - b->n1.w) < 1e-3f * fabsf(b->n1.w) + 1e-6f &&
-           a->info.x == b->info.x && a->info.y == b->info.y;
+           a->info.x == b->info.x && (a->info.y & CV_CURVE_TYPE_MASK) == (b->info.y & CV_CURVE_TYPE_MASK) &&
+           (a->info.y >> CV_CURVE_XF_SHIFT != 0) == (b->info.y >> CV_CURVE_XF_SHIFT != 0);
 }
 
 static void test_instance(struct cv_gpu *gpu)
@@ -380,14 +480,17 @@ static void test_instance(struct cv_gpu *gpu)
         cv_scene_destroy(&f);
         return;
     }
-    uint32_t same = 0, one_object = 0;
+    uint32_t same = 0, one_object = 0, kept = 0;
     for (uint32_t i = 0; i < s->n_curves; i++) {
-        same += near_curve(&s->curves[i], &f->curves[i]);
+        same += near_curve(s, &s->curves[i], f, &f->curves[i]);
+        kept += (s->curves[i].info.y >> CV_CURVE_XF_SHIFT) != 0;
         one_object += s->curves[i].info.z == s->curves[0].info.z;
     }
     tap_ok(same == s->n_curves, "instanced curves equal the curves written under each instance's transform: points, "
            "widths, ribbon normals, type, material word with ReverseOrientation and the mirror (%u of %u)",
            same, s->n_curves);
+    tap_ok(kept == s->n_curves / 3, "the instance under Scale 1 3 1 keeps its curves in object space, the others "
+           "not (%u of %u)", kept, s->n_curves);
     tap_ok(one_object == s->n_curves && strcmp(s->object_names[s->curves[0].info.z], "tuft") == 0,
            "every instance's curves are the ID-matte object \"tuft\"");
     /* walk against brute force over the instanced curves */
@@ -423,8 +526,10 @@ int main(void)
 {
     test_conversions();
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
-    test_straight(gpu);
-    test_random(gpu);
+    test_straight(gpu, 1);
+    test_straight(gpu, 3);
+    test_random(gpu, false);
+    test_random(gpu, true);
     test_instance(gpu);
     cv_gpu_destroy(&gpu);
     return tap_done();

@@ -64,7 +64,8 @@ static uint32_t *trace(struct cv_gpu *gpu, const struct cv_scene *s, const float
     /* the curves' buffer, moving shapes' curves in it, where there are any */
     GLuint cb = 0, ct = 0;
     if (s->n_curves) {
-        float *c4 = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &nc4);
+        float *c4 =
+            cv_curve_bvh_pack(s->curves, s->n_curves, s->curve_xforms, s->n_curve_xforms, s->n_motions, &nc4);
         cb = cv_buffer_create(nc4 * 16, c4, "curves", err);
         free(c4);
         ct = cb ? cv_buffer_texture(cb, GL_RGBA32F, nc4, err) : 0;
@@ -319,6 +320,37 @@ static void test_arc(struct cv_gpu *gpu)
     cv_scene_destroy(&s);
 }
 
+/* The same bar as an object instance turning 90 degrees about z, with the
+ * camera at (4, 0, 5): pbrt-v4 interpolates render-from-instance, the
+ * instance's transform conjugated by the camera's position, so at half
+ * time the instance's point (4, 0, 5) lies halfway along the chord from
+ * (4, 0, 5) to (0, 4, 5), and the bar, still at 45 degrees, runs from
+ * (2, 2) - (2.83, 2.83) to 2 further along: through (-0.4, -0.4), not
+ * through (1.3, 1.3) where a turn about the origin puts it. */
+static void test_pivot(struct cv_gpu *gpu)
+{
+    const char *text = "LookAt 4 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+                       "ObjectBegin \"bar\"\nShape \"trianglemesh\" \"point3 P\" [0 -0.05 0 2 -0.05 0 2 0.05 0 0 0.05 0]"
+                       " \"integer indices\" [0 1 2 0 2 3]\nObjectEnd\n"
+                       "ActiveTransform EndTime\nRotate 90 0 0 1\nActiveTransform All\nObjectInstance \"bar\"\n";
+    struct cv_scene *s = NULL;
+    struct cv_error err = {{0}};
+    struct cv_scene_load_params p = {.strict = true};
+    if (!tap_ok(cv_scene_load_string("/tmp/pivot.pbrt", text, strlen(text), &p, &s, &err) && s->n_motions == 1,
+                "a turning instance loads: %s", err.msg)) {
+        cv_scene_destroy(&s);
+        return;
+    }
+    float rays[16] = {-0.4f, -0.4f, 1, 0, 0, 0, -1, 1e30f, 1.3f, 1.3f, 1, 0, 0, 0, -1, 1e30f};
+    uint32_t *out = trace(gpu, s, rays, 2, 0.5f, &err);
+    if (tap_ok(out != NULL, "GPU run: %s", err.msg))
+        tap_ok(out[1] != 0xffffffffu && fabsf(fbits(out[0]) - 1) < 1e-5f && out[13] == 0xffffffffu,
+               "at half time the instance has turned about the camera's position (hit at (-0.4, -0.4): t %g), "
+               "not about its origin (%s at (1.3, 1.3))", fbits(out[0]), out[13] == 0xffffffffu ? "missed" : "hit");
+    free(out);
+    cv_scene_destroy(&s);
+}
+
 /* A random strand of `type` (bspline, 7 points) near the origin. */
 static size_t strand(char *text, size_t cap, const char *type)
 {
@@ -348,16 +380,40 @@ static void bezier(const CvCurve *c, double u, double out[3])
     }
 }
 
+/* Point x of curve c's own object space (CvCurveXform) in its shape's
+ * object space (dir 0), or back (dir 1); as it is for curves without. */
+static void curve_space(const struct cv_scene *s, const CvCurve *c, int dir, double x[3])
+{
+    uint32_t xf = c->info.y >> CV_CURVE_XF_SHIFT;
+    if (!xf)
+        return;
+    const cv_vec4 *m = dir ? s->curve_xforms[xf - 1].to_object : s->curve_xforms[xf - 1].to_world;
+    double y[3];
+    for (int r = 0; r < 3; r++)
+        y[r] = m[r].x * x[0] + m[r].y * x[1] + m[r].z * x[2] + m[r].w;
+    memcpy(x, y, sizeof(y));
+}
+
 /* Moving curves: strands of each type as moving shapes and a moving
- * instance of a curve object, beside a moving triangle shape. */
+ * instance of a curve object, beside a moving triangle shape. The
+ * object's cylinder and ribbon strands are under a non-uniform scale and a
+ * shear of their own, so they stay in their object space within the
+ * instance's. */
 static void test_curves(struct cv_gpu *gpu)
 {
     static const char *const types[] = {"flat", "cylinder", "ribbon"};
     size_t cap = 1 << 16, len = 0;
     char *text = malloc(cap);
     len += (size_t)snprintf(text + len, cap - len, "WorldBegin\nObjectBegin \"tuft\"\n");
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3; k++) {
+        if (k)
+            len += (size_t)snprintf(text + len, cap - len, "AttributeBegin\n%s\n",
+                                    k == 1 ? "Scale 1 1.5 0.6"
+                                           : "ConcatTransform [1 0.3 0 0  0 1 0 0  0.4 0 0.8 0  0 0 0 1]");
         len += strand(text + len, cap - len, types[k]);
+        if (k)
+            len += (size_t)snprintf(text + len, cap - len, "AttributeEnd\n");
+    }
     len += (size_t)snprintf(text + len, cap - len, "ObjectEnd\n");
     for (int k = 0; k < 9; k++) {
         len += (size_t)snprintf(text + len, cap - len,
@@ -387,7 +443,8 @@ static void test_curves(struct cv_gpu *gpu)
         return;
     }
     size_t nc4;
-    float *c4 = cv_curve_bvh_pack(s->curves, s->n_curves, s->n_motions, &nc4);
+    float *c4 = cv_curve_bvh_pack(s->curves, s->n_curves, s->curve_xforms, s->n_curve_xforms, s->n_motions,
+                                  &nc4);
     uint32_t curve_base;
     memcpy(&curve_base, &c4[2], 4);
     static const float times[] = {0.0f, 0.25f, 0.5f, 0.9f, 1.0f, -1.0f, 2.0f};
@@ -406,6 +463,7 @@ static void test_curves(struct cv_gpu *gpu)
             double mt[3][4], x[3], w[3];
             cv_animated_at(&s->motions[c->info.w - 1].xf, time, mt);
             bezier(c, rnd(), x);
+            curve_space(s, c, 0, x);
             apply(mt, x, w);
             for (int k = 0; k < 3; k++)
                 d[k] = i % 4 == 3 ? rnd() - 0.5 : w[k] + (rnd() - 0.5) * 0.3 - o[k];
@@ -445,6 +503,7 @@ static void test_curves(struct cv_gpu *gpu)
                         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0])) / det;
             }
             double axis[3], e = 0;
+            curve_space(s, &c, 1, x);
             bezier(&c, u, axis);
             for (int k = 0; k < 3; k++)
                 e += (x[k] - axis[k]) * (x[k] - axis[k]);
@@ -462,8 +521,13 @@ static void test_curves(struct cv_gpu *gpu)
     tap_ok(a.any_diff == 0 && a.any_wrong == 0,
            "any-hit with curves equals the brute force (%u differ) and the closest query (%u differ)", a.any_diff,
            a.any_wrong);
-    tap_ok(off == 0, "every curve hit lies within half the width of its curve where pbrt-v4's interpolation puts "
-           "it (%u off; worst %.3g of the half width)", off, worst);
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < s->n_curves; i++)
+        kept += (s->curves[i].info.y >> CV_CURVE_XF_SHIFT) != 0;
+    tap_ok(kept > 0, "the instances' sheared and unevenly scaled strands stay in their object space (%u curves)",
+           kept);
+    tap_ok(off == 0, "every curve hit lies within half the width of its curve (in the curve's object space) where "
+           "pbrt-v4's interpolation puts it (%u off; worst %.3g of the half width)", off, worst);
     free(c4);
     free(rays);
     cv_scene_destroy(&s);
@@ -473,6 +537,7 @@ int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     test_arc(gpu);
+    test_pivot(gpu);
     test_walk(gpu);
     test_curves(gpu);
     cv_gpu_destroy(&gpu);

@@ -118,6 +118,12 @@ static const struct {
     /* curve_motion: the same for a moving curve and a moving instance of
      * a curve object */
     {"curve_motion", REGIONS_GRID8},
+    /* instance_turn: where turning instances' blur moves light between
+     * blocks */
+    {"instance_turn", REGIONS_GRID8},
+    /* curve_scale: where each strand's width lies (and the moving
+     * instance's blur) */
+    {"curve_scale", REGIONS_GRID8},
 };
 
 static enum oracle_regions regions_of(const char *name)
@@ -182,6 +188,12 @@ static const struct oracle_scene scenes[] = {
      * times; a moving curve and a moving instance of them */
     {"curve_instance", NULL},
     {"curve_motion", NULL},
+    /* issue 27: moving instances that turn, interpolated about the
+     * camera's position as pbrt-v4 does */
+    {"instance_turn", NULL},
+    /* issue 27: curves under non-uniform scales and a shear, widths and
+     * ribbon normals in object space as pbrt-v4's */
+    {"curve_scale", NULL},
     /* participating media, rendered with volpath */
     {"vol_cube", NULL},
     {"vol_chromatic", NULL},

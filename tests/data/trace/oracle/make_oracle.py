@@ -803,11 +803,9 @@ def bdpt_media_main():
 # Curves in object definitions and moving curves (issue 27): the strands of
 # curve_diffuse in an ObjectBegin tuft instanced three times under
 # different transforms; then a strand sliding and turning over the
-# shutter beside a moving instance of a curve object. Uniform scales: under
-# others pbrt-v4's widths (object space) differ from Cavalry's (the mean
-# scale, curves.c). The moving instance does not turn: pbrt-v4 interpolates
-# an instance's transform in render space (about the camera), Cavalry in
-# world space, which differ by an arc when it turns.
+# shutter beside a moving instance of a curve object. Uniform scales:
+# other transforms are curve_scale's. The moving instance does not turn:
+# turning instances are instance_turn's.
 # curve_instance_main() writes them last (the earlier files come out
 # unchanged).
 def curve_instance_main():
@@ -837,6 +835,54 @@ def curve_instance_main():
           CURVE_LIGHTS + tuft + mover + turning)
 
 
+# Moving instances that turn (issue 27): pbrt-v4 interpolates a moving
+# instance's transform in render space, conjugated by the camera's position
+# (its default "cameraworld"), so the instance's point at the camera, not
+# its origin, moves along a line: a turning instance sweeps other arcs than
+# a turning shape does. An object of a plank and a cylinder curve, turning
+# about the vertical on the left and tilting about z on the right.
+# instance_turn_main() writes it last (the earlier files come out unchanged).
+def instance_turn_main():
+    obj = ('ObjectBegin "plank"\n  Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
+           + indent(box([-0.8, 0, -0.15], [0.8, 0.6, 0.15]))
+           + "  " + strand(0.0, "cylinder", "bspline", 3, '"float width" [ 0.3 ]') + "ObjectEnd\n")
+    turn = ("AttributeBegin\n  Translate -1.1 0 0.3\n"
+            "  ActiveTransform EndTime\n  Rotate 50 0 1 0\n  ActiveTransform All\n"
+            "  ObjectInstance \"plank\"\nAttributeEnd\n")
+    tilt = ("AttributeBegin\n  Translate 1.1 0 0.3\n"
+            "  ActiveTransform EndTime\n  Rotate -30 0 0 1\n  ActiveTransform All\n"
+            "  ObjectInstance \"plank\"\nAttributeEnd\n")
+    scene("instance_turn", "an object of a plank and a cylinder curve, instanced moving: turning 50 "
+          "degrees about the vertical, tilting 30 degrees about z", CURVE_LIGHTS + obj + turn + tilt)
+
+
+# Curves under transforms that are no similarity (issue 27): pbrt-v4 takes
+# a curve's width, and a ribbon's normals, in object space and intersects
+# there, so under a non-uniform scale or a shear a curve is as much wider
+# or narrower as the transform stretches it across. A cylinder stretched
+# across, a flat curve sheared, a ribbon squeezed in x and stretched in z
+# (its normals through the inverse transpose), and an object of one
+# cylinder strand instanced under a non-uniform scale, moving back.
+# curve_scale_main() writes it last (the earlier files come out unchanged).
+def curve_scale_main():
+    diffuse = 'Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]\n'
+    cyl = ("AttributeBegin\n  " + diffuse + "  Translate -1.2 0 0\n  Scale 2 0.6 1\n  "
+           + strand(0.0, "cylinder", "bspline", 3, '"float width" [ 0.45 ]') + "AttributeEnd\n")
+    flat = ("AttributeBegin\n  " + diffuse + "  Translate -0.1 0 0\n"
+            "  ConcatTransform [ 1.5 0 0 0  0.35 1 0 0  0 0.3 1 0  0 0 0 1 ]\n  "
+            + strand(0.0, "flat", "bezier", 3, '"float width0" [ 0.4 ] "float width1" [ 0.2 ]') + "AttributeEnd\n")
+    ribbon = ("AttributeBegin\n  " + diffuse + "  Translate 1.2 0 0\n  Scale 0.5 1 2\n  "
+              + strand(0.0, "ribbon", "bezier", 2, '"float width" [ 0.7 ]',
+                       ' "normal N" [ 0.6 0 -1  -0.8 0.2 -1  0.4 0 -1 ]') + "AttributeEnd\n")
+    wisp = ('ObjectBegin "wisp"\n  ' + diffuse + "  Scale 1 1 0.5\n  "
+            + strand(0.0, "cylinder", "bezier", 3, '"float width" [ 0.4 ]') + "ObjectEnd\n")
+    inst = ("AttributeBegin\n  Translate 0.5 0 1.6\n  Scale 1.7 0.9 1\n"
+            "  ActiveTransform EndTime\n  Translate 0 0 0.3\n  ActiveTransform All\n"
+            "  ObjectInstance \"wisp\"\nAttributeEnd\n")
+    scene("curve_scale", "curves under non-uniform scales and a shear (cylinder, flat, ribbon) and a moving "
+          "instance of a curve object under a non-uniform scale", CURVE_LIGHTS + wisp + cyl + flat + ribbon + inst)
+
+
 if __name__ == "__main__":
     main()
     camera_main()
@@ -849,3 +895,5 @@ if __name__ == "__main__":
     bdpt_camera_main()
     bdpt_media_main()
     curve_instance_main()
+    instance_turn_main()
+    curve_scale_main()
