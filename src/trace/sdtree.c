@@ -59,32 +59,29 @@ struct cv_sdtree {
     size_t nt, ct;
 };
 
+/* Appends a zeroed node to one of the tree's arrays; its index. */
 static uint32_t push_s(struct cv_sdtree *t)
 {
-    t->s = cv_xgrow(t->s, &t->cs, t->ns + 1, sizeof(*t->s));
-    memset(&t->s[t->ns], 0, sizeof(*t->s));
-    return (uint32_t)t->ns++;
+    CV_PUSH(t->s, t->ns, t->cs, (struct snode){0});
+    return (uint32_t)(t->ns - 1);
 }
 
 static uint32_t push_c(struct cv_sdtree *t)
 {
-    t->c = cv_xgrow(t->c, &t->cc, t->nc + 1, sizeof(*t->c));
-    memset(&t->c[t->nc], 0, sizeof(*t->c));
-    return (uint32_t)t->nc++;
+    CV_PUSH(t->c, t->nc, t->cc, (struct cnode){0});
+    return (uint32_t)(t->nc - 1);
 }
 
 static uint32_t push_q(struct cv_sdtree *t)
 {
-    t->q = cv_xgrow(t->q, &t->cq, t->nq + 1, sizeof(*t->q));
-    memset(&t->q[t->nq], 0, sizeof(*t->q));
-    return (uint32_t)t->nq++;
+    CV_PUSH(t->q, t->nq, t->cq, (struct qnode){0});
+    return (uint32_t)(t->nq - 1);
 }
 
 static uint32_t push_t(struct cv_sdtree *t)
 {
-    t->t = cv_xgrow(t->t, &t->ct, t->nt + 1, sizeof(*t->t));
-    memset(&t->t[t->nt], 0, sizeof(*t->t));
-    return (uint32_t)t->nt++;
+    CV_PUSH(t->t, t->nt, t->ct, (struct tnode){0});
+    return (uint32_t)(t->nt - 1);
 }
 
 static void free_arrays(struct cv_sdtree *t)
