@@ -41,3 +41,8 @@ EXTRA_DIST += bench/amd_regs/stats.sh bench/amd_regs/assemble.c bench/amd_regs/v
 noinst_PROGRAMS += bench/sdtree_build
 bench_sdtree_build_SOURCES = bench/sdtree_build.c
 bench_sdtree_build_LDADD = $(CV_LIBS) -lm
+# traversal work per ray (nodes, triangles) of the GPU-built tree on a scene
+noinst_PROGRAMS += bench/bvh_work
+bench_bvh_work_SOURCES = bench/bvh_work.c
+bench_bvh_work_LDADD = $(CV_LIBS) -lm
+bench_bvh_work_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl

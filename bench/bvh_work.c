@@ -1,0 +1,1164 @@
+/* bvh_work.c: traversal work per ray of the renderer's triangle tree on a
+ * real scene, independent of the GPU's speed. Loads a pbrt scene through
+ * the normal loader, builds the tree as cavalry-batch does (cv_bvh_build
+ * with the CAVALRY_BVH_* knobs), reads the 4-wide tree back and walks it on
+ * the CPU with the order of glsl/bvh/traverse.glsl (nearest inner child
+ * first, the others pushed farthest first, a node's leaf children tested
+ * as one run, children beyond the current hit culled), counting nodes
+ * visited and triangles tested per query. The rays look like a path
+ * tracer's: camera rays, two diffuse bounces (cosine about the geometric
+ * normal) from real hit points, and a shadow ray (any hit) to a light
+ * chosen by power from every hit point. Prints per query type the mean
+ * nodes and triangles, the cost c_node * nodes + c_tri * triangles, and of
+ * the tree: the SAH cost (binary, the build's constants; wide, the cost
+ * model's), the leaf-size histogram, depth, node count and how much child
+ * boxes overlap.
+ *   bvh_work SCENE.pbrt [--res N] [--seed S] [--ref] [--verify]
+ *            [--rounds R] [--split F] [--treelet S] [--c-node X] [--c-tri Y]
+ *            [--ref-inner X] [--ref-tri Y] [--ref-leaf N] [--ref-bins B]
+ * --res N: camera rays on an N-wide grid (height by the film's aspect).
+ * --ref also builds a binned-SAH tree on the CPU (over the triangles, no
+ * splitting; the build's leaf costs unless --ref-* say otherwise), widens
+ * it by the GPU's rule (glsl/bvh/widen.glsl) and walks the same rays
+ * through it: what a good host build would cost.
+ * --verify traces the camera rays through the GPU's own traversal
+ * (glsl/bvh/rays_test.comp, CV_BVH_COUNT_STEPS) and checks that its hits
+ * and node counts equal this walk's (exit status 1 if not).
+ * The walk uses a double-precision triangle test, not the watertight one,
+ * so a ray grazing an edge may hit one neighbour instead of the other:
+ * work figures, not images. Run from the build tree (embedded shaders) or
+ * with CAVALRY_DATA_DIR at the source tree. */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh/bvh.h"
+#include "cli/knobs.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/bvh.h"
+#include "glsl/shared/scene.h"
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "gpu/program.h"
+#include "scene/scene.h"
+
+/* ---- the scene's triangles ---- */
+
+struct tris {
+    const CvVertex *v;
+    const CvTriangle *t;
+    uint32_t n;
+};
+
+static void tri_pos(const struct tris *m, uint32_t t, double p[3][3])
+{
+    const uint32_t *ix = &m->t[t].idx.x;
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++)
+            p[j][k] = (&m->v[ix[j]].pos_u.x)[k];
+}
+
+static uint64_t rng_state;
+static double rnd(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Möller-Trumbore in double: t and the barycentrics, or false. */
+static bool ray_tri(const struct tris *m, uint32_t t, const double o[3], const double d[3],
+                    double *th, double *b1, double *b2)
+{
+    double p[3][3], e1[3], e2[3], s[3], q[3], h[3];
+    tri_pos(m, t, p);
+    for (int k = 0; k < 3; k++) {
+        e1[k] = p[1][k] - p[0][k];
+        e2[k] = p[2][k] - p[0][k];
+        s[k] = o[k] - p[0][k];
+    }
+    h[0] = d[1] * e2[2] - d[2] * e2[1];
+    h[1] = d[2] * e2[0] - d[0] * e2[2];
+    h[2] = d[0] * e2[1] - d[1] * e2[0];
+    double a = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+    if (a == 0.0)
+        return false;
+    double f = 1.0 / a;
+    double u = f * (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]);
+    if (u < 0.0 || u > 1.0)
+        return false;
+    q[0] = s[1] * e1[2] - s[2] * e1[1];
+    q[1] = s[2] * e1[0] - s[0] * e1[2];
+    q[2] = s[0] * e1[1] - s[1] * e1[0];
+    double v = f * (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]);
+    if (v < 0.0 || u + v > 1.0)
+        return false;
+    *th = f * (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]);
+    *b1 = u;
+    *b2 = v;
+    return true;
+}
+
+/* ---- a 4-wide tree as traversal reads it ---- */
+
+struct wtree {
+    CvBvhNode4 *nodes;
+    uint32_t n_nodes;
+    uint32_t *prims;   /* leaf slot -> triangle */
+    uint32_t n_slots;
+    float pad_lo[3], pad_hi[3]; /* the root's used slots' box (cv_bvh_pad) */
+};
+
+static void wtree_finish(struct wtree *w)
+{
+    const CvBvhNode4 *r = &w->nodes[0];
+    for (int k = 0; k < 3; k++) {
+        w->pad_lo[k] = 3e38f;
+        w->pad_hi[k] = -3e38f;
+    }
+    for (int c = 0; c < 4; c++) {
+        const float lo[3] = {(&r->lox.x)[c], (&r->loy.x)[c], (&r->loz.x)[c]};
+        const float hi[3] = {(&r->hix.x)[c], (&r->hiy.x)[c], (&r->hiz.x)[c]};
+        if (!(lo[0] <= hi[0]))
+            continue;
+        for (int k = 0; k < 3; k++) {
+            w->pad_lo[k] = fminf(w->pad_lo[k], lo[k]);
+            w->pad_hi[k] = fmaxf(w->pad_hi[k], hi[k]);
+        }
+    }
+}
+
+static void wtree_free(struct wtree *w)
+{
+    free(w->nodes);
+    free(w->prims);
+    memset(w, 0, sizeof(*w));
+}
+
+struct work {
+    uint64_t nodes, tris, queries, hits;
+};
+
+struct ray {
+    float o[3], tmin, d[3], tmax; /* as rays_test.comp reads them */
+};
+
+struct hit {
+    double t;
+    uint32_t prim;  /* UINT32_MAX: none */
+    float b1, b2;
+};
+
+/* One query, closest (any false) or any hit, in traverse.glsl's order. */
+static struct hit walk(const struct wtree *w, const struct tris *m, const struct ray *r, bool any,
+                       struct work *wk)
+{
+    struct hit h = {.t = r->tmax, .prim = UINT32_MAX};
+    double od[3] = {r->o[0], r->o[1], r->o[2]}, dd[3] = {r->d[0], r->d[1], r->d[2]};
+    float inv[3];
+    for (int k = 0; k < 3; k++) {
+        float dk = r->d[k];
+        if (fabsf(dk) < 1e-30f)
+            dk = dk < 0 ? -1e-30f : 1e-30f;
+        inv[k] = 1.0f / dk;
+    }
+    float mx = 0;
+    for (int k = 0; k < 3; k++)
+        mx += fmaxf(fabsf(w->pad_lo[k] - r->o[k]), fabsf(w->pad_hi[k] - r->o[k]));
+    float len = sqrtf(r->d[0] * r->d[0] + r->d[1] * r->d[1] + r->d[2] * r->d[2]);
+    float pad = mx * (1.0e-6f / fmaxf(len, 1e-30f));
+    int stack[256], sp = 0, node = 0;
+    wk->queries++;
+    for (uint32_t steps = 0; steps < w->n_nodes; steps++) {
+        wk->nodes++;
+        const CvBvhNode4 *nd = &w->nodes[node];
+        float tfar = any ? r->tmax : (float)h.t;
+        float dn[4];
+        int inner[4], run_first[4], run_count[4], n_inner = 0;
+        for (int c = 0; c < 4; c++) {
+            const float lo[3] = {(&nd->lox.x)[c], (&nd->loy.x)[c], (&nd->loz.x)[c]};
+            const float hi[3] = {(&nd->hix.x)[c], (&nd->hiy.x)[c], (&nd->hiz.x)[c]};
+            float a = r->tmin, b = tfar;
+            for (int k = 0; k < 3; k++) {
+                float t0 = (lo[k] - r->o[k]) * inv[k], t1 = (hi[k] - r->o[k]) * inv[k];
+                a = fmaxf(a, fminf(t0, t1));
+                b = fminf(b, fmaxf(t0, t1));
+            }
+            a -= fabsf(a) * 2.0e-6f + pad;
+            b += fabsf(b) * 2.0e-6f + pad;
+            bool in = a <= b && lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2];
+            int word = (&nd->word.x)[c], count = (&nd->count.x)[c];
+            run_first[c] = word;
+            run_count[c] = in && count > 0 ? count : 0;
+            inner[c] = in && count == 0 && word > 0 && (uint32_t)word < w->n_nodes ? word : -1;
+            dn[c] = inner[c] >= 0 ? a : 3.0e38f;
+            n_inner += inner[c] >= 0;
+        }
+        /* the leaf run, slot order */
+        for (int c = 0; c < 4; c++)
+            for (int k = 0; k < run_count[c]; k++) {
+                uint32_t slot = (uint32_t)run_first[c] + (uint32_t)k;
+                if (slot >= w->n_slots)
+                    continue;
+                uint32_t p = w->prims[slot];
+                wk->tris++;
+                double t, b1, b2;
+                if (!ray_tri(m, p, od, dd, &t, &b1, &b2) || !(t > r->tmin))
+                    continue;
+                if (any) {
+                    if (t < r->tmax) {
+                        h.prim = p;
+                        h.t = t;
+                        wk->hits++;
+                        return h;
+                    }
+                } else if (t < h.t || (t == h.t && p < h.prim)) {
+                    h = (struct hit){t, p, (float)b1, (float)b2};
+                }
+            }
+        /* the next node: nearest inner child; the others pushed farthest
+         * first (a stable sort by entry distance, as the exchange network
+         * orders distinct distances) */
+        int order[4] = {0, 1, 2, 3};
+        for (int i = 1; i < 4; i++)
+            for (int j = i; j > 0 && dn[order[j]] < dn[order[j - 1]]; j--) {
+                int s = order[j];
+                order[j] = order[j - 1];
+                order[j - 1] = s;
+            }
+        if (n_inner > 0) {
+            for (int i = n_inner - 1; i >= 1; i--)
+                if (sp < 256)
+                    stack[sp++] = inner[order[i]];
+            node = inner[order[0]];
+            continue;
+        }
+        if (sp == 0)
+            break;
+        node = stack[--sp];
+    }
+    if (!any && h.prim != UINT32_MAX)
+        wk->hits++;
+    return h;
+}
+
+/* ---- figures of a tree ---- */
+
+static double half_area(const float lo[3], const float hi[3])
+{
+    double e[3];
+    for (int k = 0; k < 3; k++)
+        e[k] = hi[k] > lo[k] ? (double)hi[k] - lo[k] : 0.0;
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+}
+
+struct tree_figures {
+    double sah_wide;        /* c_node per node entered + c_tri per triangle, / A(root) */
+    double overlap;         /* mean over inner nodes of sum(child areas) / node area */
+    int depth;
+    uint32_t leaves, leaf_hist[CV_BVH_MAX_LEAF + 2], slots_used;
+    double fill;            /* mean used slots per node */
+    uint32_t dup_slots;     /* leaf slots repeating a triangle of the same leaf */
+};
+
+static struct tree_figures figures(const struct wtree *w, double c_node, double c_tri)
+{
+    struct tree_figures f = {0};
+    float rlo[3] = {w->pad_lo[0], w->pad_lo[1], w->pad_lo[2]};
+    float rhi[3] = {w->pad_hi[0], w->pad_hi[1], w->pad_hi[2]};
+    double root = half_area(rlo, rhi);
+    /* node index, depth, the node's own area (its slot in the parent) */
+    struct fnode { uint32_t n; int d; double a; } *st = malloc(sizeof(*st) * 4096);
+    int sp = 0;
+    st[sp++] = (struct fnode){0, 1, root};
+    double sum = 0, ovl = 0;
+    uint32_t inner_nodes = 0, used = 0;
+    while (sp > 0) {
+        struct fnode e = st[--sp];
+        const CvBvhNode4 *nd = &w->nodes[e.n];
+        if (e.d > f.depth)
+            f.depth = e.d;
+        sum += c_node * e.a;
+        inner_nodes++;
+        double kids = 0;
+        for (int c = 0; c < 4; c++) {
+            const float lo[3] = {(&nd->lox.x)[c], (&nd->loy.x)[c], (&nd->loz.x)[c]};
+            const float hi[3] = {(&nd->hix.x)[c], (&nd->hiy.x)[c], (&nd->hiz.x)[c]};
+            if (!(lo[0] <= hi[0]))
+                continue;
+            used++;
+            double a = half_area(lo, hi);
+            kids += a;
+            int word = (&nd->word.x)[c], count = (&nd->count.x)[c];
+            if (count > 0) {
+                sum += c_tri * a * count;
+                f.leaves++;
+                f.leaf_hist[count <= CV_BVH_MAX_LEAF ? count : CV_BVH_MAX_LEAF + 1]++;
+                f.slots_used += (uint32_t)count;
+                for (int i = 1; i < count; i++)
+                    for (int j = 0; j < i; j++)
+                        if ((uint32_t)(word + i) < w->n_slots &&
+                            w->prims[word + i] == w->prims[word + j]) {
+                            f.dup_slots++;
+                            break;
+                        }
+            } else if (word > 0 && (uint32_t)word < w->n_nodes && sp < 4096) {
+                st[sp++] = (struct fnode){(uint32_t)word, e.d + 1, a};
+            }
+        }
+        ovl += e.a > 0 ? kids / e.a : 0;
+    }
+    free(st);
+    f.sah_wide = root > 0 ? sum / root : 0;
+    f.overlap = inner_nodes ? ovl / inner_nodes : 0;
+    f.fill = inner_nodes ? (double)used / inner_nodes : 0;
+    return f;
+}
+
+/* ---- the CPU reference: binned SAH, widened as the GPU widens ---- */
+
+struct ref_params {
+    double c_inner, c_tri;
+    int max_leaf, bins;
+    bool widen_sah;   /* widen by least node area (dynamic programming), not greedily */
+};
+
+struct bnode {
+    float lo[3], hi[3];
+    int32_t left, right;       /* inner: binary node indices; leaf: -1 */
+    uint32_t first, count;     /* leaf: ids[first .. first+count) */
+};
+
+struct rbuild {
+    const struct tris *m;
+    struct ref_params p;
+    float (*lo)[3], (*hi)[3], (*c)[3];
+    uint32_t *ids;
+    struct bnode *nodes;
+    uint32_t n_nodes, cap;
+};
+
+static uint32_t rnode_new(struct rbuild *b)
+{
+    if (b->n_nodes == b->cap) {
+        b->cap = b->cap ? 2 * b->cap : 1024;
+        b->nodes = realloc(b->nodes, b->cap * sizeof(*b->nodes));
+    }
+    return b->n_nodes++;
+}
+
+/* Builds [begin, end) into node `at` and returns its SAH cost (not
+ * normalised); a subtree cheaper as one leaf is collapsed into one. */
+static double rbuild(struct rbuild *b, uint32_t at, uint32_t begin, uint32_t end)
+{
+    uint32_t n = end - begin;
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = begin; i < end; i++) {
+        uint32_t t = b->ids[i];
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], b->lo[t][k]);
+            hi[k] = fmaxf(hi[k], b->hi[t][k]);
+            clo[k] = fminf(clo[k], b->c[t][k]);
+            chi[k] = fmaxf(chi[k], b->c[t][k]);
+        }
+    }
+    struct bnode *nd = &b->nodes[at];
+    memcpy(nd->lo, lo, sizeof(lo));
+    memcpy(nd->hi, hi, sizeof(hi));
+    nd->left = nd->right = -1;
+    nd->first = begin;
+    nd->count = n;
+    double area = half_area(lo, hi), leaf = b->p.c_tri * area * n;
+    if (n == 1)
+        return leaf;
+    int nb = b->p.bins;
+    double best = INFINITY;
+    int best_axis = -1, best_bin = 0;
+    float (*blo)[3] = malloc(sizeof(*blo) * nb * 2), (*bhi)[3] = blo + nb;
+    uint32_t *cnt = malloc(sizeof(*cnt) * nb * 2), *rcnt = cnt + nb;
+    double *rarea = malloc(sizeof(*rarea) * nb);
+    for (int axis = 0; axis < 3; axis++) {
+        double ext = (double)chi[axis] - clo[axis];
+        if (!(ext > 0))
+            continue;
+        for (int i = 0; i < nb; i++) {
+            cnt[i] = 0;
+            for (int k = 0; k < 3; k++) {
+                blo[i][k] = INFINITY;
+                bhi[i][k] = -INFINITY;
+            }
+        }
+        for (uint32_t i = begin; i < end; i++) {
+            uint32_t t = b->ids[i];
+            int q = (int)((b->c[t][axis] - clo[axis]) / ext * nb);
+            q = q < 0 ? 0 : q >= nb ? nb - 1 : q;
+            cnt[q]++;
+            for (int k = 0; k < 3; k++) {
+                blo[q][k] = fminf(blo[q][k], b->lo[t][k]);
+                bhi[q][k] = fmaxf(bhi[q][k], b->hi[t][k]);
+            }
+        }
+        float slo[3] = {INFINITY, INFINITY, INFINITY}, shi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        uint32_t sc = 0;
+        for (int q = nb - 1; q > 0; q--) {
+            for (int k = 0; k < 3; k++) {
+                slo[k] = fminf(slo[k], blo[q][k]);
+                shi[k] = fmaxf(shi[k], bhi[q][k]);
+            }
+            sc += cnt[q];
+            rarea[q] = half_area(slo, shi);
+            rcnt[q] = sc;
+        }
+        for (int k = 0; k < 3; k++) {
+            slo[k] = INFINITY;
+            shi[k] = -INFINITY;
+        }
+        sc = 0;
+        for (int q = 0; q < nb - 1; q++) {
+            for (int k = 0; k < 3; k++) {
+                slo[k] = fminf(slo[k], blo[q][k]);
+                shi[k] = fmaxf(shi[k], bhi[q][k]);
+            }
+            sc += cnt[q];
+            if (sc == 0 || rcnt[q + 1] == 0)
+                continue;
+            double c = half_area(slo, shi) * sc + rarea[q + 1] * rcnt[q + 1];
+            if (c < best) {
+                best = c;
+                best_axis = axis;
+                best_bin = q;
+            }
+        }
+    }
+    free(blo);
+    free(cnt);
+    free(rarea);
+    uint32_t mid;
+    if (best_axis < 0) {
+        mid = begin + n / 2;
+    } else {
+        double ext = (double)chi[best_axis] - clo[best_axis];
+        uint32_t i = begin, j = end;
+        while (i < j) {
+            uint32_t t = b->ids[i];
+            int q = (int)((b->c[t][best_axis] - clo[best_axis]) / ext * nb);
+            q = q < 0 ? 0 : q >= nb ? nb - 1 : q;
+            if (q <= best_bin) {
+                i++;
+            } else {
+                b->ids[i] = b->ids[--j];
+                b->ids[j] = t;
+            }
+        }
+        mid = i;
+    }
+    uint32_t mark = b->n_nodes;
+    uint32_t l = rnode_new(b), r = rnode_new(b);
+    double split = b->p.c_inner * area + rbuild(b, l, begin, mid) + rbuild(b, r, mid, end);
+    nd = &b->nodes[at];
+    if ((int)n <= b->p.max_leaf && leaf <= split) {
+        b->n_nodes = mark; /* the subtree goes: its nodes were the last made */
+        return leaf;
+    }
+    nd->left = (int32_t)l;
+    nd->right = (int32_t)r;
+    nd->count = 0;
+    return split;
+}
+
+/* Opens binary node b into up to four children as glsl/bvh/widen.glsl does. */
+static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[4])
+{
+    const struct bnode *nd = &rb->nodes[b];
+    kid[0] = (uint32_t)nd->left;
+    kid[1] = (uint32_t)nd->right;
+    int n = 2;
+    for (int opened = 0; opened < 2; opened++) {
+        int best = -1;
+        double best_area = -1;
+        for (int c = 0; c < n; c++) {
+            const struct bnode *k = &rb->nodes[kid[c]];
+            double a = half_area(k->lo, k->hi);
+            if (k->left >= 0 && a > best_area) {
+                best = c;
+                best_area = a;
+            }
+        }
+        if (best < 0)
+            break;
+        const struct bnode *o = &rb->nodes[kid[best]];
+        for (int c = n; c > best + 1; c--)
+            kid[c] = kid[c - 1];
+        kid[best] = (uint32_t)o->left;
+        kid[best + 1] = (uint32_t)o->right;
+        n++;
+    }
+    return n;
+}
+
+/* The other rule (--ref-widen sah): which inner nodes to open chosen to
+ * minimise the summed area of the wide nodes (the SAH's node term; the
+ * leaves are the same either way), by dynamic programming over the binary
+ * tree: g[b][s] is the least cost of covering b's two children with at
+ * most s slots (s = 2..4), an inner child either kept (one slot, its own
+ * wide node's cost f) or opened in place. */
+struct wide_dp {
+    double (*g)[5];   /* per binary node; g[b][s], s = 2..4 */
+    double *f;        /* per binary node: area + g[b][4] */
+};
+
+static double dp_child(const struct rbuild *rb, const struct wide_dp *dp, uint32_t c, int s,
+                       bool *open)
+{
+    const struct bnode *k = &rb->nodes[c];
+    *open = false;
+    if (k->left < 0)
+        return s >= 1 ? 0.0 : INFINITY;
+    double keep = s >= 1 ? dp->f[c] : INFINITY;
+    double opened = s >= 2 ? dp->g[c][s] : INFINITY;
+    *open = opened < keep;
+    return *open ? opened : keep;
+}
+
+/* best split of s slots between b's children: returns the cost, s_left */
+static double dp_split(const struct rbuild *rb, const struct wide_dp *dp, uint32_t b, int s,
+                       int *s_left)
+{
+    const struct bnode *nd = &rb->nodes[b];
+    double best = INFINITY;
+    *s_left = 1;
+    for (int sl = 1; sl < s; sl++) {
+        bool o;
+        double c = dp_child(rb, dp, (uint32_t)nd->left, sl, &o) +
+                   dp_child(rb, dp, (uint32_t)nd->right, s - sl, &o);
+        if (c < best) {
+            best = c;
+            *s_left = sl;
+        }
+    }
+    return best;
+}
+
+static void wide_dp_run(const struct rbuild *rb, struct wide_dp *dp)
+{
+    dp->g = calloc(rb->n_nodes, sizeof(*dp->g));
+    dp->f = calloc(rb->n_nodes, sizeof(*dp->f));
+    /* children are made after their parents: reverse order is bottom-up */
+    for (uint32_t i = rb->n_nodes; i-- > 0;) {
+        const struct bnode *nd = &rb->nodes[i];
+        if (nd->left < 0)
+            continue;
+        int sl;
+        for (int s = 2; s <= 4; s++)
+            dp->g[i][s] = dp_split(rb, dp, i, s, &sl);
+        dp->f[i] = half_area(nd->lo, nd->hi) + dp->g[i][4];
+    }
+}
+
+static const struct wide_dp *widen_dp; /* NULL: the GPU's greedy rule */
+
+/* The children of b's cover with s slots, left to right. */
+static int dp_kids(const struct rbuild *rb, uint32_t b, int s, uint32_t *kid)
+{
+    int sl, n = 0;
+    dp_split(rb, widen_dp, b, s, &sl);
+    const struct bnode *nd = &rb->nodes[b];
+    uint32_t side[2] = {(uint32_t)nd->left, (uint32_t)nd->right};
+    int ss[2] = {sl, s - sl};
+    for (int k = 0; k < 2; k++) {
+        bool o;
+        dp_child(rb, widen_dp, side[k], ss[k], &o);
+        if (o)
+            n += dp_kids(rb, side[k], ss[k], kid + n);
+        else
+            kid[n++] = side[k];
+    }
+    return n;
+}
+
+static uint32_t wemit(const struct rbuild *rb, struct wtree *w, uint32_t b)
+{
+    uint32_t at = w->n_nodes++;
+    uint32_t kid[4];
+    int n = widen_dp ? dp_kids(rb, b, 4, kid) : widen_kids(rb, b, kid);
+    CvBvhNode4 nd;
+    const float big = (float)CV_BVH_EMPTY;
+    for (int c = 0; c < 4; c++) {
+        const struct bnode *k = c < n ? &rb->nodes[kid[c]] : NULL;
+        (&nd.lox.x)[c] = k ? k->lo[0] : big;
+        (&nd.loy.x)[c] = k ? k->lo[1] : big;
+        (&nd.loz.x)[c] = k ? k->lo[2] : big;
+        (&nd.hix.x)[c] = k ? k->hi[0] : -big;
+        (&nd.hiy.x)[c] = k ? k->hi[1] : -big;
+        (&nd.hiz.x)[c] = k ? k->hi[2] : -big;
+        (&nd.word.x)[c] = k && k->left < 0 ? (int32_t)k->first : 0;
+        (&nd.count.x)[c] = k && k->left < 0 ? (int32_t)k->count : 0;
+    }
+    for (int c = 0; c < n; c++)
+        if (rb->nodes[kid[c]].left >= 0)
+            (&nd.word.x)[c] = (int32_t)wemit(rb, w, kid[c]);
+    w->nodes[at] = nd;
+    return at;
+}
+
+/* A CPU-built tree over m; returns the binary SAH cost (normalised). */
+static double ref_tree(const struct tris *m, struct ref_params p, struct wtree *w)
+{
+    struct rbuild b = {.m = m, .p = p};
+    uint32_t n = m->n;
+    b.lo = malloc(n * sizeof(*b.lo));
+    b.hi = malloc(n * sizeof(*b.hi));
+    b.c = malloc(n * sizeof(*b.c));
+    b.ids = malloc(n * sizeof(*b.ids));
+    for (uint32_t t = 0; t < n; t++) {
+        double q[3][3];
+        tri_pos(m, t, q);
+        for (int k = 0; k < 3; k++) {
+            b.lo[t][k] = (float)fmin(q[0][k], fmin(q[1][k], q[2][k]));
+            b.hi[t][k] = (float)fmax(q[0][k], fmax(q[1][k], q[2][k]));
+            b.c[t][k] = (float)((q[0][k] + q[1][k] + q[2][k]) / 3.0);
+        }
+        b.ids[t] = t;
+    }
+    uint32_t root = rnode_new(&b);
+    double cost = rbuild(&b, root, 0, n) / half_area(b.nodes[0].lo, b.nodes[0].hi);
+    memset(w, 0, sizeof(*w));
+    w->nodes = malloc(sizeof(*w->nodes) * (b.n_nodes + 1));
+    if (b.nodes[0].left < 0) {
+        /* one leaf: a root holding it */
+        const float big = (float)CV_BVH_EMPTY;
+        CvBvhNode4 nd = {.lox = {b.nodes[0].lo[0], big, big, big},
+                         .loy = {b.nodes[0].lo[1], big, big, big},
+                         .loz = {b.nodes[0].lo[2], big, big, big},
+                         .hix = {b.nodes[0].hi[0], -big, -big, -big},
+                         .hiy = {b.nodes[0].hi[1], -big, -big, -big},
+                         .hiz = {b.nodes[0].hi[2], -big, -big, -big},
+                         .count = {(int32_t)n, 0, 0, 0}};
+        w->nodes[0] = nd;
+        w->n_nodes = 1;
+    } else {
+        struct wide_dp dp = {0};
+        if (p.widen_sah) {
+            wide_dp_run(&b, &dp);
+            widen_dp = &dp;
+        }
+        wemit(&b, w, 0);
+        widen_dp = NULL;
+        free(dp.g);
+        free(dp.f);
+    }
+    w->prims = b.ids;
+    w->n_slots = n;
+    wtree_finish(w);
+    free(b.lo);
+    free(b.hi);
+    free(b.c);
+    free(b.nodes);
+    return cost;
+}
+
+/* ---- path-tracer-like rays ---- */
+
+enum { Q_CAMERA, Q_BOUNCE1, Q_BOUNCE2, Q_SHADOW, Q_TYPES };
+static const char *const q_names[Q_TYPES] = {"camera", "bounce1", "bounce2", "shadow"};
+
+struct rayset {
+    struct ray *r;
+    uint32_t n, cap;
+};
+
+static void rs_push(struct rayset *s, struct ray r)
+{
+    if (s->n == s->cap) {
+        s->cap = s->cap ? 2 * s->cap : 4096;
+        s->r = realloc(s->r, s->cap * sizeof(*s->r));
+    }
+    s->r[s->n++] = r;
+}
+
+static void normalize(double v[3])
+{
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0)
+        for (int k = 0; k < 3; k++)
+            v[k] /= l;
+}
+
+/* A cosine-distributed direction about n. */
+static void cosine_dir(const double n[3], double d[3])
+{
+    double u1 = rnd(), u2 = rnd(), r = sqrt(u1), phi = 6.283185307179586 * u2;
+    double x = r * cos(phi), y = r * sin(phi), z = sqrt(fmax(0.0, 1 - u1));
+    double a[3] = {fabs(n[0]) > 0.9 ? 0 : 1, fabs(n[0]) > 0.9 ? 1 : 0, 0};
+    double t[3] = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
+    normalize(t);
+    double b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+    for (int k = 0; k < 3; k++)
+        d[k] = x * t[k] + y * b[k] + z * n[k];
+}
+
+struct scene_rays {
+    const struct cv_scene *sc;
+    const struct tris *m;
+    double eps;          /* spawn offset along the normal */
+    double *light_cdf;
+};
+
+/* A shadow ray from p (normal n, facing the incoming side) to a light
+ * picked by power; none when the light is behind the surface. */
+static void shadow_ray(const struct scene_rays *s, const double p[3], const double n[3],
+                       struct rayset *out)
+{
+    const struct cv_scene *sc = s->sc;
+    if (sc->n_lights == 0)
+        return;
+    double u = rnd() * s->light_cdf[sc->n_lights - 1];
+    uint32_t li = 0;
+    while (li + 1 < sc->n_lights && s->light_cdf[li] <= u)
+        li++;
+    const CvLight *L = &sc->lights[li];
+    double d[3], tmax = 1e30;
+    if (L->type == CV_LIGHT_AREA && L->prim < s->m->n) {
+        double q[3][3], b1 = rnd(), b2 = rnd();
+        if (b1 + b2 > 1) {
+            b1 = 1 - b1;
+            b2 = 1 - b2;
+        }
+        tri_pos(s->m, L->prim, q);
+        for (int k = 0; k < 3; k++)
+            d[k] = (1 - b1 - b2) * q[0][k] + b1 * q[1][k] + b2 * q[2][k] - p[k];
+        tmax = 0.999;
+    } else if (L->type == CV_LIGHT_POINT || L->type == CV_LIGHT_SPOT) {
+        for (int k = 0; k < 3; k++)
+            d[k] = (&L->position.x)[k] - p[k];
+        tmax = 0.999;
+    } else if (L->type == CV_LIGHT_DISTANT) {
+        for (int k = 0; k < 3; k++)
+            d[k] = -(&L->direction.x)[k];
+    } else {
+        cosine_dir(n, d);
+    }
+    if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] <= 0)
+        return;
+    struct ray r = {.tmin = 0, .tmax = (float)tmax};
+    for (int k = 0; k < 3; k++) {
+        r.o[k] = (float)(p[k] + s->eps * n[k]);
+        r.d[k] = (float)d[k];
+    }
+    rs_push(out, r);
+}
+
+/* The hit point of r and its geometric normal, turned towards the ray. */
+static void hit_frame(const struct tris *m, const struct ray *r, const struct hit *h, double p[3],
+                      double n[3])
+{
+    double q[3][3];
+    tri_pos(m, h->prim, q);
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) {
+        p[k] = r->o[k] + h->t * r->d[k];
+        e1[k] = q[1][k] - q[0][k];
+        e2[k] = q[2][k] - q[0][k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    normalize(n);
+    if (n[0] * r->d[0] + n[1] * r->d[1] + n[2] * r->d[2] > 0)
+        for (int k = 0; k < 3; k++)
+            n[k] = -n[k];
+}
+
+/* Camera rays on a res-wide grid (jittered), then per hit a shadow ray and
+ * a diffuse bounce, twice: every set traced through tree w. */
+static void make_rays(const struct scene_rays *s, const struct wtree *w, int res,
+                      struct rayset sets[Q_TYPES])
+{
+    const CvCamera *cam = &s->sc->camera;
+    double fw = cam->film.x ? cam->film.x : 1, fh = cam->film.y ? cam->film.y : 1;
+    int rw = res, rh = (int)(res * fh / fw + 0.5);
+    if (rh < 1)
+        rh = 1;
+    for (int y = 0; y < rh; y++)
+        for (int x = 0; x < rw; x++) {
+            double px = (x + rnd()) / rw, py = (y + rnd()) / rh;
+            double sx = cam->screen.x + px * (cam->screen.y - cam->screen.x);
+            double sy = cam->screen.w - py * (cam->screen.w - cam->screen.z);
+            double lo[3], ld[3];
+            if (cam->type == CV_CAMERA_ORTHOGRAPHIC) {
+                lo[0] = sx, lo[1] = sy, lo[2] = 0;
+                ld[0] = 0, ld[1] = 0, ld[2] = 1;
+            } else {
+                lo[0] = lo[1] = lo[2] = 0;
+                ld[0] = sx * cam->lens.z, ld[1] = sy * cam->lens.z, ld[2] = 1;
+            }
+            struct ray r = {.tmin = 0, .tmax = 1e30f};
+            for (int k = 0; k < 3; k++) {
+                const float *row = &cam->to_world[k].x;
+                r.o[k] = (float)(row[0] * lo[0] + row[1] * lo[1] + row[2] * lo[2] + row[3]);
+                r.d[k] = (float)(row[0] * ld[0] + row[1] * ld[1] + row[2] * ld[2]);
+            }
+            rs_push(&sets[Q_CAMERA], r);
+        }
+    struct work dummy = {0};
+    for (int q = Q_CAMERA; q <= Q_BOUNCE1; q++)
+        for (uint32_t i = 0; i < sets[q].n; i++) {
+            struct ray r = sets[q].r[i];
+            struct hit h = walk(w, s->m, &r, false, &dummy);
+            if (h.prim == UINT32_MAX)
+                continue;
+            double p[3], n[3], d[3];
+            hit_frame(s->m, &r, &h, p, n);
+            shadow_ray(s, p, n, &sets[Q_SHADOW]);
+            cosine_dir(n, d);
+            struct ray b = {.tmin = 0, .tmax = 1e30f};
+            for (int k = 0; k < 3; k++) {
+                b.o[k] = (float)(p[k] + s->eps * n[k]);
+                b.d[k] = (float)d[k];
+            }
+            rs_push(&sets[q + 1], b);
+        }
+    /* the second bounce's hits cast shadow rays too */
+    for (uint32_t i = 0; i < sets[Q_BOUNCE2].n; i++) {
+        struct ray r = sets[Q_BOUNCE2].r[i];
+        struct hit h = walk(w, s->m, &r, false, &dummy);
+        if (h.prim == UINT32_MAX)
+            continue;
+        double p[3], n[3];
+        hit_frame(s->m, &r, &h, p, n);
+        shadow_ray(s, p, n, &sets[Q_SHADOW]);
+    }
+}
+
+/* ---- report ---- */
+
+static int tail_n;             /* --tail: how many of the costliest queries to list */
+static const double *tail_cost;
+static int cmp_by_cost(const void *a, const void *b)
+{
+    double x = tail_cost[*(const uint32_t *)a], y = tail_cost[*(const uint32_t *)b];
+    return (x < y) - (x > y);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+struct costs {
+    double c_node, c_tri;
+};
+
+static double report_tree(const char *label, const struct wtree *w, double sah_bin,
+                          double c_inner, double c_leaf, const struct rayset sets[Q_TYPES],
+                          const struct tris *m, struct costs cm)
+{
+    struct tree_figures f = figures(w, cm.c_node, cm.c_tri);
+    printf("%s: %u nodes (4-wide), depth %d, %.2f children per node, %u leaves, %.2f slots per "
+           "leaf, %u slots (%.3f per triangle)\n",
+           label, w->n_nodes, f.depth, f.fill, f.leaves,
+           f.leaves ? (double)f.slots_used / f.leaves : 0, w->n_slots,
+           (double)w->n_slots / (m->n ? m->n : 1));
+    printf("  SAH binary %.3f (c_inner %g, c_tri %g), wide %.3f (c_node %g, c_tri %g); child "
+           "area / node area %.3f\n",
+           sah_bin, c_inner, c_leaf, f.sah_wide, cm.c_node, cm.c_tri,
+           f.overlap);
+    printf("  leaf slots repeating a triangle of their leaf: %u\n", f.dup_slots);
+    printf("  leaf sizes:");
+    for (int k = 1; k <= CV_BVH_MAX_LEAF + 1; k++)
+        if (f.leaf_hist[k])
+            printf(" %d:%.1f%%", k, 100.0 * f.leaf_hist[k] / f.leaves);
+    printf("\n");
+    double total_cost = 0, total_q = 0, all_nodes = 0, all_tris = 0, all_warp = 0;
+    printf("  %-8s %8s %9s %9s %8s %9s %9s %9s\n", "query", "rays", "nodes", "tris", "hit%", "cost",
+           "p99 cost", "warp max");
+    for (int q = 0; q < Q_TYPES; q++) {
+        struct work wk = {0};
+        double *per = malloc(sizeof(double) * (sets[q].n + 1)), warp = 0, wmax = 0;
+        for (uint32_t i = 0; i < sets[q].n; i++) {
+            struct work one = {0};
+            walk(w, m, &sets[q].r[i], q == Q_SHADOW, &one);
+            wk.nodes += one.nodes;
+            wk.tris += one.tris;
+            wk.hits += one.hits;
+            wk.queries++;
+            per[i] = cm.c_node * one.nodes + cm.c_tri * one.tris;
+            /* SIMT lanes wait for the slowest of 32 neighbours (rays in
+             * pixel order, as the renderer's queues roughly keep them) */
+            wmax = fmax(wmax, per[i]);
+            if (i % 32 == 31 || i + 1 == sets[q].n) {
+                warp += wmax * (i % 32 + 1);
+                wmax = 0;
+            }
+        }
+        if (tail_n > 0) {
+            /* the costliest queries of this set, for a look at why */
+            uint32_t *idx = malloc(sizeof(uint32_t) * (sets[q].n + 1));
+            for (uint32_t i = 0; i < sets[q].n; i++)
+                idx[i] = i;
+            tail_cost = per;
+            qsort(idx, sets[q].n, sizeof(uint32_t), cmp_by_cost);
+            for (uint32_t j = 0; j < sets[q].n && j < (uint32_t)tail_n; j++) {
+                const struct ray *r = &sets[q].r[idx[j]];
+                struct work one = {0};
+                struct hit h = walk(w, m, r, q == Q_SHADOW, &one);
+                printf("    %s #%u: %llu nodes, %llu triangles, o (%g %g %g) d (%g %g %g) "
+                       "tmax %g, hit %s t %g prim %d\n",
+                       q_names[q], idx[j], (unsigned long long)one.nodes,
+                       (unsigned long long)one.tris, r->o[0], r->o[1], r->o[2], r->d[0], r->d[1],
+                       r->d[2], r->tmax, h.prim == UINT32_MAX ? "none" : "yes", h.t,
+                       h.prim == UINT32_MAX ? -1 : (int)h.prim);
+            }
+            free(idx);
+        }
+        qsort(per, sets[q].n, sizeof(double), cmp_double);
+        double nq = wk.queries ? (double)wk.queries : 1;
+        double cost = (cm.c_node * wk.nodes + cm.c_tri * wk.tris) / nq;
+        printf("  %-8s %8u %9.2f %9.2f %7.1f%% %9.2f %9.2f %9.2f\n", q_names[q], sets[q].n,
+               wk.nodes / nq, wk.tris / nq, 100.0 * wk.hits / nq, cost,
+               sets[q].n ? per[(size_t)(sets[q].n * 0.99)] : 0, warp / nq);
+        free(per);
+        all_warp += warp;
+        total_cost += cost * wk.queries;
+        all_nodes += wk.nodes;
+        all_tris += wk.tris;
+        total_q += wk.queries;
+    }
+    double mean = total_q ? total_cost / total_q : 0;
+    printf("  all queries: %.3f nodes, %.3f triangles, cost %.3f per query, warp max %.3f\n",
+           total_q ? all_nodes / total_q : 0, total_q ? all_tris / total_q : 0, mean,
+           total_q ? all_warp / total_q : 0);
+    return mean;
+}
+
+/* The camera rays through the GPU's traversal (rays_test.comp): the hits
+ * and the nodes visited (closest + any per ray) must equal this walk's. */
+static bool verify(struct cv_gpu *gpu, struct cv_bvh *bvh, GLuint vb, GLuint tb,
+                   const struct wtree *w, const struct tris *m, const struct rayset *cam)
+{
+    struct cv_error err = {{0}};
+    uint32_t n = cam->n;
+    GLuint rb = cv_buffer_create((size_t)n * 32, cam->r, "rays", &err);
+    GLuint res = rb ? cv_buffer_create((size_t)n * 16, NULL, "ray results", &err) : 0;
+    const char *defs[2] = {cv_bvh_stack_define(bvh), NULL};
+    struct cv_program *prog = res ? cv_program_get(gpu, "bvh/rays_test.comp", defs, &err) : NULL;
+    uint32_t *got = malloc((size_t)n * 16);
+    bool ok = prog != NULL;
+    if (ok) {
+        cv_buffer_bind(vb, CV_BIND_VERTICES);
+        cv_buffer_bind(tb, CV_BIND_TRIANGLES);
+        cv_bvh_bind(bvh);
+        cv_buffer_bind(rb, CV_BIND_PROBE_IN);
+        cv_buffer_bind(res, CV_BIND_PROBE_OUT);
+        cv_program_set_uint(prog, "u_n_rays", n);
+        cv_program_set_uint(prog, "u_n_tris", m->n);
+        cv_program_dispatch_1d(prog, n);
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        ok = cv_buffer_read(res, 0, (size_t)n * 16, got, &err);
+    }
+    if (!ok) {
+        fprintf(stderr, "bvh_work: verify: %s\n", err.msg);
+    } else {
+        uint64_t gpu_steps = 0, cpu_steps = 0;
+        uint32_t differ = 0, steps_differ = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            struct work wk = {0};
+            struct hit h = walk(w, m, &cam->r[i], false, &wk);
+            walk(w, m, &cam->r[i], true, &wk);
+            gpu_steps += got[4 * i + 3];
+            cpu_steps += wk.nodes;
+            differ += got[4 * i + 1] != h.prim;
+            steps_differ += got[4 * i + 3] != wk.nodes;
+        }
+        printf("verify: %u camera rays; GPU traversal %.3f nodes per ray (both queries), this "
+               "walk %.3f; %u rays with other node counts, %u with another hit\n",
+               n, (double)gpu_steps / n, (double)cpu_steps / n, steps_differ, differ);
+        /* grazing rays may take another neighbour (double precision here) */
+        ok = differ <= n / 200 + 1 && steps_differ <= n / 50 + 1;
+    }
+    free(got);
+    cv_buffer_destroy(&rb);
+    cv_buffer_destroy(&res);
+    return ok;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s SCENE.pbrt [--res N] [--seed S] [--ref] [--verify] "
+                        "[--rounds R] [--split F] [--treelet S] [--c-node X] [--c-tri Y] "
+                        "[--ref-inner X] [--ref-tri Y] [--ref-leaf N] [--ref-bins B]\n",
+                argv[0]);
+        return 2;
+    }
+    const char *path = argv[1];
+    int res = 64;
+    bool ref = false, do_verify = false;
+    uint64_t seed = 1;
+    struct cv_bvh_params params = cv_knobs_from_environment().bvh;
+    /* A 4-wide node fetch (128 bytes, four slab tests, the ordering)
+     * against one triangle test (48 bytes, the watertight test). */
+    struct costs cm = {.c_node = 1.0, .c_tri = 0.5};
+    struct ref_params rp = {.c_inner = CV_BVH_COST_INNER, .c_tri = CV_BVH_COST_TRI,
+                            .max_leaf = CV_BVH_MAX_LEAF, .bins = 32};
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--ref"))
+            ref = true;
+        else if (!strcmp(a, "--verify"))
+            do_verify = true;
+        else if (v && !strcmp(a, "--res"))
+            res = atoi(argv[++i]);
+        else if (v && !strcmp(a, "--tail"))
+            tail_n = atoi(argv[++i]);
+        else if (v && !strcmp(a, "--seed"))
+            seed = strtoull(argv[++i], NULL, 10);
+        else if (v && !strcmp(a, "--rounds"))
+            params.treelet_rounds = atoi(argv[++i]);
+        else if (v && !strcmp(a, "--split"))
+            params.split_budget = (float)atof(argv[++i]);
+        else if (v && !strcmp(a, "--treelet"))
+            params.treelet_size = atoi(argv[++i]);
+        else if (v && !strcmp(a, "--c-node"))
+            cm.c_node = atof(argv[++i]);
+        else if (v && !strcmp(a, "--c-tri"))
+            cm.c_tri = atof(argv[++i]);
+        else if (v && !strcmp(a, "--ref-inner"))
+            rp.c_inner = atof(argv[++i]);
+        else if (v && !strcmp(a, "--ref-tri"))
+            rp.c_tri = atof(argv[++i]);
+        else if (v && !strcmp(a, "--ref-leaf"))
+            rp.max_leaf = atoi(argv[++i]);
+        else if (v && !strcmp(a, "--ref-widen") && (!strcmp(v, "sah") || !strcmp(v, "greedy")))
+            rp.widen_sah = !strcmp(argv[++i], "sah");
+        else if (v && !strcmp(a, "--ref-bins"))
+            rp.bins = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "bvh_work: unknown argument %s\n", a);
+            return 2;
+        }
+    }
+    if (res < 1 || res > 4096 || rp.max_leaf < 1 || rp.max_leaf > CV_BVH_MAX_LEAF ||
+        rp.bins < 2 || rp.bins > 4096) {
+        fprintf(stderr, "bvh_work: --res 1..4096, --ref-leaf 1..%d, --ref-bins 2..4096\n",
+                CV_BVH_MAX_LEAF);
+        return 2;
+    }
+    rng_state = 88172645463325252ull ^ (seed * 0x9E3779B97F4A7C15ull);
+    struct cv_error err = {{0}};
+    struct cv_scene *sc = NULL;
+    if (!cv_scene_load(path, &(struct cv_scene_load_params){0}, &sc, &err)) {
+        fprintf(stderr, "bvh_work: %s\n", err.msg);
+        return 1;
+    }
+    struct tris m = {.v = sc->vertices, .t = sc->triangles, .n = cv_scene_static_triangles(sc)};
+    if (m.n < 2) {
+        fprintf(stderr, "bvh_work: %s has fewer than 2 static triangles\n", path);
+        return 1;
+    }
+    struct cv_gpu *gpu = NULL;
+    if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
+        fprintf(stderr, "bvh_work: %s\n", err.msg);
+        return 1;
+    }
+    GLuint vb = cv_buffer_create((size_t)sc->n_vertices * sizeof(CvVertex), sc->vertices,
+                                 "vertices", &err);
+    GLuint tb = vb ? cv_buffer_create((size_t)sc->n_triangles * sizeof(CvTriangle),
+                                      sc->triangles, "triangles", &err)
+                   : 0;
+    struct cv_bvh *bvh = NULL;
+    if (!tb || !cv_bvh_build(gpu, vb, tb, m.n, &params, &bvh, &err)) {
+        fprintf(stderr, "bvh_work: %s\n", err.msg);
+        return 1;
+    }
+    const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
+    struct wtree gw = {.n_nodes = st->n_nodes, .n_slots = st->n_refs};
+    gw.nodes = malloc((size_t)gw.n_nodes * sizeof(CvBvhNode4));
+    gw.prims = malloc((size_t)gw.n_slots * 4);
+    if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)gw.n_nodes * sizeof(CvBvhNode4),
+                        gw.nodes, &err) ||
+        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (size_t)gw.n_slots * 4, gw.prims, &err)) {
+        fprintf(stderr, "bvh_work: reading the tree back: %s\n", err.msg);
+        return 1;
+    }
+    wtree_finish(&gw);
+
+    /* spawn offset: a small fraction of the scene's size */
+    double diag = 0;
+    for (int k = 0; k < 3; k++)
+        diag += ((double)gw.pad_hi[k] - gw.pad_lo[k]) * ((double)gw.pad_hi[k] - gw.pad_lo[k]);
+    struct scene_rays sr = {.sc = sc, .m = &m, .eps = 1e-5 * sqrt(diag)};
+    sr.light_cdf = malloc(sizeof(double) * (sc->n_lights + 1));
+    double acc = 0;
+    for (uint32_t i = 0; i < sc->n_lights; i++) {
+        acc += sc->light_power ? fmax(sc->light_power[i], 0.0) : 1.0;
+        sr.light_cdf[i] = acc;
+    }
+    if (sc->n_lights && !(acc > 0))
+        for (uint32_t i = 0; i < sc->n_lights; i++)
+            sr.light_cdf[i] = i + 1;
+    struct rayset sets[Q_TYPES] = {{0}};
+    make_rays(&sr, &gw, res, sets);
+
+    /* why a scene is expensive: how much larger a triangle's box is than
+     * the triangle (long thin triangles across the axes) */
+    double ratio_sum = 0, box_sum = 0, tri_sum = 0;
+    for (uint32_t t = 0; t < m.n; t++) {
+        double q[3][3];
+        tri_pos(&m, t, q);
+        float lo[3], hi[3];
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) {
+            lo[k] = (float)fmin(q[0][k], fmin(q[1][k], q[2][k]));
+            hi[k] = (float)fmax(q[0][k], fmax(q[1][k], q[2][k]));
+            e1[k] = q[1][k] - q[0][k];
+            e2[k] = q[2][k] - q[0][k];
+        }
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+               cz = e1[0] * e2[1] - e1[1] * e2[0];
+        double ta = 0.5 * sqrt(cx * cx + cy * cy + cz * cz), ba = half_area(lo, hi);
+        box_sum += ba;
+        tri_sum += ta;
+        ratio_sum += ta > 0 ? fmin(ba / ta, 1e3) : 1e3;
+    }
+    printf("%s: %u static triangles, %u lights; rays from a %d-wide camera grid, seed %llu; cost "
+           "= %g * nodes + %g * triangles\n",
+           path, m.n, sc->n_lights, res, (unsigned long long)seed, cm.c_node, cm.c_tri);
+    printf("  triangle box half-area / triangle area: mean %.2f, area-weighted %.2f\n",
+           ratio_sum / m.n, tri_sum > 0 ? box_sum / tri_sum : 0);
+    char label[160];
+    snprintf(label, sizeof(label), "GPU tree (rounds %d, treelet %d, split %g)",
+             params.treelet_rounds, params.treelet_size, params.split_budget);
+    double gpu_cost = report_tree(label, &gw, st->sah_cost, CV_BVH_COST_INNER,
+                                  CV_BVH_COST_TRI, sets, &m, cm);
+    int status = 0;
+    if (do_verify && !verify(gpu, bvh, vb, tb, &gw, &m, &sets[Q_CAMERA]))
+        status = 1;
+    if (ref) {
+        struct wtree rw;
+        double rsah = ref_tree(&m, rp, &rw);
+        snprintf(label, sizeof(label),
+                 "CPU binned SAH (%d bins, c_inner %g, c_tri %g, leaves up to %d, widened %s)",
+                 rp.bins, rp.c_inner, rp.c_tri, rp.max_leaf, rp.widen_sah ? "by DP" : "greedily");
+        double ref_cost = report_tree(label, &rw, rsah, rp.c_inner, rp.c_tri, sets, &m, cm);
+        printf("  GPU tree / CPU tree: %.3f of the cost per query\n",
+               ref_cost > 0 ? gpu_cost / ref_cost : 0);
+        wtree_free(&rw);
+    }
+    for (int q = 0; q < Q_TYPES; q++)
+        free(sets[q].r);
+    free(sr.light_cdf);
+    wtree_free(&gw);
+    cv_bvh_destroy(&bvh);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    cv_gpu_destroy(&gpu);
+    cv_scene_destroy(&sc);
+    return status;
+}
