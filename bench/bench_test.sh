@@ -91,4 +91,15 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
         '$tmp/mg.out' && grep -q '^multi_s [0-9.]*\$' '$tmp/mg.out' && grep -q '^speedup ' '$tmp/mg.out'"
     check "multigpu.sh counts the jobs of each worker" grep -q 'worker [01] (gpu 0)' "$tmp/mg.out"
 fi
+# bvh_work: the CPU walk agrees with the GPU's traversal (hits and nodes
+# visited) on the generated scene, and every query type is reported, for the
+# renderer's tree and the CPU reference.
+bw="$bdir/bench/bvh_work"
+if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
+    check_out "bvh_work --verify --ref runs" "$tmp/bw.out" "$bw" "$tmp/a/scene.pbrt" --res 24 \
+        --verify --ref --ref-widen sah 2>/dev/null
+    check "bvh_work: the walk matches the GPU's" grep -q '^verify: .* 0 with another hit' "$tmp/bw.out"
+    check "bvh_work: every query type, both trees" test "$(grep -cE '^  (camera|bounce1|bounce2|shadow) ' \
+        "$tmp/bw.out")" -eq 8
+fi
 done_testing

@@ -141,6 +141,7 @@ static void wtree_free(struct wtree *w)
 
 struct work {
     uint64_t nodes, tris, queries, hits;
+    uint64_t repeats;  /* of tris: a triangle already tested in the same leaf */
 };
 
 struct ray {
@@ -206,6 +207,11 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
                     continue;
                 uint32_t p = w->prims[slot];
                 wk->tris++;
+                for (int j = 0; j < k; j++)
+                    if (w->prims[slot - (uint32_t)k + (uint32_t)j] == p) {
+                        wk->repeats++;
+                        break;
+                    }
                 double t, b1, b2;
                 if (!ray_tri(m, p, od, dd, &t, &b1, &b2) || !(t > r->tmin))
                     continue;
@@ -875,7 +881,8 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
         if (f.leaf_hist[k])
             printf(" %d:%.1f%%", k, 100.0 * f.leaf_hist[k] / f.leaves);
     printf("\n");
-    double total_cost = 0, total_q = 0, all_nodes = 0, all_tris = 0, all_warp = 0;
+    double total_cost = 0, total_q = 0, all_nodes = 0, all_tris = 0, all_warp = 0,
+           all_repeats = 0;
     printf("  %-8s %8s %9s %9s %8s %9s %9s %9s\n", "query", "rays", "nodes", "tris", "hit%", "cost",
            "p99 cost", "warp max");
     for (int q = 0; q < Q_TYPES; q++) {
@@ -887,6 +894,7 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
             wk.nodes += one.nodes;
             wk.tris += one.tris;
             wk.hits += one.hits;
+            wk.repeats += one.repeats;
             wk.queries++;
             per[i] = cm.c_node * one.nodes + cm.c_tri * one.tris;
             /* SIMT lanes wait for the slowest of 32 neighbours (rays in
@@ -928,12 +936,15 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
         total_cost += cost * wk.queries;
         all_nodes += wk.nodes;
         all_tris += wk.tris;
+        all_repeats += wk.repeats;
         total_q += wk.queries;
     }
     double mean = total_q ? total_cost / total_q : 0;
     printf("  all queries: %.3f nodes, %.3f triangles, cost %.3f per query, warp max %.3f\n",
            total_q ? all_nodes / total_q : 0, total_q ? all_tris / total_q : 0, mean,
            total_q ? all_warp / total_q : 0);
+    printf("  triangle tests repeating one of the same leaf: %.3f per query (%.1f%% of tests)\n",
+           total_q ? all_repeats / total_q : 0, all_tris ? 100.0 * all_repeats / all_tris : 0);
     return mean;
 }
 
