@@ -103,10 +103,37 @@ static bool ray_tri(const struct tris *m, uint32_t t, const double o[3], const d
     return true;
 }
 
-/* ---- a 4-wide tree as traversal reads it ---- */
+/* ---- a wide tree as traversal reads it ---- */
+
+/* Up to WIDE_MAX children per node: the renderer's trees have 4 (read back
+ * from CvBvhNode4); --wide re-widens binary trees to other widths. Used
+ * children first, in the binary tree's left-to-right order. */
+#define WIDE_MAX 8
+struct gnode {
+    int n;
+    float lo[WIDE_MAX][3], hi[WIDE_MAX][3];
+    int32_t word[WIDE_MAX];   /* inner: node index; leaf: first leaf slot */
+    int32_t count[WIDE_MAX];  /* leaf: primitives; 0: inner */
+};
+
+static void gnode_from4(const CvBvhNode4 *in, struct gnode *out)
+{
+    out->n = 0;
+    for (int c = 0; c < 4; c++) {
+        const float lo[3] = {(&in->lox.x)[c], (&in->loy.x)[c], (&in->loz.x)[c]};
+        const float hi[3] = {(&in->hix.x)[c], (&in->hiy.x)[c], (&in->hiz.x)[c]};
+        if (!(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]))
+            continue; /* unused slot */
+        memcpy(out->lo[out->n], lo, sizeof(lo));
+        memcpy(out->hi[out->n], hi, sizeof(hi));
+        out->word[out->n] = (&in->word.x)[c];
+        out->count[out->n] = (&in->count.x)[c];
+        out->n++;
+    }
+}
 
 struct wtree {
-    CvBvhNode4 *nodes;
+    struct gnode *nodes;
     uint32_t n_nodes;
     uint32_t *prims;   /* leaf slot -> triangle */
     uint32_t n_slots;
@@ -115,16 +142,13 @@ struct wtree {
 
 static void wtree_finish(struct wtree *w)
 {
-    const CvBvhNode4 *r = &w->nodes[0];
+    const struct gnode *r = &w->nodes[0];
     for (int k = 0; k < 3; k++) {
         w->pad_lo[k] = 3e38f;
         w->pad_hi[k] = -3e38f;
     }
-    for (int c = 0; c < 4; c++) {
-        const float lo[3] = {(&r->lox.x)[c], (&r->loy.x)[c], (&r->loz.x)[c]};
-        const float hi[3] = {(&r->hix.x)[c], (&r->hiy.x)[c], (&r->hiz.x)[c]};
-        if (!(lo[0] <= hi[0]))
-            continue;
+    for (int c = 0; c < r->n; c++) {
+        const float *lo = r->lo[c], *hi = r->hi[c];
         for (int k = 0; k < 3; k++) {
             w->pad_lo[k] = fminf(w->pad_lo[k], lo[k]);
             w->pad_hi[k] = fmaxf(w->pad_hi[k], hi[k]);
@@ -176,13 +200,12 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
     wk->queries++;
     for (uint32_t steps = 0; steps < w->n_nodes; steps++) {
         wk->nodes++;
-        const CvBvhNode4 *nd = &w->nodes[node];
+        const struct gnode *nd = &w->nodes[node];
         float tfar = any ? r->tmax : (float)h.t;
-        float dn[4];
-        int inner[4], run_first[4], run_count[4], n_inner = 0;
-        for (int c = 0; c < 4; c++) {
-            const float lo[3] = {(&nd->lox.x)[c], (&nd->loy.x)[c], (&nd->loz.x)[c]};
-            const float hi[3] = {(&nd->hix.x)[c], (&nd->hiy.x)[c], (&nd->hiz.x)[c]};
+        float dn[WIDE_MAX];
+        int inner[WIDE_MAX], run_first[WIDE_MAX], run_count[WIDE_MAX], n_inner = 0;
+        for (int c = 0; c < nd->n; c++) {
+            const float *lo = nd->lo[c], *hi = nd->hi[c];
             float a = r->tmin, b = tfar;
             for (int k = 0; k < 3; k++) {
                 float t0 = (lo[k] - r->o[k]) * inv[k], t1 = (hi[k] - r->o[k]) * inv[k];
@@ -192,7 +215,7 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
             a -= fabsf(a) * 2.0e-6f + pad;
             b += fabsf(b) * 2.0e-6f + pad;
             bool in = a <= b && lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2];
-            int word = (&nd->word.x)[c], count = (&nd->count.x)[c];
+            int word = nd->word[c], count = nd->count[c];
             run_first[c] = word;
             run_count[c] = in && count > 0 ? count : 0;
             inner[c] = in && count == 0 && word > 0 && (uint32_t)word < w->n_nodes ? word : -1;
@@ -200,7 +223,7 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
             n_inner += inner[c] >= 0;
         }
         /* the leaf run, slot order */
-        for (int c = 0; c < 4; c++)
+        for (int c = 0; c < nd->n; c++)
             for (int k = 0; k < run_count[c]; k++) {
                 uint32_t slot = (uint32_t)run_first[c] + (uint32_t)k;
                 if (slot >= w->n_slots)
@@ -229,8 +252,10 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
         /* the next node: nearest inner child; the others pushed farthest
          * first (a stable sort by entry distance, as the exchange network
          * orders distinct distances) */
-        int order[4] = {0, 1, 2, 3};
-        for (int i = 1; i < 4; i++)
+        int order[WIDE_MAX];
+        for (int i = 0; i < nd->n; i++)
+            order[i] = i;
+        for (int i = 1; i < nd->n; i++)
             for (int j = i; j > 0 && dn[order[j]] < dn[order[j - 1]]; j--) {
                 int s = order[j];
                 order[j] = order[j - 1];
@@ -285,21 +310,18 @@ static struct tree_figures figures(const struct wtree *w, double c_node, double 
     uint32_t inner_nodes = 0, used = 0;
     while (sp > 0) {
         struct fnode e = st[--sp];
-        const CvBvhNode4 *nd = &w->nodes[e.n];
+        const struct gnode *nd = &w->nodes[e.n];
         if (e.d > f.depth)
             f.depth = e.d;
         sum += c_node * e.a;
         inner_nodes++;
         double kids = 0;
-        for (int c = 0; c < 4; c++) {
-            const float lo[3] = {(&nd->lox.x)[c], (&nd->loy.x)[c], (&nd->loz.x)[c]};
-            const float hi[3] = {(&nd->hix.x)[c], (&nd->hiy.x)[c], (&nd->hiz.x)[c]};
-            if (!(lo[0] <= hi[0]))
-                continue;
+        for (int c = 0; c < nd->n; c++) {
+            const float *lo = nd->lo[c], *hi = nd->hi[c];
             used++;
             double a = half_area(lo, hi);
             kids += a;
-            int word = (&nd->word.x)[c], count = (&nd->count.x)[c];
+            int word = nd->word[c], count = nd->count[c];
             if (count > 0) {
                 sum += c_tri * a * count;
                 f.leaves++;
@@ -477,14 +499,18 @@ static double rbuild(struct rbuild *b, uint32_t at, uint32_t begin, uint32_t end
     return split;
 }
 
-/* Opens binary node b into up to four children as glsl/bvh/widen.glsl does. */
-static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[4])
+/* Children per wide node when widening a binary tree here (--wide). */
+static int wide_k = 4;
+
+/* Opens binary node b into up to wide_k children as glsl/bvh/widen.glsl
+ * does for 4: the inner child of largest area, ties to the leftmost. */
+static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[WIDE_MAX])
 {
     const struct bnode *nd = &rb->nodes[b];
     kid[0] = (uint32_t)nd->left;
     kid[1] = (uint32_t)nd->right;
     int n = 2;
-    for (int opened = 0; opened < 2; opened++) {
+    for (int opened = 0; opened < wide_k - 2; opened++) {
         int best = -1;
         double best_area = -1;
         for (int c = 0; c < n; c++) {
@@ -511,11 +537,11 @@ static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[4])
  * minimise the summed area of the wide nodes (the SAH's node term; the
  * leaves are the same either way), by dynamic programming over the binary
  * tree: g[b][s] is the least cost of covering b's two children with at
- * most s slots (s = 2..4), an inner child either kept (one slot, its own
- * wide node's cost f) or opened in place. */
+ * most s slots (s = 2..wide_k), an inner child either kept (one slot, its
+ * own wide node's cost f) or opened in place. */
 struct wide_dp {
-    double (*g)[5];   /* per binary node; g[b][s], s = 2..4 */
-    double *f;        /* per binary node: area + g[b][4] */
+    double (*g)[WIDE_MAX + 1];  /* per binary node; g[b][s], s = 2..wide_k */
+    double *f;                  /* per binary node: area + g[b][wide_k] */
 };
 
 static double dp_child(const struct rbuild *rb, const struct wide_dp *dp, uint32_t c, int s,
@@ -560,9 +586,9 @@ static void wide_dp_run(const struct rbuild *rb, struct wide_dp *dp)
         if (nd->left < 0)
             continue;
         int sl;
-        for (int s = 2; s <= 4; s++)
+        for (int s = 2; s <= wide_k; s++)
             dp->g[i][s] = dp_split(rb, dp, i, s, &sl);
-        dp->f[i] = half_area(nd->lo, nd->hi) + dp->g[i][4];
+        dp->f[i] = half_area(nd->lo, nd->hi) + dp->g[i][wide_k];
     }
 }
 
@@ -590,26 +616,102 @@ static int dp_kids(const struct rbuild *rb, uint32_t b, int s, uint32_t *kid)
 static uint32_t wemit(const struct rbuild *rb, struct wtree *w, uint32_t b)
 {
     uint32_t at = w->n_nodes++;
-    uint32_t kid[4];
-    int n = widen_dp ? dp_kids(rb, b, 4, kid) : widen_kids(rb, b, kid);
-    CvBvhNode4 nd;
-    const float big = (float)CV_BVH_EMPTY;
-    for (int c = 0; c < 4; c++) {
-        const struct bnode *k = c < n ? &rb->nodes[kid[c]] : NULL;
-        (&nd.lox.x)[c] = k ? k->lo[0] : big;
-        (&nd.loy.x)[c] = k ? k->lo[1] : big;
-        (&nd.loz.x)[c] = k ? k->lo[2] : big;
-        (&nd.hix.x)[c] = k ? k->hi[0] : -big;
-        (&nd.hiy.x)[c] = k ? k->hi[1] : -big;
-        (&nd.hiz.x)[c] = k ? k->hi[2] : -big;
-        (&nd.word.x)[c] = k && k->left < 0 ? (int32_t)k->first : 0;
-        (&nd.count.x)[c] = k && k->left < 0 ? (int32_t)k->count : 0;
+    uint32_t kid[WIDE_MAX];
+    int n = widen_dp ? dp_kids(rb, b, wide_k, kid) : widen_kids(rb, b, kid);
+    struct gnode nd = {.n = n};
+    for (int c = 0; c < n; c++) {
+        const struct bnode *k = &rb->nodes[kid[c]];
+        memcpy(nd.lo[c], k->lo, sizeof(k->lo));
+        memcpy(nd.hi[c], k->hi, sizeof(k->hi));
+        nd.word[c] = k->left < 0 ? (int32_t)k->first : 0;
+        nd.count[c] = k->left < 0 ? (int32_t)k->count : 0;
     }
     for (int c = 0; c < n; c++)
         if (rb->nodes[kid[c]].left >= 0)
-            (&nd.word.x)[c] = (int32_t)wemit(rb, w, kid[c]);
+            nd.word[c] = (int32_t)wemit(rb, w, kid[c]);
     w->nodes[at] = nd;
     return at;
+}
+
+/* The wide tree of binary tree b (root 0) in w, greedily or by the DP; its
+ * leaf slots are b->ids (w takes them). */
+static void widen_tree(struct rbuild *b, bool dp_rule, uint32_t n_slots, struct wtree *w)
+{
+    memset(w, 0, sizeof(*w));
+    w->nodes = malloc(sizeof(*w->nodes) * (b->n_nodes + 1));
+    if (b->nodes[0].left < 0) {
+        /* one leaf: a root holding it */
+        struct gnode nd = {.n = 1, .count = {(int32_t)b->nodes[0].count}};
+        memcpy(nd.lo[0], b->nodes[0].lo, sizeof(nd.lo[0]));
+        memcpy(nd.hi[0], b->nodes[0].hi, sizeof(nd.hi[0]));
+        w->nodes[0] = nd;
+        w->n_nodes = 1;
+    } else {
+        struct wide_dp dp = {0};
+        if (dp_rule) {
+            wide_dp_run(b, &dp);
+            widen_dp = &dp;
+        }
+        wemit(b, w, 0);
+        widen_dp = NULL;
+        free(dp.g);
+        free(dp.f);
+    }
+    w->prims = b->ids;
+    b->ids = NULL;
+    w->n_slots = n_slots;
+    wtree_finish(w);
+}
+
+/* The renderer's binary tree (CvBvhNode, glsl/shared/bvh.h) as bnodes:
+ * its inner nodes keep their indices, each leaf child becomes a node of
+ * its own after them. */
+static void binary_from_gpu(const CvBvhNode *bin, uint32_t n_bin, uint32_t *prims,
+                            struct rbuild *b)
+{
+    memset(b, 0, sizeof(*b));
+    b->cap = 2 * n_bin + 2;
+    b->nodes = calloc(b->cap, sizeof(*b->nodes));
+    b->n_nodes = n_bin;
+    for (uint32_t i = 0; i < n_bin; i++) {
+        const CvBvhNode *nd = &bin[i];
+        const cv_vec4 *box[2][2] = {{&nd->lmin, &nd->lmax}, {&nd->rmin, &nd->rmax}};
+        int32_t child[2];
+        float ulo[3] = {INFINITY, INFINITY, INFINITY}, uhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int c = 0; c < 2; c++) {
+            int32_t word, count;
+            memcpy(&word, &box[c][0]->w, 4);
+            memcpy(&count, &box[c][1]->w, 4);
+            const float lo[3] = {box[c][0]->x, box[c][0]->y, box[c][0]->z};
+            const float hi[3] = {box[c][1]->x, box[c][1]->y, box[c][1]->z};
+            for (int k = 0; k < 3; k++) {
+                ulo[k] = fminf(ulo[k], lo[k]);
+                uhi[k] = fmaxf(uhi[k], hi[k]);
+            }
+            if (count > 0) {
+                uint32_t l = rnode_new(b);
+                struct bnode *ln = &b->nodes[l];
+                memcpy(ln->lo, lo, sizeof(lo));
+                memcpy(ln->hi, hi, sizeof(hi));
+                ln->left = ln->right = -1;
+                ln->first = (uint32_t)word;
+                ln->count = (uint32_t)count;
+                child[c] = (int32_t)l;
+            } else {
+                child[c] = word;
+                memcpy(b->nodes[word].lo, lo, sizeof(lo));
+                memcpy(b->nodes[word].hi, hi, sizeof(hi));
+            }
+        }
+        b->nodes[i].left = child[0];
+        b->nodes[i].right = child[1];
+        b->nodes[i].count = 0;
+        if (i == 0) {
+            memcpy(b->nodes[0].lo, ulo, sizeof(ulo));
+            memcpy(b->nodes[0].hi, uhi, sizeof(uhi));
+        }
+    }
+    b->ids = prims;
 }
 
 /* A CPU-built tree over m; returns the binary SAH cost (normalised). */
@@ -633,34 +735,7 @@ static double ref_tree(const struct tris *m, struct ref_params p, struct wtree *
     }
     uint32_t root = rnode_new(&b);
     double cost = rbuild(&b, root, 0, n) / half_area(b.nodes[0].lo, b.nodes[0].hi);
-    memset(w, 0, sizeof(*w));
-    w->nodes = malloc(sizeof(*w->nodes) * (b.n_nodes + 1));
-    if (b.nodes[0].left < 0) {
-        /* one leaf: a root holding it */
-        const float big = (float)CV_BVH_EMPTY;
-        CvBvhNode4 nd = {.lox = {b.nodes[0].lo[0], big, big, big},
-                         .loy = {b.nodes[0].lo[1], big, big, big},
-                         .loz = {b.nodes[0].lo[2], big, big, big},
-                         .hix = {b.nodes[0].hi[0], -big, -big, -big},
-                         .hiy = {b.nodes[0].hi[1], -big, -big, -big},
-                         .hiz = {b.nodes[0].hi[2], -big, -big, -big},
-                         .count = {(int32_t)n, 0, 0, 0}};
-        w->nodes[0] = nd;
-        w->n_nodes = 1;
-    } else {
-        struct wide_dp dp = {0};
-        if (p.widen_sah) {
-            wide_dp_run(&b, &dp);
-            widen_dp = &dp;
-        }
-        wemit(&b, w, 0);
-        widen_dp = NULL;
-        free(dp.g);
-        free(dp.f);
-    }
-    w->prims = b.ids;
-    w->n_slots = n;
-    wtree_finish(w);
+    widen_tree(&b, p.widen_sah, n, w);
     free(b.lo);
     free(b.hi);
     free(b.c);
@@ -866,7 +941,7 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
                           const struct tris *m, struct costs cm)
 {
     struct tree_figures f = figures(w, cm.c_node, cm.c_tri);
-    printf("%s: %u nodes (4-wide), depth %d, %.2f children per node, %u leaves, %.2f slots per "
+    printf("%s: %u nodes, depth %d, %.2f children per node, %u leaves, %.2f slots per "
            "leaf, %u slots (%.3f per triangle)\n",
            label, w->n_nodes, f.depth, f.fill, f.leaves,
            f.leaves ? (double)f.slots_used / f.leaves : 0, w->n_slots,
@@ -1010,7 +1085,7 @@ int main(int argc, char **argv)
     }
     const char *path = argv[1];
     int res = 64;
-    bool ref = false, do_verify = false;
+    bool ref = false, do_verify = false, rewiden = false, rewiden_dp = false;
     uint64_t seed = 1;
     struct cv_bvh_params params = cv_knobs_from_environment().bvh;
     /* A 4-wide node fetch (128 bytes, four slab tests, the ordering)
@@ -1026,6 +1101,11 @@ int main(int argc, char **argv)
             do_verify = true;
         else if (v && !strcmp(a, "--res"))
             res = atoi(argv[++i]);
+        else if (v && !strcmp(a, "--rewiden") && (!strcmp(v, "sah") || !strcmp(v, "greedy"))) {
+            rewiden = params.keep_binary = true;
+            rewiden_dp = !strcmp(argv[++i], "sah");
+        } else if (v && !strcmp(a, "--wide"))
+            wide_k = atoi(argv[++i]);
         else if (v && !strcmp(a, "--tail"))
             tail_n = atoi(argv[++i]);
         else if (v && !strcmp(a, "--seed"))
@@ -1055,10 +1135,10 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (res < 1 || res > 4096 || rp.max_leaf < 1 || rp.max_leaf > CV_BVH_MAX_LEAF ||
+    if (res < 1 || res > 4096 || wide_k < 2 || wide_k > WIDE_MAX || rp.max_leaf < 1 || rp.max_leaf > CV_BVH_MAX_LEAF ||
         rp.bins < 2 || rp.bins > 4096) {
-        fprintf(stderr, "bvh_work: --res 1..4096, --ref-leaf 1..%d, --ref-bins 2..4096\n",
-                CV_BVH_MAX_LEAF);
+        fprintf(stderr, "bvh_work: --res 1..4096, --wide 2..%d, --ref-leaf 1..%d, --ref-bins "
+                "2..4096\n", WIDE_MAX, CV_BVH_MAX_LEAF);
         return 2;
     }
     rng_state = 88172645463325252ull ^ (seed * 0x9E3779B97F4A7C15ull);
@@ -1090,14 +1170,21 @@ int main(int argc, char **argv)
     }
     const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
     struct wtree gw = {.n_nodes = st->n_nodes, .n_slots = st->n_refs};
-    gw.nodes = malloc((size_t)gw.n_nodes * sizeof(CvBvhNode4));
+    CvBvhNode4 *n4 = malloc((size_t)gw.n_nodes * sizeof(CvBvhNode4));
+    CvBvhNode *bin = rewiden ? malloc((size_t)st->n_binary_nodes * sizeof(CvBvhNode)) : NULL;
+    gw.nodes = malloc((size_t)gw.n_nodes * sizeof(*gw.nodes));
     gw.prims = malloc((size_t)gw.n_slots * 4);
     if (!cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)gw.n_nodes * sizeof(CvBvhNode4),
-                        gw.nodes, &err) ||
-        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (size_t)gw.n_slots * 4, gw.prims, &err)) {
+                        n4, &err) ||
+        !cv_buffer_read(cv_bvh_prims_buffer(bvh), 0, (size_t)gw.n_slots * 4, gw.prims, &err) ||
+        (bin && !cv_buffer_read(cv_bvh_binary_nodes_buffer(bvh), 0,
+                                (size_t)st->n_binary_nodes * sizeof(CvBvhNode), bin, &err))) {
         fprintf(stderr, "bvh_work: reading the tree back: %s\n", err.msg);
         return 1;
     }
+    for (uint32_t i = 0; i < gw.n_nodes; i++)
+        gnode_from4(&n4[i], &gw.nodes[i]);
+    free(n4);
     wtree_finish(&gw);
 
     /* spawn offset: a small fraction of the scene's size */
@@ -1151,6 +1238,22 @@ int main(int argc, char **argv)
     int status = 0;
     if (do_verify && !verify(gpu, bvh, vb, tb, &gw, &m, &sets[Q_CAMERA]))
         status = 1;
+    if (bin) {
+        /* the renderer's binary tree widened here: --wide 4 greedy must
+         * give the renderer's own tree, figures and all */
+        struct rbuild b;
+        uint32_t *prims = malloc((size_t)gw.n_slots * 4);
+        memcpy(prims, gw.prims, (size_t)gw.n_slots * 4);
+        binary_from_gpu(bin, st->n_binary_nodes, prims, &b);
+        struct wtree xw;
+        widen_tree(&b, rewiden_dp, gw.n_slots, &xw);
+        free(b.nodes);
+        snprintf(label, sizeof(label), "GPU binary tree widened here (%d-wide, %s)", wide_k,
+                 rewiden_dp ? "least node area" : "greedily");
+        report_tree(label, &xw, st->sah_cost, CV_BVH_COST_INNER, CV_BVH_COST_TRI, sets, &m, cm);
+        wtree_free(&xw);
+        free(bin);
+    }
     if (ref) {
         struct wtree rw;
         double rsah = ref_tree(&m, rp, &rw);
