@@ -13,9 +13,13 @@
  * the tree: the SAH cost (binary, the build's constants; wide, the cost
  * model's), the leaf-size histogram, depth, node count and how much child
  * boxes overlap.
- *   bvh_work SCENE.pbrt [--res N] [--seed S] [--ref] [--verify]
+ *   bvh_work SCENE.pbrt [--res N] [--seed S] [--ref] [--verify] [--tail N]
  *            [--rounds R] [--split F] [--treelet S] [--c-node X] [--c-tri Y]
+ *            [--rewiden greedy|sah] [--wide K] [--ref-widen greedy|sah]
  *            [--ref-inner X] [--ref-tri Y] [--ref-leaf N] [--ref-bins B]
+ * --rewiden keeps the renderer's binary tree and widens it here to K
+ * children (2..8) by the GPU's greedy rule or by least node area; greedy
+ * with K 4 is the renderer's own tree (bench_test.sh checks it).
  * --res N: camera rays on an N-wide grid (height by the film's aspect).
  * --ref also builds a binned-SAH tree on the CPU (over the triangles, no
  * splitting; the build's leaf costs unless --ref-* say otherwise), widens
