@@ -22,6 +22,7 @@
 #define CV_RLPATH_SDTREE_GLSL
 
 #include "shared/sdtree.h"
+#include "../../lib/atomic_add.glsl"
 
 layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
 layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
@@ -201,23 +202,13 @@ void cv_sd_path_end(uint slot, uint depth)
 }
 
 #ifdef CV_SD_SPLAT
-// Adds the float v to word w of the statistics: one atomic add where the
-// driver has float atomics, else compare-and-swap on the bits, retried
-// until no other thread changed the word in between (exact, as the add).
-void cv_sd_add(int w, float v)
-{
+// cv_sd_add(w, v): adds the float v to word w of the statistics, exact
+// (the compare-and-swap retried until it lands, as the native add is).
 #ifdef CV_SD_FLOAT_ATOMICS
-    imageAtomicAdd(sd_flux, w, v);
+CV_ATOMIC_ADD_NATIVE(cv_sd_add, sd_flux)
 #else
-    uint old = imageLoad(sd_stats, w).x;
-    for (;;) {
-        uint seen = imageAtomicCompSwap(sd_stats, w, old, floatBitsToUint(uintBitsToFloat(old) + v));
-        if (seen == old)
-            break;
-        old = seen;
-    }
+CV_ATOMIC_ADD_CAS(cv_sd_add, sd_stats, CV_ATOMIC_ADD_RETRY_EXACT)
 #endif
-}
 
 // What a record adds to its quadtree (src/trace/sdtree.c, rec_value: the
 // same formula): the Monte Carlo estimate of the incident radiance times
