@@ -99,10 +99,20 @@
 #define CV_SD_CLASS_WORDS 2u
 #define CV_SD_NODE_WORDS 8u
 
+/* The training splat's filters (CvSdParams learn.y; sdtree.glsl,
+ * cv_sd_splat): Müller et al.'s spatial box filter, a record's flux shared
+ * by the leaves a box of its leaf's size about it overlaps; and the
+ * directional one, shared by the quadrants a square of its quadrant's
+ * size about its direction overlaps. Record counts are not filtered. */
+#define CV_SD_FILTER_SPATIAL 1u
+#define CV_SD_FILTER_DIRECTIONAL 2u
+
 CV_STRUCT(CvSdParams) {
-    cv_uvec4 learn;        /* x: 1 while training passes record; y: 0; z: path
-                              slots; w: 0 */
+    cv_uvec4 learn;        /* x: 1 while training passes record; y: the
+                              filters (CV_SD_FILTER_*); z: path slots; w: 0 */
+    cv_vec4 cube;          /* the spatial tree's root cube: xyz its low
+                              corner, w its side */
 } CV_END(CvSdParams)
-CV_CHECK_SIZE(CvSdParams, 16);
+CV_CHECK_SIZE(CvSdParams, 32);
 
 #endif

@@ -20,6 +20,7 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
     .max_depth = CV_SD_MAX_DEPTH,
     .floor = 0.3f,
     .min_records = 32,
+    .filter = CV_SD_FILTER_SPATIAL,
 };
 
 /* a training or sampling node's "no node" (a child 0 is a leaf quadrant:
@@ -207,35 +208,167 @@ static void add_float(uint32_t *word, float v)
     memcpy(word, &f, sizeof(f));
 }
 
-void cv_sdtree_splat(const float (*x)[4], uint32_t *stats, const struct cv_sd_record *r)
+struct cv_sd_frame cv_sdtree_frame(const struct cv_sdtree *t, const struct cv_sdtree_opts *o)
+{
+    struct cv_sd_frame f = {{(float)t->lo[0], (float)t->lo[1], (float)t->lo[2],
+                             (float)(t->hi[0] - t->lo[0])},
+                            o->filter};
+    return f;
+}
+
+/* The class texel of point p (-1 past the depth limit) and the box of its
+ * leaf (sdtree.glsl: cv_sd_class_texel_box). */
+static int32_t class_texel_box(const float (*x)[4], const struct cv_sd_frame *f, const float p[3],
+                               uint32_t cls, float lo[3], float size[3])
+{
+    for (int a = 0; a < 3; a++) {
+        lo[a] = f->cube[a];
+        size[a] = f->cube[3];
+    }
+    uint32_t node = 0;
+    for (uint32_t d = 0; d < CV_SD_MAX_SPATIAL_DEPTH && x[node][0] < (float)CV_SD_LEAF; d++) {
+        int axis = (int)x[node][0];
+        size[axis] *= 0.5f;
+        bool upper = p[axis] >= x[node][1];
+        if (upper)
+            lo[axis] = x[node][1];
+        node = (uint32_t)x[node][2] + (upper ? 1u : 0u);
+    }
+    return x[node][0] < (float)CV_SD_LEAF ? -1 : (int32_t)((uint32_t)x[node][2] + cls);
+}
+
+/* sdtree.glsl: cv_sd_footprint, in the same float steps. */
+static void footprint(float x, float h, float o, float o0, float span, float *plo, float *phi,
+                      float *wlo)
+{
+    float c = fminf(fmaxf(x, o0 + 0.5f * h), o0 + span - 0.5f * h);
+    float a = c - 0.5f * h, b = c + 0.5f * h;
+    float t = (a - o) / h;
+    float i0 = floorf(t);
+    float edge = o + (i0 + 1.0f) * h;
+    *wlo = 1.0f - (t - i0);
+    *plo = 0.5f * (a + edge);
+    *phi = 0.5f * (edge + b);
+}
+
+/* The quadrant of point s at a node, and s in it. */
+static int quadrant(float s[2])
+{
+    int ix = s[0] < 0.5f ? 0 : 1, iy = s[1] < 0.5f ? 0 : 1;
+    s[0] = 2.0f * s[0] - (float)ix;
+    s[1] = 2.0f * s[1] - (float)iy;
+    return ix + 2 * iy;
+}
+
+/* sdtree.glsl: cv_sd_splat_flux (and its point and leaf-side helpers). */
+static void splat_flux(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
+                       uint32_t q, const float s0[2], float v)
+{
+    float pt[4][2], vv[4];
+    uint32_t node[4] = {q, q, q, q};
+    int n = 1;
+    if (!(f->filter & CV_SD_FILTER_DIRECTIONAL)) {
+        pt[0][0] = s0[0];
+        pt[0][1] = s0[1];
+        vv[0] = v;
+    } else {
+        float h = 1.0f, s[2] = {s0[0], s0[1]};
+        for (uint32_t d = 0, qq = q; d < CV_SD_MAX_DEPTH; d++) {
+            h *= 0.5f;
+            uint32_t c = (uint32_t)x[qq][quadrant(s)];
+            if (!c)
+                break;
+            qq = c;
+        }
+        float plo[2], phi[2], wlo[2];
+        for (int a = 0; a < 2; a++)
+            footprint(s0[a], h, 0.0f, 0.0f, 1.0f, &plo[a], &phi[a], &wlo[a]);
+        n = 4;
+        for (int i = 0; i < 4; i++) {
+            pt[i][0] = i & 1 ? phi[0] : plo[0];
+            pt[i][1] = i & 2 ? phi[1] : plo[1];
+        }
+        vv[0] = v * wlo[0] * wlo[1];
+        vv[1] = v * (1.0f - wlo[0]) * wlo[1];
+        vv[2] = v * wlo[0] * (1.0f - wlo[1]);
+        vv[3] = v * (1.0f - wlo[0]) * (1.0f - wlo[1]);
+    }
+    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
+        int64_t word[4];
+        for (int i = 0; i < n; i++) {
+            word[i] = -1;
+            if (!node[i] || !(vv[i] > 0))
+                continue;
+            int k = quadrant(pt[i]);
+            word[i] = (int64_t)(uint32_t)x[node[i] + 1][0] + k;
+            node[i] = (uint32_t)x[node[i]][k];
+        }
+        bool left = false;
+        for (int i = 0; i < n; i++) {
+            if (word[i] < 0)
+                continue;
+            bool first = true;
+            float sum = vv[i];
+            for (int j = 0; j < n; j++) {
+                if (j < i && word[j] == word[i])
+                    first = false;
+                if (j > i && word[j] == word[i])
+                    sum += vv[j];
+            }
+            if (first)
+                add_float(&stats[word[i]], sum);
+            left = left || node[i];
+        }
+        if (!left)
+            break;
+    }
+}
+
+void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
+                     const struct cv_sd_record *r)
 {
     float cls = floorf(r->u);
     if (!(cls >= 0 && cls < CV_SD_CLASSES))
         return;
-    double su = r->u - cls, sv = r->v;
-    float v = rec_value(r, (int)cls, su);
-    if (v < 0)
+    float s[2] = {r->u - cls, r->v}, sc[2] = {s[0], s[1]};
+    float v = rec_value(r, (int)cls, s[0]);
+    float lo[3], size[3];
+    int32_t c = v < 0 ? -1 : class_texel_box(x, f, r->p, (uint32_t)cls, lo, size);
+    if (c < 0)
         return;
-    uint32_t leaf = cv_sdtree_leaf(x, r->p);
-    if (x[leaf][0] != (float)CV_SD_LEAF)
-        return;
-    const float *ct = x[(uint32_t)x[leaf][2] + (uint32_t)cls];
+    const float *ct = x[c];
     uint32_t w = (uint32_t)ct[3];
     stats[w]++;
     stats[w + 1] += v > 0;
     uint32_t q = (uint32_t)ct[2];
     for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
         uint32_t base = (uint32_t)x[q + 1][0];
-        int ix = su < 0.5 ? 0 : 1, iy = sv < 0.5 ? 0 : 1, k = ix + 2 * iy;
-        if (v > 0)
-            add_float(&stats[base + k], v);
+        int k = quadrant(sc);
         stats[base + 4 + k]++;
-        su = 2 * su - ix;
-        sv = 2 * sv - iy;
-        uint32_t c = (uint32_t)x[q][k];
-        if (!c)
+        uint32_t ch = (uint32_t)x[q][k];
+        if (!ch)
             break;
-        q = c;
+        q = ch;
+    }
+    if (!(v > 0))
+        return;
+    if (!(f->filter & CV_SD_FILTER_SPATIAL)) {
+        splat_flux(x, f, stats, (uint32_t)ct[2], s, v);
+        return;
+    }
+    float plo[3], phi[3], wlo[3];
+    for (int a = 0; a < 3; a++)
+        footprint(r->p[a], size[a], lo[a], f->cube[a], f->cube[3], &plo[a], &phi[a], &wlo[a]);
+    for (int b = 0; b < 8; b++) {
+        float p[3] = {b & 1 ? phi[0] : plo[0], b & 2 ? phi[1] : plo[1], b & 4 ? phi[2] : plo[2]};
+        float wt = (b & 1 ? 1.0f - wlo[0] : wlo[0]) * (b & 2 ? 1.0f - wlo[1] : wlo[1]) *
+                   (b & 4 ? 1.0f - wlo[2] : wlo[2]);
+        if (!(wt > 0))
+            continue;
+        float l2[3], s2[3];
+        int32_t cb = class_texel_box(x, f, p, (uint32_t)cls, l2, s2);
+        if (cb >= 0)
+            splat_flux(x, f, stats, (uint32_t)x[cb][2], s, v * wt);
     }
 }
 
@@ -433,8 +566,9 @@ void cv_sdtree_learn_records(struct cv_sdtree *t, const struct cv_sd_record *rec
         size_t nx = 0;
         cv_sdtree_table(t, &x, &nx);
         uint32_t *stats = cv_xcalloc(cv_sdtree_stat_words(t) + 1, sizeof(*stats));
+        struct cv_sd_frame f = cv_sdtree_frame(t, o);
         for (size_t i = 0; i < n; i++)
-            cv_sdtree_splat((const float(*)[4])x, stats, &rec[i]);
+            cv_sdtree_splat((const float(*)[4])x, &f, stats, &rec[i]);
         size_t ns = t->ns, nt = t->nt;
         struct snode *s = cv_xmalloc(ns * sizeof(*s));
         struct tnode *tn = cv_xmalloc(nt * sizeof(*tn));

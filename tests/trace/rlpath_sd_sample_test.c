@@ -160,8 +160,14 @@ static void splat_test(struct rig *g, const float (*t)[4])
             continue;
         }
         uint32_t *hs = calloc(words, sizeof(*hs));
+        /* the GPU's frame: the guide's cube (made as cv_rlpath_sd_create
+         * makes it) and the default filters */
+        const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};   /* main's */
+        struct cv_sdtree *cube = cv_sdtree_create(lo, hi);
+        struct cv_sd_frame f = cv_sdtree_frame(cube, &cv_sdtree_defaults);
+        cv_sdtree_destroy(&cube);
         for (size_t i = 0; i < n; i++)
-            cv_sdtree_splat(t, hs, &r[i]);
+            cv_sdtree_splat(t, &f, hs, &r[i]);
         /* the flux words: the first four of each training node's eight,
          * after the classes' (the spatial nodes end at the first class
          * texel, the lowest a leaf names) */

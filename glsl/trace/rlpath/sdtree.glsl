@@ -224,14 +224,151 @@ float cv_sd_value(vec3 p, float pdf, uint cls, vec2 s, float L)
     return c > 0.0 ? v * c : 0.0;
 }
 
+// The class texel of point p and orientation class cls, as
+// cv_sd_class_texel, and the box of its spatial leaf: lo and size (the
+// root cube u_sd.cube halved along each split's axis on the way down).
+int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
+{
+    lo = u_sd.cube.xyz;
+    size = vec3(u_sd.cube.w);
+    int node = 0;
+    vec4 n = imageLoad(sd_tree, 0);
+    for (uint d = 0u; d < CV_SD_MAX_SPATIAL_DEPTH && n.x < CV_SD_LEAF; d++) {
+        int axis = int(n.x);
+        size[axis] *= 0.5;
+        bool upper = p[axis] >= n.y;
+        if (upper)
+            lo[axis] = n.y;
+        node = int(n.z) + (upper ? 1 : 0);
+        n = imageLoad(sd_tree, node);
+    }
+    return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
+}
+
+// The side of the leaf quadrant of point s in the training quadtree at
+// texel q: the record's directional footprint.
+float cv_sd_train_leaf_side(int q, vec2 s)
+{
+    float side = 1.0;
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        side *= 0.5;
+        int k = (s.x < 0.5 ? 0 : 1) + 2 * (s.y < 0.5 ? 0 : 1);
+        s = 2.0 * s - vec2(float(k & 1), float(k >> 1));
+        int child = int(imageLoad(sd_tree, q)[k]);
+        if (child == 0)
+            break;
+        q = child;
+    }
+    return side;
+}
+
+// The footprint of side h about x in [0, 1] units of a grid of cells of
+// side h from origin o, moved inside [o0, o0 + 1 * span] (span: the extent
+// the footprint must stay in): the two cells it overlaps, as the centre of
+// its part in each (lo, hi) and the share of it there (wlo, 1 - wlo).
+// Shared by the spatial and the directional filter.
+void cv_sd_footprint(float x, float h, float o, float o0, float span, out float plo,
+                     out float phi, out float wlo)
+{
+    float c = clamp(x, o0 + 0.5 * h, o0 + span - 0.5 * h);
+    float a = c - 0.5 * h, b = c + 0.5 * h;
+    float t = (a - o) / h;
+    float i0 = floor(t);
+    float edge = o + (i0 + 1.0) * h;
+    wlo = 1.0 - (t - i0);
+    plo = 0.5 * (a + edge);
+    phi = 0.5 * (edge + b);
+}
+
+// Adds flux v at point s down the training quadtree at texel q: to the
+// quadrant s falls in at every node it passes (no counts).
+void cv_sd_splat_flux_point(int q, vec2 s, float v)
+{
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        vec4 ch = imageLoad(sd_tree, q);
+        int base = int(imageLoad(sd_tree, q + 1).x);
+        int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
+        int k = ix + 2 * iy;
+        cv_sd_add(base + k, v);
+        s = 2.0 * s - vec2(float(ix), float(iy));
+        int child = int(ch[k]);
+        if (child == 0)
+            break;
+        q = child;
+    }
+}
+
+// Adds flux v of a record at s to the training quadtree at texel q. With
+// CV_SD_FILTER_DIRECTIONAL, Müller et al.'s box filter: a square of the
+// side of the leaf quadrant at s, about s (moved inside the unit square,
+// so that no flux is lost at its edges), overlaps at most four cells of
+// that side; each takes the share of the square it holds (the bilinear
+// weights of s), added at the centre of that part. A neighbour quadrant
+// finer than the footprint takes its part where that centre falls. The
+// four descents share their upper nodes: a word the four reach at one
+// level takes their sum in one add.
+void cv_sd_splat_flux(int q, vec2 s, float v)
+{
+    if ((u_sd.learn.y & CV_SD_FILTER_DIRECTIONAL) == 0u) {
+        cv_sd_splat_flux_point(q, s, v);
+        return;
+    }
+    float h = cv_sd_train_leaf_side(q, s);
+    vec2 plo, phi, wlo;
+    cv_sd_footprint(s.x, h, 0.0, 0.0, 1.0, plo.x, phi.x, wlo.x);
+    cv_sd_footprint(s.y, h, 0.0, 0.0, 1.0, plo.y, phi.y, wlo.y);
+    vec2 pt[4] = vec2[4](plo, vec2(phi.x, plo.y), vec2(plo.x, phi.y), phi);
+    float vv[4] = float[4](v * wlo.x * wlo.y, v * (1.0 - wlo.x) * wlo.y,
+                           v * wlo.x * (1.0 - wlo.y), v * (1.0 - wlo.x) * (1.0 - wlo.y));
+    int node[4] = int[4](q, q, q, q);
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        int word[4];
+        for (int i = 0; i < 4; i++) {
+            word[i] = -1;
+            if (node[i] == 0 || !(vv[i] > 0.0))
+                continue;
+            int ix = pt[i].x < 0.5 ? 0 : 1, iy = pt[i].y < 0.5 ? 0 : 1;
+            int k = ix + 2 * iy;
+            word[i] = int(imageLoad(sd_tree, node[i] + 1).x) + k;
+            pt[i] = 2.0 * pt[i] - vec2(float(ix), float(iy));
+            node[i] = int(imageLoad(sd_tree, node[i])[k]);
+        }
+        bool any_left = false;
+        for (int i = 0; i < 4; i++) {
+            if (word[i] < 0)
+                continue;
+            bool first = true;
+            float sum = vv[i];
+            for (int j = 0; j < 4; j++) {
+                if (j < i && word[j] == word[i])
+                    first = false;
+                if (j > i && word[j] == word[i])
+                    sum += vv[j];
+            }
+            if (first)
+                cv_sd_add(word[i], sum);
+            any_left = any_left || node[i] != 0;
+        }
+        if (!any_left)
+            break;
+    }
+}
+
 // Splats one record into the tree being trained (shared/sdtree.h,
-// "Statistics"): its class's record counts, then the flux and count of the
-// quadrant it falls in at each node of the class's training quadtree.
-// No filter: the record counts in its own spatial leaf and quadrant only.
+// "Statistics"): its class's record counts and the count of the quadrant
+// it falls in at each node of its own leaf's training quadtree, then its
+// flux. With CV_SD_FILTER_SPATIAL, Müller et al.'s spatial box filter: a
+// box of its leaf's size about the record (moved inside the root cube)
+// overlaps at most eight cells of that size; each part's share of the
+// flux goes to the leaf where the part's centre falls (all of it to the
+// record's leaf where the neighbours are as large or larger), in the same
+// class, through cv_sd_splat_flux. Counts stay with the record's own leaf
+// and quadrants: they steer the refinement, which counts records.
 void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
 {
     float v = cv_sd_value(p, pdf, cls, s, L);
-    int c = v < 0.0 ? -1 : cv_sd_class_texel(p, cls);
+    vec3 lo, size;
+    int c = v < 0.0 ? -1 : cv_sd_class_texel_box(p, cls, lo, size);
     if (c < 0)
         return;
     vec4 ct = imageLoad(sd_tree, c);
@@ -240,19 +377,38 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
     if (v > 0.0)
         imageAtomicAdd(sd_stats, w + 1, 1u);
     int q = int(ct.z);
+    vec2 sc = s;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
         vec4 ch = imageLoad(sd_tree, q);
         int base = int(imageLoad(sd_tree, q + 1).x);
-        int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
+        int ix = sc.x < 0.5 ? 0 : 1, iy = sc.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
-        if (v > 0.0)
-            cv_sd_add(base + k, v);
         imageAtomicAdd(sd_stats, base + 4 + k, 1u);
-        s = 2.0 * s - vec2(float(ix), float(iy));
+        sc = 2.0 * sc - vec2(float(ix), float(iy));
         int child = int(ch[k]);
         if (child == 0)
             break;
         q = child;
+    }
+    if (!(v > 0.0))
+        return;
+    if ((u_sd.learn.y & CV_SD_FILTER_SPATIAL) == 0u) {
+        cv_sd_splat_flux(int(ct.z), s, v);
+        return;
+    }
+    vec3 plo, phi, wlo;
+    for (int a = 0; a < 3; a++)
+        cv_sd_footprint(p[a], size[a], lo[a], u_sd.cube[a], u_sd.cube.w, plo[a], phi[a], wlo[a]);
+    for (int b = 0; b < 8; b++) {
+        vec3 x = vec3((b & 1) != 0 ? phi.x : plo.x, (b & 2) != 0 ? phi.y : plo.y,
+                      (b & 4) != 0 ? phi.z : plo.z);
+        float f = ((b & 1) != 0 ? 1.0 - wlo.x : wlo.x) * ((b & 2) != 0 ? 1.0 - wlo.y : wlo.y) *
+                  ((b & 4) != 0 ? 1.0 - wlo.z : wlo.z);
+        if (!(f > 0.0))
+            continue;
+        int cb = cv_sd_class_texel(x, cls);
+        if (cb >= 0)
+            cv_sd_splat_flux(int(imageLoad(sd_tree, cb).z), s, v * f);
     }
 }
 
