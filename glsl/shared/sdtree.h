@@ -68,7 +68,10 @@
  *   w + 1: those of them with a value above 0;
  *   training node word b (its q + 1 texel's x): b + k, float bits: the sum
  *   of the values (sdtree.glsl: cv_sd_value) of the records in quadrant k;
- *   b + 4 + k: their count. */
+ *   b + 4 + k: their count. The shaders add to leaf quadrants only (one
+ *   add of each kind per record and filter part, none on the hot words
+ *   near the roots); the host fills in each inner quadrant as the sum of
+ *   its child node's four before it refines (trace/sdtree.c). */
 #ifndef CV_SHARED_SDTREE_H
 #define CV_SHARED_SDTREE_H
 

@@ -260,68 +260,52 @@ static int quadrant(float s[2])
     return ix + 2 * iy;
 }
 
-/* sdtree.glsl: cv_sd_splat_flux (and its point and leaf-side helpers). */
+/* The flux word of the leaf quadrant of point s in the training quadtree
+ * at texel q (sdtree.glsl: cv_sd_train_leaf_word); -1 past the limit. */
+static int64_t leaf_word(const float (*x)[4], uint32_t q, const float s0[2])
+{
+    float s[2] = {s0[0], s0[1]};
+    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
+        int k = quadrant(s);
+        uint32_t c = (uint32_t)x[q][k];
+        if (!c)
+            return (int64_t)(uint32_t)x[q + 1][0] + k;
+        q = c;
+    }
+    return -1;
+}
+
+/* sdtree.glsl: cv_sd_add_leaf. */
+static void add_leaf(const float (*x)[4], uint32_t *stats, uint32_t q, const float s[2], float v)
+{
+    int64_t w = v > 0 ? leaf_word(x, q, s) : -1;
+    if (w >= 0)
+        add_float(&stats[w], v);
+}
+
+/* sdtree.glsl: cv_sd_splat_flux. */
 static void splat_flux(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
                        uint32_t q, const float s0[2], float v)
 {
-    float pt[4][2], vv[4];
-    uint32_t node[4] = {q, q, q, q};
-    int n = 1;
     if (!(f->filter & CV_SD_FILTER_DIRECTIONAL)) {
-        pt[0][0] = s0[0];
-        pt[0][1] = s0[1];
-        vv[0] = v;
-    } else {
-        float h = 1.0f, s[2] = {s0[0], s0[1]};
-        for (uint32_t d = 0, qq = q; d < CV_SD_MAX_DEPTH; d++) {
-            h *= 0.5f;
-            uint32_t c = (uint32_t)x[qq][quadrant(s)];
-            if (!c)
-                break;
-            qq = c;
-        }
-        float plo[2], phi[2], wlo[2];
-        for (int a = 0; a < 2; a++)
-            footprint(s0[a], h, 0.0f, 0.0f, 1.0f, &plo[a], &phi[a], &wlo[a]);
-        n = 4;
-        for (int i = 0; i < 4; i++) {
-            pt[i][0] = i & 1 ? phi[0] : plo[0];
-            pt[i][1] = i & 2 ? phi[1] : plo[1];
-        }
-        vv[0] = v * wlo[0] * wlo[1];
-        vv[1] = v * (1.0f - wlo[0]) * wlo[1];
-        vv[2] = v * wlo[0] * (1.0f - wlo[1]);
-        vv[3] = v * (1.0f - wlo[0]) * (1.0f - wlo[1]);
+        add_leaf(x, stats, q, s0, v);
+        return;
     }
-    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
-        int64_t word[4];
-        for (int i = 0; i < n; i++) {
-            word[i] = -1;
-            if (!node[i] || !(vv[i] > 0))
-                continue;
-            int k = quadrant(pt[i]);
-            word[i] = (int64_t)(uint32_t)x[node[i] + 1][0] + k;
-            node[i] = (uint32_t)x[node[i]][k];
-        }
-        bool left = false;
-        for (int i = 0; i < n; i++) {
-            if (word[i] < 0)
-                continue;
-            bool first = true;
-            float sum = vv[i];
-            for (int j = 0; j < n; j++) {
-                if (j < i && word[j] == word[i])
-                    first = false;
-                if (j > i && word[j] == word[i])
-                    sum += vv[j];
-            }
-            if (first)
-                add_float(&stats[word[i]], sum);
-            left = left || node[i];
-        }
-        if (!left)
+    float h = 1.0f, s[2] = {s0[0], s0[1]};
+    for (uint32_t d = 0, qq = q; d < CV_SD_MAX_DEPTH; d++) {
+        h *= 0.5f;
+        uint32_t c = (uint32_t)x[qq][quadrant(s)];
+        if (!c)
             break;
+        qq = c;
     }
+    float plo[2], phi[2], wlo[2];
+    for (int a = 0; a < 2; a++)
+        footprint(s0[a], h, 0.0f, 0.0f, 1.0f, &plo[a], &phi[a], &wlo[a]);
+    add_leaf(x, stats, q, (float[2]){plo[0], plo[1]}, v * (wlo[0] * wlo[1]));
+    add_leaf(x, stats, q, (float[2]){phi[0], plo[1]}, v * ((1.0f - wlo[0]) * wlo[1]));
+    add_leaf(x, stats, q, (float[2]){plo[0], phi[1]}, v * (wlo[0] * (1.0f - wlo[1])));
+    add_leaf(x, stats, q, (float[2]){phi[0], phi[1]}, v * ((1.0f - wlo[0]) * (1.0f - wlo[1])));
 }
 
 void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
@@ -330,7 +314,7 @@ void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t 
     float cls = floorf(r->u);
     if (!(cls >= 0 && cls < CV_SD_CLASSES))
         return;
-    float s[2] = {r->u - cls, r->v}, sc[2] = {s[0], s[1]};
+    float s[2] = {r->u - cls, r->v};
     float v = rec_value(r, (int)cls, s[0]);
     float lo[3], size[3];
     int32_t c = v < 0 ? -1 : class_texel_box(x, f, r->p, (uint32_t)cls, lo, size);
@@ -340,16 +324,9 @@ void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t 
     uint32_t w = (uint32_t)ct[3];
     stats[w]++;
     stats[w + 1] += v > 0;
-    uint32_t q = (uint32_t)ct[2];
-    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
-        uint32_t base = (uint32_t)x[q + 1][0];
-        int k = quadrant(sc);
-        stats[base + 4 + k]++;
-        uint32_t ch = (uint32_t)x[q][k];
-        if (!ch)
-            break;
-        q = ch;
-    }
+    int64_t lw = leaf_word(x, (uint32_t)ct[2], s);
+    if (lw >= 0)
+        stats[lw + 4]++;
     if (!(v > 0))
         return;
     if (!(f->filter & CV_SD_FILTER_SPATIAL)) {
@@ -532,13 +509,46 @@ static void refine_spatial(struct refine *r, uint32_t old, uint32_t node, const 
     split_leaf(r, node, lc, count, lo, hi, depth);
 }
 
+/* The shaders add a record only at the leaf quadrant it falls in
+ * (sdtree.glsl, cv_sd_splat): each inner quadrant's flux and count are the
+ * sums of its child node's four, filled in here below training node j. */
+static void sum_inner(const struct cv_sdtree *t, uint32_t *s, uint32_t j)
+{
+    size_t w = train_word(t, j);
+    for (int k = 0; k < 4; k++) {
+        uint32_t c = t->t[j].child[k];
+        if (!c)
+            continue;
+        sum_inner(t, s, c);
+        size_t cw = train_word(t, c);
+        float sum = 0;
+        uint32_t cnt = 0;
+        for (int m = 0; m < 4; m++) {
+            float f;
+            memcpy(&f, &s[cw + m], sizeof(f));
+            sum += f;
+            cnt += s[cw + 4 + m];
+        }
+        memcpy(&s[w + k], &sum, sizeof(sum));
+        s[w + 4 + k] = cnt;
+    }
+}
+
 void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
                       struct cv_sdtree_stats *st)
 {
     struct cv_sdtree n = {0};
     memcpy(n.lo, t->lo, sizeof(n.lo));
     memcpy(n.hi, t->hi, sizeof(n.hi));
-    struct refine r = {.old = t, .stats = stats, .o = o, .n = &n};
+    uint32_t *full = NULL;
+    if (stats) {
+        size_t words = cv_sdtree_stat_words(t);
+        full = cv_xmalloc(words * sizeof(*full));
+        memcpy(full, stats, words * sizeof(*full));
+        for (size_t ci = 0; ci < t->nc; ci++)
+            sum_inner(t, full, t->c[ci].train);
+    }
+    struct refine r = {.old = t, .stats = full, .o = o, .n = &n};
     for (size_t ci = 0; stats && ci < t->nc; ci++)
         r.st.records += stats[CV_SD_CLASS_WORDS * ci];
     r.thresh = o->split_c * sqrt((double)r.st.records);
@@ -546,6 +556,7 @@ void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct c
         r.thresh = 2 * o->min_records;
     uint32_t root = push_s(&n);
     refine_spatial(&r, 0, root, t->lo, t->hi, 0);
+    free(full);
     free_arrays(t);
     *t = n;
     r.st.spatial_nodes = (uint32_t)t->ns;

@@ -280,90 +280,68 @@ void cv_sd_footprint(float x, float h, float o, float o0, float span, out float 
     phi = 0.5 * (edge + b);
 }
 
-// Adds flux v at point s down the training quadtree at texel q: to the
-// quadrant s falls in at every node it passes (no counts).
-void cv_sd_splat_flux_point(int q, vec2 s, float v)
+// The statistics word of the leaf quadrant of point s in the training
+// quadtree at texel q (its flux word; its count is 4 words on).
+int cv_sd_train_leaf_word(int q, vec2 s)
 {
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 ch = imageLoad(sd_tree, q);
-        int base = int(imageLoad(sd_tree, q + 1).x);
         int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
-        cv_sd_add(base + k, v);
         s = 2.0 * s - vec2(float(ix), float(iy));
-        int child = int(ch[k]);
+        int child = int(imageLoad(sd_tree, q)[k]);
         if (child == 0)
-            break;
+            return int(imageLoad(sd_tree, q + 1).x) + k;
         q = child;
     }
+    return -1;   // deeper than the limit: a malformed table
 }
 
-// Adds flux v of a record at s to the training quadtree at texel q. With
-// CV_SD_FILTER_DIRECTIONAL, Müller et al.'s box filter: a square of the
-// side of the leaf quadrant at s, about s (moved inside the unit square,
+// Adds flux v (if above 0) at the leaf quadrant of s in the training
+// quadtree at texel q.
+void cv_sd_add_leaf(int q, vec2 s, float v)
+{
+    int w = v > 0.0 ? cv_sd_train_leaf_word(q, s) : -1;
+    if (w >= 0)
+        cv_sd_add(w, v);
+}
+
+// Adds flux v of a record at s to the training quadtree at texel q: to
+// the leaf quadrant s falls in only (the host sums the inner quadrants
+// from their children, sdtree.c, so no word above a leaf takes an add).
+// With CV_SD_FILTER_DIRECTIONAL, Müller et al.'s box filter: a square of
+// the side of that leaf quadrant, about s (moved inside the unit square,
 // so that no flux is lost at its edges), overlaps at most four cells of
 // that side; each takes the share of the square it holds (the bilinear
-// weights of s), added at the centre of that part. A neighbour quadrant
-// finer than the footprint takes its part where that centre falls. The
-// four descents share their upper nodes: a word the four reach at one
-// level takes their sum in one add.
+// weights of s), added at the leaf quadrant where the centre of that part
+// falls (a neighbour split finer than the footprint takes its part
+// there).
 void cv_sd_splat_flux(int q, vec2 s, float v)
 {
     if ((u_sd.learn.y & CV_SD_FILTER_DIRECTIONAL) == 0u) {
-        cv_sd_splat_flux_point(q, s, v);
+        cv_sd_add_leaf(q, s, v);
         return;
     }
     float h = cv_sd_train_leaf_side(q, s);
     vec2 plo, phi, wlo;
     cv_sd_footprint(s.x, h, 0.0, 0.0, 1.0, plo.x, phi.x, wlo.x);
     cv_sd_footprint(s.y, h, 0.0, 0.0, 1.0, plo.y, phi.y, wlo.y);
-    vec2 pt[4] = vec2[4](plo, vec2(phi.x, plo.y), vec2(plo.x, phi.y), phi);
-    float vv[4] = float[4](v * wlo.x * wlo.y, v * (1.0 - wlo.x) * wlo.y,
-                           v * wlo.x * (1.0 - wlo.y), v * (1.0 - wlo.x) * (1.0 - wlo.y));
-    int node[4] = int[4](q, q, q, q);
-    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        int word[4];
-        for (int i = 0; i < 4; i++) {
-            word[i] = -1;
-            if (node[i] == 0 || !(vv[i] > 0.0))
-                continue;
-            int ix = pt[i].x < 0.5 ? 0 : 1, iy = pt[i].y < 0.5 ? 0 : 1;
-            int k = ix + 2 * iy;
-            word[i] = int(imageLoad(sd_tree, node[i] + 1).x) + k;
-            pt[i] = 2.0 * pt[i] - vec2(float(ix), float(iy));
-            node[i] = int(imageLoad(sd_tree, node[i])[k]);
-        }
-        bool any_left = false;
-        for (int i = 0; i < 4; i++) {
-            if (word[i] < 0)
-                continue;
-            bool first = true;
-            float sum = vv[i];
-            for (int j = 0; j < 4; j++) {
-                if (j < i && word[j] == word[i])
-                    first = false;
-                if (j > i && word[j] == word[i])
-                    sum += vv[j];
-            }
-            if (first)
-                cv_sd_add(word[i], sum);
-            any_left = any_left || node[i] != 0;
-        }
-        if (!any_left)
-            break;
-    }
+    // four adds, written out: no per-thread array (NVIDIA's local memory)
+    cv_sd_add_leaf(q, plo, v * (wlo.x * wlo.y));
+    cv_sd_add_leaf(q, vec2(phi.x, plo.y), v * ((1.0 - wlo.x) * wlo.y));
+    cv_sd_add_leaf(q, vec2(plo.x, phi.y), v * (wlo.x * (1.0 - wlo.y)));
+    cv_sd_add_leaf(q, phi, v * ((1.0 - wlo.x) * (1.0 - wlo.y)));
 }
 
 // Splats one record into the tree being trained (shared/sdtree.h,
-// "Statistics"): its class's record counts and the count of the quadrant
-// it falls in at each node of its own leaf's training quadtree, then its
+// "Statistics"): its class's record counts and the count of the leaf
+// quadrant it falls in in its own leaf's training quadtree, then its
 // flux. With CV_SD_FILTER_SPATIAL, Müller et al.'s spatial box filter: a
 // box of its leaf's size about the record (moved inside the root cube)
 // overlaps at most eight cells of that size; each part's share of the
 // flux goes to the leaf where the part's centre falls (all of it to the
 // record's leaf where the neighbours are as large or larger), in the same
 // class, through cv_sd_splat_flux. Counts stay with the record's own leaf
-// and quadrants: they steer the refinement, which counts records.
+// and quadrant: they steer the refinement, which counts records.
 void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
 {
     float v = cv_sd_value(p, pdf, cls, s, L);
@@ -376,20 +354,9 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
     imageAtomicAdd(sd_stats, w, 1u);
     if (v > 0.0)
         imageAtomicAdd(sd_stats, w + 1, 1u);
-    int q = int(ct.z);
-    vec2 sc = s;
-    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 ch = imageLoad(sd_tree, q);
-        int base = int(imageLoad(sd_tree, q + 1).x);
-        int ix = sc.x < 0.5 ? 0 : 1, iy = sc.y < 0.5 ? 0 : 1;
-        int k = ix + 2 * iy;
-        imageAtomicAdd(sd_stats, base + 4 + k, 1u);
-        sc = 2.0 * sc - vec2(float(ix), float(iy));
-        int child = int(ch[k]);
-        if (child == 0)
-            break;
-        q = child;
-    }
+    int lw = cv_sd_train_leaf_word(int(ct.z), s);
+    if (lw >= 0)
+        imageAtomicAdd(sd_stats, lw + 4, 1u);
     if (!(v > 0.0))
         return;
     if ((u_sd.learn.y & CV_SD_FILTER_SPATIAL) == 0u) {
@@ -397,8 +364,9 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
         return;
     }
     vec3 plo, phi, wlo;
-    for (int a = 0; a < 3; a++)
-        cv_sd_footprint(p[a], size[a], lo[a], u_sd.cube[a], u_sd.cube.w, plo[a], phi[a], wlo[a]);
+    cv_sd_footprint(p.x, size.x, lo.x, u_sd.cube.x, u_sd.cube.w, plo.x, phi.x, wlo.x);
+    cv_sd_footprint(p.y, size.y, lo.y, u_sd.cube.y, u_sd.cube.w, plo.y, phi.y, wlo.y);
+    cv_sd_footprint(p.z, size.z, lo.z, u_sd.cube.z, u_sd.cube.w, plo.z, phi.z, wlo.z);
     for (int b = 0; b < 8; b++) {
         vec3 x = vec3((b & 1) != 0 ? phi.x : plo.x, (b & 2) != 0 ? phi.y : plo.y,
                       (b & 4) != 0 ? phi.z : plo.z);
