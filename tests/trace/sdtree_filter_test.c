@@ -9,7 +9,10 @@
  * quadrants about a direction their bilinear shares, and conserves the
  * record's flux in a deeper quadtree (its leaf quadrants sum to the
  * record's value, and nothing is added above them: the host sums the
- * inner quadrants), for records anywhere on the square, edges included. */
+ * inner quadrants), for records anywhere on the square, edges included;
+ * and the host's refinement sums those leaf quadrants up, so that a
+ * learned quadtree's root probabilities follow all the records, those that
+ * landed deep below it too. */
 #include "config.h"
 
 #include <math.h>
@@ -264,9 +267,71 @@ static void test_directional(void)
     free(d.x);
 }
 
+/* A tree learned from records at one point (most of them in a small patch
+ * of directions, whose root quadrant then has a subtree), then one more
+ * iteration: the records splatted into its table and refined. The next
+ * sampling root's probabilities must be the records' flux per root
+ * quadrant (plus the floor's share), which only the host's sums of the
+ * leaf quadrants below give. */
+static void test_inner_sums(void)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const size_t n = 20000;
+    struct cv_sd_record *r = calloc(n, sizeof(*r));
+    double e[4] = {0}, E = 0;
+    for (size_t i = 0; i < n; i++) {
+        bool patch = i % 5 != 0;
+        double su = patch ? 0.55 + 0.05 * rnd() : 0.5 + 0.5 * rnd();
+        double sv = patch ? 0.10 + 0.05 * rnd() : rnd();
+        r[i] = (struct cv_sd_record){{0.3f, 0.3f, 0.3f}, 1.0f, 4.0f + (float)su, (float)sv, 1.0f,
+                                     1.0f};
+        double v = value_of(&r[i]);
+        double u = r[i].u - 4.0;
+        int k = (u < 0.5 ? 0 : 1) + 2 * (r[i].v < 0.5f ? 0 : 1);
+        e[k] += v;
+        E += v;
+    }
+    struct cv_sdtree_opts o = cv_sdtree_defaults;
+    o.filter = 0;
+    struct cv_sdtree *t = cv_sdtree_create(lo, hi);
+    cv_sdtree_learn_records(t, r, n, &o, NULL);
+    float(*x)[4] = NULL;
+    size_t nx = 0;
+    cv_sdtree_table(t, &x, &nx);
+    uint32_t leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
+    uint32_t troot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][2];
+    int deep = 0;
+    for (int k = 0; k < 4; k++)
+        deep += x[troot][k] != 0;
+    tap_ok(deep > 0, "inner sums: the learned training root has %d quadrants with a subtree", deep);
+    uint32_t *stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
+    struct cv_sd_frame f = cv_sdtree_frame(t, &o);
+    for (size_t i = 0; i < n; i++)
+        cv_sdtree_splat((const float(*)[4])x, &f, stats, &r[i]);
+    free(x);
+    cv_sdtree_refine(t, stats, &o, NULL);
+    cv_sdtree_table(t, &x, &nx);
+    leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
+    uint32_t sroot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][0];
+    double worst = 0;
+    for (int k = 0; k < 4; k++) {
+        double want = (e[k] + o.floor * E / 4) / (E * (1 + o.floor));
+        worst = fmax(worst, fabs(x[sroot][k] - want) / want);
+    }
+    tap_ok(worst <= 1e-4, "inner sums: the sampling root's probabilities are the records' flux "
+           "shares %.4f / %.4f / %.4f / %.4f (worst relative difference %g)",
+           (double)x[sroot][0], (double)x[sroot][1], (double)x[sroot][2], (double)x[sroot][3],
+           worst);
+    free(x);
+    free(stats);
+    cv_sdtree_destroy(&t);
+    free(r);
+}
+
 int main(void)
 {
     test_spatial();
     test_directional();
+    test_inner_sums();
     return tap_done();
 }
