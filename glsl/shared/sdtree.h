@@ -29,11 +29,14 @@
  *     x: the texel of the class's sampling quadtree root; y: its guiding
  *     weight (0: BSDF sampling alone); z: the texel of its training
  *     quadtree root; w: the class's first statistics word.
- *   sampling quadtree node at texel q (two texels):
- *     q:     the probabilities of its four quadrants (index ix + 2 iy,
- *            ix = u in the upper half, iy = v in the upper half), each
- *            above 0, summing to 1;
- *     q + 1: the texels of the quadrants' nodes, 0 for a leaf quadrant.
+ *   sampling quadtree node at texel q (one texel: the walks of sampling
+ *   and of the density load one texel per level):
+ *     xyz: the probabilities of quadrants 0, 1, 2 (index ix + 2 iy, ix = u
+ *          in the upper half, iy = v in the upper half); quadrant 3's is
+ *          max(0, 1 - (x + y + z)), as host and shaders compute it;
+ *     w:   16 off + mask: bit k of mask set where quadrant k has a node;
+ *          those nodes are consecutive texels from q + off, in k order
+ *          (off < 2^20; the host lays each quadtree out breadth first).
  *   Leaves that split in space share their parent's sampling quadtrees.
  *   training quadtree node at texel q (two texels):
  *     q:     the texels of the quadrants' nodes, 0 for a leaf quadrant;

@@ -143,10 +143,39 @@ static size_t train_word(const struct cv_sdtree *t, uint32_t j)
     return CV_SD_CLASS_WORDS * t->nc + CV_SD_NODE_WORDS * (size_t)j;
 }
 
+/* Sampling nodes' children offsets stay below this (shared/sdtree.h). */
+#define CHILD_OFFSET_LIMIT (1u << 20)
+
 void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels)
 {
-    /* spatial nodes, class texels, sampling nodes, training nodes */
-    size_t sbase = t->ns + t->nc, tbase = sbase + 2 * t->nq, nt = tbase + 2 * t->nt;
+    /* spatial nodes, class texels, sampling nodes (one texel each, each
+     * node's children consecutive: breadth first from every root), training
+     * nodes (two texels each) */
+    size_t sbase = t->ns + t->nc;
+    uint32_t *pos = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*pos));
+    uint32_t *queue = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*queue));
+    for (size_t j = 0; j < t->nq; j++)
+        pos[j] = NONE;
+    size_t next = sbase;
+    for (size_t i = 0; i < t->nc; i++) {
+        uint32_t r = t->c[i].samp;
+        if (pos[r] != NONE)
+            continue;   /* shared by the leaves a split made */
+        size_t head = 0, tail = 0;
+        pos[r] = (uint32_t)next++;
+        queue[tail++] = r;
+        while (head < tail) {
+            uint32_t j = queue[head++];
+            for (int k = 0; k < 4; k++) {
+                uint32_t c = t->q[j].child[k];
+                if (c) {
+                    pos[c] = (uint32_t)next++;
+                    queue[tail++] = c;
+                }
+            }
+        }
+    }
+    size_t tbase = next, nt = tbase + 2 * t->nt;
     float(*x)[4] = cv_xcalloc(nt, sizeof(*x));
     for (size_t i = 0; i < t->ns; i++) {
         const struct snode *s = &t->s[i];
@@ -159,17 +188,31 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
         }
     }
     for (size_t i = 0; i < t->nc; i++) {
-        x[t->ns + i][0] = (float)(sbase + 2 * (size_t)t->c[i].samp);
+        x[t->ns + i][0] = (float)pos[t->c[i].samp];
         x[t->ns + i][1] = t->c[i].weight;
         x[t->ns + i][2] = (float)(tbase + 2 * (size_t)t->c[i].train);
         x[t->ns + i][3] = (float)(CV_SD_CLASS_WORDS * i);
     }
     for (size_t j = 0; j < t->nq; j++) {
-        float *a = x[sbase + 2 * j], *ch = x[sbase + 2 * j + 1];
-        for (int k = 0; k < 4; k++) {
+        if (pos[j] == NONE)
+            continue;   /* no class samples it */
+        float *a = x[pos[j]];
+        for (int k = 0; k < 3; k++)
             a[k] = t->q[j].p[k];
-            ch[k] = t->q[j].child[k] ? (float)(sbase + 2 * (size_t)t->q[j].child[k]) : 0.0f;
+        uint32_t mask = 0, first = NONE;
+        for (int k = 0; k < 4; k++) {
+            uint32_t c = t->q[j].child[k];
+            if (c) {
+                mask |= 1u << k;
+                if (first == NONE)
+                    first = pos[c];
+            }
         }
+        /* children past the offset limit (a quadtree of a million nodes)
+         * are left out: sampling and the density still agree */
+        if (mask && first - pos[j] >= CHILD_OFFSET_LIMIT)
+            mask = 0;
+        a[3] = (float)(mask ? 16u * (first - pos[j]) + mask : 0u);
     }
     for (size_t j = 0; j < t->nt; j++) {
         float *ch = x[tbase + 2 * j];
@@ -177,8 +220,23 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
             ch[k] = t->t[j].child[k] ? (float)(tbase + 2 * (size_t)t->t[j].child[k]) : 0.0f;
         x[tbase + 2 * j + 1][0] = (float)train_word(t, (uint32_t)j);
     }
+    free(pos);
+    free(queue);
     *texels = x;
     *n_texels = nt;
+}
+
+void cv_sdtree_node(const float (*x)[4], uint32_t q, float p[4], uint32_t child[4])
+{
+    const float *n = x[q];
+    p[0] = n[0];
+    p[1] = n[1];
+    p[2] = n[2];
+    /* as the shaders compute it (sdtree.glsl: cv_sd_node_probs) */
+    p[3] = fmaxf(0.0f, 1.0f - (n[0] + n[1] + n[2]));
+    uint32_t code = (uint32_t)n[3], mask = code & 15u, at = q + (code >> 4);
+    for (int k = 0; k < 4; k++)
+        child[k] = mask & (1u << k) ? at++ : 0;
 }
 
 /* What a record adds to its quadtree (the shaders' cv_sd_value): the Monte
@@ -613,13 +671,15 @@ double cv_sdtree_pdf_square(const float (*t)[4], uint32_t root, double u, double
     double pdf = 1;
     for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
         int ix = u < 0.5 ? 0 : 1, iy = v < 0.5 ? 0 : 1, k = ix + 2 * iy;
-        pdf *= 4.0 * t[q][k];
+        float p[4];
+        uint32_t ch[4];
+        cv_sdtree_node(t, q, p, ch);
+        pdf *= 4.0 * p[k];
         u = 2 * u - ix;
         v = 2 * v - iy;
-        uint32_t c = (uint32_t)t[q + 1][k];
-        if (!c)
+        if (!ch[k])
             break;
-        q = c;
+        q = ch[k];
     }
     return pdf;
 }

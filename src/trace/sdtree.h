@@ -68,6 +68,11 @@ void cv_sdtree_destroy(struct cv_sdtree **t);
  * (free it), *n_texels its length. */
 void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels);
 
+/* Sampling node q of a table (glsl/shared/sdtree.h): its quadrants'
+ * probabilities, the fourth derived as the shaders derive it, and the
+ * texels of their nodes (0: a leaf quadrant). */
+void cv_sdtree_node(const float (*texels)[4], uint32_t q, float p[4], uint32_t child[4]);
+
 /* Words of the statistics the table's training tree takes. */
 size_t cv_sdtree_stat_words(const struct cv_sdtree *t);
 

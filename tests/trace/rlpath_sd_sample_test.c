@@ -67,13 +67,16 @@ static double integrate_rect(const float (*t)[4], uint32_t q, double ox, double 
                              double pdf, double x0, double x1, double y0, double y1)
 {
     double s = 0, h = side / 2;
+    float pr[4];
+    uint32_t ch[4];
+    cv_sdtree_node(t, q, pr, ch);
     for (int k = 0; k < 4; k++) {
         double ax = ox + h * (k & 1), ay = oy + h * (k >> 1);
         double ix = fmin(ax + h, x1) - fmax(ax, x0), iy = fmin(ay + h, y1) - fmax(ay, y0);
         if (ix <= 0 || iy <= 0)
             continue;
-        double p = pdf * 4 * t[q][k];
-        uint32_t c = (uint32_t)t[q + 1][k];
+        double p = pdf * 4 * pr[k];
+        uint32_t c = ch[k];
         s += c ? integrate_rect(t, c, ax, ay, h, p, x0, x1, y0, y1) : p * ix * iy;
     }
     return s;

@@ -11,7 +11,7 @@
 // for a given point, so the two agree (a point on a quadrant edge, where
 // they may part, has measure zero).
 // Cost: a lookup is a walk down the spatial tree (one texel per level),
-// sampling or a pdf two texels per quadtree level.
+// sampling or a pdf one texel per quadtree level.
 // Include after the local_size layout line. CV_SD_RECORD: the record
 // images read-write (shade, escaped and shadow stages while training);
 // CV_SD_SPLAT (with it): the statistics too (stages that end a path's
@@ -90,6 +90,23 @@ vec3 cv_sd_dir(vec2 s)
     return vec3(r * cos(phi), r * sin(phi), z);
 }
 
+// Sampling node n (one texel, shared/sdtree.h): its four quadrants'
+// probabilities, the fourth derived from the other three (as the host's
+// cv_sdtree_node).
+vec4 cv_sd_node_probs(vec4 n)
+{
+    return vec4(n.xyz, max(0.0, 1.0 - (n.x + n.y + n.z)));
+}
+
+// The texel of quadrant k's node of sampling node q with code w (its
+// texel's w), 0 for a leaf quadrant: its children are consecutive from
+// q + (w >> 4), one for each bit of w's low four.
+int cv_sd_node_child(int q, float w, int k)
+{
+    uint code = uint(w), bit = 1u << uint(k);
+    return (code & bit) == 0u ? 0 : q + int(code >> 4u) + bitCount(code & (bit - 1u));
+}
+
 // Draws a point of the quadtree at texel root with u in [0,1)^2; returns
 // it on the square and its density there (on the square).
 vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
@@ -99,8 +116,8 @@ vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
     float side = 1.0;
     pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 p = imageLoad(sd_tree, q);
-        vec4 c = imageLoad(sd_tree, q + 1);
+        vec4 n = imageLoad(sd_tree, q);
+        vec4 p = cv_sd_node_probs(n);
         // the column: ix 0 holds quadrants 0 and 2
         float pc = p.x + p.z;
         int ix = u.x < pc ? 0 : 1;
@@ -114,7 +131,7 @@ vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
         pdf *= 4.0 * p[k];
         side *= 0.5;
         lo += side * vec2(float(ix), float(iy));
-        int child = int(c[k]);
+        int child = cv_sd_node_child(q, n.w, k);
         if (child == 0)
             break;
         q = child;
@@ -128,14 +145,13 @@ float cv_sd_pdf_square(int root, vec2 s)
     int q = root;
     float pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 p = imageLoad(sd_tree, q);
-        vec4 c = imageLoad(sd_tree, q + 1);
+        vec4 n = imageLoad(sd_tree, q);
         int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
-        pdf *= 4.0 * p[k];
+        pdf *= 4.0 * cv_sd_node_probs(n)[k];
         // the point in the quadrant, scaled to its square (exact in float)
         s = 2.0 * s - vec2(float(ix), float(iy));
-        int child = int(c[k]);
+        int child = cv_sd_node_child(q, n.w, k);
         if (child == 0)
             break;
         q = child;
