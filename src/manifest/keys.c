@@ -226,8 +226,8 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                             .help = "how the guide learns: a Q-table or spatial-directional trees"},
     [CV_K_RLPATH_FILTER] = {.name = "rlpath.filter", .type = CV_KT_ENUM,
                             .names = &cv_rl_filter_names, .offset = AT(rlpath.filter),
-                            .has = AT(rlpath.has_filter), .def = CV_RL_FILTER_SPATIAL,
-                            .def_text = "spatial", .hash = CV_HASH_OFF_DEFAULT,
+                            .has = AT(rlpath.has_filter), .def = CV_RL_FILTER_NONE,
+                            .def_text = "none", .hash = CV_HASH_OFF_DEFAULT,
                             .help = "sdtree's training filters: none, spatial, directional, both"},
 };
 

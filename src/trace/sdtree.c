@@ -20,7 +20,10 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
     .max_depth = CV_SD_MAX_DEPTH,
     .floor = 0.3f,
     .min_records = 32,
-    .filter = CV_SD_FILTER_SPATIAL,
+    /* no filter: neither box filter lowered the room's error, and each
+     * multiplies the training splat's adds (bench/RESULTS.md, "sdtree:
+     * training filters") */
+    .filter = 0,
 };
 
 /* a training or sampling node's "no node" (a child 0 is a leaf quadrant:
