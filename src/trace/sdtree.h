@@ -94,13 +94,14 @@ void cv_sdtree_splat(const float (*texels)[4], const struct cv_sd_frame *f, uint
                      const struct cv_sd_record *r);
 
 /* The end of a training iteration: from the statistics splatted into the
- * table's training tree (cv_sdtree_stat_words words), the next sampling
- * quadtrees (the training ones with the flux as their probabilities, and
- * the guiding weights) and the next training tree (leaves over split_c *
- * sqrt(records) records split in space, halving the count per level;
- * quadrants over rho of their class's flux, with min_split records,
- * subdivided, a new quadrant taking a quarter of its parent's, and the
- * others pruned). stats may be NULL. */
+ * table's training tree (cv_sdtree_stat_words words; the splat adds at
+ * leaf quadrants only, the inner ones are summed here first), the next
+ * sampling quadtrees (the training ones with the flux as their
+ * probabilities, and the guiding weights) and the next training tree
+ * (leaves over split_c * sqrt(records) records split in space, halving the
+ * count per level; quadrants over rho of their class's flux, with
+ * min_split records, subdivided, a new quadrant taking a quarter of its
+ * parent's, and the others pruned). stats may be NULL. */
 void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
                       struct cv_sdtree_stats *st);
 

@@ -138,8 +138,9 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
  * has them, then with compare-and-swap) into the statistics of the
  * uploaded guide's training tree equals the host's (cv_sdtree_splat) of
  * the same records, both filters on (spatial box, directional bilinear):
- * counts exactly, flux within float rounding of a sum in another order. The records: the build's, in every class, some dark,
- * some without density, one not finite. */
+ * counts exactly, flux within float rounding of a sum in another order.
+ * The records: the build's, in every class, some dark, some without
+ * density, one not finite. */
 static void splat_test(struct rig *g, const float (*t)[4])
 {
     const size_t n = 30000;
