@@ -78,8 +78,9 @@ int main(int argc, char **argv)
         cv_sdtree_table(g, &t, &nt);
         size_t words = cv_sdtree_stat_words(g);
         uint32_t *stats = cv_xcalloc(words, sizeof(*stats));
+        struct cv_sd_frame f = cv_sdtree_frame(g, &cv_sdtree_defaults);
         for (size_t k = 0; k < n; k++)
-            cv_sdtree_splat((const float(*)[4])t, stats, &rec[k]);
+            cv_sdtree_splat((const float(*)[4])t, &f, stats, &rec[k]);
         free(t);
         /* the host's work at the end of a training iteration */
         struct cv_sdtree_stats st;

@@ -29,11 +29,14 @@
  *     x: the texel of the class's sampling quadtree root; y: its guiding
  *     weight (0: BSDF sampling alone); z: the texel of its training
  *     quadtree root; w: the class's first statistics word.
- *   sampling quadtree node at texel q (two texels):
- *     q:     the probabilities of its four quadrants (index ix + 2 iy,
- *            ix = u in the upper half, iy = v in the upper half), each
- *            above 0, summing to 1;
- *     q + 1: the texels of the quadrants' nodes, 0 for a leaf quadrant.
+ *   sampling quadtree node at texel q (one texel: the walks of sampling
+ *   and of the density load one texel per level):
+ *     xyz: the probabilities of quadrants 0, 1, 2 (index ix + 2 iy, ix = u
+ *          in the upper half, iy = v in the upper half); quadrant 3's is
+ *          max(0, 1 - (x + y + z)), as host and shaders compute it;
+ *     w:   16 off + mask: bit k of mask set where quadrant k has a node;
+ *          those nodes are consecutive texels from q + off, in k order
+ *          (off < 2^20; the host lays each quadtree out breadth first).
  *   Leaves that split in space share their parent's sampling quadtrees.
  *   training quadtree node at texel q (two texels):
  *     q:     the texels of the quadrants' nodes, 0 for a leaf quadrant;
@@ -68,7 +71,10 @@
  *   w + 1: those of them with a value above 0;
  *   training node word b (its q + 1 texel's x): b + k, float bits: the sum
  *   of the values (sdtree.glsl: cv_sd_value) of the records in quadrant k;
- *   b + 4 + k: their count. */
+ *   b + 4 + k: their count. The shaders add to leaf quadrants only (one
+ *   add of each kind per record and filter part, none on the hot words
+ *   near the roots); the host fills in each inner quadrant as the sum of
+ *   its child node's four before it refines (trace/sdtree.c). */
 #ifndef CV_SHARED_SDTREE_H
 #define CV_SHARED_SDTREE_H
 
@@ -99,10 +105,20 @@
 #define CV_SD_CLASS_WORDS 2u
 #define CV_SD_NODE_WORDS 8u
 
+/* The training splat's filters (CvSdParams learn.y; sdtree.glsl,
+ * cv_sd_splat): Müller et al.'s spatial box filter, a record's flux shared
+ * by the leaves a box of its leaf's size about it overlaps; and the
+ * directional one, shared by the quadrants a square of its quadrant's
+ * size about its direction overlaps. Record counts are not filtered. */
+#define CV_SD_FILTER_SPATIAL 1u
+#define CV_SD_FILTER_DIRECTIONAL 2u
+
 CV_STRUCT(CvSdParams) {
-    cv_uvec4 learn;        /* x: 1 while training passes record; y: 0; z: path
-                              slots; w: 0 */
+    cv_uvec4 learn;        /* x: 1 while training passes record; y: the
+                              filters (CV_SD_FILTER_*); z: path slots; w: 0 */
+    cv_vec4 cube;          /* the spatial tree's root cube: xyz its low
+                              corner, w its side */
 } CV_END(CvSdParams)
-CV_CHECK_SIZE(CvSdParams, 16);
+CV_CHECK_SIZE(CvSdParams, 32);
 
 #endif

@@ -20,6 +20,9 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "lights.glsl"
 #include "sampler.glsl"
 #include "regenerate.glsl"
+// the float atomic adds of both rlpath methods: the expander pastes a file
+// once, so not first inside the #ifdef of the method not compiled
+#include "../lib/atomic_add.glsl"
 #ifdef CV_RLPATH
 #define CV_RL_TABLE_WRITE
 #define CV_RL_TABLE_UPDATE

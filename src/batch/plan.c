@@ -17,9 +17,16 @@
 #include "base/mem.h"
 #include "batch/plan.h"
 #include "color/ocio.h"
+#include "glsl/shared/sdtree.h"
 #include "manifest/job_hash.h"
 #include "output/exr_write.h"
 #include "scene/film.h"
+
+/* rlpath.filter's values are sdtree's filter bits (render.h rl_sd_filter) */
+_Static_assert(CV_RL_FILTER_SPATIAL == CV_SD_FILTER_SPATIAL &&
+                   CV_RL_FILTER_DIRECTIONAL == CV_SD_FILTER_DIRECTIONAL &&
+                   CV_RL_FILTER_BOTH == (CV_SD_FILTER_SPATIAL | CV_SD_FILTER_DIRECTIONAL),
+               "rlpath.filter names sdtree's filter bits");
 
 /* A job's problem at key k (else at the job): fails err with it. */
 static bool fail_at(struct cv_error *err, const struct cv_plan_options *o,
@@ -425,6 +432,8 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_guide_indirect = job->rlpath.guide == CV_RL_GUIDE_INDIRECT,
         .rl_train = job->rlpath.train == 0 ? CV_RL_TRAIN_ALWAYS : job->rlpath.train,
         .rl_sdtree = job->rlpath.method == CV_RL_METHOD_SDTREE,
+        .rl_sd_filter_set = job->rlpath.has_filter,
+        .rl_sd_filter = job->rlpath.filter,   /* the values are the bits */
         .stage_times = plan->stage_times,
         .bdpt_slots = plan->bdpt_slots,
     };

@@ -8,7 +8,7 @@ echo '#include "gpu/glsl_source.h"'
 echo 'const struct cv_glsl_file cv_glsl_files[] = {'
 for f in "$@"; do
     printf '    {"%s",\n' "${f#glsl/}"
-    awk '{ gsub(/\\/, "\\\\"); gsub(/"/, "\\\""); printf "     \"%s\\n\"\n", $0 }' "$srcdir/$f"
+    awk '{ gsub(/\\/, "&&"); gsub(/"/, "\\\""); printf "     \"%s\\n\"\n", $0 }' "$srcdir/$f"
     echo '     ""},'
 done
 echo '    {0, 0},'

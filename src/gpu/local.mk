@@ -18,7 +18,7 @@ EXTRA_DIST += src/gpu/embed_glsl.sh src/gpu/gl_functions.sh $(GLSL_FILES)
 # Every file under glsl/ that the binary carries; stages add theirs.
 GLSL_FILES += \
 	glsl/shared/common.h glsl/shared/scene.h glsl/shared/bindings.h \
-	glsl/lib/index.glsl \
+	glsl/lib/index.glsl glsl/lib/atomic_add.glsl \
 	glsl/gpu/selftest.comp glsl/gpu/storage_probe.comp
 
 # Makefile too: adding a file to GLSL_FILES must regenerate the list.

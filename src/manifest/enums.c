@@ -10,6 +10,7 @@ static const char *const compressions[] = {"zip", "none", "zips", "piz", "rle", 
 static const char *const manifest_compressions[] = {"none", "zip", "piz", "dwaa"};
 static const char *const guides[] = {"all", "indirect"};
 static const char *const methods[] = {"qlearn", "sdtree"};
+static const char *const filters[] = {"none", "spatial", "directional", "both"};
 static const char *const formats[] = {"exr", "png"};
 static const char *const aovs[] = {"albedo",    "normal",        "depth",          "object_id",
                                    "material_id", "crypto_object", "crypto_material"};
@@ -17,6 +18,7 @@ static const char *const aovs[] = {"albedo",    "normal",        "depth",       
 _Static_assert(CV_ARRAY_SIZE(integrators) == CV_INTEGRATOR_COUNT, "one name per integrator");
 _Static_assert(CV_ARRAY_SIZE(guides) == CV_RL_GUIDE_COUNT, "one name per rlpath guide");
 _Static_assert(CV_ARRAY_SIZE(methods) == CV_RL_METHOD_COUNT, "one name per rlpath method");
+_Static_assert(CV_ARRAY_SIZE(filters) == CV_RL_FILTER_COUNT, "one name per rlpath filter");
 _Static_assert(CV_ARRAY_SIZE(compressions) == CV_EXR_COMPRESSION_COUNT,
                "one name per EXR compression");
 
@@ -26,6 +28,7 @@ const struct cv_names cv_manifest_compression_names = {manifest_compressions,
                                                        CV_ARRAY_SIZE(manifest_compressions)};
 const struct cv_names cv_rl_guide_names = {guides, CV_ARRAY_SIZE(guides)};
 const struct cv_names cv_rl_method_names = {methods, CV_ARRAY_SIZE(methods)};
+const struct cv_names cv_rl_filter_names = {filters, CV_ARRAY_SIZE(filters)};
 const struct cv_names cv_format_names = {formats, CV_ARRAY_SIZE(formats)};
 const struct cv_names cv_aov_names = {aovs, CV_ARRAY_SIZE(aovs)};
 

@@ -42,6 +42,16 @@ enum cv_rl_method {
     CV_RL_METHOD_COUNT
 };
 
+/* rlpath.filter: the sdtree method's training splat filters; the values
+ * are CV_SD_FILTER_* bits (glsl/shared/sdtree.h). */
+enum cv_rl_filter {
+    CV_RL_FILTER_NONE = 0,        /* nearest leaf and quadrant */
+    CV_RL_FILTER_SPATIAL,         /* Müller et al.'s spatial box filter */
+    CV_RL_FILTER_DIRECTIONAL,     /* ... the directional one */
+    CV_RL_FILTER_BOTH,
+    CV_RL_FILTER_COUNT
+};
+
 enum cv_format_bits {
     CV_FORMAT_EXR = 1u << 0,
     CV_FORMAT_PNG = 1u << 1,
@@ -70,6 +80,7 @@ extern const struct cv_names cv_exr_compression_names;
 extern const struct cv_names cv_manifest_compression_names;
 extern const struct cv_names cv_rl_guide_names;
 extern const struct cv_names cv_rl_method_names;
+extern const struct cv_names cv_rl_filter_names;
 extern const struct cv_names cv_format_names;   /* file extensions: "exr", "png" */
 extern const struct cv_names cv_aov_names;
 

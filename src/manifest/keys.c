@@ -224,12 +224,18 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                             .has = AT(rlpath.has_method), .def = CV_RL_METHOD_QLEARN,
                             .def_text = "qlearn", .hash = CV_HASH_OFF_DEFAULT,
                             .help = "how the guide learns: a Q-table or spatial-directional trees"},
+    [CV_K_RLPATH_FILTER] = {.name = "rlpath.filter", .type = CV_KT_ENUM,
+                            .names = &cv_rl_filter_names, .offset = AT(rlpath.filter),
+                            .has = AT(rlpath.has_filter), .def = CV_RL_FILTER_NONE,
+                            .def_text = "none", .hash = CV_HASH_OFF_DEFAULT,
+                            .help = "sdtree's training filters: none, spatial, directional, both"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&
                    sizeof(enum cv_exr_compression) == sizeof(unsigned) &&
                    sizeof(enum cv_rl_guide) == sizeof(unsigned) &&
-                   sizeof(enum cv_rl_method) == sizeof(unsigned),
+                   sizeof(enum cv_rl_method) == sizeof(unsigned) &&
+                   sizeof(enum cv_rl_filter) == sizeof(unsigned),
                "ENUM keys are stored as unsigned");
 
 const struct cv_key *cv_key_find(const char *dotted)

@@ -58,6 +58,7 @@ enum cv_key_id {
     CV_K_ENV_FILE,
     CV_K_ALPHA,
     CV_K_RLPATH_METHOD,
+    CV_K_RLPATH_FILTER,
     CV_K_COUNT
 };
 

@@ -61,6 +61,8 @@ struct cv_job_rlpath {
     uint32_t train;            /* spp during which the table learns; 0: every pass */
     bool has_method;
     enum cv_rl_method method;  /* default CV_RL_METHOD_QLEARN */
+    bool has_filter;
+    enum cv_rl_filter filter;  /* sdtree's splat filters; unset: trace/sdtree.c's default */
 };
 
 /* Overrides of the scene's environment (its LightSource "infinite"

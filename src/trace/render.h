@@ -49,6 +49,10 @@ struct cv_render_params {
     /* rlpath: learn Müller et al.'s spatial-directional trees
      * (rlpath.method: sdtree, trace/rlpath_sd.h) instead of the Q-table */
     bool rl_sdtree;
+    /* rlpath sdtree: the training splat's filters, CV_SD_FILTER_* bits
+     * (rlpath.filter), where rl_sd_filter_set; else trace/sdtree.c's */
+    bool rl_sd_filter_set;
+    uint32_t rl_sd_filter;
     /* Paths in flight per pixel (path slots, glsl/shared/trace.h). 0: as
      * many as keep the GPU busy (CV_WAVE_PATHS in all, at most
      * CV_MAX_PATHS_PER_PIXEL), within the advertised storage-buffer size and

@@ -142,9 +142,11 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     sd->start = 0;
     sd->len = 1;
     sd->end = iteration_end(sd->train, 0, 1);
-    sd->params.learn = (cv_uvec4){1, 0, n_paths, 0};
     /* the empty guide: one leaf, whose classes do not guide */
     sd->guide = cv_sdtree_create(bmin, bmax);
+    struct cv_sd_frame f = cv_sdtree_frame(sd->guide, &sd->opts);
+    sd->params.learn = (cv_uvec4){1, f.filter, n_paths, 0};
+    sd->params.cube = (cv_vec4){f.cube[0], f.cube[1], f.cube[2], f.cube[3]};
     /* zero: no slot has a path waiting */
     size_t vbytes = (size_t)(n_paths ? n_paths : 1) * CV_SD_SLOT_TEXELS * 16;
     bool ok = (sd->ubo = cv_buffer_create(sizeof(sd->params), &sd->params, "rlpath sd params", err)) &&
@@ -174,6 +176,13 @@ uint32_t cv_rlpath_sd_learn_until(const struct cv_rlpath_sd *sd)
     if (sd->train && sd->start >= sd->train)
         return sd->train;
     return sd->end;
+}
+
+void cv_rlpath_sd_set_filter(struct cv_rlpath_sd *sd, uint32_t filter)
+{
+    sd->opts.filter = filter & (CV_SD_FILTER_SPATIAL | CV_SD_FILTER_DIRECTIONAL);
+    sd->params.learn.y = sd->opts.filter;
+    glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
 }
 
 void cv_rlpath_sd_set_learning(struct cv_rlpath_sd *sd, bool learning)
@@ -318,6 +327,8 @@ static bool ops_create(const struct cv_integrator_setup *s, void **state,
     if (!cv_rlpath_sd_create(s->gpu, s->scene->bounds_min, s->scene->bounds_max, s->n_paths,
                              p->rl_mix, p->rl_train, &sd, err))
         return false;
+    if (p->rl_sd_filter_set)
+        cv_rlpath_sd_set_filter(sd, p->rl_sd_filter);
     *state = sd;
     return true;
 }

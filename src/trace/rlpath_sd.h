@@ -33,6 +33,10 @@ uint32_t cv_rlpath_sd_learn_until(const struct cv_rlpath_sd *sd);
 /* Starts or stops recording from the next pass on (between passes). */
 void cv_rlpath_sd_set_learning(struct cv_rlpath_sd *sd, bool learning);
 
+/* Sets the training splat's filters (CV_SD_FILTER_* bits; default
+ * cv_sdtree_defaults.filter). */
+void cv_rlpath_sd_set_filter(struct cv_rlpath_sd *sd, uint32_t filter);
+
 /* After a pass that ends with spp_done samples per pixel: at the end of a
  * training iteration, reads the statistics the shaders splatted back,
  * refines the guide and uploads it. Waits for the GPU: once per training

@@ -20,6 +20,10 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
     .max_depth = CV_SD_MAX_DEPTH,
     .floor = 0.3f,
     .min_records = 32,
+    /* no filter: neither box filter lowered the room's error, and each
+     * multiplies the training splat's adds (bench/RESULTS.md, "sdtree:
+     * training filters") */
+    .filter = 0,
 };
 
 /* a training or sampling node's "no node" (a child 0 is a leaf quadrant:
@@ -142,10 +146,39 @@ static size_t train_word(const struct cv_sdtree *t, uint32_t j)
     return CV_SD_CLASS_WORDS * t->nc + CV_SD_NODE_WORDS * (size_t)j;
 }
 
+/* Sampling nodes' children offsets stay below this (shared/sdtree.h). */
+#define CHILD_OFFSET_LIMIT (1u << 20)
+
 void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels)
 {
-    /* spatial nodes, class texels, sampling nodes, training nodes */
-    size_t sbase = t->ns + t->nc, tbase = sbase + 2 * t->nq, nt = tbase + 2 * t->nt;
+    /* spatial nodes, class texels, sampling nodes (one texel each, each
+     * node's children consecutive: breadth first from every root), training
+     * nodes (two texels each) */
+    size_t sbase = t->ns + t->nc;
+    uint32_t *pos = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*pos));
+    uint32_t *queue = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*queue));
+    for (size_t j = 0; j < t->nq; j++)
+        pos[j] = NONE;
+    size_t next = sbase;
+    for (size_t i = 0; i < t->nc; i++) {
+        uint32_t r = t->c[i].samp;
+        if (pos[r] != NONE)
+            continue;   /* shared by the leaves a split made */
+        size_t head = 0, tail = 0;
+        pos[r] = (uint32_t)next++;
+        queue[tail++] = r;
+        while (head < tail) {
+            uint32_t j = queue[head++];
+            for (int k = 0; k < 4; k++) {
+                uint32_t c = t->q[j].child[k];
+                if (c) {
+                    pos[c] = (uint32_t)next++;
+                    queue[tail++] = c;
+                }
+            }
+        }
+    }
+    size_t tbase = next, nt = tbase + 2 * t->nt;
     float(*x)[4] = cv_xcalloc(nt, sizeof(*x));
     for (size_t i = 0; i < t->ns; i++) {
         const struct snode *s = &t->s[i];
@@ -158,17 +191,31 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
         }
     }
     for (size_t i = 0; i < t->nc; i++) {
-        x[t->ns + i][0] = (float)(sbase + 2 * (size_t)t->c[i].samp);
+        x[t->ns + i][0] = (float)pos[t->c[i].samp];
         x[t->ns + i][1] = t->c[i].weight;
         x[t->ns + i][2] = (float)(tbase + 2 * (size_t)t->c[i].train);
         x[t->ns + i][3] = (float)(CV_SD_CLASS_WORDS * i);
     }
     for (size_t j = 0; j < t->nq; j++) {
-        float *a = x[sbase + 2 * j], *ch = x[sbase + 2 * j + 1];
-        for (int k = 0; k < 4; k++) {
+        if (pos[j] == NONE)
+            continue;   /* no class samples it */
+        float *a = x[pos[j]];
+        for (int k = 0; k < 3; k++)
             a[k] = t->q[j].p[k];
-            ch[k] = t->q[j].child[k] ? (float)(sbase + 2 * (size_t)t->q[j].child[k]) : 0.0f;
+        uint32_t mask = 0, first = NONE;
+        for (int k = 0; k < 4; k++) {
+            uint32_t c = t->q[j].child[k];
+            if (c) {
+                mask |= 1u << k;
+                if (first == NONE)
+                    first = pos[c];
+            }
         }
+        /* children past the offset limit (a quadtree of a million nodes)
+         * are left out: sampling and the density still agree */
+        if (mask && first - pos[j] >= CHILD_OFFSET_LIMIT)
+            mask = 0;
+        a[3] = (float)(mask ? 16u * (first - pos[j]) + mask : 0u);
     }
     for (size_t j = 0; j < t->nt; j++) {
         float *ch = x[tbase + 2 * j];
@@ -176,8 +223,23 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
             ch[k] = t->t[j].child[k] ? (float)(tbase + 2 * (size_t)t->t[j].child[k]) : 0.0f;
         x[tbase + 2 * j + 1][0] = (float)train_word(t, (uint32_t)j);
     }
+    free(pos);
+    free(queue);
     *texels = x;
     *n_texels = nt;
+}
+
+void cv_sdtree_node(const float (*x)[4], uint32_t q, float p[4], uint32_t child[4])
+{
+    const float *n = x[q];
+    p[0] = n[0];
+    p[1] = n[1];
+    p[2] = n[2];
+    /* as the shaders compute it (sdtree.glsl: cv_sd_node_probs) */
+    p[3] = fmaxf(0.0f, 1.0f - (n[0] + n[1] + n[2]));
+    uint32_t code = (uint32_t)n[3], mask = code & 15u, at = q + (code >> 4);
+    for (int k = 0; k < 4; k++)
+        child[k] = mask & (1u << k) ? at++ : 0;
 }
 
 /* What a record adds to its quadtree (the shaders' cv_sd_value): the Monte
@@ -207,35 +269,144 @@ static void add_float(uint32_t *word, float v)
     memcpy(word, &f, sizeof(f));
 }
 
-void cv_sdtree_splat(const float (*x)[4], uint32_t *stats, const struct cv_sd_record *r)
+struct cv_sd_frame cv_sdtree_frame(const struct cv_sdtree *t, const struct cv_sdtree_opts *o)
+{
+    struct cv_sd_frame f = {{(float)t->lo[0], (float)t->lo[1], (float)t->lo[2],
+                             (float)(t->hi[0] - t->lo[0])},
+                            o->filter};
+    return f;
+}
+
+/* The class texel of point p (-1 past the depth limit) and the box of its
+ * leaf (sdtree.glsl: cv_sd_class_texel_box). */
+static int32_t class_texel_box(const float (*x)[4], const struct cv_sd_frame *f, const float p[3],
+                               uint32_t cls, float lo[3], float size[3])
+{
+    for (int a = 0; a < 3; a++) {
+        lo[a] = f->cube[a];
+        size[a] = f->cube[3];
+    }
+    uint32_t node = 0;
+    for (uint32_t d = 0; d < CV_SD_MAX_SPATIAL_DEPTH && x[node][0] < (float)CV_SD_LEAF; d++) {
+        int axis = (int)x[node][0];
+        size[axis] *= 0.5f;
+        bool upper = p[axis] >= x[node][1];
+        if (upper)
+            lo[axis] = x[node][1];
+        node = (uint32_t)x[node][2] + (upper ? 1u : 0u);
+    }
+    return x[node][0] < (float)CV_SD_LEAF ? -1 : (int32_t)((uint32_t)x[node][2] + cls);
+}
+
+/* sdtree.glsl: cv_sd_footprint, in the same float steps. */
+static void footprint(float x, float h, float o, float o0, float span, float *plo, float *phi,
+                      float *wlo)
+{
+    float c = fminf(fmaxf(x, o0 + 0.5f * h), o0 + span - 0.5f * h);
+    float a = c - 0.5f * h, b = c + 0.5f * h;
+    float t = (a - o) / h;
+    float i0 = floorf(t);
+    float edge = o + (i0 + 1.0f) * h;
+    *wlo = 1.0f - (t - i0);
+    *plo = 0.5f * (a + edge);
+    *phi = 0.5f * (edge + b);
+}
+
+/* The quadrant of point s at a node, and s in it. */
+static int quadrant(float s[2])
+{
+    int ix = s[0] < 0.5f ? 0 : 1, iy = s[1] < 0.5f ? 0 : 1;
+    s[0] = 2.0f * s[0] - (float)ix;
+    s[1] = 2.0f * s[1] - (float)iy;
+    return ix + 2 * iy;
+}
+
+/* The flux word of the leaf quadrant of point s in the training quadtree
+ * at texel q (sdtree.glsl: cv_sd_train_leaf_word); -1 past the limit. */
+static int64_t leaf_word(const float (*x)[4], uint32_t q, const float s0[2])
+{
+    float s[2] = {s0[0], s0[1]};
+    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
+        int k = quadrant(s);
+        uint32_t c = (uint32_t)x[q][k];
+        if (!c)
+            return (int64_t)(uint32_t)x[q + 1][0] + k;
+        q = c;
+    }
+    return -1;
+}
+
+/* sdtree.glsl: cv_sd_add_leaf. */
+static void add_leaf(const float (*x)[4], uint32_t *stats, uint32_t q, const float s[2], float v)
+{
+    int64_t w = v > 0 ? leaf_word(x, q, s) : -1;
+    if (w >= 0)
+        add_float(&stats[w], v);
+}
+
+/* sdtree.glsl: cv_sd_splat_flux. */
+static void splat_flux(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
+                       uint32_t q, const float s0[2], float v)
+{
+    if (!(f->filter & CV_SD_FILTER_DIRECTIONAL)) {
+        add_leaf(x, stats, q, s0, v);
+        return;
+    }
+    float h = 1.0f, s[2] = {s0[0], s0[1]};
+    for (uint32_t d = 0, qq = q; d < CV_SD_MAX_DEPTH; d++) {
+        h *= 0.5f;
+        uint32_t c = (uint32_t)x[qq][quadrant(s)];
+        if (!c)
+            break;
+        qq = c;
+    }
+    float plo[2], phi[2], wlo[2];
+    for (int a = 0; a < 2; a++)
+        footprint(s0[a], h, 0.0f, 0.0f, 1.0f, &plo[a], &phi[a], &wlo[a]);
+    add_leaf(x, stats, q, (float[2]){plo[0], plo[1]}, v * (wlo[0] * wlo[1]));
+    add_leaf(x, stats, q, (float[2]){phi[0], plo[1]}, v * ((1.0f - wlo[0]) * wlo[1]));
+    add_leaf(x, stats, q, (float[2]){plo[0], phi[1]}, v * (wlo[0] * (1.0f - wlo[1])));
+    add_leaf(x, stats, q, (float[2]){phi[0], phi[1]}, v * ((1.0f - wlo[0]) * (1.0f - wlo[1])));
+}
+
+void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
+                     const struct cv_sd_record *r)
 {
     float cls = floorf(r->u);
     if (!(cls >= 0 && cls < CV_SD_CLASSES))
         return;
-    double su = r->u - cls, sv = r->v;
-    float v = rec_value(r, (int)cls, su);
-    if (v < 0)
+    float s[2] = {r->u - cls, r->v};
+    float v = rec_value(r, (int)cls, s[0]);
+    float lo[3], size[3];
+    int32_t c = v < 0 ? -1 : class_texel_box(x, f, r->p, (uint32_t)cls, lo, size);
+    if (c < 0)
         return;
-    uint32_t leaf = cv_sdtree_leaf(x, r->p);
-    if (x[leaf][0] != (float)CV_SD_LEAF)
-        return;
-    const float *ct = x[(uint32_t)x[leaf][2] + (uint32_t)cls];
+    const float *ct = x[c];
     uint32_t w = (uint32_t)ct[3];
     stats[w]++;
     stats[w + 1] += v > 0;
-    uint32_t q = (uint32_t)ct[2];
-    for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
-        uint32_t base = (uint32_t)x[q + 1][0];
-        int ix = su < 0.5 ? 0 : 1, iy = sv < 0.5 ? 0 : 1, k = ix + 2 * iy;
-        if (v > 0)
-            add_float(&stats[base + k], v);
-        stats[base + 4 + k]++;
-        su = 2 * su - ix;
-        sv = 2 * sv - iy;
-        uint32_t c = (uint32_t)x[q][k];
-        if (!c)
-            break;
-        q = c;
+    int64_t lw = leaf_word(x, (uint32_t)ct[2], s);
+    if (lw >= 0)
+        stats[lw + 4]++;
+    if (!(v > 0))
+        return;
+    if (!(f->filter & CV_SD_FILTER_SPATIAL)) {
+        splat_flux(x, f, stats, (uint32_t)ct[2], s, v);
+        return;
+    }
+    float plo[3], phi[3], wlo[3];
+    for (int a = 0; a < 3; a++)
+        footprint(r->p[a], size[a], lo[a], f->cube[a], f->cube[3], &plo[a], &phi[a], &wlo[a]);
+    for (int b = 0; b < 8; b++) {
+        float p[3] = {b & 1 ? phi[0] : plo[0], b & 2 ? phi[1] : plo[1], b & 4 ? phi[2] : plo[2]};
+        float wt = (b & 1 ? 1.0f - wlo[0] : wlo[0]) * (b & 2 ? 1.0f - wlo[1] : wlo[1]) *
+                   (b & 4 ? 1.0f - wlo[2] : wlo[2]);
+        if (!(wt > 0))
+            continue;
+        float l2[3], s2[3];
+        int32_t cb = class_texel_box(x, f, p, (uint32_t)cls, l2, s2);
+        if (cb >= 0)
+            splat_flux(x, f, stats, (uint32_t)x[cb][2], s, v * wt);
     }
 }
 
@@ -399,13 +570,46 @@ static void refine_spatial(struct refine *r, uint32_t old, uint32_t node, const 
     split_leaf(r, node, lc, count, lo, hi, depth);
 }
 
+/* The shaders add a record only at the leaf quadrant it falls in
+ * (sdtree.glsl, cv_sd_splat): each inner quadrant's flux and count are the
+ * sums of its child node's four, filled in here below training node j. */
+static void sum_inner(const struct cv_sdtree *t, uint32_t *s, uint32_t j)
+{
+    size_t w = train_word(t, j);
+    for (int k = 0; k < 4; k++) {
+        uint32_t c = t->t[j].child[k];
+        if (!c)
+            continue;
+        sum_inner(t, s, c);
+        size_t cw = train_word(t, c);
+        float sum = 0;
+        uint32_t cnt = 0;
+        for (int m = 0; m < 4; m++) {
+            float f;
+            memcpy(&f, &s[cw + m], sizeof(f));
+            sum += f;
+            cnt += s[cw + 4 + m];
+        }
+        memcpy(&s[w + k], &sum, sizeof(sum));
+        s[w + 4 + k] = cnt;
+    }
+}
+
 void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
                       struct cv_sdtree_stats *st)
 {
     struct cv_sdtree n = {0};
     memcpy(n.lo, t->lo, sizeof(n.lo));
     memcpy(n.hi, t->hi, sizeof(n.hi));
-    struct refine r = {.old = t, .stats = stats, .o = o, .n = &n};
+    uint32_t *full = NULL;
+    if (stats) {
+        size_t words = cv_sdtree_stat_words(t);
+        full = cv_xmalloc(words * sizeof(*full));
+        memcpy(full, stats, words * sizeof(*full));
+        for (size_t ci = 0; ci < t->nc; ci++)
+            sum_inner(t, full, t->c[ci].train);
+    }
+    struct refine r = {.old = t, .stats = full, .o = o, .n = &n};
     for (size_t ci = 0; stats && ci < t->nc; ci++)
         r.st.records += stats[CV_SD_CLASS_WORDS * ci];
     r.thresh = o->split_c * sqrt((double)r.st.records);
@@ -413,6 +617,7 @@ void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct c
         r.thresh = 2 * o->min_records;
     uint32_t root = push_s(&n);
     refine_spatial(&r, 0, root, t->lo, t->hi, 0);
+    free(full);
     free_arrays(t);
     *t = n;
     r.st.spatial_nodes = (uint32_t)t->ns;
@@ -433,8 +638,9 @@ void cv_sdtree_learn_records(struct cv_sdtree *t, const struct cv_sd_record *rec
         size_t nx = 0;
         cv_sdtree_table(t, &x, &nx);
         uint32_t *stats = cv_xcalloc(cv_sdtree_stat_words(t) + 1, sizeof(*stats));
+        struct cv_sd_frame f = cv_sdtree_frame(t, o);
         for (size_t i = 0; i < n; i++)
-            cv_sdtree_splat((const float(*)[4])x, stats, &rec[i]);
+            cv_sdtree_splat((const float(*)[4])x, &f, stats, &rec[i]);
         size_t ns = t->ns, nt = t->nt;
         struct snode *s = cv_xmalloc(ns * sizeof(*s));
         struct tnode *tn = cv_xmalloc(nt * sizeof(*tn));
@@ -468,13 +674,15 @@ double cv_sdtree_pdf_square(const float (*t)[4], uint32_t root, double u, double
     double pdf = 1;
     for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
         int ix = u < 0.5 ? 0 : 1, iy = v < 0.5 ? 0 : 1, k = ix + 2 * iy;
-        pdf *= 4.0 * t[q][k];
+        float p[4];
+        uint32_t ch[4];
+        cv_sdtree_node(t, q, p, ch);
+        pdf *= 4.0 * p[k];
         u = 2 * u - ix;
         v = 2 * v - iy;
-        uint32_t c = (uint32_t)t[q + 1][k];
-        if (!c)
+        if (!ch[k])
             break;
-        q = c;
+        q = ch[k];
     }
     return pdf;
 }

@@ -39,6 +39,7 @@ struct cv_sdtree_opts {
     float floor;            /* uniform share added to every leaf's distribution */
     uint32_t min_records;   /* a leaf's class guides with at least this many
                                records of positive radiance */
+    uint32_t filter;        /* the splat's filters, CV_SD_FILTER_* (shared/sdtree.h) */
 };
 
 /* The defaults (trace/sdtree.c). */
@@ -67,23 +68,40 @@ void cv_sdtree_destroy(struct cv_sdtree **t);
  * (free it), *n_texels its length. */
 void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels);
 
+/* Sampling node q of a table (glsl/shared/sdtree.h): its quadrants'
+ * probabilities, the fourth derived as the shaders derive it, and the
+ * texels of their nodes (0: a leaf quadrant). */
+void cv_sdtree_node(const float (*texels)[4], uint32_t q, float p[4], uint32_t child[4]);
+
 /* Words of the statistics the table's training tree takes. */
 size_t cv_sdtree_stat_words(const struct cv_sdtree *t);
 
+/* What the splat needs besides the table (the shaders' CvSdParams): the
+ * root cube (low corner, side) and the filters (CV_SD_FILTER_*). */
+struct cv_sd_frame {
+    float cube[4];
+    uint32_t filter;
+};
+
+/* The frame of guide t with the filters of o. */
+struct cv_sd_frame cv_sdtree_frame(const struct cv_sdtree *t, const struct cv_sdtree_opts *o);
+
 /* Splats record r (as the shaders keep it: u with the class added) into
  * the statistics of the table's training tree, as the shaders'
- * cv_sd_splat does (the host's copy of it, for tests and
- * cv_sdtree_learn_records). */
-void cv_sdtree_splat(const float (*texels)[4], uint32_t *stats, const struct cv_sd_record *r);
+ * cv_sd_splat does, in the same float arithmetic (the host's copy of it,
+ * for tests and cv_sdtree_learn_records). */
+void cv_sdtree_splat(const float (*texels)[4], const struct cv_sd_frame *f, uint32_t *stats,
+                     const struct cv_sd_record *r);
 
 /* The end of a training iteration: from the statistics splatted into the
- * table's training tree (cv_sdtree_stat_words words), the next sampling
- * quadtrees (the training ones with the flux as their probabilities, and
- * the guiding weights) and the next training tree (leaves over split_c *
- * sqrt(records) records split in space, halving the count per level;
- * quadrants over rho of their class's flux, with min_split records,
- * subdivided, a new quadrant taking a quarter of its parent's, and the
- * others pruned). stats may be NULL. */
+ * table's training tree (cv_sdtree_stat_words words; the splat adds at
+ * leaf quadrants only, the inner ones are summed here first), the next
+ * sampling quadtrees (the training ones with the flux as their
+ * probabilities, and the guiding weights) and the next training tree
+ * (leaves over split_c * sqrt(records) records split in space, halving the
+ * count per level; quadrants over rho of their class's flux, with
+ * min_split records, subdivided, a new quadrant taking a quarter of its
+ * parent's, and the others pruned). stats may be NULL. */
 void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
                       struct cv_sdtree_stats *st);
 

@@ -149,3 +149,7 @@ tests_trace_bsdf_conductor_fresnel_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/medium_grid_store_test
 TESTS += tests/trace/medium_grid_store_test
 tests_trace_medium_grid_store_test_LDADD = $(CV_LIBS)
+
+check_PROGRAMS += tests/trace/sdtree_filter_test
+TESTS += tests/trace/sdtree_filter_test
+tests_trace_sdtree_filter_test_LDADD = $(CV_LIBS)

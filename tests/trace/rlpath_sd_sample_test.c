@@ -67,13 +67,16 @@ static double integrate_rect(const float (*t)[4], uint32_t q, double ox, double 
                              double pdf, double x0, double x1, double y0, double y1)
 {
     double s = 0, h = side / 2;
+    float pr[4];
+    uint32_t ch[4];
+    cv_sdtree_node(t, q, pr, ch);
     for (int k = 0; k < 4; k++) {
         double ax = ox + h * (k & 1), ay = oy + h * (k >> 1);
         double ix = fmin(ax + h, x1) - fmax(ax, x0), iy = fmin(ay + h, y1) - fmax(ay, y0);
         if (ix <= 0 || iy <= 0)
             continue;
-        double p = pdf * 4 * t[q][k];
-        uint32_t c = (uint32_t)t[q + 1][k];
+        double p = pdf * 4 * pr[k];
+        uint32_t c = ch[k];
         s += c ? integrate_rect(t, c, ax, ay, h, p, x0, x1, y0, y1) : p * ix * iy;
     }
     return s;
@@ -134,9 +137,10 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
 /* The shaders' splat (sd_flush.comp, with float atomics where the driver
  * has them, then with compare-and-swap) into the statistics of the
  * uploaded guide's training tree equals the host's (cv_sdtree_splat) of
- * the same records: counts exactly, flux within float rounding of a sum
- * in another order. The records: the build's, in every class, some dark,
- * some without density, one not finite. */
+ * the same records, both filters on (spatial box, directional bilinear):
+ * counts exactly, flux within float rounding of a sum in another order.
+ * The records: the build's, in every class, some dark, some without
+ * density, one not finite. */
 static void splat_test(struct rig *g, const float (*t)[4])
 {
     const size_t n = 30000;
@@ -153,6 +157,8 @@ static void splat_test(struct rig *g, const float (*t)[4])
         struct cv_error err = {{0}};
         uint32_t *gs = NULL;
         size_t words = 0;
+        /* both filters: every path of the splat */
+        cv_rlpath_sd_set_filter(g->sd, CV_SD_FILTER_SPATIAL | CV_SD_FILTER_DIRECTIONAL);
         bool ok = cv_rlpath_sd_splat(g->sd, r, n, cas, &gs, &words, &err);
         if (!tap_ok(ok, "splat %zu records on the GPU (%s): %s", n,
                     cas ? "compare-and-swap" : "float atomics where there", err.msg)) {
@@ -160,8 +166,15 @@ static void splat_test(struct rig *g, const float (*t)[4])
             continue;
         }
         uint32_t *hs = calloc(words, sizeof(*hs));
+        /* the GPU's frame: the guide's cube (made as cv_rlpath_sd_create
+         * makes it) and both filters */
+        const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};   /* main's */
+        struct cv_sdtree *cube = cv_sdtree_create(lo, hi);
+        struct cv_sd_frame f = cv_sdtree_frame(cube, &cv_sdtree_defaults);
+        f.filter = CV_SD_FILTER_SPATIAL | CV_SD_FILTER_DIRECTIONAL;
+        cv_sdtree_destroy(&cube);
         for (size_t i = 0; i < n; i++)
-            cv_sdtree_splat(t, hs, &r[i]);
+            cv_sdtree_splat(t, &f, hs, &r[i]);
         /* the flux words: the first four of each training node's eight,
          * after the classes' (the spatial nodes end at the first class
          * texel, the lowest a leaf names) */

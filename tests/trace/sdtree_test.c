@@ -8,8 +8,9 @@
  * the split threshold, and every record found again in the leaf that the
  * lookup names; the flattened table's links point where the layout says
  * (spatial children inside the spatial part, each leaf to a block of six
- * class texels of its own, quadtree nodes at even offsets after those, the
- * root never a child); every node's four probabilities positive and
+ * class texels of its own, sampling nodes one texel each after those with
+ * each node's children consecutive after it, the root never a child);
+ * every node's four probabilities (the fourth derived) positive and
  * summing to 1; every quadtree's density integrating to 1 over the square
  * (exactly, by walking the tree, and through the lookup the shaders mirror
  * on a midpoint grid, exact for trees at most 8 deep); a class guiding iff
@@ -41,9 +42,12 @@ static double rnd(void)
 static double integrate(const float (*t)[4], uint32_t q, double pdf, double area)
 {
     double s = 0;
+    float pr[4];
+    uint32_t ch[4];
+    cv_sdtree_node(t, q, pr, ch);
     for (int k = 0; k < 4; k++) {
-        double p = pdf * 4 * t[q][k];
-        uint32_t c = (uint32_t)t[q + 1][k];
+        double p = pdf * 4 * pr[k];
+        uint32_t c = ch[k];
         s += c ? integrate(t, c, p, area / 4) : p * area / 4;
     }
     return s;
@@ -55,19 +59,25 @@ static void check_quad(const float (*t)[4], size_t nt, uint32_t ns, uint32_t q, 
 {
     (*nodes)++;
     double sum = 0;
+    float pr[4];
+    uint32_t ch[4];
+    cv_sdtree_node(t, q, pr, ch);
     for (int k = 0; k < 4; k++) {
-        sum += t[q][k];
-        if (!(t[q][k] > 0))
+        sum += pr[k];
+        if (!(pr[k] > 0))
             (*bad_prob)++;
     }
     if (fabs(sum - 1) > 1e-6)
         (*bad_prob)++;
+    /* the children's texels: consecutive, after the node (breadth first) */
+    uint32_t prev = q;
     for (int k = 0; k < 4; k++) {
-        uint32_t c = (uint32_t)t[q + 1][k];
+        uint32_t c = ch[k];
         if (!c)
             continue;
-        if (c < ns || c + 1 >= nt || (c - ns) % 2 || depth + 1 >= CV_SD_MAX_DEPTH ||
-            (float)c != t[q + 1][k]) {
+        bool bad = c <= q || (prev != q && c != prev + 1);
+        prev = c;
+        if (c < ns || c >= nt || depth + 1 >= CV_SD_MAX_DEPTH || bad) {
             (*bad_link)++;
             continue;
         }
@@ -86,8 +96,11 @@ static double class_cos(uint32_t c, double u, double v)
 static uint32_t quad_depth(const float (*t)[4], uint32_t q)
 {
     uint32_t d = 0;
+    float pr[4];
+    uint32_t ch[4];
+    cv_sdtree_node(t, q, pr, ch);
     for (int k = 0; k < 4; k++) {
-        uint32_t c = (uint32_t)t[q + 1][k];
+        uint32_t c = ch[k];
         if (c) {
             uint32_t e = quad_depth(t, c);
             if (e > d)
@@ -105,19 +118,19 @@ static void test_empty(void)
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, NULL, 0, &cv_sdtree_defaults, &t, &nt, &st);
     uint32_t bad = 0;
-    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 5 * CV_SD_CLASSES; c++) {
-        const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + 2 * c], *ch = q + 4;
-        const float *tr = t[1 + 3 * CV_SD_CLASSES + 2 * c];
-        bad += k[0] != (float)(1 + CV_SD_CLASSES + 2 * c) || k[1] != 0;
+    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 4 * CV_SD_CLASSES; c++) {
+        const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + c];
+        const float *tr = t[1 + 2 * CV_SD_CLASSES + 2 * c];
+        bad += k[0] != (float)(1 + CV_SD_CLASSES + c) || k[1] != 0;
         /* the training root and its statistics: the class's two words,
          * then the node's eight */
-        bad += k[2] != (float)(1 + 3 * CV_SD_CLASSES + 2 * c) || k[3] != (float)(2 * c);
+        bad += k[2] != (float)(1 + 2 * CV_SD_CLASSES + 2 * c) || k[3] != (float)(2 * c);
         bad += tr[0] != 0 || tr[1] != 0 || tr[2] != 0 || tr[3] != 0 ||
                tr[4] != (float)(2 * CV_SD_CLASSES + 8 * c);
-        bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0.25f;
-        bad += ch[0] != 0 || ch[1] != 0 || ch[2] != 0 || ch[3] != 0;
+        /* one texel: three probabilities (the fourth 1 less them), no child */
+        bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0;
     }
-    tap_ok(nt == 1 + 5 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
+    tap_ok(nt == 1 + 4 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
            "no records: one leaf, its class texels at texel 1 (%zu texels)", nt);
     tap_ok(bad == 0, "no records: every class of weight 0, one uniform sampling quadtree node "
            "and one training node each (%u wrong)", bad);
@@ -174,9 +187,9 @@ static void test_build(void)
     uint32_t ns = st.spatial_nodes, nc = CV_SD_CLASSES * st.spatial_leaves, qb = ns + nc;
     tap_ok(st.spatial_leaves > 8 && st.spatial_leaves * 2 - 1 == ns,
            "%u spatial leaves of %u nodes (a full binary tree)", st.spatial_leaves, ns);
-    uint32_t qe = qb + 2 * st.quad_nodes;   /* the training nodes' first texel */
+    uint32_t qe = qb + st.quad_nodes;   /* the training nodes' first texel */
     tap_ok(nt == qe + 2 * (size_t)st.train_nodes && st.quad_nodes >= nc && st.train_nodes >= nc,
-           "%zu texels: %u spatial + %u class + 2 x %u sampling + 2 x %u training quadtree", nt,
+           "%zu texels: %u spatial + %u class + %u sampling + 2 x %u training quadtree", nt,
            ns, nc, st.quad_nodes, st.train_nodes);
     /* spatial links */
     uint32_t bad_s = 0, leaves = 0;
@@ -190,7 +203,7 @@ static void test_build(void)
                 bad_s++;
             for (uint32_t c = 0; c < CV_SD_CLASSES && k + c < qb; c++) {
                 uint32_t q = (uint32_t)t[k + c][0];
-                if (q < qb || (q - qb) % 2 || q + 1 >= qe)
+                if (q < qb || q >= qe)
                     bad_s++;
                 if (!(t[k + c][1] == 0 || t[k + c][1] == o.mix))
                     bad_s++;

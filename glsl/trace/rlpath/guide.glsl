@@ -34,6 +34,7 @@
 #define CV_RLPATH_GUIDE_GLSL
 
 #include "shared/rlpath.h"
+#include "../../lib/atomic_add.glsl"
 
 layout(std140, binding = CV_UBO_RLPATH) uniform CvRlBlock { CvRlParams u_rl; };
 #ifdef CV_RL_TABLE_WRITE
@@ -264,25 +265,15 @@ float cv_rl_mix_pdf(float m, float pdf_guide, float pdf_bsdf)
 }
 
 #ifdef CV_RL_TABLE_UPDATE
-// Adds the float v to texel t of the learning table.
-void cv_rl_add(int t, float v)
-{
+// cv_rl_add(t, v): adds the float v to texel t of the learning table; the
+// compare-and-swap gives up after 64 tries: an add lost under extreme
+// contention only skews learning, never biases the image, whose estimator
+// is unbiased for any table.
 #ifdef GL_NV_shader_atomic_float
-    imageAtomicAdd(rl_qf, t, v);
+CV_ATOMIC_ADD_NATIVE(cv_rl_add, rl_qf)
 #else
-    // compare-and-swap on the bits, retried while another thread changed it
-    // in between (bounded: an add lost under extreme contention only skews
-    // learning, never biases the image, whose estimator is unbiased for any
-    // table)
-    uint old = imageLoad(rl_q, t).x;
-    for (int i = 0; i < 64; i++) {
-        uint seen = imageAtomicCompSwap(rl_q, t, old, floatBitsToUint(uintBitsToFloat(old) + v));
-        if (seen == old)
-            break;
-        old = seen;
-    }
+CV_ATOMIC_ADD_CAS(cv_rl_add, rl_q, 64u)
 #endif
-}
 
 // Adds a target (emitted: its part that is a light seen directly) to the
 // entry's sums and a visit (Q becomes the mean of its targets, as

@@ -11,7 +11,7 @@
 // for a given point, so the two agree (a point on a quadrant edge, where
 // they may part, has measure zero).
 // Cost: a lookup is a walk down the spatial tree (one texel per level),
-// sampling or a pdf two texels per quadtree level.
+// sampling or a pdf one texel per quadtree level.
 // Include after the local_size layout line. CV_SD_RECORD: the record
 // images read-write (shade, escaped and shadow stages while training);
 // CV_SD_SPLAT (with it): the statistics too (stages that end a path's
@@ -22,6 +22,7 @@
 #define CV_RLPATH_SDTREE_GLSL
 
 #include "shared/sdtree.h"
+#include "../../lib/atomic_add.glsl"
 
 layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
 layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
@@ -89,6 +90,23 @@ vec3 cv_sd_dir(vec2 s)
     return vec3(r * cos(phi), r * sin(phi), z);
 }
 
+// Sampling node n (one texel, shared/sdtree.h): its four quadrants'
+// probabilities, the fourth derived from the other three (as the host's
+// cv_sdtree_node).
+vec4 cv_sd_node_probs(vec4 n)
+{
+    return vec4(n.xyz, max(0.0, 1.0 - (n.x + n.y + n.z)));
+}
+
+// The texel of quadrant k's node of sampling node q with code w (its
+// texel's w), 0 for a leaf quadrant: its children are consecutive from
+// q + (w >> 4), one for each bit of w's low four.
+int cv_sd_node_child(int q, float w, int k)
+{
+    uint code = uint(w), bit = 1u << uint(k);
+    return (code & bit) == 0u ? 0 : q + int(code >> 4u) + bitCount(code & (bit - 1u));
+}
+
 // Draws a point of the quadtree at texel root with u in [0,1)^2; returns
 // it on the square and its density there (on the square).
 vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
@@ -98,8 +116,8 @@ vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
     float side = 1.0;
     pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 p = imageLoad(sd_tree, q);
-        vec4 c = imageLoad(sd_tree, q + 1);
+        vec4 n = imageLoad(sd_tree, q);
+        vec4 p = cv_sd_node_probs(n);
         // the column: ix 0 holds quadrants 0 and 2
         float pc = p.x + p.z;
         int ix = u.x < pc ? 0 : 1;
@@ -113,7 +131,7 @@ vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
         pdf *= 4.0 * p[k];
         side *= 0.5;
         lo += side * vec2(float(ix), float(iy));
-        int child = int(c[k]);
+        int child = cv_sd_node_child(q, n.w, k);
         if (child == 0)
             break;
         q = child;
@@ -127,14 +145,13 @@ float cv_sd_pdf_square(int root, vec2 s)
     int q = root;
     float pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 p = imageLoad(sd_tree, q);
-        vec4 c = imageLoad(sd_tree, q + 1);
+        vec4 n = imageLoad(sd_tree, q);
         int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
-        pdf *= 4.0 * p[k];
+        pdf *= 4.0 * cv_sd_node_probs(n)[k];
         // the point in the quadrant, scaled to its square (exact in float)
         s = 2.0 * s - vec2(float(ix), float(iy));
-        int child = int(c[k]);
+        int child = cv_sd_node_child(q, n.w, k);
         if (child == 0)
             break;
         q = child;
@@ -201,23 +218,13 @@ void cv_sd_path_end(uint slot, uint depth)
 }
 
 #ifdef CV_SD_SPLAT
-// Adds the float v to word w of the statistics: one atomic add where the
-// driver has float atomics, else compare-and-swap on the bits, retried
-// until no other thread changed the word in between (exact, as the add).
-void cv_sd_add(int w, float v)
-{
+// cv_sd_add(w, v): adds the float v to word w of the statistics, exact
+// (the compare-and-swap retried until it lands, as the native add is).
 #ifdef CV_SD_FLOAT_ATOMICS
-    imageAtomicAdd(sd_flux, w, v);
+CV_ATOMIC_ADD_NATIVE(cv_sd_add, sd_flux)
 #else
-    uint old = imageLoad(sd_stats, w).x;
-    for (;;) {
-        uint seen = imageAtomicCompSwap(sd_stats, w, old, floatBitsToUint(uintBitsToFloat(old) + v));
-        if (seen == old)
-            break;
-        old = seen;
-    }
+CV_ATOMIC_ADD_CAS(cv_sd_add, sd_stats, CV_ATOMIC_ADD_RETRY_EXACT)
 #endif
-}
 
 // What a record adds to its quadtree (src/trace/sdtree.c, rec_value: the
 // same formula): the Monte Carlo estimate of the incident radiance times
@@ -233,14 +240,129 @@ float cv_sd_value(vec3 p, float pdf, uint cls, vec2 s, float L)
     return c > 0.0 ? v * c : 0.0;
 }
 
+// The class texel of point p and orientation class cls, as
+// cv_sd_class_texel, and the box of its spatial leaf: lo and size (the
+// root cube u_sd.cube halved along each split's axis on the way down).
+int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
+{
+    lo = u_sd.cube.xyz;
+    size = vec3(u_sd.cube.w);
+    int node = 0;
+    vec4 n = imageLoad(sd_tree, 0);
+    for (uint d = 0u; d < CV_SD_MAX_SPATIAL_DEPTH && n.x < CV_SD_LEAF; d++) {
+        int axis = int(n.x);
+        size[axis] *= 0.5;
+        bool upper = p[axis] >= n.y;
+        if (upper)
+            lo[axis] = n.y;
+        node = int(n.z) + (upper ? 1 : 0);
+        n = imageLoad(sd_tree, node);
+    }
+    return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
+}
+
+// The side of the leaf quadrant of point s in the training quadtree at
+// texel q: the record's directional footprint.
+float cv_sd_train_leaf_side(int q, vec2 s)
+{
+    float side = 1.0;
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        side *= 0.5;
+        int k = (s.x < 0.5 ? 0 : 1) + 2 * (s.y < 0.5 ? 0 : 1);
+        s = 2.0 * s - vec2(float(k & 1), float(k >> 1));
+        int child = int(imageLoad(sd_tree, q)[k]);
+        if (child == 0)
+            break;
+        q = child;
+    }
+    return side;
+}
+
+// The footprint of side h about x in [0, 1] units of a grid of cells of
+// side h from origin o, moved inside [o0, o0 + 1 * span] (span: the extent
+// the footprint must stay in): the two cells it overlaps, as the centre of
+// its part in each (lo, hi) and the share of it there (wlo, 1 - wlo).
+// Shared by the spatial and the directional filter.
+void cv_sd_footprint(float x, float h, float o, float o0, float span, out float plo,
+                     out float phi, out float wlo)
+{
+    float c = clamp(x, o0 + 0.5 * h, o0 + span - 0.5 * h);
+    float a = c - 0.5 * h, b = c + 0.5 * h;
+    float t = (a - o) / h;
+    float i0 = floor(t);
+    float edge = o + (i0 + 1.0) * h;
+    wlo = 1.0 - (t - i0);
+    plo = 0.5 * (a + edge);
+    phi = 0.5 * (edge + b);
+}
+
+// The statistics word of the leaf quadrant of point s in the training
+// quadtree at texel q (its flux word; its count is 4 words on).
+int cv_sd_train_leaf_word(int q, vec2 s)
+{
+    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
+        int k = ix + 2 * iy;
+        s = 2.0 * s - vec2(float(ix), float(iy));
+        int child = int(imageLoad(sd_tree, q)[k]);
+        if (child == 0)
+            return int(imageLoad(sd_tree, q + 1).x) + k;
+        q = child;
+    }
+    return -1;   // deeper than the limit: a malformed table
+}
+
+// Adds flux v (if above 0) at the leaf quadrant of s in the training
+// quadtree at texel q.
+void cv_sd_add_leaf(int q, vec2 s, float v)
+{
+    int w = v > 0.0 ? cv_sd_train_leaf_word(q, s) : -1;
+    if (w >= 0)
+        cv_sd_add(w, v);
+}
+
+// Adds flux v of a record at s to the training quadtree at texel q: to
+// the leaf quadrant s falls in only (the host sums the inner quadrants
+// from their children, sdtree.c, so no word above a leaf takes an add).
+// With CV_SD_FILTER_DIRECTIONAL, Müller et al.'s box filter: a square of
+// the side of that leaf quadrant, about s (moved inside the unit square,
+// so that no flux is lost at its edges), overlaps at most four cells of
+// that side; each takes the share of the square it holds (the bilinear
+// weights of s), added at the leaf quadrant where the centre of that part
+// falls (a neighbour split finer than the footprint takes its part
+// there).
+void cv_sd_splat_flux(int q, vec2 s, float v)
+{
+    if ((u_sd.learn.y & CV_SD_FILTER_DIRECTIONAL) == 0u) {
+        cv_sd_add_leaf(q, s, v);
+        return;
+    }
+    float h = cv_sd_train_leaf_side(q, s);
+    vec2 plo, phi, wlo;
+    cv_sd_footprint(s.x, h, 0.0, 0.0, 1.0, plo.x, phi.x, wlo.x);
+    cv_sd_footprint(s.y, h, 0.0, 0.0, 1.0, plo.y, phi.y, wlo.y);
+    // four adds, written out: no per-thread array (NVIDIA's local memory)
+    cv_sd_add_leaf(q, plo, v * (wlo.x * wlo.y));
+    cv_sd_add_leaf(q, vec2(phi.x, plo.y), v * ((1.0 - wlo.x) * wlo.y));
+    cv_sd_add_leaf(q, vec2(plo.x, phi.y), v * (wlo.x * (1.0 - wlo.y)));
+    cv_sd_add_leaf(q, phi, v * ((1.0 - wlo.x) * (1.0 - wlo.y)));
+}
+
 // Splats one record into the tree being trained (shared/sdtree.h,
-// "Statistics"): its class's record counts, then the flux and count of the
-// quadrant it falls in at each node of the class's training quadtree.
-// No filter: the record counts in its own spatial leaf and quadrant only.
+// "Statistics"): its class's record counts and the count of the leaf
+// quadrant it falls in in its own leaf's training quadtree, then its
+// flux. With CV_SD_FILTER_SPATIAL, Müller et al.'s spatial box filter: a
+// box of its leaf's size about the record (moved inside the root cube)
+// overlaps at most eight cells of that size; each part's share of the
+// flux goes to the leaf where the part's centre falls (all of it to the
+// record's leaf where the neighbours are as large or larger), in the same
+// class, through cv_sd_splat_flux. Counts stay with the record's own leaf
+// and quadrant: they steer the refinement, which counts records.
 void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
 {
     float v = cv_sd_value(p, pdf, cls, s, L);
-    int c = v < 0.0 ? -1 : cv_sd_class_texel(p, cls);
+    vec3 lo, size;
+    int c = v < 0.0 ? -1 : cv_sd_class_texel_box(p, cls, lo, size);
     if (c < 0)
         return;
     vec4 ct = imageLoad(sd_tree, c);
@@ -248,20 +370,29 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
     imageAtomicAdd(sd_stats, w, 1u);
     if (v > 0.0)
         imageAtomicAdd(sd_stats, w + 1, 1u);
-    int q = int(ct.z);
-    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 ch = imageLoad(sd_tree, q);
-        int base = int(imageLoad(sd_tree, q + 1).x);
-        int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
-        int k = ix + 2 * iy;
-        if (v > 0.0)
-            cv_sd_add(base + k, v);
-        imageAtomicAdd(sd_stats, base + 4 + k, 1u);
-        s = 2.0 * s - vec2(float(ix), float(iy));
-        int child = int(ch[k]);
-        if (child == 0)
-            break;
-        q = child;
+    int lw = cv_sd_train_leaf_word(int(ct.z), s);
+    if (lw >= 0)
+        imageAtomicAdd(sd_stats, lw + 4, 1u);
+    if (!(v > 0.0))
+        return;
+    if ((u_sd.learn.y & CV_SD_FILTER_SPATIAL) == 0u) {
+        cv_sd_splat_flux(int(ct.z), s, v);
+        return;
+    }
+    vec3 plo, phi, wlo;
+    cv_sd_footprint(p.x, size.x, lo.x, u_sd.cube.x, u_sd.cube.w, plo.x, phi.x, wlo.x);
+    cv_sd_footprint(p.y, size.y, lo.y, u_sd.cube.y, u_sd.cube.w, plo.y, phi.y, wlo.y);
+    cv_sd_footprint(p.z, size.z, lo.z, u_sd.cube.z, u_sd.cube.w, plo.z, phi.z, wlo.z);
+    for (int b = 0; b < 8; b++) {
+        vec3 x = vec3((b & 1) != 0 ? phi.x : plo.x, (b & 2) != 0 ? phi.y : plo.y,
+                      (b & 4) != 0 ? phi.z : plo.z);
+        float f = ((b & 1) != 0 ? 1.0 - wlo.x : wlo.x) * ((b & 2) != 0 ? 1.0 - wlo.y : wlo.y) *
+                  ((b & 4) != 0 ? 1.0 - wlo.z : wlo.z);
+        if (!(f > 0.0))
+            continue;
+        int cb = cv_sd_class_texel(x, cls);
+        if (cb >= 0)
+            cv_sd_splat_flux(int(imageLoad(sd_tree, cb).z), s, v * f);
     }
 }
 
