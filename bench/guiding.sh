@@ -230,9 +230,11 @@ END {
     printf "\n"
     for (r = 1; r <= nr; r++) { k = rows[r]; split(k, p, ",")
         printf "| %s | %s |", p[1], p[2]
-        for (i = 1; i <= nv; i++) printf " %.4g (%d) |", e[k, vl[i]], s[k, vl[i]]
+        # a variant not run on this scene reads "-"
+        for (i = 1; i <= nv; i++)
+            printf " %s |", ((k, vl[i]) in e) ? sprintf("%.4g (%d)", e[k, vl[i]], s[k, vl[i]]) : "-"
         for (i = 1; i <= nv; i++) if (vl[i] != "path")
-            printf " %s |", (e[k, "path"] > 0 ? sprintf("%.2f", e[k, vl[i]] / e[k, "path"]) : "-")
+            printf " %s |", (e[k, "path"] > 0 && (k, vl[i]) in e ? sprintf("%.2f", e[k, vl[i]] / e[k, "path"]) : "-")
         printf "\n" }
 }' "$work/medians.csv" > "$work/table.md" || exit 1
 cat "$work/table.md"
@@ -245,7 +247,8 @@ for name in $(awk -F, 'NR > 1 { if (!($1 in s)) { s[$1] = 1; print $1 } }' "$wor
         c=$work/logs/plot-$name-$v.csv
         awk -F, -v n="$name" -v v="$v" 'NR == 1 { print "seconds,relmse" }
             NR > 1 && $1 == n && $2 == v { print $3 "," $7 }' "$work/medians.csv" > "$c"
-        args="$args $c=$v"
+        # no series for a variant not run on this scene
+        [ "$(wc -l < "$c")" -gt 1 ] && args="$args $c=$v"
     done
     # shellcheck disable=SC2086
     "$bindir/plot" --out "$work/$name.png" --title "$name: relMSE at equal wall time" \
