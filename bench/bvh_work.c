@@ -48,6 +48,7 @@
 #include "gpu/context.h"
 #include "gpu/program.h"
 #include "scene/scene.h"
+#include "tests/bvh/sah_ref.h"
 
 /* ---- the scene's triangles ---- */
 
@@ -283,14 +284,6 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
 
 /* ---- figures of a tree ---- */
 
-static double half_area(const float lo[3], const float hi[3])
-{
-    double e[3];
-    for (int k = 0; k < 3; k++)
-        e[k] = hi[k] > lo[k] ? (double)hi[k] - lo[k] : 0.0;
-    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
-}
-
 struct tree_figures {
     double sah_wide;        /* c_node per node entered + c_tri per triangle, / A(root) */
     double overlap;         /* mean over inner nodes of sum(child areas) / node area */
@@ -305,7 +298,7 @@ static struct tree_figures figures(const struct wtree *w, double c_node, double 
     struct tree_figures f = {0};
     float rlo[3] = {w->pad_lo[0], w->pad_lo[1], w->pad_lo[2]};
     float rhi[3] = {w->pad_hi[0], w->pad_hi[1], w->pad_hi[2]};
-    double root = half_area(rlo, rhi);
+    double root = half_area3(rlo, rhi);
     /* node index, depth, the node's own area (its slot in the parent) */
     struct fnode { uint32_t n; int d; double a; } *st = malloc(sizeof(*st) * 4096);
     int sp = 0;
@@ -323,7 +316,7 @@ static struct tree_figures figures(const struct wtree *w, double c_node, double 
         for (int c = 0; c < nd->n; c++) {
             const float *lo = nd->lo[c], *hi = nd->hi[c];
             used++;
-            double a = half_area(lo, hi);
+            double a = half_area3(lo, hi);
             kids += a;
             int word = nd->word[c], count = nd->count[c];
             if (count > 0) {
@@ -388,107 +381,20 @@ static uint32_t rnode_new(struct rbuild *b)
 static double rbuild(struct rbuild *b, uint32_t at, uint32_t begin, uint32_t end)
 {
     uint32_t n = end - begin;
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t i = begin; i < end; i++) {
-        uint32_t t = b->ids[i];
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fminf(lo[k], b->lo[t][k]);
-            hi[k] = fmaxf(hi[k], b->hi[t][k]);
-            clo[k] = fminf(clo[k], b->c[t][k]);
-            chi[k] = fmaxf(chi[k], b->c[t][k]);
-        }
-    }
+    const struct sah_ref_tris t = {(const float(*)[3])b->lo, (const float(*)[3])b->hi,
+                                   (const float(*)[3])b->c};
+    float lo[3], hi[3], clo[3], chi[3];
+    sah_ref_bounds(&t, b->ids, begin, end, lo, hi, clo, chi);
     struct bnode *nd = &b->nodes[at];
     memcpy(nd->lo, lo, sizeof(lo));
     memcpy(nd->hi, hi, sizeof(hi));
     nd->left = nd->right = -1;
     nd->first = begin;
     nd->count = n;
-    double area = half_area(lo, hi), leaf = b->p.c_tri * area * n;
+    double area = half_area3(lo, hi), leaf = b->p.c_tri * area * n;
     if (n == 1)
         return leaf;
-    int nb = b->p.bins;
-    double best = INFINITY;
-    int best_axis = -1, best_bin = 0;
-    float (*blo)[3] = malloc(sizeof(*blo) * nb * 2), (*bhi)[3] = blo + nb;
-    uint32_t *cnt = malloc(sizeof(*cnt) * nb * 2), *rcnt = cnt + nb;
-    double *rarea = malloc(sizeof(*rarea) * nb);
-    for (int axis = 0; axis < 3; axis++) {
-        double ext = (double)chi[axis] - clo[axis];
-        if (!(ext > 0))
-            continue;
-        for (int i = 0; i < nb; i++) {
-            cnt[i] = 0;
-            for (int k = 0; k < 3; k++) {
-                blo[i][k] = INFINITY;
-                bhi[i][k] = -INFINITY;
-            }
-        }
-        for (uint32_t i = begin; i < end; i++) {
-            uint32_t t = b->ids[i];
-            int q = (int)((b->c[t][axis] - clo[axis]) / ext * nb);
-            q = q < 0 ? 0 : q >= nb ? nb - 1 : q;
-            cnt[q]++;
-            for (int k = 0; k < 3; k++) {
-                blo[q][k] = fminf(blo[q][k], b->lo[t][k]);
-                bhi[q][k] = fmaxf(bhi[q][k], b->hi[t][k]);
-            }
-        }
-        float slo[3] = {INFINITY, INFINITY, INFINITY}, shi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        uint32_t sc = 0;
-        for (int q = nb - 1; q > 0; q--) {
-            for (int k = 0; k < 3; k++) {
-                slo[k] = fminf(slo[k], blo[q][k]);
-                shi[k] = fmaxf(shi[k], bhi[q][k]);
-            }
-            sc += cnt[q];
-            rarea[q] = half_area(slo, shi);
-            rcnt[q] = sc;
-        }
-        for (int k = 0; k < 3; k++) {
-            slo[k] = INFINITY;
-            shi[k] = -INFINITY;
-        }
-        sc = 0;
-        for (int q = 0; q < nb - 1; q++) {
-            for (int k = 0; k < 3; k++) {
-                slo[k] = fminf(slo[k], blo[q][k]);
-                shi[k] = fmaxf(shi[k], bhi[q][k]);
-            }
-            sc += cnt[q];
-            if (sc == 0 || rcnt[q + 1] == 0)
-                continue;
-            double c = half_area(slo, shi) * sc + rarea[q + 1] * rcnt[q + 1];
-            if (c < best) {
-                best = c;
-                best_axis = axis;
-                best_bin = q;
-            }
-        }
-    }
-    free(blo);
-    free(cnt);
-    free(rarea);
-    uint32_t mid;
-    if (best_axis < 0) {
-        mid = begin + n / 2;
-    } else {
-        double ext = (double)chi[best_axis] - clo[best_axis];
-        uint32_t i = begin, j = end;
-        while (i < j) {
-            uint32_t t = b->ids[i];
-            int q = (int)((b->c[t][best_axis] - clo[best_axis]) / ext * nb);
-            q = q < 0 ? 0 : q >= nb ? nb - 1 : q;
-            if (q <= best_bin) {
-                i++;
-            } else {
-                b->ids[i] = b->ids[--j];
-                b->ids[j] = t;
-            }
-        }
-        mid = i;
-    }
+    uint32_t mid = sah_ref_split(&t, b->ids, begin, end, clo, chi, b->p.bins);
     uint32_t mark = b->n_nodes;
     uint32_t l = rnode_new(b), r = rnode_new(b);
     double split = b->p.c_inner * area + rbuild(b, l, begin, mid) + rbuild(b, r, mid, end);
@@ -519,7 +425,7 @@ static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[WIDE_MAX
         double best_area = -1;
         for (int c = 0; c < n; c++) {
             const struct bnode *k = &rb->nodes[kid[c]];
-            double a = half_area(k->lo, k->hi);
+            double a = half_area3(k->lo, k->hi);
             if (k->left >= 0 && a > best_area) {
                 best = c;
                 best_area = a;
@@ -592,7 +498,7 @@ static void wide_dp_run(const struct rbuild *rb, struct wide_dp *dp)
         int sl;
         for (int s = 2; s <= wide_k; s++)
             dp->g[i][s] = dp_split(rb, dp, i, s, &sl);
-        dp->f[i] = half_area(nd->lo, nd->hi) + dp->g[i][wide_k];
+        dp->f[i] = half_area3(nd->lo, nd->hi) + dp->g[i][wide_k];
     }
 }
 
@@ -738,7 +644,7 @@ static double ref_tree(const struct tris *m, struct ref_params p, struct wtree *
         b.ids[t] = t;
     }
     uint32_t root = rnode_new(&b);
-    double cost = rbuild(&b, root, 0, n) / half_area(b.nodes[0].lo, b.nodes[0].hi);
+    double cost = rbuild(&b, root, 0, n) / half_area3(b.nodes[0].lo, b.nodes[0].hi);
     widen_tree(&b, p.widen_sah, n, w);
     free(b.lo);
     free(b.hi);
@@ -1224,7 +1130,7 @@ int main(int argc, char **argv)
         }
         double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
                cz = e1[0] * e2[1] - e1[1] * e2[0];
-        double ta = 0.5 * sqrt(cx * cx + cy * cy + cz * cz), ba = half_area(lo, hi);
+        double ta = 0.5 * sqrt(cx * cx + cy * cy + cz * cz), ba = half_area3(lo, hi);
         box_sum += ba;
         tri_sum += ta;
         ratio_sum += ta > 0 ? fmin(ba / ta, 1e3) : 1e3;

@@ -15,6 +15,7 @@
 #include "glsl/shared/scene.h"
 #include "bvh/bvh.h"
 #include "gpu/buffer.h"
+#include "tests/bvh/sah_ref.h"
 
 struct mesh {
     CvVertex *v;
@@ -219,14 +220,6 @@ static inline void tri_box(const struct mesh *m, uint32_t t, float lo[3], float 
     }
 }
 
-static inline double half_area3(const float lo[3], const float hi[3])
-{
-    double e[3];
-    for (int k = 0; k < 3; k++)
-        e[k] = hi[k] > lo[k] ? (double)hi[k] - lo[k] : 0.0;
-    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
-}
-
 /* ---- CPU binned SAH reference (same costs and leaf limit as the GPU) ---- */
 
 struct ref_ctx {
@@ -240,94 +233,15 @@ struct ref_ctx {
 static double ref_build(struct ref_ctx *r, uint32_t begin, uint32_t end)
 {
     uint32_t n = end - begin;
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t i = begin; i < end; i++) {
-        uint32_t t = r->ids[i];
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fminf(lo[k], r->lo[t][k]);
-            hi[k] = fmaxf(hi[k], r->hi[t][k]);
-            clo[k] = fminf(clo[k], r->c[t][k]);
-            chi[k] = fmaxf(chi[k], r->c[t][k]);
-        }
-    }
+    const struct sah_ref_tris t = {(const float(*)[3])r->lo, (const float(*)[3])r->hi,
+                                   (const float(*)[3])r->c};
+    float lo[3], hi[3], clo[3], chi[3];
+    sah_ref_bounds(&t, r->ids, begin, end, lo, hi, clo, chi);
     double area = half_area3(lo, hi);
     double leaf = CV_BVH_COST_TRI * area * n;
     if (n == 1)
         return leaf;
-    double best = INFINITY;
-    int best_axis = -1, best_bin = 0;
-    for (int axis = 0; axis < 3; axis++) {
-        double ext = (double)chi[axis] - clo[axis];
-        if (!(ext > 0))
-            continue;
-        float blo[REF_BINS][3], bhi[REF_BINS][3];
-        uint32_t cnt[REF_BINS] = {0};
-        for (int b = 0; b < REF_BINS; b++)
-            for (int k = 0; k < 3; k++) {
-                blo[b][k] = INFINITY;
-                bhi[b][k] = -INFINITY;
-            }
-        for (uint32_t i = begin; i < end; i++) {
-            uint32_t t = r->ids[i];
-            int b = (int)((r->c[t][axis] - clo[axis]) / ext * REF_BINS);
-            b = b < 0 ? 0 : b >= REF_BINS ? REF_BINS - 1 : b;
-            cnt[b]++;
-            for (int k = 0; k < 3; k++) {
-                blo[b][k] = fminf(blo[b][k], r->lo[t][k]);
-                bhi[b][k] = fmaxf(bhi[b][k], r->hi[t][k]);
-            }
-        }
-        double right_area[REF_BINS];
-        uint32_t right_cnt[REF_BINS];
-        float rlo[3] = {INFINITY, INFINITY, INFINITY}, rhi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        uint32_t rc = 0;
-        for (int b = REF_BINS - 1; b > 0; b--) {
-            for (int k = 0; k < 3; k++) {
-                rlo[k] = fminf(rlo[k], blo[b][k]);
-                rhi[k] = fmaxf(rhi[k], bhi[b][k]);
-            }
-            rc += cnt[b];
-            right_area[b] = half_area3(rlo, rhi);
-            right_cnt[b] = rc;
-        }
-        float llo[3] = {INFINITY, INFINITY, INFINITY}, lhi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        uint32_t lc = 0;
-        for (int b = 0; b < REF_BINS - 1; b++) {
-            for (int k = 0; k < 3; k++) {
-                llo[k] = fminf(llo[k], blo[b][k]);
-                lhi[k] = fmaxf(lhi[k], bhi[b][k]);
-            }
-            lc += cnt[b];
-            if (lc == 0 || right_cnt[b + 1] == 0)
-                continue;
-            double c = half_area3(llo, lhi) * lc + right_area[b + 1] * right_cnt[b + 1];
-            if (c < best) {
-                best = c;
-                best_axis = axis;
-                best_bin = b;
-            }
-        }
-    }
-    uint32_t mid;
-    if (best_axis < 0) {
-        mid = begin + n / 2;  /* all centroids equal: split by index */
-    } else {
-        double ext = (double)chi[best_axis] - clo[best_axis];
-        uint32_t i = begin, j = end;
-        while (i < j) {
-            uint32_t t = r->ids[i];
-            int b = (int)((r->c[t][best_axis] - clo[best_axis]) / ext * REF_BINS);
-            b = b < 0 ? 0 : b >= REF_BINS ? REF_BINS - 1 : b;
-            if (b <= best_bin) {
-                i++;
-            } else {
-                r->ids[i] = r->ids[--j];
-                r->ids[j] = t;
-            }
-        }
-        mid = i;
-    }
+    uint32_t mid = sah_ref_split(&t, r->ids, begin, end, clo, chi, REF_BINS);
     double split = CV_BVH_COST_INNER * area + ref_build(r, begin, mid) + ref_build(r, mid, end);
     return n <= CV_BVH_MAX_LEAF && leaf <= split ? leaf : split;
 }
