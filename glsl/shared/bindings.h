@@ -24,7 +24,7 @@
 #define CV_BIND_TEXELS 5       /* uvec2[]: half RGBA */
 #define CV_BIND_LIGHTS 6       /* CvLight[] */
 /* 7: free (the light selection CDF is a buffer texture: CV_TEXUNIT_LIGHT_CDF) */
-#define CV_BIND_BVH_NODES 8    /* src/bvh node layout (glsl/bvh/layout.h) */
+#define CV_BIND_BVH_NODES 8    /* the 4-wide nodes (glsl/shared/bvh.h: CvBvhNode4) */
 #define CV_BIND_BVH_PRIMS 9    /* src/bvh leaf primitive order */
 /* CvBvhTri[]: leaf-ordered triangle positions (glsl/shared/bvh.h); above
  * the stage-private range so no stage's own buffers displace it. */
