@@ -220,7 +220,7 @@ static bool up_tri_object(const struct cv_scene *s, struct cv_scene_gpu *g, stru
  * bench/RESULTS.md, "Fresh and kept scratch"). Beyond that, or
  * where the driver does not say what is free (Mesa), it is freed, so that a
  * large scene's render never runs short for it. The same holds when a
- * scene is released and its BVH's own buffers (~130 bytes per triangle,
+ * scene is released and its BVH's own buffers (their size per triangle:
  * bvh/bvh.c) join the idle scratch. */
 static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
 {
