@@ -322,11 +322,14 @@ static int quadrant(float s[2])
 }
 
 /* The flux word of the leaf quadrant of point s in the training quadtree
- * at texel q (sdtree.glsl: cv_sd_train_leaf_word); -1 past the limit. */
-static int64_t leaf_word(const float (*x)[4], uint32_t q, const float s0[2])
+ * at texel q, -1 past the limit, and the quadrant's side (sdtree.glsl:
+ * cv_sd_train_leaf). */
+static int64_t leaf_word(const float (*x)[4], uint32_t q, const float s0[2], float *side)
 {
     float s[2] = {s0[0], s0[1]};
+    *side = 1.0f;
     for (uint32_t d = 0; d < CV_SD_MAX_DEPTH; d++) {
+        *side *= 0.5f;
         int k = quadrant(s);
         uint32_t c = (uint32_t)x[q][k];
         if (!c)
@@ -339,26 +342,21 @@ static int64_t leaf_word(const float (*x)[4], uint32_t q, const float s0[2])
 /* sdtree.glsl: cv_sd_add_leaf. */
 static void add_leaf(const float (*x)[4], uint32_t *stats, uint32_t q, const float s[2], float v)
 {
-    int64_t w = v > 0 ? leaf_word(x, q, s) : -1;
+    float side;
+    int64_t w = v > 0 ? leaf_word(x, q, s, &side) : -1;
     if (w >= 0)
         add_float(&stats[w], v);
 }
 
-/* sdtree.glsl: cv_sd_splat_flux. */
+/* sdtree.glsl: cv_sd_splat_flux (w, h: the leaf quadrant of s0 below q,
+ * as leaf_word found it). */
 static void splat_flux(const float (*x)[4], const struct cv_sd_frame *f, uint32_t *stats,
-                       uint32_t q, const float s0[2], float v)
+                       uint32_t q, const float s0[2], float v, int64_t w, float h)
 {
     if (!(f->filter & CV_SD_FILTER_DIRECTIONAL)) {
-        add_leaf(x, stats, q, s0, v);
+        if (w >= 0)
+            add_float(&stats[w], v);
         return;
-    }
-    float h = 1.0f, s[2] = {s0[0], s0[1]};
-    for (uint32_t d = 0, qq = q; d < CV_SD_MAX_DEPTH; d++) {
-        h *= 0.5f;
-        uint32_t c = (uint32_t)x[qq][quadrant(s)];
-        if (!c)
-            break;
-        qq = c;
     }
     float plo[2], phi[2], wlo[2];
     for (int a = 0; a < 2; a++)
@@ -385,13 +383,14 @@ void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t 
     uint32_t w = (uint32_t)ct[3];
     stats[w]++;
     stats[w + 1] += v > 0;
-    int64_t lw = leaf_word(x, (uint32_t)ct[2], s);
+    float h;
+    int64_t lw = leaf_word(x, (uint32_t)ct[2], s, &h);
     if (lw >= 0)
         stats[lw + 4]++;
     if (!(v > 0))
         return;
     if (!(f->filter & CV_SD_FILTER_SPATIAL)) {
-        splat_flux(x, f, stats, (uint32_t)ct[2], s, v);
+        splat_flux(x, f, stats, (uint32_t)ct[2], s, v, lw, h);
         return;
     }
     float plo[3], phi[3], wlo[3];
@@ -405,8 +404,12 @@ void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t 
             continue;
         float l2[3], s2[3];
         int32_t cb = class_texel_box(x, f, p, (uint32_t)cls, l2, s2);
-        if (cb >= 0)
-            splat_flux(x, f, stats, (uint32_t)x[cb][2], s, v * wt);
+        if (cb < 0)
+            continue;
+        uint32_t qb = (uint32_t)x[cb][2];
+        float hb;
+        int64_t wb = leaf_word(x, qb, s, &hb);
+        splat_flux(x, f, stats, qb, s, v * wt, wb, hb);
     }
 }
 

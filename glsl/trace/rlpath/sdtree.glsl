@@ -53,16 +53,31 @@ uint cv_sd_class(vec3 n)
 
 // The class texel of point p and orientation class cls (shared/sdtree.h),
 // -1 past the depth limit (a malformed table).
-int cv_sd_class_texel(vec3 p, uint cls)
+// Also the box of its spatial leaf: lo and size (the root cube u_sd.cube
+// halved along each split's axis on the way down), which the spatial
+// filter needs; cv_sd_class_texel leaves it to the compiler to drop.
+int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
 {
+    lo = u_sd.cube.xyz;
+    size = vec3(u_sd.cube.w);
     int node = 0;
     vec4 n = imageLoad(sd_tree, 0);
     for (uint d = 0u; d < CV_SD_MAX_SPATIAL_DEPTH && n.x < CV_SD_LEAF; d++) {
         int axis = int(n.x);
-        node = int(n.z) + (p[axis] >= n.y ? 1 : 0);
+        size[axis] *= 0.5;
+        bool upper = p[axis] >= n.y;
+        if (upper)
+            lo[axis] = n.y;
+        node = int(n.z) + (upper ? 1 : 0);
         n = imageLoad(sd_tree, node);
     }
     return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
+}
+
+int cv_sd_class_texel(vec3 p, uint cls)
+{
+    vec3 lo, size;
+    return cv_sd_class_texel_box(p, cls, lo, size);
 }
 
 // The quadtree of point p and orientation class cls: its root (x, a texel
@@ -240,44 +255,6 @@ float cv_sd_value(vec3 p, float pdf, uint cls, vec2 s, float L)
     return c > 0.0 ? v * c : 0.0;
 }
 
-// The class texel of point p and orientation class cls, as
-// cv_sd_class_texel, and the box of its spatial leaf: lo and size (the
-// root cube u_sd.cube halved along each split's axis on the way down).
-int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
-{
-    lo = u_sd.cube.xyz;
-    size = vec3(u_sd.cube.w);
-    int node = 0;
-    vec4 n = imageLoad(sd_tree, 0);
-    for (uint d = 0u; d < CV_SD_MAX_SPATIAL_DEPTH && n.x < CV_SD_LEAF; d++) {
-        int axis = int(n.x);
-        size[axis] *= 0.5;
-        bool upper = p[axis] >= n.y;
-        if (upper)
-            lo[axis] = n.y;
-        node = int(n.z) + (upper ? 1 : 0);
-        n = imageLoad(sd_tree, node);
-    }
-    return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
-}
-
-// The side of the leaf quadrant of point s in the training quadtree at
-// texel q: the record's directional footprint.
-float cv_sd_train_leaf_side(int q, vec2 s)
-{
-    float side = 1.0;
-    for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        side *= 0.5;
-        int k = (s.x < 0.5 ? 0 : 1) + 2 * (s.y < 0.5 ? 0 : 1);
-        s = 2.0 * s - vec2(float(k & 1), float(k >> 1));
-        int child = int(imageLoad(sd_tree, q)[k]);
-        if (child == 0)
-            break;
-        q = child;
-    }
-    return side;
-}
-
 // The footprint of side h about x in [0, 1] units of a grid of cells of
 // side h from origin o, moved inside [o0, o0 + 1 * span] (span: the extent
 // the footprint must stay in): the two cells it overlaps, as the centre of
@@ -297,10 +274,13 @@ void cv_sd_footprint(float x, float h, float o, float o0, float span, out float 
 }
 
 // The statistics word of the leaf quadrant of point s in the training
-// quadtree at texel q (its flux word; its count is 4 words on).
-int cv_sd_train_leaf_word(int q, vec2 s)
+// quadtree at texel q (its flux word; its count is 4 words on), and that
+// quadrant's side (the record's directional footprint).
+int cv_sd_train_leaf(int q, vec2 s, out float side)
 {
+    side = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
+        side *= 0.5;
         int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
         s = 2.0 * s - vec2(float(ix), float(iy));
@@ -316,14 +296,16 @@ int cv_sd_train_leaf_word(int q, vec2 s)
 // quadtree at texel q.
 void cv_sd_add_leaf(int q, vec2 s, float v)
 {
-    int w = v > 0.0 ? cv_sd_train_leaf_word(q, s) : -1;
+    float side;
+    int w = v > 0.0 ? cv_sd_train_leaf(q, s, side) : -1;
     if (w >= 0)
         cv_sd_add(w, v);
 }
 
-// Adds flux v of a record at s to the training quadtree at texel q: to
-// the leaf quadrant s falls in only (the host sums the inner quadrants
-// from their children, sdtree.c, so no word above a leaf takes an add).
+// Adds flux v of a record at s to the training quadtree at texel q, whose
+// leaf quadrant of s the caller found (cv_sd_train_leaf: word w, side h):
+// to that leaf quadrant only (the host sums the inner quadrants from their
+// children, sdtree.c, so no word above a leaf takes an add).
 // With CV_SD_FILTER_DIRECTIONAL, Müller et al.'s box filter: a square of
 // the side of that leaf quadrant, about s (moved inside the unit square,
 // so that no flux is lost at its edges), overlaps at most four cells of
@@ -331,13 +313,13 @@ void cv_sd_add_leaf(int q, vec2 s, float v)
 // weights of s), added at the leaf quadrant where the centre of that part
 // falls (a neighbour split finer than the footprint takes its part
 // there).
-void cv_sd_splat_flux(int q, vec2 s, float v)
+void cv_sd_splat_flux(int q, vec2 s, float v, int w, float h)
 {
     if ((u_sd.learn.y & CV_SD_FILTER_DIRECTIONAL) == 0u) {
-        cv_sd_add_leaf(q, s, v);
+        if (w >= 0)
+            cv_sd_add(w, v);
         return;
     }
-    float h = cv_sd_train_leaf_side(q, s);
     vec2 plo, phi, wlo;
     cv_sd_footprint(s.x, h, 0.0, 0.0, 1.0, plo.x, phi.x, wlo.x);
     cv_sd_footprint(s.y, h, 0.0, 0.0, 1.0, plo.y, phi.y, wlo.y);
@@ -370,13 +352,14 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
     imageAtomicAdd(sd_stats, w, 1u);
     if (v > 0.0)
         imageAtomicAdd(sd_stats, w + 1, 1u);
-    int lw = cv_sd_train_leaf_word(int(ct.z), s);
+    float h;
+    int lw = cv_sd_train_leaf(int(ct.z), s, h);
     if (lw >= 0)
         imageAtomicAdd(sd_stats, lw + 4, 1u);
     if (!(v > 0.0))
         return;
     if ((u_sd.learn.y & CV_SD_FILTER_SPATIAL) == 0u) {
-        cv_sd_splat_flux(int(ct.z), s, v);
+        cv_sd_splat_flux(int(ct.z), s, v, lw, h);
         return;
     }
     vec3 plo, phi, wlo;
@@ -391,8 +374,12 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
         if (!(f > 0.0))
             continue;
         int cb = cv_sd_class_texel(x, cls);
-        if (cb >= 0)
-            cv_sd_splat_flux(int(imageLoad(sd_tree, cb).z), s, v * f);
+        if (cb < 0)
+            continue;
+        int qb = int(imageLoad(sd_tree, cb).z);
+        float hb;
+        int wb = cv_sd_train_leaf(qb, s, hb);
+        cv_sd_splat_flux(qb, s, v * f, wb, hb);
     }
 }
 
