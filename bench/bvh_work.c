@@ -6,9 +6,9 @@
  * first, the others pushed farthest first, a node's leaf children tested
  * as one run, children beyond the current hit culled), counting nodes
  * visited and triangles tested per query. The rays look like a path
- * tracer's: camera rays, two diffuse bounces (cosine about the geometric
- * normal) from real hit points, and a shadow ray (any hit) to a light
- * chosen by power from every hit point. Prints per query type the mean
+ * tracer's (bench/rays.h, spawned from this walk's hits): camera rays, two
+ * diffuse bounces from real hit points, and a shadow ray (any hit) to a
+ * light chosen by power from every hit point. Prints per query type the mean
  * nodes and triangles, the cost c_node * nodes + c_tri * triangles, and of
  * the tree: the SAH cost (binary, the build's constants; wide, the cost
  * model's), the leaf-size histogram, depth, node count and how much child
@@ -49,38 +49,16 @@
 #include "gpu/program.h"
 #include "scene/scene.h"
 #include "tests/bvh/sah_ref.h"
+#include "bench/rays.h"
 
 /* ---- the scene's triangles ---- */
 
-struct tris {
-    const CvVertex *v;
-    const CvTriangle *t;
-    uint32_t n;
-};
-
-static void tri_pos(const struct tris *m, uint32_t t, double p[3][3])
-{
-    const uint32_t *ix = &m->t[t].idx.x;
-    for (int j = 0; j < 3; j++)
-        for (int k = 0; k < 3; k++)
-            p[j][k] = (&m->v[ix[j]].pos_u.x)[k];
-}
-
-static uint64_t rng_state;
-static double rnd(void)
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
-}
-
 /* Möller-Trumbore in double: t and the barycentrics, or false. */
-static bool ray_tri(const struct tris *m, uint32_t t, const double o[3], const double d[3],
+static bool ray_tri(const struct bench_tris *m, uint32_t t, const double o[3], const double d[3],
                     double *th, double *b1, double *b2)
 {
     double p[3][3], e1[3], e2[3], s[3], q[3], h[3];
-    tri_pos(m, t, p);
+    bench_tri_pos(m, t, p);
     for (int k = 0; k < 3; k++) {
         e1[k] = p[1][k] - p[0][k];
         e2[k] = p[2][k] - p[0][k];
@@ -173,21 +151,11 @@ struct work {
     uint64_t repeats;  /* of tris: a triangle already tested in the same leaf */
 };
 
-struct ray {
-    float o[3], tmin, d[3], tmax; /* as rays_test.comp reads them */
-};
-
-struct hit {
-    double t;
-    uint32_t prim;  /* UINT32_MAX: none */
-    float b1, b2;
-};
-
 /* One query, closest (any false) or any hit, in traverse.glsl's order. */
-static struct hit walk(const struct wtree *w, const struct tris *m, const struct ray *r, bool any,
+static struct bench_hit walk(const struct wtree *w, const struct bench_tris *m, const struct bench_ray *r, bool any,
                        struct work *wk)
 {
-    struct hit h = {.t = r->tmax, .prim = UINT32_MAX};
+    struct bench_hit h = {.t = r->tmax, .prim = UINT32_MAX};
     double od[3] = {r->o[0], r->o[1], r->o[2]}, dd[3] = {r->d[0], r->d[1], r->d[2]};
     float inv[3];
     for (int k = 0; k < 3; k++) {
@@ -251,7 +219,7 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
                         return h;
                     }
                 } else if (t < h.t || (t == h.t && p < h.prim)) {
-                    h = (struct hit){t, p, (float)b1, (float)b2};
+                    h = (struct bench_hit){t, p, (float)b1, (float)b2};
                 }
             }
         /* the next node: nearest inner child; the others pushed farthest
@@ -280,6 +248,21 @@ static struct hit walk(const struct wtree *w, const struct tris *m, const struct
     if (!any && h.prim != UINT32_MAX)
         wk->hits++;
     return h;
+}
+
+/* The ray generator's tracer: this walk's closest hits. */
+struct walk_tracer {
+    const struct wtree *w;
+    const struct bench_tris *m;
+};
+
+static bool walk_trace(void *ctx, const struct bench_ray *r, uint32_t n, struct bench_hit *out)
+{
+    const struct walk_tracer *wt = ctx;
+    struct work dummy = {0};
+    for (uint32_t i = 0; i < n; i++)
+        out[i] = walk(wt->w, wt->m, &r[i], false, &dummy);
+    return true;
 }
 
 /* ---- figures of a tree ---- */
@@ -359,7 +342,7 @@ struct bnode {
 };
 
 struct rbuild {
-    const struct tris *m;
+    const struct bench_tris *m;
     struct ref_params p;
     float (*lo)[3], (*hi)[3], (*c)[3];
     uint32_t *ids;
@@ -625,7 +608,7 @@ static void binary_from_gpu(const CvBvhNode *bin, uint32_t n_bin, uint32_t *prim
 }
 
 /* A CPU-built tree over m; returns the binary SAH cost (normalised). */
-static double ref_tree(const struct tris *m, struct ref_params p, struct wtree *w)
+static double ref_tree(const struct bench_tris *m, struct ref_params p, struct wtree *w)
 {
     struct rbuild b = {.m = m, .p = p};
     uint32_t n = m->n;
@@ -635,7 +618,7 @@ static double ref_tree(const struct tris *m, struct ref_params p, struct wtree *
     b.ids = malloc(n * sizeof(*b.ids));
     for (uint32_t t = 0; t < n; t++) {
         double q[3][3];
-        tri_pos(m, t, q);
+        bench_tri_pos(m, t, q);
         for (int k = 0; k < 3; k++) {
             b.lo[t][k] = (float)fmin(q[0][k], fmin(q[1][k], q[2][k]));
             b.hi[t][k] = (float)fmax(q[0][k], fmax(q[1][k], q[2][k]));
@@ -651,179 +634,6 @@ static double ref_tree(const struct tris *m, struct ref_params p, struct wtree *
     free(b.c);
     free(b.nodes);
     return cost;
-}
-
-/* ---- path-tracer-like rays ---- */
-
-enum { Q_CAMERA, Q_BOUNCE1, Q_BOUNCE2, Q_SHADOW, Q_TYPES };
-static const char *const q_names[Q_TYPES] = {"camera", "bounce1", "bounce2", "shadow"};
-
-struct rayset {
-    struct ray *r;
-    uint32_t n, cap;
-};
-
-static void rs_push(struct rayset *s, struct ray r)
-{
-    if (s->n == s->cap) {
-        s->cap = s->cap ? 2 * s->cap : 4096;
-        s->r = realloc(s->r, s->cap * sizeof(*s->r));
-    }
-    s->r[s->n++] = r;
-}
-
-static void normalize(double v[3])
-{
-    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int k = 0; k < 3; k++)
-            v[k] /= l;
-}
-
-/* A cosine-distributed direction about n. */
-static void cosine_dir(const double n[3], double d[3])
-{
-    double u1 = rnd(), u2 = rnd(), r = sqrt(u1), phi = 6.283185307179586 * u2;
-    double x = r * cos(phi), y = r * sin(phi), z = sqrt(fmax(0.0, 1 - u1));
-    double a[3] = {fabs(n[0]) > 0.9 ? 0 : 1, fabs(n[0]) > 0.9 ? 1 : 0, 0};
-    double t[3] = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
-    normalize(t);
-    double b[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
-    for (int k = 0; k < 3; k++)
-        d[k] = x * t[k] + y * b[k] + z * n[k];
-}
-
-struct scene_rays {
-    const struct cv_scene *sc;
-    const struct tris *m;
-    double eps;          /* spawn offset along the normal */
-    double *light_cdf;
-};
-
-/* A shadow ray from p (normal n, facing the incoming side) to a light
- * picked by power; none when the light is behind the surface. */
-static void shadow_ray(const struct scene_rays *s, const double p[3], const double n[3],
-                       struct rayset *out)
-{
-    const struct cv_scene *sc = s->sc;
-    if (sc->n_lights == 0)
-        return;
-    double u = rnd() * s->light_cdf[sc->n_lights - 1];
-    uint32_t li = 0;
-    while (li + 1 < sc->n_lights && s->light_cdf[li] <= u)
-        li++;
-    const CvLight *L = &sc->lights[li];
-    double d[3], tmax = 1e30;
-    if (L->type == CV_LIGHT_AREA && L->prim < s->m->n) {
-        double q[3][3], b1 = rnd(), b2 = rnd();
-        if (b1 + b2 > 1) {
-            b1 = 1 - b1;
-            b2 = 1 - b2;
-        }
-        tri_pos(s->m, L->prim, q);
-        for (int k = 0; k < 3; k++)
-            d[k] = (1 - b1 - b2) * q[0][k] + b1 * q[1][k] + b2 * q[2][k] - p[k];
-        tmax = 0.999;
-    } else if (L->type == CV_LIGHT_POINT || L->type == CV_LIGHT_SPOT) {
-        for (int k = 0; k < 3; k++)
-            d[k] = (&L->position.x)[k] - p[k];
-        tmax = 0.999;
-    } else if (L->type == CV_LIGHT_DISTANT) {
-        for (int k = 0; k < 3; k++)
-            d[k] = -(&L->direction.x)[k];
-    } else {
-        cosine_dir(n, d);
-    }
-    if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] <= 0)
-        return;
-    struct ray r = {.tmin = 0, .tmax = (float)tmax};
-    for (int k = 0; k < 3; k++) {
-        r.o[k] = (float)(p[k] + s->eps * n[k]);
-        r.d[k] = (float)d[k];
-    }
-    rs_push(out, r);
-}
-
-/* The hit point of r and its geometric normal, turned towards the ray. */
-static void hit_frame(const struct tris *m, const struct ray *r, const struct hit *h, double p[3],
-                      double n[3])
-{
-    double q[3][3];
-    tri_pos(m, h->prim, q);
-    double e1[3], e2[3];
-    for (int k = 0; k < 3; k++) {
-        p[k] = r->o[k] + h->t * r->d[k];
-        e1[k] = q[1][k] - q[0][k];
-        e2[k] = q[2][k] - q[0][k];
-    }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    normalize(n);
-    if (n[0] * r->d[0] + n[1] * r->d[1] + n[2] * r->d[2] > 0)
-        for (int k = 0; k < 3; k++)
-            n[k] = -n[k];
-}
-
-/* Camera rays on a res-wide grid (jittered), then per hit a shadow ray and
- * a diffuse bounce, twice: every set traced through tree w. */
-static void make_rays(const struct scene_rays *s, const struct wtree *w, int res,
-                      struct rayset sets[Q_TYPES])
-{
-    const CvCamera *cam = &s->sc->camera;
-    double fw = cam->film.x ? cam->film.x : 1, fh = cam->film.y ? cam->film.y : 1;
-    int rw = res, rh = (int)(res * fh / fw + 0.5);
-    if (rh < 1)
-        rh = 1;
-    for (int y = 0; y < rh; y++)
-        for (int x = 0; x < rw; x++) {
-            double px = (x + rnd()) / rw, py = (y + rnd()) / rh;
-            double sx = cam->screen.x + px * (cam->screen.y - cam->screen.x);
-            double sy = cam->screen.w - py * (cam->screen.w - cam->screen.z);
-            double lo[3], ld[3];
-            if (cam->type == CV_CAMERA_ORTHOGRAPHIC) {
-                lo[0] = sx, lo[1] = sy, lo[2] = 0;
-                ld[0] = 0, ld[1] = 0, ld[2] = 1;
-            } else {
-                lo[0] = lo[1] = lo[2] = 0;
-                ld[0] = sx * cam->lens.z, ld[1] = sy * cam->lens.z, ld[2] = 1;
-            }
-            struct ray r = {.tmin = 0, .tmax = 1e30f};
-            for (int k = 0; k < 3; k++) {
-                const float *row = &cam->to_world[k].x;
-                r.o[k] = (float)(row[0] * lo[0] + row[1] * lo[1] + row[2] * lo[2] + row[3]);
-                r.d[k] = (float)(row[0] * ld[0] + row[1] * ld[1] + row[2] * ld[2]);
-            }
-            rs_push(&sets[Q_CAMERA], r);
-        }
-    struct work dummy = {0};
-    for (int q = Q_CAMERA; q <= Q_BOUNCE1; q++)
-        for (uint32_t i = 0; i < sets[q].n; i++) {
-            struct ray r = sets[q].r[i];
-            struct hit h = walk(w, s->m, &r, false, &dummy);
-            if (h.prim == UINT32_MAX)
-                continue;
-            double p[3], n[3], d[3];
-            hit_frame(s->m, &r, &h, p, n);
-            shadow_ray(s, p, n, &sets[Q_SHADOW]);
-            cosine_dir(n, d);
-            struct ray b = {.tmin = 0, .tmax = 1e30f};
-            for (int k = 0; k < 3; k++) {
-                b.o[k] = (float)(p[k] + s->eps * n[k]);
-                b.d[k] = (float)d[k];
-            }
-            rs_push(&sets[q + 1], b);
-        }
-    /* the second bounce's hits cast shadow rays too */
-    for (uint32_t i = 0; i < sets[Q_BOUNCE2].n; i++) {
-        struct ray r = sets[Q_BOUNCE2].r[i];
-        struct hit h = walk(w, s->m, &r, false, &dummy);
-        if (h.prim == UINT32_MAX)
-            continue;
-        double p[3], n[3];
-        hit_frame(s->m, &r, &h, p, n);
-        shadow_ray(s, p, n, &sets[Q_SHADOW]);
-    }
 }
 
 /* ---- report ---- */
@@ -847,8 +657,8 @@ struct costs {
 };
 
 static double report_tree(const char *label, const struct wtree *w, double sah_bin,
-                          double c_inner, double c_leaf, const struct rayset sets[Q_TYPES],
-                          const struct tris *m, struct costs cm)
+                          double c_inner, double c_leaf, const struct bench_rayset sets[BENCH_Q_TYPES],
+                          const struct bench_tris *m, struct costs cm)
 {
     struct tree_figures f = figures(w, cm.c_node, cm.c_tri);
     printf("%s: %u nodes, depth %d, %.2f children per node, %u leaves, %.2f slots per "
@@ -870,12 +680,12 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
            all_repeats = 0;
     printf("  %-8s %8s %9s %9s %8s %9s %9s %9s\n", "query", "rays", "nodes", "tris", "hit%", "cost",
            "p99 cost", "warp max");
-    for (int q = 0; q < Q_TYPES; q++) {
+    for (int q = 0; q < BENCH_Q_TYPES; q++) {
         struct work wk = {0};
         double *per = malloc(sizeof(double) * (sets[q].n + 1)), warp = 0, wmax = 0;
         for (uint32_t i = 0; i < sets[q].n; i++) {
             struct work one = {0};
-            walk(w, m, &sets[q].r[i], q == Q_SHADOW, &one);
+            walk(w, m, &sets[q].r[i], q == BENCH_Q_SHADOW, &one);
             wk.nodes += one.nodes;
             wk.tris += one.tris;
             wk.hits += one.hits;
@@ -898,12 +708,12 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
             tail_cost = per;
             qsort(idx, sets[q].n, sizeof(uint32_t), cmp_by_cost);
             for (uint32_t j = 0; j < sets[q].n && j < (uint32_t)tail_n; j++) {
-                const struct ray *r = &sets[q].r[idx[j]];
+                const struct bench_ray *r = &sets[q].r[idx[j]];
                 struct work one = {0};
-                struct hit h = walk(w, m, r, q == Q_SHADOW, &one);
+                struct bench_hit h = walk(w, m, r, q == BENCH_Q_SHADOW, &one);
                 printf("    %s #%u: %llu nodes, %llu triangles, o (%g %g %g) d (%g %g %g) "
                        "tmax %g, hit %s t %g prim %d\n",
-                       q_names[q], idx[j], (unsigned long long)one.nodes,
+                       bench_q_names[q], idx[j], (unsigned long long)one.nodes,
                        (unsigned long long)one.tris, r->o[0], r->o[1], r->o[2], r->d[0], r->d[1],
                        r->d[2], r->tmax, h.prim == UINT32_MAX ? "none" : "yes", h.t,
                        h.prim == UINT32_MAX ? -1 : (int)h.prim);
@@ -913,7 +723,7 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
         qsort(per, sets[q].n, sizeof(double), cmp_double);
         double nq = wk.queries ? (double)wk.queries : 1;
         double cost = (cm.c_node * wk.nodes + cm.c_tri * wk.tris) / nq;
-        printf("  %-8s %8u %9.2f %9.2f %7.1f%% %9.2f %9.2f %9.2f\n", q_names[q], sets[q].n,
+        printf("  %-8s %8u %9.2f %9.2f %7.1f%% %9.2f %9.2f %9.2f\n", bench_q_names[q], sets[q].n,
                wk.nodes / nq, wk.tris / nq, 100.0 * wk.hits / nq, cost,
                sets[q].n ? per[(size_t)(sets[q].n * 0.99)] : 0, warp / nq);
         free(per);
@@ -936,7 +746,7 @@ static double report_tree(const char *label, const struct wtree *w, double sah_b
 /* The camera rays through the GPU's traversal (rays_test.comp): the hits
  * and the nodes visited (closest + any per ray) must equal this walk's. */
 static bool verify(struct cv_gpu *gpu, struct cv_bvh *bvh, GLuint vb, GLuint tb,
-                   const struct wtree *w, const struct tris *m, const struct rayset *cam)
+                   const struct wtree *w, const struct bench_tris *m, const struct bench_rayset *cam)
 {
     struct cv_error err = {{0}};
     uint32_t n = cam->n;
@@ -965,7 +775,7 @@ static bool verify(struct cv_gpu *gpu, struct cv_bvh *bvh, GLuint vb, GLuint tb,
         uint32_t differ = 0, steps_differ = 0;
         for (uint32_t i = 0; i < n; i++) {
             struct work wk = {0};
-            struct hit h = walk(w, m, &cam->r[i], false, &wk);
+            struct bench_hit h = walk(w, m, &cam->r[i], false, &wk);
             walk(w, m, &cam->r[i], true, &wk);
             gpu_steps += got[4 * i + 3];
             cpu_steps += wk.nodes;
@@ -1051,14 +861,13 @@ int main(int argc, char **argv)
                 "2..4096\n", WIDE_MAX, CV_BVH_MAX_LEAF);
         return 2;
     }
-    rng_state = 88172645463325252ull ^ (seed * 0x9E3779B97F4A7C15ull);
     struct cv_error err = {{0}};
     struct cv_scene *sc = NULL;
     if (!cv_scene_load(path, &(struct cv_scene_load_params){0}, &sc, &err)) {
         fprintf(stderr, "bvh_work: %s\n", err.msg);
         return 1;
     }
-    struct tris m = {.v = sc->vertices, .t = sc->triangles, .n = cv_scene_static_triangles(sc)};
+    struct bench_tris m = {.v = sc->vertices, .t = sc->triangles, .n = cv_scene_static_triangles(sc)};
     if (m.n < 2) {
         fprintf(stderr, "bvh_work: %s has fewer than 2 static triangles\n", path);
         return 1;
@@ -1101,25 +910,19 @@ int main(int argc, char **argv)
     double diag = 0;
     for (int k = 0; k < 3; k++)
         diag += ((double)gw.pad_hi[k] - gw.pad_lo[k]) * ((double)gw.pad_hi[k] - gw.pad_lo[k]);
-    struct scene_rays sr = {.sc = sc, .m = &m, .eps = 1e-5 * sqrt(diag)};
-    sr.light_cdf = malloc(sizeof(double) * (sc->n_lights + 1));
-    double acc = 0;
-    for (uint32_t i = 0; i < sc->n_lights; i++) {
-        acc += sc->light_power ? fmax(sc->light_power[i], 0.0) : 1.0;
-        sr.light_cdf[i] = acc;
-    }
-    if (sc->n_lights && !(acc > 0))
-        for (uint32_t i = 0; i < sc->n_lights; i++)
-            sr.light_cdf[i] = i + 1;
-    struct rayset sets[Q_TYPES] = {{0}};
-    make_rays(&sr, &gw, res, sets);
+    struct walk_tracer wt = {&gw, &m};
+    struct bench_rayset sets[BENCH_Q_TYPES] = {{0}};
+    bench_rays_make(&(struct bench_rays_params){.sc = sc, .m = &m, .eps = 1e-5 * sqrt(diag),
+                                                .res = res, .seed = seed, .trace = walk_trace,
+                                                .ctx = &wt},
+                    sets);
 
     /* why a scene is expensive: how much larger a triangle's box is than
      * the triangle (long thin triangles across the axes) */
     double ratio_sum = 0, box_sum = 0, tri_sum = 0;
     for (uint32_t t = 0; t < m.n; t++) {
         double q[3][3];
-        tri_pos(&m, t, q);
+        bench_tri_pos(&m, t, q);
         float lo[3], hi[3];
         double e1[3], e2[3];
         for (int k = 0; k < 3; k++) {
@@ -1146,7 +949,7 @@ int main(int argc, char **argv)
     double gpu_cost = report_tree(label, &gw, st->sah_cost, CV_BVH_COST_INNER,
                                   CV_BVH_COST_TRI, sets, &m, cm);
     int status = 0;
-    if (do_verify && !verify(gpu, bvh, vb, tb, &gw, &m, &sets[Q_CAMERA]))
+    if (do_verify && !verify(gpu, bvh, vb, tb, &gw, &m, &sets[BENCH_Q_CAMERA]))
         status = 1;
     if (bin) {
         /* the renderer's binary tree widened here: --wide 4 greedy must
@@ -1175,9 +978,7 @@ int main(int argc, char **argv)
                ref_cost > 0 ? gpu_cost / ref_cost : 0);
         wtree_free(&rw);
     }
-    for (int q = 0; q < Q_TYPES; q++)
-        free(sets[q].r);
-    free(sr.light_cdf);
+    bench_rays_free(sets);
     wtree_free(&gw);
     cv_bvh_destroy(&bvh);
     cv_buffer_destroy(&vb);
