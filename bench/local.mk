@@ -46,3 +46,26 @@ noinst_PROGRAMS += bench/bvh_work
 bench_bvh_work_SOURCES = bench/bvh_work.c bench/rays.c bench/rays.h tests/bvh/sah_ref.h
 bench_bvh_work_LDADD = $(CV_LIBS) -lm
 bench_bvh_work_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
+# the same rays on Cavalry's traversal and on the RT cores (Vulkan
+# ray-tracing pipelines); built only where configure found Vulkan and
+# glslangValidator. The shaders' SPIR-V is compiled into the binary.
+RT_PROBE_SPV = bench/rt_probe_rgen.h bench/rt_probe_rchit.h bench/rt_probe_rmiss.h
+EXTRA_DIST += bench/rt_probe.rgen bench/rt_probe.rchit bench/rt_probe.rmiss \
+	bench/rt_probe_payload.glsl
+if HAVE_RT_PROBE
+noinst_PROGRAMS += bench/rt_probe
+bench_rt_probe_SOURCES = bench/rt_probe.c bench/rays.c bench/rays.h bench/rt_vk.c bench/rt_vk.h
+nodist_bench_rt_probe_SOURCES = $(RT_PROBE_SPV)
+bench_rt_probe_LDADD = $(CV_LIBS) $(VULKAN_LIBS) -lm
+bench_rt_probe_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl $(VULKAN_CFLAGS)
+BUILT_SOURCES += $(RT_PROBE_SPV)
+bench/rt_probe-rt_vk.$(OBJEXT): $(RT_PROBE_SPV)
+CLEANFILES += $(RT_PROBE_SPV)
+# bench/rt_probe.STAGE -> bench/rt_probe_STAGE.h: a uint32_t array named
+# rt_probe_STAGE (glslangValidator prints its messages on stdout: shown
+# only when it fails)
+bench/rt_probe_%.h: $(srcdir)/bench/rt_probe.% $(srcdir)/bench/rt_probe_payload.glsl
+	@$(MKDIR_P) bench
+	$(AM_V_GEN)$(GLSLANG) --target-env vulkan1.2 -V --vn rt_probe_$* -o $@.tmp $< >$@.log 2>&1 \
+		|| { cat $@.log; rm -f $@.log $@.tmp; exit 1; }; rm -f $@.log; mv $@.tmp $@
+endif

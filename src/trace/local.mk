@@ -21,6 +21,7 @@ GLSL_FILES += \
 	glsl/trace/regenerate.glsl \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
 	glsl/trace/resolve.comp glsl/trace/matte.comp glsl/trace/test/sampler_probe.comp \
+	glsl/trace/test/trace_probe.comp \
 	glsl/shared/bdpt.h glsl/trace/bdpt/bdpt.comp glsl/trace/bdpt/endpoints.glsl \
 	glsl/trace/bdpt/media.glsl
 # ---- bsdf / light sampling (branch bsdf) ----

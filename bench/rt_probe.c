@@ -1,0 +1,334 @@
+/* rt_probe.c: how much faster would the RT cores trace the renderer's rays
+ * on the same GPU? Loads a pbrt scene through the normal loader, builds the
+ * renderer's triangle tree (cv_bvh_build with the CAVALRY_BVH_* knobs) and
+ * makes bvh_work's path-tracer-like rays (bench/rays.h), spawned from this
+ * traversal's hits. Then traces every query type with two back ends:
+ *   gl:     Cavalry's traversal (glsl/trace/test/trace_probe.comp: the
+ *           traverse.glsl path intersect.comp and shadow.comp compile),
+ *           one dispatch per repeat, timed with GL timestamp queries
+ *           (gpu/timer.h);
+ *   vulkan: a ray-tracing pipeline over one BLAS of the same triangles
+ *           (bench/rt_vk.h), one launch per repeat, timed with Vulkan
+ *           timestamp queries.
+ * Camera and bounce rays are closest-hit queries, shadow rays any-hit.
+ * Prints per query type the median time and rays/s of each back end, their
+ * ratio and how often the two agree: closest hits on the same triangle at
+ * a t within a relative 1e-3 (or both missing), any-hit queries on
+ * occluded or not.
+ *   rt_probe SCENE.pbrt [--res N] [--seed S] [--repeats R]
+ * Without a Vulkan device that has ray-tracing pipelines the Vulkan columns
+ * say why they are empty and the exit status stays 0. Run from the build
+ * tree (embedded shaders) or with CAVALRY_DATA_DIR at the source tree. */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench/rays.h"
+#include "bench/rt_vk.h"
+#include "bvh/bvh.h"
+#include "cli/knobs.h"
+#include "glsl/shared/bindings.h"
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "gpu/program.h"
+#include "gpu/timer.h"
+#include "scene/scene.h"
+
+#define MAX_REPEATS 64
+
+/* Cavalry's traversal: the programs and the buffers of one ray set. */
+struct gl_tracer {
+    struct cv_gpu *gpu;
+    struct cv_program *closest, *any;
+    GLuint rays, results;
+    size_t cap;  /* rays the two buffers hold */
+};
+
+static struct cv_program *probe_program(struct cv_gpu *gpu, const struct cv_bvh *bvh, bool any,
+                                        struct cv_error *err)
+{
+    const char *defs[3];
+    int k = 0;
+    if (cv_bvh_stack_define(bvh))
+        defs[k++] = cv_bvh_stack_define(bvh);
+    if (any)
+        defs[k++] = "CV_PROBE_ANY_HIT";
+    defs[k] = NULL;
+    return cv_program_get(gpu, "trace/test/trace_probe.comp", defs, err);
+}
+
+/* Uploads n rays, growing the buffers when needed, and binds them. */
+static bool gl_load(struct gl_tracer *g, const struct bench_ray *r, uint32_t n,
+                    struct cv_error *err)
+{
+    if (n > g->cap) {
+        cv_buffer_destroy(&g->rays);
+        cv_buffer_destroy(&g->results);
+        g->cap = n;
+        g->rays = cv_buffer_create(n * sizeof(*r), NULL, "probe rays", err);
+        g->results = g->rays ? cv_buffer_create_uninit((size_t)n * 8, "probe results", err) : 0;
+        if (!g->results) {
+            g->cap = 0;
+            return false;
+        }
+    }
+    cv_buffer_bind(g->rays, CV_BIND_PROBE_IN);
+    cv_buffer_bind(g->results, CV_BIND_PROBE_OUT);
+    return n == 0 || cv_buffer_upload(g->rays, 0, n * sizeof(*r), r, err);
+}
+
+static void gl_dispatch(const struct gl_tracer *g, bool any, uint32_t n)
+{
+    const struct cv_program *p = any ? g->any : g->closest;
+    cv_program_set_uint(p, "u_n_rays", n);
+    cv_program_dispatch_1d(p, n);
+}
+
+/* The ray generator's tracer: closest hits through Cavalry's traversal. */
+static bool gl_trace(void *ctx, const struct bench_ray *r, uint32_t n, struct bench_hit *out)
+{
+    struct gl_tracer *g = ctx;
+    struct cv_error err = {{0}};
+    uint32_t *res = malloc((size_t)n * 8 + 8);
+    bool ok = gl_load(g, r, n, &err);
+    if (ok && n) {
+        gl_dispatch(g, false, n);
+        ok = cv_buffer_read(g->results, 0, (size_t)n * 8, res, &err);
+    }
+    for (uint32_t i = 0; ok && i < n; i++) {
+        float t;
+        memcpy(&t, &res[2 * i], 4);
+        out[i] = (struct bench_hit){.t = t, .prim = res[2 * i + 1]};
+    }
+    free(res);
+    if (!ok)
+        fprintf(stderr, "rt_probe: tracing on GL: %s\n", err.msg);
+    return ok;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(const double *v, int n)
+{
+    double s[MAX_REPEATS];
+    memcpy(s, v, sizeof(double) * (size_t)n);
+    qsort(s, (size_t)n, sizeof(double), cmp_double);
+    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+}
+
+/* Fractions of rays on which the back ends agree: `same` the result (the
+ * triangle, or occluded or not), `t_ok` the distance alone (closest hits
+ * on another triangle at the same t: coplanar or shared edges). */
+static void agreement(const uint32_t *a, const uint32_t *b, uint32_t n, bool any, double *same,
+                      double *t_ok)
+{
+    uint32_t s = 0, t = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t pa = a[2 * i + 1], pb = b[2 * i + 1];
+        bool ha = pa != UINT32_MAX, hb = pb != UINT32_MAX;
+        float ta, tb;
+        memcpy(&ta, &a[2 * i], 4);
+        memcpy(&tb, &b[2 * i], 4);
+        bool close = fabsf(ta - tb) <= 1e-3f * fmaxf(fabsf(ta), fabsf(tb));
+        if (any) {
+            s += ha == hb;
+            t += ha == hb;
+        } else {
+            s += (!ha && !hb) || (ha && hb && pa == pb && close);
+            t += (!ha && !hb) || (ha && hb && close);
+        }
+    }
+    *same = n ? (double)s / n : 1;
+    *t_ok = n ? (double)t / n : 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s SCENE.pbrt [--res N] [--seed S] [--repeats R]\n", argv[0]);
+        return 2;
+    }
+    const char *path = argv[1];
+    int res = 512, repeats = 5;
+    uint64_t seed = 1;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        bool has_v = i + 1 < argc;
+        if (has_v && !strcmp(a, "--res"))
+            res = atoi(argv[++i]);
+        else if (has_v && !strcmp(a, "--seed"))
+            seed = strtoull(argv[++i], NULL, 10);
+        else if (has_v && !strcmp(a, "--repeats"))
+            repeats = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "rt_probe: unknown argument %s\n", a);
+            return 2;
+        }
+    }
+    if (res < 1 || res > 8192 || repeats < 1 || repeats > MAX_REPEATS) {
+        fprintf(stderr, "rt_probe: --res 1..8192, --repeats 1..%d\n", MAX_REPEATS);
+        return 2;
+    }
+    struct cv_error err = {{0}};
+    struct cv_scene *sc = NULL;
+    if (!cv_scene_load(path, &(struct cv_scene_load_params){0}, &sc, &err)) {
+        fprintf(stderr, "rt_probe: %s\n", err.msg);
+        return 1;
+    }
+    struct bench_tris m = {.v = sc->vertices, .t = sc->triangles,
+                           .n = cv_scene_static_triangles(sc)};
+    if (m.n < 2) {
+        fprintf(stderr, "rt_probe: %s has fewer than 2 static triangles\n", path);
+        return 1;
+    }
+    struct cv_gpu *gpu = NULL;
+    if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
+        fprintf(stderr, "rt_probe: %s\n", err.msg);
+        return 1;
+    }
+    struct cv_bvh_params params = cv_knobs_from_environment().bvh;
+    GLuint vb = cv_buffer_create((size_t)sc->n_vertices * sizeof(CvVertex), sc->vertices,
+                                 "vertices", &err);
+    GLuint tb = vb ? cv_buffer_create((size_t)sc->n_triangles * sizeof(CvTriangle),
+                                      sc->triangles, "triangles", &err)
+                   : 0;
+    struct cv_bvh *bvh = NULL;
+    struct gl_tracer g = {.gpu = gpu};
+    if (!tb || !cv_bvh_build(gpu, vb, tb, m.n, &params, &bvh, &err) ||
+        !(g.closest = probe_program(gpu, bvh, false, &err)) ||
+        !(g.any = probe_program(gpu, bvh, true, &err))) {
+        fprintf(stderr, "rt_probe: %s\n", err.msg);
+        return 1;
+    }
+    cv_buffer_bind(vb, CV_BIND_VERTICES);
+    cv_buffer_bind(tb, CV_BIND_TRIANGLES);
+    cv_bvh_bind(bvh);
+
+    /* the static triangles' indices, packed for the BLAS (which reads
+     * the scene's vertex array as it is), and their box, for the spawn
+     * offset (a small fraction of the scene's size) */
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * (size_t)m.n);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t t = 0; t < m.n; t++) {
+        double q[3][3];
+        bench_tri_pos(&m, t, q);
+        for (int j = 0; j < 3; j++) {
+            idx[3 * t + j] = (&m.t[t].idx.x)[j];
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], q[j][k]);
+                hi[k] = fmax(hi[k], q[j][k]);
+            }
+        }
+    }
+    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    struct bench_rayset sets[BENCH_Q_TYPES] = {{0}};
+    if (!bench_rays_make(&(struct bench_rays_params){.sc = sc, .m = &m, .eps = 1e-5 * diag,
+                                                     .res = res, .seed = seed,
+                                                     .trace = gl_trace, .ctx = &g},
+                         sets))
+        return 1;
+
+    /* Cavalry's traversal: one untimed dispatch, then the timed ones */
+    struct cv_gpu_timer *timer = cv_gpu_timer_create(
+        gpu, &(struct cv_gpu_timer_params){.names = bench_q_names, .n_names = BENCH_Q_TYPES,
+                                           .n_slots = (unsigned)repeats});
+    uint32_t *gl_res[BENCH_Q_TYPES] = {0};
+    double gl_ms[BENCH_Q_TYPES][MAX_REPEATS];
+    for (int q = 0; q < BENCH_Q_TYPES; q++) {
+        uint32_t n = sets[q].n;
+        bool any = q == BENCH_Q_SHADOW;
+        gl_res[q] = malloc((size_t)n * 8 + 8);
+        if (!gl_load(&g, sets[q].r, n, &err)) {
+            fprintf(stderr, "rt_probe: %s\n", err.msg);
+            return 1;
+        }
+        if (n)
+            gl_dispatch(&g, any, n);
+        for (int k = 0; k < repeats && n; k++) {
+            cv_gpu_timer_begin(timer, (unsigned)q, (unsigned)k);
+            gl_dispatch(&g, any, n);
+            cv_gpu_timer_end(timer);
+        }
+        cv_gpu_timer_collect(timer);
+        for (int k = 0; k < repeats; k++)
+            gl_ms[q][k] = cv_gpu_timer_slot_ms(timer, (unsigned)q, (unsigned)k);
+        if (n && !cv_buffer_read(g.results, 0, (size_t)n * 8, gl_res[q], &err)) {
+            fprintf(stderr, "rt_probe: %s\n", err.msg);
+            return 1;
+        }
+    }
+
+    /* the RT cores */
+    struct rt_vk *vk = NULL;
+    struct rt_vk_info vi;
+    struct cv_error vk_err = {{0}};
+    bool have_vk = rt_vk_create(sc->vertices, sizeof(CvVertex), sc->n_vertices, idx, m.n, &vk,
+                                &vi, &vk_err);
+    uint32_t *vk_res[BENCH_Q_TYPES] = {0};
+    double vk_ms[BENCH_Q_TYPES][MAX_REPEATS];
+    for (int q = 0; q < BENCH_Q_TYPES && have_vk; q++) {
+        vk_res[q] = malloc((size_t)sets[q].n * 8 + 8);
+        have_vk = rt_vk_trace(vk, sets[q].r, sets[q].n, q == BENCH_Q_SHADOW, repeats, vk_ms[q],
+                              vk_res[q], &vk_err);
+    }
+
+    printf("%s: %u static triangles, %u lights; rays from a %d-wide camera grid, seed %llu; "
+           "median of %d repeats\n",
+           path, m.n, sc->n_lights, res, (unsigned long long)seed, repeats);
+    printf("gl: %s, %s; tree %u nodes\n", gpu->info.renderer, gpu->info.version,
+           cv_bvh_stats(bvh)->n_nodes);
+    if (have_vk)
+        printf("vulkan: %s, %s; BLAS %.3f ms (%.1f MiB), TLAS %.3f ms\n", vi.device, vi.driver,
+               vi.blas_ms, vi.blas_mb, vi.tlas_ms);
+    else
+        printf("vulkan: unavailable: %s\n", vk_err.msg);
+    printf("%-8s %9s %10s %10s %10s %10s %7s %7s %7s\n", "query", "rays", "gl ms", "gl Mray/s",
+           "vk ms", "vk Mray/s", "vk/gl", "same%", "t-ok%");
+    double all_rays = 0, all_gl = 0, all_vk = 0;
+    for (int q = 0; q < BENCH_Q_TYPES; q++) {
+        uint32_t n = sets[q].n;
+        double gm = median(gl_ms[q], repeats);
+        all_rays += n;
+        all_gl += gm;
+        printf("%-8s %9u %10.4f %10.1f", bench_q_names[q], n, gm, gm > 0 ? n / gm * 1e-3 : 0);
+        if (have_vk) {
+            double vm = median(vk_ms[q], repeats), same, t_ok;
+            all_vk += vm;
+            agreement(gl_res[q], vk_res[q], n, q == BENCH_Q_SHADOW, &same, &t_ok);
+            printf(" %10.4f %10.1f %7.2f %7.2f %7.2f", vm, vm > 0 ? n / vm * 1e-3 : 0,
+                   vm > 0 ? gm / vm : 0, 100 * same, 100 * t_ok);
+        }
+        printf("\n");
+    }
+    printf("%-8s %9.0f %10.4f %10.1f", "all", all_rays, all_gl,
+           all_gl > 0 ? all_rays / all_gl * 1e-3 : 0);
+    if (have_vk)
+        printf(" %10.4f %10.1f %7.2f", all_vk, all_vk > 0 ? all_rays / all_vk * 1e-3 : 0,
+               all_vk > 0 ? all_gl / all_vk : 0);
+    printf("\n");
+
+    for (int q = 0; q < BENCH_Q_TYPES; q++) {
+        free(gl_res[q]);
+        free(vk_res[q]);
+    }
+    rt_vk_destroy(&vk);
+    bench_rays_free(sets);
+    free(idx);
+    cv_gpu_timer_destroy(&timer);
+    cv_buffer_destroy(&g.rays);
+    cv_buffer_destroy(&g.results);
+    cv_bvh_destroy(&bvh);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    cv_gpu_destroy(&gpu);
+    cv_scene_destroy(&sc);
+    return 0;
+}
