@@ -135,7 +135,16 @@ static bool cmd_begin(struct rt_vk *v, VkCommandBuffer *cb, struct cv_error *err
         return false;
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                    .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    return vk_ok(vkBeginCommandBuffer(*cb, &bi), "beginning a command buffer", err);
+    if (!vk_ok(vkBeginCommandBuffer(*cb, &bi), "beginning a command buffer", err))
+        return false;
+    /* the previous submission's writes (uploads, builds) visible to this
+     * one's reads: waiting for the queue alone does not make them so */
+    VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                          .srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT,
+                          .dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT};
+    vkCmdPipelineBarrier(*cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &mb, 0, NULL, 0, NULL);
+    return true;
 }
 
 /* Submits cb, waits for it and frees it. */
