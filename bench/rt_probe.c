@@ -155,6 +155,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: %s SCENE.pbrt [--res N] [--seed S] [--repeats R]\n", argv[0]);
         return 2;
     }
+    setvbuf(stdout, NULL, _IOLBF, 0);
     const char *path = argv[1];
     int res = 512, repeats = 5;
     uint64_t seed = 1;
@@ -236,6 +237,8 @@ int main(int argc, char **argv)
                          sets))
         return 1;
 
+    fprintf(stderr, "rt_probe: %u rays made\n",
+            sets[0].n + sets[1].n + sets[2].n + sets[3].n);
     /* Cavalry's traversal: one untimed dispatch, then the timed ones */
     struct cv_gpu_timer *timer = cv_gpu_timer_create(
         gpu, &(struct cv_gpu_timer_params){.names = bench_q_names, .n_names = BENCH_Q_TYPES,
@@ -266,6 +269,23 @@ int main(int argc, char **argv)
         }
     }
 
+    /* GL is done with before Vulkan starts: the NVIDIA Vulkan driver
+     * lives in its GLX library, and once that is loaded libepoxy can no
+     * longer tell which of GLX or EGL owns the context, aborting on the
+     * first GL entry point it has not resolved yet */
+    char gl_name[512];
+    snprintf(gl_name, sizeof(gl_name), "%s, %s", gpu->info.renderer, gpu->info.version);
+    uint32_t tree_nodes = cv_bvh_stats(bvh)->n_nodes;
+    cv_gpu_timer_destroy(&timer);
+    cv_buffer_destroy(&g.rays);
+    cv_buffer_destroy(&g.results);
+    cv_bvh_destroy(&bvh);
+    cv_buffer_destroy(&vb);
+    cv_buffer_destroy(&tb);
+    cv_gpu_destroy(&gpu);
+
+    fprintf(stderr, "rt_probe: GL traversal timed\n");
+
     /* the RT cores */
     struct rt_vk *vk = NULL;
     struct rt_vk_info vi;
@@ -283,8 +303,7 @@ int main(int argc, char **argv)
     printf("%s: %u static triangles, %u lights; rays from a %d-wide camera grid, seed %llu; "
            "median of %d repeats\n",
            path, m.n, sc->n_lights, res, (unsigned long long)seed, repeats);
-    printf("gl: %s, %s; tree %u nodes\n", gpu->info.renderer, gpu->info.version,
-           cv_bvh_stats(bvh)->n_nodes);
+    printf("gl: %s; tree %u nodes\n", gl_name, tree_nodes);
     if (have_vk)
         printf("vulkan: %s, %s; BLAS %.3f ms (%.1f MiB), TLAS %.3f ms\n", vi.device, vi.driver,
                vi.blas_ms, vi.blas_mb, vi.tlas_ms);
@@ -322,13 +341,6 @@ int main(int argc, char **argv)
     rt_vk_destroy(&vk);
     bench_rays_free(sets);
     free(idx);
-    cv_gpu_timer_destroy(&timer);
-    cv_buffer_destroy(&g.rays);
-    cv_buffer_destroy(&g.results);
-    cv_bvh_destroy(&bvh);
-    cv_buffer_destroy(&vb);
-    cv_buffer_destroy(&tb);
-    cv_gpu_destroy(&gpu);
     cv_scene_destroy(&sc);
     return 0;
 }
