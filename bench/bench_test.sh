@@ -107,4 +107,28 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
     check "bvh_work: the GPU's widening is the greedy rule" test \
         "$(grep -c "$(grep -m1 '^  all queries' "$tmp/bw2.out")" "$tmp/bw2.out")" -eq 2
 fi
+# rt_probe (built where configure found Vulkan and glslangValidator): the
+# same ray set as bvh_work (bench/rays.c), spawned from the GPU traversal's
+# hits, timed per query type; the Vulkan columns where a device traces
+# with ray-tracing pipelines, else the reason why not.
+rp="$bdir/bench/rt_probe"
+if test -x "$rp" && "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
+    check_out "rt_probe runs" "$tmp/rp.out" "$rp" "$tmp/a/scene.pbrt" --res 24 --repeats 3 2>/dev/null
+    for q in camera bounce1 bounce2 shadow; do
+        check "rt_probe: $q rays as bvh_work made them" test \
+            "$(awk -v q=$q '$1 == q {print $2; exit}' "$tmp/rp.out")" = \
+            "$(awk -v q=$q '$1 == q {print $2; exit}' "$tmp/bw.out")"
+    done
+    check "rt_probe: a rate for every query type and all" test \
+        "$(grep -cE '^(camera|bounce1|bounce2|shadow|all) +[0-9]+ +[0-9.]+ +[0-9.]+' "$tmp/rp.out")" -eq 5
+    check "rt_probe: the Vulkan line" grep -qE '^vulkan: ' "$tmp/rp.out"
+    if grep -q '^vulkan: unavailable' "$tmp/rp.out"; then
+        ok "# SKIP rt_probe: no Vulkan device with ray-tracing pipelines"
+    else
+        check "rt_probe: every closest hit and occlusion the same on both back ends" test \
+            "$(awk '$1 ~ /^(camera|bounce1|bounce2|shadow)$/ && $8 < 99 {n++} END {print n + 0}' \
+            "$tmp/rp.out")" -eq 0
+    fi
+    check "rt_probe refuses an unknown option" sh -c "! '$rp' '$tmp/a/scene.pbrt' --nope 2>/dev/null"
+fi
 done_testing
