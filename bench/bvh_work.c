@@ -18,12 +18,16 @@
  *            [--rewiden greedy|sah] [--wide K] [--ref-widen greedy|sah]
  *            [--ref-inner X] [--ref-tri Y] [--ref-leaf N] [--ref-bins B]
  * --rewiden keeps the renderer's binary tree and widens it here to K
- * children (2..8) by the GPU's greedy rule or by least node area; greedy
- * with K 4 is the renderer's own tree (bench_test.sh checks it).
+ * children (2..8) by least node area, the renderer's rule (its home is
+ * glsl/bvh/widen.glsl; its CPU copy tests/bvh/widen_ref.h serves other
+ * widths, and with K 4 gives the renderer's own tree: bench_test.sh and
+ * the BVH tests check it), or greedily
+ * (the inner child of largest area opened first: the renderer's rule
+ * before least node area).
  * --res N: camera rays on an N-wide grid (height by the film's aspect).
  * --ref also builds a binned-SAH tree on the CPU (over the triangles, no
  * splitting; the build's leaf costs unless --ref-* say otherwise), widens
- * it by the GPU's rule (glsl/bvh/widen.glsl) and walks the same rays
+ * it by the GPU's rule (or --ref-widen greedy) and walks the same rays
  * through it: what a good host build would cost.
  * --verify traces the camera rays through the GPU's own traversal
  * (glsl/bvh/rays_test.comp, CV_BVH_COUNT_STEPS) and checks that its hits
@@ -50,6 +54,7 @@
 #include "scene/scene.h"
 #include "tests/bvh/sah_ref.h"
 #include "bench/rays.h"
+#include "tests/bvh/widen_ref.h"
 
 /* ---- the scene's triangles ---- */
 
@@ -91,7 +96,7 @@ static bool ray_tri(const struct bench_tris *m, uint32_t t, const double o[3], c
 /* Up to WIDE_MAX children per node: the renderer's trees have 4 (read back
  * from CvBvhNode4); --wide re-widens binary trees to other widths. Used
  * children first, in the binary tree's left-to-right order. */
-#define WIDE_MAX 8
+#define WIDE_MAX WIDEN_REF_MAX
 struct gnode {
     int n;
     float lo[WIDE_MAX][3], hi[WIDE_MAX][3];
@@ -395,8 +400,9 @@ static double rbuild(struct rbuild *b, uint32_t at, uint32_t begin, uint32_t end
 /* Children per wide node when widening a binary tree here (--wide). */
 static int wide_k = 4;
 
-/* Opens binary node b into up to wide_k children as glsl/bvh/widen.glsl
- * does for 4: the inner child of largest area, ties to the leftmost. */
+/* Opens binary node b into up to wide_k children greedily, as the
+ * renderer did before least node area: the inner child of largest area,
+ * ties to the leftmost. */
 static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[WIDE_MAX])
 {
     const struct bnode *nd = &rb->nodes[b];
@@ -426,82 +432,46 @@ static int widen_kids(const struct rbuild *rb, uint32_t b, uint32_t kid[WIDE_MAX
     return n;
 }
 
-/* The other rule (--ref-widen sah): which inner nodes to open chosen to
- * minimise the summed area of the wide nodes (the SAH's node term; the
- * leaves are the same either way), by dynamic programming over the binary
- * tree: g[b][s] is the least cost of covering b's two children with at
- * most s slots (s = 2..wide_k), an inner child either kept (one slot, its
- * own wide node's cost f) or opened in place. */
-struct wide_dp {
-    double (*g)[WIDE_MAX + 1];  /* per binary node; g[b][s], s = 2..wide_k */
-    double *f;                  /* per binary node: area + g[b][wide_k] */
-};
+/* The renderer's rule (--rewiden sah, --ref-widen sah): least summed node
+ * area, by tests/bvh/widen_ref.h (a copy of glsl/bvh/widen.glsl for any
+ * width). NULL: the greedy rule. */
+static const struct widen_ref *widen_dp;
 
-static double dp_child(const struct rbuild *rb, const struct wide_dp *dp, uint32_t c, int s,
-                       bool *open)
+/* rb as widen_ref.h reads it; lo/hi and kid allocated here. */
+static void widen_ref_of(const struct rbuild *rb, struct widen_ref *w)
 {
-    const struct bnode *k = &rb->nodes[c];
-    *open = false;
-    if (k->left < 0)
-        return s >= 1 ? 0.0 : INFINITY;
-    double keep = s >= 1 ? dp->f[c] : INFINITY;
-    double opened = s >= 2 ? dp->g[c][s] : INFINITY;
-    *open = opened < keep;
-    return *open ? opened : keep;
-}
-
-/* best split of s slots between b's children: returns the cost, s_left */
-static double dp_split(const struct rbuild *rb, const struct wide_dp *dp, uint32_t b, int s,
-                       int *s_left)
-{
-    const struct bnode *nd = &rb->nodes[b];
-    double best = INFINITY;
-    *s_left = 1;
-    for (int sl = 1; sl < s; sl++) {
-        bool o;
-        double c = dp_child(rb, dp, (uint32_t)nd->left, sl, &o) +
-                   dp_child(rb, dp, (uint32_t)nd->right, s - sl, &o);
-        if (c < best) {
-            best = c;
-            *s_left = sl;
-        }
-    }
-    return best;
-}
-
-static void wide_dp_run(const struct rbuild *rb, struct wide_dp *dp)
-{
-    dp->g = calloc(rb->n_nodes, sizeof(*dp->g));
-    dp->f = calloc(rb->n_nodes, sizeof(*dp->f));
-    /* children are made after their parents: reverse order is bottom-up */
-    for (uint32_t i = rb->n_nodes; i-- > 0;) {
+    int32_t(*kid)[2] = malloc((rb->n_nodes ? rb->n_nodes : 1) * sizeof(*kid));
+    float(*lo)[3] = malloc((rb->n_nodes ? rb->n_nodes : 1) * sizeof(*lo));
+    float(*hi)[3] = malloc((rb->n_nodes ? rb->n_nodes : 1) * sizeof(*hi));
+    for (uint32_t i = 0; i < rb->n_nodes; i++) {
         const struct bnode *nd = &rb->nodes[i];
+        kid[i][0] = kid[i][1] = -1;
+        memcpy(lo[i], nd->lo, sizeof(lo[i]));
+        memcpy(hi[i], nd->hi, sizeof(hi[i]));
         if (nd->left < 0)
             continue;
-        int sl;
-        for (int s = 2; s <= wide_k; s++)
-            dp->g[i][s] = dp_split(rb, dp, i, s, &sl);
-        dp->f[i] = half_area3(nd->lo, nd->hi) + dp->g[i][wide_k];
+        const struct bnode *l = &rb->nodes[nd->left], *r = &rb->nodes[nd->right];
+        kid[i][0] = l->left >= 0 ? nd->left : -1;
+        kid[i][1] = r->left >= 0 ? nd->right : -1;
+        /* the node's box as the union of its children's, as the GPU has it */
+        for (int k = 0; k < 3; k++) {
+            lo[i][k] = fminf(l->lo[k], r->lo[k]);
+            hi[i][k] = fmaxf(l->hi[k], r->hi[k]);
+        }
     }
+    *w = (struct widen_ref){.k = wide_k, .n = rb->n_nodes, .kid = (const int32_t(*)[2])kid,
+                            .lo = (const float(*)[3])lo, .hi = (const float(*)[3])hi};
+    widen_ref_run(w);
 }
 
-static const struct wide_dp *widen_dp; /* NULL: the GPU's greedy rule */
-
-/* The children of b's cover with s slots, left to right. */
-static int dp_kids(const struct rbuild *rb, uint32_t b, int s, uint32_t *kid)
+/* The children of b by the rule, as bnode indices, left to right. */
+static int dp_kids(const struct rbuild *rb, uint32_t b, uint32_t *kid)
 {
-    int sl, n = 0;
-    dp_split(rb, widen_dp, b, s, &sl);
-    const struct bnode *nd = &rb->nodes[b];
-    uint32_t side[2] = {(uint32_t)nd->left, (uint32_t)nd->right};
-    int ss[2] = {sl, s - sl};
-    for (int k = 0; k < 2; k++) {
-        bool o;
-        dp_child(rb, widen_dp, side[k], ss[k], &o);
-        if (o)
-            n += dp_kids(rb, side[k], ss[k], kid + n);
-        else
-            kid[n++] = side[k];
+    uint32_t enc[WIDE_MAX];
+    int n = widen_ref_kids(widen_dp, b, enc);
+    for (int c = 0; c < n; c++) {
+        const struct bnode *p = &rb->nodes[enc[c] / 2];
+        kid[c] = (uint32_t)(enc[c] % 2 ? p->right : p->left);
     }
     return n;
 }
@@ -510,7 +480,7 @@ static uint32_t wemit(const struct rbuild *rb, struct wtree *w, uint32_t b)
 {
     uint32_t at = w->n_nodes++;
     uint32_t kid[WIDE_MAX];
-    int n = widen_dp ? dp_kids(rb, b, wide_k, kid) : widen_kids(rb, b, kid);
+    int n = widen_dp ? dp_kids(rb, b, kid) : widen_kids(rb, b, kid);
     struct gnode nd = {.n = n};
     for (int c = 0; c < n; c++) {
         const struct bnode *k = &rb->nodes[kid[c]];
@@ -540,15 +510,17 @@ static void widen_tree(struct rbuild *b, bool dp_rule, uint32_t n_slots, struct 
         w->nodes[0] = nd;
         w->n_nodes = 1;
     } else {
-        struct wide_dp dp = {0};
+        struct widen_ref dp = {0};
         if (dp_rule) {
-            wide_dp_run(b, &dp);
+            widen_ref_of(b, &dp);
             widen_dp = &dp;
         }
         wemit(b, w, 0);
         widen_dp = NULL;
-        free(dp.g);
-        free(dp.f);
+        widen_ref_free(&dp);
+        free((void *)dp.kid);
+        free((void *)dp.lo);
+        free((void *)dp.hi);
     }
     w->prims = b->ids;
     b->ids = NULL;
@@ -812,7 +784,7 @@ int main(int argc, char **argv)
      * against one triangle test (48 bytes, the watertight test). */
     struct costs cm = {.c_node = 1.0, .c_tri = 0.5};
     struct ref_params rp = {.c_inner = CV_BVH_COST_INNER, .c_tri = CV_BVH_COST_TRI,
-                            .max_leaf = CV_BVH_MAX_LEAF, .bins = 32};
+                            .max_leaf = CV_BVH_MAX_LEAF, .bins = 32, .widen_sah = true};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--ref"))
@@ -952,7 +924,7 @@ int main(int argc, char **argv)
     if (do_verify && !verify(gpu, bvh, vb, tb, &gw, &m, &sets[BENCH_Q_CAMERA]))
         status = 1;
     if (bin) {
-        /* the renderer's binary tree widened here: --wide 4 greedy must
+        /* the renderer's binary tree widened here: --wide 4 sah must
          * give the renderer's own tree, figures and all */
         struct rbuild b;
         uint32_t *prims = malloc((size_t)gw.n_slots * 4);

@@ -43,7 +43,8 @@ bench_sdtree_build_SOURCES = bench/sdtree_build.c
 bench_sdtree_build_LDADD = $(CV_LIBS) -lm
 # traversal work per ray (nodes, triangles) of the GPU-built tree on a scene
 noinst_PROGRAMS += bench/bvh_work
-bench_bvh_work_SOURCES = bench/bvh_work.c bench/rays.c bench/rays.h tests/bvh/sah_ref.h
+bench_bvh_work_SOURCES = bench/bvh_work.c bench/rays.c bench/rays.h tests/bvh/sah_ref.h \
+	tests/bvh/widen_ref.h
 bench_bvh_work_LDADD = $(CV_LIBS) -lm
 bench_bvh_work_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
 # the same rays on Cavalry's traversal and on the RT cores (Vulkan

@@ -145,6 +145,8 @@
 #define CV_BIND_WIDEN_QUEUE (CV_BIND_STAGE0 + 2)
 #define CV_BIND_WIDEN_FLAGS (CV_BIND_STAGE0 + 3)    /* flags, then (scanned) ranks */
 #define CV_BIND_WIDEN_NEED (CV_BIND_STAGE0 + 4)
+#define CV_BIND_WIDEN_COST (CV_BIND_STAGE0 + 5)    /* vec4[]: per binary node (widen.glsl) */
+#define CV_BIND_WIDEN_UP (CV_BIND_STAGE0 + 6)      /* uint[]: parents, then arrivals */
 
 /* ---- Colour pass (src/color/color_pass.c; glsl/color/display.comp) ---- */
 #define CV_BIND_COLOR_IN (CV_BIND_STAGE0 + 0)       /* vec4[]: linear RGBA */

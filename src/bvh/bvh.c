@@ -527,13 +527,16 @@ static bool build_full(struct cv_bvh *bvh, struct build *b, const struct cv_bvh_
      * buffer read directly would serve the next build's GPU work from host
      * memory (bench/RESULTS.md, "BVH build: wall time").
      * Widening's queue, stack needs and flags borrow the counters, the
-     * left turns and the leaf starts, free since emit. */
+     * left turns and the leaf starts, free since emit; its parents and
+     * costs the offsets and the build nodes, free once the root is copied
+     * (48 and 4 bytes per build node hold 16 and 4 per binary node). */
     uint32_t words[CV_BVH_INFO_WORDS];
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glCopyNamedBufferSubData(b->nodes, b->info, 0, CV_BVH_INFO_ROOT * 4, sizeof(CvBvhBuildNode));
     struct cv_bvh_widen widen = {.gpu = b->gpu, .bin = b->out_nodes, .info = b->info,
                                  .queue = b->counters, .need = b->live, .flags = b->starts,
-                                 .levels = p->widen_levels};
+                                 .up = b->offsets, .cost = b->nodes,
+                                 .n_max = (uint32_t)(n - 1), .levels = p->widen_levels};
     cv_gpu_timer_begin(b->timer, PH_WIDEN_FIND, 0);
     bool found = cv_bvh_widen_find(&widen, words, err);
     cv_gpu_timer_end(b->timer);

@@ -23,7 +23,7 @@ GLSL_FILES += \
 	glsl/bvh/split_sum.comp glsl/bvh/split_count.comp glsl/bvh/split_emit.comp \
 	glsl/bvh/split_remap.comp \
 	glsl/bvh/widen.glsl glsl/bvh/widen_next.comp glsl/bvh/widen_level.comp \
-	glsl/bvh/widen_emit.comp \
+	glsl/bvh/widen_emit.comp glsl/bvh/widen_up.comp glsl/bvh/widen_cost.comp \
 	glsl/bvh/mesh_buffers.glsl glsl/bvh/scene_buffers.glsl glsl/bvh/triangle.glsl glsl/bvh/traverse.glsl \
 	glsl/bvh/rays_test.comp glsl/bvh/curves_test.comp \
 	glsl/bvh/motion.glsl glsl/bvh/motion_test.comp

@@ -12,28 +12,41 @@ static void bind_all(const struct cv_bvh_widen *w)
     cv_buffer_bind(w->queue, CV_BIND_WIDEN_QUEUE);
     cv_buffer_bind(w->flags, CV_BIND_WIDEN_FLAGS);
     cv_buffer_bind(w->need, CV_BIND_WIDEN_NEED);
+    cv_buffer_bind(w->cost, CV_BIND_WIDEN_COST);
+    cv_buffer_bind(w->up, CV_BIND_WIDEN_UP);
 }
 
-static const char *const widen_files[3] = {"bvh/widen_next.comp", "bvh/widen_level.comp",
-                                           "bvh/widen_emit.comp"};
+static const char *const widen_files[5] = {"bvh/widen_next.comp", "bvh/widen_level.comp",
+                                           "bvh/widen_emit.comp", "bvh/widen_up.comp",
+                                           "bvh/widen_cost.comp"};
 
 void cv_bvh_widen_prefetch(struct cv_gpu *gpu)
 {
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 5; i++)
         cv_program_request(gpu, widen_files[i], NULL);
 }
 
 bool cv_bvh_widen_find(const struct cv_bvh_widen *w, uint32_t words[CV_BVH_INFO_WORDS],
                        struct cv_error *err)
 {
-    struct cv_program *next, *level;
+    struct cv_program *next, *level, *up, *cost;
     if (!(next = cv_program_get(w->gpu, widen_files[0], NULL, err)) ||
-        !(level = cv_program_get(w->gpu, widen_files[1], NULL, err)))
+        !(level = cv_program_get(w->gpu, widen_files[1], NULL, err)) ||
+        !(up = cv_program_get(w->gpu, widen_files[3], NULL, err)) ||
+        !(cost = cv_program_get(w->gpu, widen_files[4], NULL, err)))
         return false;
     GLint64 queue_bytes = 0;
     glGetNamedBufferParameteri64v(w->queue, GL_BUFFER_SIZE, &queue_bytes);
     cv_buffer_zero(w->flags);
     bind_all(w);
+    /* The binary node count is on the GPU only: both passes run over the
+     * most there can be and stop at info[CV_BVH_INFO_NODES]. */
+    cv_program_set_uint(up, "u_n", w->n_max);
+    cv_program_dispatch_1d(up, w->n_max);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    cv_program_set_uint(cost, "u_n", w->n_max);
+    cv_program_dispatch_1d(cost, w->n_max);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, w->info);
     bool ok = true;
     /* Every level but the last finds a node, and there are fewer nodes

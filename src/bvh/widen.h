@@ -1,8 +1,12 @@
 /* widen.h: the 4-wide traversal tree (CvBvhNode4, glsl/shared/bvh.h),
  * collapsed on the GPU from the binary tree that the build lays out
- * (glsl/bvh/widen.glsl says which children each wide node takes). Two
- * steps, because the wide tree is sized by its node count:
- *   find: level by level from the root, each wide node's inner children
+ * (glsl/bvh/widen.glsl says which children each wide node takes: least
+ * summed node area). Two steps, because the wide tree is sized by its
+ * node count:
+ *   find: each binary node's parent (glsl/bvh/widen_up.comp), then the
+ *         costs of covering its children with 2, 3 and 4 slots, bottom-up
+ *         (glsl/bvh/widen_cost.comp); then level by level from the root,
+ *         each wide node's inner children
  *         queued and flagged (glsl/bvh/widen_level.comp); the host reads
  *         the build's info words back once per batch of levels, which is
  *         once per build for trees up to CV_BVH_WIDEN_LEVELS deep (a
@@ -27,13 +31,14 @@
 #define CV_BVH_WIDEN_LEVELS 24
 
 /* Buffers of one widening. bin: the binary CvBvhNode tree, its node count
- * at info[CV_BVH_INFO_NODES] (CV_BVH_INFO_* words); queue: room for the
- * wide nodes, one uint each, and `need` as many; flags: one uint per
- * binary node. A tree over n leaves has at most (2 n - 1) / 3 wide nodes:
- * every wide node with an inner child has four children. */
+ * at info[CV_BVH_INFO_NODES] (CV_BVH_INFO_* words), at most n_max; queue:
+ * room for the wide nodes, one uint each, and `need` as many (each wide
+ * node is a distinct binary node, so n_max is always room); flags and up:
+ * one uint per binary node; cost: one vec4 per binary node. */
 struct cv_bvh_widen {
     struct cv_gpu *gpu;
-    GLuint bin, info, queue, need, flags;
+    GLuint bin, info, queue, need, flags, up, cost;
+    uint32_t n_max;
     uint32_t levels;  /* per read-back; 0: CV_BVH_WIDEN_LEVELS */
 };
 

@@ -16,6 +16,7 @@
 #include "bvh/bvh.h"
 #include "gpu/buffer.h"
 #include "tests/bvh/sah_ref.h"
+#include "tests/bvh/widen_ref.h"
 
 struct mesh {
     CvVertex *v;
@@ -537,9 +538,9 @@ static inline bool wide_slot_unused(const CvBvhNode4 *nd, int c)
  * unused ones exactly as glsl/shared/bvh.h has them; every leaf child one
  * of the binary tree's leaves (its first slot, count and box, bit for bit),
  * every slot in one leaf, so the two trees hold the same leaves; every inner
- * child's box the union of its own children's; every node with an inner
- * child full (four children: what bounds the node count, src/bvh/widen.h).
- * Sets ti->wide_depth. */
+ * child's box the union of its own children's; at least two children per
+ * node (widening by least node area may leave a node with an inner child
+ * fewer than four, glsl/bvh/widen.glsl). Sets ti->wide_depth. */
 static inline void check_wide(const struct mesh *m, const struct cv_bvh *bvh,
                               const int32_t *leaf_count, const float (*leaf_box)[6],
                               struct tree_info *ti)
@@ -597,7 +598,7 @@ static inline void check_wide(const struct mesh *m, const struct cv_bvh *bvh,
         if (below > ti->stack_need)
             ti->stack_need = below;
         int want = n >= 2 ? 2 : (int)n;
-        if (ti->ok && (used < want || (inner > 0 && used != 4))) {
+        if (ti->ok && used < want) {
             snprintf(ti->why, sizeof(ti->why), "wide node %u: %d children, %d inner", ni, used,
                      inner);
             ti->ok = false;
@@ -673,8 +674,103 @@ out:
     free(need_of);
 }
 
-/* check_binary, then check_wide against its leaves: the tree must have
- * been built with params.keep_binary. */
+/* Whether the 4-wide tree is the binary tree widened by the renderer's
+ * rule, as tests/bvh/widen_ref.h (its CPU copy) widens it: from the root,
+ * each wide node's children are the reference's, slot for slot (leaves
+ * by first slot and count, inner children by the wide node they lead to),
+ * and every wide node is reached. */
+static inline void check_widening(const struct cv_bvh *bvh, struct tree_info *ti)
+{
+    struct cv_error err = {{0}};
+    const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
+    uint32_t nn = st->n_binary_nodes, nw = st->n_nodes, top = 0, reached = 0;
+    CvBvhNode *bin = malloc((size_t)(nn ? nn : 1) * sizeof(*bin));
+    CvBvhNode4 *wide = malloc((size_t)(nw ? nw : 1) * sizeof(*wide));
+    int32_t(*kid)[2] = malloc((size_t)(nn ? nn : 1) * sizeof(*kid));
+    float(*lo)[3] = malloc((size_t)(nn ? nn : 1) * sizeof(*lo));
+    float(*hi)[3] = malloc((size_t)(nn ? nn : 1) * sizeof(*hi));
+    uint32_t(*stack)[2] = malloc((size_t)(nw + 1) * sizeof(*stack));
+    struct widen_ref w = {.k = 4, .n = nn, .kid = (const int32_t(*)[2])kid,
+                          .lo = (const float(*)[3])lo, .hi = (const float(*)[3])hi};
+    if (!cv_buffer_read(cv_bvh_binary_nodes_buffer(bvh), 0, (size_t)nn * sizeof(*bin), bin, &err) ||
+        !cv_buffer_read(cv_bvh_nodes_buffer(bvh), 0, (size_t)nw * sizeof(*wide), wide, &err)) {
+        snprintf(ti->why, sizeof(ti->why), "read back: %.200s", err.msg);
+        ti->ok = false;
+        goto out;
+    }
+    for (uint32_t i = 0; i < nn; i++) {
+        const cv_vec4 *b[2][2] = {{&bin[i].lmin, &bin[i].lmax}, {&bin[i].rmin, &bin[i].rmax}};
+        for (int side = 0; side < 2; side++) {
+            int32_t word, count;
+            memcpy(&word, &b[side][0]->w, 4);
+            memcpy(&count, &b[side][1]->w, 4);
+            kid[i][side] = count == 0 && word > 0 && (uint32_t)word < nn ? word : -1;
+        }
+        for (int k = 0; k < 3; k++) {
+            lo[i][k] = fminf((&b[0][0]->x)[k], (&b[1][0]->x)[k]);
+            hi[i][k] = fmaxf((&b[0][1]->x)[k], (&b[1][1]->x)[k]);
+        }
+    }
+    widen_ref_run(&w);
+    stack[top][0] = 0;
+    stack[top++][1] = 0;
+    while (top > 0 && ti->ok) {
+        top--;
+        uint32_t wi = stack[top][0], bi = stack[top][1];
+        if (wi >= nw || bi >= nn) {
+            snprintf(ti->why, sizeof(ti->why), "widening: wide node %u for binary %u", wi, bi);
+            ti->ok = false;
+            break;
+        }
+        reached++;
+        uint32_t enc[4];
+        int n = widen_ref_kids(&w, bi, enc), used = 0;
+        const CvBvhNode4 *nd = &wide[wi];
+        for (int c = 0; c < n && ti->ok; c++) {
+            const CvBvhNode *p = &bin[enc[c] / 2];
+            bool right = enc[c] % 2;
+            const cv_vec4 *cmin = right ? &p->rmin : &p->lmin, *cmax = right ? &p->rmax : &p->lmax;
+            int32_t word, count;
+            memcpy(&word, &cmin->w, 4);
+            memcpy(&count, &cmax->w, 4);
+            bool inner = count == 0 && word > 0 && (uint32_t)word < nn;
+            if (count <= 0 && !inner)
+                continue; /* an empty child (0 or 1 triangles): no slot */
+            int32_t ww = (&nd->word.x)[used], wc = (&nd->count.x)[used];
+            if (inner ? wc != 0 : (wc != count || ww != word)) {
+                snprintf(ti->why, sizeof(ti->why),
+                         "widening: wide node %u slot %d is %d+%d, the rule's child %s %d+%d", wi,
+                         used, ww, wc, inner ? "inner" : "leaf", word, count);
+                ti->ok = false;
+            } else if (inner && top < nw) {
+                stack[top][0] = (uint32_t)ww;
+                stack[top++][1] = (uint32_t)word;
+            }
+            used++;
+        }
+        if (ti->ok && used < 4 && !wide_slot_unused(nd, used)) {
+            snprintf(ti->why, sizeof(ti->why),
+                     "widening: wide node %u has more than the rule's %d children", wi, used);
+            ti->ok = false;
+        }
+    }
+    if (ti->ok && reached != nw) {
+        snprintf(ti->why, sizeof(ti->why), "widening: the rule reaches %u of %u wide nodes",
+                 reached, nw);
+        ti->ok = false;
+    }
+out:
+    widen_ref_free(&w);
+    free(bin);
+    free(wide);
+    free(kid);
+    free(lo);
+    free(hi);
+    free(stack);
+}
+
+/* check_binary, then check_wide against its leaves and check_widening: the
+ * tree must have been built with params.keep_binary. */
 static inline struct tree_info check_tree(const struct mesh *m, const struct cv_bvh *bvh)
 {
     uint32_t ns = cv_bvh_stats(bvh)->n_refs;
@@ -683,6 +779,8 @@ static inline struct tree_info check_tree(const struct mesh *m, const struct cv_
     struct tree_info ti = check_binary(m, bvh, leaf_count, leaf_box);
     if (ti.ok)
         check_wide(m, bvh, leaf_count, (const float (*)[6])leaf_box, &ti);
+    if (ti.ok)
+        check_widening(bvh, &ti);
     free(leaf_count);
     free(leaf_box);
     return ti;
