@@ -159,16 +159,36 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     cv_camera_motion_setup(c, u);
 }
 
-static GLuint make(struct cv_renderer *r, size_t bytes, const char *label, bool *ok,
-                   struct cv_error *err)
+/* A storage buffer of the renderer, zeroed or (zero false) of undefined
+ * contents. */
+static GLuint make_buffer(struct cv_renderer *r, size_t bytes, bool zero, const char *label,
+                          bool *ok, struct cv_error *err)
 {
     if (!*ok)
         return 0;
-    GLuint b = cv_gpu_storage_buffer(r->gpu, bytes, NULL, label, err);
+    GLuint b = 0;
+    if (cv_gpu_storage_fits(r->gpu, bytes, label, err))
+        b = zero ? cv_buffer_create(bytes, NULL, label, err)
+                 : cv_buffer_create_uninit(bytes, label, err);
     if (!b)
         *ok = false;
     r->made_bytes += bytes;
     return b;
+}
+
+static GLuint make(struct cv_renderer *r, size_t bytes, const char *label, bool *ok,
+                   struct cv_error *err)
+{
+    return make_buffer(r, bytes, true, label, ok, err);
+}
+
+/* For a queue's items, which a stage reads only below the count that the
+ * stage before wrote them up to: no zero-fill, which for fresh storage
+ * costs time in proportion to its size (gpu/buffer.h). */
+static GLuint make_queue(struct cv_renderer *r, size_t bytes, const char *label, bool *ok,
+                         struct cv_error *err)
+{
+    return make_buffer(r, bytes, false, label, ok, err);
 }
 
 /* params' stage_times: the set-up's steps (the time before a job's first
@@ -614,9 +634,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     r->queues = make(r, sizeof(CvTraceQueues), "trace queues", &ok, err);
     /* a whole-sample integrator's program declares no queues (CV_NO_QUEUES) */
     if (!ops->whole_samples) {
-        r->rays = make(r, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
-        r->hits = make(r, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
-        r->shadow = make(r, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
+        r->rays = make_queue(r, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
+        r->hits = make_queue(r, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok,
+                             err);
+        r->shadow = make_queue(r, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     }
     r->film = make(r, n * sizeof(CvFilmPixel), "trace film", &ok, err);
     if (r->matte_stride)
