@@ -47,8 +47,14 @@
  *
  * Training records: while the guide learns, every vertex that bounces
  * writes a record of its path slot (CV_IMAGE_SD_VERTS, CV_SD_SLOT_TEXELS
- * per slot: x of the first the records of a path that ended and waits to
- * be splatted, then CV_SD_MAX_RECORDS records of two texels each):
+ * per slot: first one texel per slot, slot order, whose x counts the
+ * records of the slot's path that ended and waits to be splatted; then
+ * each slot's CV_SD_MAX_RECORDS records of two texels each, from
+ * CV_SD_RECORD_TEXEL). Only the counts start zeroed: a path writes its
+ * record at each depth before anything reads it (its count, and the
+ * records the later vertices add to, cover the depths it has recorded),
+ * so the records need no clearing, which for fresh storage costs time in
+ * proportion to its size (gpu/buffer.h):
  *   t:     position xyz; w: the density the bounce was drawn with (solid
  *          angle; 0: not a guided vertex, the record is skipped);
  *   t + 1: the bounce direction (u, v) on the square, u plus the vertex's
@@ -94,8 +100,12 @@
 /* Vertices per path that record (the first ones: deeper bounces carry
  * little of the image). */
 #define CV_SD_MAX_RECORDS 6u
-/* Texels per path slot: its pending count, then its records. */
-#define CV_SD_SLOT_TEXELS (1u + 2u * CV_SD_MAX_RECORDS)
+/* Texels per path slot: its records, and in all with its pending count. */
+#define CV_SD_RECORD_TEXELS (2u * CV_SD_MAX_RECORDS)
+#define CV_SD_SLOT_TEXELS (1u + CV_SD_RECORD_TEXELS)
+/* The first texel of record k of a slot, among n path slots (the count of
+ * slot s is texel s). */
+#define CV_SD_RECORD_TEXEL(n, slot, k) ((n) + (slot) * CV_SD_RECORD_TEXELS + 2u * (k))
 /* Quadtree depth limit (a node of side 2^-CV_SD_MAX_DEPTH), and the
  * spatial tree's. */
 #define CV_SD_MAX_DEPTH 12u

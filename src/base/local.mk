@@ -1,5 +1,6 @@
 # src/base: errors, log, memory and file helpers used by every stage.
 libcavalry_a_SOURCES += \
+	src/base/clock.h \
 	src/base/error.c src/base/error.h \
 	src/base/file.c src/base/file.h \
 	src/base/limits.h \

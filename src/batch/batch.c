@@ -7,8 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "base/clock.h"
 #include "base/file.h"
 #include "base/log.h"
 #include "base/mem.h"
@@ -23,13 +23,6 @@
 #include "manifest/shard.h"
 #include "scene/scene.h"
 #include "trace/scene_upload.h"
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 struct loaded_scene {
     const char *path;            /* borrowed from the first job naming it */
@@ -128,9 +121,9 @@ static bool load_scenes(const struct cv_manifest *m, const struct cv_batch_optio
             struct cv_error e = {{0}};
             struct cv_scene_load_params lp = {.strict = opt->strict, .root = opt->scene_root};
             cv_progress_phase(progress, NULL, CV_PHASE_SCENE_LOAD, job->scene);
-            double t0 = now_seconds();
+            double t0 = cv_seconds();
             bool loaded = cv_scene_load(job->scene, &lp, &ls.scene, &e);
-            ls.load_seconds = now_seconds() - t0;
+            ls.load_seconds = cv_seconds() - t0;
             if (!loaded) {
                 char *msg = cv_xasprintf("%s%s%s:%u:%u: job \"%s\": %s", all ? all : "",
                                          all ? "\n" : "", m->path, job->line, job->col, job->name,
@@ -389,7 +382,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                                     sel.plans[k].spp);
             /* A job's seconds include its scene's upload and BVH build
              * (for the first job of the scene) and its program compile. */
-            double t0 = now_seconds(), scene_seconds = 0;
+            double t0 = cv_seconds(), scene_seconds = 0;
             struct cv_job_result res = {0};
             bool ready = locked == CV_LOCK_TAKEN; /* else jerr says why */
             if (!ready) {
@@ -400,7 +393,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
                 struct cv_render_params rp = cv_plan_render_params(&sel.plans[k]);
                 cv_renderer_prefetch(gpu, ls->scene, &rp);
                 bool built = cv_scene_gpu_create(gpu, ls->scene, opt->bvh, &ls->gpu_scene, &jerr);
-                scene_seconds = ls->load_seconds + (now_seconds() - t0);
+                scene_seconds = ls->load_seconds + (cv_seconds() - t0);
                 if (!built) {
                     cv_error_prefix(&jerr, "job \"%s\": uploading the scene: ", job->name);
                     ready = false;
@@ -411,7 +404,7 @@ enum cv_batch_status cv_batch_run(const char *manifest_path, const struct cv_bat
             struct cv_job_report rep = {
                 .outcome = !ready ? CV_JOB_FAILED : res.partial ? CV_JOB_PARTIAL : CV_JOB_DONE,
                 .spp = res.spp,
-                .seconds = now_seconds() - t0 + ls->load_seconds * (scene_seconds > 0),
+                .seconds = cv_seconds() - t0 + ls->load_seconds * (scene_seconds > 0),
                 .scene_seconds = scene_seconds,
                 .render_seconds = res.render_seconds,
                 .outputs = (const char *const *)res.outputs,

@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "base/clock.h"
 #include "base/file.h"
 #include "base/log.h"
 #include "base/mem.h"
@@ -27,13 +28,6 @@
 #include "output/png_write.h"
 #include "scene/camera_matrix.h"
 #include "trace/render.h"
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* OpenEXR's capDate ("YYYY:MM:DD hh:mm:ss", local time) and utcOffset
  * [seconds, UTC = local time + utcOffset] of now. */
@@ -257,7 +251,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
                 struct cv_progress *progress, struct cv_job_result *res, struct cv_error *err)
 {
     const struct cv_job *job = plan->job;
-    double t0 = now_seconds();
+    double t0 = cv_seconds();
     memset(res, 0, sizeof(*res));
     struct cv_render_params rp = cv_plan_render_params(plan);
     struct cv_renderer *r = NULL;
@@ -290,18 +284,18 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     bool ok = true;
     uint32_t pass_spp = 1;
     uint64_t rays_total = 0;
-    double t_render = now_seconds();
+    double t_render = cv_seconds();
     cv_progress_phase(progress, job->name, CV_PHASE_RENDER, NULL);
     while (cv_renderer_spp_done(r) < target) {
         uint32_t done = cv_renderer_spp_done(r);
         uint32_t n = pass_spp < target - done ? pass_spp : target - done;
-        double tp = now_seconds();
+        double tp = cv_seconds();
         struct cv_render_counters c;
         if (!cv_renderer_pass(r, n, err) || !cv_renderer_counters(r, &c, err)) {
             ok = false;
             break;
         }
-        double now = now_seconds(), dt = now - tp;
+        double now = cv_seconds(), dt = now - tp;
         rays_total = c.primary_rays + c.secondary_rays + c.shadow_rays;
         res->nonfinite = c.nonfinite_samples;
         double elapsed = now - t_render;
@@ -332,7 +326,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         pass_spp = cv_next_pass_spp(n, dt, limit > 0 ? fmax(limit - (now - t0), 1e-9) : 0);
     }
     res->spp = cv_renderer_spp_done(r);
-    res->render_seconds = now_seconds() - t_render;
+    res->render_seconds = cv_seconds() - t_render;
     uint32_t w, h;
     cv_renderer_size(r, &w, &h);
     if (ok && res->spp == 0)
@@ -345,7 +339,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
         free(first);
     }
     if (ok) {
-        res->seconds = now_seconds() - t0;
+        res->seconds = cv_seconds() - t0;
         struct cv_metadata *meta = job_metadata(gpu, plan, res);
         if (job->formats & CV_FORMAT_EXR)
             ok = write_exr(r, plan, scene, w, h, meta, progress, res, err);
@@ -355,7 +349,7 @@ bool cv_run_job(struct cv_gpu *gpu, const struct cv_render_plan *plan,
     }
     cv_renderer_destroy(&r);
     cv_scene_gpu_destroy(&relit);
-    res->seconds = now_seconds() - t0;
+    res->seconds = cv_seconds() - t0;
     if (!ok)
         cv_error_prefix(err, "job \"%s\"", job->name);
     return ok;

@@ -82,6 +82,13 @@ void cv_buffer_zero(GLuint buf)
     glClearNamedBufferData(buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
+void cv_buffer_zero_range(GLuint buf, size_t offset, size_t bytes)
+{
+    GLuint zero = 0;
+    glClearNamedBufferSubData(buf, GL_R32UI, (GLintptr)offset, (GLsizeiptr)bytes, GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
+}
+
 void cv_buffer_bind(GLuint buf, unsigned binding)
 {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buf);

@@ -39,6 +39,8 @@ bool cv_buffer_read(GLuint buf, size_t offset, size_t bytes, void *dst, struct c
 bool cv_buffer_read_staged(GLuint buf, size_t offset, size_t bytes, GLuint staging, void *dst,
                            struct cv_error *err);
 void cv_buffer_zero(GLuint buf);
+/* Zeroes `bytes` (a multiple of 4) from `offset` (aligned to 4). */
+void cv_buffer_zero_range(GLuint buf, size_t offset, size_t bytes);
 void cv_buffer_bind(GLuint buf, unsigned binding);
 /* A buffer texture over buf (texels of `format`, e.g. GL_R32UI), for
  * reading it through the texture path or binding it as an image; 0 with

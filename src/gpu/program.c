@@ -2,8 +2,8 @@
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "base/clock.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "gpu/gl_check.h"
@@ -438,13 +438,6 @@ char *cv_glsl_map_log(const char *log, char *const *names)
 
 /* ---- compiling --------------------------------------------------------- */
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
 static char *shader_log(GLuint sh)
 {
     GLint len = 0;
@@ -486,9 +479,9 @@ static bool finish(struct cache_entry *e, struct cv_error *err)
     struct pending *pd = e->pending;
     GLint status = 0;
     bool ok = true;
-    double t0 = now_ms();
+    double t0 = 1e3 * cv_seconds();
     glGetProgramiv(pd->program, GL_LINK_STATUS, &status);
-    double t1 = now_ms();
+    double t1 = 1e3 * cv_seconds();
     GLint compiled = 0;
     glGetShaderiv(pd->shader, GL_COMPILE_STATUS, &compiled);
     char *raw = shader_log(pd->shader);
@@ -525,7 +518,7 @@ static bool finish(struct cache_entry *e, struct cv_error *err)
 static void submit(struct cv_program_disk_cache *disk, struct cache_entry *e)
 {
     struct pending *pd = e->pending;
-    double t0 = now_ms();
+    double t0 = 1e3 * cv_seconds();
     pd->shader = glCreateShader(GL_COMPUTE_SHADER);
     const GLchar *srcs[1] = {pd->src};
     glShaderSource(pd->shader, 1, srcs, NULL);
@@ -535,7 +528,7 @@ static void submit(struct cv_program_disk_cache *disk, struct cache_entry *e)
         GLint status = 0;
         glGetShaderiv(pd->shader, GL_COMPILE_STATUS, &status);
     }
-    double t1 = now_ms();
+    double t1 = 1e3 * cv_seconds();
     pd->program = glCreateProgram();
     if (cv_program_disk_cache_enabled(disk))
         glProgramParameteri(pd->program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
@@ -545,7 +538,7 @@ static void submit(struct cv_program_disk_cache *disk, struct cache_entry *e)
         GLint status = 0;
         glGetProgramiv(pd->program, GL_LINK_STATUS, &status);
     }
-    double t2 = now_ms();
+    double t2 = 1e3 * cv_seconds();
     e->times.compile_ms += t1 - t0;
     e->times.link_ms += t2 - t1;
 }
@@ -570,19 +563,19 @@ static void free_pending(struct pending **pd)
 static void start(struct cv_program_cache *c, struct cache_entry *e,
                   const char *const *defines, const struct cv_glsl_splice *splice)
 {
-    double t0 = now_ms();
+    double t0 = 1e3 * cv_seconds();
     e->times.requested_at_ms = t0;
     char *src, **names;
     struct cv_error err = {{0}};
     bool ok = assemble(e->path, defines, splice, &src, &names, &err);
-    double t1 = now_ms();
+    double t1 = 1e3 * cv_seconds();
     e->times.assemble_ms = t1 - t0;
     if (!ok) {
         e->error = cv_xstrdup(err.msg);
         return;
     }
     GLuint cached = cv_program_disk_cache_load(c->disk, src, e->path);
-    e->times.load_ms = now_ms() - t1;
+    e->times.load_ms = 1e3 * cv_seconds() - t1;
     if (cached) {
         adopt(cached, e->path, e->prog);
         e->from_disk = true;
@@ -609,11 +602,11 @@ static void complete(struct cv_program_cache *c, struct cache_entry *e)
     struct cv_error errv = {{0}}, *err = &errv;
     bool ok = finish(e, err);
     ok = ok && cv_gl_check(err, "building glsl/%s", e->path);
-    double t0 = now_ms();
+    double t0 = 1e3 * cv_seconds();
     /* Only after the check: the store reads glGetError for its own calls. */
     if (ok)
         cv_program_disk_cache_store(c->disk, e->pending->src, e->prog->id, e->path);
-    e->times.store_ms = now_ms() - t0;
+    e->times.store_ms = 1e3 * cv_seconds() - t0;
     if (!ok) {
         if (e->prog->id)
             glDeleteProgram(e->prog->id);
@@ -630,7 +623,7 @@ static void account(struct cv_program_cache *c, struct cache_entry *e)
     const struct program_times *t = &e->times;
     double own = t->assemble_ms + t->load_ms + t->compile_ms + t->link_ms + t->wait_ms +
                  t->store_ms;
-    double since = now_ms() - t->requested_at_ms;
+    double since = 1e3 * cv_seconds() - t->requested_at_ms;
     struct cv_program_build_stats *s = &c->stats;
     s->build_ms += own;
     s->assemble_ms += t->assemble_ms;

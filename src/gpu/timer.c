@@ -2,10 +2,10 @@
  * the host clock, where it is used, adds to the rows at once. */
 #include <stdint.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include <epoxy/gl.h>
 
+#include "base/clock.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "gpu/timer.h"
@@ -31,13 +31,6 @@ struct cv_gpu_timer {
     struct scope *closed; /* awaiting collection (GPU clock) */
     size_t n_closed, cap_closed;
 };
-
-static double host_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 struct cv_gpu_timer *cv_gpu_timer_create(const struct cv_gpu *gpu,
                                          const struct cv_gpu_timer_params *p)
@@ -72,7 +65,7 @@ void cv_gpu_timer_begin(struct cv_gpu_timer *t, unsigned row, unsigned slot)
     t->ran[row] = true;
     if (t->host_clock) {
         glFinish();
-        t->host_start = host_ms();
+        t->host_start = 1e3 * cv_seconds();
     } else {
         glGenQueries(1, &t->open.begin);
         glQueryCounter(t->open.begin, GL_TIMESTAMP);
@@ -86,7 +79,7 @@ void cv_gpu_timer_end(struct cv_gpu_timer *t)
     t->is_open = false;
     if (t->host_clock) {
         glFinish();
-        add(t, t->open.row, t->open.slot, host_ms() - t->host_start);
+        add(t, t->open.row, t->open.slot, 1e3 * cv_seconds() - t->host_start);
         return;
     }
     glGenQueries(1, &t->open.end);

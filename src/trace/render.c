@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/clock.h"
 #include "base/limits.h"
 #include "base/log.h"
 #include "base/mem.h"
@@ -101,6 +102,7 @@ struct cv_renderer {
      * NULL: off */
     struct cv_gpu_timer *stages;
     const char *stage_rows[PROF_COUNT];  /* its row names: the stages, then ops' */
+    size_t made_bytes;             /* the storage make() created, for the set-up's log line */
     struct {
         GLuint counts;             /* rays in of the pass's iterations 0..PROF_ITERS-1 */
         uint64_t iter_rays[PROF_ITERS];
@@ -157,15 +159,76 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     cv_camera_motion_setup(c, u);
 }
 
-static GLuint make(struct cv_gpu *gpu, size_t bytes, const char *label, bool *ok,
-                   struct cv_error *err)
+/* A storage buffer of the renderer, zeroed or (zero false) of undefined
+ * contents. */
+static GLuint make_buffer(struct cv_renderer *r, size_t bytes, bool zero, const char *label,
+                          bool *ok, struct cv_error *err)
 {
     if (!*ok)
         return 0;
-    GLuint b = cv_gpu_storage_buffer(gpu, bytes, NULL, label, err);
+    GLuint b = 0;
+    if (cv_gpu_storage_fits(r->gpu, bytes, label, err))
+        b = zero ? cv_buffer_create(bytes, NULL, label, err)
+                 : cv_buffer_create_uninit(bytes, label, err);
     if (!b)
         *ok = false;
+    r->made_bytes += bytes;
     return b;
+}
+
+static GLuint make(struct cv_renderer *r, size_t bytes, const char *label, bool *ok,
+                   struct cv_error *err)
+{
+    return make_buffer(r, bytes, true, label, ok, err);
+}
+
+/* For a queue's items, which a stage reads only below the count that the
+ * stage before wrote them up to: no zero-fill, which for fresh storage
+ * costs time in proportion to its size (gpu/buffer.h). */
+static GLuint make_queue(struct cv_renderer *r, size_t bytes, const char *label, bool *ok,
+                         struct cv_error *err)
+{
+    return make_buffer(r, bytes, false, label, ok, err);
+}
+
+/* params' stage_times: the set-up's steps (the time before a job's first
+ * pass that is not the scene's), each waited for (glFinish) so that the
+ * GPU work a step queues counts in it. A diagnostic: the waits cost time. */
+enum setup_step { SETUP_PROGRAMS, SETUP_INTEGRATOR, SETUP_BUFFERS, SETUP_STEPS };
+
+struct setup_clock {
+    bool on;
+    double at;                  /* [s] the last step's end */
+    double ms[SETUP_STEPS];
+};
+
+static void setup_start(struct setup_clock *c, bool on)
+{
+    *c = (struct setup_clock){.on = on};
+    if (on) {
+        glFinish();
+        c->at = cv_seconds();
+    }
+}
+
+static void setup_step(struct setup_clock *c, enum setup_step s)
+{
+    if (!c->on)
+        return;
+    glFinish();
+    double now = cv_seconds();
+    c->ms[s] += 1e3 * (now - c->at);
+    c->at = now;
+}
+
+static void setup_report(const struct setup_clock *c, const struct cv_renderer *r)
+{
+    if (!c->on)
+        return;
+    cv_info("renderer set-up (each step waited for): programs %.1f ms, integrator state %.1f ms, "
+            "path buffers %.1f ms (%zu MB), %zu path slots (%u a pixel)",
+            c->ms[SETUP_PROGRAMS], c->ms[SETUP_INTEGRATOR], c->ms[SETUP_BUFFERS],
+            r->made_bytes >> 20, r->n_paths, r->paths_per_pixel);
 }
 
 /* Bytes a path slot takes: its rays (two halves), hits (two), shadow ray
@@ -456,6 +519,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         return cv_fail(err, "ID mattes of %u triangles: more than this GPU's buffer textures "
                             "hold", scene->n_triangles);
 
+    struct setup_clock clock;
+    setup_start(&clock, p->stage_times);
     struct cv_renderer *r = cv_xcalloc(1, sizeof(*r));
     r->gpu = gpu;
     r->aovs = p->aovs;
@@ -539,6 +604,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         }
     }
     const char *const *defines = sp.integrator_defines;
+    setup_step(&clock, SETUP_PROGRAMS);
 
     if (ops->create) {
         struct cv_integrator_setup setup = {
@@ -560,32 +626,34 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             if (!ops->file[k])
                 r->prog[ST_SHADE + k] = made[k];
     }
+    setup_step(&clock, SETUP_INTEGRATOR);
 
     size_t n = r->n_paths;
     bool ok = true;
-    r->ubo = make(gpu, sizeof(CvPassParams), "trace pass params", &ok, err);
-    r->queues = make(gpu, sizeof(CvTraceQueues), "trace queues", &ok, err);
+    r->ubo = make(r, sizeof(CvPassParams), "trace pass params", &ok, err);
+    r->queues = make(r, sizeof(CvTraceQueues), "trace queues", &ok, err);
     /* a whole-sample integrator's program declares no queues (CV_NO_QUEUES) */
     if (!ops->whole_samples) {
-        r->rays = make(gpu, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
-        r->hits = make(gpu, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok, err);
-        r->shadow = make(gpu, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
+        r->rays = make_queue(r, 2 * n * sizeof(CvRayItem), "trace rays", &ok, err);
+        r->hits = make_queue(r, 2 * n * sizeof(CvHitItem), "trace hits and escaped rays", &ok,
+                             err);
+        r->shadow = make_queue(r, n * sizeof(CvShadowItem), "trace shadow rays", &ok, err);
     }
-    r->film = make(gpu, n * sizeof(CvFilmPixel), "trace film", &ok, err);
+    r->film = make(r, n * sizeof(CvFilmPixel), "trace film", &ok, err);
     if (r->matte_stride)
-        r->matte = make(gpu, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
+        r->matte = make(r, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
     /* a whole-sample integrator (bdpt) keeps its ratios in registers */
     if (r->media && !ops->whole_samples && ok) {
         /* starts cleared: no slot's ratios belong to a path yet (track.glsl) */
         float *zero = cv_xcalloc(n, 4 * sizeof(float));
-        r->medium_paths = make(gpu, n * 4 * sizeof(float), "trace medium paths", &ok, err);
+        r->medium_paths = make(r, n * 4 * sizeof(float), "trace medium paths", &ok, err);
         if (ok)
             glNamedBufferSubData(r->medium_paths, 0, (GLsizeiptr)(n * 4 * sizeof(float)), zero);
         free(zero);
     }
     if (r->scene->has_subsurface && ok) {
         size_t texels = n * CV_SSS_ENTRY_TEXELS;
-        r->sss_entry = make(gpu, texels * 4 * sizeof(float), "trace subsurface entries", &ok, err);
+        r->sss_entry = make(r, texels * 4 * sizeof(float), "trace subsurface entries", &ok, err);
         if (ok && !(r->sss_entry_tex = cv_buffer_texture(r->sss_entry, GL_RGBA32F, texels, err)))
             ok = false;
     }
@@ -595,18 +663,21 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
                                                       .label = "trace resolved"},
                                            err)))
         ok = false;
+    r->made_bytes += (size_t)r->n_pixels * 4 * sizeof(float);
     if (r->stages)
-        r->prof.counts = make(gpu, PROF_ITERS * sizeof(uint32_t), "trace stage-time ray counts",
+        r->prof.counts = make(r, PROF_ITERS * sizeof(uint32_t), "trace stage-time ray counts",
                               &ok, err);
-    r->alive[0] = make(gpu, sizeof(uint32_t), "trace pass end check 0", &ok, err);
-    r->alive[1] = make(gpu, sizeof(uint32_t), "trace pass end check 1", &ok, err);
-    r->queues_copy = make(gpu, sizeof(CvTraceQueues), "trace queues read-back", &ok, err);
+    r->alive[0] = make(r, sizeof(uint32_t), "trace pass end check 0", &ok, err);
+    r->alive[1] = make(r, sizeof(uint32_t), "trace pass end check 1", &ok, err);
+    r->queues_copy = make(r, sizeof(CvTraceQueues), "trace queues read-back", &ok, err);
     if (!ok) {
         cv_error_prefix(err, "allocating the film and queues for %ux%u, %u paths a pixel: ",
                         r->crop_w, r->crop_h, r->paths_per_pixel);
         cv_renderer_destroy(&r);
         return false;
     }
+    setup_step(&clock, SETUP_BUFFERS);
+    setup_report(&clock, r);
     *out = r;
     return true;
 }

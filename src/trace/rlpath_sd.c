@@ -147,13 +147,17 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     struct cv_sd_frame f = cv_sdtree_frame(sd->guide, &sd->opts);
     sd->params.learn = (cv_uvec4){1, f.filter, n_paths, 0};
     sd->params.cube = (cv_vec4){f.cube[0], f.cube[1], f.cube[2], f.cube[3]};
-    /* zero: no slot has a path waiting */
-    size_t vbytes = (size_t)(n_paths ? n_paths : 1) * CV_SD_SLOT_TEXELS * 16;
+    /* the counts zeroed: no slot has a path waiting; the records are
+     * written before they are read (shared/sdtree.h) */
+    size_t slots = n_paths ? n_paths : 1, vbytes = slots * CV_SD_SLOT_TEXELS * 16;
     bool ok = (sd->ubo = cv_buffer_create(sizeof(sd->params), &sd->params, "rlpath sd params", err)) &&
-              (sd->verts = cv_buffer_create(vbytes, NULL, "rlpath sd path records", err)) &&
-              cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16,
-                                     CV_IMAGE_SD_VERTS, GL_RGBA32F, GL_READ_WRITE, err) &&
-              guide_upload(sd, err);
+              (sd->verts = cv_buffer_create_uninit(vbytes, "rlpath sd path records", err));
+    if (ok)
+        cv_buffer_zero_range(sd->verts, 0, slots * 16);
+    ok = ok &&
+         cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16, CV_IMAGE_SD_VERTS,
+                                GL_RGBA32F, GL_READ_WRITE, err) &&
+         guide_upload(sd, err);
     if (!ok) {
         cv_error_prefix(err, "rlpath sdtree for %u path slots: ", n_paths);
         cv_rlpath_sd_destroy(&sd);
@@ -240,7 +244,7 @@ bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
         memset(v, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * sizeof(*v));
         for (size_t i = at; i < n && i < at + per; i++) {
             size_t slot = (i - at) / CV_SD_MAX_RECORDS, k = (i - at) % CV_SD_MAX_RECORDS;
-            float *h = v[slot * CV_SD_SLOT_TEXELS], *r = v[slot * CV_SD_SLOT_TEXELS + 1 + 2 * k];
+            float *h = v[slot], *r = v[CV_SD_RECORD_TEXEL((size_t)sd->n_paths, slot, k)];
             h[0] = (float)(k + 1);
             memcpy(r, rec[i].p, sizeof(rec[i].p));
             r[3] = rec[i].pdf;

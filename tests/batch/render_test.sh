@@ -2,8 +2,9 @@
 # render_test.sh: a small batch renders every job in both formats with the
 # metadata --resume relies on; --resume skips finished jobs and redoes a
 # changed one; --only and --dry-run do what they say; CAVALRY_STAGE_TIMES
-# logs the stages' GPU times when set to anything but 0; CAVALRY_BVH_ROUNDS
-# and CAVALRY_BVH_SPLIT reach the BVH build (the CLI reads them, cli/knobs.c).
+# logs the stages' GPU times and the renderer's set-up steps when set to
+# anything but 0; CAVALRY_BVH_ROUNDS and CAVALRY_BVH_SPLIT reach the BVH
+# build (the CLI reads them, cli/knobs.c).
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
@@ -35,8 +36,10 @@ check "--only renders one job" test "$(grep -c '"event":"job_finished"' run4.jso
 
 check_out "stage times on" run5.jsonl env CAVALRY_STAGE_TIMES=1 "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run5.err
 check "CAVALRY_STAGE_TIMES=1 logs the stages" grep -q "stage intersect" run5.err
+check "CAVALRY_STAGE_TIMES=1 logs the renderer's set-up" \
+    grep -q "renderer set-up (each step waited for): programs .* ms, integrator state .* ms, path buffers .* ms (.* MB)" run5.err
 check_out "stage times off" run6.jsonl env CAVALRY_STAGE_TIMES=0 "$CAVALRY_BATCH" --progress=json --resume --force --only=c jobs.yaml 2>run6.err
-check "CAVALRY_STAGE_TIMES=0 logs none" sh -c '! grep -q "stage intersect" run6.err'
+check "CAVALRY_STAGE_TIMES=0 logs none" sh -c '! grep -q "stage intersect\|renderer set-up" run6.err'
 check "BVH knobs unset" "$CAVALRY_BATCH" -v --progress=none --resume --force --only=c jobs.yaml 2>run7.err
 check "the BVH build gets the defaults" grep -q "3 treelet rounds, split budget 0.3)" run7.err
 check "BVH knobs set" env CAVALRY_BVH_ROUNDS=1 CAVALRY_BVH_SPLIT=0.5 "$CAVALRY_BATCH" -v --progress=none --resume --force --only=c jobs.yaml 2>run8.err

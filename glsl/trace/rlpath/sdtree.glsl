@@ -188,9 +188,9 @@ float cv_sd_pdf(int root, vec3 w)
 }
 
 #ifdef CV_SD_RECORD
-// The slot's first texel: its pending count (x); its records follow.
-int cv_sd_slot_texel(uint slot) { return int(slot * CV_SD_SLOT_TEXELS); }
-int cv_sd_record_texel(uint slot, uint k) { return cv_sd_slot_texel(slot) + 1 + int(2u * k); }
+// The slot's pending count (x), and its records (shared/sdtree.h).
+int cv_sd_slot_texel(uint slot) { return int(slot); }
+int cv_sd_record_texel(uint slot, uint k) { return int(CV_SD_RECORD_TEXEL(u_sd.learn.z, slot, k)); }
 
 // The record of the bounce that leaves the vertex at depth from p (of
 // orientation class cls) in direction wi drawn with solid-angle density
