@@ -132,6 +132,14 @@ if test -x "$rp" && "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
             "$(awk '$1 ~ /^(camera|bounce1|bounce2|shadow)$/ && $8 < 99 {n++} END {print n + 0}' \
             "$tmp/rp.out")" -eq 0
     fi
+    check_out "rt_probe --shuffle runs" "$tmp/rps.out" "$rp" "$tmp/a/scene.pbrt" --res 24 --repeats 3 --shuffle 2>/dev/null
+    check "rt_probe --shuffle says so" grep -q 'seed 1, shuffled;' "$tmp/rps.out"
+    check "rt_probe: pixel order by default" grep -q 'seed 1, in pixel order;' "$tmp/rp.out"
+    for q in camera bounce1 bounce2 shadow; do
+        check "rt_probe --shuffle: as many $q rays" test \
+            "$(awk -v q=$q '$1 == q {print $2; exit}' "$tmp/rps.out")" = \
+            "$(awk -v q=$q '$1 == q {print $2; exit}' "$tmp/rp.out")"
+    done
     check "rt_probe refuses an unknown option" sh -c "! '$rp' '$tmp/a/scene.pbrt' --nope 2>/dev/null"
 fi
 done_testing

@@ -15,7 +15,10 @@
  * ratio and how often the two agree: closest hits on the same triangle at
  * a t within a relative 1e-3 (or both missing), any-hit queries on
  * occluded or not.
- *   rt_probe SCENE.pbrt [--res N] [--seed S] [--repeats R]
+ *   rt_probe SCENE.pbrt [--res N] [--seed S] [--repeats R] [--shuffle]
+ * --shuffle traces each set in a random order instead of pixel and parent
+ * order: the incoherent end of the range the renderer's compacted queues
+ * lie in.
  * Without a Vulkan device that has ray-tracing pipelines the Vulkan columns
  * say why they are empty and the exit status stays 0. Run from the build
  * tree (embedded shaders) or with CAVALRY_DATA_DIR at the source tree. */
@@ -109,6 +112,24 @@ static bool gl_trace(void *ctx, const struct bench_ray *r, uint32_t n, struct be
     return ok;
 }
 
+/* Puts every set's rays in a random order (Fisher-Yates, xorshift keyed by
+ * the seed), after all of them are made: the same rays, none coherent with
+ * its neighbours. */
+static void shuffle_sets(struct bench_rayset sets[BENCH_Q_TYPES], uint64_t seed)
+{
+    uint64_t x = 0x2545F4914F6CDD1Dull ^ (seed * 0x9E3779B97F4A7C15ull);
+    for (int q = 0; q < BENCH_Q_TYPES; q++)
+        for (uint32_t i = sets[q].n; i > 1; i--) {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            uint32_t j = (uint32_t)(x % i);
+            struct bench_ray t = sets[q].r[i - 1];
+            sets[q].r[i - 1] = sets[q].r[j];
+            sets[q].r[j] = t;
+        }
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -152,13 +173,15 @@ static void agreement(const uint32_t *a, const uint32_t *b, uint32_t n, bool any
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fprintf(stderr, "usage: %s SCENE.pbrt [--res N] [--seed S] [--repeats R]\n", argv[0]);
+        fprintf(stderr, "usage: %s SCENE.pbrt [--res N] [--seed S] [--repeats R] [--shuffle]\n",
+                argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
     const char *path = argv[1];
     int res = 512, repeats = 5;
     uint64_t seed = 1;
+    bool shuffle = false;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         bool has_v = i + 1 < argc;
@@ -168,6 +191,8 @@ int main(int argc, char **argv)
             seed = strtoull(argv[++i], NULL, 10);
         else if (has_v && !strcmp(a, "--repeats"))
             repeats = atoi(argv[++i]);
+        else if (!strcmp(a, "--shuffle"))
+            shuffle = true;
         else {
             fprintf(stderr, "rt_probe: unknown argument %s\n", a);
             return 2;
@@ -236,6 +261,8 @@ int main(int argc, char **argv)
                                                      .trace = gl_trace, .ctx = &g},
                          sets))
         return 1;
+    if (shuffle)
+        shuffle_sets(sets, seed);
 
     fprintf(stderr, "rt_probe: %u rays made\n",
             sets[0].n + sets[1].n + sets[2].n + sets[3].n);
@@ -300,9 +327,10 @@ int main(int argc, char **argv)
                               vk_res[q], &vk_err);
     }
 
-    printf("%s: %u static triangles, %u lights; rays from a %d-wide camera grid, seed %llu; "
-           "median of %d repeats\n",
-           path, m.n, sc->n_lights, res, (unsigned long long)seed, repeats);
+    printf("%s: %u static triangles, %u lights; rays from a %d-wide camera grid, seed %llu, "
+           "%s; median of %d repeats\n",
+           path, m.n, sc->n_lights, res, (unsigned long long)seed,
+           shuffle ? "shuffled" : "in pixel order", repeats);
     printf("gl: %s; tree %u nodes\n", gl_name, tree_nodes);
     if (have_vk)
         printf("vulkan: %s, %s; BLAS %.3f ms (%.1f MiB), TLAS %.3f ms\n", vi.device, vi.driver,
