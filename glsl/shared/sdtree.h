@@ -40,7 +40,10 @@
  *   Leaves that split in space share their parent's sampling quadtrees.
  *   training quadtree node at texel q (two texels):
  *     q:     the texels of the quadrants' nodes, 0 for a leaf quadrant;
- *     q + 1: x: the node's first statistics word; yzw: 0.
+ *     q + 1: x: the node's first statistics word; y: at a class's root,
+ *            the most a record's value adds (its class's records' mean
+ *            value in the iteration before times cv_sdtree_opts.clamp;
+ *            0: no limit), else 0; zw: 0.
  * The density of a point is the product over the nodes it passes of 4
  * times its quadrant's probability, on the square; sampling descends the
  * same quadrants (sdtree.glsl), so the pdf it returns is the one it draws.

@@ -24,6 +24,9 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
      * multiplies the training splat's adds (bench/RESULTS.md, "sdtree:
      * training filters") */
     .filter = 0,
+    /* measured on veach-ajar and the closed room (bench/RESULTS.md,
+     * "sdtree: what the guide learns") */
+    .clamp = 10.0f,
 };
 
 /* a training or sampling node's "no node" (a child 0 is a leaf quadrant:
@@ -40,6 +43,7 @@ struct cnode {
     uint32_t samp;    /* sampling quadtree root */
     float weight;
     uint32_t train;   /* training quadtree root */
+    float clamp;      /* the limit of a record's value (opts.clamp), 0: none */
 };
 
 struct qnode {        /* sampling */
@@ -223,6 +227,8 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
             ch[k] = t->t[j].child[k] ? (float)(tbase + 2 * (size_t)t->t[j].child[k]) : 0.0f;
         x[tbase + 2 * j + 1][0] = (float)train_word(t, (uint32_t)j);
     }
+    for (size_t i = 0; i < t->nc; i++)
+        x[tbase + 2 * (size_t)t->c[i].train + 1][1] = t->c[i].clamp;
     free(pos);
     free(queue);
     *texels = x;
@@ -380,6 +386,9 @@ void cv_sdtree_splat(const float (*x)[4], const struct cv_sd_frame *f, uint32_t 
     if (c < 0)
         return;
     const float *ct = x[c];
+    float lim = x[(uint32_t)ct[2] + 1][1];
+    if (lim > 0 && v > lim)
+        v = lim;
     uint32_t w = (uint32_t)ct[3];
     stats[w]++;
     stats[w + 1] += v > 0;
@@ -497,6 +506,7 @@ static uint32_t make_training(struct refine *r, uint32_t j, const double e[4],
 struct learned {
     uint32_t samp;
     float weight;
+    float clamp;
     uint32_t train;   /* the old training root */
     double e[4], cnt[4], E;
 };
@@ -529,6 +539,7 @@ static void split_leaf(struct refine *r, uint32_t node, const struct learned *lc
         uint32_t ci = push_c(r->n);
         r->n->c[ci].samp = lc[cls].samp;
         r->n->c[ci].weight = lc[cls].weight;
+        r->n->c[ci].clamp = lc[cls].clamp;
         r->st.guiding += lc[cls].weight > 0;
         uint32_t t = make_training(r, lc[cls].train, lc[cls].e, lc[cls].cnt, 0, lc[cls].E);
         r->n->c[ci].train = t;
@@ -569,6 +580,8 @@ static void refine_spatial(struct refine *r, uint32_t old, uint32_t node, const 
         /* the floor spread over the square's unit area */
         l->samp = make_sampling(r, oc->train, 1, 0, r->o->floor * l->E);
         l->weight = lit >= r->o->min_records && l->E > 0 ? r->o->mix : 0.0f;
+        /* the records' mean value (the flux is their sum) */
+        l->clamp = r->o->clamp > 0 && lit > 0 && l->E > 0 ? (float)(r->o->clamp * l->E / lit) : 0.0f;
     }
     split_leaf(r, node, lc, count, lo, hi, depth);
 }

@@ -40,6 +40,13 @@ struct cv_sdtree_opts {
     uint32_t min_records;   /* a leaf's class guides with at least this many
                                records of positive radiance */
     uint32_t filter;        /* the splat's filters, CV_SD_FILTER_* (shared/sdtree.h) */
+    /* A record adds at most this multiple of the mean value of its
+     * class's records of positive value in the iteration before (0: no
+     * limit): a rare path that finds a bright light through a narrow
+     * feature otherwise becomes the peak of its quadtree. It shapes the
+     * learned distribution only; the estimator divides by the exact
+     * density, so the image stays unbiased. */
+    float clamp;
 };
 
 /* The defaults (trace/sdtree.c). */

@@ -12,7 +12,9 @@
  * inner quadrants), for records anywhere on the square, edges included;
  * and the host's refinement sums those leaf quadrants up, so that a
  * learned quadtree's root probabilities follow all the records, those that
- * landed deep below it too. */
+ * landed deep below it too; and the limit of a record's value (clamp
+ * times its class's mean value in the iteration before) caps a bright
+ * record, passes a dim one whole, and is off at clamp 0. */
 #include "config.h"
 
 #include <math.h>
@@ -293,6 +295,7 @@ static void test_inner_sums(void)
     }
     struct cv_sdtree_opts o = cv_sdtree_defaults;
     o.filter = 0;
+    o.clamp = 0;   /* every record whole (test_clamp) */
     struct cv_sdtree *t = cv_sdtree_create(lo, hi);
     cv_sdtree_learn_records(t, r, n, &o, NULL);
     float(*x)[4] = NULL;
@@ -331,10 +334,77 @@ static void test_inner_sums(void)
     free(r);
 }
 
+/* The limit of a record's value (cv_sdtree_opts.clamp): after an
+ * iteration of records of value 1 and a few of 1000 in one class, the
+ * class's training root holds clamp times their mean value; in the next
+ * iteration a record of any value adds at most that, a record below it
+ * adds its own value, and with clamp 0 nothing is limited. */
+static void test_clamp(void)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const size_t n = 1000;
+    struct cv_sd_record *r = calloc(n, sizeof(*r));
+    double E = 0;
+    for (size_t i = 0; i < n; i++) {
+        /* straight up (cosine 1 to +z), value L / pdf */
+        r[i] = (struct cv_sd_record){{0.3f, 0.3f, 0.3f}, 1.0f, 4.0f + 0.999f, (float)rnd(), 1.0f,
+                                     i % 100 == 0 ? 1000.0f : 1.0f};
+        E += value_of(&r[i]);
+    }
+    for (int with = 0; with <= 1; with++) {
+        struct cv_sdtree_opts o = cv_sdtree_defaults;
+        o.filter = 0;
+        o.clamp = with ? 4.0f : 0.0f;
+        /* the first iteration: every record whole (no limit yet) */
+        struct cv_sdtree *t = cv_sdtree_create(lo, hi);
+        float(*x)[4] = NULL;
+        size_t nx = 0;
+        cv_sdtree_table(t, &x, &nx);
+        uint32_t *stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
+        struct cv_sd_frame f = cv_sdtree_frame(t, &o);
+        for (size_t i = 0; i < n; i++)
+            cv_sdtree_splat((const float(*)[4])x, &f, stats, &r[i]);
+        free(x);
+        cv_sdtree_refine(t, stats, &o, NULL);
+        free(stats);
+        cv_sdtree_table(t, &x, &nx);
+        uint32_t leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
+        uint32_t troot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][2];
+        double lim = x[troot + 1][1], want = with ? 4.0 * E / (double)n : 0.0;
+        tap_ok(fabs(lim - want) <= 1e-5 * want, "clamp %g: the class's limit %g is %g", (double)o.clamp,
+               lim, want);
+        /* one bright record and one dim one into the next iteration's
+         * statistics */
+        stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
+        f = cv_sdtree_frame(t, &o);
+        struct cv_sd_record b = r[0], d = r[1];
+        b.L = 1e6f;
+        d.L = 0.5f;
+        double sum[2];
+        for (int k = 0; k < 2; k++) {
+            memset(stats, 0, cv_sdtree_stat_words(t) * sizeof(*stats));
+            cv_sdtree_splat((const float(*)[4])x, &f, stats, k ? &d : &b);
+            double inner = 0;
+            sum[k] = tree_flux((const float(*)[4])x, stats, troot, &inner);
+        }
+        double bv = value_of(&b), dv = value_of(&d);
+        tap_ok(fabs(sum[0] - (with ? lim : bv)) <= 1e-5 * sum[0],
+               "clamp %g: a record of value %g adds %g (%g)", (double)o.clamp, bv, sum[0],
+               with ? lim : bv);
+        tap_ok(fabs(sum[1] - dv) <= 1e-5 * dv, "clamp %g: a record of value %g below the limit "
+               "adds it whole (%g)", (double)o.clamp, dv, sum[1]);
+        free(stats);
+        free(x);
+        cv_sdtree_destroy(&t);
+    }
+    free(r);
+}
+
 int main(void)
 {
     test_spatial();
     test_directional();
     test_inner_sums();
+    test_clamp();
     return tap_done();
 }

@@ -331,7 +331,8 @@ void cv_sd_splat_flux(int q, vec2 s, float v, int w, float h)
 }
 
 // Splats one record into the tree being trained (shared/sdtree.h,
-// "Statistics"): its class's record counts and the count of the leaf
+// "Statistics"), its value at most its class's limit (the training root's
+// second texel, y; the host's cv_sdtree_splat the same): its class's record counts and the count of the leaf
 // quadrant it falls in in its own leaf's training quadtree, then its
 // flux. With CV_SD_FILTER_SPATIAL, Müller et al.'s spatial box filter: a
 // box of its leaf's size about the record (moved inside the root cube)
@@ -348,6 +349,11 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
     if (c < 0)
         return;
     vec4 ct = imageLoad(sd_tree, c);
+    // the class's limit of a record's value (its training root's second
+    // texel, y; 0: none)
+    float lim = imageLoad(sd_tree, int(ct.z) + 1).y;
+    if (lim > 0.0 && v > lim)
+        v = lim;
     int w = int(ct.w);
     imageAtomicAdd(sd_stats, w, 1u);
     if (v > 0.0)
