@@ -54,6 +54,7 @@
 #include "scene/scene.h"
 #include "tests/bvh/sah_ref.h"
 #include "bench/rays.h"
+#include "bench/scene_tree.h"
 #include "tests/bvh/widen_ref.h"
 
 /* ---- the scene's triangles ---- */
@@ -834,31 +835,16 @@ int main(int argc, char **argv)
         return 2;
     }
     struct cv_error err = {{0}};
-    struct cv_scene *sc = NULL;
-    if (!cv_scene_load(path, &(struct cv_scene_load_params){0}, &sc, &err)) {
+    struct bench_scene_tree tree;
+    if (!bench_scene_tree_open(path, &params, &tree, &err)) {
         fprintf(stderr, "bvh_work: %s\n", err.msg);
         return 1;
     }
-    struct bench_tris m = {.v = sc->vertices, .t = sc->triangles, .n = cv_scene_static_triangles(sc)};
-    if (m.n < 2) {
-        fprintf(stderr, "bvh_work: %s has fewer than 2 static triangles\n", path);
-        return 1;
-    }
-    struct cv_gpu *gpu = NULL;
-    if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
-        fprintf(stderr, "bvh_work: %s\n", err.msg);
-        return 1;
-    }
-    GLuint vb = cv_buffer_create((size_t)sc->n_vertices * sizeof(CvVertex), sc->vertices,
-                                 "vertices", &err);
-    GLuint tb = vb ? cv_buffer_create((size_t)sc->n_triangles * sizeof(CvTriangle),
-                                      sc->triangles, "triangles", &err)
-                   : 0;
-    struct cv_bvh *bvh = NULL;
-    if (!tb || !cv_bvh_build(gpu, vb, tb, m.n, &params, &bvh, &err)) {
-        fprintf(stderr, "bvh_work: %s\n", err.msg);
-        return 1;
-    }
+    struct cv_scene *sc = tree.sc;
+    struct bench_tris m = tree.m;
+    struct cv_gpu *gpu = tree.gpu;
+    GLuint vb = tree.vb, tb = tree.tb;
+    struct cv_bvh *bvh = tree.bvh;
     const struct cv_bvh_stats *st = cv_bvh_stats(bvh);
     struct wtree gw = {.n_nodes = st->n_nodes, .n_slots = st->n_refs};
     CvBvhNode4 *n4 = malloc((size_t)gw.n_nodes * sizeof(CvBvhNode4));
@@ -952,10 +938,6 @@ int main(int argc, char **argv)
     }
     bench_rays_free(sets);
     wtree_free(&gw);
-    cv_bvh_destroy(&bvh);
-    cv_buffer_destroy(&vb);
-    cv_buffer_destroy(&tb);
-    cv_gpu_destroy(&gpu);
-    cv_scene_destroy(&sc);
+    bench_scene_tree_close(&tree);
     return status;
 }

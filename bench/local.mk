@@ -43,8 +43,8 @@ bench_sdtree_build_SOURCES = bench/sdtree_build.c
 bench_sdtree_build_LDADD = $(CV_LIBS) -lm
 # traversal work per ray (nodes, triangles) of the GPU-built tree on a scene
 noinst_PROGRAMS += bench/bvh_work
-bench_bvh_work_SOURCES = bench/bvh_work.c bench/rays.c bench/rays.h tests/bvh/sah_ref.h \
-	tests/bvh/widen_ref.h
+bench_bvh_work_SOURCES = bench/bvh_work.c bench/rays.c bench/rays.h bench/scene_tree.c \
+	bench/scene_tree.h tests/bvh/sah_ref.h tests/bvh/widen_ref.h
 bench_bvh_work_LDADD = $(CV_LIBS) -lm
 bench_bvh_work_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl
 # the same rays on Cavalry's traversal and on the RT cores (Vulkan
@@ -55,7 +55,8 @@ EXTRA_DIST += bench/rt_probe.rgen bench/rt_probe.rchit bench/rt_probe.rmiss \
 	bench/rt_probe_payload.glsl
 if HAVE_RT_PROBE
 noinst_PROGRAMS += bench/rt_probe
-bench_rt_probe_SOURCES = bench/rt_probe.c bench/rays.c bench/rays.h bench/rt_vk.c bench/rt_vk.h
+bench_rt_probe_SOURCES = bench/rt_probe.c bench/rays.c bench/rays.h bench/scene_tree.c \
+	bench/scene_tree.h bench/rt_vk.c bench/rt_vk.h
 nodist_bench_rt_probe_SOURCES = $(RT_PROBE_SPV)
 bench_rt_probe_LDADD = $(CV_LIBS) $(VULKAN_LIBS) -lm
 bench_rt_probe_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/glsl $(VULKAN_CFLAGS)

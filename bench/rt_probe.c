@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "bench/rays.h"
+#include "bench/scene_tree.h"
 #include "bench/rt_vk.h"
 #include "bvh/bvh.h"
 #include "cli/knobs.h"
@@ -203,39 +204,22 @@ int main(int argc, char **argv)
         return 2;
     }
     struct cv_error err = {{0}};
-    struct cv_scene *sc = NULL;
-    if (!cv_scene_load(path, &(struct cv_scene_load_params){0}, &sc, &err)) {
-        fprintf(stderr, "rt_probe: %s\n", err.msg);
-        return 1;
-    }
-    struct bench_tris m = {.v = sc->vertices, .t = sc->triangles,
-                           .n = cv_scene_static_triangles(sc)};
-    if (m.n < 2) {
-        fprintf(stderr, "rt_probe: %s has fewer than 2 static triangles\n", path);
-        return 1;
-    }
-    struct cv_gpu *gpu = NULL;
-    if (!cv_gpu_create(&(struct cv_gpu_params){.gpu_index = -1}, &gpu, &err)) {
-        fprintf(stderr, "rt_probe: %s\n", err.msg);
-        return 1;
-    }
     struct cv_bvh_params params = cv_knobs_from_environment().bvh;
-    GLuint vb = cv_buffer_create((size_t)sc->n_vertices * sizeof(CvVertex), sc->vertices,
-                                 "vertices", &err);
-    GLuint tb = vb ? cv_buffer_create((size_t)sc->n_triangles * sizeof(CvTriangle),
-                                      sc->triangles, "triangles", &err)
-                   : 0;
-    struct cv_bvh *bvh = NULL;
+    struct bench_scene_tree tree;
+    if (!bench_scene_tree_open(path, &params, &tree, &err)) {
+        fprintf(stderr, "rt_probe: %s\n", err.msg);
+        return 1;
+    }
+    struct cv_scene *sc = tree.sc;
+    struct bench_tris m = tree.m;
+    struct cv_gpu *gpu = tree.gpu;
+    struct cv_bvh *bvh = tree.bvh;
     struct gl_tracer g = {.gpu = gpu};
-    if (!tb || !cv_bvh_build(gpu, vb, tb, m.n, &params, &bvh, &err) ||
-        !(g.closest = probe_program(gpu, bvh, false, &err)) ||
+    if (!(g.closest = probe_program(gpu, bvh, false, &err)) ||
         !(g.any = probe_program(gpu, bvh, true, &err))) {
         fprintf(stderr, "rt_probe: %s\n", err.msg);
         return 1;
     }
-    cv_buffer_bind(vb, CV_BIND_VERTICES);
-    cv_buffer_bind(tb, CV_BIND_TRIANGLES);
-    cv_bvh_bind(bvh);
 
     /* the static triangles' indices, packed for the BLAS (which reads
      * the scene's vertex array as it is), and their box, for the spawn
@@ -306,10 +290,7 @@ int main(int argc, char **argv)
     cv_gpu_timer_destroy(&timer);
     cv_buffer_destroy(&g.rays);
     cv_buffer_destroy(&g.results);
-    cv_bvh_destroy(&bvh);
-    cv_buffer_destroy(&vb);
-    cv_buffer_destroy(&tb);
-    cv_gpu_destroy(&gpu);
+    bench_scene_tree_close_gpu(&tree);
 
     fprintf(stderr, "rt_probe: GL traversal timed\n");
 
@@ -369,6 +350,6 @@ int main(int argc, char **argv)
     rt_vk_destroy(&vk);
     bench_rays_free(sets);
     free(idx);
-    cv_scene_destroy(&sc);
+    bench_scene_tree_close(&tree);
     return 0;
 }
