@@ -644,31 +644,37 @@ void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct c
         *st = r.st;
 }
 
+void cv_sdtree_learn_iteration(struct cv_sdtree *t, const struct cv_sd_record *rec, size_t n,
+                               const struct cv_sdtree_opts *o, struct cv_sdtree_stats *st)
+{
+    float(*x)[4] = NULL;
+    size_t nx = 0;
+    cv_sdtree_table(t, &x, &nx);
+    uint32_t *stats = cv_xcalloc(cv_sdtree_stat_words(t) + 1, sizeof(*stats));
+    struct cv_sd_frame f = cv_sdtree_frame(t, o);
+    for (size_t i = 0; i < n; i++)
+        cv_sdtree_splat((const float(*)[4])x, &f, stats, &rec[i]);
+    free(x);
+    cv_sdtree_refine(t, stats, o, st);
+    free(stats);
+}
+
 void cv_sdtree_learn_records(struct cv_sdtree *t, const struct cv_sd_record *rec, size_t n,
                              const struct cv_sdtree_opts *o, struct cv_sdtree_stats *st)
 {
     /* each round adds at least a level where the tree changes: the depth
      * limits bound the rounds */
     for (uint32_t round = 0; round < CV_SD_MAX_SPATIAL_DEPTH + CV_SD_MAX_DEPTH + 2; round++) {
-        float(*x)[4] = NULL;
-        size_t nx = 0;
-        cv_sdtree_table(t, &x, &nx);
-        uint32_t *stats = cv_xcalloc(cv_sdtree_stat_words(t) + 1, sizeof(*stats));
-        struct cv_sd_frame f = cv_sdtree_frame(t, o);
-        for (size_t i = 0; i < n; i++)
-            cv_sdtree_splat((const float(*)[4])x, &f, stats, &rec[i]);
         size_t ns = t->ns, nt = t->nt;
         struct snode *s = cv_xmalloc(ns * sizeof(*s));
         struct tnode *tn = cv_xmalloc(nt * sizeof(*tn));
         memcpy(s, t->s, ns * sizeof(*s));
         memcpy(tn, t->t, nt * sizeof(*tn));
-        cv_sdtree_refine(t, stats, o, st);
+        cv_sdtree_learn_iteration(t, rec, n, o, st);
         bool same = t->ns == ns && t->nt == nt && !memcmp(s, t->s, ns * sizeof(*s)) &&
                     !memcmp(tn, t->t, nt * sizeof(*tn));
         free(s);
         free(tn);
-        free(stats);
-        free(x);
         if (same)
             break;
     }

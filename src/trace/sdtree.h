@@ -112,6 +112,12 @@ void cv_sdtree_splat(const float (*texels)[4], const struct cv_sd_frame *f, uint
 void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct cv_sdtree_opts *o,
                       struct cv_sdtree_stats *st);
 
+/* One training iteration on the host, as the renderer's pass: the n
+ * records splatted into the statistics of t's training tree (as
+ * cv_sdtree_splat), then t refined from them. st may be NULL. */
+void cv_sdtree_learn_iteration(struct cv_sdtree *t, const struct cv_sd_record *rec, size_t n,
+                               const struct cv_sdtree_opts *o, struct cv_sdtree_stats *st);
+
 /* Learns from n records on the host: splats them and refines, again and
  * again until the tree no longer changes, so that the sampling quadtrees
  * follow the records alone (tests, bench). Records with pdf <= 0 or a

@@ -307,12 +307,8 @@ static void test_inner_sums(void)
     for (int k = 0; k < 4; k++)
         deep += x[troot][k] != 0;
     tap_ok(deep > 0, "inner sums: the learned training root has %d quadrants with a subtree", deep);
-    uint32_t *stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
-    struct cv_sd_frame f = cv_sdtree_frame(t, &o);
-    for (size_t i = 0; i < n; i++)
-        cv_sdtree_splat((const float(*)[4])x, &f, stats, &r[i]);
     free(x);
-    cv_sdtree_refine(t, stats, &o, NULL);
+    cv_sdtree_learn_iteration(t, r, n, &o, NULL);
     cv_sdtree_table(t, &x, &nx);
     leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
     uint32_t sroot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][0];
@@ -329,7 +325,6 @@ static void test_inner_sums(void)
            (double)pr[0], (double)pr[1], (double)pr[2], (double)pr[3],
            worst);
     free(x);
-    free(stats);
     cv_sdtree_destroy(&t);
     free(r);
 }
@@ -357,16 +352,9 @@ static void test_clamp(void)
         o.clamp = with ? 4.0f : 0.0f;
         /* the first iteration: every record whole (no limit yet) */
         struct cv_sdtree *t = cv_sdtree_create(lo, hi);
+        cv_sdtree_learn_iteration(t, r, n, &o, NULL);
         float(*x)[4] = NULL;
         size_t nx = 0;
-        cv_sdtree_table(t, &x, &nx);
-        uint32_t *stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
-        struct cv_sd_frame f = cv_sdtree_frame(t, &o);
-        for (size_t i = 0; i < n; i++)
-            cv_sdtree_splat((const float(*)[4])x, &f, stats, &r[i]);
-        free(x);
-        cv_sdtree_refine(t, stats, &o, NULL);
-        free(stats);
         cv_sdtree_table(t, &x, &nx);
         uint32_t leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
         uint32_t troot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][2];
@@ -375,8 +363,8 @@ static void test_clamp(void)
                lim, want);
         /* one bright record and one dim one into the next iteration's
          * statistics */
-        stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
-        f = cv_sdtree_frame(t, &o);
+        uint32_t *stats = calloc(cv_sdtree_stat_words(t), sizeof(*stats));
+        struct cv_sd_frame f = cv_sdtree_frame(t, &o);
         struct cv_sd_record b = r[0], d = r[1];
         b.L = 1e6f;
         d.L = 0.5f;
