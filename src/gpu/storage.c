@@ -138,6 +138,13 @@ GLuint cv_gpu_storage_buffer(struct cv_gpu *gpu, size_t bytes, const void *data,
                                                        : 0;
 }
 
+GLuint cv_gpu_storage_buffer_uninit(struct cv_gpu *gpu, size_t bytes, const char *label,
+                                    struct cv_error *err)
+{
+    return cv_gpu_storage_fits(gpu, bytes, label, err) ? cv_buffer_create_uninit(bytes, label, err)
+                                                       : 0;
+}
+
 uint64_t cv_gpu_storage_known(const struct cv_gpu *gpu)
 {
     if (gpu->info.max_ssbo_bytes <= 0)

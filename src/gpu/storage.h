@@ -30,6 +30,10 @@ bool cv_gpu_storage_fits(struct cv_gpu *gpu, uint64_t bytes, const char *label,
  * cv_gpu_storage_fits first; 0 with err set when either fails. */
 GLuint cv_gpu_storage_buffer(struct cv_gpu *gpu, size_t bytes, const void *data,
                              const char *label, struct cv_error *err);
+/* The same, of undefined contents (cv_buffer_create_uninit): for storage
+ * written before it is read, which spares fresh storage its zero-fill. */
+GLuint cv_gpu_storage_buffer_uninit(struct cv_gpu *gpu, size_t bytes, const char *label,
+                                    struct cv_error *err);
 
 /* The largest size known to fit without probing: the advertised limit or
  * the largest size a probe passed, whichever is larger; 0 when the driver

@@ -166,10 +166,8 @@ static GLuint make_buffer(struct cv_renderer *r, size_t bytes, bool zero, const 
 {
     if (!*ok)
         return 0;
-    GLuint b = 0;
-    if (cv_gpu_storage_fits(r->gpu, bytes, label, err))
-        b = zero ? cv_buffer_create(bytes, NULL, label, err)
-                 : cv_buffer_create_uninit(bytes, label, err);
+    GLuint b = zero ? cv_gpu_storage_buffer(r->gpu, bytes, NULL, label, err)
+                    : cv_gpu_storage_buffer_uninit(r->gpu, bytes, label, err);
     if (!b)
         *ok = false;
     r->made_bytes += bytes;
@@ -643,14 +641,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     if (r->matte_stride)
         r->matte = make(r, n * r->matte_stride * sizeof(uint32_t), "trace mattes", &ok, err);
     /* a whole-sample integrator (bdpt) keeps its ratios in registers */
-    if (r->media && !ops->whole_samples && ok) {
-        /* starts cleared: no slot's ratios belong to a path yet (track.glsl) */
-        float *zero = cv_xcalloc(n, 4 * sizeof(float));
+    /* starts cleared (make zeroes it): no slot's ratios belong to a path
+     * yet (track.glsl) */
+    if (r->media && !ops->whole_samples)
         r->medium_paths = make(r, n * 4 * sizeof(float), "trace medium paths", &ok, err);
-        if (ok)
-            glNamedBufferSubData(r->medium_paths, 0, (GLsizeiptr)(n * 4 * sizeof(float)), zero);
-        free(zero);
-    }
     if (r->scene->has_subsurface && ok) {
         size_t texels = n * CV_SSS_ENTRY_TEXELS;
         r->sss_entry = make(r, texels * 4 * sizeof(float), "trace subsurface entries", &ok, err);
