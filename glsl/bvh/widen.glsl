@@ -3,8 +3,9 @@
 // ways to cut the binary tree into wide nodes of at most four children,
 // the one whose wide nodes' summed surface area (the SAH's node term; the
 // leaves are the same either way) is least. This is the home of the rule;
-// bench/bvh_work keeps a CPU copy for other widths, which bench_test.sh
-// checks against the renderer's tree. It replaced opening the inner child
+// tests/bvh/widen_ref.h is its CPU copy (for other widths too), against
+// which the BVH tests check the GPU's tree slot for slot, and which
+// bench/bvh_work re-widens with. It replaced opening the inner child
 // of largest area greedily (bench/RESULTS.md, "The 4-wide tree by least
 // node area").
 //

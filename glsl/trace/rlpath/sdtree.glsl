@@ -331,8 +331,8 @@ void cv_sd_splat_flux(int q, vec2 s, float v, int w, float h)
 }
 
 // Splats one record into the tree being trained (shared/sdtree.h,
-// "Statistics"), its value at most its class's limit (the training root's
-// second texel, y; the host's cv_sdtree_splat the same): its class's record counts and the count of the leaf
+// "Statistics"), its value at most its class's limit (as the host's
+// cv_sdtree_splat): its class's record counts and the count of the leaf
 // quadrant it falls in in its own leaf's training quadtree, then its
 // flux. With CV_SD_FILTER_SPATIAL, Müller et al.'s spatial box filter: a
 // box of its leaf's size about the record (moved inside the root cube)
