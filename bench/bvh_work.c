@@ -864,15 +864,10 @@ int main(int argc, char **argv)
     free(n4);
     wtree_finish(&gw);
 
-    /* spawn offset: a small fraction of the scene's size */
-    double diag = 0;
-    for (int k = 0; k < 3; k++)
-        diag += ((double)gw.pad_hi[k] - gw.pad_lo[k]) * ((double)gw.pad_hi[k] - gw.pad_lo[k]);
     struct walk_tracer wt = {&gw, &m};
     struct bench_rayset sets[BENCH_Q_TYPES] = {{0}};
-    bench_rays_make(&(struct bench_rays_params){.sc = sc, .m = &m, .eps = 1e-5 * sqrt(diag),
-                                                .res = res, .seed = seed, .trace = walk_trace,
-                                                .ctx = &wt},
+    bench_rays_make(&(struct bench_rays_params){.sc = sc, .m = &m, .res = res, .seed = seed,
+                                                .trace = walk_trace, .ctx = &wt},
                     sets);
 
     /* why a scene is expensive: how much larger a triangle's box is than

@@ -20,7 +20,29 @@ struct gen {
     const struct bench_rays_params *p;
     uint64_t rng;
     double *light_cdf;
+    double eps;  /* spawn offset along the normal [scene units] */
 };
+
+/* The spawn offset: a small fraction of the diagonal of the static
+ * triangles' box, so every tracer that is handed these rays starts them
+ * at the same points. */
+static double spawn_offset(const struct bench_tris *m)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t t = 0; t < m->n; t++) {
+        double q[3][3];
+        bench_tri_pos(m, t, q);
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], q[j][k]);
+                hi[k] = fmax(hi[k], q[j][k]);
+            }
+    }
+    double d2 = 0;
+    for (int k = 0; k < 3; k++)
+        d2 += m->n ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
+    return 1e-5 * sqrt(d2);
+}
 
 /* xorshift64: uniform in [0, 1) */
 static double rnd(struct gen *g)
@@ -99,7 +121,7 @@ static void shadow_ray(struct gen *g, const double p[3], const double n[3],
         return;
     struct bench_ray r = {.tmin = 0, .tmax = (float)tmax};
     for (int k = 0; k < 3; k++) {
-        r.o[k] = (float)(p[k] + g->p->eps * n[k]);
+        r.o[k] = (float)(p[k] + g->eps * n[k]);
         r.d[k] = (float)d[k];
     }
     rs_push(out, r);
@@ -175,7 +197,7 @@ static bool spawn(struct gen *g, const struct bench_rayset *from, struct bench_r
         cosine_dir(g, n, d);
         struct bench_ray b = {.tmin = 0, .tmax = 1e30f};
         for (int k = 0; k < 3; k++) {
-            b.o[k] = (float)(p[k] + g->p->eps * n[k]);
+            b.o[k] = (float)(p[k] + g->eps * n[k]);
             b.d[k] = (float)d[k];
         }
         rs_push(next, b);
@@ -187,7 +209,8 @@ static bool spawn(struct gen *g, const struct bench_rayset *from, struct bench_r
 bool bench_rays_make(const struct bench_rays_params *p, struct bench_rayset sets[BENCH_Q_TYPES])
 {
     const struct cv_scene *sc = p->sc;
-    struct gen g = {.p = p, .rng = 88172645463325252ull ^ (p->seed * 0x9E3779B97F4A7C15ull)};
+    struct gen g = {.p = p, .rng = 88172645463325252ull ^ (p->seed * 0x9E3779B97F4A7C15ull),
+                    .eps = spawn_offset(p->m)};
     g.light_cdf = malloc(sizeof(double) * (sc->n_lights + 1));
     double acc = 0;
     for (uint32_t i = 0; i < sc->n_lights; i++) {

@@ -55,7 +55,6 @@ typedef bool (*bench_trace_fn)(void *ctx, const struct bench_ray *r, uint32_t n,
 struct bench_rays_params {
     const struct cv_scene *sc;
     const struct bench_tris *m;
-    double eps;            /* spawn offset along the normal [scene units] */
     int res;               /* camera grid width; height by the film's aspect */
     uint64_t seed;
     bench_trace_fn trace;

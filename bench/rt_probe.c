@@ -222,27 +222,14 @@ int main(int argc, char **argv)
     }
 
     /* the static triangles' indices, packed for the BLAS (which reads
-     * the scene's vertex array as it is), and their box, for the spawn
-     * offset (a small fraction of the scene's size) */
+     * the scene's vertex array as it is) */
     uint32_t *idx = malloc(sizeof(uint32_t) * 3 * (size_t)m.n);
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t t = 0; t < m.n; t++) {
-        double q[3][3];
-        bench_tri_pos(&m, t, q);
-        for (int j = 0; j < 3; j++) {
+    for (uint32_t t = 0; t < m.n; t++)
+        for (int j = 0; j < 3; j++)
             idx[3 * t + j] = (&m.t[t].idx.x)[j];
-            for (int k = 0; k < 3; k++) {
-                lo[k] = fmin(lo[k], q[j][k]);
-                hi[k] = fmax(hi[k], q[j][k]);
-            }
-        }
-    }
-    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
     struct bench_rayset sets[BENCH_Q_TYPES] = {{0}};
-    if (!bench_rays_make(&(struct bench_rays_params){.sc = sc, .m = &m, .eps = 1e-5 * diag,
-                                                     .res = res, .seed = seed,
-                                                     .trace = gl_trace, .ctx = &g},
+    if (!bench_rays_make(&(struct bench_rays_params){.sc = sc, .m = &m, .res = res,
+                                                     .seed = seed, .trace = gl_trace, .ctx = &g},
                          sets))
         return 1;
     if (shuffle)
