@@ -20,6 +20,7 @@
 #include <epoxy/gl.h>
 
 #include "base/limits.h"
+#include "base/clock.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "glsl/shared/sdtree.h"
@@ -285,6 +286,7 @@ static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
     struct cv_program *fp = cv_program_get(sd->gpu, FLUSH, NULL, err);
     if (!fp)
         return false;
+    double t0 = cv_seconds();
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     cv_program_dispatch_1d(fp, sd->n_paths);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -295,14 +297,21 @@ static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
         free(stats);
         return false;
     }
+    double t1 = cv_seconds(), c0 = cpu_seconds();
     struct cv_sdtree_stats st;
-    double t0 = cpu_seconds();
     cv_sdtree_refine(sd->guide, stats, &sd->opts, &st);
-    double dt = cpu_seconds() - t0;
+    double dt = cpu_seconds() - c0, t2 = cv_seconds();
     free(stats);
     sd->builds++;
     log_guide(sd, &st, dt);
-    return guide_upload(sd, err);
+    bool ok = guide_upload(sd, err);
+    /* where the GPU waits between iterations (wall time; the upload's is
+     * its queueing) */
+    cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: iteration end %.3f ms: the pass's tail, the flush "
+           "and the read-back of %zu words %.3f ms, refine %.3f ms, table and upload %.3f ms",
+           sd->builds, 1e3 * (cv_seconds() - t0), words, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
+           1e3 * (cv_seconds() - t2));
+    return ok;
 }
 
 bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct cv_error *err)
