@@ -49,15 +49,16 @@
  * same quadrants (sdtree.glsl), so the pdf it returns is the one it draws.
  *
  * Training records: while the guide learns, every vertex that bounces
- * writes a record of its path slot (CV_IMAGE_SD_VERTS, CV_SD_SLOT_TEXELS
- * per slot: first one texel per slot, slot order, whose x counts the
- * records of the slot's path that ended and waits to be splatted; then
- * each slot's CV_SD_MAX_RECORDS records of two texels each, from
- * CV_SD_RECORD_TEXEL). Only the counts start zeroed: a path writes its
- * record at each depth before anything reads it (its count, and the
- * records the later vertices add to, cover the depths it has recorded),
- * so the records need no clearing, which for fresh storage costs time in
- * proportion to its size (gpu/buffer.h):
+ * writes a record of its path slot (CV_IMAGE_SD_VERTS: each slot's
+ * CV_SD_MAX_RECORDS records of two texels each, from CV_SD_RECORD_TEXEL),
+ * and a path that ends writes the count of its records, which wait to be
+ * splatted, to its slot's word of CV_IMAGE_SD_COUNTS. Only the counts, a
+ * buffer of their own, start zeroed: a path writes its record at each
+ * depth before anything reads it (its count, and the records the later
+ * vertices add to, cover the depths it has recorded), so the records need
+ * no clearing, and their storage is first touched by the shaders that
+ * write it (a clear of fresh storage, even of a part, costs time in
+ * proportion to its size: gpu/buffer.h):
  *   t:     position xyz; w: the density the bounce was drawn with (solid
  *          angle; 0: not a guided vertex, the record is skipped);
  *   t + 1: the bounce direction (u, v) on the square, u plus the vertex's
@@ -96,6 +97,8 @@
 #define CV_IMAGE_SD_VERTS 1     /* imageBuffer rgba32f: records per path slot */
 #define CV_IMAGE_SD_STATS 2     /* uimageBuffer r32ui: the statistics */
 #define CV_IMAGE_SD_TREE 3      /* imageBuffer rgba32f: the tree table */
+#define CV_IMAGE_SD_COUNTS 5    /* uimageBuffer r32ui: records waiting per path slot
+                                   (4: the renderer's CV_IMAGE_SSS_ENTRY) */
 #define CV_UBO_SDTREE 1         /* uniform block CvSdParams (rlpath's) */
 
 #define CV_SD_LEAF 3.0
@@ -103,12 +106,9 @@
 /* Vertices per path that record (the first ones: deeper bounces carry
  * little of the image). */
 #define CV_SD_MAX_RECORDS 6u
-/* Texels per path slot: its records, and in all with its pending count. */
+/* Texels of a path slot's records, and the first of its record k. */
 #define CV_SD_RECORD_TEXELS (2u * CV_SD_MAX_RECORDS)
-#define CV_SD_SLOT_TEXELS (1u + CV_SD_RECORD_TEXELS)
-/* The first texel of record k of a slot, among n path slots (the count of
- * slot s is texel s). */
-#define CV_SD_RECORD_TEXEL(n, slot, k) ((n) + (slot) * CV_SD_RECORD_TEXELS + 2u * (k))
+#define CV_SD_RECORD_TEXEL(slot, k) ((slot) * CV_SD_RECORD_TEXELS + 2u * (k))
 /* Quadtree depth limit (a node of side 2^-CV_SD_MAX_DEPTH), and the
  * spatial tree's. */
 #define CV_SD_MAX_DEPTH 12u

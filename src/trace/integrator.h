@@ -44,9 +44,10 @@ struct cv_integrator_ops {
     const char *escaped_define;
     /* The shadow stage is built with shadow_define added when not NULL. */
     const char *shadow_define;
-    /* The stages pass data to each other through images (rlpath's sdtree
-     * records): a barrier for image access after every stage (the shade
-     * programs of one iteration share none). */
+    /* The stages pass data to each other through images while the
+     * integrator learns (rlpath's sdtree records): a barrier for image
+     * access after every stage of a learning pass (the shade programs of
+     * one iteration share none); passes that do not learn write none. */
     bool image_stages;
     /* The stages track participating media (volpath: every stage built
      * with CV_MEDIA where the scene has media, glsl/trace/medium); else

@@ -701,8 +701,9 @@ static void bind_all(struct cv_renderer *r)
 static void stage_indirect(struct cv_renderer *r, int s, uint32_t slot)
 {
     prof_begin(r, s);
+    bool images = r->ops->image_stages && r->learning;
     cv_program_dispatch_indirect(&r->prog[s], CV_ARGS_BYTES(slot),
-                                 r->ops->image_stages ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT : 0);
+                                 images ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT : 0);
     prof_end(r);
 }
 

@@ -5,7 +5,8 @@
  * found its radiance, is splatted by the shaders into the statistics of
  * the tree being trained (glsl/trace/rlpath/sdtree.glsl); at the end of
  * each iteration the host reads back only those statistics (the tree's
- * size; cost class: once per training iteration, a wait for the GPU),
+ * size, through a copy; cost class: once per training iteration, a wait
+ * for the GPU),
  * refines the tree from them (trace/sdtree.c: the next sampling quadtrees
  * learn from that iteration alone, as earlier, shorter iterations learned
  * from a worse guide) and uploads it. Passes after training sample the
@@ -19,6 +20,7 @@
 #include <epoxy/gl.h>
 
 #include "base/limits.h"
+#include "base/clock.h"
 #include "base/log.h"
 #include "base/mem.h"
 #include "glsl/shared/sdtree.h"
@@ -31,7 +33,11 @@
 #include "trace/sdtree.h"
 
 /* The buffers the shaders see as images, in cv_rlpath_sd.images. */
-enum { SD_VERTS, SD_FLUX, SD_STATS, SD_TREE, SD_IMAGES };
+enum { SD_VERTS, SD_COUNTS, SD_FLUX, SD_STATS, SD_TREE, SD_IMAGES };
+
+/* The splat of the records still waiting at the end of an iteration:
+ * requested with the renderer's programs, first waited for there. */
+static const char FLUSH[] = "trace/rlpath/sd_flush.comp";
 
 struct cv_rlpath_sd {
     CvSdParams params;
@@ -40,10 +46,13 @@ struct cv_rlpath_sd {
     uint32_t end;          /* ... and where it ends */
     struct cv_sdtree_opts opts;
     struct cv_sdtree *guide;   /* the host's copy of the table's trees */
-    struct cv_program flush;   /* a copy (see render.c) */
     struct cv_gpu *gpu;
     uint32_t n_paths;
-    GLuint ubo, verts, stats, tree;
+    GLuint ubo, verts, counts, tree;
+    /* the statistics, and the copy the host reads them through (a buffer
+     * the host reads is moved to its memory by the NVIDIA driver, and the
+     * shaders' adds would then cross the bus: gpu/buffer.h) */
+    GLuint stats, stats_copy;
     struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
     size_t tree_texels;    /* the tree buffer's capacity */
     size_t stat_words;     /* the statistics buffer's capacity */
@@ -95,7 +104,11 @@ static bool stats_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *er
     cv_buffer_image_destroy(&sd->images[SD_FLUX]);
     cv_buffer_image_destroy(&sd->images[SD_STATS]);
     cv_buffer_destroy(&sd->stats);
-    if (!(sd->stats = cv_buffer_create(cap * 4, NULL, "rlpath sdtree statistics", err)) ||
+    cv_buffer_destroy(&sd->stats_copy);
+    /* guide_upload zeroes the words the tree uses, all the shaders touch */
+    if (!(sd->stats = cv_buffer_create_uninit(cap * 4, "rlpath sdtree statistics", err)) ||
+        !(sd->stats_copy = cv_buffer_create_uninit(cap * 4, "rlpath sdtree statistics read-back",
+                                                   err)) ||
         !cv_buffer_image_create(&sd->images[SD_FLUX], sd->stats, cap, CV_IMAGE_SD_FLUX, GL_R32F,
                                 GL_READ_WRITE, err) ||
         !cv_buffer_image_create(&sd->images[SD_STATS], sd->stats, cap, CV_IMAGE_SD_STATS,
@@ -108,17 +121,17 @@ static bool stats_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *er
 }
 
 /* Uploads the guide's table and zeroes the statistics of its training
- * tree. */
+ * tree (its words alone: the buffer may be larger). */
 static bool guide_upload(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
     float(*t)[4] = NULL;
-    size_t n = 0;
+    size_t n = 0, words = cv_sdtree_stat_words(sd->guide);
     cv_sdtree_table(sd->guide, &t, &n);
     bool ok = tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err) &&
-              stats_reserve(sd, cv_sdtree_stat_words(sd->guide), err);
+              stats_reserve(sd, words, err);
     free(t);
     if (ok)
-        cv_buffer_zero(sd->stats);
+        cv_buffer_zero_range(sd->stats, 0, words * 4);
     return ok;
 }
 
@@ -127,12 +140,6 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
                          struct cv_error *err)
 {
     struct cv_rlpath_sd *sd = cv_xcalloc(1, sizeof(*sd));
-    struct cv_program *fp = cv_program_get(gpu, "trace/rlpath/sd_flush.comp", NULL, err);
-    if (!fp) {
-        free(sd);
-        return false;
-    }
-    sd->flush = *fp;
     sd->gpu = gpu;
     sd->n_paths = n_paths;
     sd->opts = cv_sdtree_defaults;
@@ -148,16 +155,17 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     sd->params.learn = (cv_uvec4){1, f.filter, n_paths, 0};
     sd->params.cube = (cv_vec4){f.cube[0], f.cube[1], f.cube[2], f.cube[3]};
     /* the counts zeroed: no slot has a path waiting; the records are
-     * written before they are read (shared/sdtree.h) */
-    size_t slots = n_paths ? n_paths : 1, vbytes = slots * CV_SD_SLOT_TEXELS * 16;
+     * written before they are read (shared/sdtree.h), so nothing touches
+     * their storage here */
+    size_t slots = n_paths ? n_paths : 1, rtexels = slots * CV_SD_RECORD_TEXELS;
     bool ok = (sd->ubo = cv_buffer_create(sizeof(sd->params), &sd->params, "rlpath sd params", err)) &&
-              (sd->verts = cv_buffer_create_uninit(vbytes, "rlpath sd path records", err));
-    if (ok)
-        cv_buffer_zero_range(sd->verts, 0, slots * 16);
-    ok = ok &&
-         cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, vbytes / 16, CV_IMAGE_SD_VERTS,
-                                GL_RGBA32F, GL_READ_WRITE, err) &&
-         guide_upload(sd, err);
+              (sd->verts = cv_buffer_create_uninit(rtexels * 16, "rlpath sd path records", err)) &&
+              (sd->counts = cv_buffer_create(slots * 4, NULL, "rlpath sd records waiting", err)) &&
+              cv_buffer_image_create(&sd->images[SD_VERTS], sd->verts, rtexels, CV_IMAGE_SD_VERTS,
+                                     GL_RGBA32F, GL_READ_WRITE, err) &&
+              cv_buffer_image_create(&sd->images[SD_COUNTS], sd->counts, slots,
+                                     CV_IMAGE_SD_COUNTS, GL_R32UI, GL_READ_WRITE, err) &&
+              guide_upload(sd, err);
     if (!ok) {
         cv_error_prefix(err, "rlpath sdtree for %u path slots: ", n_paths);
         cv_rlpath_sd_destroy(&sd);
@@ -231,21 +239,23 @@ bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
     *stats = NULL;
     *words = cv_sdtree_stat_words(sd->guide);
     const char *defines[] = {"CV_SD_CAS", NULL};
-    struct cv_program *fp = cv_program_get(sd->gpu, "trace/rlpath/sd_flush.comp",
-                                           cas ? defines : NULL, err);
+    struct cv_program *fp = cv_program_get(sd->gpu, FLUSH, cas ? defines : NULL, err);
     if (!fp)
         return false;
     cv_buffer_zero(sd->stats);
     size_t per = (size_t)sd->n_paths * CV_SD_MAX_RECORDS;
-    float(*v)[4] = cv_xcalloc((size_t)sd->n_paths * CV_SD_SLOT_TEXELS, sizeof(*v));
+    size_t rtexels = (size_t)sd->n_paths * CV_SD_RECORD_TEXELS;
+    float(*v)[4] = cv_xcalloc(rtexels, sizeof(*v));
+    uint32_t *count = cv_xcalloc(sd->n_paths, sizeof(*count));
     bool ok = true;
     cv_rlpath_sd_bind(sd);
     for (size_t at = 0; ok && at < n; at += per) {
-        memset(v, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * sizeof(*v));
+        memset(v, 0, rtexels * sizeof(*v));
+        memset(count, 0, sd->n_paths * sizeof(*count));
         for (size_t i = at; i < n && i < at + per; i++) {
             size_t slot = (i - at) / CV_SD_MAX_RECORDS, k = (i - at) % CV_SD_MAX_RECORDS;
-            float *h = v[slot], *r = v[CV_SD_RECORD_TEXEL((size_t)sd->n_paths, slot, k)];
-            h[0] = (float)(k + 1);
+            float *r = v[CV_SD_RECORD_TEXEL(slot, k)];
+            count[slot] = (uint32_t)(k + 1);
             memcpy(r, rec[i].p, sizeof(rec[i].p));
             r[3] = rec[i].pdf;
             r[4] = rec[i].u;
@@ -253,13 +263,15 @@ bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
             r[6] = rec[i].beta;
             r[7] = rec[i].L;
         }
-        ok = cv_buffer_upload(sd->verts, 0, (size_t)sd->n_paths * CV_SD_SLOT_TEXELS * 16, v, err);
+        ok = cv_buffer_upload(sd->verts, 0, rtexels * 16, v, err) &&
+             cv_buffer_upload(sd->counts, 0, sd->n_paths * sizeof(*count), count, err);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         if (ok)
             cv_program_dispatch_1d(fp, sd->n_paths);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     }
     free(v);
+    free(count);
     *stats = cv_xcalloc(*words, sizeof(**stats));
     return ok && cv_buffer_read(sd->stats, 0, *words * sizeof(**stats), *stats, err) &&
            cv_gl_check(err, "rlpath sdtree splat of %zu records", n);
@@ -271,23 +283,35 @@ static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
     /* the records of each slot's last path (the stages wrote them through
      * images) */
+    struct cv_program *fp = cv_program_get(sd->gpu, FLUSH, NULL, err);
+    if (!fp)
+        return false;
+    double t0 = cv_seconds();
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    cv_program_dispatch_1d(&sd->flush, sd->n_paths);
+    cv_program_dispatch_1d(fp, sd->n_paths);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     size_t words = cv_sdtree_stat_words(sd->guide);
     uint32_t *stats = cv_xmalloc(words * sizeof(*stats));
-    if (!cv_buffer_read(sd->stats, 0, words * sizeof(*stats), stats, err)) {
+    if (!cv_buffer_read_staged(sd->stats, 0, words * sizeof(*stats), sd->stats_copy, stats,
+                               err)) {
         free(stats);
         return false;
     }
+    double t1 = cv_seconds(), c0 = cpu_seconds();
     struct cv_sdtree_stats st;
-    double t0 = cpu_seconds();
     cv_sdtree_refine(sd->guide, stats, &sd->opts, &st);
-    double dt = cpu_seconds() - t0;
+    double dt = cpu_seconds() - c0, t2 = cv_seconds();
     free(stats);
     sd->builds++;
     log_guide(sd, &st, dt);
-    return guide_upload(sd, err);
+    bool ok = guide_upload(sd, err);
+    /* where the GPU waits between iterations (wall time; the upload's is
+     * its queueing) */
+    cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: iteration end %.3f ms: the pass's tail, the flush "
+           "and the read-back of %zu words %.3f ms, refine %.3f ms, table and upload %.3f ms",
+           sd->builds, 1e3 * (cv_seconds() - t0), words, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
+           1e3 * (cv_seconds() - t2));
+    return ok;
 }
 
 bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct cv_error *err)
@@ -313,7 +337,9 @@ void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sdp)
         cv_buffer_image_destroy(&sd->images[i]);
     cv_buffer_destroy(&sd->ubo);
     cv_buffer_destroy(&sd->verts);
+    cv_buffer_destroy(&sd->counts);
     cv_buffer_destroy(&sd->stats);
+    cv_buffer_destroy(&sd->stats_copy);
     cv_buffer_destroy(&sd->tree);
     cv_sdtree_destroy(&sd->guide);
     free(sd);
@@ -344,7 +370,7 @@ static void ops_prefetch(struct cv_gpu *gpu, const struct cv_render_params *p,
 {
     (void)p;
     (void)defines;
-    cv_program_request(gpu, "trace/rlpath/sd_flush.comp", NULL);
+    cv_program_request(gpu, FLUSH, NULL);
 }
 
 static uint32_t ops_learn_spp(const void *state) { return cv_rlpath_sd_learn_until(state); }
@@ -359,11 +385,12 @@ static bool ops_pass_done(void *state, uint32_t spp_done, struct cv_error *err)
     return cv_rlpath_sd_pass_done(state, spp_done, err);
 }
 
-/* the records of a path slot's path in flight (glsl/shared/sdtree.h) */
+/* the records of a path slot's path in flight and their count
+ * (glsl/shared/sdtree.h) */
 static uint64_t ops_slot_bytes(uint32_t max_depth)
 {
     (void)max_depth;
-    return (uint64_t)CV_SD_SLOT_TEXELS * 16;
+    return (uint64_t)CV_SD_RECORD_TEXELS * 16 + 4;
 }
 
 static void ops_destroy(void **state)

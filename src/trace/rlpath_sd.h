@@ -14,11 +14,12 @@
 
 struct cv_rlpath_sd;
 
-/* Creates the record and statistics buffers and the flush program for
- * n_paths path slots and an empty guide (one unguided leaf) over the box
- * [bmin, bmax]. mix: guiding weight of a leaf that learned (negative:
- * cv_sdtree_defaults.mix); train: the render parameter rl_train
- * (cv_rlpath_train_spp). */
+/* Creates the record, count and statistics buffers for n_paths path
+ * slots and an empty guide (one unguided leaf) over the box [bmin, bmax]
+ * (the flush program, sd_flush.comp, is first waited for at the end of the
+ * first training iteration: a set-up does not wait for it). mix: guiding
+ * weight of a leaf that learned (negative: cv_sdtree_defaults.mix); train:
+ * the render parameter rl_train (cv_rlpath_train_spp). */
 bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bmax[3],
                          uint32_t n_paths, float mix, uint32_t train, struct cv_rlpath_sd **out,
                          struct cv_error *err);

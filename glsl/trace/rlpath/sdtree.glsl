@@ -28,6 +28,7 @@ layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
 layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
 #ifdef CV_SD_RECORD
 layout(rgba32f, binding = CV_IMAGE_SD_VERTS) uniform imageBuffer sd_verts;
+layout(r32ui, binding = CV_IMAGE_SD_COUNTS) uniform uimageBuffer sd_counts;
 #endif
 #ifdef CV_SD_SPLAT
 layout(r32ui, binding = CV_IMAGE_SD_STATS) uniform coherent uimageBuffer sd_stats;
@@ -188,9 +189,8 @@ float cv_sd_pdf(int root, vec3 w)
 }
 
 #ifdef CV_SD_RECORD
-// The slot's pending count (x), and its records (shared/sdtree.h).
-int cv_sd_slot_texel(uint slot) { return int(slot); }
-int cv_sd_record_texel(uint slot, uint k) { return int(CV_SD_RECORD_TEXEL(u_sd.learn.z, slot, k)); }
+// The first texel of the slot's record k (shared/sdtree.h).
+int cv_sd_record_texel(uint slot, uint k) { return int(CV_SD_RECORD_TEXEL(slot, k)); }
 
 // The record of the bounce that leaves the vertex at depth from p (of
 // orientation class cls) in direction wi drawn with solid-angle density
@@ -229,7 +229,7 @@ void cv_sd_found(uint slot, uint depth, vec3 L)
 // starts (cv_sd_flush).
 void cv_sd_path_end(uint slot, uint depth)
 {
-    imageStore(sd_verts, cv_sd_slot_texel(slot), vec4(float(min(depth, CV_SD_MAX_RECORDS))));
+    imageStore(sd_counts, int(slot), uvec4(min(depth, CV_SD_MAX_RECORDS)));
 }
 
 #ifdef CV_SD_SPLAT
@@ -394,11 +394,10 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
 // at the end of each training iteration (sd_flush.comp).
 void cv_sd_flush(uint slot)
 {
-    int h = cv_sd_slot_texel(slot);
-    uint n = uint(imageLoad(sd_verts, h).x);
+    uint n = imageLoad(sd_counts, int(slot)).x;
     if (n == 0u)
         return;
-    imageStore(sd_verts, h, vec4(0.0));
+    imageStore(sd_counts, int(slot), uvec4(0u));
     for (uint k = 0u; k < n; k++) {
         int t = cv_sd_record_texel(slot, k);
         vec4 a = imageLoad(sd_verts, t);
