@@ -305,12 +305,12 @@ static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
     sd->builds++;
     log_guide(sd, &st, dt);
     bool ok = guide_upload(sd, err);
+    double t3 = cv_seconds();
     /* where the GPU waits between iterations (wall time; the upload's is
      * its queueing) */
     cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: iteration end %.3f ms: the pass's tail, the flush "
            "and the read-back of %zu words %.3f ms, refine %.3f ms, table and upload %.3f ms",
-           sd->builds, 1e3 * (cv_seconds() - t0), words, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
-           1e3 * (cv_seconds() - t2));
+           sd->builds, 1e3 * (t3 - t0), words, 1e3 * (t1 - t0), 1e3 * (t2 - t1), 1e3 * (t3 - t2));
     return ok;
 }
 
