@@ -28,6 +28,8 @@ struct gen {
  * at the same points. */
 static double spawn_offset(const struct bench_tris *m)
 {
+    if (!m->n)
+        return 0;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t t = 0; t < m->n; t++) {
         double q[3][3];
@@ -40,7 +42,7 @@ static double spawn_offset(const struct bench_tris *m)
     }
     double d2 = 0;
     for (int k = 0; k < 3; k++)
-        d2 += m->n ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
+        d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
     return 1e-5 * sqrt(d2);
 }
 
