@@ -65,6 +65,14 @@
 /* rgba32f, four floats a texel: grid media's samples and majorant grids
  * (glsl/shared/medium.h), bound where the scene has grid media */
 #define CV_TEXUNIT_MEDIUM_GRIDS 8
+/* rgba32f: rlpath's sdtree table (glsl/shared/sdtree.h), read at every
+ * guided vertex: a buffer texture, whose fetches take the texture cache
+ * where a read-only image's loads need not */
+#define CV_TEXUNIT_SD_TREE 9
+/* rgba32f: rlpath's guide table (glsl/shared/rlpath.h) as the shade
+ * stages read it (rebuild.comp writes it through image unit
+ * CV_IMAGE_RL_GUIDE), for the same reason */
+#define CV_TEXUNIT_RL_GUIDE 10
 /* rgba32f: pages 1, 2 ... of a grid store that one buffer texture does not
  * hold (trace/scene_upload.c), at units CV_TEXUNIT_MEDIUM_GRID_PAGES + page
  * - 1 up to GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS; the units below stay the

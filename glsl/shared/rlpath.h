@@ -46,7 +46,8 @@
  * and never the image (sampling and the mixture density read only the
  * guide table, which rebuild.comp alone writes, in a dispatch of its own).
  *
- * Guide table (image unit CV_IMAGE_RL_GUIDE, rgba32f texels),
+ * Guide table (rgba32f texels; written through image unit CV_IMAGE_RL_GUIDE,
+ * read through buffer texture CV_TEXUNIT_RL_GUIDE),
  * CV_RL_GUIDE_TEXELS(bins) texels per key from g = k * CV_RL_GUIDE_TEXELS,
  * built by rebuild.comp from the learning table; with G =
  * CV_RL_GROUPS(bins) groups of 16 bins:
@@ -81,7 +82,7 @@
 #define CV_IMAGE_RL_Q 0        /* uimageBuffer r32ui: learning table */
 #define CV_IMAGE_RL_PATH 1     /* uimageBuffer rg32ui: path state per path slot */
 #define CV_IMAGE_RL_QF 2       /* imageBuffer r32f: the learning table again, for float atomics */
-#define CV_IMAGE_RL_GUIDE 3    /* imageBuffer rgba32f: guide table */
+#define CV_IMAGE_RL_GUIDE 3    /* imageBuffer rgba32f: guide table (rebuild.comp's writes) */
 #define CV_UBO_RLPATH 1                        /* uniform block CvRlParams */
 
 #define CV_RL_NONE 0xffffffffu

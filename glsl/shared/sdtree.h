@@ -10,7 +10,7 @@
  * equal-area map u = (cos(theta) + 1) / 2 (cos(theta) = w.z), v = (phi +
  * pi) / (2 pi): a density p on the square is p / (4 pi) in solid angle.
  *
- * Tree table (image unit CV_IMAGE_SD_TREE, rgba32f texels), made on the
+ * Tree table (buffer texture CV_TEXUNIT_SD_TREE, rgba32f texels), made on the
  * host at the end of each training iteration and uploaded whole (never
  * written by a shader); texel indices and statistics words are floats
  * holding integers below 2^24. It holds two quadtrees per (leaf, class),
@@ -95,8 +95,7 @@
  * are not bound with this one. */
 #define CV_IMAGE_SD_FLUX 0      /* imageBuffer r32f: the statistics, float view */
 #define CV_IMAGE_SD_VERTS 1     /* imageBuffer rgba32f: records per path slot */
-#define CV_IMAGE_SD_STATS 2     /* uimageBuffer r32ui: the statistics */
-#define CV_IMAGE_SD_TREE 3      /* imageBuffer rgba32f: the tree table */
+#define CV_IMAGE_SD_STATS 2     /* uimageBuffer r32ui: the statistics (3: free) */
 #define CV_IMAGE_SD_COUNTS 5    /* uimageBuffer r32ui: records waiting per path slot
                                    (4: the renderer's CV_IMAGE_SSS_ENTRY) */
 #define CV_UBO_SDTREE 1         /* uniform block CvSdParams (rlpath's) */

@@ -25,6 +25,7 @@ struct cv_rlpath {
     GLuint ubo, table, guide, path;
     /* the shaders' views: the table as r32ui and as r32f, guide, path */
     struct cv_buffer_image images[4];
+    GLuint guide_tex;   /* the guide as the shade stages read it (CV_TEXUNIT_RL_GUIDE) */
 };
 
 bool cv_rlpath_layout(const float bmin[3], const float bmax[3], uint32_t grid,
@@ -153,7 +154,9 @@ bool cv_rlpath_create(struct cv_gpu *gpu, const CvRlParams *layout, uint32_t n_p
                                      (size_t)cv_rlpath_guide_bytes(layout) / 16,
                                      CV_IMAGE_RL_GUIDE, GL_RGBA32F, GL_READ_WRITE, err) &&
               cv_buffer_image_create(&rl->images[3], rl->path, path_bytes / 8, CV_IMAGE_RL_PATH,
-                                     GL_RG32UI, GL_READ_WRITE, err);
+                                     GL_RG32UI, GL_READ_WRITE, err) &&
+              (rl->guide_tex = cv_buffer_texture(rl->guide, GL_RGBA32F,
+                                                 (size_t)cv_rlpath_guide_bytes(layout) / 16, err));
     if (!ok) {
         cv_error_prefix(err, "rlpath table of %u keys x %u directions: ", layout->dirs.w,
                         layout->dirs.z);
@@ -169,6 +172,7 @@ void cv_rlpath_bind(const struct cv_rlpath *rl)
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, rl->ubo);
     for (size_t i = 0; i < CV_ARRAY_SIZE(rl->images); i++)
         cv_buffer_image_bind(&rl->images[i]);
+    glBindTextureUnit(CV_TEXUNIT_RL_GUIDE, rl->guide_tex);
 }
 
 uint32_t cv_rlpath_train_spp(uint32_t train)
@@ -199,8 +203,9 @@ void cv_rlpath_dispatch_rebuild(const struct cv_program *rebuild, const CvRlPara
         return;
     glUseProgram(rebuild->id);
     glDispatchCompute(gx, gy, 1);
-    /* the shade stage reads the CDFs and weights through the image */
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    /* the shade stage reads the CDFs and weights through the buffer
+     * texture (tests through the image too) */
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void cv_rlpath_destroy(struct cv_rlpath **rlp)
@@ -210,6 +215,8 @@ void cv_rlpath_destroy(struct cv_rlpath **rlp)
     struct cv_rlpath *rl = *rlp;
     for (size_t i = 0; i < CV_ARRAY_SIZE(rl->images); i++)
         cv_buffer_image_destroy(&rl->images[i]);
+    if (rl->guide_tex)
+        glDeleteTextures(1, &rl->guide_tex);
     cv_buffer_destroy(&rl->ubo);
     cv_buffer_destroy(&rl->table);
     cv_buffer_destroy(&rl->guide);

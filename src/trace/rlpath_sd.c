@@ -33,7 +33,7 @@
 #include "trace/sdtree.h"
 
 /* The buffers the shaders see as images, in cv_rlpath_sd.images. */
-enum { SD_VERTS, SD_COUNTS, SD_FLUX, SD_STATS, SD_TREE, SD_IMAGES };
+enum { SD_VERTS, SD_COUNTS, SD_FLUX, SD_STATS, SD_IMAGES };
 
 /* The splat of the records still waiting at the end of an iteration:
  * requested with the renderer's programs, first waited for there. */
@@ -54,6 +54,7 @@ struct cv_rlpath_sd {
      * shaders' adds would then cross the bus: gpu/buffer.h) */
     GLuint stats, stats_copy;
     struct cv_buffer_image images[SD_IMAGES];   /* the shaders' views of them */
+    GLuint tree_tex;       /* the tree as a buffer texture (CV_TEXUNIT_SD_TREE) */
     size_t tree_texels;    /* the tree buffer's capacity */
     size_t stat_words;     /* the statistics buffer's capacity */
     uint32_t builds;
@@ -79,16 +80,16 @@ static bool tree_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *err
     size_t cap = sd->tree_texels ? sd->tree_texels : 256;
     while (cap < n)
         cap *= 2;
-    struct cv_buffer_image *im = &sd->images[SD_TREE];
-    cv_buffer_image_destroy(im);
+    if (sd->tree_tex)
+        glDeleteTextures(1, &sd->tree_tex);
+    sd->tree_tex = 0;
     cv_buffer_destroy(&sd->tree);
     /* the caller writes the tree before any lookup */
     sd->tree = cv_buffer_create(cap * 16, NULL, "rlpath sdtree", err);
-    if (!sd->tree ||
-        !cv_buffer_image_create(im, sd->tree, cap, CV_IMAGE_SD_TREE, GL_RGBA32F, GL_READ_ONLY, err))
+    if (!sd->tree || !(sd->tree_tex = cv_buffer_texture(sd->tree, GL_RGBA32F, cap, err)))
         return false;
     sd->tree_texels = cap;
-    cv_buffer_image_bind(im);
+    glBindTextureUnit(CV_TEXUNIT_SD_TREE, sd->tree_tex);
     return true;
 }
 
@@ -180,6 +181,7 @@ void cv_rlpath_sd_bind(const struct cv_rlpath_sd *sd)
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_SDTREE, sd->ubo);
     for (size_t i = 0; i < CV_ARRAY_SIZE(sd->images); i++)
         cv_buffer_image_bind(&sd->images[i]);
+    glBindTextureUnit(CV_TEXUNIT_SD_TREE, sd->tree_tex);
 }
 
 uint32_t cv_rlpath_sd_learn_until(const struct cv_rlpath_sd *sd)
@@ -335,6 +337,8 @@ void cv_rlpath_sd_destroy(struct cv_rlpath_sd **sdp)
     struct cv_rlpath_sd *sd = *sdp;
     for (size_t i = 0; i < CV_ARRAY_SIZE(sd->images); i++)
         cv_buffer_image_destroy(&sd->images[i]);
+    if (sd->tree_tex)
+        glDeleteTextures(1, &sd->tree_tex);
     cv_buffer_destroy(&sd->ubo);
     cv_buffer_destroy(&sd->verts);
     cv_buffer_destroy(&sd->counts);

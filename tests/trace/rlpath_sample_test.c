@@ -196,7 +196,7 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
         return false;
     glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_RLPATH, g->ubo);
     glBindImageTexture(CV_IMAGE_RL_Q, g->table_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(CV_IMAGE_RL_GUIDE, g->guide_tex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindTextureUnit(CV_TEXUNIT_RL_GUIDE, g->guide_tex);
     cv_buffer_bind(g->out, CV_BIND_RL_PROBE_OUT);
     cv_buffer_bind(g->in, CV_BIND_RL_PROBE_IN);
     glUseProgram(prog->id);

@@ -48,7 +48,7 @@ layout(r32ui, binding = CV_IMAGE_RL_Q) uniform readonly uimageBuffer rl_q;
 #ifdef CV_RL_GUIDE_WRITE
 layout(rgba32f, binding = CV_IMAGE_RL_GUIDE) uniform writeonly imageBuffer rl_guide;
 #else
-layout(rgba32f, binding = CV_IMAGE_RL_GUIDE) uniform readonly imageBuffer rl_guide;
+layout(binding = CV_TEXUNIT_RL_GUIDE) uniform samplerBuffer rl_guide;
 #endif
 
 const float CV_RL_PI = 3.14159265358979323846;
@@ -151,18 +151,18 @@ CvRlKey cv_rl_key_load(uint key)
 {
     CvRlKey k;
     k.gt = cv_rl_guide_texel(key);
-    vec4 h = imageLoad(rl_guide, k.gt);
+    vec4 h = texelFetch(rl_guide, k.gt);
     k.m = h.x;
     k.irr = h.y;
-    k.c0 = imageLoad(rl_guide, cv_rl_coarse_texel(k.gt, 0));
-    k.c1 = imageLoad(rl_guide, cv_rl_coarse_texel(k.gt, min(1, int(CV_RL_COARSE(cv_rl_bins())) - 1)));
+    k.c0 = texelFetch(rl_guide, cv_rl_coarse_texel(k.gt, 0));
+    k.c1 = texelFetch(rl_guide, cv_rl_coarse_texel(k.gt, min(1, int(CV_RL_COARSE(cv_rl_bins())) - 1)));
     return k;
 }
 
-float cv_rl_key_mix(uint key) { return imageLoad(rl_guide, cv_rl_guide_texel(key)).x; }
+float cv_rl_key_mix(uint key) { return texelFetch(rl_guide, cv_rl_guide_texel(key)).x; }
 
 // The probability of bin b of the key at gt, as sampling draws it.
-float cv_rl_prob(int gt, uint b) { return imageLoad(rl_guide, cv_rl_prob_texel(gt, int(b / 4u)))[b % 4u]; }
+float cv_rl_prob(int gt, uint b) { return texelFetch(rl_guide, cv_rl_prob_texel(gt, int(b / 4u)))[b % 4u]; }
 
 // Solid-angle pdf of the directions of bin `bin` under the distribution of
 // a key (whose mixture weight is above 0, so that it has been built).
@@ -205,13 +205,13 @@ CvRlPick cv_rl_pick_group(CvRlKey k, float u)
     if (hi > 1) {
         while (hi - lo > 1) {
             int mid = (lo + hi) >> 1;
-            if (u < imageLoad(rl_guide, cv_rl_coarse_texel(k.gt, mid)).w)
+            if (u < texelFetch(rl_guide, cv_rl_coarse_texel(k.gt, mid)).w)
                 hi = mid;
             else
                 lo = mid + 1;
         }
-        ca = imageLoad(rl_guide, cv_rl_coarse_texel(k.gt, lo));
-        cb = imageLoad(rl_guide, cv_rl_coarse_texel(k.gt, hi));
+        ca = texelFetch(rl_guide, cv_rl_coarse_texel(k.gt, lo));
+        cb = texelFetch(rl_guide, cv_rl_coarse_texel(k.gt, hi));
     }
     bool in_a = u < ca.w;
     vec4 cv = in_a ? ca : cb;
@@ -246,8 +246,8 @@ uint cv_rl_pick_bin(CvRlKey k, CvRlPick pk, vec4 f0, vec4 f1, vec4 f2, vec4 f3, 
 uint cv_rl_sample_key(CvRlKey k, vec2 u, out vec3 w, out float pdf)
 {
     CvRlPick pk = cv_rl_pick_group(k, u.x);
-    vec4 f0 = imageLoad(rl_guide, pk.f), f1 = imageLoad(rl_guide, pk.f + 1);
-    vec4 f2 = imageLoad(rl_guide, pk.f + 2), f3 = imageLoad(rl_guide, pk.f + 3);
+    vec4 f0 = texelFetch(rl_guide, pk.f), f1 = texelFetch(rl_guide, pk.f + 1);
+    vec4 f2 = texelFetch(rl_guide, pk.f + 2), f3 = texelFetch(rl_guide, pk.f + 3);
     return cv_rl_pick_bin(k, pk, f0, f1, f2, f3, u, w, pdf);
 }
 

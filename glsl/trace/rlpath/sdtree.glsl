@@ -25,7 +25,7 @@
 #include "../../lib/atomic_add.glsl"
 
 layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
-layout(rgba32f, binding = CV_IMAGE_SD_TREE) uniform readonly imageBuffer sd_tree;
+layout(binding = CV_TEXUNIT_SD_TREE) uniform samplerBuffer sd_tree;
 #ifdef CV_SD_RECORD
 layout(rgba32f, binding = CV_IMAGE_SD_VERTS) uniform imageBuffer sd_verts;
 layout(r32ui, binding = CV_IMAGE_SD_COUNTS) uniform uimageBuffer sd_counts;
@@ -62,7 +62,7 @@ int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
     lo = u_sd.cube.xyz;
     size = vec3(u_sd.cube.w);
     int node = 0;
-    vec4 n = imageLoad(sd_tree, 0);
+    vec4 n = texelFetch(sd_tree, 0);
     for (uint d = 0u; d < CV_SD_MAX_SPATIAL_DEPTH && n.x < CV_SD_LEAF; d++) {
         int axis = int(n.x);
         size[axis] *= 0.5;
@@ -70,7 +70,7 @@ int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
         if (upper)
             lo[axis] = n.y;
         node = int(n.z) + (upper ? 1 : 0);
-        n = imageLoad(sd_tree, node);
+        n = texelFetch(sd_tree, node);
     }
     return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
 }
@@ -87,7 +87,7 @@ int cv_sd_class_texel(vec3 p, uint cls)
 vec2 cv_sd_leaf(vec3 p, uint cls)
 {
     int c = cv_sd_class_texel(p, cls);
-    return c < 0 ? vec2(0.0) : imageLoad(sd_tree, c).xy;
+    return c < 0 ? vec2(0.0) : texelFetch(sd_tree, c).xy;
 }
 
 // The square point of a unit direction, and back.
@@ -132,7 +132,7 @@ vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
     float side = 1.0;
     pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 n = imageLoad(sd_tree, q);
+        vec4 n = texelFetch(sd_tree, q);
         vec4 p = cv_sd_node_probs(n);
         // the column: ix 0 holds quadrants 0 and 2
         float pc = p.x + p.z;
@@ -161,7 +161,7 @@ float cv_sd_pdf_square(int root, vec2 s)
     int q = root;
     float pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
-        vec4 n = imageLoad(sd_tree, q);
+        vec4 n = texelFetch(sd_tree, q);
         int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
         pdf *= 4.0 * cv_sd_node_probs(n)[k];
@@ -284,9 +284,9 @@ int cv_sd_train_leaf(int q, vec2 s, out float side)
         int ix = s.x < 0.5 ? 0 : 1, iy = s.y < 0.5 ? 0 : 1;
         int k = ix + 2 * iy;
         s = 2.0 * s - vec2(float(ix), float(iy));
-        int child = int(imageLoad(sd_tree, q)[k]);
+        int child = int(texelFetch(sd_tree, q)[k]);
         if (child == 0)
-            return int(imageLoad(sd_tree, q + 1).x) + k;
+            return int(texelFetch(sd_tree, q + 1).x) + k;
         q = child;
     }
     return -1;   // deeper than the limit: a malformed table
@@ -348,10 +348,10 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
     int c = v < 0.0 ? -1 : cv_sd_class_texel_box(p, cls, lo, size);
     if (c < 0)
         return;
-    vec4 ct = imageLoad(sd_tree, c);
+    vec4 ct = texelFetch(sd_tree, c);
     // the class's limit of a record's value (its training root's second
     // texel, y; 0: none)
-    float lim = imageLoad(sd_tree, int(ct.z) + 1).y;
+    float lim = texelFetch(sd_tree, int(ct.z) + 1).y;
     if (lim > 0.0 && v > lim)
         v = lim;
     int w = int(ct.w);
@@ -382,7 +382,7 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
         int cb = cv_sd_class_texel(x, cls);
         if (cb < 0)
             continue;
-        int qb = int(imageLoad(sd_tree, cb).z);
+        int qb = int(texelFetch(sd_tree, cb).z);
         float hb;
         int wb = cv_sd_train_leaf(qb, s, hb);
         cv_sd_splat_flux(qb, s, v * f, wb, hb);
