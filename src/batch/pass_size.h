@@ -9,7 +9,9 @@
 
 #include <stdint.h>
 
-#define CV_PASS_TARGET_SECONDS 0.5
+/* Longer passes pay the tail less often (bench/RESULTS.md, "Longer
+ * passes"); a signal still waits for one pass at most. */
+#define CV_PASS_TARGET_SECONDS 2.0
 
 /* The next pass after one of n spp that took seconds; time_left > 0 caps it
  * to the time a limit leaves (at least 1 spp). Grows at most 4x a pass. */

@@ -1,11 +1,12 @@
 # tests/batch
 check_PROGRAMS += tests/batch/exr_attr tests/batch/exr_same tests/batch/plan_test \
-	tests/batch/exr_probe
+	tests/batch/exr_probe tests/batch/pass_size_test
+tests_batch_pass_size_test_LDADD = $(CV_LIBS)
 tests_batch_exr_probe_LDADD = $(CV_LIBS)
 tests_batch_plan_test_LDADD = $(CV_LIBS)
 tests_batch_exr_attr_LDADD = $(CV_LIBS)
 tests_batch_exr_same_LDADD = $(CV_LIBS)
-TESTS += tests/batch/plan_test tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh \
+TESTS += tests/batch/plan_test tests/batch/pass_size_test tests/batch/check_plan_test.sh tests/batch/manifest_errors_test.sh \
 	tests/batch/shard_test.sh tests/batch/render_test.sh tests/batch/signals_test.sh \
 	tests/batch/shared_scene_test.sh tests/batch/lock_test.sh tests/batch/check_all_test.sh \
 	tests/batch/man_examples_test.sh tests/batch/resume_stale_test.sh tests/batch/tiles_test.sh \
