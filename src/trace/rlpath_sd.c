@@ -219,8 +219,11 @@ static void log_guide(const struct cv_rlpath_sd *sd, const struct cv_sdtree_stat
 {
     cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %llu records, %u spatial leaves (%u of their "
            "classes guide), %u sampling and %u training quadtree nodes, depth %u, host "
-           "refine %.3f ms", sd->builds, (unsigned long long)st->records, st->spatial_leaves,
-           st->guiding, st->quad_nodes, st->train_nodes, st->max_quad_depth, 1e3 * host_s);
+           "refine %.3f ms; spatial leaf depth min %u mean %.2f max %u, by records %.2f",
+           sd->builds, (unsigned long long)st->records, st->spatial_leaves, st->guiding,
+           st->quad_nodes, st->train_nodes, st->max_quad_depth, 1e3 * host_s,
+           st->min_spatial_depth, st->mean_spatial_depth, st->max_spatial_depth,
+           st->record_spatial_depth);
 }
 
 bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,

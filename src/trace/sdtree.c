@@ -430,6 +430,7 @@ struct refine {
     struct cv_sdtree *n;
     double thresh;
     struct cv_sdtree_stats st;
+    double depth_sum, weighted_depth, weight;   /* over the new leaves */
 };
 
 /* The flux (e) and record counts (cnt) of old training node j's quadrants. */
@@ -535,6 +536,13 @@ static void split_leaf(struct refine *r, uint32_t node, const struct learned *lc
         return;
     }
     r->n->s[node] = (struct snode){3, 0.0f, (uint32_t)(r->n->nc / CV_SD_CLASSES)};
+    if (r->n->nc == 0 || depth < r->st.min_spatial_depth)
+        r->st.min_spatial_depth = depth;
+    if (depth > r->st.max_spatial_depth)
+        r->st.max_spatial_depth = depth;
+    r->depth_sum += depth;
+    r->weighted_depth += count * depth;
+    r->weight += count;
     for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
         uint32_t ci = push_c(r->n);
         r->n->c[ci].samp = lc[cls].samp;
@@ -640,6 +648,8 @@ void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct c
     r.st.spatial_leaves = (uint32_t)(t->nc / CV_SD_CLASSES);
     r.st.quad_nodes = (uint32_t)t->nq;
     r.st.train_nodes = (uint32_t)t->nt;
+    r.st.mean_spatial_depth = r.depth_sum / r.st.spatial_leaves;
+    r.st.record_spatial_depth = r.weight > 0 ? r.weighted_depth / r.weight : 0;
     if (st)
         *st = r.st;
 }
