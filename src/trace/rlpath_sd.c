@@ -121,13 +121,16 @@ static bool stats_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *er
     return true;
 }
 
-/* Uploads the guide's table and zeroes the statistics of its training
- * tree (its words alone: the buffer may be larger). */
+/* Uploads the guide's table, with its grid block's place in the
+ * parameters, and zeroes the statistics of its training tree (its words
+ * alone: the buffer may be larger). */
 static bool guide_upload(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
     float(*t)[4] = NULL;
     size_t n = 0, words = cv_sdtree_stat_words(sd->guide);
     cv_sdtree_table(sd->guide, &t, &n);
+    sd->params.grid.x = (uint32_t)(n - CV_SD_GRID_TEXELS);
+    glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
     bool ok = tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err) &&
               stats_reserve(sd, words, err);
     free(t);
