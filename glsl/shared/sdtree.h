@@ -133,7 +133,7 @@
 
 /* The grid block (see above): log2 of its cells an axis, its cells an
  * axis, its cell texels and all its texels. */
-#define CV_SD_GRID_LOG2 5u
+#define CV_SD_GRID_LOG2 6u
 #define CV_SD_GRID_CELLS (1u << CV_SD_GRID_LOG2)
 #define CV_SD_GRID_CELL_TEXELS (CV_SD_GRID_CELLS * CV_SD_GRID_CELLS * CV_SD_GRID_CELLS / 4u)
 #define CV_SD_GRID_TEXELS (3u * CV_SD_GRID_CELLS + CV_SD_GRID_CELL_TEXELS)
