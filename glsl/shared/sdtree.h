@@ -44,6 +44,24 @@
  *            the most a record's value adds (its class's records' mean
  *            value in the iteration before times cv_sdtree_opts.clamp;
  *            0: no limit), else 0; zw: 0.
+ *   the grid block: the table's last CV_SD_GRID_TEXELS texels, from
+ *   texel CvSdParams grid.x, a shortcut into the spatial tree. Its splits
+ *   are midpoints along the axis depth % 3, so that the nodes down to depth
+ *   3 g (g: CV_SD_GRID_LOG2) are unions of the cells of a grid of N = 2^g
+ *   cells an axis over the root cube. A lookup finds the point's cell and
+ *   continues the descent from the node the cell names, the same leaf as
+ *   the full descent for every point (sdtree.glsl: cv_sd_class_texel):
+ *   bounds texel a N + j (axis a, cell j along it): x: the cell's lower
+ *     bound, y: its upper bound (zw: 0), the float split coordinates the
+ *     tree's nodes at those planes hold, whether or not a node splits
+ *     there (the descent puts a point at or above a split in the upper
+ *     half: a point belongs to cell j where it is at or above x, j > 0,
+ *     and below y, j < N - 1, so a point outside the cube falls in the
+ *     border cell the descent would take it to);
+ *   cell texels from 3 N, four cells each (cell ix + N (iy + N iz): texel
+ *     3 N + cell / 4, component cell % 4): the node the descent from the
+ *     cell reaches after 3 g levels or, as -1 - its first class texel, the
+ *     leaf it meets before (one fetch less).
  * The density of a point is the product over the nodes it passes of 4
  * times its quadrant's probability, on the square; sampling descends the
  * same quadrants (sdtree.glsl), so the pdf it returns is the one it draws.
@@ -113,6 +131,13 @@
 #define CV_SD_MAX_DEPTH 12u
 #define CV_SD_MAX_SPATIAL_DEPTH 48u
 
+/* The grid block (see above): log2 of its cells an axis, its cells an
+ * axis, its cell texels and all its texels. */
+#define CV_SD_GRID_LOG2 6u
+#define CV_SD_GRID_CELLS (1u << CV_SD_GRID_LOG2)
+#define CV_SD_GRID_CELL_TEXELS (CV_SD_GRID_CELLS * CV_SD_GRID_CELLS * CV_SD_GRID_CELLS / 4u)
+#define CV_SD_GRID_TEXELS (3u * CV_SD_GRID_CELLS + CV_SD_GRID_CELL_TEXELS)
+
 /* Statistics words of a class, and of a training quadtree node. */
 #define CV_SD_CLASS_WORDS 2u
 #define CV_SD_NODE_WORDS 8u
@@ -130,7 +155,9 @@ CV_STRUCT(CvSdParams) {
                               filters (CV_SD_FILTER_*); z: path slots; w: 0 */
     cv_vec4 cube;          /* the spatial tree's root cube: xyz its low
                               corner, w its side */
+    cv_uvec4 grid;         /* x: the grid block's first texel in the table
+                              (its length less CV_SD_GRID_TEXELS); yzw: 0 */
 } CV_END(CvSdParams)
-CV_CHECK_SIZE(CvSdParams, 32);
+CV_CHECK_SIZE(CvSdParams, 48);
 
 #endif

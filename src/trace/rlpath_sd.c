@@ -121,13 +121,16 @@ static bool stats_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *er
     return true;
 }
 
-/* Uploads the guide's table and zeroes the statistics of its training
- * tree (its words alone: the buffer may be larger). */
+/* Uploads the guide's table, with its grid block's place in the
+ * parameters, and zeroes the statistics of its training tree (its words
+ * alone: the buffer may be larger). */
 static bool guide_upload(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
     float(*t)[4] = NULL;
     size_t n = 0, words = cv_sdtree_stat_words(sd->guide);
     cv_sdtree_table(sd->guide, &t, &n);
+    sd->params.grid.x = (uint32_t)(n - CV_SD_GRID_TEXELS);
+    glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
     bool ok = tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err) &&
               stats_reserve(sd, words, err);
     free(t);
@@ -219,8 +222,11 @@ static void log_guide(const struct cv_rlpath_sd *sd, const struct cv_sdtree_stat
 {
     cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %llu records, %u spatial leaves (%u of their "
            "classes guide), %u sampling and %u training quadtree nodes, depth %u, host "
-           "refine %.3f ms", sd->builds, (unsigned long long)st->records, st->spatial_leaves,
-           st->guiding, st->quad_nodes, st->train_nodes, st->max_quad_depth, 1e3 * host_s);
+           "refine %.3f ms; spatial leaf depth min %u mean %.2f max %u, by records %.2f",
+           sd->builds, (unsigned long long)st->records, st->spatial_leaves, st->guiding,
+           st->quad_nodes, st->train_nodes, st->max_quad_depth, 1e3 * host_s,
+           st->min_spatial_depth, st->mean_spatial_depth, st->max_spatial_depth,
+           st->record_spatial_depth);
 }
 
 bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec, size_t n,

@@ -67,6 +67,12 @@ struct cv_sdtree {
     size_t nt, ct;
 };
 
+/* The split coordinate of a spatial node over [lo, hi] along an axis: its
+ * middle, in double from the cube's corners down, so that every node
+ * splitting the same plane holds the same float (the grid block's bounds,
+ * grid_bounds, rely on it). */
+static double midpoint(double lo, double hi) { return 0.5 * (lo + hi); }
+
 /* Appends a zeroed node to one of the tree's arrays; its index. */
 static uint32_t push_s(struct cv_sdtree *t)
 {
@@ -150,6 +156,52 @@ static size_t train_word(const struct cv_sdtree *t, uint32_t j)
     return CV_SD_CLASS_WORDS * t->nc + CV_SD_NODE_WORDS * (size_t)j;
 }
 
+/* The grid block's bounds texels along axis a (shared/sdtree.h), cells
+ * [c0, c1) over [lo, hi]: each plane between two cells gets the split
+ * coordinate the tree's nodes there hold (the same midpoint recursion from
+ * the cube's faces). */
+static void grid_bounds(const struct cv_sdtree *t, float (*b)[4], int a, uint32_t c0,
+                        uint32_t c1, double lo, double hi)
+{
+    if (c0 == 0)
+        b[a * CV_SD_GRID_CELLS][0] = (float)t->lo[a];
+    if (c1 == CV_SD_GRID_CELLS)
+        b[a * CV_SD_GRID_CELLS + c1 - 1][1] = (float)t->hi[a];
+    if (c1 - c0 < 2)
+        return;
+    uint32_t cm = (c0 + c1) / 2;
+    double mid = midpoint(lo, hi);
+    b[a * CV_SD_GRID_CELLS + cm - 1][1] = (float)mid;
+    b[a * CV_SD_GRID_CELLS + cm][0] = (float)mid;
+    grid_bounds(t, b, a, c0, cm, lo, mid);
+    grid_bounds(t, b, a, cm, c1, mid, hi);
+}
+
+/* The grid block's cells (shared/sdtree.h) of spatial node `node` at
+ * depth, which covers the cells [c0, c1) (per axis): a leaf, or the node
+ * at depth 3 g, fills them; an inner node above hands each half to a
+ * child (its split is the middle plane along axis depth % 3). */
+static void grid_cells(const struct cv_sdtree *t, float *cells, uint32_t node, uint32_t depth,
+                       const uint32_t c0[3], const uint32_t c1[3])
+{
+    const struct snode *s = &t->s[node];
+    if (s->axis >= 3 || depth >= 3 * CV_SD_GRID_LOG2) {
+        float v = s->axis >= 3 ? -1.0f - (float)(t->ns + (size_t)s->child * CV_SD_CLASSES)
+                               : (float)node;
+        for (uint32_t z = c0[2]; z < c1[2]; z++)
+            for (uint32_t y = c0[1]; y < c1[1]; y++)
+                for (uint32_t x = c0[0]; x < c1[0]; x++)
+                    cells[x + CV_SD_GRID_CELLS * (y + CV_SD_GRID_CELLS * z)] = v;
+        return;
+    }
+    uint32_t a = s->axis, l[3], h[3];
+    memcpy(l, c0, sizeof(l));
+    memcpy(h, c1, sizeof(h));
+    h[a] = l[a] = (c0[a] + c1[a]) / 2;
+    grid_cells(t, cells, s->child, depth + 1, c0, h);
+    grid_cells(t, cells, s->child + 1, depth + 1, l, c1);
+}
+
 /* Sampling nodes' children offsets stay below this (shared/sdtree.h). */
 #define CHILD_OFFSET_LIMIT (1u << 20)
 
@@ -157,7 +209,7 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
 {
     /* spatial nodes, class texels, sampling nodes (one texel each, each
      * node's children consecutive: breadth first from every root), training
-     * nodes (two texels each) */
+     * nodes (two texels each), the grid block */
     size_t sbase = t->ns + t->nc;
     uint32_t *pos = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*pos));
     uint32_t *queue = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*queue));
@@ -182,7 +234,7 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
             }
         }
     }
-    size_t tbase = next, nt = tbase + 2 * t->nt;
+    size_t tbase = next, gbase = tbase + 2 * t->nt, nt = gbase + CV_SD_GRID_TEXELS;
     float(*x)[4] = cv_xcalloc(nt, sizeof(*x));
     for (size_t i = 0; i < t->ns; i++) {
         const struct snode *s = &t->s[i];
@@ -229,6 +281,11 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
     }
     for (size_t i = 0; i < t->nc; i++)
         x[tbase + 2 * (size_t)t->c[i].train + 1][1] = t->c[i].clamp;
+    for (int a = 0; a < 3; a++)
+        grid_bounds(t, x + gbase, a, 0, CV_SD_GRID_CELLS, t->lo[a], t->hi[a]);
+    const uint32_t c0[3] = {0, 0, 0},
+                   c1[3] = {CV_SD_GRID_CELLS, CV_SD_GRID_CELLS, CV_SD_GRID_CELLS};
+    grid_cells(t, &x[gbase + 3 * CV_SD_GRID_CELLS][0], 0, 0, c0, c1);
     free(pos);
     free(queue);
     *texels = x;
@@ -430,6 +487,7 @@ struct refine {
     struct cv_sdtree *n;
     double thresh;
     struct cv_sdtree_stats st;
+    double depth_sum, weighted_depth, weight;   /* over the new leaves */
 };
 
 /* The flux (e) and record counts (cnt) of old training node j's quadrants. */
@@ -520,7 +578,7 @@ static void split_leaf(struct refine *r, uint32_t node, const struct learned *lc
 {
     if (count > r->thresh && depth < CV_SD_MAX_SPATIAL_DEPTH) {
         int axis = (int)(depth % 3);
-        double mid = 0.5 * (lo[axis] + hi[axis]);
+        double mid = midpoint(lo[axis], hi[axis]);
         uint32_t c = push_s(r->n);
         push_s(r->n);
         r->n->s[node] = (struct snode){(uint32_t)axis, (float)mid, c};
@@ -535,6 +593,13 @@ static void split_leaf(struct refine *r, uint32_t node, const struct learned *lc
         return;
     }
     r->n->s[node] = (struct snode){3, 0.0f, (uint32_t)(r->n->nc / CV_SD_CLASSES)};
+    if (r->n->nc == 0 || depth < r->st.min_spatial_depth)
+        r->st.min_spatial_depth = depth;
+    if (depth > r->st.max_spatial_depth)
+        r->st.max_spatial_depth = depth;
+    r->depth_sum += depth;
+    r->weighted_depth += count * depth;
+    r->weight += count;
     for (uint32_t cls = 0; cls < CV_SD_CLASSES; cls++) {
         uint32_t ci = push_c(r->n);
         r->n->c[ci].samp = lc[cls].samp;
@@ -556,7 +621,7 @@ static void refine_spatial(struct refine *r, uint32_t old, uint32_t node, const 
         int axis = (int)os->axis;
         r->n->s[node] = r->old->s[old];
         r->n->s[node].child = c;
-        double mid = 0.5 * (lo[axis] + hi[axis]), l[3], h[3];
+        double mid = midpoint(lo[axis], hi[axis]), l[3], h[3];
         memcpy(l, lo, sizeof(l));
         memcpy(h, hi, sizeof(h));
         h[axis] = mid;
@@ -640,6 +705,8 @@ void cv_sdtree_refine(struct cv_sdtree *t, const uint32_t *stats, const struct c
     r.st.spatial_leaves = (uint32_t)(t->nc / CV_SD_CLASSES);
     r.st.quad_nodes = (uint32_t)t->nq;
     r.st.train_nodes = (uint32_t)t->nt;
+    r.st.mean_spatial_depth = r.depth_sum / r.st.spatial_leaves;
+    r.st.record_spatial_depth = r.weight > 0 ? r.weighted_depth / r.weight : 0;
     if (st)
         *st = r.st;
 }

@@ -58,6 +58,11 @@ struct cv_sdtree_stats {
     uint32_t train_nodes;                  /* the training quadtrees' */
     uint32_t guiding;   /* (leaf, class) quadtrees that guide */
     uint64_t records;   /* the statistics' records */
+    /* The spatial leaves' depths (the levels a lookup descends): least,
+     * mean, most, and the mean weighted by each leaf's records (a leaf
+     * that split shares its parent's count, halved per level). */
+    uint32_t min_spatial_depth, max_spatial_depth;
+    double mean_spatial_depth, record_spatial_depth;
 };
 
 /* The guide between iterations: the tree being trained and the sampling

@@ -9,7 +9,13 @@
  * pdf (chi-square against the exact integral of the host's piecewise
  * constant density over each cell, p >= 0.01); the same for the one-sample
  * mixture with a Lambertian lobe as sd_shade.comp draws it (density m pQ +
- * (1 - m) pBSDF); the GPU's pdf on a grid of directions equals the host's. */
+ * (1 - m) pBSDF); the GPU's pdf on a grid of directions equals the host's.
+ * The spatial lookup through the table's grid block and the GPU's full
+ * descent name the leaf of the host's descent for random points inside
+ * and outside the root cube, on the grid's planes and the tree's split
+ * planes and a float step either side, and points not finite; in this
+ * tree and in a deep one (records in a small cluster) over a cube far
+ * from the origin. */
 #include "config.h"
 
 #include <math.h>
@@ -212,6 +218,127 @@ static void splat_test(struct rig *g, const float (*t)[4])
     free(r);
 }
 
+/* Mode 3 (the class texel of each input point, through the grid block
+ * and by the full descent) against the host's descent in table t of nt
+ * texels, uploaded to g->sd: M points, a quarter random in and about the
+ * cube (lo, side), half on a plane of the grid block's bounds or of an
+ * inner node's split (or a float step off it) with the other coordinates
+ * random, half of each near centre (within side / 1000), and a few not
+ * finite. */
+static void lookup_test(struct rig *g, const char *what, const float (*t)[4], size_t nt,
+                        const float lo[3], float side, const float centre[3])
+{
+    const uint32_t M = 256 * 256;
+    float *in = calloc((size_t)M * 4, sizeof(float));
+    float *out = malloc((size_t)M * 8 * sizeof(float));
+    const float(*b)[4] = t + nt - CV_SD_GRID_TEXELS;
+    uint32_t ns = UINT32_MAX, planes = 0;
+    for (uint32_t k = 0; k < ns; k++)
+        if (t[k][0] == (float)CV_SD_LEAF && (uint32_t)t[k][2] < ns)
+            ns = (uint32_t)t[k][2];
+    /* the spatial tree's depth (children follow their parents) */
+    uint32_t *depth = calloc(ns, sizeof(*depth)), dmax = 0;
+    for (uint32_t i = 0; i < ns; i++)
+        if (t[i][0] != (float)CV_SD_LEAF)
+            for (uint32_t k = 0; k < 2; k++) {
+                uint32_t c = (uint32_t)t[i][2] + k;
+                depth[c] = depth[i] + 1;
+                dmax = depth[c] > dmax ? depth[c] : dmax;
+            }
+    free(depth);
+    for (uint32_t i = 0; i < M; i++) {
+        float *p = &in[4 * (size_t)i];
+        uint32_t kind = i % 4;
+        bool near = (i / 4) % 2;
+        for (int a = 0; a < 3; a++)
+            p[a] = near ? centre[a] + side * 2e-3f * (float)(rnd() - 0.5)
+                        : lo[a] + side * (float)(1.6 * rnd() - 0.3);
+        if (kind >= 2) {
+            /* a plane: the grid's or a split's, then a float step either
+             * side or none */
+            int a;
+            float x;
+            if (kind == 2 || ns < 2) {
+                a = (int)(3 * rnd());
+                uint32_t j = (uint32_t)(CV_SD_GRID_CELLS * rnd());
+                x = b[a * CV_SD_GRID_CELLS + j][rnd() < 0.5 ? 0 : 1];
+            } else {
+                uint32_t k;
+                do
+                    k = (uint32_t)(ns * rnd());
+                while (t[k][0] == (float)CV_SD_LEAF);
+                a = (int)t[k][0];
+                x = t[k][1];
+            }
+            int step = (int)(3 * rnd()) - 1;
+            p[a] = step ? nextafterf(x, step * INFINITY) : x;
+            planes++;
+        }
+    }
+    const float odd[] = {NAN, INFINITY, -INFINITY, 1e30f, -1e30f};
+    for (uint32_t k = 0; k < 15; k++)
+        in[4 * (size_t)(k * 7 + 1) + k % 3] = odd[k % 5];
+    glNamedBufferSubData(g->in, 0, (GLsizeiptr)M * 16, in);
+    struct cv_error err = {{0}};
+    if (tap_ok(run(g, 3, M, 0, out, &err), "%s: look up %u points: %s", what, M, err.msg)) {
+        uint32_t bad_grid = 0, bad_full = 0, inner = 0;
+        for (uint32_t i = 0; i < M; i++) {
+            uint32_t leaf = cv_sdtree_leaf(t, &in[4 * (size_t)i]);
+            float want = t[leaf][2] + (float)(i % CV_SD_CLASSES);
+            bad_grid += out[8 * (size_t)i] != want;
+            bad_full += out[8 * (size_t)i + 1] != want;
+        }
+        for (uint32_t c = 0; c < CV_SD_GRID_CELLS * CV_SD_GRID_CELLS * CV_SD_GRID_CELLS; c++)
+            inner += b[3 * CV_SD_GRID_CELLS + c / 4][c % 4] >= 0;
+        tap_ok(bad_grid == 0 && bad_full == 0,
+               "%s: lookups through the grid (%u differ) and by the full descent (%u differ) "
+               "name the host's leaf, %u points on planes, the deepest leaf %u deep, %u cells "
+               "inner", what, bad_grid, bad_full, planes, dmax, inner);
+    }
+    free(in);
+    free(out);
+}
+
+/* A guide over a cube far from the origin, learned from records of which
+ * most lie in a small cluster (leaves deeper than the grid block's 3 g
+ * levels), uploaded to a guide of its own. */
+static void deep_test(struct rig *g)
+{
+    const float lo[3] = {-1.5f, 1000.25f, 7.0f}, hi[3] = {0.5f, 1001.75f, 8.0f};
+    const size_t n = 60000;
+    struct cv_sd_record *r = make_records(n);
+    float centre[3];
+    for (int a = 0; a < 3; a++)
+        centre[a] = lo[a] + 0.3f * (hi[a] - lo[a]);
+    for (size_t i = 0; i < n; i++)
+        for (int a = 0; a < 3; a++)
+            r[i].p[a] = i % 10 ? centre[a] + (float)(1e-3 * (rnd() - 0.5))
+                               : lo[a] + (hi[a] - lo[a]) * (float)rnd();
+    struct cv_sd_record *copy = malloc(n * sizeof(*r));
+    memcpy(copy, r, n * sizeof(*r));
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_stats st;
+    cv_sdtree_build(lo, hi, copy, n, &cv_sdtree_defaults, &t, &nt, &st);
+    struct cv_error err = {{0}};
+    struct rig d = *g;
+    d.sd = NULL;
+    if (tap_ok(cv_rlpath_sd_create(g->gpu, lo, hi, 64, -1, 0, &d.sd, &err) &&
+                   cv_rlpath_sd_build(d.sd, r, n, &err),
+               "cluster: create, build and upload: %s", err.msg)) {
+        struct cv_sdtree *c = cv_sdtree_create(lo, hi);
+        struct cv_sd_frame f = cv_sdtree_frame(c, &cv_sdtree_defaults);
+        cv_sdtree_destroy(&c);
+        tap_ok(st.max_spatial_depth > 3 * CV_SD_GRID_LOG2, "cluster: leaves to depth %u (the "
+               "grid block's cells end at %u)", st.max_spatial_depth, 3 * CV_SD_GRID_LOG2);
+        lookup_test(&d, "cluster", (const float(*)[4])t, nt, f.cube, f.cube[3], centre);
+    }
+    cv_rlpath_sd_destroy(&d.sd);
+    free(t);
+    free(r);
+    free(copy);
+}
+
 int main(void)
 {
     struct cv_error err = {{0}};
@@ -338,7 +465,14 @@ int main(void)
     free(in);
     free(out);
     splat_test(&g, (const float(*)[4])t);
+    {
+        struct cv_sdtree *c = cv_sdtree_create(lo, hi);
+        struct cv_sd_frame f = cv_sdtree_frame(c, &o);
+        cv_sdtree_destroy(&c);
+        lookup_test(&g, "unit box", (const float(*)[4])t, nt, f.cube, f.cube[3], point);
+    }
     free(t);
+    deep_test(&g);
     free(recs);
     free(copy);
     cv_buffer_destroy(&g.out);

@@ -18,7 +18,12 @@
  * weights radiance by the cosine to the axis); the density following the
  * recorded radiance (a bright spot of directions gets many times the
  * uniform density in the classes that face it, a dark half about the
- * floor); records with a non-finite value or no density are ignored. */
+ * floor); records with a non-finite value or no density are ignored.
+ * The grid block at the table's end (its bounds rising and shared by
+ * neighbouring cells, each cell naming what the descent from its centre
+ * meets after 3 g levels, a leaf as -1 - its class texel) and the leaf
+ * depths the build reports (those of the table), for these trees and a
+ * deep one (records in a small cluster, leaves below depth 3 g). */
 #include "config.h"
 
 #include <math.h>
@@ -110,6 +115,71 @@ static uint32_t quad_depth(const float (*t)[4], uint32_t q)
     return d + 1;
 }
 
+/* The depths of the spatial leaves below node i at depth d: least, most,
+ * their sum and count. */
+static void leaf_depths(const float (*t)[4], uint32_t i, uint32_t d, uint32_t *lo, uint32_t *hi,
+                        double *sum, uint32_t *n)
+{
+    if (t[i][0] != (float)CV_SD_LEAF) {
+        leaf_depths(t, (uint32_t)t[i][2], d + 1, lo, hi, sum, n);
+        leaf_depths(t, (uint32_t)t[i][2] + 1, d + 1, lo, hi, sum, n);
+        return;
+    }
+    *lo = *n == 0 || d < *lo ? d : *lo;
+    *hi = d > *hi ? d : *hi;
+    *sum += d;
+    ++*n;
+}
+
+/* Checks the depths the build reported against the table's. */
+static void check_depths(const char *what, const float (*t)[4], const struct cv_sdtree_stats *st)
+{
+    uint32_t lo = 0, hi = 0, n = 0;
+    double sum = 0;
+    leaf_depths(t, 0, 0, &lo, &hi, &sum, &n);
+    tap_ok(n == st->spatial_leaves && lo == st->min_spatial_depth &&
+               hi == st->max_spatial_depth && fabs(sum / n - st->mean_spatial_depth) < 1e-9 &&
+               st->record_spatial_depth >= lo && st->record_spatial_depth <= hi,
+           "%s: leaf depths min %u mean %.3f max %u (by records %.3f) as the table's (%u %.3f "
+           "%u)", what, st->min_spatial_depth, st->mean_spatial_depth, st->max_spatial_depth,
+           st->record_spatial_depth, lo, sum / n, hi);
+}
+
+/* Checks the grid block (shared/sdtree.h) of table t (nt texels) against
+ * the descent from each cell's centre. */
+static void check_grid(const char *what, const float (*t)[4], size_t nt)
+{
+    const uint32_t N = CV_SD_GRID_CELLS;
+    const float(*b)[4] = t + nt - CV_SD_GRID_TEXELS;
+    const float *cells = &b[3 * N][0];
+    uint32_t bad_bounds = 0, bad_cells = 0, inner = 0;
+    for (uint32_t a = 0; a < 3; a++)
+        for (uint32_t j = 0; j < N; j++)
+            bad_bounds += !(b[a * N + j][0] < b[a * N + j][1]) ||
+                          (j > 0 && b[a * N + j][0] != b[a * N + j - 1][1]);
+    for (uint32_t z = 0; z < N; z++)
+        for (uint32_t y = 0; y < N; y++)
+            for (uint32_t x = 0; x < N; x++) {
+                const uint32_t c[3] = {x, y, z};
+                float p[3];
+                for (int a = 0; a < 3; a++)
+                    p[a] = 0.5f * (b[a * N + c[a]][0] + b[a * N + c[a]][1]);
+                uint32_t node = 0;
+                for (uint32_t d = 0; d < 3 * CV_SD_GRID_LOG2 && t[node][0] != (float)CV_SD_LEAF;
+                     d++) {
+                    int axis = (int)t[node][0];
+                    node = (uint32_t)t[node][2] + (p[axis] >= t[node][1] ? 1u : 0u);
+                }
+                bool leaf = t[node][0] == (float)CV_SD_LEAF;
+                float want = leaf ? -1.0f - t[node][2] : (float)node;
+                inner += !leaf;
+                bad_cells += cells[x + N * (y + N * z)] != want;
+            }
+    tap_ok(bad_bounds == 0 && bad_cells == 0, "%s: grid block: bounds rise and meet (%u bad), "
+           "cells name the descent's node from their centres (%u bad, %u inner)", what,
+           bad_bounds, bad_cells, inner);
+}
+
 static void test_empty(void)
 {
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
@@ -118,7 +188,8 @@ static void test_empty(void)
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, NULL, 0, &cv_sdtree_defaults, &t, &nt, &st);
     uint32_t bad = 0;
-    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 4 * CV_SD_CLASSES; c++) {
+    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 4 * CV_SD_CLASSES + CV_SD_GRID_TEXELS;
+         c++) {
         const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + c];
         const float *tr = t[1 + 2 * CV_SD_CLASSES + 2 * c];
         bad += k[0] != (float)(1 + CV_SD_CLASSES + c) || k[1] != 0;
@@ -130,8 +201,11 @@ static void test_empty(void)
         /* one texel: three probabilities (the fourth 1 less them), no child */
         bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0;
     }
-    tap_ok(nt == 1 + 4 * CV_SD_CLASSES && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
+    tap_ok(nt == 1 + 4 * CV_SD_CLASSES + CV_SD_GRID_TEXELS && t[0][0] == (float)CV_SD_LEAF &&
+               t[0][2] == 1,
            "no records: one leaf, its class texels at texel 1 (%zu texels)", nt);
+    check_depths("no records", (const float(*)[4])t, &st);
+    check_grid("no records", (const float(*)[4])t, nt);
     tap_ok(bad == 0, "no records: every class of weight 0, one uniform sampling quadtree node "
            "and one training node each (%u wrong)", bad);
     tap_ok(st.spatial_leaves == 1 && st.guiding == 0 && st.quad_nodes == CV_SD_CLASSES,
@@ -188,9 +262,12 @@ static void test_build(void)
     tap_ok(st.spatial_leaves > 8 && st.spatial_leaves * 2 - 1 == ns,
            "%u spatial leaves of %u nodes (a full binary tree)", st.spatial_leaves, ns);
     uint32_t qe = qb + st.quad_nodes;   /* the training nodes' first texel */
-    tap_ok(nt == qe + 2 * (size_t)st.train_nodes && st.quad_nodes >= nc && st.train_nodes >= nc,
-           "%zu texels: %u spatial + %u class + %u sampling + 2 x %u training quadtree", nt,
-           ns, nc, st.quad_nodes, st.train_nodes);
+    tap_ok(nt == qe + 2 * (size_t)st.train_nodes + CV_SD_GRID_TEXELS &&
+               st.quad_nodes >= nc && st.train_nodes >= nc,
+           "%zu texels: %u spatial + %u class + %u sampling + 2 x %u training quadtree + "
+           "the grid block", nt, ns, nc, st.quad_nodes, st.train_nodes);
+    check_depths("box", (const float(*)[4])t, &st);
+    check_grid("box", (const float(*)[4])t, nt);
     /* spatial links */
     uint32_t bad_s = 0, leaves = 0;
     uint8_t *seen = calloc(st.spatial_leaves + 1, 1);
@@ -312,10 +389,37 @@ static void test_few(void)
     free(r);
 }
 
+/* Records in a small cluster: leaves deeper than the grid block's 3 g
+ * levels, so that its cells name inner nodes there. */
+static void test_deep(void)
+{
+    const float lo[3] = {-1.5f, 2.25f, 100.0f}, hi[3] = {0.5f, 3.0f, 101.0f};
+    const size_t N = 100000;
+    struct cv_sd_record *r = make_records(N, 0.05);
+    for (size_t i = 0; i < N; i++)
+        for (int a = 0; a < 3; a++) {
+            double f = i % 10 ? 0.3 + 1e-3 * rnd() : rnd();
+            r[i].p[a] = (float)(lo[a] + (hi[a] - lo[a]) * f);
+        }
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_stats st;
+    cv_sdtree_build(lo, hi, r, N, &cv_sdtree_defaults, &t, &nt, &st);
+    tap_ok(st.max_spatial_depth > 3 * CV_SD_GRID_LOG2 &&
+               st.record_spatial_depth > st.mean_spatial_depth,
+           "cluster: leaves to depth %u, deeper by records (%.2f) than by leaves (%.2f)",
+           st.max_spatial_depth, st.record_spatial_depth, st.mean_spatial_depth);
+    check_depths("cluster", (const float(*)[4])t, &st);
+    check_grid("cluster", (const float(*)[4])t, nt);
+    free(t);
+    free(r);
+}
+
 int main(void)
 {
     test_empty();
     test_build();
     test_few();
+    test_deep();
     return tap_done();
 }

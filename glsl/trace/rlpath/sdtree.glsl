@@ -10,8 +10,10 @@
 // each quadrant's probability; the pdf function walks the same quadrants
 // for a given point, so the two agree (a point on a quadrant edge, where
 // they may part, has measure zero).
-// Cost: a lookup is a walk down the spatial tree (one texel per level),
-// sampling or a pdf one texel per quadtree level.
+// Cost: a lookup is a fetch of its grid cell (with its bounds, in
+// parallel) and a walk down the spatial tree below depth 3 g (one texel per
+// level; the walk with the leaf's box, which the spatial filter needs,
+// from the root); sampling or a pdf one texel per quadtree level.
 // Include after the local_size layout line. CV_SD_RECORD: the record
 // images read-write (shade, escaped and shadow stages while training);
 // CV_SD_SPLAT (with it): the statistics too (stages that end a path's
@@ -56,7 +58,8 @@ uint cv_sd_class(vec3 n)
 // -1 past the depth limit (a malformed table).
 // Also the box of its spatial leaf: lo and size (the root cube u_sd.cube
 // halved along each split's axis on the way down), which the spatial
-// filter needs; cv_sd_class_texel leaves it to the compiler to drop.
+// filter needs; the full descent from the root (cv_sd_class_texel: the
+// same texel, through the grid block).
 int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
 {
     lo = u_sd.cube.xyz;
@@ -75,10 +78,59 @@ int cv_sd_class_texel_box(vec3 p, uint cls, out vec3 lo, out vec3 size)
     return n.x < CV_SD_LEAF ? -1 : int(n.z) + int(cls);
 }
 
+// The cell of coordinate x along axis a of the grid block at texel g
+// (shared/sdtree.h), from the guess c, whose bounds texel is b: moved down
+// while x is below its lower bound, up while at or above its upper one,
+// as the descent's comparisons place x (a guess is off by at most a cell
+// but where the cube's float coordinates are coarse against its cells).
+int cv_sd_grid_axis(int g, int a, float x, int c, vec2 b)
+{
+    const int n = int(CV_SD_GRID_CELLS);
+    while (c > 0 && x < b.x) {
+        c--;
+        b = texelFetch(sd_tree, g + a * n + c).xy;
+    }
+    while (c < n - 1 && x >= b.y) {
+        c++;
+        b = texelFetch(sd_tree, g + a * n + c).xy;
+    }
+    return c;
+}
+
+// The class texel of point p and orientation class cls, as
+// cv_sd_class_texel_box finds it, through the grid block: the cell of p
+// from its coordinates in the cube (its bounds and its cell texel fetched
+// together, the cell texel again where the bounds move the cell), then the
+// descent from the node the cell names.
 int cv_sd_class_texel(vec3 p, uint cls)
 {
-    vec3 lo, size;
-    return cv_sd_class_texel_box(p, cls, lo, size);
+    const int n = int(CV_SD_GRID_CELLS);
+    int g = int(u_sd.grid.x), cells = g + 3 * n;
+    // the guess, 0 for a point below the cube or not a number
+    vec3 t = (p - u_sd.cube.xyz) * (float(n) / u_sd.cube.w);
+    ivec3 c0;
+    for (int a = 0; a < 3; a++)
+        c0[a] = t[a] >= 1.0 ? int(min(t[a], float(n - 1))) : 0;
+    int i0 = c0.x + n * (c0.y + n * c0.z);
+    vec4 bx = texelFetch(sd_tree, g + c0.x);
+    vec4 by = texelFetch(sd_tree, g + n + c0.y);
+    vec4 bz = texelFetch(sd_tree, g + 2 * n + c0.z);
+    vec4 w = texelFetch(sd_tree, cells + (i0 >> 2));
+    ivec3 c = ivec3(cv_sd_grid_axis(g, 0, p.x, c0.x, bx.xy),
+                    cv_sd_grid_axis(g, 1, p.y, c0.y, by.xy),
+                    cv_sd_grid_axis(g, 2, p.z, c0.z, bz.xy));
+    int i = c.x + n * (c.y + n * c.z);
+    if ((i >> 2) != (i0 >> 2))
+        w = texelFetch(sd_tree, cells + (i >> 2));
+    int node = int(w[i & 3]);
+    if (node < 0)
+        return -1 - node + int(cls);   // a leaf above depth 3 g
+    vec4 nd = texelFetch(sd_tree, node);
+    for (uint d = 3u * CV_SD_GRID_LOG2; d < CV_SD_MAX_SPATIAL_DEPTH && nd.x < CV_SD_LEAF; d++) {
+        node = int(nd.z) + (p[int(nd.x)] >= nd.y ? 1 : 0);
+        nd = texelFetch(sd_tree, node);
+    }
+    return nd.x < CV_SD_LEAF ? -1 : int(nd.z) + int(cls);
 }
 
 // The quadtree of point p and orientation class cls: its root (x, a texel
@@ -344,8 +396,11 @@ void cv_sd_splat_flux(int q, vec2 s, float v, int w, float h)
 void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
 {
     float v = cv_sd_value(p, pdf, cls, s, L);
-    vec3 lo, size;
-    int c = v < 0.0 ? -1 : cv_sd_class_texel_box(p, cls, lo, size);
+    // the leaf's box for the spatial filter alone
+    bool spatial = (u_sd.learn.y & CV_SD_FILTER_SPATIAL) != 0u;
+    vec3 lo = vec3(0.0), size = vec3(0.0);
+    int c = v < 0.0 ? -1
+                    : (spatial ? cv_sd_class_texel_box(p, cls, lo, size) : cv_sd_class_texel(p, cls));
     if (c < 0)
         return;
     vec4 ct = texelFetch(sd_tree, c);
@@ -364,7 +419,7 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
         imageAtomicAdd(sd_stats, lw + 4, 1u);
     if (!(v > 0.0))
         return;
-    if ((u_sd.learn.y & CV_SD_FILTER_SPATIAL) == 0u) {
+    if (!spatial) {
         cv_sd_splat_flux(int(ct.z), s, v, lw, h);
         return;
     }

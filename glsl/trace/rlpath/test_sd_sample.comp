@@ -7,7 +7,9 @@
 // leaf's weight m, its root). TEST_MODE 1: draw from the mixture of the
 // guide (weight m) and a Lambertian lobe about TEST_NORMAL, the way
 // sd_shade.comp does (w, mixture pdf; guide and lobe pdfs at w, m).
-// TEST_MODE 2: the guide's pdf at the directions of the input.
+// TEST_MODE 2: the guide's pdf at the directions of the input. TEST_MODE
+// 3: the class texel (class i % CV_SD_CLASSES) of the input's points
+// through the grid block and by the full descent.
 layout(local_size_x = 64) in;
 #include "../../lib/index.glsl"
 #include "sdtree.glsl"
@@ -48,6 +50,14 @@ void main()
     uint i = cv_global_index();
     if (i >= u_n)
         return;
+#if TEST_MODE == 3
+    vec3 lo, size;
+    uint cls = i % CV_SD_CLASSES;
+    outv[2u * i] = vec4(float(cv_sd_class_texel(inv[i].xyz, cls)),
+                        float(cv_sd_class_texel_box(inv[i].xyz, cls, lo, size)), 0.0, 0.0);
+    outv[2u * i + 1u] = vec4(0.0);
+    return;
+#endif
     vec2 leaf = cv_sd_leaf(u_point, cv_sd_class(TEST_NORMAL));
     int root = int(leaf.x);
     float m = leaf.y;
