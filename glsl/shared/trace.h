@@ -161,7 +161,10 @@ CV_CHECK_SIZE(CvHitItem, 32);
  * (CvFilmPixel.normal.w has moved on when that path ended). m.x: the
  * medium the ray starts in (volpath: the contribution is multiplied by the
  * transmittance along it, trace/shadow.comp); m.y: with moving shapes
- * (CV_HAS_MOTION), the path's time (trace/path_time.glsl); m.zw unused. */
+ * (CV_HAS_MOTION), the path's time (trace/path_time.glsl); m.z: under
+ * rlpath's sdtree method, the depth of the vertex that sent it; m.w: the
+ * filter weight of that path's sample (+1 or -1), for the same reason as
+ * L.w. */
 CV_STRUCT(CvShadowItem) {
     cv_vec4 o;
     cv_vec4 d;

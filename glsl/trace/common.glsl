@@ -215,23 +215,26 @@ void cv_film_reject()
     atomicAdd(q.stats[CV_STAT_NONFINITE].x, 1u);
 }
 
-// Adds radiance to a path slot's film entry, weighted by the filter
-// weight of its sample. Each slot has one path in flight and each stage
-// touches a path once, so the stages need no atomics here.
-// A finite sample that would take the sum past the float range is left out
-// too: the resolve would divide infinity (or its difference with a
-// negative filter lobe's, NaN) into the pixel.
-void cv_film_add(uint path, vec3 L)
+// Adds radiance to a path slot's film entry, weighted by w, the filter
+// weight (+1 or -1) of the sample that found it. Each slot has one path in
+// flight and each stage touches a path once, so the stages need no atomics
+// here. A finite sample that would take the sum past the float range is
+// left out too: the resolve would divide infinity (or its difference with
+// a negative filter lobe's, NaN) into the pixel.
+void cv_film_add_weighted(uint path, float w, vec3 L)
 {
     if (!cv_finite3(L)) {
         cv_film_reject();
     } else if (cv_max3(L) > 0.0) {
-        vec3 s = film[path].L.rgb + cv_path_weight(path) * L;
+        vec3 s = film[path].L.rgb + w * L;
         if (cv_finite3(s))
             film[path].L.rgb = s;
         else
             cv_film_reject();
     }
 }
+
+// The same for the path in flight in the slot.
+void cv_film_add(uint path, vec3 L) { cv_film_add_weighted(path, cv_path_weight(path), L); }
 
 #endif

@@ -63,6 +63,10 @@ void main()
         if (push_shadow)
             s.L.w = float(cv_path_sample(path));
 #endif
+        // and its filter weight, for the same reason: the sign of the
+        // slot's next sample would weigh this one's light
+        if (push_shadow)
+            s.m.w = cv_path_weight(path);
 #ifdef CV_HAS_MOTION
         if (push_shadow)
             s.m.y = cv_trace_time;

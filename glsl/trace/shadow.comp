@@ -19,12 +19,14 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #endif
 
 // An unoccluded shadow ray's contribution L goes to its path slot's film
-// entry and, while rlpath's sdtree method trains (CV_RLPATH_SD), to the
+// entry, weighted by its sample's filter weight (s.m.w: the slot may have
+// moved on to its next sample when its path ended at the vertex that sent
+// the ray), and, while rlpath's sdtree method trains (CV_RLPATH_SD), to the
 // records of the bounces before the vertex that sent it (its depth in
 // s.m.z: rlpath/sd_shade.comp).
 void cv_shadow_add(CvShadowItem s, uint path, vec3 L)
 {
-    cv_film_add(path, L);
+    cv_film_add_weighted(path, s.m.w, L);
 #ifdef CV_RLPATH_SD
     if (cv_sd_learning())
         cv_sd_found(path, uint(s.m.z), L);
