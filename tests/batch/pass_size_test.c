@@ -3,7 +3,6 @@
  * one's time a sample, grows at most 4x, takes at least 1 spp, and is
  * capped by a time limit's time left, so that a job with a time limit
  * overruns it by one pass at most (cavalry-batch(1), --time-limit). */
-#include <math.h>
 #include <stdint.h>
 
 #include "batch/pass_size.h"

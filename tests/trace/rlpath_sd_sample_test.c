@@ -147,6 +147,28 @@ static bool run(struct rig *g, int mode, uint32_t n, uint32_t seed, float *out,
  * counts exactly, flux within float rounding of a sum in another order.
  * The records: the build's, in every class, some dark, some without
  * density, one not finite. */
+/* The GPU's frame of a guide over [lo, hi]: its root cube as
+ * cv_rlpath_sd_create makes it. */
+static struct cv_sd_frame guide_frame(const float lo[3], const float hi[3],
+                                      const struct cv_sdtree_opts *o)
+{
+    struct cv_sdtree *c = cv_sdtree_create(lo, hi);
+    struct cv_sd_frame f = cv_sdtree_frame(c, o);
+    cv_sdtree_destroy(&c);
+    return f;
+}
+
+/* The spatial nodes of table t: they end at the first class texel, the
+ * lowest a leaf names. */
+static uint32_t spatial_nodes(const float (*t)[4])
+{
+    uint32_t ns = UINT32_MAX;
+    for (uint32_t k = 0; k < ns; k++)
+        if (t[k][0] == (float)CV_SD_LEAF && (uint32_t)t[k][2] < ns)
+            ns = (uint32_t)t[k][2];
+    return ns;
+}
+
 static void splat_test(struct rig *g, const float (*t)[4])
 {
     const size_t n = 30000;
@@ -175,19 +197,13 @@ static void splat_test(struct rig *g, const float (*t)[4])
         /* the GPU's frame: the guide's cube (made as cv_rlpath_sd_create
          * makes it) and both filters */
         const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};   /* main's */
-        struct cv_sdtree *cube = cv_sdtree_create(lo, hi);
-        struct cv_sd_frame f = cv_sdtree_frame(cube, &cv_sdtree_defaults);
+        struct cv_sd_frame f = guide_frame(lo, hi, &cv_sdtree_defaults);
         f.filter = CV_SD_FILTER_SPATIAL | CV_SD_FILTER_DIRECTIONAL;
-        cv_sdtree_destroy(&cube);
         for (size_t i = 0; i < n; i++)
             cv_sdtree_splat(t, &f, hs, &r[i]);
         /* the flux words: the first four of each training node's eight,
-         * after the classes' (the spatial nodes end at the first class
-         * texel, the lowest a leaf names) */
-        uint32_t ns = UINT32_MAX, classes = 0, bad_count = 0, bad_flux = 0;
-        for (uint32_t k = 0; k < ns; k++)
-            if (t[k][0] == (float)CV_SD_LEAF && (uint32_t)t[k][2] < ns)
-                ns = (uint32_t)t[k][2];
+         * after the classes' */
+        uint32_t ns = spatial_nodes(t), classes = 0, bad_count = 0, bad_flux = 0;
         for (uint32_t k = 0; k < ns; k++)
             classes += t[k][0] == (float)CV_SD_LEAF ? CV_SD_CLASSES : 0;
         uint64_t counted = 0;
@@ -232,10 +248,7 @@ static void lookup_test(struct rig *g, const char *what, const float (*t)[4], si
     float *in = calloc((size_t)M * 4, sizeof(float));
     float *out = malloc((size_t)M * 8 * sizeof(float));
     const float(*b)[4] = t + nt - CV_SD_GRID_TEXELS;
-    uint32_t ns = UINT32_MAX, planes = 0;
-    for (uint32_t k = 0; k < ns; k++)
-        if (t[k][0] == (float)CV_SD_LEAF && (uint32_t)t[k][2] < ns)
-            ns = (uint32_t)t[k][2];
+    uint32_t ns = spatial_nodes(t), planes = 0;
     /* the spatial tree's depth (children follow their parents) */
     uint32_t *depth = calloc(ns, sizeof(*depth)), dmax = 0;
     for (uint32_t i = 0; i < ns; i++)
@@ -326,9 +339,7 @@ static void deep_test(struct rig *g)
     if (tap_ok(cv_rlpath_sd_create(g->gpu, lo, hi, 64, -1, 0, &d.sd, &err) &&
                    cv_rlpath_sd_build(d.sd, r, n, &err),
                "cluster: create, build and upload: %s", err.msg)) {
-        struct cv_sdtree *c = cv_sdtree_create(lo, hi);
-        struct cv_sd_frame f = cv_sdtree_frame(c, &cv_sdtree_defaults);
-        cv_sdtree_destroy(&c);
+        struct cv_sd_frame f = guide_frame(lo, hi, &cv_sdtree_defaults);
         tap_ok(st.max_spatial_depth > 3 * CV_SD_GRID_LOG2, "cluster: leaves to depth %u (the "
                "grid block's cells end at %u)", st.max_spatial_depth, 3 * CV_SD_GRID_LOG2);
         lookup_test(&d, "cluster", (const float(*)[4])t, nt, f.cube, f.cube[3], centre);
@@ -466,9 +477,7 @@ int main(void)
     free(out);
     splat_test(&g, (const float(*)[4])t);
     {
-        struct cv_sdtree *c = cv_sdtree_create(lo, hi);
-        struct cv_sd_frame f = cv_sdtree_frame(c, &o);
-        cv_sdtree_destroy(&c);
+        struct cv_sd_frame f = guide_frame(lo, hi, &o);
         lookup_test(&g, "unit box", (const float(*)[4])t, nt, f.cube, f.cube[3], point);
     }
     free(t);
