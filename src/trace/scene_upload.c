@@ -267,6 +267,10 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     if (g->has_alpha)
         g->basic_materials = false;
     cv_shade_bins_features(s->materials, s->n_materials, &g->shade_bins, &g->walk_coat_closed);
+    g->textured_bins = cv_shade_bins_textured(s->materials, s->n_materials);
+    for (uint32_t i = 0; i < s->n_lights; i++)
+        if (s->lights[i].tex >= 0)
+            g->textured_bins = ~0u;  /* emission is evaluated in every bin */
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
     g->has_motion = s->n_motions > 0;
@@ -520,6 +524,7 @@ static bool upload_env(struct cv_gpu *gpu, const struct cv_scene *s, CvLight *li
     free(tex);
     free(dist);
     g->has_textures = true;
+    g->textured_bins = ~0u;  /* the new lights' images */
     return ok;
 }
 
@@ -536,6 +541,9 @@ bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
     float *cdf = cv_xcalloc(n ? n : 1, sizeof(float));
     if (n)
         memcpy(l, lights, n * sizeof(CvLight));
+    for (uint32_t i = 0; i < n; i++)
+        if (l[i].tex >= 0)
+            g.textured_bins = ~0u;  /* as cv_scene_gpu_features */
     bool ok = true;
     if (env)
         ok = upload_env(gpu, s, l, env, env_textures, &g, err);  /* sets the maps' prim */

@@ -57,6 +57,8 @@ struct cv_scene_gpu {
     bool has_coat_closed; /* some coated diffuse may take the closed form (else CV_NO_COAT_CLOSED) */
     uint32_t shade_bins; /* bit b: some material is in shade bin b (trace/shade_bins.h) */
     bool walk_coat_closed; /* one in the coated walk's bin may take the closed form too */
+    uint32_t textured_bins; /* bit b: shade bin b's kernel reads textures (a material's,
+                             * trace/shade_bins.h, or a light's: then every bit) */
     GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
     GLuint measured_tex; /* that buffer as an r32ui buffer texture (CV_TEXUNIT_MEASURED) */
     bool has_measured; /* some material is measured (else CV_NO_MEASURED) */

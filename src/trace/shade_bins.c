@@ -51,6 +51,31 @@ void cv_shade_bins_mark(CvMaterial *ms, uint32_t n)
     }
 }
 
+/* Whether material i reads a texture where it is shaded (see
+ * cv_shade_bins_textured). */
+static bool reads_texture(const CvMaterial *ms, uint32_t n, int32_t i, int depth)
+{
+    if (i < 0 || (uint32_t)i >= n)
+        return false;
+    const CvMaterial *m = &ms[i];
+    if (m->reflectance_tex >= 0 || m->specular_tex >= 0 || m->roughness_u_tex >= 0 ||
+        m->roughness_v_tex >= 0 || m->eta_tex >= 0 || m->normal_tex >= 0 || m->displacement_tex >= 0)
+        return true;
+    if (m->type != CV_MAT_MIX || depth >= MIX_DEPTH)
+        return false;
+    return m->amount_tex >= 0 || reads_texture(ms, n, m->mix_a, depth + 1) ||
+           reads_texture(ms, n, m->mix_b, depth + 1);
+}
+
+uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n)
+{
+    uint32_t bins = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (reads_texture(ms, n, (int32_t)i, 0))
+            bins |= 1u << cv_shade_bin(ms, n, i);
+    return bins;
+}
+
 void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed)
 {
     *bins = 0;

@@ -30,4 +30,13 @@ void cv_shade_bins_mark(CvMaterial *ms, uint32_t n);
  * also take the closed-form coat (coated_closed.glsl). */
 void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed);
 
+/* The bins (bit b for bin b) whose kernel reads a texture for one of the
+ * materials it shades: a BSDF input, a normal or bump map, or a mix's
+ * amount, its components' included (bsdf.glsl: cv_material_resolve,
+ * cv_bsdf_at); a cut-out's alpha is the intersect and shadow stages'. A
+ * bin outside the mask is built with CV_NO_TEXTURES where the scene's
+ * lights read none either (trace/render.c): the texture walk is a large
+ * part of the coated walk's build. */
+uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n);
+
 #endif

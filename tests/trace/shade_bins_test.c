@@ -1,8 +1,9 @@
 /* shade_bins_test.c: the shade bin of each kind of material
  * (src/trace/shade_bins.h): diffuse in bin 0; what may take the coated
  * walk in bin 2 (a mix by its components); a coated diffuse that always
- * takes the closed form in bin 1 with the other materials; and the
- * features that decide whether the bin-2 program is built. */
+ * takes the closed form in bin 1 with the other materials; the
+ * features that decide whether the bin-2 program is built; and which
+ * bins' kernels read textures (the others are built without them). */
 #include <string.h>
 
 #include "base/mem.h"
@@ -72,5 +73,32 @@ int main(void)
     tap_ok(bins == 3u && !walk_closed, "no walk among diffuse, conductor, dielectric, closed form");
     cv_shade_bins_features(ms + WALK_DIFF, 2, &bins, &walk_closed);
     tap_ok(bins == 4u && !walk_closed, "walks alone, without the closed form");
+
+    /* textured bins */
+    tap_ok(cv_shade_bins_textured(ms, N) == 4u, "only the textured roughness's bin reads textures");
+    enum { T_DIFF, T_COAT, T_MIX, T_ALPHA, T_NORMAL, TN };
+    CvMaterial ts[TN];
+    ts[T_DIFF] = mat(CV_MAT_DIFFUSE);
+    ts[T_DIFF].reflectance_tex = 0;
+    ts[T_COAT] = mat(CV_MAT_COATED_CONDUCTOR);
+    tap_ok(cv_shade_bins_textured(ts, 2) == 1u,
+           "a textured diffuse beside an untextured coated conductor: bin 0 alone");
+    ts[T_MIX] = mat(CV_MAT_MIX);
+    ts[T_MIX].mix_a = T_DIFF;
+    ts[T_MIX].mix_b = T_COAT;
+    tap_ok(cv_shade_bins_textured(ts, 3) == 5u, "a walking mix with a textured component: bins 0 and 2");
+    ts[T_ALPHA] = mat(CV_MAT_CONDUCTOR);
+    ts[T_ALPHA].alpha_tex = 1;
+    tap_ok(cv_shade_bins_textured(ts + T_COAT, 1) == 0u &&
+               cv_shade_bins_textured(ts + T_ALPHA, 1) == 0u,
+           "untextured, or a cut-out's alpha alone: no bin");
+    ts[T_NORMAL] = mat(CV_MAT_CONDUCTOR);
+    ts[T_NORMAL].normal_tex = 2;
+    tap_ok(cv_shade_bins_textured(ts + T_NORMAL, 1) == 2u, "a normal map: its material's bin");
+    /* a mix of two untextured coated conductors, its amount textured */
+    CvMaterial am[2] = {mat(CV_MAT_COATED_CONDUCTOR), mat(CV_MAT_MIX)};
+    am[1].mix_a = am[1].mix_b = 0;
+    am[1].amount_tex = 1;
+    tap_ok(cv_shade_bins_textured(am, 2) == 4u, "a mix's amount texture: the mix's bin");
     return tap_done();
 }
