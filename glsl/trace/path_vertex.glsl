@@ -66,8 +66,9 @@ vec3 cv_light_sample_point(CvSurface sf, CvBsdf b, vec3 wo, uint prim)
 #ifdef CV_MEDIA
 #include "medium/medium.glsl"
 #endif
-// Subsurface materials (sss_vertex.glsl): never in the diffuse bin
-#if defined(CV_HAS_SUBSURFACE) && !defined(CV_BSDF_DIFFUSE_ONLY) && !defined(CV_BSDF_BASIC)
+// Subsurface materials (sss_vertex.glsl): never in the diffuse bin nor in
+// a walk-only one (bsdf.glsl; probe exits are bin 1's: intersect.comp)
+#if defined(CV_HAS_SUBSURFACE) && defined(CV_BSDF_ANY_TYPE) && !defined(CV_BSDF_BASIC)
 #define CV_SSS
 #include "sss_vertex.glsl"
 #endif

@@ -377,9 +377,9 @@ struct stage_programs {
     const char *const *defines[ST_COUNT];
     const char *escaped[CV_SCENE_DEFINES_MAX + 3];
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
-    /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED and
-     * CV_NO_TEXTURES where they apply) */
-    const char *shade[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 4];
+    /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
+     * CV_NO_TEXTURES and CV_BSDF_WALK_ONLY where they apply) */
+    const char *shade[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 5];
     char stride[32];  /* CV_MATTE_STRIDE=N */
     const char *matte[CV_SCENE_DEFINES_MAX + 3];
     const char *resolve[CV_SCENE_DEFINES_MAX + 4];
@@ -445,7 +445,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * subsurface probes are bin 1's);
      * the coated walk's without the closed-form coat where none of its
      * materials may take it; a bin's without the texture code where none
-     * of its materials reads a texture (trace/shade_bins.h) */
+     * of its materials reads a texture, and the walk's without the other
+     * materials' code where none of its materials is a mix
+     * (trace/shade_bins.h) */
     uint32_t bins_used = 1u | gs->shade_bins | (ops->media && gs->has_media ? 2u : 0u) |
                          (gs->has_subsurface ? 2u : 0u);
     for (int k = 0; k < ops->n_shade; k++) {
@@ -455,7 +457,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         bool no_tex = gs->has_textures && ops->bins[k] && !(ops->bins[k] & gs->textured_bins);
         defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
         int ns = nd + (ops->define[k] != NULL) + (coat != NULL);
-        defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL, NULL);
+        const char *walk_only = ops->bins[k] == 4u && gs->walk_only ? "CV_BSDF_WALK_ONLY" : NULL;
+        defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL, walk_only);
     }
     for (int s = 0; s < ST_COUNT; s++) {
         const char *file = stage_files[s];

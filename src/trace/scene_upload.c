@@ -268,6 +268,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
         g->basic_materials = false;
     cv_shade_bins_features(s->materials, s->n_materials, &g->shade_bins, &g->walk_coat_closed);
     g->textured_bins = cv_shade_bins_textured(s->materials, s->n_materials);
+    g->walk_only = cv_shade_bins_walk_only(s->materials, s->n_materials);
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].tex >= 0)
             g->textured_bins = ~0u;  /* emission is evaluated in every bin */

@@ -59,6 +59,7 @@ struct cv_scene_gpu {
     bool walk_coat_closed; /* one in the coated walk's bin may take the closed form too */
     uint32_t textured_bins; /* bit b: shade bin b's kernel reads textures (a material's,
                              * trace/shade_bins.h, or a light's: then every bit) */
+    bool walk_only; /* no mix in the coated walk's bin (trace/shade_bins.h: CV_BSDF_WALK_ONLY) */
     GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
     GLuint measured_tex; /* that buffer as an r32ui buffer texture (CV_TEXUNIT_MEASURED) */
     bool has_measured; /* some material is measured (else CV_NO_MEASURED) */

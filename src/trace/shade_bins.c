@@ -76,6 +76,14 @@ uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n)
     return bins;
 }
 
+bool cv_shade_bins_walk_only(const CvMaterial *ms, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        if (ms[i].type == CV_MAT_MIX && cv_shade_bin(ms, n, i) == CV_SHADE_BIN_WALK)
+            return false;
+    return true;
+}
+
 void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bool *walk_closed)
 {
     *bins = 0;

@@ -39,4 +39,10 @@ void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bo
  * part of the coated walk's build. */
 uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n);
 
+/* Whether no material of bin 2 is a mix: then its kernel only ever shades
+ * a coated diffuse or a coated conductor, and is built with
+ * CV_BSDF_WALK_ONLY (glsl/trace/bsdf/bsdf.glsl; trace/render.c) without
+ * the other types' code, which a mix may resolve to. */
+bool cv_shade_bins_walk_only(const CvMaterial *ms, uint32_t n);
+
 #endif

@@ -8,7 +8,9 @@
  * lines the preprocessor keeps (#if, #ifdef ... with the defines of the
  * source and of the build), finds the function definitions and their
  * calls, and counts the call paths from main() to each of the walk's
- * functions. It needs no GPU. What it does not see: calls made through a
+ * functions; and that bin 2 built for coated materials alone
+ * (CV_BSDF_WALK_ONLY) has none of the other types' samplers. It needs no
+ * GPU. What it does not see: calls made through a
  * function-like macro, and overloads, which it merges by name (an upper
  * bound). With CAVALRY_DATA_DIR pointing at another tree it measures that
  * tree's GLSL (3ce19e9's path shade kernel counts 9 copies of
@@ -515,6 +517,10 @@ int main(void)
         {"volpath, bin 2", "trace/shade.comp", {"CV_SHADE_BIN=2", "CV_MEDIA", NULL}, true},
         {"path, textured scene, bin 2", "trace/shade.comp", {"CV_SHADE_BIN=2", "CV_HAS_ALPHA", NULL},
          true},
+        {"path, bin 2 without mixes", "trace/shade.comp", {"CV_SHADE_BIN=2", "CV_BSDF_WALK_ONLY", NULL},
+         true},
+        {"rlpath's sdtree, bin 2 without mixes", "trace/rlpath/sd_shade.comp",
+         {"CV_SHADE_BIN=2", "CV_BSDF_WALK_ONLY", NULL}, true},
         {"rlpath (one program, every bin)", "trace/rlpath/shade.comp", {NULL}, true},
         {"bsdf_probe test kernel", "trace/test/bsdf_probe.comp", {NULL}, true},
         {"path, bin 1 (other materials)", "trace/shade.comp", {"CV_SHADE_BIN=1", NULL}, false},
@@ -537,6 +543,18 @@ int main(void)
         for (size_t j = 0; j < CV_ARRAY_SIZE(other_fns); j++)
             tap_diag("%s: %s inlined %g times", kn->what, other_fns[j],
                      kernel_copies(kn->path, kn->defines, other_fns[j]));
+    }
+    /* the other types' samplers: in bin 2 (a mix may resolve to any
+     * type), not in bin 2 without mixes */
+    static const char *const type_fns[] = {"cv_plastic_sample", "cv_difftrans_sample",
+                                           "cv_thin_dielectric_sample"};
+    static const char *const bin2[] = {"CV_SHADE_BIN=2", NULL};
+    static const char *const walk_only[] = {"CV_SHADE_BIN=2", "CV_BSDF_WALK_ONLY", NULL};
+    for (size_t j = 0; j < CV_ARRAY_SIZE(type_fns); j++) {
+        double all = kernel_copies("trace/shade.comp", bin2, type_fns[j]);
+        double walk = kernel_copies("trace/shade.comp", walk_only, type_fns[j]);
+        tap_ok(all > 0 && walk == 0, "%s: %g copies in bin 2, %g without mixes (want 0)", type_fns[j],
+               all, walk);
     }
     return tap_done();
 }

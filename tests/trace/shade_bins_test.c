@@ -2,8 +2,10 @@
  * (src/trace/shade_bins.h): diffuse in bin 0; what may take the coated
  * walk in bin 2 (a mix by its components); a coated diffuse that always
  * takes the closed form in bin 1 with the other materials; the
- * features that decide whether the bin-2 program is built; and which
- * bins' kernels read textures (the others are built without them). */
+ * features that decide whether the bin-2 program is built; which
+ * bins' kernels read textures (the others are built without them); and
+ * whether bin 2 holds a mix (else its kernel carries only the coated
+ * materials' code). */
 #include <string.h>
 
 #include "base/mem.h"
@@ -100,5 +102,12 @@ int main(void)
     am[1].mix_a = am[1].mix_b = 0;
     am[1].amount_tex = 1;
     tap_ok(cv_shade_bins_textured(am, 2) == 4u, "a mix's amount texture: the mix's bin");
+
+    /* walk-only: no mix in bin 2 */
+    tap_ok(!cv_shade_bins_walk_only(ms, N), "a mix in bin 2: not walk-only");
+    tap_ok(cv_shade_bins_walk_only(ms, MIX_DD + 1),
+           "every type, a mix of diffuse (bin 1) but none in bin 2: walk-only");
+    tap_ok(!cv_shade_bins_walk_only(am, 2), "a mix of two coated conductors: not walk-only");
+    tap_ok(cv_shade_bins_walk_only(ms, 0), "no material: walk-only (bin 2 unused)");
     return tap_done();
 }

@@ -23,8 +23,24 @@
 // GLSL compiler inlines every case's callee (the coated walk too) before it
 // folds a switch on a constant, which made the diffuse kernel cost nearly
 // as much compile time as the full one (bench/RESULTS.md).
+//
+// CV_BSDF_WALK_ONLY (defined by the host) compiles the two coated
+// materials alone: every material passed in is a coated diffuse or a
+// coated conductor, never a mix (the coated walk's bin where none of its
+// materials is a mix: src/trace/shade_bins.h). The walk's own lobes
+// (layered.glsl) stay; the other types' cases drop out of the switches,
+// which in that kernel are dead code the compiler cannot see as such.
 #ifndef CV_BSDF_BSDF_GLSL
 #define CV_BSDF_BSDF_GLSL
+
+// CV_BSDF_ANY_TYPE: neither cut-down kernel, so any material type may
+// come (mixes resolved); each case of a type outside theirs needs it
+#if !defined(CV_BSDF_DIFFUSE_ONLY) && !defined(CV_BSDF_WALK_ONLY)
+#define CV_BSDF_ANY_TYPE
+#endif
+#if !defined(CV_BSDF_ANY_TYPE) && !defined(CV_NO_HAIR)
+#define CV_NO_HAIR
+#endif
 
 #include "../../lib/constants.glsl"
 #include "../../lib/frame.glsl"
@@ -40,8 +56,8 @@
 #include "plastic.glsl"
 #include "hair.glsl"
 // measured BRDFs: only in kernels of scenes that have them (the host
-// defines CV_NO_MEASURED otherwise), never in the diffuse bin's
-#if defined(CV_BSDF_DIFFUSE_ONLY) && !defined(CV_NO_MEASURED)
+// defines CV_NO_MEASURED otherwise), never in the cut-down ones
+#if !defined(CV_BSDF_ANY_TYPE) && !defined(CV_NO_MEASURED)
 #define CV_NO_MEASURED
 #endif
 #ifndef CV_NO_MEASURED
@@ -193,13 +209,15 @@ uint cv_material_resolve(uint material, vec2 uv, float u_mix, float lod)
 CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
 {
     vec2 uv = sp.uv;
-#ifndef CV_BSDF_DIFFUSE_ONLY
+#ifdef CV_BSDF_ANY_TYPE
     material = cv_material_resolve(material, uv, u_mix, lod);
 #endif
     CvMaterial m = materials[material];
     CvBsdf b;
 #ifdef CV_BSDF_DIFFUSE_ONLY
     b.type = CV_MAT_DIFFUSE;
+#elif defined(CV_BSDF_WALK_ONLY)
+    b.type = m.type;
 #else
     b.type = m.type == CV_MAT_MIX ? CV_MAT_INTERFACE : m.type;
 #endif
@@ -283,7 +301,32 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
     vec3 ceta, ck;
     cv_material_conductor(m, refl, ceta, ck);
 
-    if (b.type == CV_MAT_DIFFUSE) {
+    if (b.type == CV_MAT_COATED_DIFFUSE) {
+        b.c0 = clamp(refl, 0.0, 1.0);
+        b.eta = eta > 0.0 ? eta : 1.5;
+        b.alpha.xy = alpha;
+        b.thickness = m.roughness.z;
+        b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
+        b.walk = ivec2(m.roughness2.zw);
+        if ((m.flags & CV_MATF_COAT_CLOSED) != 0u && max(alpha.x, alpha.y) <= CV_COAT_CLOSED_ALPHA)
+            b.coat_closed = m.roughness2.xy;
+    } else if (b.type == CV_MAT_COATED_CONDUCTOR) {
+        b.eta = m.eta.w > 0.0 ? m.eta.w : 1.5;
+        b.alpha.xy = alpha;
+        b.alpha.zw = max(m.roughness2.xy, vec2(0.0));
+        b.thickness = m.roughness.z;
+        b.c0 = ceta;
+        b.c1 = ck;
+        if (ceta.x >= 0.0) {  // (a table holds the ratio already)
+            b.c0 /= b.eta;
+            b.c1 /= b.eta;
+        }
+        b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
+        b.walk = ivec2(m.roughness2.zw);
+    }
+    // (the other types: not in the cut-down kernels)
+#ifdef CV_BSDF_ANY_TYPE
+    else if (b.type == CV_MAT_DIFFUSE) {
         b.c0 = clamp(refl, 0.0, 1.0);
     } else if (b.type == CV_MAT_CONDUCTOR) {
         b.c0 = ceta;
@@ -308,28 +351,6 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.eta = eta > 0.0 ? eta : 1.0;
     } else if (b.type == CV_MAT_MIRROR) {
         b.c0 = refl;
-    } else if (b.type == CV_MAT_COATED_DIFFUSE) {
-        b.c0 = clamp(refl, 0.0, 1.0);
-        b.eta = eta > 0.0 ? eta : 1.5;
-        b.alpha.xy = alpha;
-        b.thickness = m.roughness.z;
-        b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
-        b.walk = ivec2(m.roughness2.zw);
-        if ((m.flags & CV_MATF_COAT_CLOSED) != 0u && max(alpha.x, alpha.y) <= CV_COAT_CLOSED_ALPHA)
-            b.coat_closed = m.roughness2.xy;
-    } else if (b.type == CV_MAT_COATED_CONDUCTOR) {
-        b.eta = m.eta.w > 0.0 ? m.eta.w : 1.5;
-        b.alpha.xy = alpha;
-        b.alpha.zw = max(m.roughness2.xy, vec2(0.0));
-        b.thickness = m.roughness.z;
-        b.c0 = ceta;
-        b.c1 = ck;
-        if (ceta.x >= 0.0) {  // (a table holds the ratio already)
-            b.c0 /= b.eta;
-            b.c1 /= b.eta;
-        }
-        b.medium = vec4(clamp(spec, 0.0, 1.0), m.roughness.w);
-        b.walk = ivec2(m.roughness2.zw);
     } else if (b.type == CV_MAT_DIFFUSE_TRANSMISSION) {
         b.c0 = clamp(refl, 0.0, 1.0);
         b.c1 = clamp(spec, 0.0, 1.0);
@@ -338,6 +359,7 @@ CvBsdf cv_bsdf_at_lod(uint material, CvShadingPoint sp, float u_mix, float lod)
         b.c1 = clamp(spec, 0.0, 1.0);
         b.alpha.xy = alpha;
     }
+#endif
 #ifndef CV_NO_HAIR
     else if (b.type == CV_MAT_HAIR) {
         // pbrt-v4's HairMaterial: h from v across the curve's width
@@ -435,6 +457,10 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
     return cv_diffuse_f(b.c0, wo, wi);
 #else
     switch (CV_BSDF_TYPE(b)) {
+    case CV_MAT_COATED_DIFFUSE:
+        // (the walk's coats: cv_bsdf_query)
+        return cv_bsdf_coat_closed(b) ? cv_coat_closed_f(cv_bsdf_coat_closed_params(b), wo, wi) : vec3(0.0);
+#ifdef CV_BSDF_ANY_TYPE
     case CV_MAT_DIFFUSE:
         return cv_diffuse_f(b.c0, wo, wi);
     case CV_MAT_CONDUCTOR:
@@ -446,13 +472,11 @@ vec3 cv_bsdf_f_local(CvBsdf b, vec3 wo, vec3 wi)
     case CV_BSDF_SSS_EXIT:
         return cv_sss_exit_f(b.eta, wo, wi);
 #endif
-    case CV_MAT_COATED_DIFFUSE:
-        // (the walk's coats: cv_bsdf_query)
-        return cv_bsdf_coat_closed(b) ? cv_coat_closed_f(cv_bsdf_coat_closed_params(b), wo, wi) : vec3(0.0);
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_f(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
         return cv_plastic_f(b.c0, b.c1, b.alpha.xy, wo, wi);
+#endif
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_f(cv_bsdf_hair(b), wo, wi);
@@ -473,6 +497,9 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
     return cv_diffuse_pdf(wo, wi);
 #else
     switch (CV_BSDF_TYPE(b)) {
+    case CV_MAT_COATED_DIFFUSE:
+        return cv_bsdf_coat_closed(b) ? cv_coat_closed_pdf(cv_bsdf_coat_closed_params(b), wo, wi) : 0.0;
+#ifdef CV_BSDF_ANY_TYPE
     case CV_MAT_DIFFUSE:
         return cv_diffuse_pdf(wo, wi);
     case CV_MAT_CONDUCTOR:
@@ -484,12 +511,11 @@ float cv_bsdf_pdf_local(CvBsdf b, vec3 wo, vec3 wi)
     case CV_BSDF_SSS_EXIT:
         return cv_sss_exit_pdf(wo, wi);
 #endif
-    case CV_MAT_COATED_DIFFUSE:
-        return cv_bsdf_coat_closed(b) ? cv_coat_closed_pdf(cv_bsdf_coat_closed_params(b), wo, wi) : 0.0;
     case CV_MAT_DIFFUSE_TRANSMISSION:
         return cv_difftrans_pdf(b.c0, b.c1, wo, wi);
     case CV_MAT_PLASTIC:
         return cv_plastic_pdf(b.c0, b.c1, b.alpha.xy, wo, wi);
+#endif
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return cv_hair_pdf(cv_bsdf_hair(b), wo, wi);
@@ -514,6 +540,11 @@ bool cv_bsdf_sample_local(CvBsdf b, vec3 wo, float uc, vec2 u, out CvBsdfSample 
     ok = cv_diffuse_sample(b.c0, wo, u, s);
 #else
     switch (CV_BSDF_TYPE(b)) {
+    case CV_MAT_COATED_DIFFUSE:
+        if (cv_bsdf_coat_closed(b))
+            ok = cv_coat_closed_sample(cv_bsdf_coat_closed_params(b), wo, uc, u, s);
+        break;
+#ifdef CV_BSDF_ANY_TYPE
     case CV_MAT_DIFFUSE:
         ok = cv_diffuse_sample(b.c0, wo, u, s);
         break;
@@ -539,16 +570,13 @@ bool cv_bsdf_sample_local(CvBsdf b, vec3 wo, float uc, vec2 u, out CvBsdfSample 
             ok = true;
         }
         break;
-    case CV_MAT_COATED_DIFFUSE:
-        if (cv_bsdf_coat_closed(b))
-            ok = cv_coat_closed_sample(cv_bsdf_coat_closed_params(b), wo, uc, u, s);
-        break;
     case CV_MAT_DIFFUSE_TRANSMISSION:
         ok = cv_difftrans_sample(b.c0, b.c1, wo, uc, u, s);
         break;
     case CV_MAT_PLASTIC:
         ok = cv_plastic_sample(b.c0, b.c1, b.alpha.xy, wo, uc, u, s);
         break;
+#endif
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         ok = cv_hair_sample(cv_bsdf_hair(b), wo, uc, u, s);
@@ -712,12 +740,14 @@ bool cv_bsdf_is_delta(CvBsdf b)
 #ifdef CV_BSDF_DIFFUSE_ONLY
     return false;
 #else
+#ifdef CV_BSDF_ANY_TYPE
     if (b.type == CV_MAT_MIRROR || b.type == CV_MAT_THIN_DIELECTRIC)
         return true;
     if (b.type == CV_MAT_CONDUCTOR)
         return cv_mf_smooth(b.alpha.xy);
     if (b.type == CV_MAT_DIELECTRIC || b.type == CV_MAT_SUBSURFACE)
         return cv_dielectric_is_delta(b.eta, b.alpha.xy);
+#endif
     if (b.type == CV_MAT_COATED_CONDUCTOR)
         return cv_layered_delta_prob(cv_bsdf_layered(b), vec3(0.0, 0.0, 1.0)) == 1.0;
     return false;
@@ -745,8 +775,10 @@ float cv_bsdf_delta_prob(CvBsdf b, vec3 wo_world)
         return cv_mf_smooth(b.alpha.xy) ? cv_coat_closed_spec_prob(cv_bsdf_coat_closed_params(b), wo) : 0.0;
     if (b.type == CV_MAT_COATED_DIFFUSE || b.type == CV_MAT_COATED_CONDUCTOR)
         return cv_layered_delta_prob(cv_bsdf_layered(b), wo);
+#ifdef CV_BSDF_ANY_TYPE
     if (b.type == CV_MAT_PLASTIC)
         return cv_mf_smooth(b.alpha.xy) ? cv_plastic_ps(b.c0, b.c1) : 0.0;
+#endif
     return 0.0;
 #endif
 }
@@ -755,12 +787,16 @@ float cv_bsdf_delta_prob(CvBsdf b, vec3 wo_world)
 vec3 cv_bsdf_albedo(CvBsdf b)
 {
     switch (CV_BSDF_TYPE(b)) {
-    case CV_MAT_DIFFUSE:
     case CV_MAT_COATED_DIFFUSE:
         return b.c0;
-    case CV_MAT_CONDUCTOR:
-        return cv_fr_complex(1.0, b.c0, b.c1);
     case CV_MAT_COATED_CONDUCTOR:
+        return cv_fr_complex(1.0, b.c0, b.c1);
+#if !defined(CV_BSDF_WALK_ONLY)
+    case CV_MAT_DIFFUSE:
+        return b.c0;
+#endif
+#ifdef CV_BSDF_ANY_TYPE
+    case CV_MAT_CONDUCTOR:
         return cv_fr_complex(1.0, b.c0, b.c1);
     case CV_MAT_DIELECTRIC:
     case CV_MAT_SUBSURFACE:
@@ -773,6 +809,7 @@ vec3 cv_bsdf_albedo(CvBsdf b)
         return clamp(b.c0 + b.c1, 0.0, 1.0);
     case CV_MAT_PLASTIC:
         return clamp(b.c0 + b.c1, 0.0, 1.0);
+#endif
 #ifndef CV_NO_HAIR
     case CV_MAT_HAIR:
         return exp(-2.0 * b.c0);  // straight through the fibre (h 0, theta 0): its colour
