@@ -353,9 +353,10 @@ bool cv_renderer_create(struct cv_gpu *gpu, const struct cv_scene *scene,
 }
 
 /* out = the nd defines plus `a` and `b` where not NULL, NULL-terminated;
- * out has room for nd + 3 entries and may be defines itself (appending). */
-static void defines_plus(const char **out, const char *const *defines, int nd, const char *a,
-                         const char *b)
+ * out has room for nd + 3 entries and may be defines itself (appending).
+ * Returns out's count, for a further append. */
+static int defines_plus(const char **out, const char *const *defines, int nd, const char *a,
+                        const char *b)
 {
     memmove(out, defines, (size_t)nd * sizeof(*out));
     if (a)
@@ -363,6 +364,7 @@ static void defines_plus(const char **out, const char *const *defines, int nd, c
     if (b)
         out[nd++] = b;
     out[nd] = NULL;
+    return nd;
 }
 
 /* The stage programs a render of gs with p runs: file and defines by stage
@@ -423,15 +425,13 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
     defines_plus(sp->matte, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
     const char *transparent = p->alpha ? "CV_FILM_TRANSPARENT" : NULL;
-    defines_plus(sp->resolve, defines, nd, transparent, p->alpha ? sp->stride : NULL);
-    int nr = nd + (p->alpha ? 2 : 0);
-    if (ops->resolve_define)
-        defines_plus(sp->resolve, sp->resolve, nr++, ops->resolve_define, NULL);
+    int nr = defines_plus(sp->resolve, defines, nd, transparent, p->alpha ? sp->stride : NULL);
+    nr = defines_plus(sp->resolve, sp->resolve, nr, ops->resolve_define, NULL);
     defines_plus(sp->straight, sp->resolve, nr, "CV_RESOLVE_STRAIGHT", NULL);
     sp->integrator_defines = defines;
     if (ops->whole_samples && words) {
-        defines_plus(sp->integrator, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
-        int ni = nd + 1 + (p->cryptomatte ? 1 : 0);
+        int ni = defines_plus(sp->integrator, defines, nd, sp->stride,
+                              p->cryptomatte ? "CV_CRYPTO" : NULL);
         defines_plus(sp->integrator, sp->integrator, ni, transparent, NULL);
         sp->integrator_defines = sp->integrator;
     }
@@ -455,8 +455,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
                                ? "CV_NO_COAT_CLOSED"
                                : NULL;
         bool no_tex = gs->has_textures && ops->bins[k] && !(ops->bins[k] & gs->textured_bins);
-        defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
-        int ns = nd + (ops->define[k] != NULL) + (coat != NULL);
+        int ns = defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
         const char *walk_only = ops->bins[k] == 4u && gs->walk_only ? "CV_BSDF_WALK_ONLY" : NULL;
         defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL, walk_only);
     }

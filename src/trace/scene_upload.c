@@ -234,6 +234,17 @@ static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
     }
 }
 
+/* The shade bins whose kernels read textures (cv_scene_gpu.textured_bins):
+ * every bin where a light reads one, as emission is evaluated in every
+ * bin, else those of the materials that do. */
+static uint32_t textured_bins(const struct cv_scene *s, const CvLight *lights, uint32_t n_lights)
+{
+    for (uint32_t i = 0; i < n_lights; i++)
+        if (lights[i].tex >= 0)
+            return ~0u;
+    return cv_shade_bins_textured(s->materials, s->n_materials);
+}
+
 void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
 {
     for (uint32_t i = 0; i < s->n_lights; i++)
@@ -267,11 +278,8 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     if (g->has_alpha)
         g->basic_materials = false;
     cv_shade_bins_features(s->materials, s->n_materials, &g->shade_bins, &g->walk_coat_closed);
-    g->textured_bins = cv_shade_bins_textured(s->materials, s->n_materials);
+    g->textured_bins = textured_bins(s, s->lights, s->n_lights);
     g->walk_only = cv_shade_bins_walk_only(s->materials, s->n_materials);
-    for (uint32_t i = 0; i < s->n_lights; i++)
-        if (s->lights[i].tex >= 0)
-            g->textured_bins = ~0u;  /* emission is evaluated in every bin */
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
     g->has_motion = s->n_motions > 0;
@@ -525,7 +533,6 @@ static bool upload_env(struct cv_gpu *gpu, const struct cv_scene *s, CvLight *li
     free(tex);
     free(dist);
     g->has_textures = true;
-    g->textured_bins = ~0u;  /* the new lights' images */
     return ok;
 }
 
@@ -542,14 +549,12 @@ bool cv_scene_gpu_relight(struct cv_gpu *gpu, const struct cv_scene_gpu *base,
     float *cdf = cv_xcalloc(n ? n : 1, sizeof(float));
     if (n)
         memcpy(l, lights, n * sizeof(CvLight));
-    for (uint32_t i = 0; i < n; i++)
-        if (l[i].tex >= 0)
-            g.textured_bins = ~0u;  /* as cv_scene_gpu_features */
     bool ok = true;
     if (env)
         ok = upload_env(gpu, s, l, env, env_textures, &g, err);  /* sets the maps' prim */
     else
         env_offsets(s, l);
+    g.textured_bins = textured_bins(s, l, n);  /* the lights as they now read textures */
     cv_light_cdf(power, n, cdf);
     ok = ok && up(gpu, &g.lights, n * sizeof(CvLight), l, "scene lights (relit)", err) &&
          up_light_cdf(gpu, &g, n, cdf, "scene light cdf (relit)", err);
