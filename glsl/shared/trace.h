@@ -124,9 +124,10 @@ CV_CHECK_SIZE(CvTraceQueues, 208);
 
 /* A path's next ray. o.w: its path slot (a float holding the integer:
  * exact below 2^24, which the host enforces; integer bit patterns would be
- * denormals that some GPUs flush); d.w: the BSDF pdf of d at the
- * previous vertex (solid angle), 0 for camera rays and after specular
- * bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits and depth. */
+ * denormals that some GPUs flush); d.w: the density (solid angle) that
+ * next-event estimation at the previous vertex weighs d against
+ * (glsl/trace/path_vertex.glsl: the bounce's, or the BSDF's alone), 0 for
+ * camera rays and after specular bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits and depth. */
 CV_STRUCT(CvRayItem) {
     cv_vec4 o;
     cv_vec4 d;

@@ -33,6 +33,11 @@
 //   void cv_strategy_film(inout CvStrategy g, vec3 L)
 //       the emission this hit adds to the film (MIS-weighted, times the
 //       path throughput)
+// and, where cv_strategy_pdf is the BSDF's own density (bsdf_pdf) rather
+// than the one the bounce is drawn with, CV_STRATEGY_MIS_BSDF: the bounce
+// ray then carries the BSDF's density of its direction (bs.pdf) for the
+// emission it finds, so that its MIS weight and the light sample's still
+// sum to 1 for every direction (the bounce still divides by pdf).
 // The strategy only decides directions and densities; throughput, MIS,
 // roulette and the queued rays stay here, so the integrators' images differ
 // only by their sampling. Under volpath (CV_MEDIA) the shadow ray and the
@@ -225,7 +230,12 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
 #endif
     push_ray = true;
     nr.o = vec4(cv_spawn_origin(sf, bs.wi), r.o.w);
-    nr.d = vec4(bs.wi, specular ? 0.0 : pdf);
+#ifdef CV_STRATEGY_MIS_BSDF
+    float mis_pdf = bs.pdf;
+#else
+    float mis_pdf = pdf;
+#endif
+    nr.d = vec4(bs.wi, specular ? 0.0 : mis_pdf);
     nr.beta = vec4(beta, cv_ray_meta_in(flags, depth + 1u,
                                         cv_path_medium_after(sf, bs.wi, cv_ray_medium(r))));
 }

@@ -4,10 +4,12 @@
 // method (rlpath.method: sdtree): a path vertex (../path_vertex.glsl) whose
 // bounce is drawn from the one-sample mixture of the hit's spatial leaf's
 // directional quadtree (weight m, sdtree.glsl) and the BSDF (1 - m), whose
-// exact density divides the throughput and enters the MIS weights against
-// light sampling, so the estimator is unbiased for any tree and any m in
-// [0, 1]. Delta lobes stay the BSDF's, glossy ones too (guides.glsl), as in
-// the Q-learning method (shade.comp).
+// exact density divides the throughput. The MIS weights between light
+// sampling and the bounce use the BSDF's own density, not the mixture's
+// (CV_STRATEGY_MIS_BSDF): they still sum to 1 for every direction, so the
+// estimator stays unbiased for any tree and any m in [0, 1], and the light
+// sample needs no walk of the quadtree. Delta lobes stay the BSDF's, glossy
+// ones too (guides.glsl), as in the Q-learning method (shade.comp).
 // While the guide trains (u_sd.learn.x) each vertex records its bounce and
 // adds the emission it finds to the records of the bounces before it; a
 // path that ends splats its records into the statistics of the tree being
@@ -34,12 +36,14 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "sdtree.glsl"
 #include "guides.glsl"
 #define CV_STRATEGY_FILM
+#define CV_STRATEGY_MIS_BSDF
 
 // The guided strategy (../path_vertex.glsl). Le: what the emission at
 // this hit adds to the film (for the records); root, m: the hit's quadtree and guiding weight (0:
 // BSDF sampling alone); pd: the probability with which the BSDF picks a
 // delta lobe (those stay the BSDF's); guided, pq: the bounce is the
-// guide's draw, of guided density pq.
+// guide's draw, of guided density pq; pmix: the density the bounce was
+// drawn with, 0 for a delta lobe (for its record).
 struct CvStrategy {
     vec3 Le;
     bool eligible;
@@ -49,6 +53,7 @@ struct CvStrategy {
     float pd;
     bool guided;
     float pq;
+    float pmix;
 };
 
 void cv_strategy_emitted(inout CvStrategy g, vec3 Le, uint flags) {}
@@ -68,12 +73,8 @@ void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool
     g.pd = g.m > 0.0 ? cv_bsdf_delta_prob(b, wo) : 0.0;
 }
 
-float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf)
-{
-    if (!(g.m > 0.0))
-        return bsdf_pdf;
-    return g.m * (1.0 - g.pd) * cv_sd_pdf(g.root, wi) + (1.0 - g.m) * bsdf_pdf;
-}
+// The light sample is weighed against the BSDF alone (CV_STRATEGY_MIS_BSDF).
+float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf) { return bsdf_pdf; }
 
 // One-sample mixture as in shade.comp: u_bsdf.x picks the strategy and,
 // rescaled, drives it; a guided draw still lets the BSDF pick its lobe and
@@ -123,6 +124,7 @@ bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvB
     }
     // a delta lobe is chosen with its BSDF probability bs.pdf
     pdf = specular ? bs.pdf : m * (1.0 - g.pd) * pq + (1.0 - m) * bs.pdf;
+    g.pmix = specular ? 0.0 : pdf;
     return pdf > 0.0;
 }
 
@@ -134,7 +136,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 {
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
-    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0);
+    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0, 0.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
     if (!cv_sd_learning())
         return;
@@ -146,9 +148,8 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     if (push_shadow)
         s.m.z = float(depth);   // the shadow stage adds its light to the records
     if (push_ray)
-        // nr.d.w: the bounce's density, 0 for a delta lobe; only the
-        // vertices the guide serves train it
-        cv_sd_record(slot, depth, nr.o.xyz, g.cls, nr.d.xyz, g.eligible ? nr.d.w : 0.0,
+        // only the vertices the guide serves train it
+        cv_sd_record(slot, depth, nr.o.xyz, g.cls, nr.d.xyz, g.eligible ? g.pmix : 0.0,
                      nr.beta.rgb);
     else
         cv_sd_path_end(slot, depth);
