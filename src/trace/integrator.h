@@ -110,6 +110,15 @@ struct cv_integrator_ops {
      * before) and no longer queues after_shade. */
     uint32_t (*learn_spp)(const void *state);
     void (*set_learning)(void *state, bool learning);
+    /* With learn_spp: the passes that do not learn run programs built
+     * without the learning code (render.c: the shade programs with
+     * CV_FROZEN, the escaped and shadow stages without escaped_define and
+     * shadow_define, whose code for the integrator only learns): code
+     * that never runs still costs a kernel its registers. rlpath's sdtree
+     * method sets it; Q-learning does not, whose frozen build was no
+     * faster on the GPU (bench/RESULTS.md, "What rlpath's passes after
+     * training pay for learning"). */
+    bool frozen_programs;
     /* May be NULL: after each pass that learned, with the samples per pixel
      * done (rlpath's sdtree: at the end of a training iteration, reads
      * the splatted statistics back and refines the guide); false fails the

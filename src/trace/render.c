@@ -97,6 +97,10 @@ struct cv_renderer {
     const struct cv_integrator_ops *ops;
     void *integrator;              /* ops->create's state, or NULL */
     bool learning;                 /* this pass learns (ops->learn_spp); after_shade runs */
+    /* the programs of the passes that do not learn (ops->frozen_programs),
+     * requested at creation, got at the first such pass; NULL: none */
+    struct stage_programs *frozen_sp;
+    bool frozen;                   /* prog holds them */
     /* params' stage_times: GPU time of every dispatch by stage, and by the
      * pass's iteration (a diagnostic: the scopes cost time themselves);
      * NULL: off */
@@ -392,6 +396,12 @@ struct stage_programs {
     const char *integrator[CV_SCENE_DEFINES_MAX + 4];
     const char *const *integrator_defines;
     const char *shadow[CV_SCENE_DEFINES_MAX + 3];
+    /* the passes that do not learn (integrator.h: frozen_programs), by
+     * stage (NULL: the stage's own program): the shade programs' defines
+     * plus CV_FROZEN, the escaped stage's without the integrator's */
+    const char *const *frozen[ST_COUNT];
+    const char *shade_frozen[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 6];
+    const char *escaped_frozen[CV_SCENE_DEFINES_MAX + 2];
 };
 
 /* Words per path slot of the matte stage (trace.h), 0 when the job asks
@@ -457,8 +467,11 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         bool no_tex = gs->has_textures && ops->bins[k] && !(ops->bins[k] & gs->textured_bins);
         int ns = defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
         const char *walk_only = ops->bins[k] == 4u && gs->walk_only ? "CV_BSDF_WALK_ONLY" : NULL;
-        defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL, walk_only);
+        ns = defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL,
+                          walk_only);
+        defines_plus(sp->shade_frozen[k], sp->shade[k], ns, "CV_FROZEN", NULL);
     }
+    defines_plus(sp->escaped_frozen, defines, nd, p->alpha ? "CV_FILM_TRANSPARENT" : NULL, NULL);
     for (int s = 0; s < ST_COUNT; s++) {
         const char *file = stage_files[s];
         const char *const *d = defines;
@@ -491,10 +504,23 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->shadow;
         sp->file[s] = file;
         sp->defines[s] = d;
+        if (!ops->frozen_programs)
+            continue;
+        if (s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS)
+            sp->frozen[s] = sp->shade_frozen[s - ST_SHADE];
+        else if (s == ST_ESCAPED)
+            sp->frozen[s] = sp->escaped_frozen;
+        else if (s == ST_SHADOW)
+            sp->frozen[s] = defines;
     }
 }
 
-/* Requests the stages' programs and the integrator's own. */
+/* Requests the stages' programs and the integrator's own, then those of
+ * the passes after learning (integrator.h: frozen_programs): the driver
+ * builds them beside the others, so that the first pass that does not
+ * learn, which waits for them, seldom waits on a cold cache. (It waits
+ * rather than run on with the learning programs, so which program renders
+ * a pass never depends on the driver's speed, nor do its bits.) */
 static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
                         const struct stage_programs *sp)
 {
@@ -504,6 +530,9 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
     const struct cv_integrator_ops *ops = cv_integrator_for(p);
     if (ops->prefetch)
         ops->prefetch(gpu, p, sp->integrator_defines);
+    for (int s = 0; s < ST_COUNT; s++)
+        if (sp->file[s] && sp->frozen[s])
+            cv_program_request(gpu, sp->file[s], sp->frozen[s]);
 }
 
 void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
@@ -595,15 +624,18 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
      * integrator asks for it; otherwise the intersect stage starts their
      * pixels' next samples itself (intersect.comp). */
     r->escaped_stage = ops->escaped_stage || r->scene->has_env;
-    struct stage_programs sp;
-    stage_programs(gs, p, &sp);
+    /* on the heap: the passes that do not learn get their programs from it
+     * later (frozen_sp) */
+    struct stage_programs *sp = cv_xcalloc(1, sizeof(*sp));
+    r->frozen_sp = sp;
+    stage_programs(gs, p, sp);
     /* all requested before the first is waited for: the driver compiles
      * them side by side (gpu/program.h) */
-    request_all(gpu, p, &sp);
+    request_all(gpu, p, sp);
     for (int s = 0; s < ST_COUNT; s++) {
-        if (!sp.file[s])
+        if (!sp->file[s])
             continue;
-        struct cv_program *pr = cv_program_get(gpu, sp.file[s], sp.defines[s], err);
+        struct cv_program *pr = cv_program_get(gpu, sp->file[s], sp->defines[s], err);
         if (pr)
             r->prog[s] = *pr;
         if (!pr) {
@@ -611,7 +643,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
             return false;
         }
     }
-    const char *const *defines = sp.integrator_defines;
+    const char *const *defines = sp->integrator_defines;
     setup_step(&clock, SETUP_PROGRAMS);
 
     if (ops->create) {
@@ -633,6 +665,12 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         for (int k = 0; k < ops->n_shade; k++)
             if (!ops->file[k])
                 r->prog[ST_SHADE + k] = made[k];
+    }
+    /* the passes after learning run programs without the learning code
+     * (integrator.h: frozen_programs; request_all asked for them) */
+    if (!ops->frozen_programs || ops->learn_spp(r->integrator) == 0) {
+        free(r->frozen_sp);
+        r->frozen_sp = NULL;
     }
     setup_step(&clock, SETUP_INTEGRATOR);
 
@@ -799,6 +837,27 @@ static bool whole_samples_pass(struct cv_renderer *r, uint32_t spp, struct cv_er
     return true;
 }
 
+/* From the first pass that does not learn on: the programs built without
+ * the learning code (frozen_sp). Waits for the driver where a cold cache
+ * still builds them. */
+static bool use_frozen_programs(struct cv_renderer *r, struct cv_error *err)
+{
+    const struct stage_programs *sp = r->frozen_sp;
+    int n = 0;
+    for (int s = 0; s < ST_COUNT; s++) {
+        if (!sp->file[s] || !sp->frozen[s])
+            continue;
+        struct cv_program *pr = cv_program_get(r->gpu, sp->file[s], sp->frozen[s], err);
+        if (!pr)
+            return false;
+        r->prog[s] = *pr;
+        n++;
+    }
+    r->frozen = true;
+    cv_debug("passes after learning: %d stage programs without the learning code", n);
+    return true;
+}
+
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
 {
     if (spp == 0)
@@ -812,6 +871,11 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return cv_renderer_pass(r, first, err) && cv_renderer_pass(r, spp - first, err);
     }
     r->learning = until == 0 || r->spp_done < until;
+    if (!r->learning && r->frozen_sp && !r->frozen && !use_frozen_programs(r, err))
+        return false;
+    /* (an integrator that sets frozen_programs never learns again) */
+    if (r->learning && r->frozen)
+        return cv_fail(err, "the integrator learns again after its passes without learning");
     if (r->ops->set_learning)
         r->ops->set_learning(r->integrator, r->learning);
     cv_gpu_timer_begin(r->passes, 0, 0);
@@ -1038,6 +1102,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);
     cv_scene_gpu_destroy(&r->owned_scene);
+    free(r->frozen_sp);
     if (r->ops && r->ops->destroy)
         r->ops->destroy(&r->integrator);
     free(r);

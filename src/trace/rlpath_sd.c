@@ -426,6 +426,7 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .destroy = ops_destroy,
     .learn_spp = ops_learn_spp,
     .set_learning = ops_set_learning,
+    .frozen_programs = true,
     .pass_done = ops_pass_done,
     .slot_bytes = ops_slot_bytes,
     .prefetch = ops_prefetch,

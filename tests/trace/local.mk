@@ -65,6 +65,10 @@ check_PROGRAMS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test
 TESTS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test
 tests_trace_sdtree_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_sd_sample_test_LDADD = $(CV_LIBS)
+# the programs of its passes after training
+check_PROGRAMS += tests/trace/rlpath_frozen_test
+TESTS += tests/trace/rlpath_frozen_test
+tests_trace_rlpath_frozen_test_LDADD = $(CV_LIBS)
 # --- end of rlpath tests ---
 # --- HDR textures in float (issue 24, bug 5) ---
 check_PROGRAMS += tests/trace/hdr_envmap_test

@@ -15,7 +15,10 @@
 // path that ends splats its records into the statistics of the tree being
 // trained (sdtree.glsl), from which the host refines the next tree at the
 // end of each training iteration (src/trace/rlpath_sd.c). Passes
-// after training pay only for the tree's lookups.
+// after training pay only for the tree's lookups: their build
+// (CV_FROZEN, render.c) leaves the learning code out, which costs a
+// kernel's registers whether it runs or not (bench/RESULTS.md, "What
+// rlpath's passes after training pay for learning").
 // Built once per bin of the hit queue, as path's shade.comp.
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
@@ -31,8 +34,10 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../materials.glsl"
 #include "../lights.glsl"
 #include "../surface_inputs.glsl"
+#ifndef CV_FROZEN
 #define CV_SD_RECORD
 #define CV_SD_SPLAT
+#endif
 #include "sdtree.glsl"
 #include "guides.glsl"
 #define CV_STRATEGY_FILM
@@ -138,6 +143,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     CvRayItem r = cv_ray_in(h.ray);
     CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0, 0.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
+#ifndef CV_FROZEN
     if (!cv_sd_learning())
         return;
     uint slot = uint(r.o.w), depth = cv_ray_depth(r);
@@ -153,6 +159,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
                      nr.beta.rgb);
     else
         cv_sd_path_end(slot, depth);
+#endif
 }
 
 #include "../shade_queue.glsl"

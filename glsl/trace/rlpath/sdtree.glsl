@@ -20,6 +20,8 @@
 // records: shade, escaped, sd_flush.comp), whose float adds need
 // "#extension GL_NV_shader_atomic_float : enable" at the top of the file
 // where the driver has it (NVIDIA, Mesa's llvmpipe), else compare-and-swap.
+// CV_FROZEN (the programs of the passes after training, render.c):
+// cv_sd_learning() is false, and a stage includes neither of the above.
 #ifndef CV_RLPATH_SDTREE_GLSL
 #define CV_RLPATH_SDTREE_GLSL
 
@@ -44,7 +46,11 @@ layout(r32f, binding = CV_IMAGE_SD_FLUX) uniform coherent imageBuffer sd_flux;
 const float CV_SD_PI = 3.14159265358979323846;
 const float CV_SD_ONE_MINUS_EPS = 0.99999994;
 
+#ifdef CV_FROZEN
+bool cv_sd_learning() { return false; }
+#else
 bool cv_sd_learning() { return u_sd.learn.x != 0u; }
+#endif
 
 // The orientation class of a normal n (shared/sdtree.h).
 uint cv_sd_class(vec3 n)

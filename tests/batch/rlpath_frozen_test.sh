@@ -1,0 +1,44 @@
+#!/bin/sh
+# rlpath_frozen_test.sh: a job of rlpath's sdtree method renders its
+# passes after training with the programs built without the learning code
+# (trace/integrator.h: frozen_programs; tests/trace/rlpath_frozen_test
+# checks what those programs hold): the Cornell box (scene-v4.pbrt of
+# /work/shared/scenes, CC0; bin 0 alone) switches its shade, escaped and
+# shadow stages once, at the end of training, and its image is lit (mean
+# red near the 0.2 these settings give) and finite. A job that ends
+# within its training, and a Q-learning job (which keeps one build), never
+# switch.
+. "${srcdir:-.}/tests/setup.sh"
+"$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
+probe="$CV_TEST_BUILDDIR/batch/exr_probe"
+cp "$CV_TEST_DATA/batch/cornell_box.pbrt" "$tmp/"
+cd "$tmp"
+
+job() {   # job NAME SPP RLPATH: a manifest of one rlpath job
+    printf 'version: 1\njobs:\n  - name: %s\n    scene: cornell_box.pbrt\n' "$1"
+    printf '    output: out/{name}\n    formats: [exr]\n    exr: {half: false}\n'
+    printf '    resolution: [32, 32]\n    seed: 3\n    spp: %s\n' "$2"
+    printf '    integrator: rlpath\n    rlpath: %s\n' "$3"
+}
+switched='passes after learning: 3 stage programs without the learning code'
+
+job sd 24 '{method: sdtree, train: 8}' >sd.yaml
+check_out "sdtree renders" sd.out "$CAVALRY_BATCH" -v sd.yaml 2>sd.err
+check "it switches to the frozen programs once" \
+    test "$(grep -c "$switched" sd.err)" -eq 1
+check "their builds were asked for with CV_FROZEN" grep -q 'sd_shade.comp \[.*CV_FROZEN\]' sd.err
+s=$("$probe" stats out/sd.exr) || s=unreadable
+echo "# sd: $s"
+set -- $s
+check "its image is finite" test "${5:-}" = nonfinite -a "${6:-1}" -eq 0
+check "and lit (mean red ${2:-?})" awk -v r="${2:-0}" 'BEGIN { exit !(r > 0.15 && r < 0.25) }'
+
+job short 8 '{method: sdtree, train: 8}' >short.yaml
+check_out "a job within its training renders" short.out "$CAVALRY_BATCH" -v short.yaml \
+    2>short.err
+check "and never switches" sh -c "! grep -q '$switched' short.err"
+
+job q 24 '{train: 8}' >q.yaml
+check_out "Q-learning renders" q.out "$CAVALRY_BATCH" -v q.yaml 2>q.err
+check "and keeps its one build" sh -c "! grep -q 'passes after learning' q.err"
+done_testing
