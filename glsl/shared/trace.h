@@ -127,7 +127,8 @@ CV_CHECK_SIZE(CvTraceQueues, 208);
  * denormals that some GPUs flush); d.w: the density (solid angle) that
  * next-event estimation at the previous vertex weighs d against
  * (glsl/trace/path_vertex.glsl: the bounce's, or the BSDF's alone), 0 for
- * camera rays and after specular bounces; beta.rgb: path throughput; beta.w: CV_RAYF_* bits and depth. */
+ * camera rays and after specular bounces; beta.rgb: path throughput;
+ * beta.w: CV_RAYF_* bits and depth. */
 CV_STRUCT(CvRayItem) {
     cv_vec4 o;
     cv_vec4 d;
