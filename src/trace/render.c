@@ -428,13 +428,14 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
 #undef ADD_SCENE_DEFINE
     defines[nd] = NULL;
     bool escaped_stage = ops->escaped_stage || gs->has_env;
-    defines_plus(sp->escaped, defines, nd, ops->escaped_define,
-                 p->alpha ? "CV_FILM_TRANSPARENT" : NULL);
+    const char *transparent = p->alpha ? "CV_FILM_TRANSPARENT" : NULL;
+    defines_plus(sp->escaped, defines, nd, ops->escaped_define, transparent);
+    /* the passes that do not learn: without the integrator's code */
+    defines_plus(sp->escaped_frozen, defines, nd, transparent, NULL);
     /* the matte stages: the slot layout, and what the job asked for */
     uint32_t words = matte_words(p);
     snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
     defines_plus(sp->matte, defines, nd, sp->stride, p->cryptomatte ? "CV_CRYPTO" : NULL);
-    const char *transparent = p->alpha ? "CV_FILM_TRANSPARENT" : NULL;
     int nr = defines_plus(sp->resolve, defines, nd, transparent, p->alpha ? sp->stride : NULL);
     nr = defines_plus(sp->resolve, sp->resolve, nr, ops->resolve_define, NULL);
     defines_plus(sp->straight, sp->resolve, nr, "CV_RESOLVE_STRAIGHT", NULL);
@@ -471,7 +472,6 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
                           walk_only);
         defines_plus(sp->shade_frozen[k], sp->shade[k], ns, "CV_FROZEN", NULL);
     }
-    defines_plus(sp->escaped_frozen, defines, nd, p->alpha ? "CV_FILM_TRANSPARENT" : NULL, NULL);
     for (int s = 0; s < ST_COUNT; s++) {
         const char *file = stage_files[s];
         const char *const *d = defines;
