@@ -69,6 +69,6 @@ GLSL_FILES += glsl/shared/bssrdf.h glsl/trace/bsdf/bssrdf.glsl glsl/trace/bsdf/s
 # --- conductors given by spectra: Fresnel tables (issue 24) ---
 GLSL_FILES += glsl/shared/conductor_fresnel.h
 # --- the one BSDF query (issue 26) ---
-GLSL_FILES += glsl/trace/bsdf/bsdf_query.glsl
+GLSL_FILES += glsl/trace/bsdf/bsdf_query.glsl glsl/shared/bsdf_query.h
 # --- a camera ray's first hit for the mattes, shared by matte.comp and bdpt (issue 27) ---
 GLSL_FILES += glsl/trace/matte.glsl

@@ -97,16 +97,16 @@ static bool probe_reserve(GLuint *buf, size_t *cap, size_t bytes, struct cv_erro
  * f_eval, pdf_eval; pdf < 0: sampling failed). mode 1: `dirs` (4 floats
  * each) evaluated, out gets 4 floats each (f, pdf). mode 2: `dirs` holds
  * (u, v, u_mix, u_alpha), out gets 8 floats each (albedo, alpha pass |
- * shading normal, resolved type). */
+ * shading normal, resolved type). mode 3: probe_query. */
 static bool probe_run(struct probe *p, unsigned mode, unsigned material, const float wo[3], unsigned seed,
                       const float *dirs, size_t n, float *out, struct cv_error *err)
 {
-    size_t out_bytes = n * (mode == 0 ? 12 : (mode == 1 ? 4 : 8)) * sizeof(float);
-    size_t in_bytes = mode >= 1 ? n * 4 * sizeof(float) : 16;
+    size_t out_bytes = n * (mode == 0 ? 12 : (mode == 1 ? 4 : (mode == 2 ? 8 : 16))) * sizeof(float);
+    size_t in_bytes = mode == 1 || mode == 2 ? n * 4 * sizeof(float) : 16;
     if (!probe_reserve(&p->out, &p->cap_out, out_bytes, err) ||
-        !probe_reserve(&p->in, &p->cap_in, in_bytes, err))
+        (mode != 3 && !probe_reserve(&p->in, &p->cap_in, in_bytes, err)))
         return false;
-    if (mode >= 1 && !cv_buffer_upload(p->in, 0, n * 4 * sizeof(float), dirs, err))
+    if ((mode == 1 || mode == 2) && !cv_buffer_upload(p->in, 0, n * 4 * sizeof(float), dirs, err))
         return false;
     cv_buffer_bind(p->materials, CV_BIND_MATERIALS);
     cv_buffer_bind(p->textures, CV_BIND_TEXTURES);
@@ -126,6 +126,22 @@ static bool probe_run(struct probe *p, unsigned mode, unsigned material, const f
     glUniform2f(glGetUniformLocation(id, "u_uv"), p->uv[0], p->uv[1]);
     cv_program_dispatch_1d(p->prog, n);
     return cv_buffer_read(p->out, 0, out_bytes, out, err);
+}
+
+/* mode 3: one query of `ask` (glsl/trace/bsdf/bsdf_query.glsl's CV_BQ_*
+ * bits) per item; `in` holds 12 floats an item (wi0, 0 | wi1, 0 | uc, u,
+ * 0), out gets 16 (f0, pdf0 | f1, pdf1 | wi, pdf | f, flags; flags -1: no
+ * sample). */
+static bool probe_query(struct probe *p, unsigned material, const float wo[3], unsigned seed, unsigned ask,
+                        const float *in, size_t n, float *out, struct cv_error *err)
+{
+    if (!probe_reserve(&p->in, &p->cap_in, n * 12 * sizeof(float), err) ||
+        !cv_buffer_upload(p->in, 0, n * 12 * sizeof(float), in, err))
+        return false;
+    glUseProgram(p->prog->id);
+    glUniform1ui(glGetUniformLocation(p->prog->id, "u_ask"), ask);
+    /* probe_run reads `in` only for modes 1 and 2: already uploaded */
+    return probe_run(p, 3, material, wo, seed, NULL, n, out, err);
 }
 
 static void probe_close(struct probe *p)

@@ -607,12 +607,56 @@ bool cv_bsdf_walks(CvBsdf b)
 #endif
 }
 
+// The steps of a query (cv_bsdf_query), one estimate each.
+#define CV_BQ_STEP_F0 1u
+#define CV_BQ_STEP_PDF0 2u
+#define CV_BQ_STEP_SAMPLE 3u
+#define CV_BQ_STEP_RESTATE 4u   // the pdf at the sample's direction
+#define CV_BQ_STEP_F1 5u
+#define CV_BQ_STEP_PDF1 6u
+
+// The step a query with `ask` takes at slot k, and the slot of f at wi1
+// (its pdf's is the next). The slots line up the warp's invocations: with
+// a coated walk each step is a walk, and a warp runs a slot's walks side
+// by side but its slots one after another, so an invocation that samples
+// (the BSDF's bounce) and one that evaluates wi1 instead (a guided bounce)
+// take the same slots 2 and 3. Only a query that asks for both (a guided
+// bounce that lets the BSDF pick a delta lobe) needs more. Only kernels
+// that define CV_BQ_WI1 (rlpath's shade stages, the BSDF tests' probe) ask
+// at wi1; the others keep the steps in order, which costs path's coated
+// walk nothing.
+uint cv_bsdf_query_step(uint ask, int k)
+{
+#ifndef CV_BQ_WI1
+    return uint(k) + 1u;   // nothing at wi1: the slots are the steps in order
+#else
+    bool s = (ask & CV_BQ_SAMPLE) != 0u, w1 = (ask & (CV_BQ_F1 | CV_BQ_PDF1)) != 0u;
+    bool delta_only = (ask & CV_BQ_DELTA_ONLY) != 0u;
+    if (k < 2)
+        return k == 0 ? CV_BQ_STEP_F0 : CV_BQ_STEP_PDF0;
+    if (!s)
+        return k == 2 ? CV_BQ_STEP_F1 : CV_BQ_STEP_PDF1;
+    if (k == 2)
+        return CV_BQ_STEP_SAMPLE;
+    if (!w1 || (k == 3 && !delta_only))
+        return CV_BQ_STEP_RESTATE;
+    return k == (delta_only ? 3 : 4) ? CV_BQ_STEP_F1 : CV_BQ_STEP_PDF1;
+#endif
+}
+
+int cv_bsdf_query_slot_f1(uint ask)
+{
+    return (ask & CV_BQ_SAMPLE) == 0u ? 2 : ((ask & CV_BQ_DELTA_ONLY) != 0u ? 3 : 4);
+}
+
 // Answers q (bsdf_query.glsl): every BSDF function a vertex needs, from this
 // one call site, so that each lobe's code is inlined once per kernel (the
 // coated walk's once per estimator: layered.glsl). The steps run in one loop
-// (bit k of `todo`: 0 f at wi0, 1 pdf at wi0, 2 the sample, 3 the pdf at the
-// sample's direction, which restates a coated walk's proportional pdf as
-// pbrt-v4's LayeredBxDF::Sample does, 4 f at wi1, 5 pdf at wi1).
+// over slots (cv_bsdf_query_step): f and pdf at wi0, the sample and the pdf
+// at its direction, which restates a coated walk's proportional pdf as
+// pbrt-v4's LayeredBxDF::Sample does, f and pdf at wi1. Every estimate
+// hashes its own directions and numbers, so the slots' order changes no
+// answer.
 void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
 {
     q.f0 = vec3(0.0);
@@ -621,8 +665,8 @@ void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
     q.pdf1 = 0.0;
     q.sampled = false;
     q.s = CvBsdfSample(vec3(0.0), vec3(0.0), 0.0, 0u);
-    uint todo = q.ask & (CV_BQ_F0 | CV_BQ_PDF0 | CV_BQ_SAMPLE | CV_BQ_F1 | CV_BQ_PDF1);
-    bool gate0 = (q.ask & CV_BQ_GATE0) != 0u, gate1 = (q.ask & CV_BQ_GATE1) != 0u;
+    uint ask = q.ask;
+    bool gate0 = (ask & CV_BQ_GATE0) != 0u, gate1 = (ask & CV_BQ_GATE1) != 0u;
     vec3 wo = cv_to_local(b.frame, q.wo);
     bool flip = cv_bsdf_mirrored(b) && wo.z < 0.0;
     if (flip)
@@ -630,32 +674,45 @@ void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
 #ifdef CV_BSDF_DIFFUSE_ONLY
     // one small lobe: straight on, without the loop's bookkeeping
     vec3 wi0 = cv_to_local(b.frame, q.wi0), wi1 = cv_to_local(b.frame, q.wi1);
-    if ((todo & CV_BQ_F0) != 0u)
+    if ((ask & CV_BQ_F0) != 0u)
         q.f0 = cv_bsdf_f_local(b, wo, wi0);
-    if ((todo & CV_BQ_PDF0) != 0u && (!gate0 || (todo & CV_BQ_F0) == 0u || cv_max3(q.f0) > 0.0))
+    if ((ask & CV_BQ_PDF0) != 0u && (!gate0 || (ask & CV_BQ_F0) == 0u || cv_max3(q.f0) > 0.0))
         q.pdf0 = cv_bsdf_pdf_local(b, wo, wi0);
-    if ((todo & CV_BQ_SAMPLE) != 0u)
+    if ((ask & CV_BQ_SAMPLE) != 0u)
         q.sampled = cv_bsdf_sample_local(b, wo, q.uc, q.u, q.s);
-    if ((todo & CV_BQ_F1) != 0u)
+    if ((ask & CV_BQ_F1) != 0u)
         q.f1 = cv_bsdf_f_local(b, wo, wi1);
-    if ((todo & CV_BQ_PDF1) != 0u && (!gate1 || (todo & CV_BQ_F1) == 0u || cv_max3(q.f1) > 0.0))
+    if ((ask & CV_BQ_PDF1) != 0u && (!gate1 || (ask & CV_BQ_F1) == 0u || cv_max3(q.f1) > 0.0))
         q.pdf1 = cv_bsdf_pdf_local(b, wo, wi1);
 #else
     bool walks = cv_bsdf_walks(b);
-    // k is every invocation's same step, so a warp's invocations stay
-    // together (those with nothing to do at step k skip it) and the
+    // todo: the slots still to run (bit k: slot k); the restated pdf's
+    // joins once a walk's sample needs it, a gated pdf's leaves where its
+    // f is 0
+    int f1_slot = cv_bsdf_query_slot_f1(ask);
+    uint todo = ask & (CV_BQ_F0 | CV_BQ_PDF0 | CV_BQ_SAMPLE);   // their bits are slots 0-2
+#ifdef CV_BQ_WI1
+    if ((ask & CV_BQ_F1) != 0u)
+        todo |= 1u << uint(f1_slot);
+    if ((ask & CV_BQ_PDF1) != 0u)
+        todo |= 2u << uint(f1_slot);
+#endif
+    // k is every invocation's same slot, so a warp's invocations stay
+    // together (those with nothing to do at slot k skip it) and the
     // bound, known only at run time, keeps the compiler from copying the
     // body
     for (int k = 0; k <= findMSB(todo); k++) {
         if ((todo & (1u << uint(k))) == 0u)
             continue;
-        vec3 wi = q.s.wi;  // step 3: the sample's, local and mirrored already
-        if (k != 2 && k != 3) {
-            wi = cv_to_local(b.frame, k < 2 ? q.wi0 : q.wi1);
+        uint step = cv_bsdf_query_step(ask, k);
+        vec3 wi = q.s.wi;  // the restated pdf's: local and mirrored already
+        if (step != CV_BQ_STEP_SAMPLE && step != CV_BQ_STEP_RESTATE) {
+            wi = cv_to_local(b.frame, step <= CV_BQ_STEP_PDF0 ? q.wi0 : q.wi1);
             if (flip)
                 wi.z = -wi.z;
         }
-        uint mode = k == 2 ? CV_LAY_MODE_WALK : ((k & 1) == 0 ? CV_LAY_MODE_F : CV_LAY_MODE_PDF);
+        uint mode = step == CV_BQ_STEP_SAMPLE ? CV_LAY_MODE_WALK
+                    : (step == CV_BQ_STEP_F0 || step == CV_BQ_STEP_F1 ? CV_LAY_MODE_F : CV_LAY_MODE_PDF);
         vec3 f = vec3(0.0);
         float pdf = 0.0;
         CvBsdfSample s;
@@ -671,24 +728,24 @@ void cv_bsdf_query(CvBsdf b, inout CvBsdfQuery q)
             pdf = cv_bsdf_pdf_local(b, wo, wi);
         else
             ok = cv_bsdf_sample_local(b, wo, q.uc, q.u, s);
-        if (k == 0) {
+        if (step == CV_BQ_STEP_F0) {
             q.f0 = f;
             if (gate0 && !(cv_max3(f) > 0.0))
                 todo &= ~CV_BQ_PDF0;
-        } else if (k == 1) {
+        } else if (step == CV_BQ_STEP_PDF0) {
             q.pdf0 = pdf;
-        } else if (k == 2) {
+        } else if (step == CV_BQ_STEP_SAMPLE) {
             q.sampled = ok;
             q.s = s;
-            if (ok && walks && (s.flags & CV_BSDF_SPECULAR) == 0u)
-                todo |= 8u;
-        } else if (k == 3) {
+            if (ok && walks && (s.flags & CV_BSDF_SPECULAR) == 0u && (ask & CV_BQ_DELTA_ONLY) == 0u)
+                todo |= 8u;   // slot 3
+        } else if (step == CV_BQ_STEP_RESTATE) {
             q.s.f *= pdf / q.s.pdf;
             q.s.pdf = pdf;
-        } else if (k == 4) {
+        } else if (step == CV_BQ_STEP_F1) {
             q.f1 = f;
             if (gate1 && !(cv_max3(f) > 0.0))
-                todo &= ~CV_BQ_PDF1;
+                todo &= ~(2u << uint(f1_slot));
         } else {
             q.pdf1 = pdf;
         }

@@ -11,17 +11,7 @@
 
 #include "bsdf_sample.glsl"
 
-// What is asked (CvBsdfQuery.ask).
-#define CV_BQ_F0 1u       // f at wi0
-#define CV_BQ_PDF0 2u     // pdf at wi0
-#define CV_BQ_SAMPLE 4u   // a direction drawn with (uc, u), into s
-#define CV_BQ_F1 16u      // f at wi1
-#define CV_BQ_PDF1 32u    // pdf at wi1
-// The pdf at wi0 (GATE1: at wi1), asked with the f there, only where that
-// f is not 0 (else 0): a light sample that carries nothing skips the coated
-// pdf estimate.
-#define CV_BQ_GATE0 64u
-#define CV_BQ_GATE1 128u
+#include "shared/bsdf_query.h"  // what is asked: CV_BQ_*
 
 struct CvBsdfQuery {
     uint ask;         // CV_BQ_* bits

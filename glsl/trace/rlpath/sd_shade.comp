@@ -20,6 +20,7 @@
 // kernel's registers whether it runs or not (bench/RESULTS.md, "What
 // rlpath's passes after training pay for learning").
 // Built once per bin of the hit queue, as path's shade.comp.
+#define CV_BQ_WI1  // asks its BSDF at a second direction (bsdf/bsdf.glsl)
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
@@ -94,11 +95,14 @@ void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bs
                              CV_ONE_MINUS_EPS),
                          u_bsdf.y)
                   : u_bsdf;
-    if (!g.guided || g.pd > 0.0)
+    if (!g.guided)
         q.ask |= CV_BQ_SAMPLE;
+    else if (g.pd > 0.0)
+        q.ask |= CV_BQ_SAMPLE | CV_BQ_DELTA_ONLY;   // only a delta lobe it picks is kept
     if (g.guided) {
         q.wi1 = cv_sd_sample(g.root, q.u, g.pq);
-        q.ask |= CV_BQ_F1 | CV_BQ_PDF1;
+        // a direction f is 0 at ends the path: its pdf is not needed
+        q.ask |= CV_BQ_F1 | CV_BQ_PDF1 | CV_BQ_GATE1;
     }
 }
 

@@ -33,6 +33,7 @@
 // diffuse (CV_BSDF_DIFFUSE_ONLY), CV_SHADE_BIN=1 the others but the coated
 // walk's (CV_NO_LAYERED), CV_SHADE_BIN=2 those; one build for all
 // materials sized the kernel for the largest and cost every hit that.
+#define CV_BQ_WI1  // asks its BSDF at a second direction (bsdf/bsdf.glsl)
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 0
@@ -143,15 +144,18 @@ void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bs
                              CV_ONE_MINUS_EPS),
                          u_bsdf.y)
                   : u_bsdf;
-    if (!g.guided || g.pd > 0.0)
+    if (!g.guided)
         q.ask |= CV_BQ_SAMPLE;
+    else if (g.pd > 0.0)
+        q.ask |= CV_BQ_SAMPLE | CV_BQ_DELTA_ONLY;   // only a delta lobe it picks is kept
     if (g.guided) {
         // the bin drawn, not the bin of the direction looked up again:
         // rounding may put a direction on a bin's edge across it, a set of
         // measure zero where either density serves (and a round of loads
         // less)
         g.wbin = cv_rl_sample_key(g.kk, q.u, q.wi1, g.pq);
-        q.ask |= CV_BQ_F1 | CV_BQ_PDF1;
+        // a direction f is 0 at ends the path: its pdf is not needed
+        q.ask |= CV_BQ_F1 | CV_BQ_PDF1 | CV_BQ_GATE1;
     }
 }
 

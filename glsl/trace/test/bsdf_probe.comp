@@ -3,9 +3,13 @@
 // tests in tests/trace/bsdf_*: samples it (mode 0) or evaluates f and pdf at
 // given directions (mode 1) for one material at one fixed shading point;
 // mode 2 resolves the material at probe_in[i] = (u, v, u_mix, u_alpha) and
-// returns (albedo, alpha pass) and (shading normal, type).
+// returns (albedo, alpha pass) and (shading normal, type); mode 3 asks one
+// query of u_ask (bsdf/bsdf_query.glsl) with wi0, wi1 and (uc, u) from
+// probe_in[3i..3i+2] and returns (f0, pdf0), (f1, pdf1), (wi, pdf) and
+// (f, flags; -1: no sample) of the answer.
 layout(local_size_x = 64) in;
 
+#define CV_BQ_WI1  // asks its BSDF at a second direction (bsdf/bsdf.glsl)
 #include "lib/index.glsl"
 #include "lib/rng.glsl"
 #include "trace/bsdf/material_buffers.glsl"
@@ -15,6 +19,7 @@ layout(std430, binding = CV_BIND_PROBE_IN) readonly buffer ProbeIn { vec4 probe_
 layout(std430, binding = CV_BIND_PROBE_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
 
 uniform uint u_mode;
+uniform uint u_ask;
 uniform uint u_count;
 uniform uint u_material;
 uniform uint u_seed;
@@ -45,9 +50,16 @@ void main()
     cv_bsdf_set_stream(b, cv_rng_next2(stream), cv_rng_next2(stream));
     // Every answer through one query call site, as a shade stage asks
     // (bsdf/bsdf_query.glsl): mode 0 samples, then evaluates f and pdf at
-    // the sampled direction; mode 1 evaluates at probe_in[i].
+    // the sampled direction; mode 1 evaluates at probe_in[i]; mode 3 asks
+    // u_ask once.
     CvBsdfQuery q = cv_bsdf_query_new(u_wo);
-    if (u_mode == 0u) {
+    if (u_mode == 3u) {
+        q.ask = u_ask;
+        q.wi0 = probe_in[3u * i].xyz;
+        q.wi1 = probe_in[3u * i + 1u].xyz;
+        q.uc = probe_in[3u * i + 2u].x;
+        q.u = probe_in[3u * i + 2u].yz;
+    } else if (u_mode == 0u) {
         q.ask = CV_BQ_SAMPLE;
         q.uc = cv_rng_next(rng);
         q.u = cv_rng_next2(rng);
@@ -58,7 +70,7 @@ void main()
     CvBsdfSample s = q.s;
     for (uint pass = 0u; pass < 2u; pass++) {
         cv_bsdf_query(b, q);
-        if (q.ask != CV_BQ_SAMPLE)
+        if (u_mode == 3u || q.ask != CV_BQ_SAMPLE)
             break;
         s = q.s;
         if (!q.sampled) {
@@ -70,7 +82,12 @@ void main()
         q.ask = CV_BQ_F0 | CV_BQ_PDF0;
         q.wi0 = s.wi;
     }
-    if (u_mode == 0u) {
+    if (u_mode == 3u) {
+        probe_out[4u * i] = vec4(q.f0, q.pdf0);
+        probe_out[4u * i + 1u] = vec4(q.f1, q.pdf1);
+        probe_out[4u * i + 2u] = vec4(q.s.wi, q.s.pdf);
+        probe_out[4u * i + 3u] = vec4(q.s.f, q.sampled ? float(q.s.flags) : -1.0);
+    } else if (u_mode == 0u) {
         probe_out[3u * i] = vec4(s.wi, s.pdf);
         probe_out[3u * i + 1u] = vec4(s.f, float(s.flags));
         probe_out[3u * i + 2u] = vec4(q.f0, q.pdf0);
