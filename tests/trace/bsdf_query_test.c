@@ -100,8 +100,10 @@ int main(void)
     for (size_t i = 0; i < n_mats; i++)
         table[i] = mats[i].m;
     struct probe p;
-    if (!tap_ok(probe_open(gpu, &p, table, n_mats, &err), "probe shader and buffers: %s", err.msg))
+    if (!tap_ok(probe_open(gpu, &p, table, n_mats, &err), "probe shader and buffers: %s", err.msg)) {
+        cv_gpu_destroy(&gpu);
         return tap_done();
+    }
     float *in = malloc(N * 12 * sizeof(float)), *in1 = malloc(N * 12 * sizeof(float));
     float *out = malloc(N * 16 * sizeof(float)), *r0 = malloc(N * 16 * sizeof(float));
     float *r1 = malloc(N * 16 * sizeof(float)), *rs_ = malloc(N * 16 * sizeof(float));
@@ -174,5 +176,6 @@ int main(void)
     free(r1);
     free(rs_);
     probe_close(&p);
+    cv_gpu_destroy(&gpu);
     return tap_done();
 }
