@@ -117,8 +117,12 @@ struct cv_integrator_ops {
      * that never runs still costs a kernel its registers. rlpath's sdtree
      * method sets it; Q-learning does not, whose frozen build was no
      * faster on the GPU (bench/RESULTS.md, "What rlpath's passes after
-     * training pay for learning"). */
-    bool frozen_programs;
+     * training pay for learning"). May be NULL (none); otherwise whether
+     * a job with params p has such passes, asked before the integrator
+     * exists (its programs are requested with the others): false where it
+     * learns in every pass, so that no build is started that no pass
+     * uses. */
+    bool (*frozen_programs)(const struct cv_render_params *p);
     /* May be NULL: after each pass that learned, with the samples per pixel
      * done (rlpath's sdtree: at the end of a training iteration, reads
      * the splatted statistics back and refines the guide); false fails the

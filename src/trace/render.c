@@ -413,6 +413,13 @@ static uint32_t matte_words(const struct cv_render_params *p)
     return p->cryptomatte ? CV_MATTE_WORDS_CRYPTO : CV_MATTE_WORDS;
 }
 
+/* Whether a job with params p has passes that do not learn, which run
+ * programs without the learning code (integrator.h: frozen_programs). */
+static bool freezes(const struct cv_integrator_ops *ops, const struct cv_render_params *p)
+{
+    return ops->frozen_programs && ops->frozen_programs(p);
+}
+
 static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render_params *p,
                            struct stage_programs *sp)
 {
@@ -504,7 +511,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->shadow;
         sp->file[s] = file;
         sp->defines[s] = d;
-        if (!ops->frozen_programs)
+        if (!freezes(ops, p))
             continue;
         if (s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS)
             sp->frozen[s] = sp->shade_frozen[s - ST_SHADE];
@@ -668,7 +675,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     }
     /* the passes after learning run programs without the learning code
      * (integrator.h: frozen_programs; request_all asked for them) */
-    if (!ops->frozen_programs || ops->learn_spp(r->integrator) == 0) {
+    if (!freezes(ops, p) || ops->learn_spp(r->integrator) == 0) {
         free(r->frozen_sp);
         r->frozen_sp = NULL;
     }

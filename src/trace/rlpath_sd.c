@@ -390,6 +390,12 @@ static void ops_set_learning(void *state, bool learning)
     cv_rlpath_sd_set_learning(state, learning);
 }
 
+/* training that never ends (rlpath.train: 0) leaves no pass to freeze */
+static bool ops_frozen_programs(const struct cv_render_params *p)
+{
+    return cv_rlpath_train_spp(p->rl_train) != 0;
+}
+
 static bool ops_pass_done(void *state, uint32_t spp_done, struct cv_error *err)
 {
     return cv_rlpath_sd_pass_done(state, spp_done, err);
@@ -426,7 +432,7 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .destroy = ops_destroy,
     .learn_spp = ops_learn_spp,
     .set_learning = ops_set_learning,
-    .frozen_programs = true,
+    .frozen_programs = ops_frozen_programs,
     .pass_done = ops_pass_done,
     .slot_bytes = ops_slot_bytes,
     .prefetch = ops_prefetch,

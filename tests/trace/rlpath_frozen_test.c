@@ -5,11 +5,17 @@
  * them for those passes), use none of the training record and statistics
  * images that their learning builds use. Code that never runs still costs
  * a kernel its registers (bench/RESULTS.md, "What rlpath's passes after
- * training pay for learning"), so its absence is what the passes gain. */
+ * training pay for learning"), so its absence is what the passes gain.
+ * And a renderer asks the driver for those programs only where a pass will
+ * run them: with rlpath.train 0 (learning in every pass) no build starts
+ * that nothing uses; with the default training every one is got. */
 #include "config.h"
 
+#include "base/limits.h"
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/trace/rlpath_room.h"
+#include "tests/trace/trace_test_util.h"
 
 /* the learning images of glsl/trace/rlpath/sdtree.glsl */
 /* (sd_flux where the driver has float atomics, sd_stats where not) */
@@ -30,8 +36,56 @@ static int images_used(struct cv_gpu *gpu, const char *file, const char *const *
     return n;
 }
 
+/* Renders the room with sdtree, training for `train` (the render
+ * parameter), in passes, in a fresh context (no program known before):
+ * the context's build totals after it (requested: builds started ahead;
+ * unused: those never got). false where it did not render. */
+static bool requests(const struct cv_scene *s, uint32_t train, const uint32_t *passes,
+                     const char *what, struct cv_program_build_stats *st)
+{
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    struct cv_render_params p = {.sampler = CV_SAMPLER_INDEPENDENT,
+                                 .integrator = CV_INTEGRATOR_RLPATH,
+                                 .rl_sdtree = true,
+                                 .rl_mix = -1,
+                                 .rl_train = train};
+    struct cv_error err = {{0}};
+    struct test_image img = {0};
+    bool ok = tap_ok(test_render(gpu, s, &p, passes, &img, &err), "%s: renders: %s", what,
+                     err.msg);
+    free(img.rgba);
+    cv_program_build_stats(gpu, st);
+    cv_gpu_destroy(&gpu);
+    return ok;
+}
+
 int main(void)
 {
+    /* (the renders' contexts first: each is made current, then destroyed) */
+    struct cv_error err = {{0}};
+    struct cv_scene *s = NULL;
+    struct cv_scene_load_params lp = {0};
+    if (tap_ok(cv_scene_load_string("lobes.pbrt", rlpath_room_lobes, sizeof(rlpath_room_lobes) - 1,
+                                    &lp, &s, &err),
+               "load the room: %s", err.msg)) {
+        /* the default training's passes after 16 spp get the frozen
+         * programs; with rlpath.train 0 none is requested, so the
+         * programs requested and never got (other stages' variants the
+         * scene does not need) are the same in both */
+        struct cv_program_build_stats always, trained;
+        if (requests(s, CV_RL_TRAIN_ALWAYS, (const uint32_t[]){1, 2, 4, 0}, "rlpath.train 0",
+                     &always) &&
+            requests(s, 0, (const uint32_t[]){16, 4, 0}, "the default training", &trained)) {
+            if (!always.parallel)
+                tap_diag("no parallel compilation here: requests start no build");
+            else
+                tap_ok(always.unused == trained.unused && trained.requested > always.requested,
+                       "rlpath.train 0 requests no program of the passes after training "
+                       "(requested %u, unused %u; with the default training %u and %u)",
+                       always.requested, always.unused, trained.requested, trained.unused);
+        }
+        cv_scene_destroy(&s);
+    }
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     /* a scene of diffuse and mirror surfaces, as the Cornell box's */
 #define SCENE "CV_BSDF_BASIC", "CV_NO_ENV", "CV_NO_TEXTURES", "CV_NO_HAIR", "CV_NO_LAYERED", \
