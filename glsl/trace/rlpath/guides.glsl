@@ -28,4 +28,30 @@ bool cv_rl_guides(CvBsdf b)
 #endif
 }
 
+// The one-sample mixture's draw, both methods' (cv_strategy_ask): u_bsdf.x
+// picks the guide with probability m and, rescaled, drives the strategy it
+// picks. A guided draw still lets the BSDF pick its lobe (by u_bc.x, as a
+// BSDF draw does) and keeps a delta lobe it picks, so a delta lobe has the
+// BSDF's probability whatever m. Returns whether the bounce is guided and
+// sets what q asks: the BSDF's sample; or, guided, f and pdf at q.wi1
+// (which the caller draws from q.u), the pdf only where f is not 0 (a
+// direction f is 0 at ends the path), and where the BSDF has a delta lobe
+// (pd: its probability) the sample too, of which only a delta lobe it picks
+// is kept.
+bool cv_rl_mixture_ask(float m, float pd, vec2 u_bc, vec2 u_bsdf, inout CvBsdfQuery q)
+{
+    bool guided = m > 0.0 && u_bsdf.x < m;
+    q.uc = u_bc.x;
+    q.u = m > 0.0 ? vec2(min((guided ? u_bsdf.x : u_bsdf.x - m) / (guided ? m : 1.0 - m),
+                             CV_ONE_MINUS_EPS),
+                         u_bsdf.y)
+                  : u_bsdf;
+    if (!guided)
+        q.ask |= CV_BQ_SAMPLE;
+    else
+        q.ask |= CV_BQ_F1 | CV_BQ_PDF1 | CV_BQ_GATE1 |
+                 (pd > 0.0 ? CV_BQ_SAMPLE | CV_BQ_DELTA_ONLY : 0u);
+    return guided;
+}
+
 #endif

@@ -82,28 +82,13 @@ void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool
 // The light sample is weighed against the BSDF alone (CV_STRATEGY_MIS_BSDF).
 float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf) { return bsdf_pdf; }
 
-// One-sample mixture as in shade.comp: u_bsdf.x picks the strategy and,
-// rescaled, drives it; a guided draw still lets the BSDF pick its lobe and
-// keeps a delta lobe it picks, so a delta lobe has the BSDF's probability
-// whatever m.
+// One-sample mixture (guides.glsl: cv_rl_mixture_ask); a guided bounce's
+// direction is drawn from the leaf's quadtree.
 void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bsdf, inout CvBsdfQuery q)
 {
-    float m = g.m;
-    g.guided = m > 0.0 && u_bsdf.x < m;
-    q.uc = u_bc.x;
-    q.u = m > 0.0 ? vec2(min((g.guided ? u_bsdf.x : u_bsdf.x - m) / (g.guided ? m : 1.0 - m),
-                             CV_ONE_MINUS_EPS),
-                         u_bsdf.y)
-                  : u_bsdf;
-    if (!g.guided)
-        q.ask |= CV_BQ_SAMPLE;
-    else if (g.pd > 0.0)
-        q.ask |= CV_BQ_SAMPLE | CV_BQ_DELTA_ONLY;   // only a delta lobe it picks is kept
-    if (g.guided) {
+    g.guided = cv_rl_mixture_ask(g.m, g.pd, u_bc, u_bsdf, q);
+    if (g.guided)
         q.wi1 = cv_sd_sample(g.root, q.u, g.pq);
-        // a direction f is 0 at ends the path: its pdf is not needed
-        q.ask |= CV_BQ_F1 | CV_BQ_PDF1 | CV_BQ_GATE1;
-    }
 }
 
 bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvBsdfQuery q,

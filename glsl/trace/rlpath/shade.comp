@@ -126,37 +126,22 @@ float cv_strategy_pdf(CvStrategy g, vec3 wi, float bsdf_pdf)
     return cv_rl_mix_pdf(g.m, (1.0 - g.pd) * pl * float(cv_rl_bins()) / (4.0 * CV_RL_PI), bsdf_pdf);
 }
 
-// One-sample mixture: u_bsdf.x picks the strategy and, rescaled, drives
-// it. The guide can only stand in for the BSDF's non-delta part: a guided
-// draw first lets the BSDF pick its lobe (by u_bc.x alone, as a BSDF draw
-// does) and keeps a delta lobe it picks. So a delta lobe is taken with the
+// One-sample mixture (guides.glsl: cv_rl_mixture_ask). The guide can only
+// stand in for the BSDF's non-delta part: a delta lobe is taken with the
 // BSDF's own probability whatever m, and a direction of the rest has
 // density m (1 - pd) pq + (1 - m) p_bsdf: every lobe is sampled for any m
 // in [0, 1]. The guided direction is drawn here, before the vertex's one
 // BSDF query (cv_bsdf_query), which returns f and pdf there (wi1).
 void cv_strategy_ask(inout CvStrategy g, CvBsdf b, vec3 wo, vec2 u_bc, vec2 u_bsdf, inout CvBsdfQuery q)
 {
-    float m = g.m;
-    g.guided = m > 0.0 && u_bsdf.x < m;
     g.pq = 0.0;
-    q.uc = u_bc.x;
-    q.u = m > 0.0 ? vec2(min((g.guided ? u_bsdf.x : u_bsdf.x - m) / (g.guided ? m : 1.0 - m),
-                             CV_ONE_MINUS_EPS),
-                         u_bsdf.y)
-                  : u_bsdf;
-    if (!g.guided)
-        q.ask |= CV_BQ_SAMPLE;
-    else if (g.pd > 0.0)
-        q.ask |= CV_BQ_SAMPLE | CV_BQ_DELTA_ONLY;   // only a delta lobe it picks is kept
-    if (g.guided) {
+    g.guided = cv_rl_mixture_ask(g.m, g.pd, u_bc, u_bsdf, q);
+    if (g.guided)
         // the bin drawn, not the bin of the direction looked up again:
         // rounding may put a direction on a bin's edge across it, a set of
         // measure zero where either density serves (and a round of loads
         // less)
         g.wbin = cv_rl_sample_key(g.kk, q.u, q.wi1, g.pq);
-        // a direction f is 0 at ends the path: its pdf is not needed
-        q.ask |= CV_BQ_F1 | CV_BQ_PDF1 | CV_BQ_GATE1;
-    }
 }
 
 bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvBsdfQuery q,
