@@ -111,6 +111,7 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_mix = p->rl_mix;
     rp.rl_guide_indirect = p->rl_guide_indirect;
     rp.rl_train = p->rl_train;
+    rp.spp = p->spp;
     rp.paths_per_pixel = p->paths_per_pixel;
     rp.stage_times = p->knobs.stage_times;
     rp.bdpt_slots = p->knobs.bdpt_slots;

@@ -431,6 +431,7 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_mix = job->rlpath.has_mix ? job->rlpath.mix : -1.0f,   /* negative: the default */
         .rl_guide_indirect = job->rlpath.guide == CV_RL_GUIDE_INDIRECT,
         .rl_train = job->rlpath.train == 0 ? CV_RL_TRAIN_ALWAYS : job->rlpath.train,
+        .spp = plan->spp,
         .rl_sdtree = job->rlpath.method == CV_RL_METHOD_SDTREE,
         .rl_sd_filter_set = job->rlpath.has_filter,
         .rl_sd_filter = job->rlpath.filter,   /* the values are the bits */

@@ -120,7 +120,8 @@ struct cv_integrator_ops {
      * training pay for learning"). May be NULL (none); otherwise whether
      * a job with params p has such passes, asked before the integrator
      * exists (its programs are requested with the others): false where it
-     * learns in every pass, so that no build is started that no pass
+     * learns in every pass, or where the job's samples (p->spp) end
+     * within its learning, so that no build is started that no pass
      * uses. */
     bool (*frozen_programs)(const struct cv_render_params *p);
     /* May be NULL: after each pass that learned, with the samples per pixel

@@ -46,6 +46,13 @@ struct cv_render_params {
      * guide is frozen (0: CV_RL_DEFAULT_TRAIN; CV_RL_TRAIN_ALWAYS: every
      * pass) */
     uint32_t rl_train;
+    /* Samples per pixel the job will render, 0 where not known (a render
+     * run pass by pass until someone stops it). Read before the render
+     * starts: an integrator that learns for a number of samples builds no
+     * program for the passes after learning where the job ends within it
+     * (trace/integrator.h: frozen_programs). Passes past it still render
+     * right, with the learning programs, which then do not learn. */
+    uint32_t spp;
     /* rlpath: learn Müller et al.'s spatial-directional trees
      * (rlpath.method: sdtree, trace/rlpath_sd.h) instead of the Q-table */
     bool rl_sdtree;

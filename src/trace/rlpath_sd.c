@@ -390,10 +390,12 @@ static void ops_set_learning(void *state, bool learning)
     cv_rlpath_sd_set_learning(state, learning);
 }
 
-/* training that never ends (rlpath.train: 0) leaves no pass to freeze */
+/* training that never ends (rlpath.train: 0), or a job that ends within
+ * it, leaves no pass to freeze */
 static bool ops_frozen_programs(const struct cv_render_params *p)
 {
-    return cv_rlpath_train_spp(p->rl_train) != 0;
+    uint32_t train = cv_rlpath_train_spp(p->rl_train);
+    return train != 0 && (p->spp == 0 || p->spp > train);
 }
 
 static bool ops_pass_done(void *state, uint32_t spp_done, struct cv_error *err)

@@ -7,8 +7,9 @@
  * a kernel its registers (bench/RESULTS.md, "What rlpath's passes after
  * training pay for learning"), so its absence is what the passes gain.
  * And a renderer asks the driver for those programs only where a pass will
- * run them: with rlpath.train 0 (learning in every pass) no build starts
- * that nothing uses; with the default training every one is got. */
+ * run them: with rlpath.train 0 (learning in every pass), or a job whose
+ * samples end within the training, no build starts that nothing uses;
+ * with the default training and more samples every one is got. */
 #include "config.h"
 
 #include "base/limits.h"
@@ -40,15 +41,17 @@ static int images_used(struct cv_gpu *gpu, const char *file, const char *const *
  * parameter), in passes, in a fresh context (no program known before):
  * the context's build totals after it (requested: builds started ahead;
  * unused: those never got). false where it did not render. */
-static bool requests(const struct cv_scene *s, uint32_t train, const uint32_t *passes,
-                     const char *what, struct cv_program_build_stats *st)
+static bool requests(const struct cv_scene *s, uint32_t train, uint32_t spp,
+                     const uint32_t *passes, const char *what,
+                     struct cv_program_build_stats *st)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
     struct cv_render_params p = {.sampler = CV_SAMPLER_INDEPENDENT,
                                  .integrator = CV_INTEGRATOR_RLPATH,
                                  .rl_sdtree = true,
                                  .rl_mix = -1,
-                                 .rl_train = train};
+                                 .rl_train = train,
+                                 .spp = spp};
     struct cv_error err = {{0}};
     struct test_image img = {0};
     bool ok = tap_ok(test_render(gpu, s, &p, passes, &img, &err), "%s: renders: %s", what,
@@ -69,20 +72,26 @@ int main(void)
                                     &lp, &s, &err),
                "load the room: %s", err.msg)) {
         /* the default training's passes after 16 spp get the frozen
-         * programs; with rlpath.train 0 none is requested, so the
-         * programs requested and never got (other stages' variants the
-         * scene does not need) are the same in both */
-        struct cv_program_build_stats always, trained;
-        if (requests(s, CV_RL_TRAIN_ALWAYS, (const uint32_t[]){1, 2, 4, 0}, "rlpath.train 0",
-                     &always) &&
-            requests(s, 0, (const uint32_t[]){16, 4, 0}, "the default training", &trained)) {
-            if (!always.parallel)
+         * programs; with rlpath.train 0, or a job of 16 spp (all within
+         * the default training), none is requested, so the programs
+         * requested and never got (other stages' variants the scene does
+         * not need) are the same in all three */
+        struct cv_program_build_stats always, trained, within;
+        if (requests(s, CV_RL_TRAIN_ALWAYS, 0, (const uint32_t[]){1, 2, 4, 0},
+                     "rlpath.train 0", &always) &&
+            requests(s, 0, 20, (const uint32_t[]){16, 4, 0}, "the default training", &trained) &&
+            requests(s, 0, 16, (const uint32_t[]){16, 0}, "a job of 16 spp", &within)) {
+            if (!always.parallel) {
                 tap_diag("no parallel compilation here: requests start no build");
-            else
+            } else {
                 tap_ok(always.unused == trained.unused && trained.requested > always.requested,
                        "rlpath.train 0 requests no program of the passes after training "
                        "(requested %u, unused %u; with the default training %u and %u)",
                        always.requested, always.unused, trained.requested, trained.unused);
+                tap_ok(within.unused == trained.unused && within.requested == always.requested,
+                       "a job that ends within the training requests none either "
+                       "(requested %u, unused %u)", within.requested, within.unused);
+            }
         }
         cv_scene_destroy(&s);
     }
