@@ -116,7 +116,7 @@
  * so the table still follows a changing estimate in a long render. */
 #define CV_RL_MAX_VISITS 1048576u
 /* Microfacet roughness (alpha) below which a conductor or dielectric is
- * sampled by its BSDF alone (rlpath/shade.comp: cv_rl_guides). */
+ * sampled by its BSDF alone (rlpath/guides.glsl: cv_rl_guides). */
 #define CV_RL_GLOSSY_ALPHA 0.5
 
 CV_STRUCT(CvRlParams) {

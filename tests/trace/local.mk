@@ -72,6 +72,9 @@ tests_trace_rlpath_sd_sample_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/rlpath_frozen_test
 TESTS += tests/trace/rlpath_frozen_test
 tests_trace_rlpath_frozen_test_LDADD = $(CV_LIBS)
+check_PROGRAMS += tests/trace/rlpath_unguided_test
+TESTS += tests/trace/rlpath_unguided_test
+tests_trace_rlpath_unguided_test_LDADD = $(CV_LIBS)
 # --- end of rlpath tests ---
 # --- HDR textures in float (issue 24, bug 5) ---
 check_PROGRAMS += tests/trace/hdr_envmap_test

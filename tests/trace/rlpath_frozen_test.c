@@ -9,11 +9,7 @@
  * And a renderer asks the driver for those programs only where a pass will
  * run them: with rlpath.train 0 (learning in every pass), or a job whose
  * samples end within the training, no build starts that nothing uses;
- * with the default training and more samples every one is got.
- * The coated walk's bin (trace/shade_bins.h), which sdtree does not guide,
- * is built for those passes without the guide's lookups: no read of its
- * tree (the learning build reads it to splat the records of the paths
- * that end there). */
+ * with the default training and more samples every one is got. */
 #include "config.h"
 
 #include "base/limits.h"
@@ -39,17 +35,6 @@ static int images_used(struct cv_gpu *gpu, const char *file, const char *const *
     for (int i = 0; i < N_IMAGES; i++)
         n += glGetProgramResourceIndex(p->id, GL_UNIFORM, learning_images[i]) != GL_INVALID_INDEX;
     return n;
-}
-
-/* Whether program `file` built with `defines` reads sdtree's table (-1: it
- * did not build). */
-static int reads_tree(struct cv_gpu *gpu, const char *file, const char *const *defines)
-{
-    struct cv_error err = {{0}};
-    struct cv_program *p = cv_program_get(gpu, file, defines, &err);
-    if (!tap_ok(p != NULL, "%s builds: %s", file, err.msg))
-        return -1;
-    return glGetProgramResourceIndex(p->id, GL_UNIFORM, "sd_tree") != GL_INVALID_INDEX;
 }
 
 /* Renders the room with sdtree, training for `train` (the render
@@ -133,15 +118,6 @@ int main(void)
     tap_ok(n > 0, "escaped.comp with CV_RLPATH_SD uses learning images (%d)", n);
     n = images_used(gpu, "trace/escaped.comp", stage_frozen);
     tap_ok(n == 0, "escaped.comp as the passes after training build it uses none (%d)", n);
-    /* the coated walk's bin: a scene of coated diffuse materials */
-#define WALK "CV_NO_ENV", "CV_NO_TEXTURES", "CV_NO_HAIR", "CV_NO_MEASURED", "CV_BSDF_WALK_ONLY"
-    const char *bin0[] = {WALK, "CV_SHADE_BIN=0", "CV_FROZEN", NULL};
-    const char *bin2[] = {WALK, "CV_SHADE_BIN=2", "CV_FROZEN", NULL};
-    n = reads_tree(gpu, sd, bin0);
-    tap_ok(n == 1, "sd_shade.comp after training, the diffuse bin: reads the guide's tree (%d)",
-           n);
-    n = reads_tree(gpu, sd, bin2);
-    tap_ok(n == 0, "sd_shade.comp after training, the coated walk's bin: does not (%d)", n);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

@@ -10,10 +10,17 @@
 // glossy lobes (conductors, dielectrics below CV_RL_GLOSSY_ALPHA) put their
 // value where it does not look, so guided directions there mostly carry
 // nothing. Their guiding weight is 0: BSDF sampling alone, as at a delta
-// lobe. The weight is a function of the hit, so the mixture pdf stays exact.
+// lobe. Nor does either method guide in the coated walk's bin
+// (trace/shade_bins.h: the materials that may take the layered walk, and
+// mixes holding them), whose build then holds none of the guide's lookups:
+// guiding there cost that kernel more time than it saved error
+// (bench/RESULTS.md, "sdtree without guiding the coated walk"). The
+// weight is a function of the hit, so the mixture pdf stays exact.
 bool cv_rl_guides(CvBsdf b)
 {
-#ifdef CV_BSDF_BASIC
+#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 2
+    return false;
+#elif defined(CV_BSDF_BASIC)
     return true;   // diffuse, or a mirror (delta: not guided anyway)
 #else
     uint t = CV_BSDF_TYPE(b);   // a constant in the diffuse build

@@ -9,11 +9,8 @@
 // (CV_STRATEGY_MIS_BSDF): they still sum to 1 for every direction, so the
 // estimator stays unbiased for any tree and any m in [0, 1], and the light
 // sample needs no walk of the quadtree. Delta lobes stay the BSDF's, glossy
-// ones too (guides.glsl), as in the Q-learning method (shade.comp). The
-// coated walk's bin (trace/shade_bins.h: materials that may take the walk)
-// is not guided either, and its build holds none of the guide's lookups:
-// guiding there doubled that kernel's time for a small gain a sample
-// (bench/RESULTS.md, "sdtree without guiding the coated walk").
+// ones too, and the coated walk's bin (guides.glsl), as in the
+// Q-learning method (shade.comp).
 // While the guide trains (u_sd.learn.x) each vertex records its bounce and
 // adds the emission it finds to the records of the bounces before it; a
 // path that ends splats its records into the statistics of the tree being
@@ -72,11 +69,7 @@ void cv_strategy_film(inout CvStrategy g, vec3 L) { g.Le = L; }
 
 void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool delta)
 {
-#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 2
-    g.eligible = false;   // the coated walk's bin (above)
-#else
     g.eligible = !delta && cv_rl_guides(b);
-#endif
     if (g.eligible) {
         // the normal on the side the path came from
         g.cls = cv_sd_class(dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns);
