@@ -118,6 +118,15 @@
 /* Microfacet roughness (alpha) below which a conductor or dielectric is
  * sampled by its BSDF alone (rlpath/guides.glsl: cv_rl_guides). */
 #define CV_RL_GLOSSY_ALPHA 0.5
+/* Which material types rlpath's guide may serve, for the shaders'
+ * cv_rl_guides (rlpath/guides.glsl) and the host's cv_shade_bins_guided
+ * (trace/shade_bins.c), which builds a bin without the guide where none of
+ * its materials is served: diffuse-like lobes always; conductors and
+ * dielectrics where rough (CV_RL_GLOSSY_ALPHA). */
+#define CV_RL_DIFFUSE_LIKE(t)                                                          \
+    ((t) == CV_MAT_DIFFUSE || (t) == CV_MAT_COATED_DIFFUSE ||                          \
+     (t) == CV_MAT_DIFFUSE_TRANSMISSION || (t) == CV_MAT_PLASTIC)
+#define CV_RL_GUIDED_WHERE_ROUGH(t) ((t) == CV_MAT_CONDUCTOR || (t) == CV_MAT_DIELECTRIC)
 
 CV_STRUCT(CvRlParams) {
     cv_vec4 grid_min;      /* xyz: grid origin (world); w: mixture weight of guiding */

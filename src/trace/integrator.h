@@ -86,6 +86,10 @@ struct cv_integrator_ops {
      * 0: every bin. A program of bin 1 or 2 alone is built and run only
      * for scenes whose materials (or, for bin 1, media) use its bin. */
     uint32_t bins[CV_SHADE_PROGRAMS];
+    /* rlpath's methods: the shade programs of bins whose materials the
+     * guide never serves are built with CV_RL_UNGUIDED, without its
+     * lookups (trace/shade_bins.h: cv_shade_bins_guided) */
+    bool guides;
     /* The remaining operations may be NULL: no state of its own. create
      * makes the state (its buffers and programs) and fills the shade
      * programs that file leaves out; bind binds its buffers after the

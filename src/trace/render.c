@@ -384,8 +384,9 @@ struct stage_programs {
     const char *escaped[CV_SCENE_DEFINES_MAX + 3];
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
     /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
-     * CV_NO_TEXTURES and CV_BSDF_WALK_ONLY where they apply) */
-    const char *shade[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 5];
+     * CV_NO_TEXTURES, CV_BSDF_WALK_ONLY and CV_RL_UNGUIDED where they
+     * apply) */
+    const char *shade[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 6];
     char stride[32];  /* CV_MATTE_STRIDE=N */
     const char *matte[CV_SCENE_DEFINES_MAX + 3];
     const char *resolve[CV_SCENE_DEFINES_MAX + 4];
@@ -400,7 +401,7 @@ struct stage_programs {
      * stage (NULL: the stage's own program): the shade programs' defines
      * plus CV_FROZEN, the escaped stage's without the integrator's */
     const char *const *frozen[ST_COUNT];
-    const char *shade_frozen[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 6];
+    const char *shade_frozen[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 7];
     const char *escaped_frozen[CV_SCENE_DEFINES_MAX + 2];
 };
 
@@ -463,9 +464,10 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * subsurface probes are bin 1's);
      * the coated walk's without the closed-form coat where none of its
      * materials may take it; a bin's without the texture code where none
-     * of its materials reads a texture, and the walk's without the other
-     * materials' code where none of its materials is a mix
-     * (trace/shade_bins.h) */
+     * of its materials reads a texture, the walk's without the other
+     * materials' code where none of its materials is a mix, and a guided
+     * integrator's without the guide where it serves none of the bin's
+     * materials (trace/shade_bins.h) */
     uint32_t bins_used = 1u | gs->shade_bins | (ops->media && gs->has_media ? 2u : 0u) |
                          (gs->has_subsurface ? 2u : 0u);
     for (int k = 0; k < ops->n_shade; k++) {
@@ -477,6 +479,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         const char *walk_only = ops->bins[k] == 4u && gs->walk_only ? "CV_BSDF_WALK_ONLY" : NULL;
         ns = defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL,
                           walk_only);
+        bool unguided = ops->guides && ops->bins[k] && !(ops->bins[k] & gs->guided_bins);
+        ns = defines_plus(sp->shade[k], sp->shade[k], ns, unguided ? "CV_RL_UNGUIDED" : NULL,
+                          NULL);
         defines_plus(sp->shade_frozen[k], sp->shade[k], ns, "CV_FROZEN", NULL);
     }
     for (int s = 0; s < ST_COUNT; s++) {

@@ -429,6 +429,7 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .define = {"CV_SHADE_BIN=0", "CV_SHADE_BIN=1", "CV_SHADE_BIN=2"},
     .args = {CV_ARGS_HITS, CV_ARGS_HITS_B, CV_ARGS_HITS_C},
     .bins = {1u, 2u, 4u},
+    .guides = true,
     .create = ops_create,
     .bind = ops_bind,
     .destroy = ops_destroy,

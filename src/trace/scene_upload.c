@@ -280,6 +280,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     cv_shade_bins_features(s->materials, s->n_materials, &g->shade_bins, &g->walk_coat_closed);
     g->textured_bins = textured_bins(s, s->lights, s->n_lights);
     g->walk_only = cv_shade_bins_walk_only(s->materials, s->n_materials);
+    g->guided_bins = cv_shade_bins_guided(s->materials, s->n_materials);
     g->empty = s->n_triangles == 0 && s->n_curves == 0;
     g->has_curves = s->n_curves > 0;
     g->has_motion = s->n_motions > 0;

@@ -60,6 +60,8 @@ struct cv_scene_gpu {
     uint32_t textured_bins; /* bit b: shade bin b's kernel reads textures (a material's,
                              * trace/shade_bins.h, or a light's: then every bit) */
     bool walk_only; /* no mix in the coated walk's bin (trace/shade_bins.h: CV_BSDF_WALK_ONLY) */
+    uint32_t guided_bins; /* bit b: a material of shade bin b that rlpath's guide may serve
+                             (trace/shade_bins.h: cv_shade_bins_guided) */
     GLuint measured;  /* the measured BRDFs' tables (glsl/shared/measured.h), or 0 */
     GLuint measured_tex; /* that buffer as an r32ui buffer texture (CV_TEXUNIT_MEASURED) */
     bool has_measured; /* some material is measured (else CV_NO_MEASURED) */

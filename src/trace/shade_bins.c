@@ -1,6 +1,8 @@
 /* shade_bins.c: see shade_bins.h. */
 #include "trace/shade_bins.h"
 
+#include "glsl/shared/rlpath.h"
+
 /* A coated diffuse takes the closed form where the host allowed it and
  * its coat is smooth enough (bsdf.glsl: cv_bsdf_at); with a textured
  * roughness only the shader knows, so it may walk. */
@@ -72,6 +74,31 @@ uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n)
     uint32_t bins = 0;
     for (uint32_t i = 0; i < n; i++)
         if (reads_texture(ms, n, (int32_t)i, 0))
+            bins |= 1u << cv_shade_bin(ms, n, i);
+    return bins;
+}
+
+/* Whether rlpath's guide may serve material i (see cv_shade_bins_guided). */
+static bool may_guide(const CvMaterial *ms, uint32_t n, int32_t i, int depth)
+{
+    if (i < 0 || (uint32_t)i >= n)
+        return false;
+    const CvMaterial *m = &ms[i];
+    if (CV_RL_DIFFUSE_LIKE(m->type))
+        return true;
+    if (CV_RL_GUIDED_WHERE_ROUGH(m->type))
+        return m->roughness_u_tex >= 0 || m->roughness_v_tex >= 0 ||
+               (m->roughness.x >= CV_RL_GLOSSY_ALPHA && m->roughness.y >= CV_RL_GLOSSY_ALPHA);
+    if (m->type != CV_MAT_MIX || depth >= MIX_DEPTH)
+        return false;
+    return may_guide(ms, n, m->mix_a, depth + 1) || may_guide(ms, n, m->mix_b, depth + 1);
+}
+
+uint32_t cv_shade_bins_guided(const CvMaterial *ms, uint32_t n)
+{
+    uint32_t bins = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (may_guide(ms, n, (int32_t)i, 0))
             bins |= 1u << cv_shade_bin(ms, n, i);
     return bins;
 }

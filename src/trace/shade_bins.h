@@ -39,6 +39,15 @@ void cv_shade_bins_features(const CvMaterial *ms, uint32_t n, uint32_t *bins, bo
  * part of the coated walk's build. */
 uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n);
 
+/* The bins (bit b for bin b) holding a material of a type rlpath's guide
+ * may serve (glsl/shared/rlpath.h: CV_RL_DIFFUSE_LIKE, and
+ * CV_RL_GUIDED_WHERE_ROUGH where rough or of textured roughness; a mix as
+ * its components). A bin outside the mask is built with CV_RL_UNGUIDED,
+ * without the guide's lookups, which cost its kernel registers even where
+ * they never run (trace/render.c). (The coated walk's bin is never guided
+ * whatever its materials: rlpath/guides.glsl, cv_rl_guides.) */
+uint32_t cv_shade_bins_guided(const CvMaterial *ms, uint32_t n);
+
 /* Whether no material of bin 2 is a mix: then its kernel only ever shades
  * a coated diffuse or a coated conductor, and is built with
  * CV_BSDF_WALK_ONLY (glsl/trace/bsdf/bsdf.glsl; trace/render.c) without

@@ -1,7 +1,9 @@
 /* rlpath_unguided_test.c: neither rlpath method guides in the coated
  * walk's shade bin (trace/shade_bins.h; glsl/trace/rlpath/guides.glsl:
- * cv_rl_guides), on the GLSL that ships: that bin's programs read none of
- * the guide's tables, which the diffuse bin's read. A guide's lookups cost
+ * cv_rl_guides), nor in a bin built with CV_RL_UNGUIDED (where the host
+ * finds none of its materials served: cv_shade_bins_guided), on the GLSL
+ * that ships: those programs read none of the guide's tables, which the
+ * diffuse bin's and the other materials' bin's read. A guide's lookups cost
  * a kernel its registers whether they run or not, and the coated walk's
  * kernel is the largest (bench/RESULTS.md, "sdtree without guiding the
  * coated walk"). sdtree's builds are those of the passes after training
@@ -37,10 +39,17 @@ int main(void)
     };
     for (int m = 0; m < 2; m++) {
         const char *bin0[] = {WALK, "CV_SHADE_BIN=0", methods[m].extra, NULL};
+        const char *bin1[] = {WALK, "CV_SHADE_BIN=1", methods[m].extra, NULL};
+        const char *bin1_unguided[] = {WALK, "CV_SHADE_BIN=1", "CV_RL_UNGUIDED",
+                                       methods[m].extra, NULL};
         const char *bin2[] = {WALK, "CV_SHADE_BIN=2", methods[m].extra, NULL};
         int n = reads(gpu, methods[m].file, bin0, methods[m].table);
         tap_ok(n == 1, "%s: the diffuse bin reads the guide's %s (%d)", methods[m].method,
                methods[m].table, n);
+        n = reads(gpu, methods[m].file, bin1, methods[m].table);
+        tap_ok(n == 1, "%s: so does bin 1 (%d)", methods[m].method, n);
+        n = reads(gpu, methods[m].file, bin1_unguided, methods[m].table);
+        tap_ok(n == 0, "%s: bin 1 with CV_RL_UNGUIDED does not (%d)", methods[m].method, n);
         n = reads(gpu, methods[m].file, bin2, methods[m].table);
         tap_ok(n == 0, "%s: the coated walk's bin does not (%d)", methods[m].method, n);
     }

@@ -5,11 +5,13 @@
  * features that decide whether the bin-2 program is built; which
  * bins' kernels read textures (the others are built without them); and
  * whether bin 2 holds a mix (else its kernel carries only the coated
- * materials' code). */
+ * materials' code); and which bins hold a material rlpath's guide may
+ * serve (the others are built without the guide). */
 #include <string.h>
 
 #include "base/mem.h"
 #include "tests/tap.h"
+#include "glsl/shared/rlpath.h"
 #include "trace/shade_bins.h"
 
 static CvMaterial mat(uint32_t type)
@@ -109,5 +111,38 @@ int main(void)
            "every type, a mix of diffuse (bin 1) but none in bin 2: walk-only");
     tap_ok(!cv_shade_bins_walk_only(am, 2), "a mix of two coated conductors: not walk-only");
     tap_ok(cv_shade_bins_walk_only(ms, 0), "no material: walk-only (bin 2 unused)");
+
+    /* guided: diffuse-like types, conductors and dielectrics where rough */
+    enum { G_SMOOTH, G_GLASS, G_ROUGH, G_HALF, G_TEX, G_DIFF, G_MIX, G_CLOSED, G_HAIR, G_N };
+    CvMaterial gs[G_N];
+    gs[G_SMOOTH] = mat(CV_MAT_CONDUCTOR);
+    gs[G_SMOOTH].roughness.x = gs[G_SMOOTH].roughness.y = 0.1f;
+    gs[G_GLASS] = mat(CV_MAT_DIELECTRIC);
+    gs[G_ROUGH] = mat(CV_MAT_CONDUCTOR);
+    gs[G_ROUGH].roughness.x = gs[G_ROUGH].roughness.y = CV_RL_GLOSSY_ALPHA;
+    gs[G_HALF] = gs[G_ROUGH];
+    gs[G_HALF].roughness.y = 0.1f;   /* rough along one axis only */
+    gs[G_TEX] = gs[G_SMOOTH];
+    gs[G_TEX].roughness_u_tex = 0;
+    gs[G_DIFF] = mat(CV_MAT_DIFFUSE);
+    gs[G_MIX] = mat(CV_MAT_MIX);
+    gs[G_MIX].mix_a = 0;   /* (in gx below) */
+    gs[G_MIX].mix_b = 1;
+    gs[G_CLOSED] = ms[CLOSED];
+    gs[G_HAIR] = mat(CV_MAT_HAIR);
+    tap_ok(cv_shade_bins_guided(gs, 2) == 0u,
+           "a glossy conductor and smooth glass: no bin the guide serves");
+    tap_ok(cv_shade_bins_guided(gs + G_HAIR, 1) == 0u, "hair: none");
+    tap_ok(cv_shade_bins_guided(gs + G_ROUGH, 1) == 2u, "a rough conductor: bin 1");
+    tap_ok(cv_shade_bins_guided(gs + G_HALF, 1) == 0u, "rough along one axis only: none");
+    tap_ok(cv_shade_bins_guided(gs + G_TEX, 1) == 2u, "a textured roughness may be rough: bin 1");
+    tap_ok(cv_shade_bins_guided(gs + G_DIFF, 1) == 1u, "diffuse: bin 0");
+    CvMaterial gx[3] = {gs[G_GLASS], gs[G_DIFF], gs[G_MIX]};
+    tap_ok(cv_shade_bins_guided(gx, 2) == 1u && cv_shade_bins_guided(gx, 3) == 3u,
+           "glass and diffuse: bin 0; with a mix of the two: bin 1 too (the mix's)");
+    tap_ok(cv_shade_bins_guided(gs + G_CLOSED, 1) == 2u,
+           "a closed-form coated diffuse (diffuse-like): bin 1");
+    tap_ok(cv_shade_bins_guided(ms + WALK_DIFF, 2) == 4u,
+           "coated diffuse that walks: bin 2 by type (its kernel never guides: guides.glsl)");
     return tap_done();
 }

@@ -3,7 +3,7 @@
 #ifndef CV_RLPATH_GUIDES_GLSL
 #define CV_RLPATH_GUIDES_GLSL
 
-#include "shared/rlpath.h"   // CV_RL_GLOSSY_ALPHA
+#include "shared/rlpath.h"   // the types served, CV_RL_GLOSSY_ALPHA
 
 // Whether the learned distribution (incident radiance) suits
 // this BSDF: it stands for the reflected integrand of a diffuse lobe, and
@@ -12,26 +12,26 @@
 // nothing. Their guiding weight is 0: BSDF sampling alone, as at a delta
 // lobe. Nor does either method guide in the coated walk's bin
 // (trace/shade_bins.h: the materials that may take the layered walk, and
-// mixes holding them), whose build then holds none of the guide's lookups:
-// guiding there cost that kernel more time than it saved error
-// (bench/RESULTS.md, "sdtree without guiding the coated walk"). The
-// weight is a function of the hit, so the mixture pdf stays exact.
+// mixes holding them): guiding there cost that kernel more time than it
+// saved error (bench/RESULTS.md, "sdtree without guiding the coated
+// walk"). Nor in a bin none of whose materials is of a type served
+// (CV_RL_UNGUIDED, as the host finds: trace/shade_bins.h,
+// cv_shade_bins_guided). Either way the bin's build holds none of the
+// guide's lookups. The weight is a function of the hit, so the mixture pdf
+// stays exact.
 bool cv_rl_guides(CvBsdf b)
 {
-#if defined(CV_SHADE_BIN) && CV_SHADE_BIN == 2
+#if defined(CV_RL_UNGUIDED) || (defined(CV_SHADE_BIN) && CV_SHADE_BIN == 2)
     return false;
 #elif defined(CV_BSDF_BASIC)
     return true;   // diffuse, or a mirror (delta: not guided anyway)
 #else
     uint t = CV_BSDF_TYPE(b);   // a constant in the diffuse build
-    if (t == CV_MAT_DIFFUSE || t == CV_MAT_COATED_DIFFUSE ||
-        t == CV_MAT_DIFFUSE_TRANSMISSION || t == CV_MAT_PLASTIC)
+    if (CV_RL_DIFFUSE_LIKE(t))
         return true;
-    if (t == CV_MAT_CONDUCTOR || t == CV_MAT_DIELECTRIC)
+    if (CV_RL_GUIDED_WHERE_ROUGH(t))
         return min(b.alpha.x, b.alpha.y) >= CV_RL_GLOSSY_ALPHA;
-    if (t == CV_MAT_COATED_CONDUCTOR)
-        return min(min(b.alpha.x, b.alpha.y), min(b.alpha.z, b.alpha.w)) >= CV_RL_GLOSSY_ALPHA;
-    return false;
+    return false;   // (a coated conductor: the coated walk's bin)
 #endif
 }
 
