@@ -69,13 +69,23 @@ static bool reads_texture(const CvMaterial *ms, uint32_t n, int32_t i, int depth
            reads_texture(ms, n, m->mix_b, depth + 1);
 }
 
-uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n)
+/* A material's property, a mix's from its components (depth: the mix
+ * nesting so far). */
+typedef bool material_test(const CvMaterial *ms, uint32_t n, int32_t i, int depth);
+
+/* The bins (bit b for bin b) of the materials that pass test. */
+static uint32_t bins_where(const CvMaterial *ms, uint32_t n, material_test *test)
 {
     uint32_t bins = 0;
     for (uint32_t i = 0; i < n; i++)
-        if (reads_texture(ms, n, (int32_t)i, 0))
+        if (test(ms, n, (int32_t)i, 0))
             bins |= 1u << cv_shade_bin(ms, n, i);
     return bins;
+}
+
+uint32_t cv_shade_bins_textured(const CvMaterial *ms, uint32_t n)
+{
+    return bins_where(ms, n, reads_texture);
 }
 
 /* Whether rlpath's guide may serve material i (see cv_shade_bins_guided). */
@@ -96,11 +106,7 @@ static bool may_guide(const CvMaterial *ms, uint32_t n, int32_t i, int depth)
 
 uint32_t cv_shade_bins_guided(const CvMaterial *ms, uint32_t n)
 {
-    uint32_t bins = 0;
-    for (uint32_t i = 0; i < n; i++)
-        if (may_guide(ms, n, (int32_t)i, 0))
-            bins |= 1u << cv_shade_bin(ms, n, i);
-    return bins;
+    return bins_where(ms, n, may_guide);
 }
 
 bool cv_shade_bins_walk_only(const CvMaterial *ms, uint32_t n)
