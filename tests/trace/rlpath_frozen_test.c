@@ -27,14 +27,7 @@ static const char *const learning_images[] = {"sd_verts", "sd_counts", "sd_stats
  * uses (-1: it did not build). */
 static int images_used(struct cv_gpu *gpu, const char *file, const char *const *defines)
 {
-    struct cv_error err = {{0}};
-    struct cv_program *p = cv_program_get(gpu, file, defines, &err);
-    if (!tap_ok(p != NULL, "%s builds: %s", file, err.msg))
-        return -1;
-    int n = 0;
-    for (int i = 0; i < N_IMAGES; i++)
-        n += glGetProgramResourceIndex(p->id, GL_UNIFORM, learning_images[i]) != GL_INVALID_INDEX;
-    return n;
+    return test_uniforms_read(gpu, file, defines, learning_images, N_IMAGES);
 }
 
 /* Renders the room with sdtree, training for `train` (the render

@@ -14,16 +14,12 @@
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
 
-/* Whether program `file` built with `defines` declares the uniform `name`
- * after linking, which drops what no code reads (-1: it did not build). */
+/* Whether program `file` built with `defines` reads the uniform `name`
+ * (-1: it did not build). */
 static int reads(struct cv_gpu *gpu, const char *file, const char *const *defines,
                  const char *name)
 {
-    struct cv_error err = {{0}};
-    struct cv_program *p = cv_program_get(gpu, file, defines, &err);
-    if (!tap_ok(p != NULL, "%s builds: %s", file, err.msg))
-        return -1;
-    return glGetProgramResourceIndex(p->id, GL_UNIFORM, name) != GL_INVALID_INDEX;
+    return test_uniforms_read(gpu, file, defines, &name, 1);
 }
 
 int main(void)
