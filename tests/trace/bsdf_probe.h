@@ -132,8 +132,8 @@ static bool probe_run(struct probe *p, unsigned mode, unsigned material, const f
  * bits) per item; `in` holds 12 floats an item (wi0, 0 | wi1, 0 | uc, u,
  * 0), out gets 16 (f0, pdf0 | f1, pdf1 | wi, pdf | f, flags; flags -1: no
  * sample). */
-static bool probe_query(struct probe *p, unsigned material, const float wo[3], unsigned seed, unsigned ask,
-                        const float *in, size_t n, float *out, struct cv_error *err)
+static inline bool probe_query(struct probe *p, unsigned material, const float wo[3], unsigned seed, unsigned ask,
+                               const float *in, size_t n, float *out, struct cv_error *err)
 {
     if (!probe_reserve(&p->in, &p->cap_in, n * 12 * sizeof(float), err) ||
         !cv_buffer_upload(p->in, 0, n * 12 * sizeof(float), in, err))
