@@ -75,7 +75,7 @@ int main(int argc, char **argv)
         cv_sdtree_learn_records(g, rec, n, &cv_sdtree_defaults, NULL);
         float(*t)[4] = NULL;
         size_t nt = 0;
-        cv_sdtree_table(g, &t, &nt);
+        cv_sdtree_table(g, &cv_sdtree_defaults, &t, &nt);
         size_t words = cv_sdtree_stat_words(g);
         uint32_t *stats = cv_xcalloc(words, sizeof(*stats));
         struct cv_sd_frame f = cv_sdtree_frame(g, &cv_sdtree_defaults);
@@ -86,7 +86,7 @@ int main(int argc, char **argv)
         struct cv_sdtree_stats st;
         double t0 = cpu_seconds();
         cv_sdtree_refine(g, stats, &cv_sdtree_defaults, &st);
-        cv_sdtree_table(g, &t, &nt);
+        cv_sdtree_table(g, &cv_sdtree_defaults, &t, &nt);
         double dt = cpu_seconds() - t0;
         printf("records %zu: refine and table %.3f ms CPU, statistics read back %zu kB, "
                "%u spatial leaves, %u sampling and %u training quadtree nodes, depth %u, "

@@ -21,7 +21,9 @@
  *     y: inner: the split coordinate (world); leaf: 0;
  *     z: inner: the first child (the second follows: the half above y);
  *        leaf: the first of its CV_SD_CLASSES class texels;
- *     w: 0.
+ *     w: 0, but at the root (texel 0): L, the levels of the table's top
+ *        blocks (below; the host hands it to the shaders as CvSdParams
+ *        grid.y).
  *   class texel c of a leaf (c: the orientation class of the surface
  *   normal, on the side the path arrives from, as the Q-table's:
  *   2 * axis of its largest component, + 1 if negative; the surfaces of a
@@ -29,6 +31,26 @@
  *     x: the texel of the class's sampling quadtree root; y: its guiding
  *     weight (0: BSDF sampling alone); z: the texel of its training
  *     quadtree root; w: the class's first statistics word.
+ *   the top block of a sampling quadtree that guides (of a class of weight
+ *   above 0; the shaders walk no other): the 4^L texels just before its
+ *   root (texel root - 4^L + c for cell c), one for each cell of the grid
+ *   of 2^L cells a side that the quadtree's first L levels make of the
+ *   square (cell c = cx + 2^L cy, cx along u), so that sampling and the
+ *   density start with one or two fetches instead of a walk down those
+ *   levels (sdtree.glsl):
+ *     x: the density on the square over the cell, the product of 4 times
+ *        the quadrant's probability of each node above it (of the leaf
+ *        quadrant it lies in, where the quadtree ends above the cell);
+ *     y, z: its entry of the alias table (Walker) of the cells' masses
+ *        (x / 4^L): a draw that lands in the cell keeps it below y of the
+ *        way through, else takes cell z;
+ *     w: the texel of the quadtree's node whose square is the cell, where
+ *        the quadtree goes on below it (the walks go on from there), else 0.
+ *   The top block and the walk below its cells give each point the density
+ *   the walk from the root gives it. L is the deepest, up to
+ *   CV_SD_BLOCK_MAX_LOG2, whose blocks fit in CV_SD_BLOCK_MAX_TEXELS
+ *   (cv_sdtree_block_log2); at L = 0 a block is one cell that names the
+ *   root.
  *   sampling quadtree node at texel q (one texel: the walks of sampling
  *   and of the density load one texel per level):
  *     xyz: the probabilities of quadrants 0, 1, 2 (index ix + 2 iy, ix = u
@@ -131,6 +153,15 @@
 #define CV_SD_MAX_DEPTH 12u
 #define CV_SD_MAX_SPATIAL_DEPTH 48u
 
+/* Sampling quadtrees' top blocks (see above): the most levels one stands
+ * for, and the most texels the blocks of a table take (texel indices are
+ * floats, exact below 2^24). Deeper blocks replace more of the walks (the
+ * bright directions, which draws favour, are where the quadtrees go deep)
+ * but cost texels in proportion to 4^L for every quadtree that guides
+ * (bench/RESULTS.md, "sdtree's quadtrees with top blocks"). */
+#define CV_SD_BLOCK_MAX_LOG2 5u
+#define CV_SD_BLOCK_MAX_TEXELS (1u << 22)
+
 /* The grid block (see above): log2 of its cells an axis, its cells an
  * axis, its cell texels and all its texels. */
 #define CV_SD_GRID_LOG2 6u
@@ -156,7 +187,8 @@ CV_STRUCT(CvSdParams) {
     cv_vec4 cube;          /* the spatial tree's root cube: xyz its low
                               corner, w its side */
     cv_uvec4 grid;         /* x: the grid block's first texel in the table
-                              (its length less CV_SD_GRID_TEXELS); yzw: 0 */
+                              (its length less CV_SD_GRID_TEXELS); y: L, the
+                              levels of its top blocks; zw: 0 */
 } CV_END(CvSdParams)
 CV_CHECK_SIZE(CvSdParams, 48);
 

@@ -128,8 +128,9 @@ static bool guide_upload(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
     float(*t)[4] = NULL;
     size_t n = 0, words = cv_sdtree_stat_words(sd->guide);
-    cv_sdtree_table(sd->guide, &t, &n);
+    cv_sdtree_table(sd->guide, &sd->opts, &t, &n);
     sd->params.grid.x = (uint32_t)(n - CV_SD_GRID_TEXELS);
+    sd->params.grid.y = (uint32_t)t[0][3];   /* the top blocks' levels */
     glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
     bool ok = tree_reserve(sd, n, err) && cv_buffer_upload(sd->tree, 0, n * 16, t, err) &&
               stats_reserve(sd, words, err);
@@ -193,6 +194,11 @@ uint32_t cv_rlpath_sd_learn_until(const struct cv_rlpath_sd *sd)
     if (sd->train && sd->start >= sd->train)
         return sd->train;
     return sd->end;
+}
+
+void cv_rlpath_sd_set_block_log2(struct cv_rlpath_sd *sd, uint32_t levels)
+{
+    sd->opts.block_log2 = levels;
 }
 
 void cv_rlpath_sd_set_filter(struct cv_rlpath_sd *sd, uint32_t filter)

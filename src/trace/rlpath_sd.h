@@ -38,6 +38,11 @@ void cv_rlpath_sd_set_learning(struct cv_rlpath_sd *sd, bool learning);
  * cv_sdtree_defaults.filter). */
 void cv_rlpath_sd_set_filter(struct cv_rlpath_sd *sd, uint32_t filter);
 
+/* The most levels of the top blocks of the tables uploaded from now on
+ * (cv_sdtree_opts.block_log2): tests, for the fewer levels a table with
+ * many quadtrees that guide gets. */
+void cv_rlpath_sd_set_block_log2(struct cv_rlpath_sd *sd, uint32_t levels);
+
 /* After a pass that ends with spp_done samples per pixel: at the end of a
  * training iteration, reads the statistics the shaders splatted back,
  * refines the guide and uploads it. Waits for the GPU: once per training

@@ -18,6 +18,9 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
      * (bench/RESULTS.md, "sdtree guide") */
     .min_split = 64,
     .max_depth = CV_SD_MAX_DEPTH,
+    /* the deepest measured, the fastest (bench/RESULTS.md, "sdtree's
+     * quadtrees with top blocks") */
+    .block_log2 = CV_SD_BLOCK_MAX_LOG2,
     .floor = 0.3f,
     .min_records = 32,
     /* no filter: neither box filter lowered the room's error, and each
@@ -205,13 +208,107 @@ static void grid_cells(const struct cv_sdtree *t, float *cells, uint32_t node, u
 /* Sampling nodes' children offsets stay below this (shared/sdtree.h). */
 #define CHILD_OFFSET_LIMIT (1u << 20)
 
-void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels)
+uint32_t cv_sdtree_block_log2(size_t roots, uint32_t max)
+{
+    uint32_t l = max < CV_SD_BLOCK_MAX_LOG2 ? max : CV_SD_BLOCK_MAX_LOG2;
+    while (l > 0 && roots > CV_SD_BLOCK_MAX_TEXELS >> (2 * l))
+        l--;
+    return l;
+}
+
+/* Fills the cells of a top block b of 2^l cells a side under the square
+ * of sampling node q (table x) at depth d, corner (cx, cy) in cells, the
+ * density pdf above it: each cell's density as the shaders' walk
+ * multiplies it (float, level by level) and the node at the cell. */
+static void block_cells(const float (*x)[4], float (*b)[4], uint32_t l, uint32_t q, uint32_t d,
+                        uint32_t cx, uint32_t cy, float pdf)
+{
+    uint32_t side = 1u << l;
+    if (d == l) {
+        b[cx + side * cy][0] = pdf;
+        b[cx + side * cy][3] = (float)q;
+        return;
+    }
+    float p[4];
+    uint32_t ch[4], half = 1u << (l - d - 1);
+    cv_sdtree_node(x, q, p, ch);
+    for (uint32_t k = 0; k < 4; k++) {
+        uint32_t x0 = cx + (k & 1u) * half, y0 = cy + (k >> 1) * half;
+        float pk = pdf * (4.0f * p[k]);
+        if (ch[k]) {
+            block_cells(x, b, l, ch[k], d + 1, x0, y0, pk);
+            continue;
+        }
+        for (uint32_t j = 0; j < half; j++)   /* a leaf quadrant: its cells alike */
+            for (uint32_t i = 0; i < half; i++) {
+                b[x0 + i + side * (y0 + j)][0] = pk;
+                b[x0 + i + side * (y0 + j)][3] = 0.0f;
+            }
+    }
+}
+
+/* The top block of l levels of the sampling quadtree at texel root of
+ * table x (its nodes written), in the texels before it (shared/sdtree.h):
+ * the cells, then Walker's alias table of their masses (Vose's
+ * construction, in double). */
+static void top_block(float (*x)[4], uint32_t root, uint32_t l)
+{
+    enum { MAX = 1u << (2 * CV_SD_BLOCK_MAX_LOG2) };
+    uint32_t n = 1u << (2 * l);
+    float(*b)[4] = x + root - n;
+    block_cells((const float(*)[4])x, b, l, root, 0, 0, 0, 1.0f);
+    double prob[MAX], sum = 0;
+    for (uint32_t c = 0; c < n; c++)
+        sum += b[c][0];
+    uint32_t small[MAX], large[MAX], ns = 0, nl = 0;
+    for (uint32_t c = 0; c < n; c++) {
+        prob[c] = sum > 0 ? b[c][0] * n / sum : 1.0;
+        if (prob[c] < 1.0)
+            small[ns++] = c;
+        else
+            large[nl++] = c;
+    }
+    while (ns && nl) {
+        uint32_t s = small[--ns], g = large[nl - 1];
+        b[s][1] = (float)prob[s];
+        b[s][2] = (float)g;
+        prob[g] -= 1.0 - prob[s];
+        if (prob[g] < 1.0) {
+            nl--;
+            small[ns++] = g;
+        }
+    }
+    /* what is left holds its own mass (up to rounding) */
+    while (nl) {
+        uint32_t g = large[--nl];
+        b[g][1] = 1.0f;
+        b[g][2] = (float)g;
+    }
+    while (ns) {
+        uint32_t s = small[--ns];
+        b[s][1] = 1.0f;
+        b[s][2] = (float)s;
+    }
+}
+
+void cv_sdtree_table(const struct cv_sdtree *t, const struct cv_sdtree_opts *o,
+                     float (**texels)[4], size_t *n_texels)
 {
     /* spatial nodes, class texels, sampling nodes (one texel each, each
-     * node's children consecutive: breadth first from every root), training
-     * nodes (two texels each), the grid block */
+     * node's children consecutive: breadth first from every root, the top
+     * block of one that guides before it), training nodes (two texels
+     * each), the grid block */
     size_t sbase = t->ns + t->nc;
     uint32_t *pos = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*pos));
+    /* the quadtrees that guide take a top block: the shaders never walk
+     * the others (weight 0), and the blocks' texels cost cache */
+    uint8_t *guides = cv_xcalloc(t->nq ? t->nq : 1, 1);
+    size_t roots = 0;
+    for (size_t i = 0; i < t->nc; i++) {
+        roots += t->c[i].weight > 0 && !guides[t->c[i].samp];
+        guides[t->c[i].samp] |= t->c[i].weight > 0;
+    }
+    uint32_t l = cv_sdtree_block_log2(roots, o->block_log2), cells = 1u << (2 * l);
     uint32_t *queue = cv_xmalloc((t->nq ? t->nq : 1) * sizeof(*queue));
     for (size_t j = 0; j < t->nq; j++)
         pos[j] = NONE;
@@ -221,6 +318,7 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
         if (pos[r] != NONE)
             continue;   /* shared by the leaves a split made */
         size_t head = 0, tail = 0;
+        next += guides[r] ? cells : 0;
         pos[r] = (uint32_t)next++;
         queue[tail++] = r;
         while (head < tail) {
@@ -236,6 +334,7 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
     }
     size_t tbase = next, gbase = tbase + 2 * t->nt, nt = gbase + CV_SD_GRID_TEXELS;
     float(*x)[4] = cv_xcalloc(nt, sizeof(*x));
+    x[0][3] = (float)l;   /* the root's w (shared/sdtree.h) */
     for (size_t i = 0; i < t->ns; i++) {
         const struct snode *s = &t->s[i];
         x[i][0] = (float)s->axis;
@@ -273,6 +372,13 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
             mask = 0;
         a[3] = (float)(mask ? 16u * (first - pos[j]) + mask : 0u);
     }
+    for (size_t i = 0; i < t->nc; i++) {
+        uint32_t r = t->c[i].samp;
+        if (pos[r] != NONE && guides[r]) {
+            top_block(x, pos[r], l);
+            pos[r] = NONE;   /* once for the leaves that share it */
+        }
+    }
     for (size_t j = 0; j < t->nt; j++) {
         float *ch = x[tbase + 2 * j];
         for (int k = 0; k < 4; k++)
@@ -288,6 +394,7 @@ void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_t
     grid_cells(t, &x[gbase + 3 * CV_SD_GRID_CELLS][0], 0, 0, c0, c1);
     free(pos);
     free(queue);
+    free(guides);
     *texels = x;
     *n_texels = nt;
 }
@@ -716,7 +823,7 @@ void cv_sdtree_learn_iteration(struct cv_sdtree *t, const struct cv_sd_record *r
 {
     float(*x)[4] = NULL;
     size_t nx = 0;
-    cv_sdtree_table(t, &x, &nx);
+    cv_sdtree_table(t, o, &x, &nx);
     uint32_t *stats = cv_xcalloc(cv_sdtree_stat_words(t) + 1, sizeof(*stats));
     struct cv_sd_frame f = cv_sdtree_frame(t, o);
     for (size_t i = 0; i < n; i++)
@@ -753,7 +860,7 @@ void cv_sdtree_build(const float bmin[3], const float bmax[3], const struct cv_s
 {
     struct cv_sdtree *t = cv_sdtree_create(bmin, bmax);
     cv_sdtree_learn_records(t, rec, n, o, stats);
-    cv_sdtree_table(t, texels, n_texels);
+    cv_sdtree_table(t, o, texels, n_texels);
     cv_sdtree_destroy(&t);
 }
 

@@ -36,6 +36,9 @@ struct cv_sdtree_opts {
     float rho;              /* a quadrant splits above this share of its leaf's energy */
     uint32_t min_split;     /* ... and with at least this many records */
     uint32_t max_depth;     /* quadtree depth limit (<= CV_SD_MAX_DEPTH) */
+    /* the most levels of the tables' top blocks (<= CV_SD_BLOCK_MAX_LOG2;
+     * fewer where they would not fit: cv_sdtree_block_log2) */
+    uint32_t block_log2;
     float floor;            /* uniform share added to every leaf's distribution */
     uint32_t min_records;   /* a leaf's class guides with at least this many
                                records of positive radiance */
@@ -76,9 +79,17 @@ struct cv_sdtree *cv_sdtree_create(const float bmin[3], const float bmax[3]);
 /* Accepts NULL; clears the pointer. */
 void cv_sdtree_destroy(struct cv_sdtree **t);
 
-/* The table of the guide (glsl/shared/sdtree.h): *texels is allocated
- * (free it), *n_texels its length. */
-void cv_sdtree_table(const struct cv_sdtree *t, float (**texels)[4], size_t *n_texels);
+/* The table of the guide (glsl/shared/sdtree.h), its top blocks of at
+ * most o->block_log2 levels: *texels is allocated (free it), *n_texels its
+ * length. */
+void cv_sdtree_table(const struct cv_sdtree *t, const struct cv_sdtree_opts *o,
+                     float (**texels)[4], size_t *n_texels);
+
+/* The levels of the top blocks of a table whose sampling quadtrees that
+ * guide number `roots` (glsl/shared/sdtree.h): the most, up to max, whose
+ * blocks fit in CV_SD_BLOCK_MAX_TEXELS. The table holds it at its root's
+ * w. */
+uint32_t cv_sdtree_block_log2(size_t roots, uint32_t max);
 
 /* Sampling node q of a table (glsl/shared/sdtree.h): its quadrants'
  * probabilities, the fourth derived as the shaders derive it, and the

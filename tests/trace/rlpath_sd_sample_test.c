@@ -9,7 +9,9 @@
  * pdf (chi-square against the exact integral of the host's piecewise
  * constant density over each cell, p >= 0.01); the same for the one-sample
  * mixture with a Lambertian lobe as sd_shade.comp draws it (density m pQ +
- * (1 - m) pBSDF); the GPU's pdf on a grid of directions equals the host's.
+ * (1 - m) pBSDF); the guide's draws again with the quadtrees' top blocks
+ * of fewer levels (0, 2 and 4, as tables with many quadtrees that guide get
+ * them); the GPU's pdf on a grid of directions equals the host's.
  * The spatial lookup through the table's grid block and the GPU's full
  * descent name the leaf of the host's descent for random points inside
  * and outside the root cube, on the grid's planes and the tree's split
@@ -350,6 +352,107 @@ static void deep_test(struct rig *g)
     free(copy);
 }
 
+/* Draws N directions on the GPU in TEST_MODE mode (0: the guide, 1: the
+ * mixture) with seed, at the quadtree at texel root of the host's table t
+ * (weight m) that the uploaded guide must find, and checks them against
+ * the host's density (out: 8 floats a draw). */
+static void sample_test(struct rig *g, int mode, const float (*t)[4], uint32_t root, float m,
+                        const char *what, uint32_t seed, float *out)
+{
+    struct cv_error err = {{0}};
+    if (!tap_ok(run(g, mode, N, seed, out, &err), "%s: sample %u: %s", what, N, err.msg))
+        return;
+    double *obs = calloc((size_t)H * H, sizeof(double));
+    double *expc = calloc((size_t)H * H, sizeof(double));
+    uint32_t bad_len = 0, bad_pdf = 0, bad_ref = 0, bad_leaf = 0;
+    for (uint32_t i = 0; i < N; i++) {
+        const float *r = out + 8 * (size_t)i;
+        double w[3] = {r[0], r[1], r[2]}, u, v;
+        double len = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        bad_len += fabs(len - 1) > 1e-4;
+        square_of(w, &u, &v);
+        uint32_t cu = (uint32_t)(u * H), cv = (uint32_t)(v * H);
+        obs[(size_t)(cu < H ? cu : H - 1) * H + (cv < H ? cv : H - 1)] += 1;
+        double pq = cv_sdtree_pdf_square(t, root, u, v) / (4 * PI);
+        if (mode == 0) {
+            bad_pdf += fabs(r[3] - r[4]) > 1e-4 * r[4];
+            bad_ref += fabs(r[4] - pq) > 1e-3 * pq;
+            bad_leaf += r[5] != m || (uint32_t)r[6] != root;
+        } else {
+            double mix = m * r[4] + (1 - m) * r[5];
+            bad_pdf += fabs(r[3] - mix) > 1e-5 * mix;
+            bad_ref += fabs(r[4] - pq) > 1e-3 * pq || fabs(r[5] - lambert(w)) > 1e-4;
+        }
+    }
+    tap_ok(bad_len == 0, "%s: unit directions (%u not)", what, bad_len);
+    if (mode == 0) {
+        tap_ok(bad_leaf == 0, "%s: the lookup finds the host's leaf (texel %u) and "
+               "weight (%u differ)", what, root, bad_leaf);
+        tap_ok(bad_pdf <= N / 1000, "%s: pdf at sampling equals the pdf at w (%u of %u "
+               "differ, quadrant edges allowed: %u)", what, bad_pdf, N, N / 1000);
+    } else {
+        tap_ok(bad_pdf == 0, "%s: pdf m pQ + (1-m) pBSDF (%u differ)", what, bad_pdf);
+    }
+    tap_ok(bad_ref <= N / 1000, "%s: GPU pdfs equal the host's (%u of %u differ)", what,
+           bad_ref, N);
+    for (uint32_t a = 0; a < H; a++)
+        for (uint32_t b = 0; b < H; b++) {
+            double x0 = (double)a / H, y0 = (double)b / H;
+            double e = integrate_rect(t, root, 0, 0, 1, 1, x0, x0 + 1.0 / H,
+                                      y0, y0 + 1.0 / H);
+            if (mode) {
+                /* the lobe by an 8 x 8 midpoint rule per cell (smooth) */
+                double l = 0;
+                for (int i = 0; i < 8; i++)
+                    for (int j = 0; j < 8; j++) {
+                        double w[3];
+                        dir_of(x0 + (i + 0.5) / (8.0 * H), y0 + (j + 0.5) / (8.0 * H), w);
+                        l += lambert(w);
+                    }
+                l *= 4 * PI / (64.0 * H * H);
+                e = m * e + (1 - m) * l;
+            }
+            expc[(size_t)a * H + b] = N * e;
+        }
+    int dof = 0;
+    double pv = rl_chi2_pvalue(obs, expc, (size_t)H * H, &dof);
+    tap_ok(pv >= 0.01, "%s: chi-square over %ux%u cells: p = %.4f (dof %d) >= 0.01", what, H,
+           H, pv, dof);
+    free(obs);
+    free(expc);
+}
+
+/* The guide of records rec (weight mix) with top blocks of `levels`
+ * levels, as a table with many quadtrees that guide gets them: the host's
+ * table says so, and the GPU's draws at the test point agree with it. */
+static void levels_test(struct rig *g, uint32_t levels, const struct cv_sd_record *rec, size_t n,
+                        float mix, float *out)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    struct cv_sdtree_opts o = cv_sdtree_defaults;
+    o.mix = mix;
+    o.block_log2 = levels;
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    cv_sdtree_build(lo, hi, rec, n, &o, &t, &nt, NULL);
+    uint32_t leaf = cv_sdtree_leaf((const float(*)[4])t, point);
+    uint32_t key = (uint32_t)t[leaf][2] + 4;   /* +z */
+    char what[64];
+    snprintf(what, sizeof(what), "guide, top blocks of %u levels", levels);
+    tap_ok(t[0][3] == (float)levels, "%s: the table's root says %g", what, t[0][3]);
+    struct cv_error err = {{0}};
+    struct rig d = *g;
+    d.sd = NULL;
+    if (tap_ok(cv_rlpath_sd_create(g->gpu, lo, hi, 64, mix, 0, &d.sd, &err) &&
+                   (cv_rlpath_sd_set_block_log2(d.sd, levels), true) &&
+                   cv_rlpath_sd_build(d.sd, rec, n, &err),
+               "%s: create, build and upload: %s", what, err.msg))
+        sample_test(&d, 0, (const float(*)[4])t, (uint32_t)t[key][0], t[key][1], what, 21 + levels,
+                    out);
+    cv_rlpath_sd_destroy(&d.sd);
+    free(t);
+}
+
 int main(void)
 {
     struct cv_error err = {{0}};
@@ -382,70 +485,11 @@ int main(void)
     tap_ok(m == o.mix && t[key - 1][1] == 0, "the test point's leaf guides with the weight %g "
            "in the normal's class, not in another", m);
 
-    for (int mode = 0; mode <= 1; mode++) {
-        const char *what = mode ? "mixture" : "guide";
-        if (!tap_ok(run(&g, mode, N, 11 + mode, out, &err), "%s: sample %u: %s", what, N,
-                    err.msg))
-            continue;
-        double *obs = calloc((size_t)H * H, sizeof(double));
-        double *expc = calloc((size_t)H * H, sizeof(double));
-        uint32_t bad_len = 0, bad_pdf = 0, bad_ref = 0, bad_leaf = 0;
-        for (uint32_t i = 0; i < N; i++) {
-            const float *r = out + 8 * (size_t)i;
-            double w[3] = {r[0], r[1], r[2]}, u, v;
-            double len = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-            bad_len += fabs(len - 1) > 1e-4;
-            square_of(w, &u, &v);
-            uint32_t cu = (uint32_t)(u * H), cv = (uint32_t)(v * H);
-            obs[(size_t)(cu < H ? cu : H - 1) * H + (cv < H ? cv : H - 1)] += 1;
-            double pq = cv_sdtree_pdf_square((const float(*)[4])t, root, u, v) / (4 * PI);
-            if (mode == 0) {
-                bad_pdf += fabs(r[3] - r[4]) > 1e-4 * r[4];
-                bad_ref += fabs(r[4] - pq) > 1e-3 * pq;
-                bad_leaf += r[5] != m || (uint32_t)r[6] != root;
-            } else {
-                double mix = m * r[4] + (1 - m) * r[5];
-                bad_pdf += fabs(r[3] - mix) > 1e-5 * mix;
-                bad_ref += fabs(r[4] - pq) > 1e-3 * pq || fabs(r[5] - lambert(w)) > 1e-4;
-            }
-        }
-        tap_ok(bad_len == 0, "%s: unit directions (%u not)", what, bad_len);
-        if (mode == 0) {
-            tap_ok(bad_leaf == 0, "guide: the lookup finds the host's leaf (texel %u) and "
-                   "weight (%u differ)", root, bad_leaf);
-            tap_ok(bad_pdf <= N / 1000, "guide: pdf at sampling equals the pdf at w (%u of %u "
-                   "differ, quadrant edges allowed: %u)", bad_pdf, N, N / 1000);
-        } else {
-            tap_ok(bad_pdf == 0, "mixture: pdf m pQ + (1-m) pBSDF (%u differ)", bad_pdf);
-        }
-        tap_ok(bad_ref <= N / 1000, "%s: GPU pdfs equal the host's (%u of %u differ)", what,
-               bad_ref, N);
-        for (uint32_t a = 0; a < H; a++)
-            for (uint32_t b = 0; b < H; b++) {
-                double x0 = (double)a / H, y0 = (double)b / H;
-                double e = integrate_rect((const float(*)[4])t, root, 0, 0, 1, 1, x0, x0 + 1.0 / H,
-                                          y0, y0 + 1.0 / H);
-                if (mode) {
-                    /* the lobe by an 8 x 8 midpoint rule per cell (smooth) */
-                    double l = 0;
-                    for (int i = 0; i < 8; i++)
-                        for (int j = 0; j < 8; j++) {
-                            double w[3];
-                            dir_of(x0 + (i + 0.5) / (8.0 * H), y0 + (j + 0.5) / (8.0 * H), w);
-                            l += lambert(w);
-                        }
-                    l *= 4 * PI / (64.0 * H * H);
-                    e = m * e + (1 - m) * l;
-                }
-                expc[(size_t)a * H + b] = N * e;
-            }
-        int dof = 0;
-        double pv = rl_chi2_pvalue(obs, expc, (size_t)H * H, &dof);
-        tap_ok(pv >= 0.01, "%s: chi-square over %ux%u cells: p = %.4f (dof %d) >= 0.01", what, H,
-               H, pv, dof);
-        free(obs);
-        free(expc);
-    }
+    for (int mode = 0; mode <= 1; mode++)
+        sample_test(&g, mode, (const float(*)[4])t, root, m, mode ? "mixture" : "guide",
+                    11 + mode, out);
+    for (uint32_t l = 0; l < CV_SD_BLOCK_MAX_LOG2; l += 2)
+        levels_test(&g, l, recs, NR, o.mix, out);
 
     /* the pdf on a grid of directions */
     const uint32_t G = 256;

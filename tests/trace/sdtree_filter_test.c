@@ -300,7 +300,7 @@ static void test_inner_sums(void)
     cv_sdtree_learn_records(t, r, n, &o, NULL);
     float(*x)[4] = NULL;
     size_t nx = 0;
-    cv_sdtree_table(t, &x, &nx);
+    cv_sdtree_table(t, &o, &x, &nx);
     uint32_t leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
     uint32_t troot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][2];
     int deep = 0;
@@ -309,7 +309,7 @@ static void test_inner_sums(void)
     tap_ok(deep > 0, "inner sums: the learned training root has %d quadrants with a subtree", deep);
     free(x);
     cv_sdtree_learn_iteration(t, r, n, &o, NULL);
-    cv_sdtree_table(t, &x, &nx);
+    cv_sdtree_table(t, &o, &x, &nx);
     leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
     uint32_t sroot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][0];
     float pr[4];
@@ -355,7 +355,7 @@ static void test_clamp(void)
         cv_sdtree_learn_iteration(t, r, n, &o, NULL);
         float(*x)[4] = NULL;
         size_t nx = 0;
-        cv_sdtree_table(t, &x, &nx);
+        cv_sdtree_table(t, &o, &x, &nx);
         uint32_t leaf = cv_sdtree_leaf((const float(*)[4])x, r[0].p);
         uint32_t troot = (uint32_t)x[(uint32_t)x[leaf][2] + 4][2];
         double lim = x[troot + 1][1], want = with ? 4.0 * E / (double)n : 0.0;

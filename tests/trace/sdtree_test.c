@@ -9,7 +9,10 @@
  * lookup names; the flattened table's links point where the layout says
  * (spatial children inside the spatial part, each leaf to a block of six
  * class texels of its own, sampling nodes one texel each after those with
- * each node's children consecutive after it, the root never a child);
+ * each node's children consecutive after it, the root never a child, each
+ * root that guides after its top block); the top blocks hold each cell's density as
+ * the walk from the root gives it, the node the walk reaches at the cell,
+ * and an alias table whose draws give each cell its mass;
  * every node's four probabilities (the fourth derived) positive and
  * summing to 1; every quadtree's density integrating to 1 over the square
  * (exactly, by walking the tree, and through the lookup the shaders mirror
@@ -18,7 +21,8 @@
  * weights radiance by the cosine to the axis); the density following the
  * recorded radiance (a bright spot of directions gets many times the
  * uniform density in the classes that face it, a dark half about the
- * floor); records with a non-finite value or no density are ignored.
+ * floor); records with a non-finite value or no density are ignored; the
+ * top blocks take as many levels as fit their texel budget.
  * The grid block at the table's end (its bounds rising and shared by
  * neighbouring cells, each cell naming what the descent from its centre
  * meets after 3 g levels, a leaf as -1 - its class texel) and the leaf
@@ -88,6 +92,48 @@ static void check_quad(const float (*t)[4], size_t nt, uint32_t ns, uint32_t q, 
         }
         check_quad(t, nt, ns, c, depth + 1, bad_link, bad_prob, nodes);
     }
+}
+
+/* Checks the top block of the quadtree at root (glsl/shared/sdtree.h)
+ * against the walk from the root: a cell's node is the one the walk
+ * reaches at the cell's depth (0 where it ends above), its density the
+ * walk's there (at two points of the cell, through the walk below its
+ * node); and its alias table: a draw of u.x in [0, 1) lands in cell j with
+ * probability 1/N, keeps it below y_j of the way and else takes z_j, so
+ * cell c gets (y_c + sum over j with z_j = c of (1 - y_j)) / N, which must
+ * be its mass x_c / N. */
+static void check_block(const float (*t)[4], uint32_t root, uint32_t *bad_block,
+                        uint32_t *bad_alias)
+{
+    const uint32_t L = (uint32_t)t[0][3], S = 1u << L, N = S * S;
+    const float(*b)[4] = t + root - N;
+    double got[1u << (2 * CV_SD_BLOCK_MAX_LOG2)] = {0}, sum = 0;
+    for (uint32_t c = 0; c < N; c++) {
+        uint32_t cx = c % S, cy = c / S, q = root;
+        for (uint32_t d = 0; d < L && q; d++) {
+            float pr[4];
+            uint32_t ch[4];
+            cv_sdtree_node(t, q, pr, ch);
+            q = ch[((cx >> (L - 1 - d)) & 1u) + 2u * ((cy >> (L - 1 - d)) & 1u)];
+        }
+        *bad_block += b[c][3] != (float)q;
+        for (int i = 0; i < 2; i++) {
+            double lx = i ? 0.3 : 0.71, ly = i ? 0.84 : 0.12;
+            double want = cv_sdtree_pdf_square(t, root, (cx + lx) / S, (cy + ly) / S);
+            double have = b[c][0] * (q ? cv_sdtree_pdf_square(t, q, lx, ly) : 1.0);
+            *bad_block += !(fabs(have - want) <= 1e-5 * want);
+        }
+        uint32_t z = (uint32_t)b[c][2];
+        if (!(b[c][1] >= 0 && b[c][1] <= 1) || z >= N) {
+            (*bad_alias)++;
+            continue;
+        }
+        got[c] += b[c][1];
+        got[z] += 1.0 - b[c][1];
+        sum += b[c][0];
+    }
+    for (uint32_t c = 0; c < N; c++)
+        *bad_alias += !(fabs(got[c] - b[c][0] * N / sum) <= 1e-5);
 }
 
 /* The cosine of direction (u, v) on the square to the axis of class c. */
@@ -180,6 +226,21 @@ static void check_grid(const char *what, const float (*t)[4], size_t nt)
            bad_bounds, bad_cells, inner);
 }
 
+/* The top blocks' levels: the most whose texels fit. */
+static void test_block_levels(void)
+{
+    const size_t max = CV_SD_BLOCK_MAX_TEXELS;
+    const size_t roots[] = {0, 1, max >> 10, (max >> 10) + 1, max >> 8, (max >> 8) + 1, max,
+                            max + 1};
+    const uint32_t want[] = {5, 5, 5, 4, 4, 3, 0, 0};
+    uint32_t bad = 0;
+    for (size_t i = 0; i < sizeof(roots) / sizeof(roots[0]); i++)
+        bad += cv_sdtree_block_log2(roots[i], CV_SD_BLOCK_MAX_LOG2) != want[i] ||
+               cv_sdtree_block_log2(roots[i], 3) != (want[i] < 3 ? want[i] : 3);
+    tap_ok(CV_SD_BLOCK_MAX_LOG2 == 5 && bad == 0, "top blocks of 5 levels up to %zu quadtrees "
+           "that guide, then fewer, down to 0 (%u wrong)", max >> 10, bad);
+}
+
 static void test_empty(void)
 {
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
@@ -188,21 +249,24 @@ static void test_empty(void)
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, NULL, 0, &cv_sdtree_defaults, &t, &nt, &st);
     uint32_t bad = 0;
-    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == 1 + 4 * CV_SD_CLASSES + CV_SD_GRID_TEXELS;
-         c++) {
-        const float *k = t[1 + c], *q = t[1 + CV_SD_CLASSES + c];
-        const float *tr = t[1 + 2 * CV_SD_CLASSES + 2 * c];
-        bad += k[0] != (float)(1 + CV_SD_CLASSES + c) || k[1] != 0;
+    /* no class guides, so no top block: the sampling roots, then the
+     * training roots */
+    const uint32_t tb = 1 + 2 * CV_SD_CLASSES;
+    const size_t want = tb + 2 * CV_SD_CLASSES + CV_SD_GRID_TEXELS;
+    for (uint32_t c = 0; c < CV_SD_CLASSES && nt == want; c++) {
+        uint32_t root = 1 + CV_SD_CLASSES + c;
+        const float *k = t[1 + c], *q = t[root];
+        const float *tr = t[tb + 2 * c];
+        bad += k[0] != (float)root || k[1] != 0;
         /* the training root and its statistics: the class's two words,
          * then the node's eight */
-        bad += k[2] != (float)(1 + 2 * CV_SD_CLASSES + 2 * c) || k[3] != (float)(2 * c);
+        bad += k[2] != (float)(tb + 2 * c) || k[3] != (float)(2 * c);
         bad += tr[0] != 0 || tr[1] != 0 || tr[2] != 0 || tr[3] != 0 ||
                tr[4] != (float)(2 * CV_SD_CLASSES + 8 * c);
         /* one texel: three probabilities (the fourth 1 less them), no child */
         bad += q[0] != 0.25f || q[1] != 0.25f || q[2] != 0.25f || q[3] != 0;
     }
-    tap_ok(nt == 1 + 4 * CV_SD_CLASSES + CV_SD_GRID_TEXELS && t[0][0] == (float)CV_SD_LEAF &&
-               t[0][2] == 1,
+    tap_ok(nt == want && t[0][0] == (float)CV_SD_LEAF && t[0][2] == 1,
            "no records: one leaf, its class texels at texel 1 (%zu texels)", nt);
     check_depths("no records", (const float(*)[4])t, &st);
     check_grid("no records", (const float(*)[4])t, nt);
@@ -261,11 +325,22 @@ static void test_build(void)
     uint32_t ns = st.spatial_nodes, nc = CV_SD_CLASSES * st.spatial_leaves, qb = ns + nc;
     tap_ok(st.spatial_leaves > 8 && st.spatial_leaves * 2 - 1 == ns,
            "%u spatial leaves of %u nodes (a full binary tree)", st.spatial_leaves, ns);
-    uint32_t qe = qb + st.quad_nodes;   /* the training nodes' first texel */
-    tap_ok(nt == qe + 2 * (size_t)st.train_nodes + CV_SD_GRID_TEXELS &&
+    /* the sampling quadtrees (leaves that split share theirs), those that
+     * guide with a top block */
+    uint32_t roots = 0;
+    for (uint32_t k = ns; k < qb; k++) {
+        bool first = t[k][1] > 0;
+        for (uint32_t j = ns; j < k && first; j++)
+            first = t[j][0] != t[k][0] || !(t[j][1] > 0);
+        roots += first;
+    }
+    uint32_t L = (uint32_t)t[0][3], cells = 1u << (2 * L);
+    uint32_t qe = qb + st.quad_nodes + roots * cells;   /* the training nodes' first texel */
+    tap_ok(L == CV_SD_BLOCK_MAX_LOG2 && nt == qe + 2 * (size_t)st.train_nodes + CV_SD_GRID_TEXELS &&
                st.quad_nodes >= nc && st.train_nodes >= nc,
-           "%zu texels: %u spatial + %u class + %u sampling + 2 x %u training quadtree + "
-           "the grid block", nt, ns, nc, st.quad_nodes, st.train_nodes);
+           "%zu texels: %u spatial + %u class + %u sampling + %u top blocks of %u levels + 2 x %u "
+           "training quadtree + the grid block", nt, ns, nc, st.quad_nodes, roots, L,
+           st.train_nodes);
     check_depths("box", (const float(*)[4])t, &st);
     check_grid("box", (const float(*)[4])t, nt);
     /* spatial links */
@@ -323,9 +398,18 @@ static void test_build(void)
     uint32_t bad_weight = 0;
     uint32_t guiding = 0, spot_high = 0;
     double dark_ratio = 0;
+    uint32_t bad_block = 0, bad_alias = 0, blocks = 0;
     for (uint32_t k = ns; k < qb; k++) {
         uint32_t q = (uint32_t)t[k][0];
-        check_quad((const float(*)[4])t, qe, qb, q, 0, &bad_link, &bad_prob, &nodes);
+        bool first = true;
+        for (uint32_t j = ns; j < k && first; j++)
+            first = t[j][0] != t[k][0];
+        if (first)
+            check_quad((const float(*)[4])t, qe, qb, q, 0, &bad_link, &bad_prob, &nodes);
+        if (first && t[k][1] > 0) {
+            check_block((const float(*)[4])t, q, &bad_block, &bad_alias);
+            blocks++;
+        }
         double s = integrate((const float(*)[4])t, q, 1, 1);
         if (fabs(s - 1) > 1e-5)
             bad_int++;
@@ -357,6 +441,10 @@ static void test_build(void)
            "(%u bad)", CV_SD_MAX_DEPTH, bad_link);
     tap_ok(nodes == st.quad_nodes, "every quadtree node reached once (%u of %u)", nodes,
            st.quad_nodes);
+    tap_ok(blocks > 0 && bad_block == 0, "top blocks: each cell's density and node as the walk "
+           "from the root finds them (%u bad in %u blocks)", bad_block, blocks);
+    tap_ok(bad_alias == 0, "top blocks: the alias tables give each cell its mass (%u bad)",
+           bad_alias);
     tap_ok(bad_prob == 0, "quadrant probabilities positive, summing to 1 (%u bad)", bad_prob);
     tap_ok(bad_int == 0, "every leaf's density integrates to 1 over the square (%u not)", bad_int);
     tap_ok(gridded > 0 && bad_grid == 0, "... and through the lookup on a 256^2 midpoint grid "
@@ -417,6 +505,7 @@ static void test_deep(void)
 
 int main(void)
 {
+    test_block_levels();
     test_empty();
     test_build();
     test_few();

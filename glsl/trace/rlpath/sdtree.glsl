@@ -3,17 +3,20 @@
 // direction from its directional quadtree and the density of a direction,
 // (CV_SD_RECORD) the training records of a path, and (CV_SD_SPLAT) their
 // splat into the statistics of the tree being trained. Sampling reuses its
-// two random numbers down the quadtree: at each node u.x picks the column
-// of quadrants by their marginal and u.y the quadrant in it, each rescaled
-// to [0, 1) within the choice, and what is left of them places the point
-// in the last quadrant. The density of the point is the product of 4 times
-// each quadrant's probability; the pdf function walks the same quadrants
-// for a given point, so the two agree (a point on a quadrant edge, where
-// they may part, has measure zero).
+// two random numbers: u.x picks a cell of the quadtree's top block by its
+// alias table (shared/sdtree.h), then below the cell, at each node, u.x
+// picks the column of quadrants by their marginal and u.y the quadrant in
+// it, each rescaled to [0, 1) within the choice, and what is left of them
+// places the point in the last quadrant. The density of the point is the
+// product of 4 times each quadrant's probability (the top block holds the
+// product down to its cells); the pdf function finds the same cell and
+// walks the same quadrants for a given point, so the two agree (a point on
+// a quadrant edge, where they may part, has measure zero).
 // Cost: a lookup is a fetch of its grid cell (with its bounds, in
 // parallel) and a walk down the spatial tree below depth 3 g (one texel per
 // level; the walk with the leaf's box, which the spatial filter needs,
-// from the root); sampling or a pdf one texel per quadtree level.
+// from the root); sampling one or two texels of the quadtree's top block
+// and a pdf one, then one texel per quadtree level below it.
 // Include after the local_size layout line. CV_SD_RECORD: the record
 // images read-write (shade, escaped and shadow stages while training);
 // CV_SD_SPLAT (with it): the statistics too (stages that end a path's
@@ -181,11 +184,10 @@ int cv_sd_node_child(int q, float w, int k)
     return (code & bit) == 0u ? 0 : q + int(code >> 4u) + bitCount(code & (bit - 1u));
 }
 
-// Draws a point of the quadtree at texel root with u in [0,1)^2; returns
-// it on the square and its density there (on the square).
-vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
+// Draws a point of the quadtree below node q (on its square) with u in
+// [0,1)^2; returns it on that square and its density there.
+vec2 cv_sd_walk_sample(int q, vec2 u, out float pdf)
 {
-    int q = root;
     vec2 lo = vec2(0.0);
     float side = 1.0;
     pdf = 1.0;
@@ -213,10 +215,9 @@ vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
     return lo + side * u;
 }
 
-// The density on the square of point s under the quadtree at texel root.
-float cv_sd_pdf_square(int root, vec2 s)
+// The density of point s of node q's square under the quadtree below it.
+float cv_sd_walk_pdf(int q, vec2 s)
 {
-    int q = root;
     float pdf = 1.0;
     for (uint d = 0u; d < CV_SD_MAX_DEPTH; d++) {
         vec4 n = texelFetch(sd_tree, q);
@@ -231,6 +232,52 @@ float cv_sd_pdf_square(int root, vec2 s)
         q = child;
     }
     return pdf;
+}
+
+// The most a point drawn in a top block's cell takes of the cell's side:
+// above it the sum with the cell's corner could round to the next cell.
+const float CV_SD_CELL_MAX = 1.0 - 1.0 / 1048576.0;
+
+// Draws a point of the quadtree at texel root with u in [0,1)^2; returns
+// it on the square and its density there (on the square): the cell from
+// the top block's alias table with u.x (what is left of u.x, rescaled, and
+// u.y place the point in it), then the walk below the cell, if any.
+vec2 cv_sd_sample_square(int root, vec2 u, out float pdf)
+{
+    int l = int(u_sd.grid.y), side = 1 << l, n = side * side, b = root - n;
+    float t = u.x * float(n);
+    int c = min(int(t), n - 1);
+    float f = t - float(c);
+    vec4 cell = texelFetch(sd_tree, b + c);
+    if (f < cell.y) {
+        f = f / cell.y;
+    } else {
+        f = (f - cell.y) / (1.0 - cell.y);
+        c = int(cell.z);
+        cell = texelFetch(sd_tree, b + c);
+    }
+    vec2 p = clamp(vec2(f, u.y), vec2(0.0), vec2(CV_SD_ONE_MINUS_EPS));
+    pdf = cell.x;
+    if (cell.w != 0.0) {
+        float pl;
+        p = cv_sd_walk_sample(int(cell.w), p, pl);
+        pdf *= pl;
+    }
+    p = min(p, vec2(CV_SD_CELL_MAX));
+    return (vec2(float(c & (side - 1)), float(c >> l)) + p) * (1.0 / float(side));
+}
+
+// The density on the square of point s under the quadtree at texel root:
+// its cell's in the top block, times the walk's below the cell.
+float cv_sd_pdf_square(int root, vec2 s)
+{
+    int side = 1 << int(u_sd.grid.y);
+    // scaling by a power of two and taking the cell off are exact, as the
+    // walk's steps are
+    vec2 t = s * float(side);
+    ivec2 ci = min(ivec2(t), ivec2(side - 1));
+    vec4 cell = texelFetch(sd_tree, root - side * side + ci.x + side * ci.y);
+    return cell.w != 0.0 ? cell.x * cv_sd_walk_pdf(int(cell.w), t - vec2(ci)) : cell.x;
 }
 
 // Solid-angle versions.
