@@ -679,8 +679,9 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
                 r->prog[ST_SHADE + k] = made[k];
     }
     /* the passes after learning run programs without the learning code
-     * (integrator.h: frozen_programs; request_all asked for them) */
-    if (!freezes(ops, p) || ops->learn_spp(r->integrator) == 0) {
+     * (integrator.h: frozen_programs, false where every pass learns;
+     * request_all asked for them) */
+    if (!freezes(ops, p)) {
         free(r->frozen_sp);
         r->frozen_sp = NULL;
     }
