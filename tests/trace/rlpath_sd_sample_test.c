@@ -398,8 +398,7 @@ static void sample_test(struct rig *g, int mode, const float (*t)[4], uint32_t r
     for (uint32_t a = 0; a < H; a++)
         for (uint32_t b = 0; b < H; b++) {
             double x0 = (double)a / H, y0 = (double)b / H;
-            double e = integrate_rect(t, root, 0, 0, 1, 1, x0, x0 + 1.0 / H,
-                                      y0, y0 + 1.0 / H);
+            double e = integrate_rect(t, root, 0, 0, 1, 1, x0, x0 + 1.0 / H, y0, y0 + 1.0 / H);
             if (mode) {
                 /* the lobe by an 8 x 8 midpoint rule per cell (smooth) */
                 double l = 0;
@@ -443,12 +442,13 @@ static void levels_test(struct rig *g, uint32_t levels, const struct cv_sd_recor
     struct cv_error err = {{0}};
     struct rig d = *g;
     d.sd = NULL;
-    if (tap_ok(cv_rlpath_sd_create(g->gpu, lo, hi, 64, mix, 0, &d.sd, &err) &&
-                   (cv_rlpath_sd_set_block_log2(d.sd, levels), true) &&
-                   cv_rlpath_sd_build(d.sd, rec, n, &err),
-               "%s: create, build and upload: %s", what, err.msg))
-        sample_test(&d, 0, (const float(*)[4])t, (uint32_t)t[key][0], t[key][1], what, 21 + levels,
-                    out);
+    bool ok = cv_rlpath_sd_create(g->gpu, lo, hi, 64, mix, 0, &d.sd, &err);
+    if (ok)
+        cv_rlpath_sd_set_block_log2(d.sd, levels);
+    ok = ok && cv_rlpath_sd_build(d.sd, rec, n, &err);
+    if (tap_ok(ok, "%s: create, build and upload: %s", what, err.msg))
+        sample_test(&d, 0, (const float(*)[4])t, (uint32_t)t[key][0], t[key][1], what,
+                    21 + levels, out);
     cv_rlpath_sd_destroy(&d.sd);
     free(t);
 }
