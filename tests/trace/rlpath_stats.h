@@ -2,7 +2,7 @@
  * tail probability (regularised upper incomplete gamma function, by its
  * series below a + 1 and Lentz's continued fraction above, as in the
  * standard numerical treatments) and a pooled chi-square test of observed
- * against expected counts. */
+ * against expected counts, and its TAP report. */
 #ifndef CV_TESTS_TRACE_RLPATH_STATS_H
 #define CV_TESTS_TRACE_RLPATH_STATS_H
 
@@ -10,6 +10,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdlib.h>
+
+#include "tests/tap.h"
 
 /* Q(a, x) = Gamma(a, x) / Gamma(a). */
 static inline double rl_gamma_q(double a, double x)
@@ -91,6 +93,18 @@ static inline double rl_chi2_pvalue(const double *observed, const double *expect
     if (impossible)
         return 0;
     return dof > 0 ? rl_gamma_q(dof / 2.0, chi2 / 2.0) : 1;
+}
+
+/* The pooled chi-square test of a w x h histogram (observed) against its
+ * expected counts, reported as one TAP line labelled what: passes at
+ * p >= 0.01. */
+static inline bool rl_chi2_check(const double *observed, const double *expected, unsigned w,
+                                 unsigned h, const char *what)
+{
+    int dof = 0;
+    double pv = rl_chi2_pvalue(observed, expected, (size_t)w * h, &dof);
+    return tap_ok(pv >= 0.01, "%s: chi-square over %ux%u cells: p = %.4f (dof %d) >= 0.01", what,
+                  w, h, pv, dof);
 }
 
 #endif
