@@ -372,13 +372,9 @@ void cv_sdtree_table(const struct cv_sdtree *t, const struct cv_sdtree_opts *o,
             mask = 0;
         a[3] = (float)(mask ? 16u * (first - pos[j]) + mask : 0u);
     }
-    for (size_t i = 0; i < t->nc; i++) {
-        uint32_t r = t->c[i].samp;
-        if (pos[r] != NONE && guides[r]) {
-            top_block(x, pos[r], l);
-            pos[r] = NONE;   /* once for the leaves that share it */
-        }
-    }
+    for (size_t j = 0; j < t->nq; j++)
+        if (guides[j])   /* a root laid out above, once however many share it */
+            top_block(x, pos[j], l);
     for (size_t j = 0; j < t->nt; j++) {
         float *ch = x[tbase + 2 * j];
         for (int k = 0; k < 4; k++)

@@ -352,6 +352,13 @@ static void deep_test(struct rig *g)
     free(copy);
 }
 
+/* The class texel of the test point's leaf in table t, in the class of
+ * the shader's TEST_NORMAL (+z): its quadtree root and weight. */
+static uint32_t point_class(const float (*t)[4])
+{
+    return (uint32_t)t[cv_sdtree_leaf(t, point)][2] + 4;
+}
+
 /* Draws N directions on the GPU in TEST_MODE mode (0: the guide, 1: the
  * mixture) with seed, at the quadtree at texel root of the host's table t
  * (weight m) that the uploaded guide must find, and checks them against
@@ -431,8 +438,7 @@ static void levels_test(struct rig *g, uint32_t levels, const struct cv_sd_recor
     float(*t)[4] = NULL;
     size_t nt = 0;
     cv_sdtree_build(lo, hi, rec, n, &o, &t, &nt, NULL);
-    uint32_t leaf = cv_sdtree_leaf((const float(*)[4])t, point);
-    uint32_t key = (uint32_t)t[leaf][2] + 4;   /* +z */
+    uint32_t key = point_class((const float(*)[4])t);
     char what[64];
     snprintf(what, sizeof(what), "guide, top blocks of %u levels", levels);
     tap_ok(t[0][3] == (float)levels, "%s: the table's root says %g", what, t[0][3]);
@@ -466,8 +472,7 @@ int main(void)
     struct cv_sdtree_opts o = cv_sdtree_defaults;
     o.mix = 0.6f;
     cv_sdtree_build(lo, hi, copy, NR, &o, &t, &nt, NULL);
-    uint32_t leaf = cv_sdtree_leaf((const float(*)[4])t, point);
-    uint32_t key = (uint32_t)t[leaf][2] + 4;   /* +z */
+    uint32_t key = point_class((const float(*)[4])t);
     uint32_t root = (uint32_t)t[key][0];
     float m = t[key][1];
 
