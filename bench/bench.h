@@ -63,6 +63,7 @@ struct bench_run_params {
     unsigned rl_grid, rl_directions;   /* rlpath options; 0: defaults */
     float rl_mix;                      /* rlpath guiding weight; negative: default */
     bool rl_guide_indirect;            /* --rl-guide indirect */
+    const char *rl_method;             /* --rl-method: rlpath.method's name; NULL: qlearn */
     uint32_t rl_train;                 /* --rl-train (render.h's rl_train) */
     unsigned seed;                     /* sampler seed; 0: 1 */
     unsigned paths_per_pixel;          /* trace/render.h; 0: the renderer's choice */

@@ -42,13 +42,13 @@ static void usage(FILE *f)
 {
     fputs("usage: cavalry_bench --bench SCENE.pbrt [--spp N] [--repeat K] [--width W]\n"
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
-          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
-          "                     [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
+          "                     [--rl-method qlearn|sdtree] [--rl-grid N] [--rl-directions N]\n"
+          "                     [--rl-mix M] [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
           "                     [--paths-per-pixel N] [--pass-spp N] [--no-gpu] [-v]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
-          "                     [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
+          "                     [--rl-method qlearn|sdtree] [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
           "                     [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
           "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
@@ -98,7 +98,7 @@ static void record_gpu(struct bench_record *r, const struct cv_gpu *gpu)
 }
 
 struct opts {
-    const char *scene, *reference, *csv, *out, *integrator;
+    const char *scene, *reference, *csv, *out, *integrator, *rl_method;
     unsigned spp, repeat, width, height, ref_spp, rl_grid, rl_directions, seed;
     unsigned paths_per_pixel, pass_spp;
     float rl_mix;
@@ -116,6 +116,7 @@ static struct bench_run_params run_params(const struct opts *o)
                                      .integrator = o->integrator, .rl_grid = o->rl_grid,
                                      .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
                                      .rl_guide_indirect = o->rl_guide_indirect,
+                                     .rl_method = o->rl_method,
                                      .rl_train = o->rl_train, .seed = o->seed,
                                      .paths_per_pixel = o->paths_per_pixel,
                                      .pass_spp = o->pass_spp, .knobs = o->knobs};
@@ -237,6 +238,8 @@ int main(int argc, char **argv)
             o.reference = argv[++i];
         } else if (!strcmp(a, "--integrator") && has) {
             o.integrator = argv[++i];
+        } else if (!strcmp(a, "--rl-method") && has) {
+            o.rl_method = argv[++i];
         } else if (!strcmp(a, "--rl-grid") && has) {
             o.rl_grid = (unsigned)strtoul(argv[++i], NULL, 10);
         } else if (!strcmp(a, "--rl-directions") && has) {

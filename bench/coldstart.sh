@@ -8,7 +8,8 @@
 #
 # usage: bench/coldstart.sh [--binary PATH] [--repeat K] [--spp N]
 #                           [--size WxH] [--modes "parallel serial warm"]
-#                           [--integrator path|rlpath] [--work DIR]
+#                           [--integrator path|rlpath|rlpath-sdtree]
+#                           [--work DIR]
 #                           [--out FILE] [scenes...]
 #   --binary PATH  cavalry_bench (default: next to this script, then
 #                  ./bench/cavalry_bench); an older build's (a baseline)
@@ -23,7 +24,8 @@
 #                  first use, which times each program's own compile), warm
 #                  (a second run on the cache folder the cold run filled).
 #                  Default: "parallel serial warm".
-#   --integrator I path (default) or rlpath
+#   --integrator I path (default), rlpath, or rlpath-sdtree (rlpath with
+#                  rlpath.method: sdtree, as bench/guiding.sh names it)
 #   --work DIR     records, logs and summaries (default bench/out/coldstart)
 #   scenes         .pbrt files (default: cornell-box, coffee, veach-ajar and
 #                  killeroo-coated-gold from ../shared/scenes where present)
@@ -82,7 +84,10 @@ fi
 # baseline) takes no -v: its records lack program.* and the costliest list.
 verbose=
 "$binary" --help 2>/dev/null | grep -q -- '\[-v\]' && verbose=-v
-size_args="--integrator $integrator"
+case "$integrator" in
+rlpath-sdtree) size_args="--integrator rlpath --rl-method sdtree" ;;
+*) size_args="--integrator $integrator" ;;
+esac
 [ -z "$size" ] || size_args="$size_args --width ${size%x*} --height ${size#*x}"
 
 # The drivers' own caches stay off in every mode: only Cavalry's folder

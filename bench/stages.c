@@ -110,6 +110,9 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.rl_directions = p->rl_directions;
     rp.rl_mix = p->rl_mix;
     rp.rl_guide_indirect = p->rl_guide_indirect;
+    int method = p->rl_method ? cv_name_find(&cv_rl_method_names, p->rl_method)
+                              : CV_RL_METHOD_QLEARN;
+    rp.rl_sdtree = method == CV_RL_METHOD_SDTREE;
     rp.rl_train = p->rl_train;
     rp.spp = p->spp;
     rp.paths_per_pixel = p->paths_per_pixel;
@@ -118,6 +121,8 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.bvh = &p->knobs.bvh;
     if (integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
+    if (method < 0)
+        return cv_fail(err, "unknown rlpath method \"%s\" (qlearn, sdtree)", p->rl_method);
     return cv_renderer_create(gpu, scene, &rp, out, err);
 }
 
