@@ -117,17 +117,25 @@ scene_file() {
     esac
 }
 
-# The manifest lines of a variant's integrator.
+# The manifest lines of a variant's integrator. With warm=1 (the warm-up
+# job) a variant of the default training trains over 1 spp instead: the
+# same programs, and a job of 2 spp then also builds those of the passes
+# after training, which a job within its training does not ask for.
+warm=0
 variant_yaml() {
     extra=${rl_extra:+, $rl_extra}
+    case "$rl_extra" in
+    *train:*) ;;   # (its warm-up runs past it: warm_spp)
+    *) [ "$warm" = 0 ] || extra="$extra, train: 1" ;;
+    esac
     case "$1" in
     path) printf '    integrator: path\n' ;;
     rlpath) printf '    integrator: rlpath\n'
-        [ -z "$rl_extra" ] || printf '    rlpath: {%s}\n' "$rl_extra" ;;
-    rlpath-online) printf '    integrator: rlpath\n    rlpath: {train: 0%s}\n' "$extra" ;;
-    rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "${1#rlpath-frozen-}" "$extra" ;;
+        [ -z "$extra" ] || printf '    rlpath: {%s}\n' "${extra#, }" ;;
+    rlpath-online) printf '    integrator: rlpath\n    rlpath: {train: 0%s}\n' "${rl_extra:+, $rl_extra}" ;;
+    rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "${1#rlpath-frozen-}" "${rl_extra:+, $rl_extra}" ;;
     rlpath-sdtree) printf '    integrator: rlpath\n    rlpath: {method: sdtree%s}\n' "$extra" ;;
-    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "${1#rlpath-sdtree-}" "$extra" ;;
+    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "${1#rlpath-sdtree-}" "${rl_extra:+, $rl_extra}" ;;
     *) echo "guiding.sh: unknown variant $1" >&2; return 1 ;;
     esac
 }
@@ -186,9 +194,18 @@ for s in $scenes; do
         render "ref-$name" "$file" path 1000 "$ref_spp" 0 > /dev/null || exit 1
         mv "$work/img/ref-$name.exr" "$ref" || exit 1
     fi
-    # warm the program cache: no timed render compiles
+    # warm the program cache: no timed render compiles (those of the
+    # passes after training too: a variant of its own training warms up
+    # past it)
     for v in $variants; do
-        render "warm-$name-$v" "$file" "$v" 1 1 0 > /dev/null || exit 1
+        t=$(printf '%s' "$rl_extra" | sed -n 's/.*train: *\([0-9]*\).*/\1/p')
+        case "$v" in
+        rlpath-frozen-*|rlpath-sdtree-*) wspp=$((${v##*-} + 1)) ;;
+        *) wspp=$((${t:-1} + 1)) ;;
+        esac
+        warm=1
+        render "warm-$name-$v" "$file" "$v" 1 "$wspp" 0 > /dev/null || exit 1
+        warm=0
     done
     for t in $times; do
         for seed in $seeds; do
