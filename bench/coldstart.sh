@@ -32,7 +32,9 @@
 # Prints, per scene and mode, the medians of render.first_pass_from_start_ms,
 # program.build_ms, program.wait_ms, program.compiled and program.cache_hits,
 # then per scene the costliest programs of the serial runs (median of
-# compile + link ms over the runs, from the -v log). Writes
+# compile + link ms over the runs, from the -v log) and the last programs
+# the parallel runs first used (when each was requested and first used,
+# and the wait there: the order in which the driver finished them). Writes
 # DIR/<mode>.jsonl (records), DIR/<mode>-summary.json (cavalry_bench
 # --summarize), DIR/logs/ and DIR/table.txt.
 set -u
@@ -181,6 +183,30 @@ table="$work/table.txt"
                     END { for (p in v) { split(v[p], a, " "); m = a[int((n[p] + 1) / 2)]
                           printf "%10.1f  %s\n", m, p } }' |
                 sort -rg | head -n 12
+        done
+        ;;
+    esac
+    case " $modes " in
+    *" parallel "*)
+        for s in $scenes; do
+            tag="parallel-$(basename "$(dirname "$s")")-$(basename "$s" .pbrt)"
+            echo
+            echo "$(basename "$(dirname "$s")")/$(basename "$s"): the last programs the parallel" \
+                "runs first used (median ms after the context was made: requested, used; wait there)"
+            # "...: compiled: ..., wait W ms, ...; first used ... (requested at R ms, first
+            # used at U ms of the context)"
+            cat "$work/logs/$tag"-*.log 2>/dev/null |
+                sed -n 's/.*program glsl\/\(.*\): compiled: .*, wait \([0-9.]*\) ms, .*(requested at \([0-9]*\) ms, first used at \([0-9]*\) ms of the context)/\3 \4 \2 \1/p' |
+                awk 'function med(list,   a, n, i, j, t) {
+                         n = split(list, a, " ")
+                         for (i = 2; i <= n; i++)
+                             for (j = i; j > 1 && a[j - 1] + 0 > a[j] + 0; j--) {
+                                 t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+                         return a[int((n + 1) / 2)] }
+                     { p = $0; sub(/^[^ ]* [^ ]* [^ ]* /, "", p)
+                       r[p] = r[p] " " $1; u[p] = u[p] " " $2; w[p] = w[p] " " $3 }
+                     END { for (p in u) printf "%8d %8d %9.1f  %s\n", med(r[p]), med(u[p]), med(w[p]), p }' |
+                sort -k2,2g | tail -n 12
         done
         ;;
     esac

@@ -58,13 +58,16 @@ struct cv_program_cache {
     bool parallel;                /* requests compile ahead in the driver's threads */
     bool serial;                  /* cv_program_set_serial: never ahead */
     struct cv_program_build_stats stats;
+    double made_ms;               /* cv_seconds() at creation, in ms: the log's time origin */
 };
 
 static void free_pending(struct pending **pd);
 
 struct cv_program_cache *cv_program_cache_create(void)
 {
-    return cv_xcalloc(1, sizeof(struct cv_program_cache));
+    struct cv_program_cache *c = cv_xcalloc(1, sizeof(struct cv_program_cache));
+    c->made_ms = 1e3 * cv_seconds();
+    return c;
 }
 
 void cv_program_cache_destroy(struct cv_program_cache **cache)
@@ -623,7 +626,7 @@ static void account(struct cv_program_cache *c, struct cache_entry *e)
     const struct program_times *t = &e->times;
     double own = t->assemble_ms + t->load_ms + t->compile_ms + t->link_ms + t->wait_ms +
                  t->store_ms;
-    double since = 1e3 * cv_seconds() - t->requested_at_ms;
+    double now = 1e3 * cv_seconds(), since = now - t->requested_at_ms;
     struct cv_program_build_stats *s = &c->stats;
     s->build_ms += own;
     s->assemble_ms += t->assemble_ms;
@@ -643,10 +646,11 @@ static void account(struct cv_program_cache *c, struct cache_entry *e)
         snprintf(s->slowest, sizeof(s->slowest), "%s", e->label);
     }
     cv_debug("program glsl/%s: %s: assemble %.1f ms, cache lookup %.1f ms, compile %.1f ms, "
-             "link %.1f ms, wait %.1f ms, store %.1f ms; first used %.1f ms after its request",
+             "link %.1f ms, wait %.1f ms, store %.1f ms; first used %.1f ms after its request "
+             "(requested at %.0f ms, first used at %.0f ms of the context)",
              e->label, e->error ? "failed" : e->from_disk ? "cache hit" : "compiled",
              t->assemble_ms, t->load_ms, t->compile_ms, t->link_ms, t->wait_ms, t->store_ms,
-             since);
+             since, t->requested_at_ms - c->made_ms, now - c->made_ms);
 }
 
 /* The in-memory key: path, defines, splice. */
