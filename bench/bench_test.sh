@@ -2,7 +2,7 @@
 # bench_test.sh: the benchmark tools on tiny inputs: gen_scene writes exactly
 # the requested triangles, deterministically per seed, in well-formed PLY
 # that the scene loader reads; plot draws a PNG; the summariser takes the
-# median of repeats.
+# median of repeats; coldstart.sh times a cold start.
 . "${CAVALRY_DATA_DIR:?}/tests/setup.sh"
 bdir=$(dirname "$(dirname "$CAVALRY_BATCH")")
 gen="$bdir/bench/gen_scene"
@@ -109,6 +109,22 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
         "$(grep -c "$(grep -m1 '^  all queries' "$tmp/bw2.out")" "$tmp/bw2.out")" -eq 2
     check "bvh_work: the same node count, depth and children per node" test \
         "$(grep 'nodes, depth' "$tmp/bw2.out" | sed 's/^[^:]*: //' | uniq | wc -l)" -eq 1
+fi
+# coldstart.sh on one cold run of rlpath's sdtree method: the first pass's
+# medians, and when the parallel run got its last programs (the GPU
+# context's clock of the -v log); cavalry_bench refuses a method it does
+# not know.
+if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
+    check_out "coldstart.sh runs sdtree" "$tmp/cs.out" sh "$CAVALRY_DATA_DIR/bench/coldstart.sh" \
+        --binary "$cb" --repeat 1 --modes parallel --size 16x9 --integrator rlpath-sdtree \
+        --work "$tmp/cs" "$tmp/a/scene.pbrt" 2>"$tmp/cs.err"
+    check "coldstart.sh: a first pass time" \
+        grep -qE '^[^ ]*scene.pbrt +parallel +[0-9.]+ ' "$tmp/cs.out"
+    check "coldstart.sh: when the parallel run got sdtree's shade program" \
+        grep -qE '^ +[0-9]+ +[0-9]+ +[0-9.]+  trace/rlpath/sd_shade.comp ' "$tmp/cs.out"
+    check "cavalry_bench refuses an unknown rlpath method" sh -c "! '$cb' --bench \
+        '$tmp/a/scene.pbrt' --spp 1 --width 8 --height 8 --integrator rlpath --rl-method nope \
+        >/dev/null 2>&1"
 fi
 # rt_probe (built where configure found Vulkan and glslangValidator): the
 # same ray set as bvh_work (bench/rays.c), spawned from the GPU traversal's
