@@ -48,8 +48,8 @@ static void usage(FILE *f)
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
-          "                     [--rl-method qlearn|sdtree] [--rl-grid N] [--rl-directions N] [--rl-mix M]\n"
-          "                     [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
+          "                     [--rl-method qlearn|sdtree] [--rl-grid N] [--rl-directions N]\n"
+          "                     [--rl-mix M] [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
           "                     [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }

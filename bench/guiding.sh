@@ -125,7 +125,7 @@ warm=0
 variant_yaml() {
     extra=${rl_extra:+, $rl_extra}
     case "$rl_extra" in
-    *train:*) ;;   # (its warm-up runs past it: warm_spp)
+    *train:*) ;;   # (its warm-up runs one spp past that training: below)
     *) [ "$warm" = 0 ] || extra="$extra, train: 1" ;;
     esac
     case "$1" in
@@ -198,10 +198,10 @@ for s in $scenes; do
     # passes after training too: a variant of its own training warms up
     # past it)
     for v in $variants; do
-        t=$(printf '%s' "$rl_extra" | sed -n 's/.*train: *\([0-9]*\).*/\1/p')
+        tr=$(printf '%s' "$rl_extra" | sed -n 's/.*train: *\([0-9]*\).*/\1/p')
         case "$v" in
         rlpath-frozen-*|rlpath-sdtree-*) wspp=$((${v##*-} + 1)) ;;
-        *) wspp=$((${t:-1} + 1)) ;;
+        *) wspp=$((${tr:-1} + 1)) ;;
         esac
         warm=1
         render "warm-$name-$v" "$file" "$v" 1 "$wspp" 0 > /dev/null || exit 1
