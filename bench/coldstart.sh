@@ -101,9 +101,14 @@ export __GL_SHADER_DISK_CACHE MESA_SHADER_CACHE_DISABLE
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/cv_coldstart_XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT INT TERM
 
+# tag MODE SCENE: the start of the names of MODE's logs of SCENE
+tag() { echo "$work/logs/$1-$(basename "$(dirname "$2")")-$(basename "$2" .pbrt)"; }
+# name SCENE: the scene as the table names it
+name() { echo "$(basename "$(dirname "$1")")/$(basename "$1")"; }
+
 # run MODE SCENE K CACHE_DIR: one process, its record appended to MODE.jsonl
 run() {
-    log="$work/logs/$1-$(basename "$(dirname "$2")")-$(basename "$2" .pbrt)-$3.log"
+    log="$(tag "$1" "$2")-$3.log"
     par=1
     [ "$1" != serial ] || par=0
     # shellcheck disable=SC2086
@@ -143,6 +148,15 @@ for s in $scenes; do
     done
 done
 
+# awk's med(LIST): the median of the space-separated numbers in LIST (the
+# lower of the middle two for an even count, as median below)
+awk_med='function med(list,   a, n, i, j, t) {
+    n = split(list, a, " ")
+    for (i = 2; i <= n; i++)
+        for (j = i; j > 1 && a[j - 1] + 0 > a[j] + 0; j--) {
+            t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+    return a[int((n + 1) / 2)] }'
+
 # median of the numbers on standard input
 median() {
     sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) { print "-"; exit }
@@ -159,7 +173,7 @@ table="$work/table.txt"
     for s in $scenes; do
         for m in $modes; do
             f="$work/$m.jsonl"
-            printf '%-40s %-9s %9s %9s %9s %8s %6s\n' "$(basename "$(dirname "$s")")/$(basename "$s")" "$m" \
+            printf '%-40s %-9s %9s %9s %9s %8s %6s\n' "$(name "$s")" "$m" \
                 "$(key "$f" "$s" render.first_pass_from_start_ms | median)" \
                 "$(key "$f" "$s" program.build_ms | median)" \
                 "$(key "$f" "$s" program.wait_ms | median)" \
@@ -170,18 +184,14 @@ table="$work/table.txt"
     case " $modes " in
     *" serial "*)
         for s in $scenes; do
-            tag="serial-$(basename "$(dirname "$s")")-$(basename "$s" .pbrt)"
             echo
-            echo "$(basename "$(dirname "$s")")/$(basename "$s"): costliest programs, serial runs" \
-                "(median compile + link ms)"
+            echo "$(name "$s"): costliest programs, serial runs (median compile + link ms)"
             # "program glsl/P [D]: compiled: ..., compile C ms, link L ms, ..."
-            cat "$work/logs/$tag"-*.log 2>/dev/null |
+            cat "$(tag serial "$s")"-*.log 2>/dev/null |
                 sed -n 's/.*program glsl\/\(.*\): compiled: .*, compile \([0-9.]*\) ms, link \([0-9.]*\) ms,.*/\2 \3 \1/p' |
-                awk '{ ms = $1 + $2; $1 = ""; $2 = ""; sub(/^  /, ""); print ms "\t" $0 }' |
-                sort -t "$(printf '\t')" -k2,2 -k1,1g |
-                awk -F '\t' '{ v[$2] = v[$2] " " $1; n[$2]++ }
-                    END { for (p in v) { split(v[p], a, " "); m = a[int((n[p] + 1) / 2)]
-                          printf "%10.1f  %s\n", m, p } }' |
+                awk "$awk_med"'
+                     { p = $0; sub(/^[^ ]* [^ ]* /, "", p); v[p] = v[p] " " ($1 + $2) }
+                     END { for (p in v) printf "%10.1f  %s\n", med(v[p]), p }' |
                 sort -rg | head -n 12
         done
         ;;
@@ -189,20 +199,14 @@ table="$work/table.txt"
     case " $modes " in
     *" parallel "*)
         for s in $scenes; do
-            tag="parallel-$(basename "$(dirname "$s")")-$(basename "$s" .pbrt)"
             echo
-            echo "$(basename "$(dirname "$s")")/$(basename "$s"): the last programs the parallel" \
-                "runs first used (median ms after the context was made: requested, used; wait there)"
+            echo "$(name "$s"): the last programs the parallel runs first used" \
+                "(median ms after the context was made: requested, used; wait there)"
             # "...: compiled: ..., wait W ms, ...; first used ... (requested at R ms, first
             # used at U ms of the context)"
-            cat "$work/logs/$tag"-*.log 2>/dev/null |
+            cat "$(tag parallel "$s")"-*.log 2>/dev/null |
                 sed -n 's/.*program glsl\/\(.*\): compiled: .*, wait \([0-9.]*\) ms, .*(requested at \([0-9]*\) ms, first used at \([0-9]*\) ms of the context)/\3 \4 \2 \1/p' |
-                awk 'function med(list,   a, n, i, j, t) {
-                         n = split(list, a, " ")
-                         for (i = 2; i <= n; i++)
-                             for (j = i; j > 1 && a[j - 1] + 0 > a[j] + 0; j--) {
-                                 t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
-                         return a[int((n + 1) / 2)] }
+                awk "$awk_med"'
                      { p = $0; sub(/^[^ ]* [^ ]* [^ ]* /, "", p)
                        r[p] = r[p] " " $1; u[p] = u[p] " " $2; w[p] = w[p] " " $3 }
                      END { for (p in u) printf "%8d %8d %9.1f  %s\n", med(r[p]), med(u[p]), med(w[p]), p }' |

@@ -124,18 +124,22 @@ scene_file() {
 warm=0
 variant_yaml() {
     extra=${rl_extra:+, $rl_extra}
-    case "$rl_extra" in
-    *train:*) ;;   # (its warm-up runs one spp past that training: below)
-    *) [ "$warm" = 0 ] || extra="$extra, train: 1" ;;
+    # the settings of a variant of the default training: for its warm-up,
+    # training over 1 spp (unless --rl sets a training: its warm-up runs one
+    # spp past that one, below)
+    dflt=$extra
+    case "$warm,$rl_extra" in
+    0,*|1,*train:*) ;;
+    *) dflt="$extra, train: 1" ;;
     esac
     case "$1" in
     path) printf '    integrator: path\n' ;;
     rlpath) printf '    integrator: rlpath\n'
-        [ -z "$extra" ] || printf '    rlpath: {%s}\n' "${extra#, }" ;;
-    rlpath-online) printf '    integrator: rlpath\n    rlpath: {train: 0%s}\n' "${rl_extra:+, $rl_extra}" ;;
-    rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "${1#rlpath-frozen-}" "${rl_extra:+, $rl_extra}" ;;
-    rlpath-sdtree) printf '    integrator: rlpath\n    rlpath: {method: sdtree%s}\n' "$extra" ;;
-    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "${1#rlpath-sdtree-}" "${rl_extra:+, $rl_extra}" ;;
+        [ -z "$dflt" ] || printf '    rlpath: {%s}\n' "${dflt#, }" ;;
+    rlpath-online) printf '    integrator: rlpath\n    rlpath: {train: 0%s}\n' "$extra" ;;
+    rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "${1#rlpath-frozen-}" "$extra" ;;
+    rlpath-sdtree) printf '    integrator: rlpath\n    rlpath: {method: sdtree%s}\n' "$dflt" ;;
+    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "${1#rlpath-sdtree-}" "$extra" ;;
     *) echo "guiding.sh: unknown variant $1" >&2; return 1 ;;
     esac
 }
