@@ -118,6 +118,7 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
     rp.paths_per_pixel = p->paths_per_pixel;
     rp.stage_times = p->knobs.stage_times;
     rp.bdpt_slots = p->knobs.bdpt_slots;
+    rp.misses = p->knobs.misses;
     rp.bvh = &p->knobs.bvh;
     if (integrator < 0)
         return cv_fail(err, "unknown integrator \"%s\" (path, rlpath)", p->integrator);
@@ -200,6 +201,11 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "render.time_to_spp_gpu_ms", c.gpu_ms);
         bench_num(r, "render.passes", passes);
         bench_num(r, "render.iterations", (double)c.iterations);
+        /* where misses started their slots' next samples in the last pass,
+         * and the share of rays that missed (trace/render.h: enum cv_misses) */
+        bench_num(r, "render.escaped_stage", c.escaped_stage);
+        bench_num(r, "render.missed_share",
+                  (double)c.missed_rays / (double)(c.primary_rays + c.secondary_rays));
         uint32_t ppp = (uint32_t)(c.path_slots / ((uint64_t)w * h));
         bench_num(r, "render.paths_per_pixel", ppp);
         bench_gpu_memory_sample(gpu);

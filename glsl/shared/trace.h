@@ -98,14 +98,18 @@
 /* Radiance samples dropped for a NaN or infinite value (x alone: a count,
  * added to by any stage, cv_film_reject in common.glsl): 0 unless a bug. */
 #define CV_STAT_NONFINITE 2u
+/* closest-hit rays that found a surface (or a medium event): with
+ * CV_STAT_EXTEND, the fraction of rays that left the scene, by which the
+ * host chooses where misses start their slots' next samples (render.c) */
+#define CV_STAT_HITS 3u
 
 CV_STRUCT(CvTraceQueues) {
     CV_UINT count[12];     /* CV_Q_* counters and tickets; a scalar array because llvmpipe's atomics on
                             * vector components returned duplicate slots */
     cv_uvec4 args[7];      /* indirect dispatch arguments, CV_ARGS_* */
-    cv_uvec4 stats[3];     /* CV_STAT_*: x lo, y hi */
+    cv_uvec4 stats[4];     /* CV_STAT_*: x lo, y hi */
 } CV_END(CvTraceQueues)
-CV_CHECK_SIZE(CvTraceQueues, 208);
+CV_CHECK_SIZE(CvTraceQueues, 224);
 
 /* Ray flags (CvRayItem.beta.w, as a float holding the integer): these bits,
  * the ray's depth (0 for camera rays) from bit CV_RAYF_DEPTH_SHIFT (11

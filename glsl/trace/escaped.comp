@@ -4,11 +4,13 @@
 // light, MIS-weighted against the light sampling that could have found the
 // same direction (not for camera rays or after specular bounces); their
 // paths end, so their slots start their next samples (regenerate.glsl).
-// Runs every iteration where the scene has an environment light or the
-// integrator is rlpath (CV_RLPATH), whose bounce that escaped learns the
-// environment radiance it found (0 without an environment) in the Q-table
-// (rlpath/guide.glsl); otherwise a miss has nothing to add and the
-// intersect stage regenerates its slot itself. The host defines
+// Runs every iteration where the scene has an environment light or
+// rlpath learns (CV_RLPATH: the bounce that escaped learns the environment
+// radiance it found, 0 without an environment, in the Q-table,
+// rlpath/guide.glsl; CV_RLPATH_SD, the sdtree method's records); otherwise
+// a miss has nothing to add, and this stage runs only where the host
+// chose it over the intersect stage's own regeneration for a scene that
+// few rays leave (trace/render.h: enum cv_misses). The host defines
 // CV_NO_ENV, as for every stage, when the scene has no environment light.
 // With CV_FILM_TRANSPARENT (a job with alpha) the environment seen directly
 // by a camera ray adds nothing: alpha 0 and no colour, as Cycles' film

@@ -1,12 +1,13 @@
 #version 450
 // glsl/trace/intersect.comp: closest hit for every ray of this iteration;
 // hits go to the hit queue. With CV_ESCAPED_QUEUE misses go to the escaped
-// queue (trace/escaped.comp: environment light, rlpath's learning); the
-// host leaves it out for the path integrator in a scene without an
-// environment light, where a miss adds nothing and its slot starts its
-// next sample (regenerate.glsl) right here: an escaped stage less per
-// iteration, whose launch and drain cost more than its work on small
-// scenes (bench/RESULTS.md, "Figures behind the code"). The environment's code
+// queue (trace/escaped.comp: environment light, rlpath's learning).
+// Where a miss adds nothing (no environment light, no learning) the host
+// may leave it out, and the slot starts its next sample (regenerate.glsl)
+// right here: an escaped stage less per iteration, whose launch and drain
+// cost more than its work where many rays leave the scene, while the
+// camera's code here costs every ray a little (trace/render.h: enum
+// cv_misses; bench/RESULTS.md, "Misses by scene"). The environment's code
 // stays out of this kernel: with it, the kernel would use more storage
 // blocks than Mesa allows (17 of 16). Alpha cut-outs are handled here by
 // continuing the ray past a surface whose alpha test lets it through, so

@@ -74,6 +74,7 @@ void cv_prepare_shade()
     q.args[CV_ARGS_HITS_ALL] = cv_groups(a + b + c);
     q.args[CV_ARGS_ESCAPED] = cv_groups(cv_count(CV_Q_ESCAPED));
     q.count[CV_Q_SHADOW] = 0u;
+    cv_stat_add(CV_STAT_HITS, a + b + c);
 }
 
 // After the shade stage: the shadow dispatch and the next iteration.

@@ -157,6 +157,7 @@ static bool make_plans(const struct cv_manifest *m, const struct cv_batch_option
         .check_color = true,
         .stage_times = opt->stage_times,
         .bdpt_slots = opt->bdpt_slots,
+        .misses = opt->misses,
         .env_files = &p->env_files,
     };
     p->env_files.params = (struct cv_scene_load_params){.strict = opt->strict,

@@ -37,6 +37,7 @@ struct cv_batch_options {
                                     * go through its parent (workers.h); NULL: none */
     bool serial_compile;           /* no compiling ahead (gpu/program.h) */
     uint32_t bdpt_slots;           /* bdpt's slots a dispatch (trace/render.h); 0: automatic */
+    enum cv_misses misses;         /* where misses restart (trace/render.h); a diagnostic */
 };
 
 enum cv_batch_status {

@@ -403,6 +403,7 @@ bool cv_plan_make(const struct cv_job *job, const struct cv_scene *scene,
     out->seed = job->has_seed ? job->seed : 0;
     out->stage_times = o->stage_times;
     out->bdpt_slots = o->bdpt_slots;
+    out->misses = o->misses;
     out->time_limit = job->has_time_limit ? job->time_limit : 0;
     if (o->time_limit > 0 && (out->time_limit == 0 || o->time_limit < out->time_limit))
         out->time_limit = o->time_limit;
@@ -437,6 +438,7 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_sd_filter = job->rlpath.filter,   /* the values are the bits */
         .stage_times = plan->stage_times,
         .bdpt_slots = plan->bdpt_slots,
+        .misses = plan->misses,
     };
 }
 

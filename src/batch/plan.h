@@ -26,6 +26,7 @@ struct cv_plan_options {
                                   * CPU cost per job, paid before any render */
     bool stage_times;            /* time every render stage (trace/render.h) */
     uint32_t bdpt_slots;         /* bdpt's slots a dispatch (trace/render.h); 0: automatic */
+    enum cv_misses misses;       /* where misses restart (trace/render.h); a diagnostic */
     /* The images of the jobs' env.file, each loaded once for the batch
      * (scene/env_file.h); NULL: a job with env.file fails its plan. */
     struct cv_env_files *env_files;
@@ -48,6 +49,7 @@ struct cv_render_plan {
     struct cv_color_params color;  /* strings borrowed from the job */
     bool stage_times;            /* a diagnostic: cv_plan_options.stage_times */
     uint32_t bdpt_slots;         /* cv_plan_options.bdpt_slots */
+    enum cv_misses misses;       /* cv_plan_options.misses */
     /* What --resume compares (16 hex digits): the job's settings hash
      * (manifest/job_hash.h) with the size and mtime of every file the scene
      * reads, of the effective OCIO config for PNG outputs, and Cavalry's

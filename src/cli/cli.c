@@ -76,6 +76,7 @@ static void usage(FILE *out)
           "  CAVALRY_BVH_SPLIT       triangle splitting budget, 0 to 4 (default 0.3)\n"
           "  CAVALRY_STAGE_TIMES     time every render stage (diagnostic; slower)\n"
           "  CAVALRY_PARALLEL_COMPILE  0: compile GPU programs one at a time (diagnostic)\n"
+          "  CAVALRY_MISSES          auto, intersect or stage: where misses restart (diagnostic)\n"
           "\n"
           "Exit status: 0 all done, 1 some jobs failed, 2 usage error, 3 invalid manifest\n"
           "or scene, 4 no usable GPU, 70 out of memory, 128+N stopped by signal N (130\n"
@@ -476,6 +477,7 @@ int cv_cli_main(int argc, char **argv)
     o.stage_times = knobs.stage_times;
     o.serial_compile = knobs.serial_compile;
     o.bdpt_slots = knobs.bdpt_slots;
+    o.misses = knobs.misses;
     if (list_gpus) {
         struct cv_error err = {{0}};
         if (!cv_gpu_list(&o.gpu, stdout, &err)) {

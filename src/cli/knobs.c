@@ -36,5 +36,15 @@ struct cv_knobs cv_knobs_from_environment(void)
     double slots = 0;
     env_number("CAVALRY_BDPT_SLOTS", true, 0, CV_MAX_PATHS, &slots);
     k.bdpt_slots = (uint32_t)slots;
+    const char *misses = getenv("CAVALRY_MISSES");
+    if (misses && *misses) {
+        int m = 0;
+        while (m < CV_MISSES_COUNT && strcmp(misses, cv_misses_names[m]) != 0)
+            m++;
+        if (m < CV_MISSES_COUNT)
+            k.misses = (enum cv_misses)m;
+        else
+            cv_warn("CAVALRY_MISSES=\"%s\" is not auto, intersect or stage; ignored", misses);
+    }
     return k;
 }

@@ -1,14 +1,15 @@
 /* knobs.h: the tuning and diagnostic knobs that cavalry-batch and the bench
  * tools take from the environment (documented in cavalry-batch(1)). The
  * library reads no environment for them: these values are passed in as
- * parameters (struct cv_bvh_params, struct cv_render_params' stage_times
- * and bdpt_slots). */
+ * parameters (struct cv_bvh_params, struct cv_render_params' stage_times,
+ * bdpt_slots and misses). */
 #ifndef CV_CLI_KNOBS_H
 #define CV_CLI_KNOBS_H
 
 #include <stdbool.h>
 
 #include "bvh/bvh.h"
+#include "trace/render.h"
 
 struct cv_knobs {
     /* cv_bvh_default_params() with CAVALRY_BVH_ROUNDS (0 to 32) as
@@ -21,6 +22,9 @@ struct cv_knobs {
     /* CAVALRY_BDPT_SLOTS (0 to CV_MAX_PATHS; 0, the default: automatic):
      * render params' bdpt_slots, the path slots bdpt runs in one dispatch */
     uint32_t bdpt_slots;
+    /* CAVALRY_MISSES (auto, intersect or stage; a diagnostic): render
+     * params' misses */
+    enum cv_misses misses;
 };
 
 /* Reads the knobs; a value that is not a number in its range is warned

@@ -36,10 +36,10 @@ struct cv_integrator_setup {
 #define CV_SHADE_PROGRAMS 3
 
 struct cv_integrator_ops {
-    /* Misses always go through the escaped stage (else only with an
-     * environment light; otherwise the intersect stage starts their
-     * pixels' next samples itself: intersect.comp), built with
-     * escaped_define added when not NULL. */
+    /* Misses go through the escaped stage while the integrator learns,
+     * built with escaped_define added when not NULL (else through it only
+     * with an environment light, or where the renderer finds it faster:
+     * render.h, enum cv_misses). */
     bool escaped_stage;
     const char *escaped_define;
     /* The shadow stage is built with shadow_define added when not NULL. */
@@ -114,20 +114,22 @@ struct cv_integrator_ops {
      * before) and no longer queues after_shade. */
     uint32_t (*learn_spp)(const void *state);
     void (*set_learning)(void *state, bool learning);
-    /* With learn_spp: the passes that do not learn run programs built
-     * without the learning code (render.c: the shade programs with
-     * CV_FROZEN, the escaped and shadow stages without escaped_define and
-     * shadow_define, whose code for the integrator only learns): code
-     * that never runs still costs a kernel its registers. rlpath's sdtree
-     * method sets it; Q-learning does not, whose frozen build was no
-     * faster on the GPU (bench/RESULTS.md, "What rlpath's passes after
-     * training pay for learning"). May be NULL (none); otherwise whether
-     * a job with params p has such passes, asked before the integrator
-     * exists (its programs are requested with the others): false where it
-     * learns in every pass, or where the job's samples (p->spp) end
-     * within its learning, so that no build is started that no pass
-     * uses. */
-    bool (*frozen_programs)(const struct cv_render_params *p);
+    /* With learn_spp: learn_spp's value for a job with params p, asked
+     * before the integrator exists (the programs of the passes after
+     * learning are requested with the others; none where the job's
+     * samples, p->spp, end within its learning, so that no build is
+     * started that no pass uses). */
+    uint32_t (*train_spp)(const struct cv_render_params *p);
+    /* With train_spp: the passes that do not learn run shade and shadow
+     * programs built without the learning code (render.c: the shade
+     * programs with CV_FROZEN, the shadow stage without shadow_define,
+     * whose code for the integrator only learns): code that never runs
+     * still costs a kernel its registers. rlpath's sdtree method sets it;
+     * Q-learning does not, whose frozen build was no faster on the GPU
+     * (bench/RESULTS.md, "What rlpath's passes after training pay for
+     * learning"). Both drop the escaped stage's learning code after
+     * learning (escaped_stage). */
+    bool frozen_programs;
     /* May be NULL: after each pass that learned, with the samples per pixel
      * done (rlpath's sdtree: at the end of a training iteration, reads
      * the splatted statistics back and refines the guide); false fails the

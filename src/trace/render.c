@@ -76,7 +76,12 @@ struct cv_renderer {
     uint32_t wave_paths;           /* whole samples: slots a dispatch runs (choose_wave_paths) */
     uint32_t max_depth;
     bool aovs;
-    bool escaped_stage;            /* misses go through escaped.comp */
+    /* this pass's misses start their slots' next samples in the escaped
+     * stage (escaped.comp, built with escaped_defines), else in the
+     * intersect stage (set_misses) */
+    bool escaped_stage;
+    const char *const *escaped_defines;
+    enum cv_misses misses;         /* params', then choose_misses' choice */
     bool alpha;                    /* film transparency (render.h) */
     uint32_t matte_stride;         /* uints a slot in `matte` (glsl/shared/trace.h); 0: none */
     uint32_t spp_done;
@@ -97,10 +102,12 @@ struct cv_renderer {
     const struct cv_integrator_ops *ops;
     void *integrator;              /* ops->create's state, or NULL */
     bool learning;                 /* this pass learns (ops->learn_spp); after_shade runs */
-    /* the programs of the passes that do not learn (ops->frozen_programs),
-     * requested at creation, got at the first such pass; NULL: none */
-    struct stage_programs *frozen_sp;
+    /* the stage programs (requested at creation): the first pass's, and
+     * those that later passes get (set_misses, use_frozen_programs) */
+    struct stage_programs *sp;
+    bool freezes;                  /* passes after learning get frozen programs (freezes()) */
     bool frozen;                   /* prog holds them */
+    bool misses_later;             /* later passes may choose their misses' way (request_all) */
     /* params' stage_times: GPU time of every dispatch by stage, and by the
      * pass's iteration (a diagnostic: the scopes cost time themselves);
      * NULL: off */
@@ -381,8 +388,15 @@ struct stage_programs {
     const char *scene_defines[CV_SCENE_DEFINES_MAX + 1];
     const char *file[ST_COUNT];
     const char *const *defines[ST_COUNT];
+    /* the escaped stage's: while the integrator learns (with its
+     * escaped_define), and otherwise (plain) */
     const char *escaped[CV_SCENE_DEFINES_MAX + 3];
+    const char *escaped_plain[CV_SCENE_DEFINES_MAX + 2];
+    /* the intersect stage's: misses to the escaped queue, and misses that
+     * start their slots' next samples in the stage (regen) */
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
+    const char *intersect_regen[CV_SCENE_DEFINES_MAX + 2];
+    bool has_env;                  /* the scene's misses need the escaped stage */
     /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
      * CV_NO_TEXTURES, CV_BSDF_WALK_ONLY and CV_RL_UNGUIDED where they
      * apply) */
@@ -399,11 +413,48 @@ struct stage_programs {
     const char *shadow[CV_SCENE_DEFINES_MAX + 3];
     /* the passes that do not learn (integrator.h: frozen_programs), by
      * stage (NULL: the stage's own program): the shade programs' defines
-     * plus CV_FROZEN, the escaped stage's without the integrator's */
+     * plus CV_FROZEN, the shadow stage's without the integrator's (their
+     * misses: set_misses) */
     const char *const *frozen[ST_COUNT];
     const char *shade_frozen[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 7];
-    const char *escaped_frozen[CV_SCENE_DEFINES_MAX + 2];
 };
+
+const char *const cv_misses_names[CV_MISSES_COUNT] = {"auto", "intersect", "stage"};
+
+/* What a pass runs for its misses: through the escaped stage, with these
+ * defines, or not (the intersect stage starts their slots' next samples,
+ * intersect.comp). The stage is needed while the integrator learns from
+ * misses (ops->escaped_stage) and for an environment light; elsewhere both
+ * render the same image, and m says which (CV_MISSES_AUTO, undecided:
+ * path's way, in the intersect stage). */
+struct pass_misses {
+    bool stage;
+    const char *const *escaped;
+};
+
+static struct pass_misses pass_misses(const struct stage_programs *sp, bool learns,
+                                      enum cv_misses m)
+{
+    if (learns)
+        return (struct pass_misses){true, sp->escaped};
+    return (struct pass_misses){sp->has_env || m == CV_MISSES_STAGE, sp->escaped_plain};
+}
+
+/* The samples per pixel a job with p learns for (0: none, or every
+ * pass). */
+static uint32_t train_spp(const struct cv_integrator_ops *ops, const struct cv_render_params *p)
+{
+    return ops->train_spp ? ops->train_spp(p) : 0;
+}
+
+/* Whether a job with p may have passes that do not learn after some that
+ * do, whose programs differ (frozen_programs, pass_misses). */
+static bool passes_after_learning(const struct cv_integrator_ops *ops,
+                                  const struct cv_render_params *p)
+{
+    uint32_t train = train_spp(ops, p);
+    return train != 0 && (p->spp == 0 || p->spp > train);
+}
 
 /* Words per path slot of the matte stage (trace.h), 0 when the job asks
  * for neither alpha nor ID mattes. */
@@ -418,7 +469,7 @@ static uint32_t matte_words(const struct cv_render_params *p)
  * programs without the learning code (integrator.h: frozen_programs). */
 static bool freezes(const struct cv_integrator_ops *ops, const struct cv_render_params *p)
 {
-    return ops->frozen_programs && ops->frozen_programs(p);
+    return ops->frozen_programs && passes_after_learning(ops, p);
 }
 
 static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render_params *p,
@@ -435,11 +486,13 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     CV_SCENE_DEFINES(ADD_SCENE_DEFINE)
 #undef ADD_SCENE_DEFINE
     defines[nd] = NULL;
-    bool escaped_stage = ops->escaped_stage || gs->has_env;
     const char *transparent = p->alpha ? "CV_FILM_TRANSPARENT" : NULL;
     defines_plus(sp->escaped, defines, nd, ops->escaped_define, transparent);
     /* the passes that do not learn: without the integrator's code */
-    defines_plus(sp->escaped_frozen, defines, nd, transparent, NULL);
+    defines_plus(sp->escaped_plain, defines, nd, transparent, NULL);
+    sp->has_env = gs->has_env;
+    /* (the whole-sample integrators run neither stage) */
+    struct pass_misses first = pass_misses(sp, ops->escaped_stage, p->misses);
     /* the matte stages: the slot layout, and what the job asked for */
     uint32_t words = matte_words(p);
     snprintf(sp->stride, sizeof(sp->stride), "CV_MATTE_STRIDE=%uu", words);
@@ -456,8 +509,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     }
     defines_plus(sp->shadow, defines, nd, ops->shadow_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
-    defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS",
-                 escaped_stage ? "CV_ESCAPED_QUEUE" : NULL);
+    defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
+    defines_plus(sp->intersect_regen, defines, nd, "CV_HIT_BINS", NULL);
     /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
      * prepare the shadow stage: shade_queue.glsl), the others' only where
      * the scene's materials use them (volpath's medium events and
@@ -494,7 +547,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             file = ops->file[k];
             d = sp->shade[k];
         }
-        if ((s == ST_ESCAPED && !escaped_stage) || (s == ST_MATTE && !words) ||
+        if ((s == ST_ESCAPED && !first.stage) || (s == ST_MATTE && !words) ||
             (s == ST_RESOLVE_STRAIGHT && !p->alpha))
             continue;
         /* a whole-sample integrator runs its program and the resolve alone */
@@ -503,9 +556,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         if (s == ST_GENERATE)
             d = no_defines;
         else if (s == ST_ESCAPED)
-            d = sp->escaped;
+            d = first.escaped;
         else if (s == ST_INTERSECT)
-            d = sp->intersect;
+            d = first.stage ? sp->intersect : sp->intersect_regen;
         else if (s == ST_MATTE)
             d = sp->matte;
         else if (s == ST_RESOLVE)
@@ -520,11 +573,19 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             continue;
         if (s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS)
             sp->frozen[s] = sp->shade_frozen[s - ST_SHADE];
-        else if (s == ST_ESCAPED)
-            sp->frozen[s] = sp->escaped_frozen;
         else if (s == ST_SHADOW)
             sp->frozen[s] = defines;
     }
+}
+
+/* Whether the passes after the first (after learning, for an integrator
+ * that learns from misses) of a job with p may choose their misses' way
+ * (set_misses); else every pass runs the first one's. */
+static bool misses_later(const struct cv_integrator_ops *ops, const struct cv_render_params *p)
+{
+    if (ops->whole_samples)
+        return false;
+    return ops->escaped_stage ? passes_after_learning(ops, p) : p->spp != 1;
 }
 
 /* Requests the stages' programs and the integrator's own, then those of
@@ -545,6 +606,20 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
     for (int s = 0; s < ST_COUNT; s++)
         if (sp->file[s] && sp->frozen[s])
             cv_program_request(gpu, sp->file[s], sp->frozen[s]);
+    /* the misses' programs of the passes after the first (after learning,
+     * for an integrator that learns from misses) that may run the other
+     * way (pass_misses; a program already requested is not built twice) */
+    if (!misses_later(ops, p))
+        return;
+    for (int m = CV_MISSES_INTERSECT; m <= CV_MISSES_STAGE; m++) {
+        if (p->misses != CV_MISSES_AUTO && p->misses != (enum cv_misses)m)
+            continue;
+        struct pass_misses pm = pass_misses(sp, false, (enum cv_misses)m);
+        cv_program_request(gpu, stage_files[ST_INTERSECT],
+                           pm.stage ? sp->intersect : sp->intersect_regen);
+        if (pm.stage)
+            cv_program_request(gpu, stage_files[ST_ESCAPED], pm.escaped);
+    }
 }
 
 void cv_renderer_prefetch(struct cv_gpu *gpu, const struct cv_scene *scene,
@@ -632,15 +707,16 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         r->media = true;
         r->pass.camera_medium = scene->camera_medium;
     }
-    /* Misses need an escaped stage for an environment light or where the
-     * integrator asks for it; otherwise the intersect stage starts their
-     * pixels' next samples itself (intersect.comp). */
-    r->escaped_stage = ops->escaped_stage || r->scene->has_env;
-    /* on the heap: the passes that do not learn get their programs from it
-     * later (frozen_sp) */
+    /* on the heap: later passes get their programs from it (set_misses,
+     * use_frozen_programs) */
     struct stage_programs *sp = cv_xcalloc(1, sizeof(*sp));
-    r->frozen_sp = sp;
+    r->sp = sp;
     stage_programs(gs, p, sp);
+    r->misses = p->misses;
+    r->misses_later = misses_later(ops, p);
+    r->freezes = freezes(ops, p);
+    r->escaped_stage = sp->file[ST_ESCAPED] != NULL;
+    r->escaped_defines = sp->defines[ST_ESCAPED];
     /* all requested before the first is waited for: the driver compiles
      * them side by side (gpu/program.h) */
     request_all(gpu, p, sp);
@@ -677,13 +753,6 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         for (int k = 0; k < ops->n_shade; k++)
             if (!ops->file[k])
                 r->prog[ST_SHADE + k] = made[k];
-    }
-    /* the passes after learning run programs without the learning code
-     * (integrator.h: frozen_programs, false where every pass learns;
-     * request_all asked for them) */
-    if (!freezes(ops, p)) {
-        free(r->frozen_sp);
-        r->frozen_sp = NULL;
     }
     setup_step(&clock, SETUP_INTEGRATOR);
 
@@ -850,12 +919,75 @@ static bool whole_samples_pass(struct cv_renderer *r, uint32_t spp, struct cv_er
     return true;
 }
 
+/* choose_misses: misses start their slots' next samples in an escaped
+ * stage where fewer than this share of the rays traced so far left the
+ * scene, else in the intersect stage (bench/RESULTS.md, "Misses by
+ * scene") */
+#define CV_MISSES_STAGE_BELOW 0.05
+
+/* The queues' counters and statistics. Staged, or the queues' atomics and
+ * indirect arguments would live in host memory from the first pass on,
+ * which slows every stage (gpu/buffer.h; bench/RESULTS.md, "Renderer
+ * counters through a copy"). Waits for the GPU. */
+static bool read_queues(struct cv_renderer *r, CvTraceQueues *q, struct cv_error *err)
+{
+    return cv_buffer_read_staged(r->queues, 0, sizeof(*q), r->queues_copy, q, err);
+}
+
+static uint64_t stat64(const CvTraceQueues *q, uint32_t slot)
+{
+    return (uint64_t)q->stats[slot].y << 32 | q->stats[slot].x;
+}
+
+/* CV_MISSES_AUTO's choice, by the rays of the passes so far. Reads back
+ * from the GPU: once per job. */
+static bool choose_misses(struct cv_renderer *r, struct cv_error *err)
+{
+    CvTraceQueues q;
+    if (!read_queues(r, &q, err))
+        return false;
+    uint64_t rays = stat64(&q, CV_STAT_EXTEND), hits = stat64(&q, CV_STAT_HITS);
+    double missed = rays ? (double)(rays - hits) / rays : 0;
+    r->misses = missed < CV_MISSES_STAGE_BELOW ? CV_MISSES_STAGE : CV_MISSES_INTERSECT;
+    cv_debug("misses: %.4f of %" PRIu64 " rays left the scene: started in the %s stage", missed,
+             rays, r->misses == CV_MISSES_STAGE ? "escaped" : "intersect");
+    return true;
+}
+
+/* A pass's misses' programs (pass_misses), past the first pass (and past
+ * learning where the integrator learns from misses), choosing where not
+ * told. Waits for the driver where a cold cache still builds them. */
+static bool set_misses(struct cv_renderer *r, struct cv_error *err)
+{
+    bool learns = r->ops->escaped_stage && r->learning;
+    if (learns || r->spp_done == 0)
+        return true;   /* the first pass's */
+    if (r->misses == CV_MISSES_AUTO && !r->sp->has_env && !choose_misses(r, err))
+        return false;
+    struct pass_misses pm = pass_misses(r->sp, false, r->misses);
+    const struct stage_programs *sp = r->sp;
+    const char *const *isect = pm.stage ? sp->intersect : sp->intersect_regen;
+    if (pm.stage == r->escaped_stage && (!pm.stage || pm.escaped == r->escaped_defines))
+        return true;
+    struct cv_program *pi = cv_program_get(r->gpu, stage_files[ST_INTERSECT], isect, err);
+    struct cv_program *pe =
+        pi && pm.stage ? cv_program_get(r->gpu, stage_files[ST_ESCAPED], pm.escaped, err) : NULL;
+    if (!pi || (pm.stage && !pe))
+        return false;
+    r->prog[ST_INTERSECT] = *pi;
+    if (pe)
+        r->prog[ST_ESCAPED] = *pe;
+    r->escaped_stage = pm.stage;
+    r->escaped_defines = pm.escaped;
+    return true;
+}
+
 /* From the first pass that does not learn on: the programs built without
- * the learning code (frozen_sp). Waits for the driver where a cold cache
+ * the learning code (sp->frozen). Waits for the driver where a cold cache
  * still builds them. */
 static bool use_frozen_programs(struct cv_renderer *r, struct cv_error *err)
 {
-    const struct stage_programs *sp = r->frozen_sp;
+    const struct stage_programs *sp = r->sp;
     int n = 0;
     for (int s = 0; s < ST_COUNT; s++) {
         if (!sp->file[s] || !sp->frozen[s])
@@ -884,7 +1016,9 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return cv_renderer_pass(r, first, err) && cv_renderer_pass(r, spp - first, err);
     }
     r->learning = until == 0 || r->spp_done < until;
-    if (!r->learning && r->frozen_sp && !r->frozen && !use_frozen_programs(r, err))
+    if (!r->learning && r->freezes && !r->frozen && !use_frozen_programs(r, err))
+        return false;
+    if (r->misses_later && !set_misses(r, err))
         return false;
     /* (an integrator that sets frozen_programs never learns again) */
     if (r->learning && r->frozen)
@@ -966,20 +1100,18 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     cv_gpu_timer_collect(r->passes);
     cv_gpu_timer_collect(r->stages);
     CvTraceQueues q;
-    /* Staged, or the queues' atomics and indirect arguments would live in
-     * host memory from the first pass on, which slows every stage
-     * (gpu/buffer.h; bench/RESULTS.md, "Renderer counters through a
-     * copy"). */
-    if (!cv_buffer_read_staged(r->queues, 0, sizeof(q), r->queues_copy, &q, err))
+    if (!read_queues(r, &q, err))
         return false;
-    uint64_t extend = (uint64_t)q.stats[CV_STAT_EXTEND].y << 32 | q.stats[CV_STAT_EXTEND].x;
+    uint64_t extend = stat64(&q, CV_STAT_EXTEND);
     c->primary_rays = (uint64_t)r->n_pixels * r->spp_done;
     c->path_slots = r->n_paths;
     c->wave_slots = r->wave_paths;
     c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
     c->iterations = r->iterations;
-    c->shadow_rays = (uint64_t)q.stats[CV_STAT_SHADOW].y << 32 | q.stats[CV_STAT_SHADOW].x;
+    c->shadow_rays = stat64(&q, CV_STAT_SHADOW);
     c->nonfinite_samples = q.stats[CV_STAT_NONFINITE].x;
+    c->missed_rays = extend - stat64(&q, CV_STAT_HITS);
+    c->escaped_stage = r->escaped_stage;
     c->gpu_ms = cv_gpu_timer_ms(r->passes, 0);
     /* all 0 when the stage timer is off */
     c->intersect_first_ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, 0);
@@ -1115,7 +1247,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
         cv_buffer_destroy(bufs[i]);
     cv_buf_destroy(&r->resolved);
     cv_scene_gpu_destroy(&r->owned_scene);
-    free(r->frozen_sp);
+    free(r->sp);
     if (r->ops && r->ops->destroy)
         r->ops->destroy(&r->integrator);
     free(r);

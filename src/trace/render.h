@@ -18,6 +18,18 @@
 
 struct cv_bvh_params;
 
+/* Where a miss starts its path slot's next sample, in the passes where
+ * either way renders the same image (no environment light, and not while
+ * an integrator learns from misses): in the intersect stage itself, or in
+ * an escaped stage after it. The first costs the traversal kernel the
+ * camera's code on every ray, the second a dispatch an iteration and
+ * work per miss (bench/RESULTS.md, "Misses by scene"). CV_MISSES_AUTO
+ * chooses by the share of rays that left the scene so far, from the
+ * second pass on (render.c: choose_misses). */
+enum cv_misses { CV_MISSES_AUTO, CV_MISSES_INTERSECT, CV_MISSES_STAGE, CV_MISSES_COUNT };
+/* their names (cavalry-batch: CAVALRY_MISSES) */
+extern const char *const cv_misses_names[CV_MISSES_COUNT];
+
 struct cv_render_params {
     /* Camera and film (scene/film.h fits one to a resolution); NULL: the
      * scene's. Read at creation only. */
@@ -92,6 +104,9 @@ struct cv_render_params {
      * image: it changes where subpaths are kept, not the samples
      * (cavalry-batch: CAVALRY_BDPT_SLOTS). */
     uint32_t bdpt_slots;
+    /* a diagnostic, for benchmarks and tests: where misses start their
+     * slots' next samples (enum cv_misses; CAVALRY_MISSES) */
+    enum cv_misses misses;
 };
 
 /* The automatic paths_per_pixel aims at this many paths in flight: the
@@ -148,6 +163,11 @@ struct cv_render_counters {
      * value since the renderer was made (glsl/trace/common.glsl:
      * cv_film_reject): 0 unless a bug; the caller reports any */
     uint64_t nonfinite_samples;
+    /* closest-hit rays (primary and secondary) that left the scene */
+    uint64_t missed_rays;
+    /* the last pass started misses' next samples in an escaped stage
+     * (enum cv_misses), not in the intersect stage */
+    bool escaped_stage;
     double gpu_ms;
     /* With params' stage_times: GPU time of the closest-hit (intersect)
      * and any-hit (shadow) stages over the same passes; else 0. The part of

@@ -180,6 +180,11 @@ uint32_t cv_rlpath_train_spp(uint32_t train)
     return train == 0 ? CV_RL_DEFAULT_TRAIN : train == CV_RL_TRAIN_ALWAYS ? 0 : train;
 }
 
+uint32_t cv_rlpath_job_train_spp(const struct cv_render_params *p)
+{
+    return cv_rlpath_train_spp(p->rl_train);
+}
+
 void cv_rlpath_set_learning(struct cv_rlpath *rl, bool learning)
 {
     if ((rl->params.learn.x != 0) == learning)
@@ -292,5 +297,6 @@ const struct cv_integrator_ops cv_rlpath_ops = {
     .destroy = ops_destroy,
     .prefetch = ops_prefetch,
     .learn_spp = ops_learn_spp,
+    .train_spp = cv_rlpath_job_train_spp,
     .set_learning = ops_set_learning,
 };

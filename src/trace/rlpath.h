@@ -57,6 +57,9 @@ void cv_rlpath_bind(const struct cv_rlpath *rl);
  * parameter rl_train (0: CV_RL_DEFAULT_TRAIN; CV_RL_TRAIN_ALWAYS: every
  * pass, returned as 0). */
 uint32_t cv_rlpath_train_spp(uint32_t train);
+/* The same for a job's params (both methods' integrator.h train_spp). */
+struct cv_render_params;
+uint32_t cv_rlpath_job_train_spp(const struct cv_render_params *p);
 
 /* Starts (true) or stops learning from the next pass on: the shade and
  * escaped stages add targets and keep path state only while learning.

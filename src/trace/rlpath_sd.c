@@ -398,12 +398,6 @@ static void ops_set_learning(void *state, bool learning)
 
 /* training that never ends (rlpath.train: 0), or a job that ends within
  * it, leaves no pass to freeze */
-static bool ops_frozen_programs(const struct cv_render_params *p)
-{
-    uint32_t train = cv_rlpath_train_spp(p->rl_train);
-    return train != 0 && (p->spp == 0 || p->spp > train);
-}
-
 static bool ops_pass_done(void *state, uint32_t spp_done, struct cv_error *err)
 {
     return cv_rlpath_sd_pass_done(state, spp_done, err);
@@ -441,7 +435,8 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .destroy = ops_destroy,
     .learn_spp = ops_learn_spp,
     .set_learning = ops_set_learning,
-    .frozen_programs = ops_frozen_programs,
+    .train_spp = cv_rlpath_job_train_spp,
+    .frozen_programs = true,
     .pass_done = ops_pass_done,
     .slot_bytes = ops_slot_bytes,
     .prefetch = ops_prefetch,

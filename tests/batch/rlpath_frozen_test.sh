@@ -3,11 +3,13 @@
 # passes after training with the programs built without the learning code
 # (trace/integrator.h: frozen_programs; tests/trace/rlpath_frozen_test
 # checks what those programs hold): the Cornell box (scene-v4.pbrt of
-# /work/shared/scenes, CC0; bin 0 alone) switches its shade, escaped and
-# shadow stages once, at the end of training, and its image is lit (mean
-# red near the 0.2 these settings give) and finite. A job that ends
-# within its training, and a Q-learning job (which keeps one build), never
-# switch.
+# /work/shared/scenes, CC0; bin 0 alone) switches its shade and shadow
+# stages once, at the end of training, and its misses from the learning
+# escaped stage to the intersect stage (the box is open to the camera:
+# trace/render.h, enum cv_misses), and its image is lit (mean red near the
+# 0.2 these settings give) and finite. A job that ends within its
+# training, and a Q-learning job (which keeps one build of its shade
+# stage), never switch.
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 probe="$CV_TEST_BUILDDIR/batch/exr_probe"
@@ -20,13 +22,15 @@ job() {   # job NAME SPP RLPATH: a manifest of one rlpath job
     printf '    resolution: [32, 32]\n    seed: 3\n    spp: %s\n' "$2"
     printf '    integrator: rlpath\n    rlpath: %s\n' "$3"
 }
-switched='passes after learning: 3 stage programs without the learning code'
+switched='passes after learning: 2 stage programs without the learning code'
 
 job sd 24 '{method: sdtree, train: 8}' >sd.yaml
 check_out "sdtree renders" sd.out "$CAVALRY_BATCH" -v sd.yaml 2>sd.err
 check "it switches to the frozen programs once" \
     test "$(grep -c "$switched" sd.err)" -eq 1
 check "their builds were asked for with CV_FROZEN" grep -q 'sd_shade.comp \[.*CV_FROZEN\]' sd.err
+check "and its misses start anew in the intersect stage" \
+    grep -q 'misses: .* left the scene: started in the intersect stage' sd.err
 s=$("$probe" stats out/sd.exr) || s=unreadable
 echo "# sd: $s"
 set -- $s

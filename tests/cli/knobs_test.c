@@ -2,7 +2,8 @@
  * place (cli/knobs.c): CAVALRY_BVH_ROUNDS and CAVALRY_BVH_SPLIT set the BVH
  * build's treelet rounds and split budget, CAVALRY_STAGE_TIMES turns on the
  * stage timer, CAVALRY_PARALLEL_COMPILE=0 turns compiling ahead off,
- * CAVALRY_BDPT_SLOTS caps bdpt's slots a dispatch; a bad
+ * CAVALRY_BDPT_SLOTS caps bdpt's slots a dispatch, CAVALRY_MISSES says
+ * where misses start their slots' next samples; a bad
  * value is ignored (with a warning). The library's own defaults read no
  * environment. */
 #include <stdlib.h>
@@ -90,6 +91,26 @@ static void check_bdpt_slots(void)
            negative, past);
 }
 
+static void check_misses(void)
+{
+    unsetenv("CAVALRY_MISSES");
+    enum cv_misses unset = cv_knobs_from_environment().misses;
+    setenv("CAVALRY_MISSES", "stage", 1);
+    enum cv_misses stage = cv_knobs_from_environment().misses;
+    setenv("CAVALRY_MISSES", "intersect", 1);
+    enum cv_misses isect = cv_knobs_from_environment().misses;
+    setenv("CAVALRY_MISSES", "auto", 1);
+    enum cv_misses aut = cv_knobs_from_environment().misses;
+    setenv("CAVALRY_MISSES", "Stage", 1);
+    enum cv_misses bad = cv_knobs_from_environment().misses;
+    unsetenv("CAVALRY_MISSES");
+    tap_ok(unset == CV_MISSES_AUTO && stage == CV_MISSES_STAGE && isect == CV_MISSES_INTERSECT &&
+               aut == CV_MISSES_AUTO && bad == CV_MISSES_AUTO,
+           "CAVALRY_MISSES: unset -> %s, stage -> %s, intersect -> %s, auto -> %s, Stage -> %s",
+           cv_misses_names[unset], cv_misses_names[stage], cv_misses_names[isect],
+           cv_misses_names[aut], cv_misses_names[bad]);
+}
+
 int main(void)
 {
     check_rounds();
@@ -97,5 +118,6 @@ int main(void)
     check_stage_times();
     check_parallel_compile();
     check_bdpt_slots();
+    check_misses();
     return tap_done();
 }

@@ -53,8 +53,10 @@ EXTRA_DIST += tests/trace/grid_probe.h \
 # ---- end bsdf / light block ----
 # --- rlpath tests (reinforcement-learning path guiding) ---
 check_PROGRAMS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test \
-	tests/trace/rlpath_mix_test
-TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test tests/trace/rlpath_mix_test
+	tests/trace/rlpath_mix_test tests/trace/misses_test
+TESTS += tests/trace/rlpath_sample_test tests/trace/rlpath_converge_test tests/trace/rlpath_mix_test \
+	tests/trace/misses_test
+tests_trace_misses_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_sample_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_converge_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_mix_test_LDADD = $(CV_LIBS)

@@ -9,7 +9,9 @@
  * And a renderer asks the driver for those programs only where a pass will
  * run them: with rlpath.train 0 (learning in every pass), or a job whose
  * samples end within the training, no build starts that nothing uses;
- * with the default training and more samples every one is got. */
+ * with the default training and more samples every one is got but one:
+ * the intersect stage's build of the way of starting misses anew that the
+ * renderer did not choose (trace/render.c: request_all, set_misses). */
 #include "config.h"
 
 #include "base/limits.h"
@@ -65,10 +67,11 @@ int main(void)
                                     &lp, &s, &err),
                "load the room: %s", err.msg)) {
         /* the default training's passes after 16 spp get the frozen
-         * programs; with rlpath.train 0, or a job of 16 spp (all within
-         * the default training), none is requested, so the programs
-         * requested and never got (other stages' variants the scene does
-         * not need) are the same in all three */
+         * programs, and one of the two ways of misses; with rlpath.train
+         * 0, or a job of 16 spp (all within the default training), none
+         * is requested, so the programs requested and never got (other
+         * stages' variants the scene does not need) are the same in those
+         * two, and one more with the default training */
         struct cv_program_build_stats always, trained, within;
         if (requests(s, CV_RL_TRAIN_ALWAYS, 0, (const uint32_t[]){1, 2, 4, 0},
                      "rlpath.train 0", &always) &&
@@ -77,11 +80,12 @@ int main(void)
             if (!always.parallel) {
                 tap_diag("no parallel compilation here: requests start no build");
             } else {
-                tap_ok(always.unused == trained.unused && trained.requested > always.requested,
+                tap_ok(trained.unused == always.unused + 1 &&
+                           trained.requested > always.requested,
                        "rlpath.train 0 requests no program of the passes after training "
                        "(requested %u, unused %u; with the default training %u and %u)",
                        always.requested, always.unused, trained.requested, trained.unused);
-                tap_ok(within.unused == trained.unused && within.requested == always.requested,
+                tap_ok(within.unused == always.unused && within.requested == always.requested,
                        "a job that ends within the training requests none either "
                        "(requested %u, unused %u)", within.requested, within.unused);
             }

@@ -13,7 +13,7 @@
  * alone, with either method: the same image as path, bit for bit (the renderer once put the
  * default in its place), trained over a first pass and frozen in the second, in the room and in
  * a room open to the camera, whose misses path's intersect stage and rlpath's escaped stage
- * each end and start anew. */
+ * (while it learns) each end and start anew. */
 #include "config.h"
 
 #include "base/limits.h"
@@ -53,14 +53,6 @@ static bool image_mean(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_r
     *se2 = (var > 0 ? var : 0) / B;
     return true;
 }
-
-/* The room without the wall the camera faces: many rays leave the scene. */
-static const char open_room[] =
-    RLPATH_ROOM_VIEW RLPATH_ROOM_LIGHT RLPATH_ROOM_LAMP
-    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n"
-    "Shape \"trianglemesh\" \"integer indices\" [ 4 6 5 4 7 6  0 3 7 0 7 4\n"
-    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
-    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n";
 
 /* mix 0: path's image, sample for sample (both methods), in a pass that
  * learns and one after training */
@@ -138,7 +130,8 @@ int main(void)
 
     same_as_path(gpu, s, pp, "the room");
     cv_scene_destroy(&s);
-    if (tap_ok(cv_scene_load_string("open.pbrt", open_room, sizeof(open_room) - 1, &lp, &s, &err),
+    if (tap_ok(cv_scene_load_string("open.pbrt", rlpath_room_open, sizeof(rlpath_room_open) - 1,
+                                    &lp, &s, &err),
                "load the open room: %s", err.msg)) {
         same_as_path(gpu, s, pp, "the open room");
         cv_scene_destroy(&s);

@@ -3,7 +3,7 @@
  * one side, so that most of the other side is lit indirectly; and the same
  * room with a black-backed lamp, a rough metal panel (not guided: sampled by
  * its BSDF and learning from one-sample targets) and coated panels (guided,
- * with a glossy coat). */
+ * with a glossy coat); and a room open to the camera. */
 #ifndef CV_TESTS_TRACE_RLPATH_ROOM_H
 #define CV_TESTS_TRACE_RLPATH_ROOM_H
 
@@ -36,6 +36,15 @@
 
 static const char rlpath_room[] = RLPATH_ROOM_VIEW RLPATH_ROOM_LIGHT RLPATH_ROOM_LAMP
     RLPATH_ROOM_WALLS;
+
+/* The room without the wall the camera faces, nor the partition: many
+ * rays leave the scene. */
+static const char rlpath_room_open[] =
+    RLPATH_ROOM_VIEW RLPATH_ROOM_LIGHT RLPATH_ROOM_LAMP
+    "Material \"diffuse\" \"rgb reflectance\" [ 0.7 0.7 0.7 ]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [ 4 6 5 4 7 6  0 3 7 0 7 4\n"
+    "    1 5 6 1 6 2  0 4 5 0 5 1  3 2 6 3 6 7 ]\n"
+    "  \"point3 P\" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]\n";
 
 static const char rlpath_room_glossy[] =
     RLPATH_ROOM_VIEW RLPATH_ROOM_LIGHT
