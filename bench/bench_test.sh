@@ -126,6 +126,15 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
         '$tmp/a/scene.pbrt' --spp 1 --width 8 --height 8 --integrator rlpath --rl-method nope \
         >/dev/null 2>&1"
 fi
+# guiding.sh refuses --rl's training for a variant that sets its own,
+# before it renders anything
+rc=0
+sh "$CAVALRY_DATA_DIR/bench/guiding.sh" --rl "mix: 0.5, train: 4" --variants "path rlpath-online" \
+    --work "$tmp/g" >"$tmp/g.out" 2>"$tmp/g.err" || rc=$?
+check "guiding.sh: --rl train with rlpath-online is a usage error" test "$rc" -eq 2
+check "guiding.sh: which says why" grep -q 'sets train, which the variant rlpath-online' \
+    "$tmp/g.err"
+check "guiding.sh: and made no work folder" test ! -e "$tmp/g"
 # rt_probe (built where configure found Vulkan and glslangValidator): the
 # same ray set as bvh_work (bench/rays.c), spawned from the GPU traversal's
 # hits, timed per query type; the Vulkan columns where a device traces

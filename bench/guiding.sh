@@ -86,6 +86,18 @@ while [ $# -gt 0 ]; do
     *) scenes="$scenes $1"; shift ;;
     esac
 done
+# a variant that sets its own training takes none from --rl (its manifest
+# would name the key twice)
+case "$rl_extra" in
+*train:*)
+    for v in $variants; do
+        case "$v" in
+        rlpath-online|rlpath-frozen-*|rlpath-sdtree-*)
+            echo "guiding.sh: --rl sets train, which the variant $v sets itself" >&2
+            exit 2 ;;
+        esac
+    done ;;
+esac
 for b in "$batch" "$benchbin"; do
     [ -x "$b" ] || { echo "guiding.sh: $b not found or not executable; build it or pass --batch/--bench" >&2; exit 2; }
 done
