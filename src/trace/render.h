@@ -25,7 +25,8 @@ struct cv_bvh_params;
  * camera's code on every ray, the second a dispatch an iteration and
  * work per miss (bench/RESULTS.md, "Misses by scene"). CV_MISSES_AUTO
  * chooses by the share of rays that left the scene so far, from the
- * second pass on (render.c: choose_misses). */
+ * second pass on, or from the first after learning for an integrator that
+ * learns from misses (render.c: choose_misses). */
 enum cv_misses { CV_MISSES_AUTO, CV_MISSES_INTERSECT, CV_MISSES_STAGE, CV_MISSES_COUNT };
 /* their names (cavalry-batch: CAVALRY_MISSES) */
 extern const char *const cv_misses_names[CV_MISSES_COUNT];

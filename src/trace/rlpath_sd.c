@@ -396,8 +396,6 @@ static void ops_set_learning(void *state, bool learning)
     cv_rlpath_sd_set_learning(state, learning);
 }
 
-/* training that never ends (rlpath.train: 0), or a job that ends within
- * it, leaves no pass to freeze */
 static bool ops_pass_done(void *state, uint32_t spp_done, struct cv_error *err)
 {
     return cv_rlpath_sd_pass_done(state, spp_done, err);
