@@ -38,10 +38,8 @@ struct cv_knobs cv_knobs_from_environment(void)
     k.bdpt_slots = (uint32_t)slots;
     const char *misses = getenv("CAVALRY_MISSES");
     if (misses && *misses) {
-        int m = 0;
-        while (m < CV_MISSES_COUNT && strcmp(misses, cv_misses_names[m]) != 0)
-            m++;
-        if (m < CV_MISSES_COUNT)
+        int m = cv_name_find(&cv_misses_names, misses);
+        if (m >= 0)
             k.misses = (enum cv_misses)m;
         else
             cv_warn("CAVALRY_MISSES=\"%s\" is not auto, intersect or stage; ignored", misses);

@@ -419,7 +419,9 @@ struct stage_programs {
     const char *shade_frozen[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 7];
 };
 
-const char *const cv_misses_names[CV_MISSES_COUNT] = {"auto", "intersect", "stage"};
+static const char *const misses_names[] = {"auto", "intersect", "stage"};
+_Static_assert(CV_ARRAY_SIZE(misses_names) == CV_MISSES_COUNT, "one name per enum cv_misses");
+const struct cv_names cv_misses_names = {misses_names, CV_MISSES_COUNT};
 
 /* What a pass runs for its misses: through the escaped stage, with these
  * defines, or not (the intersect stage starts their slots' next samples,

@@ -28,8 +28,8 @@ struct cv_bvh_params;
  * second pass on, or from the first after learning for an integrator that
  * learns from misses (render.c: choose_misses). */
 enum cv_misses { CV_MISSES_AUTO, CV_MISSES_INTERSECT, CV_MISSES_STAGE, CV_MISSES_COUNT };
-/* their names (cavalry-batch: CAVALRY_MISSES) */
-extern const char *const cv_misses_names[CV_MISSES_COUNT];
+/* their names (cavalry-batch: CAVALRY_MISSES), a manifest/enums.h table */
+extern const struct cv_names cv_misses_names;
 
 struct cv_render_params {
     /* Camera and film (scene/film.h fits one to a resolution); NULL: the

@@ -107,8 +107,9 @@ static void check_misses(void)
     tap_ok(unset == CV_MISSES_AUTO && stage == CV_MISSES_STAGE && isect == CV_MISSES_INTERSECT &&
                aut == CV_MISSES_AUTO && bad == CV_MISSES_AUTO,
            "CAVALRY_MISSES: unset -> %s, stage -> %s, intersect -> %s, auto -> %s, Stage -> %s",
-           cv_misses_names[unset], cv_misses_names[stage], cv_misses_names[isect],
-           cv_misses_names[aut], cv_misses_names[bad]);
+           cv_name_of(&cv_misses_names, unset), cv_name_of(&cv_misses_names, stage),
+           cv_name_of(&cv_misses_names, isect), cv_name_of(&cv_misses_names, aut),
+           cv_name_of(&cv_misses_names, bad));
 }
 
 int main(void)

@@ -40,7 +40,7 @@ static bool render(struct cv_gpu *gpu, const struct cv_scene *s, struct cv_rende
     struct cv_error err = {{0}};
     p.misses = m;
     return tap_ok(test_render(gpu, s, &p, passes, img, &err), "%s, misses %s: renders: %s", what,
-                  cv_misses_names[m], err.msg);
+                  cv_name_of(&cv_misses_names, m), err.msg);
 }
 
 /* p's images with each way of misses: the same bits; the last pass ran
