@@ -86,16 +86,25 @@ while [ $# -gt 0 ]; do
     *) scenes="$scenes $1"; shift ;;
     esac
 done
+# own_train VARIANT: the rlpath.train a variant sets itself; nothing for
+# one of the default training (or --rl's)
+own_train() {
+    case "$1" in
+    rlpath-online) echo 0 ;;
+    rlpath-frozen-*|rlpath-sdtree-*) echo "${1##*-}" ;;
+    esac
+}
+# the training --rl sets; nothing where it sets none
+rl_train=$(printf '%s' "$rl_extra" | sed -n 's/.*train: *\([0-9]*\).*/\1/p')
 # a variant that sets its own training takes none from --rl (its manifest
 # would name the key twice)
 case "$rl_extra" in
 *train:*)
     for v in $variants; do
-        case "$v" in
-        rlpath-online|rlpath-frozen-*|rlpath-sdtree-*)
+        if [ -n "$(own_train "$v")" ]; then
             echo "guiding.sh: --rl sets train, which the variant $v sets itself" >&2
-            exit 2 ;;
-        esac
+            exit 2
+        fi
     done ;;
 esac
 for b in "$batch" "$benchbin"; do
@@ -148,10 +157,9 @@ variant_yaml() {
     path) printf '    integrator: path\n' ;;
     rlpath) printf '    integrator: rlpath\n'
         [ -z "$dflt" ] || printf '    rlpath: {%s}\n' "${dflt#, }" ;;
-    rlpath-online) printf '    integrator: rlpath\n    rlpath: {train: 0%s}\n' "$extra" ;;
-    rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "${1#rlpath-frozen-}" "$extra" ;;
+    rlpath-online|rlpath-frozen-*) printf '    integrator: rlpath\n    rlpath: {train: %s%s}\n' "$(own_train "$1")" "$extra" ;;
     rlpath-sdtree) printf '    integrator: rlpath\n    rlpath: {method: sdtree%s}\n' "$dflt" ;;
-    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "${1#rlpath-sdtree-}" "$extra" ;;
+    rlpath-sdtree-*) printf '    integrator: rlpath\n    rlpath: {method: sdtree, train: %s%s}\n' "$(own_train "$1")" "$extra" ;;
     *) echo "guiding.sh: unknown variant $1" >&2; return 1 ;;
     esac
 }
@@ -214,11 +222,10 @@ for s in $scenes; do
     # passes after training too: a variant of its own training warms up
     # past it)
     for v in $variants; do
-        tr=$(printf '%s' "$rl_extra" | sed -n 's/.*train: *\([0-9]*\).*/\1/p')
-        case "$v" in
-        rlpath-frozen-*|rlpath-sdtree-*) wspp=$((${v##*-} + 1)) ;;
-        *) wspp=$((${tr:-1} + 1)) ;;
-        esac
+        # past its own training, else past --rl's or the warm-up's 1 spp
+        own=$(own_train "$v")
+        wspp=$((${rl_train:-1} + 1))
+        [ "${own:-0}" -eq 0 ] || wspp=$((own + 1))
         warm=1
         render "warm-$name-$v" "$file" "$v" 1 "$wspp" 0 > /dev/null || exit 1
         warm=0
