@@ -58,6 +58,7 @@ struct cv_rlpath_sd {
     size_t tree_texels;    /* the tree buffer's capacity */
     size_t stat_words;     /* the statistics buffer's capacity */
     uint32_t builds;
+    double table_s;        /* the last guide_upload's host table, wall seconds */
 };
 
 /* Where the training iteration that starts at spp s with length len ends:
@@ -84,8 +85,9 @@ static bool tree_reserve(struct cv_rlpath_sd *sd, size_t n, struct cv_error *err
         glDeleteTextures(1, &sd->tree_tex);
     sd->tree_tex = 0;
     cv_buffer_destroy(&sd->tree);
-    /* the caller writes the tree before any lookup */
-    sd->tree = cv_buffer_create(cap * 16, NULL, "rlpath sdtree", err);
+    /* the caller writes the tree before any lookup: not zero-filled, which
+     * would cost host time in proportion to its size (gpu/buffer.h) */
+    sd->tree = cv_buffer_create_uninit(cap * 16, "rlpath sdtree", err);
     if (!sd->tree || !(sd->tree_tex = cv_buffer_texture(sd->tree, GL_RGBA32F, cap, err)))
         return false;
     sd->tree_texels = cap;
@@ -128,7 +130,9 @@ static bool guide_upload(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
     float(*t)[4] = NULL;
     size_t n = 0, words = cv_sdtree_stat_words(sd->guide);
+    double t0 = cv_seconds();
     cv_sdtree_table(sd->guide, &sd->opts, &t, &n);
+    sd->table_s = cv_seconds() - t0;
     sd->params.grid.x = (uint32_t)(n - CV_SD_GRID_TEXELS);
     sd->params.grid.y = (uint32_t)t[0][3];   /* the top blocks' levels */
     glNamedBufferSubData(sd->ubo, 0, sizeof(sd->params), &sd->params);
@@ -323,8 +327,9 @@ static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
     /* where the GPU waits between iterations (wall time; the upload's is
      * its queueing) */
     cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: iteration end %.3f ms: the pass's tail, the flush "
-           "and the read-back of %zu words %.3f ms, refine %.3f ms, table and upload %.3f ms",
-           sd->builds, 1e3 * (t3 - t0), words, 1e3 * (t1 - t0), 1e3 * (t2 - t1), 1e3 * (t3 - t2));
+           "and the read-back of %zu words %.3f ms, refine %.3f ms, table %.3f ms, upload "
+           "%.3f ms", sd->builds, 1e3 * (t3 - t0), words, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
+           1e3 * sd->table_s, 1e3 * (t3 - t2 - sd->table_s));
     return ok;
 }
 
