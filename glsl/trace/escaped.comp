@@ -49,21 +49,18 @@ void cv_rl_learn_escaped(CvRayItem r)
 #ifdef CV_RLPATH_SD
 // rlpath's sdtree method (CV_RLPATH_SD): while training, the environment
 // light the path adds to the film adds to its records, which wait for the
-// slot's next path to splat them into the tree's statistics
-// (rlpath/sdtree.glsl).
+// slot's next camera ray to splat them into the tree's statistics
+// (intersect.comp, rlpath/sdtree.glsl).
 #define CV_SD_RECORD
-#define CV_SD_SPLAT
 #include "rlpath/sdtree.glsl"
 void cv_sd_escaped(CvRayItem r)
 {
     if (!cv_sd_learning())
         return;
     uint slot = uint(r.o.w), depth = cv_ray_depth(r);
-    if (depth == 0u)
-        cv_sd_flush(slot);   // the slot's path before
 #ifndef CV_NO_ENV
-    // what main() adds to the film
-    else if (cv_n_lights() > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u)
+    // what main() adds to the film (to no record at depth 0)
+    if (cv_n_lights() > 0u && (cv_ray_flags(r) & CV_RAYF_SPECULAR) == 0u)
         cv_sd_found(slot, depth, r.beta.rgb * cv_env_Le(r.d.xyz) *
                                      cv_power_heuristic(r.d.w, cv_env_pdf(r.d.xyz)));
     else

@@ -44,6 +44,10 @@ struct cv_integrator_ops {
     const char *escaped_define;
     /* The shadow stage is built with shadow_define added when not NULL. */
     const char *shadow_define;
+    /* The intersect stage of the passes that learn is built with
+     * intersect_define added when not NULL (misses through the escaped
+     * stage). */
+    const char *intersect_define;
     /* The stages pass data to each other through images while the
      * integrator learns (rlpath's sdtree records): a barrier for image
      * access after every stage of a learning pass (the shade programs of

@@ -392,9 +392,12 @@ struct stage_programs {
      * escaped_define), and otherwise (plain) */
     const char *escaped[CV_SCENE_DEFINES_MAX + 3];
     const char *escaped_plain[CV_SCENE_DEFINES_MAX + 2];
-    /* the intersect stage's: misses to the escaped queue, and misses that
-     * start their slots' next samples in the stage (regen) */
+    /* the intersect stage's: misses to the escaped queue, while the
+     * integrator learns (with its intersect_define: learn) and otherwise,
+     * and misses that start their slots' next samples in the stage
+     * (regen) */
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
+    const char *intersect_learn[CV_SCENE_DEFINES_MAX + 4];
     const char *intersect_regen[CV_SCENE_DEFINES_MAX + 2];
     bool has_env;                  /* the scene's misses need the escaped stage */
     /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
@@ -425,21 +428,25 @@ const struct cv_names cv_misses_names = {misses_names, CV_MISSES_COUNT};
 
 /* What a pass runs for its misses: through the escaped stage, with these
  * defines, or not (the intersect stage starts their slots' next samples,
- * intersect.comp). The stage is needed while the integrator learns from
- * misses (ops->escaped_stage) and for an environment light; elsewhere both
- * render the same image, and m says which (CV_MISSES_AUTO, undecided:
- * path's way, in the intersect stage). */
+ * intersect.comp); and the intersect stage's defines for it. The stage is
+ * needed while the integrator learns from misses (ops->escaped_stage) and
+ * for an environment light; elsewhere both render the same image, and m
+ * says which (CV_MISSES_AUTO, undecided: path's way, in the intersect
+ * stage). */
 struct pass_misses {
     bool stage;
     const char *const *escaped;
+    const char *const *intersect;
 };
 
 static struct pass_misses pass_misses(const struct stage_programs *sp, bool learns,
                                       enum cv_misses m)
 {
     if (learns)
-        return (struct pass_misses){true, sp->escaped};
-    return (struct pass_misses){sp->has_env || m == CV_MISSES_STAGE, sp->escaped_plain};
+        return (struct pass_misses){true, sp->escaped, sp->intersect_learn};
+    bool stage = sp->has_env || m == CV_MISSES_STAGE;
+    return (struct pass_misses){stage, sp->escaped_plain,
+                                stage ? sp->intersect : sp->intersect_regen};
 }
 
 /* The samples per pixel a job with p learns for (0: none, or every
@@ -511,7 +518,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     }
     defines_plus(sp->shadow, defines, nd, ops->shadow_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
-    defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
+    int ni = defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
+    defines_plus(sp->intersect_learn, sp->intersect, ni, ops->intersect_define, NULL);
     defines_plus(sp->intersect_regen, defines, nd, "CV_HIT_BINS", NULL);
     /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
      * prepare the shadow stage: shade_queue.glsl), the others' only where
@@ -560,7 +568,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         else if (s == ST_ESCAPED)
             d = first.escaped;
         else if (s == ST_INTERSECT)
-            d = first.stage ? sp->intersect : sp->intersect_regen;
+            d = first.intersect;
         else if (s == ST_MATTE)
             d = sp->matte;
         else if (s == ST_RESOLVE)
@@ -617,8 +625,7 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
         if (p->misses != CV_MISSES_AUTO && p->misses != (enum cv_misses)m)
             continue;
         struct pass_misses pm = pass_misses(sp, false, (enum cv_misses)m);
-        cv_program_request(gpu, stage_files[ST_INTERSECT],
-                           pm.stage ? sp->intersect : sp->intersect_regen);
+        cv_program_request(gpu, stage_files[ST_INTERSECT], pm.intersect);
         if (pm.stage)
             cv_program_request(gpu, stage_files[ST_ESCAPED], pm.escaped);
     }
@@ -967,11 +974,9 @@ static bool set_misses(struct cv_renderer *r, struct cv_error *err)
     if (r->misses == CV_MISSES_AUTO && !r->sp->has_env && !choose_misses(r, err))
         return false;
     struct pass_misses pm = pass_misses(r->sp, false, r->misses);
-    const struct stage_programs *sp = r->sp;
-    const char *const *isect = pm.stage ? sp->intersect : sp->intersect_regen;
     if (pm.stage == r->escaped_stage && (!pm.stage || pm.escaped == r->escaped_defines))
         return true;
-    struct cv_program *pi = cv_program_get(r->gpu, stage_files[ST_INTERSECT], isect, err);
+    struct cv_program *pi = cv_program_get(r->gpu, stage_files[ST_INTERSECT], pm.intersect, err);
     struct cv_program *pe =
         pi && pm.stage ? cv_program_get(r->gpu, stage_files[ST_ESCAPED], pm.escaped, err) : NULL;
     if (!pi || (pm.stage && !pe))

@@ -66,10 +66,13 @@ EXTRA_PROGRAMS = tests/trace/rlpath_bench
 tests_trace_rlpath_bench_LDADD = $(CV_LIBS)
 CLEANFILES += tests/trace/rlpath_bench
 # rlpath's sdtree method (Müller et al.'s guide)
-check_PROGRAMS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test
-TESTS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test
+check_PROGRAMS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test \
+	tests/trace/rlpath_sd_splat_test
+TESTS += tests/trace/sdtree_test tests/trace/rlpath_sd_sample_test \
+	tests/trace/rlpath_sd_splat_test
 tests_trace_sdtree_test_LDADD = $(CV_LIBS)
 tests_trace_rlpath_sd_sample_test_LDADD = $(CV_LIBS)
+tests_trace_rlpath_sd_splat_test_LDADD = $(CV_LIBS)
 # the programs of its passes after training
 check_PROGRAMS += tests/trace/rlpath_frozen_test
 TESTS += tests/trace/rlpath_frozen_test

@@ -1,9 +1,13 @@
 /* rlpath_frozen_test.c: the programs of rlpath's sdtree passes after
  * training (trace/integrator.h: frozen_programs) hold no learning code, on
  * the GLSL that ships: the shade program built with CV_FROZEN, and the
- * shadow and escaped stages built without CV_RLPATH_SD (as render.c builds
- * them for those passes), use none of the training record and statistics
- * images that their learning builds use. Code that never runs still costs
+ * shadow, escaped and intersect stages built without CV_RLPATH_SD (as
+ * render.c builds them for those passes), use none of the training record
+ * and statistics images that their learning builds use. Of the learning
+ * builds only the intersect stage's splats into the statistics (the slot's
+ * path before, at its camera ray): the shade bins and the escaped stage,
+ * which would take longer to build with it, keep to the records. Code
+ * that never runs still costs
  * a kernel its registers (bench/RESULTS.md, "What rlpath's passes after
  * training pay for learning"), so its absence is what the passes gain.
  * And a renderer asks the driver for those programs only where a pass will
@@ -20,16 +24,25 @@
 #include "tests/trace/rlpath_room.h"
 #include "tests/trace/trace_test_util.h"
 
-/* the learning images of glsl/trace/rlpath/sdtree.glsl */
-/* (sd_flux where the driver has float atomics, sd_stats where not) */
+/* the learning images of glsl/trace/rlpath/sdtree.glsl: the records, then
+ * the statistics (sd_flux where the driver has float atomics, sd_stats
+ * where not) */
 static const char *const learning_images[] = {"sd_verts", "sd_counts", "sd_stats", "sd_flux"};
 #define N_IMAGES 4
+#define N_RECORD_IMAGES 2
 
 /* How many of the learning images program `file` built with `defines`
  * uses (-1: it did not build). */
 static int images_used(struct cv_gpu *gpu, const char *file, const char *const *defines)
 {
     return test_uniforms_read(gpu, file, defines, learning_images, N_IMAGES);
+}
+
+/* ... and how many of the statistics images alone. */
+static int stats_used(struct cv_gpu *gpu, const char *file, const char *const *defines)
+{
+    return test_uniforms_read(gpu, file, defines, learning_images + N_RECORD_IMAGES,
+                              N_IMAGES - N_RECORD_IMAGES);
 }
 
 /* Renders the room with sdtree, training for `train` (the render
@@ -100,11 +113,13 @@ int main(void)
     const char *shade_frozen[] = {SCENE, "CV_SHADE_BIN=0", "CV_FROZEN", NULL};
     const char *stage[] = {SCENE, "CV_RLPATH_SD", NULL};
     const char *stage_frozen[] = {SCENE, NULL};
+    const char *isect[] = {SCENE, "CV_HIT_BINS", "CV_ESCAPED_QUEUE", "CV_RLPATH_SD", NULL};
+    const char *isect_frozen[] = {SCENE, "CV_HIT_BINS", "CV_ESCAPED_QUEUE", NULL};
     const char *sd = "trace/rlpath/sd_shade.comp";
 
-    int n = images_used(gpu, sd, shade);
-    tap_ok(n >= 3, "sd_shade.comp: the learning build uses the records and statistics (%d of "
-           "the %d learning images)", n, N_IMAGES);
+    int n = images_used(gpu, sd, shade), ns = stats_used(gpu, sd, shade);
+    tap_ok(n == N_RECORD_IMAGES && ns == 0, "sd_shade.comp: the learning build uses the records "
+           "(%d of the %d learning images), not the statistics (%d)", n, N_IMAGES, ns);
     n = images_used(gpu, sd, shade_frozen);
     tap_ok(n == 0, "sd_shade.comp with CV_FROZEN uses none of them (%d)", n);
     n = images_used(gpu, "trace/shadow.comp", stage);
@@ -112,9 +127,17 @@ int main(void)
     n = images_used(gpu, "trace/shadow.comp", stage_frozen);
     tap_ok(n == 0, "shadow.comp as the passes after training build it uses none (%d)", n);
     n = images_used(gpu, "trace/escaped.comp", stage);
-    tap_ok(n > 0, "escaped.comp with CV_RLPATH_SD uses learning images (%d)", n);
+    ns = stats_used(gpu, "trace/escaped.comp", stage);
+    tap_ok(n > 0 && ns == 0, "escaped.comp with CV_RLPATH_SD uses learning images (%d), not the "
+           "statistics (%d)", n, ns);
     n = images_used(gpu, "trace/escaped.comp", stage_frozen);
     tap_ok(n == 0, "escaped.comp as the passes after training build it uses none (%d)", n);
+    n = images_used(gpu, "trace/intersect.comp", isect);
+    ns = stats_used(gpu, "trace/intersect.comp", isect);
+    tap_ok(n >= N_RECORD_IMAGES + 1 && ns >= 1, "intersect.comp with CV_RLPATH_SD uses the records "
+           "and the statistics (%d of the %d learning images)", n, N_IMAGES);
+    n = images_used(gpu, "trace/intersect.comp", isect_frozen);
+    tap_ok(n == 0, "intersect.comp as the passes after training build it uses none (%d)", n);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

@@ -12,10 +12,12 @@
 // ones too, and the coated walk's bin (guides.glsl), as in the
 // Q-learning method (shade.comp).
 // While the guide trains (u_sd.learn.x) each vertex records its bounce and
-// adds the emission it finds to the records of the bounces before it; a
-// path that ends splats its records into the statistics of the tree being
-// trained (sdtree.glsl), from which the host refines the next tree at the
-// end of each training iteration (src/trace/rlpath_sd.c). Passes
+// adds the emission it finds to the records of the bounces before it; the
+// slot's next camera ray splats a path's records into the statistics of
+// the tree being trained (../intersect.comp, sdtree.glsl), from which the
+// host refines the next tree at the end of each training iteration
+// (src/trace/rlpath_sd.c). The splat stays out of these kernels, which it
+// would make longer to build. Passes
 // after training pay only for the tree's lookups: their build
 // (CV_FROZEN, render.c) leaves the learning code out, which costs a
 // kernel's registers whether it runs or not (bench/RESULTS.md, "What
@@ -38,7 +40,6 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "../surface_inputs.glsl"
 #ifndef CV_FROZEN
 #define CV_SD_RECORD
-#define CV_SD_SPLAT
 #endif
 #include "sdtree.glsl"
 #include "guides.glsl"
@@ -137,9 +138,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
     if (!cv_sd_learning())
         return;
     uint slot = uint(r.o.w), depth = cv_ray_depth(r);
-    if (depth == 0u)
-        cv_sd_flush(slot);   // the slot's path before (its shadow rays are done)
-    else
+    if (depth > 0u)
         cv_sd_found(slot, depth, g.Le);
     if (push_shadow)
         s.m.z = float(depth);   // the shadow stage adds its light to the records

@@ -1,0 +1,93 @@
+/* rlpath_sd_splat_test.c: every path that rlpath's sdtree method records
+ * while it trains reaches the statistics of the tree: a path that ends
+ * within a pass when its slot's next camera ray is traced (intersect.comp),
+ * the last of each slot at the iteration's end (sd_flush.comp). Rendered
+ * with mix 0, so that guiding changes no path, and one path slot a pixel,
+ * so that a slot runs as many paths in a pass as the pass has samples: the
+ * records each training iteration counts (the `rlpath sdtree N: R records`
+ * line of the log) are then in proportion to its samples. A splat that
+ * only the iteration's end did would count one path a slot: a ninth of
+ * them in the last iteration of 9 spp. In a closed room and in one that
+ * camera rays leave (their misses end paths in the escaped stage). */
+#include "config.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "base/log.h"
+#include "tests/gpu/gpu_test_util.h"
+#include "tests/trace/rlpath_room.h"
+#include "tests/trace/trace_test_util.h"
+
+/* The training iterations' samples under rlpath.train 16 (1, 2, 4, then
+ * the rest), and as many passes. */
+static const uint32_t iterations[] = {1, 2, 4, 9, 0};
+#define N_ITERATIONS 4
+
+static void check_room(struct cv_gpu *gpu, const char *name, const char *text, size_t len)
+{
+    struct cv_error err = {{0}};
+    struct cv_scene *s = NULL;
+    struct cv_scene_load_params lp = {0};
+    if (!tap_ok(cv_scene_load_string(name, text, len, &lp, &s, &err), "%s: loads: %s", name,
+                err.msg))
+        return;
+    struct cv_render_params p = {.sampler = CV_SAMPLER_INDEPENDENT,
+                                 .integrator = CV_INTEGRATOR_RLPATH,
+                                 .rl_sdtree = true,
+                                 .rl_mix = 0,
+                                 .rl_train = 16,
+                                 .paths_per_pixel = 1,
+                                 .spp = 16};
+    FILE *log = tmpfile();
+    enum cv_log_level level = cv_log_get_level();
+    cv_log_set_stream(log);
+    cv_log_set_level(CV_LOG_DEBUG);
+    struct test_image img = {0};
+    bool ok = test_render(gpu, s, &p, iterations, &img, &err);
+    cv_log_set_stream(NULL);
+    cv_log_set_level(level);
+    free(img.rgba);
+    cv_scene_destroy(&s);
+    if (!tap_ok(ok && log, "%s: renders: %s", name, err.msg)) {
+        if (log)
+            fclose(log);
+        return;
+    }
+    unsigned long long records[N_ITERATIONS] = {0};
+    int found = 0;
+    char line[1024];
+    rewind(log);
+    while (fgets(line, sizeof(line), log)) {
+        const char *at = strstr(line, "rlpath sdtree ");
+        unsigned k;
+        unsigned long long n;
+        if (at && sscanf(at, "rlpath sdtree %u: %llu records", &k, &n) == 2 && k >= 1 &&
+            k <= N_ITERATIONS) {
+            records[k - 1] = n;
+            found++;
+        }
+    }
+    fclose(log);
+    /* records a sample in each iteration, against the first's (one path a
+     * slot: the iteration's end splats them all) */
+    double first = (double)records[0] / iterations[0], worst = 1.0;
+    for (int k = 1; k < N_ITERATIONS; k++) {
+        double r = first > 0 ? (double)records[k] / iterations[k] / first : 0.0;
+        if (fabs(r - 1.0) > fabs(worst - 1.0) || k == 1)
+            worst = r;
+    }
+    tap_ok(found == N_ITERATIONS && records[0] > 0 && fabs(worst - 1.0) < 0.15,
+           "%s: each iteration counts records in proportion to its samples (%llu %llu %llu "
+           "%llu over 1 2 4 9 spp; furthest from the first's rate: %.3f of it)",
+           name, records[0], records[1], records[2], records[3], worst);
+}
+
+int main(void)
+{
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1);
+    check_room(gpu, "open.pbrt", rlpath_room_open, sizeof(rlpath_room_open) - 1);
+    cv_gpu_destroy(&gpu);
+    return tap_done();
+}
