@@ -50,7 +50,7 @@ void cv_rl_learn_escaped(CvRayItem r)
 // rlpath's sdtree method (CV_RLPATH_SD): while training, the environment
 // light the path adds to the film adds to its records, which wait for the
 // slot's next camera ray to splat them into the tree's statistics
-// (intersect.comp, rlpath/sdtree.glsl).
+// (rlpath/sd_flush.comp, rlpath/sdtree.glsl).
 #define CV_SD_RECORD
 #include "rlpath/sdtree.glsl"
 void cv_sd_escaped(CvRayItem r)

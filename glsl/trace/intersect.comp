@@ -1,5 +1,4 @@
 #version 450
-#extension GL_NV_shader_atomic_float : enable
 // glsl/trace/intersect.comp: closest hit for every ray of this iteration;
 // hits go to the hit queue. With CV_ESCAPED_QUEUE misses go to the escaped
 // queue (trace/escaped.comp: environment light, rlpath's learning).
@@ -16,11 +15,7 @@
 // through the media on its way (medium/track.glsl): a collision in a
 // medium is queued as a hit of its own (CV_HIT_MEDIUM) for the shade
 // stage's medium vertex. The last group to finish prepares the shade
-// stage's dispatch (queue_args.glsl). While rlpath's sdtree method trains
-// (CV_RLPATH_SD), a camera ray first splats the records of its slot's
-// path before (rlpath/sdtree.glsl: cv_sd_flush), whose shadow rays are
-// done by now: here once, not in every shade bin and the escaped stage,
-// whose builds the splat's code would lengthen.
+// stage's dispatch (queue_args.glsl).
 #include "shared/trace.h"
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
@@ -40,11 +35,6 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #ifdef CV_HAS_SUBSURFACE
 #include "sss_probe.glsl"
 #endif
-#ifdef CV_RLPATH_SD
-#define CV_SD_RECORD
-#define CV_SD_SPLAT
-#include "rlpath/sdtree.glsl"
-#endif
 
 void main()
 {
@@ -63,11 +53,6 @@ void main()
     uint probe_n = 0u;
     if (valid) {
         CvRayItem r = cv_ray_in(i);
-#ifdef CV_RLPATH_SD
-        // (a subsurface probe from a camera ray's hit finds nothing waiting)
-        if (cv_sd_learning() && cv_ray_depth(r) == 0u)
-            cv_sd_flush(uint(r.o.w));
-#endif
 #ifdef CV_HAS_MOTION
         cv_trace_time = cv_path_time(uint(r.o.w));
 #endif

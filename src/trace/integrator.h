@@ -44,10 +44,13 @@ struct cv_integrator_ops {
     const char *escaped_define;
     /* The shadow stage is built with shadow_define added when not NULL. */
     const char *shadow_define;
-    /* The intersect stage of the passes that learn is built with
-     * intersect_define added when not NULL (misses through the escaped
-     * stage). */
-    const char *intersect_define;
+    /* May be NULL: a program the passes that learn run over each
+     * iteration's rays before the intersect stage (render.c's splat stage:
+     * rlpath's sdtree splats the records of a camera ray's slot's path
+     * before), learn_rays_file built with the scene's defines and
+     * learn_rays_define. */
+    const char *learn_rays_file;
+    const char *learn_rays_define;
     /* The stages pass data to each other through images while the
      * integrator learns (rlpath's sdtree records): a barrier for image
      * access after every stage of a learning pass (the shade programs of

@@ -52,6 +52,7 @@ enum stage {
     ST_RESOLVE,
     ST_MATTE,             /* only for alpha and ID AOVs (matte.comp) */
     ST_RESOLVE_STRAIGHT,  /* only for alpha: un-premultiplied, for the colour stage */
+    ST_SPLAT,             /* only while an integrator with learn_rays_file learns */
     ST_COUNT
 };
 
@@ -123,7 +124,7 @@ struct cv_renderer {
 
 static const char *const stage_names[ST_COUNT] = {
     "generate", "intersect", "escaped", "shade", "shade-b", "shade-c", "shadow", "resolve",
-    "matte",    "resolve-straight",
+    "matte",    "resolve-straight", "splat",
 };
 
 static const char *const pass_names[1] = {"pass"};
@@ -143,7 +144,7 @@ static void prof_end(struct cv_renderer *r)
 static const char *const stage_files[ST_COUNT] = {
     "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
     NULL,                  NULL,                   "trace/shadow.comp",  "trace/resolve.comp",
-    "trace/matte.comp",    "trace/resolve.comp",
+    "trace/matte.comp",    "trace/resolve.comp",   NULL,
 };
 
 /* The film and camera: the plan's (p->camera), else the scene's. */
@@ -392,13 +393,11 @@ struct stage_programs {
      * escaped_define), and otherwise (plain) */
     const char *escaped[CV_SCENE_DEFINES_MAX + 3];
     const char *escaped_plain[CV_SCENE_DEFINES_MAX + 2];
-    /* the intersect stage's: misses to the escaped queue, while the
-     * integrator learns (with its intersect_define: learn) and otherwise,
-     * and misses that start their slots' next samples in the stage
-     * (regen) */
+    /* the intersect stage's: misses to the escaped queue, and misses that
+     * start their slots' next samples in the stage (regen) */
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
-    const char *intersect_learn[CV_SCENE_DEFINES_MAX + 4];
     const char *intersect_regen[CV_SCENE_DEFINES_MAX + 2];
+    const char *learn_rays[CV_SCENE_DEFINES_MAX + 2];   /* the splat stage's */
     bool has_env;                  /* the scene's misses need the escaped stage */
     /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
      * CV_NO_TEXTURES, CV_BSDF_WALK_ONLY and CV_RL_UNGUIDED where they
@@ -443,7 +442,7 @@ static struct pass_misses pass_misses(const struct stage_programs *sp, bool lear
                                       enum cv_misses m)
 {
     if (learns)
-        return (struct pass_misses){true, sp->escaped, sp->intersect_learn};
+        return (struct pass_misses){true, sp->escaped, sp->intersect};
     bool stage = sp->has_env || m == CV_MISSES_STAGE;
     return (struct pass_misses){stage, sp->escaped_plain,
                                 stage ? sp->intersect : sp->intersect_regen};
@@ -518,9 +517,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     }
     defines_plus(sp->shadow, defines, nd, ops->shadow_define, NULL);
     /* hits binned by material for the shade stages (intersect.comp) */
-    int ni = defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
-    defines_plus(sp->intersect_learn, sp->intersect, ni, ops->intersect_define, NULL);
+    defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
     defines_plus(sp->intersect_regen, defines, nd, "CV_HIT_BINS", NULL);
+    defines_plus(sp->learn_rays, defines, nd, ops->learn_rays_define, NULL);
     /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
      * prepare the shadow stage: shade_queue.glsl), the others' only where
      * the scene's materials use them (volpath's medium events and
@@ -558,7 +557,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->shade[k];
         }
         if ((s == ST_ESCAPED && !first.stage) || (s == ST_MATTE && !words) ||
-            (s == ST_RESOLVE_STRAIGHT && !p->alpha))
+            (s == ST_RESOLVE_STRAIGHT && !p->alpha) || (s == ST_SPLAT && !ops->learn_rays_file))
             continue;
         /* a whole-sample integrator runs its program and the resolve alone */
         if (ops->whole_samples && s != ST_SHADE && s != ST_RESOLVE && s != ST_RESOLVE_STRAIGHT)
@@ -577,6 +576,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->straight;
         else if (s == ST_SHADOW)
             d = sp->shadow;
+        else if (s == ST_SPLAT)
+            file = ops->learn_rays_file, d = sp->learn_rays;
         sp->file[s] = file;
         sp->defines[s] = d;
         if (!freezes(ops, p))
@@ -860,6 +861,9 @@ static void iterate(struct cv_renderer *r, uint32_t it)
                                  (GLintptr)(sizeof(uint32_t) * it), sizeof(uint32_t));
     }
     r->prof.iter = it < PROF_ITERS ? it : PROF_ITERS;  /* no slot: its rays are not counted */
+    /* the integrator's look at the rays before they move on (learn_rays_file) */
+    if (r->learning && r->prog[ST_SPLAT].id)
+        stage_indirect(r, ST_SPLAT, CV_ARGS_RAYS);
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);

@@ -425,8 +425,9 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .escaped_stage = true,   /* misses end paths that recorded */
     .escaped_define = "CV_RLPATH_SD",
     .shadow_define = "CV_RLPATH_SD",   /* shadow rays add to the records */
-    /* camera rays splat their slots' records of the path before */
-    .intersect_define = "CV_RLPATH_SD",
+    /* camera rays' slots' records of the path before, splatted */
+    .learn_rays_file = "trace/rlpath/sd_flush.comp",
+    .learn_rays_define = "CV_SD_FLUSH_RAYS",
     .image_stages = true,               /* ... which the next stages read */
     .n_shade = 3,
     .file = {"trace/rlpath/sd_shade.comp", "trace/rlpath/sd_shade.comp",

@@ -1,12 +1,12 @@
 /* rlpath_frozen_test.c: the programs of rlpath's sdtree passes after
  * training (trace/integrator.h: frozen_programs) hold no learning code, on
  * the GLSL that ships: the shade program built with CV_FROZEN, and the
- * shadow, escaped and intersect stages built without CV_RLPATH_SD (as
- * render.c builds them for those passes), use none of the training record
- * and statistics images that their learning builds use. Of the learning
- * builds only the intersect stage's splats into the statistics (the slot's
- * path before, at its camera ray): the shade bins and the escaped stage,
- * which would take longer to build with it, keep to the records. Code
+ * shadow and escaped stages built without CV_RLPATH_SD (as render.c builds
+ * them for those passes), use none of the training record and statistics
+ * images that their learning builds use. Of the learning builds none
+ * splats into the statistics: the shade bins and the escaped stage, which
+ * would take longer to build with it, keep to the records, and the splat
+ * stage's build of sd_flush.comp splats (render.c: learn_rays_file). Code
  * that never runs still costs
  * a kernel its registers (bench/RESULTS.md, "What rlpath's passes after
  * training pay for learning"), so its absence is what the passes gain.
@@ -113,8 +113,7 @@ int main(void)
     const char *shade_frozen[] = {SCENE, "CV_SHADE_BIN=0", "CV_FROZEN", NULL};
     const char *stage[] = {SCENE, "CV_RLPATH_SD", NULL};
     const char *stage_frozen[] = {SCENE, NULL};
-    const char *isect[] = {SCENE, "CV_HIT_BINS", "CV_ESCAPED_QUEUE", "CV_RLPATH_SD", NULL};
-    const char *isect_frozen[] = {SCENE, "CV_HIT_BINS", "CV_ESCAPED_QUEUE", NULL};
+    const char *splat[] = {SCENE, "CV_SD_FLUSH_RAYS", NULL};
     const char *sd = "trace/rlpath/sd_shade.comp";
 
     int n = images_used(gpu, sd, shade), ns = stats_used(gpu, sd, shade);
@@ -132,12 +131,10 @@ int main(void)
            "statistics (%d)", n, ns);
     n = images_used(gpu, "trace/escaped.comp", stage_frozen);
     tap_ok(n == 0, "escaped.comp as the passes after training build it uses none (%d)", n);
-    n = images_used(gpu, "trace/intersect.comp", isect);
-    ns = stats_used(gpu, "trace/intersect.comp", isect);
-    tap_ok(n >= N_RECORD_IMAGES + 1 && ns >= 1, "intersect.comp with CV_RLPATH_SD uses the records "
-           "and the statistics (%d of the %d learning images)", n, N_IMAGES);
-    n = images_used(gpu, "trace/intersect.comp", isect_frozen);
-    tap_ok(n == 0, "intersect.comp as the passes after training build it uses none (%d)", n);
+    n = images_used(gpu, "trace/rlpath/sd_flush.comp", splat);
+    ns = stats_used(gpu, "trace/rlpath/sd_flush.comp", splat);
+    tap_ok(n >= N_RECORD_IMAGES + 1 && ns >= 1, "sd_flush.comp with CV_SD_FLUSH_RAYS uses the "
+           "records and the statistics (%d of the %d learning images)", n, N_IMAGES);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

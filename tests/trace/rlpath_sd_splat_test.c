@@ -1,7 +1,8 @@
 /* rlpath_sd_splat_test.c: every path that rlpath's sdtree method records
  * while it trains reaches the statistics of the tree: a path that ends
- * within a pass when its slot's next camera ray is traced (intersect.comp),
- * the last of each slot at the iteration's end (sd_flush.comp). Rendered
+ * within a pass at its slot's next camera ray (the renderer's splat stage,
+ * sd_flush.comp with CV_SD_FLUSH_RAYS), the last of each slot at the
+ * iteration's end (sd_flush.comp). Rendered
  * with mix 0, so that guiding changes no path, and one path slot a pixel,
  * so that a slot runs as many paths in a pass as the pass has samples: the
  * records each training iteration counts (the `rlpath sdtree N: R records`

@@ -20,8 +20,8 @@
 // Include after the local_size layout line. CV_SD_RECORD: the record
 // images read-write (shade, escaped and shadow stages while training);
 // CV_SD_SPLAT (with it): the statistics too (what splats a finished path's
-// records: the intersect stage at the slot's next camera ray,
-// sd_flush.comp at an iteration's end), whose float adds need
+// records: sd_flush.comp, at the slot's next camera ray and at an
+// iteration's end), whose float adds need
 // "#extension GL_NV_shader_atomic_float : enable" at the top of the file
 // where the driver has it (NVIDIA, Mesa's llvmpipe), else compare-and-swap.
 // CV_FROZEN (the programs of the passes after training, render.c):
