@@ -9,7 +9,9 @@
  * line of the log) are then in proportion to its samples. A splat that
  * only the iteration's end did would count one path a slot: a ninth of
  * them in the last iteration of 9 spp. In a closed room and in one that
- * camera rays leave (their misses end paths in the escaped stage). */
+ * camera rays leave (their misses end paths in the escaped stage). With
+ * the stage timer on, the splat stage has its row (cavalry-batch(1),
+ * CAVALRY_STAGE_TIMES). */
 #include "config.h"
 
 #include <stdio.h>
@@ -39,6 +41,7 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
                                  .rl_mix = 0,
                                  .rl_train = 16,
                                  .paths_per_pixel = 1,
+                                 .stage_times = true,
                                  .spp = 16};
     FILE *log = tmpfile();
     enum cv_log_level level = cv_log_get_level();
@@ -57,9 +60,11 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
     }
     unsigned long long records[N_ITERATIONS] = {0};
     int found = 0;
+    bool row = false;
     char line[1024];
     rewind(log);
     while (fgets(line, sizeof(line), log)) {
+        row = row || strncmp(line, "stage splat ", 12) == 0;
         const char *at = strstr(line, "rlpath sdtree ");
         unsigned k;
         unsigned long long n;
@@ -82,6 +87,7 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
            "%s: each iteration counts records in proportion to its samples (%llu %llu %llu "
            "%llu over 1 2 4 9 spp; furthest from the first's rate: %.3f of it)",
            name, records[0], records[1], records[2], records[3], worst);
+    tap_ok(row, "%s: the stage timer has a row for the splat stage", name);
 }
 
 int main(void)
