@@ -43,6 +43,10 @@
 
 enum stage {
     ST_GENERATE,
+    /* only while an integrator with learn_rays_file learns; a small
+     * program, requested (in this order) before the shade stages' long
+     * builds rather than after them */
+    ST_SPLAT,
     ST_INTERSECT,
     ST_ESCAPED,
     ST_SHADE,
@@ -52,7 +56,6 @@ enum stage {
     ST_RESOLVE,
     ST_MATTE,             /* only for alpha and ID AOVs (matte.comp) */
     ST_RESOLVE_STRAIGHT,  /* only for alpha: un-premultiplied, for the colour stage */
-    ST_SPLAT,             /* only while an integrator with learn_rays_file learns */
     ST_COUNT
 };
 
@@ -123,8 +126,8 @@ struct cv_renderer {
 };
 
 static const char *const stage_names[ST_COUNT] = {
-    "generate", "intersect", "escaped", "shade", "shade-b", "shade-c", "shadow", "resolve",
-    "matte",    "resolve-straight", "splat",
+    "generate", "splat", "intersect", "escaped", "shade", "shade-b", "shade-c", "shadow",
+    "resolve",  "matte", "resolve-straight",
 };
 
 static const char *const pass_names[1] = {"pass"};
@@ -142,9 +145,9 @@ static void prof_end(struct cv_renderer *r)
 
 /* The shade stages' files come from the integrator (NULL here). */
 static const char *const stage_files[ST_COUNT] = {
-    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
-    NULL,                  NULL,                   "trace/shadow.comp",  "trace/resolve.comp",
-    "trace/matte.comp",    "trace/resolve.comp",   NULL,
+    "trace/generate.comp", NULL, "trace/intersect.comp", "trace/escaped.comp", NULL,
+    NULL,                  NULL, "trace/shadow.comp",    "trace/resolve.comp",  "trace/matte.comp",
+    "trace/resolve.comp",
 };
 
 /* The film and camera: the plan's (p->camera), else the scene's. */
