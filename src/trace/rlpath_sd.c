@@ -36,7 +36,8 @@
 enum { SD_VERTS, SD_COUNTS, SD_FLUX, SD_STATS, SD_IMAGES };
 
 /* The splat of the records still waiting at the end of an iteration:
- * requested with the renderer's programs, first waited for there. */
+ * requested with the renderer's programs, first waited for there; built
+ * with CV_SD_FLUSH_RAYS, the renderer's splat stage (learn_rays_file). */
 static const char FLUSH[] = "trace/rlpath/sd_flush.comp";
 
 struct cv_rlpath_sd {
@@ -426,7 +427,7 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .escaped_define = "CV_RLPATH_SD",
     .shadow_define = "CV_RLPATH_SD",   /* shadow rays add to the records */
     /* camera rays' slots' records of the path before, splatted */
-    .learn_rays_file = "trace/rlpath/sd_flush.comp",
+    .learn_rays_file = FLUSH,
     .learn_rays_define = "CV_SD_FLUSH_RAYS",
     .image_stages = true,               /* ... which the next stages read */
     .n_shade = 3,
