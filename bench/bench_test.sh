@@ -135,6 +135,16 @@ check "guiding.sh: --rl train with rlpath-online is a usage error" test "$rc" -e
 check "guiding.sh: which says why" grep -q 'sets train, which the variant rlpath-online' \
     "$tmp/g.err"
 check "guiding.sh: and made no work folder" test ! -e "$tmp/g"
+# guiding.sh reads a relative --scenes from where it was started
+if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
+    mkdir -p "$tmp/sc" && cp -R "$tmp/a" "$tmp/sc/tiny" &&
+        mv "$tmp/sc/tiny/scene.pbrt" "$tmp/sc/tiny/scene-v4.pbrt"
+    (cd "$tmp" && sh "$CAVALRY_DATA_DIR/bench/guiding.sh" --batch "$CAVALRY_BATCH" --bench "$cb" \
+        --scenes sc --variants path --seeds 1 --spp 2 --ref-spp 4 --size 8x8 --work g2 tiny \
+        >"$tmp/g2.out" 2>"$tmp/g2.err") || true
+    check "guiding.sh: a relative --scenes renders the scene" grep -q '^tiny,path,0,1,' \
+        "$tmp/g2/runs.csv"
+fi
 # rt_probe (built where configure found Vulkan and glslangValidator): the
 # same ray set as bvh_work (bench/rays.c), spawned from the GPU traversal's
 # hits, timed per query type; the Vulkan columns where a device traces

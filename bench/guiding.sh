@@ -115,6 +115,9 @@ if [ -z "$shared" ]; then
     shared=$srcdir/../shared/scenes
     [ -d "$shared" ] || shared=$srcdir/shared/scenes
 fi
+# absolute: the jobs' manifests are written in the work folder, and a
+# scene path in them is read from there
+[ -d "$shared" ] && shared=$(cd "$shared" && pwd)
 [ -n "$scenes" ] || scenes="veach-ajar veach-bidir cornell-box room"
 [ -n "$work" ] || work=$here/out/guiding
 mkdir -p "$work/ref" "$work/img" "$work/logs" "$work/cache" || exit 1
