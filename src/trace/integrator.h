@@ -47,8 +47,8 @@ struct cv_integrator_ops {
     /* May be NULL: a program the passes that learn run over each
      * iteration's rays before the intersect stage (render.c's splat stage:
      * rlpath's sdtree splats the records of a camera ray's slot's path
-     * before), learn_rays_file built with the scene's defines and
-     * learn_rays_define. */
+     * before), learn_rays_file built with learn_rays_define alone: it
+     * reads no material or light, so one build serves every scene. */
     const char *learn_rays_file;
     const char *learn_rays_define;
     /* The stages pass data to each other through images while the

@@ -400,7 +400,9 @@ struct stage_programs {
      * start their slots' next samples in the stage (regen) */
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
     const char *intersect_regen[CV_SCENE_DEFINES_MAX + 2];
-    const char *learn_rays[CV_SCENE_DEFINES_MAX + 2];   /* the splat stage's */
+    /* the splat stage's: its integrator's define alone (integrator.h:
+     * learn_rays_define) */
+    const char *learn_rays[2];
     bool has_env;                  /* the scene's misses need the escaped stage */
     /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
      * CV_NO_TEXTURES, CV_BSDF_WALK_ONLY and CV_RL_UNGUIDED where they
@@ -522,7 +524,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* hits binned by material for the shade stages (intersect.comp) */
     defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
     defines_plus(sp->intersect_regen, defines, nd, "CV_HIT_BINS", NULL);
-    defines_plus(sp->learn_rays, defines, nd, ops->learn_rays_define, NULL);
+    sp->learn_rays[0] = ops->learn_rays_define;
+    sp->learn_rays[1] = NULL;
     /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
      * prepare the shadow stage: shade_queue.glsl), the others' only where
      * the scene's materials use them (volpath's medium events and

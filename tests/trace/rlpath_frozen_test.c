@@ -113,7 +113,7 @@ int main(void)
     const char *shade_frozen[] = {SCENE, "CV_SHADE_BIN=0", "CV_FROZEN", NULL};
     const char *stage[] = {SCENE, "CV_RLPATH_SD", NULL};
     const char *stage_frozen[] = {SCENE, NULL};
-    const char *splat[] = {SCENE, "CV_SD_FLUSH_RAYS", NULL};
+    const char *splat[] = {"CV_SD_FLUSH_RAYS", NULL};   /* as render.c builds it */
     const char *sd = "trace/rlpath/sd_shade.comp";
 
     int n = images_used(gpu, sd, shade), ns = stats_used(gpu, sd, shade);
