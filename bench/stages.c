@@ -201,6 +201,8 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         bench_num(r, "render.time_to_spp_gpu_ms", c.gpu_ms);
         bench_num(r, "render.passes", passes);
         bench_num(r, "render.iterations", (double)c.iterations);
+        /* the renderer's own: a learning pass may run as several */
+        bench_num(r, "render.gpu_passes", (double)c.passes);
         /* where misses started their slots' next samples in the last pass,
          * and the share of rays that missed (trace/render.h: enum cv_misses) */
         bench_num(r, "render.escaped_stage", c.escaped_stage);

@@ -56,6 +56,13 @@ struct cv_integrator_ops {
      * access after every stage of a learning pass (the shade programs of
      * one iteration share none); passes that do not learn write none. */
     bool image_stages;
+    /* A pass that learns gives each path slot one path at most: the
+     * renderer splits a longer one into passes of paths_per_pixel samples.
+     * rlpath's sdtree method sets it: where slots started their next paths
+     * within a learning pass, its shade, shadow and splat stages took
+     * several times longer a ray on the GPU, growing with the pass
+     * (bench/RESULTS.md, "sdtree's learning passes of one path a slot"). */
+    bool learn_path_a_slot;
     /* The stages track participating media (volpath: every stage built
      * with CV_MEDIA where the scene has media, glsl/trace/medium); else
      * media are ignored, as by pbrt-v4's path integrator. */

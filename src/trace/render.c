@@ -90,6 +90,7 @@ struct cv_renderer {
     uint32_t matte_stride;         /* uints a slot in `matte` (glsl/shared/trace.h); 0: none */
     uint32_t spp_done;
     uint64_t iterations;           /* over all passes, for the counters */
+    uint64_t n_passes;             /* passes run (cv_renderer_pass may split one) */
     CvPassParams pass;
     GLuint ubo, queues, rays, hits, shadow, film;
     GLuint matte;                  /* coverage and ID mattes, with matte_stride */
@@ -934,6 +935,7 @@ static bool whole_samples_pass(struct cv_renderer *r, uint32_t spp, struct cv_er
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
         return false;
     r->iterations += rounds;
+    r->n_passes++;
     r->spp_done += spp;
     return true;
 }
@@ -1033,6 +1035,15 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
         return cv_renderer_pass(r, first, err) && cv_renderer_pass(r, spp - first, err);
     }
     r->learning = until == 0 || r->spp_done < until;
+    /* a learning pass of more samples than slots a pixel, where the
+     * integrator asks for it, as passes of one path a slot */
+    uint32_t ppp = r->paths_per_pixel;
+    if (r->learning && r->ops->learn_path_a_slot && spp > ppp) {
+        for (uint32_t done = 0; done < spp; done += ppp)
+            if (!cv_renderer_pass(r, spp - done < ppp ? spp - done : ppp, err))
+                return false;
+        return true;
+    }
     if (!r->learning && r->freezes && !r->frozen && !use_frozen_programs(r, err))
         return false;
     if (r->misses_later && !set_misses(r, err))
@@ -1094,6 +1105,7 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
     if (!cv_gl_check(err, "rendering a pass of %u spp", spp))
         return false;
     r->iterations += it;
+    r->n_passes++;
     r->spp_done += spp;
     if (r->learning && r->ops->pass_done && !r->ops->pass_done(r->integrator, r->spp_done, err))
         return false;
@@ -1125,6 +1137,7 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->wave_slots = r->wave_paths;
     c->secondary_rays = extend > c->primary_rays ? extend - c->primary_rays : 0;
     c->iterations = r->iterations;
+    c->passes = r->n_passes;
     c->shadow_rays = stat64(&q, CV_STAT_SHADOW);
     c->nonfinite_samples = q.stats[CV_STAT_NONFINITE].x;
     c->missed_rays = extend - stat64(&q, CV_STAT_HITS);

@@ -160,6 +160,10 @@ struct cv_render_counters {
     uint64_t wave_slots;     /* whole samples (bdpt): slots a dispatch runs (render_params'
                               * bdpt_slots); path_slots otherwise */
     uint64_t iterations;     /* bounce iterations of the wave (paths are regenerated) */
+    /* passes run: cv_renderer_pass's, each split where the learning
+     * integrator's training ends and, for one that asks for it
+     * (integrator.h: learn_path_a_slot), into passes of one path a slot */
+    uint64_t passes;
     /* radiance samples and path throughputs dropped for a NaN or infinite
      * value since the renderer was made (glsl/trace/common.glsl:
      * cv_film_reject): 0 unless a bug; the caller reports any */

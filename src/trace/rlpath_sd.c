@@ -430,6 +430,7 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .learn_rays_file = FLUSH,
     .learn_rays_define = "CV_SD_FLUSH_RAYS",
     .image_stages = true,               /* ... which the next stages read */
+    .learn_path_a_slot = true,
     .n_shade = 3,
     .file = {"trace/rlpath/sd_shade.comp", "trace/rlpath/sd_shade.comp",
              "trace/rlpath/sd_shade.comp"},

@@ -1,17 +1,20 @@
 /* rlpath_sd_splat_test.c: every path that rlpath's sdtree method records
  * while it trains reaches the statistics of the tree: a path that ends
- * within a pass at its slot's next camera ray (the renderer's splat stage,
- * sd_flush.comp with CV_SD_FLUSH_RAYS), the last of each slot at the
- * iteration's end (sd_flush.comp). Rendered
- * with mix 0, so that guiding changes no path, and one path slot a pixel,
- * so that a slot runs as many paths in a pass as the pass has samples: the
- * records each training iteration counts (the `rlpath sdtree N: R records`
- * line of the log) are then in proportion to its samples. A splat that
- * only the iteration's end did would count one path a slot: a ninth of
- * them in the last iteration of 9 spp. In a closed room and in one that
- * camera rays leave (their misses end paths in the escaped stage). With
- * the stage timer on, the splat stage has its row (cavalry-batch(1),
- * CAVALRY_STAGE_TIMES). */
+ * before its slot's next path in the same iteration at that path's camera
+ * ray (the renderer's splat stage, sd_flush.comp with CV_SD_FLUSH_RAYS),
+ * the last of each slot at the iteration's end (sd_flush.comp). Rendered
+ * with mix 0, so that guiding changes no path, and one path slot a pixel:
+ * the renderer runs a learning pass of n samples as n passes of one path
+ * a slot (integrator.h: learn_path_a_slot), whose passes after the first
+ * splat at their camera rays the paths of the pass before. The records
+ * each training iteration counts (the `rlpath sdtree N: R records` line
+ * of the log) are then in proportion to its samples. A splat that only
+ * the iteration's end did would count one path a slot: a ninth of them
+ * in the last iteration of 9 spp. In a closed room and in one that camera
+ * rays leave (their misses end paths in the escaped stage). The passes
+ * the renderer counts show the split, and that passes after training are
+ * not split. With the stage timer on, the splat stage has its row
+ * (cavalry-batch(1), CAVALRY_STAGE_TIMES). */
 #include "config.h"
 
 #include <stdio.h>
@@ -27,7 +30,8 @@
 static const uint32_t iterations[] = {1, 2, 4, 9, 0};
 #define N_ITERATIONS 4
 
-static void check_room(struct cv_gpu *gpu, const char *name, const char *text, size_t len)
+static void check_room(struct cv_gpu *gpu, const char *name, const char *text, size_t len,
+                       uint32_t train)
 {
     struct cv_error err = {{0}};
     struct cv_scene *s = NULL;
@@ -39,7 +43,7 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
                                  .integrator = CV_INTEGRATOR_RLPATH,
                                  .rl_sdtree = true,
                                  .rl_mix = 0,
-                                 .rl_train = 16,
+                                 .rl_train = train,
                                  .paths_per_pixel = 1,
                                  .stage_times = true,
                                  .spp = 16};
@@ -56,6 +60,17 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
     if (!tap_ok(ok && log, "%s: renders: %s", name, err.msg)) {
         if (log)
             fclose(log);
+        return;
+    }
+    /* train 16: 16 learning passes of one sample; train 8: the 9-spp pass
+     * splits at the training's end into 1 learning sample and one pass of
+     * 8 after training */
+    uint64_t passes = train == 16 ? 16 : 1 + 2 + 4 + 1 + 1;
+    tap_ok(img.counters.passes == passes,
+           "%s, train %u: %llu passes of 1 2 4 9 spp at one slot a pixel (want %llu)", name,
+           train, (unsigned long long)img.counters.passes, (unsigned long long)passes);
+    if (train != 16) {
+        fclose(log);
         return;
     }
     unsigned long long records[N_ITERATIONS] = {0};
@@ -93,8 +108,9 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
 int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
-    check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1);
-    check_room(gpu, "open.pbrt", rlpath_room_open, sizeof(rlpath_room_open) - 1);
+    check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1, 16);
+    check_room(gpu, "open.pbrt", rlpath_room_open, sizeof(rlpath_room_open) - 1, 16);
+    check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1, 8);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }
