@@ -49,7 +49,7 @@ void cv_rl_learn_escaped(CvRayItem r)
 #ifdef CV_RLPATH_SD
 // rlpath's sdtree method (CV_RLPATH_SD): while training, the environment
 // light the path adds to the film adds to its records, which wait for the
-// slot's next camera ray to splat them into the tree's statistics
+// pass's end to be splatted into the tree's statistics
 // (rlpath/sd_flush.comp, rlpath/sdtree.glsl).
 #define CV_SD_RECORD
 #include "rlpath/sdtree.glsl"

@@ -44,24 +44,19 @@ struct cv_integrator_ops {
     const char *escaped_define;
     /* The shadow stage is built with shadow_define added when not NULL. */
     const char *shadow_define;
-    /* May be NULL: a program the passes that learn run over each
-     * iteration's rays before the intersect stage (render.c's splat stage:
-     * rlpath's sdtree splats the records of a camera ray's slot's path
-     * before), learn_rays_file built with learn_rays_define alone: it
-     * reads no material or light, so one build serves every scene. */
-    const char *learn_rays_file;
-    const char *learn_rays_define;
     /* The stages pass data to each other through images while the
      * integrator learns (rlpath's sdtree records): a barrier for image
      * access after every stage of a learning pass (the shade programs of
      * one iteration share none); passes that do not learn write none. */
     bool image_stages;
     /* A pass that learns gives each path slot one path at most: the
-     * renderer splits a longer one into passes of paths_per_pixel samples.
-     * rlpath's sdtree method sets it: where slots started their next paths
-     * within a learning pass, its shade, shadow and splat stages took
-     * several times longer a ray on the GPU, growing with the pass
-     * (bench/RESULTS.md, "sdtree's learning passes of one path a slot"). */
+     * renderer splits a longer one into passes of paths_per_pixel samples,
+     * so every path of a learning pass has ended at its pass_done.
+     * rlpath's sdtree method sets it: its records wait in per-slot storage
+     * until then, and where slots started their next paths within a
+     * learning pass, its stages that touch that storage took several times
+     * longer a ray on the GPU, more the longer the pass (bench/RESULTS.md,
+     * "sdtree's learning passes of one path a slot"). */
     bool learn_path_a_slot;
     /* The stages track participating media (volpath: every stage built
      * with CV_MEDIA where the scene has media, glsl/trace/medium); else

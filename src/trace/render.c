@@ -43,10 +43,6 @@
 
 enum stage {
     ST_GENERATE,
-    /* only while an integrator with learn_rays_file learns; a small
-     * program, requested (in this order) before the shade stages' long
-     * builds rather than after them */
-    ST_SPLAT,
     ST_INTERSECT,
     ST_ESCAPED,
     ST_SHADE,
@@ -127,8 +123,8 @@ struct cv_renderer {
 };
 
 static const char *const stage_names[ST_COUNT] = {
-    "generate", "splat", "intersect", "escaped", "shade", "shade-b", "shade-c", "shadow",
-    "resolve",  "matte", "resolve-straight",
+    "generate", "intersect", "escaped", "shade",  "shade-b", "shade-c",
+    "shadow",   "resolve",   "matte",   "resolve-straight",
 };
 
 static const char *const pass_names[1] = {"pass"};
@@ -146,9 +142,9 @@ static void prof_end(struct cv_renderer *r)
 
 /* The shade stages' files come from the integrator (NULL here). */
 static const char *const stage_files[ST_COUNT] = {
-    "trace/generate.comp", NULL, "trace/intersect.comp", "trace/escaped.comp", NULL,
-    NULL,                  NULL, "trace/shadow.comp",    "trace/resolve.comp",  "trace/matte.comp",
-    "trace/resolve.comp",
+    "trace/generate.comp", "trace/intersect.comp", "trace/escaped.comp", NULL,
+    NULL,                  NULL,                   "trace/shadow.comp",  "trace/resolve.comp",
+    "trace/matte.comp",    "trace/resolve.comp",
 };
 
 /* The film and camera: the plan's (p->camera), else the scene's. */
@@ -401,9 +397,6 @@ struct stage_programs {
      * start their slots' next samples in the stage (regen) */
     const char *intersect[CV_SCENE_DEFINES_MAX + 3];
     const char *intersect_regen[CV_SCENE_DEFINES_MAX + 2];
-    /* the splat stage's: its integrator's define alone (integrator.h:
-     * learn_rays_define) */
-    const char *learn_rays[2];
     bool has_env;                  /* the scene's misses need the escaped stage */
     /* (a shade bin's: its integrator's define, CV_NO_COAT_CLOSED,
      * CV_NO_TEXTURES, CV_BSDF_WALK_ONLY and CV_RL_UNGUIDED where they
@@ -525,8 +518,6 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
     /* hits binned by material for the shade stages (intersect.comp) */
     defines_plus(sp->intersect, defines, nd, "CV_HIT_BINS", "CV_ESCAPED_QUEUE");
     defines_plus(sp->intersect_regen, defines, nd, "CV_HIT_BINS", NULL);
-    sp->learn_rays[0] = ops->learn_rays_define;
-    sp->learn_rays[1] = NULL;
     /* shade bins (trace/shade_bins.h): bin 0's program always (its groups
      * prepare the shadow stage: shade_queue.glsl), the others' only where
      * the scene's materials use them (volpath's medium events and
@@ -564,7 +555,7 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->shade[k];
         }
         if ((s == ST_ESCAPED && !first.stage) || (s == ST_MATTE && !words) ||
-            (s == ST_RESOLVE_STRAIGHT && !p->alpha) || (s == ST_SPLAT && !ops->learn_rays_file))
+            (s == ST_RESOLVE_STRAIGHT && !p->alpha))
             continue;
         /* a whole-sample integrator runs its program and the resolve alone */
         if (ops->whole_samples && s != ST_SHADE && s != ST_RESOLVE && s != ST_RESOLVE_STRAIGHT)
@@ -583,8 +574,6 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->straight;
         else if (s == ST_SHADOW)
             d = sp->shadow;
-        else if (s == ST_SPLAT)
-            file = ops->learn_rays_file, d = sp->learn_rays;
         sp->file[s] = file;
         sp->defines[s] = d;
         if (!freezes(ops, p))
@@ -868,9 +857,6 @@ static void iterate(struct cv_renderer *r, uint32_t it)
                                  (GLintptr)(sizeof(uint32_t) * it), sizeof(uint32_t));
     }
     r->prof.iter = it < PROF_ITERS ? it : PROF_ITERS;  /* no slot: its rays are not counted */
-    /* the integrator's look at the rays before they move on (learn_rays_file) */
-    if (r->learning && r->prog[ST_SPLAT].id)
-        stage_indirect(r, ST_SPLAT, CV_ARGS_RAYS);
     stage_indirect(r, ST_INTERSECT, CV_ARGS_RAYS);
     if (r->escaped_stage)
         stage_indirect(r, ST_ESCAPED, CV_ARGS_ESCAPED);

@@ -35,9 +35,9 @@
 /* The buffers the shaders see as images, in cv_rlpath_sd.images. */
 enum { SD_VERTS, SD_COUNTS, SD_FLUX, SD_STATS, SD_IMAGES };
 
-/* The splat of the records still waiting at the end of an iteration:
- * requested with the renderer's programs, first waited for there; built
- * with CV_SD_FLUSH_RAYS, the renderer's splat stage (learn_rays_file). */
+/* The splat of the records of every slot's path at the end of each
+ * learning pass (one path a slot: learn_path_a_slot): requested with the
+ * renderer's programs, first waited for there. */
 static const char FLUSH[] = "trace/rlpath/sd_flush.comp";
 
 struct cv_rlpath_sd {
@@ -296,19 +296,23 @@ bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
            cv_gl_check(err, "rlpath sdtree splat of %zu records", n);
 }
 
-/* The end of a training iteration: the statistics back, the tree refined
- * and uploaded with zeroed statistics. */
-static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
+/* The records of each slot's path of the pass into the statistics (the
+ * stages wrote them through images). */
+static bool flush(struct cv_rlpath_sd *sd, struct cv_error *err)
 {
-    /* the records of each slot's last path (the stages wrote them through
-     * images) */
     struct cv_program *fp = cv_program_get(sd->gpu, FLUSH, NULL, err);
     if (!fp)
         return false;
-    double t0 = cv_seconds();
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     cv_program_dispatch_1d(fp, sd->n_paths);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return true;
+}
+
+/* The end of a training iteration, its last pass flushed from t0 on: the
+ * statistics back, the tree refined and uploaded with zeroed statistics. */
+static bool iteration_done(struct cv_rlpath_sd *sd, double t0, struct cv_error *err)
+{
     size_t words = cv_sdtree_stat_words(sd->guide);
     uint32_t *stats = cv_xmalloc(words * sizeof(*stats));
     if (!cv_buffer_read_staged(sd->stats, 0, words * sizeof(*stats), sd->stats_copy, stats,
@@ -336,11 +340,15 @@ static bool iteration_done(struct cv_rlpath_sd *sd, struct cv_error *err)
 
 bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct cv_error *err)
 {
-    /* a pass inside an iteration leaves its paths' records to the slots'
-     * next paths, which splat them into the same statistics */
-    if (!sd->params.learn.x || spp_done < sd->end)
+    if (!sd->params.learn.x)
         return true;
-    bool ok = iteration_done(sd, err);
+    double t0 = cv_seconds();
+    if (!flush(sd, err))
+        return false;
+    /* a pass inside an iteration: the next adds to the same statistics */
+    if (spp_done < sd->end)
+        return true;
+    bool ok = iteration_done(sd, t0, err);
     sd->start = sd->end;
     sd->len *= 2;
     sd->end = iteration_end(sd->train, sd->start, sd->len);
@@ -426,9 +434,6 @@ const struct cv_integrator_ops cv_rlpath_sd_ops = {
     .escaped_stage = true,   /* misses end paths that recorded */
     .escaped_define = "CV_RLPATH_SD",
     .shadow_define = "CV_RLPATH_SD",   /* shadow rays add to the records */
-    /* camera rays' slots' records of the path before, splatted */
-    .learn_rays_file = FLUSH,
-    .learn_rays_define = "CV_SD_FLUSH_RAYS",
     .image_stages = true,               /* ... which the next stages read */
     .learn_path_a_slot = true,
     .n_shade = 3,

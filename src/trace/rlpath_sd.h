@@ -43,10 +43,11 @@ void cv_rlpath_sd_set_filter(struct cv_rlpath_sd *sd, uint32_t filter);
  * many quadtrees that guide gets. */
 void cv_rlpath_sd_set_block_log2(struct cv_rlpath_sd *sd, uint32_t levels);
 
-/* After a pass that ends with spp_done samples per pixel: at the end of a
- * training iteration, reads the statistics the shaders splatted back,
- * refines the guide and uploads it. Waits for the GPU: once per training
- * iteration. */
+/* After a pass that ends with spp_done samples per pixel: while training,
+ * splats the records of every slot's path of the pass (one path a slot:
+ * integrator.h, learn_path_a_slot) into the statistics; at the end of a
+ * training iteration, reads them back, refines the guide and uploads it.
+ * Waits for the GPU: once per training iteration. */
 bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct cv_error *err);
 
 /* Learns the guide from n records on the host (cv_sdtree_learn_records)

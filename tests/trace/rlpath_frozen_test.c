@@ -5,11 +5,11 @@
  * them for those passes), use none of the training record and statistics
  * images that their learning builds use. Of the learning builds none
  * splats into the statistics: the shade bins and the escaped stage, which
- * would take longer to build with it, keep to the records, and the splat
- * stage's build of sd_flush.comp splats (render.c: learn_rays_file). Code
- * that never runs still costs
- * a kernel its registers (bench/RESULTS.md, "What rlpath's passes after
- * training pay for learning"), so its absence is what the passes gain.
+ * would take longer to build with it, keep to the records, and
+ * sd_flush.comp, run at the end of each training pass, splats. Code that
+ * never runs still costs a kernel its registers (bench/RESULTS.md, "What
+ * rlpath's passes after training pay for learning"), so its absence is
+ * what the passes gain.
  * And a renderer asks the driver for those programs only where a pass will
  * run them: with rlpath.train 0 (learning in every pass), or a job whose
  * samples end within the training, no build starts that nothing uses;
@@ -113,7 +113,6 @@ int main(void)
     const char *shade_frozen[] = {SCENE, "CV_SHADE_BIN=0", "CV_FROZEN", NULL};
     const char *stage[] = {SCENE, "CV_RLPATH_SD", NULL};
     const char *stage_frozen[] = {SCENE, NULL};
-    const char *splat[] = {"CV_SD_FLUSH_RAYS", NULL};   /* as render.c builds it */
     const char *sd = "trace/rlpath/sd_shade.comp";
 
     int n = images_used(gpu, sd, shade), ns = stats_used(gpu, sd, shade);
@@ -131,10 +130,10 @@ int main(void)
            "statistics (%d)", n, ns);
     n = images_used(gpu, "trace/escaped.comp", stage_frozen);
     tap_ok(n == 0, "escaped.comp as the passes after training build it uses none (%d)", n);
-    n = images_used(gpu, "trace/rlpath/sd_flush.comp", splat);
-    ns = stats_used(gpu, "trace/rlpath/sd_flush.comp", splat);
-    tap_ok(n >= N_RECORD_IMAGES + 1 && ns >= 1, "sd_flush.comp with CV_SD_FLUSH_RAYS uses the "
-           "records and the statistics (%d of the %d learning images)", n, N_IMAGES);
+    n = images_used(gpu, "trace/rlpath/sd_flush.comp", NULL);
+    ns = stats_used(gpu, "trace/rlpath/sd_flush.comp", NULL);
+    tap_ok(n >= N_RECORD_IMAGES + 1 && ns >= 1, "sd_flush.comp uses the records and the "
+           "statistics (%d of the %d learning images)", n, N_IMAGES);
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

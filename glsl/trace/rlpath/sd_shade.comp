@@ -13,7 +13,7 @@
 // Q-learning method (shade.comp).
 // While the guide trains (u_sd.learn.x) each vertex records its bounce and
 // adds the emission it finds to the records of the bounces before it; the
-// slot's next camera ray splats a path's records into the statistics of
+// end of the pass splats every path's records into the statistics of
 // the tree being trained (sd_flush.comp, sdtree.glsl), from which the
 // host refines the next tree at the end of each training iteration
 // (src/trace/rlpath_sd.c). The splat stays out of these kernels, which it

@@ -20,8 +20,8 @@
 // Include after the local_size layout line. CV_SD_RECORD: the record
 // images read-write (shade, escaped and shadow stages while training);
 // CV_SD_SPLAT (with it): the statistics too (what splats a finished path's
-// records: sd_flush.comp, at the slot's next camera ray and at an
-// iteration's end), whose float adds need
+// records: sd_flush.comp, at the end of each training pass), whose float
+// adds need
 // "#extension GL_NV_shader_atomic_float : enable" at the top of the file
 // where the driver has it (NVIDIA, Mesa's llvmpipe), else compare-and-swap.
 // CV_FROZEN (the programs of the passes after training, render.c):
@@ -331,8 +331,8 @@ void cv_sd_found(uint slot, uint depth, vec3 L)
 }
 
 // The path of the slot ended at depth: its records of the bounces before
-// wait for the shadow rays of its last vertex, until the slot's next path
-// starts (cv_sd_flush).
+// wait for the shadow rays of its last vertex, until the pass ends
+// (cv_sd_flush).
 void cv_sd_path_end(uint slot, uint depth)
 {
     imageStore(sd_counts, int(slot), uvec4(min(depth, CV_SD_MAX_RECORDS)));
@@ -499,8 +499,8 @@ void cv_sd_splat(vec3 p, float pdf, uint cls, vec2 s, float L)
 }
 
 // Splats the finished path's records into the tree's statistics, before
-// the slot's next path overwrites them: at its first vertex or miss, and
-// at the end of each training iteration (sd_flush.comp).
+// the slot's next path overwrites them: at the end of each training pass,
+// which gives each slot one path (sd_flush.comp).
 void cv_sd_flush(uint slot)
 {
     uint n = imageLoad(sd_counts, int(slot)).x;
