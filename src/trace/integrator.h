@@ -140,9 +140,9 @@ struct cv_integrator_ops {
      * learning (escaped_stage). */
     bool frozen_programs;
     /* May be NULL: after each pass that learned, with the samples per pixel
-     * done (rlpath's sdtree: at the end of a training iteration, reads
-     * the splatted statistics back and refines the guide); false fails the
-     * pass with err set. */
+     * done (rlpath's sdtree: splats the pass's records into the statistics
+     * and, at the end of a training iteration, reads them back and refines
+     * the guide); false fails the pass with err set. */
     bool (*pass_done)(void *state, uint32_t spp_done, struct cv_error *err);
 };
 
