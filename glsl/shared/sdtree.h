@@ -90,7 +90,7 @@
  *
  * Training records: while the guide learns, every vertex that bounces
  * writes a record of its path slot (CV_IMAGE_SD_VERTS: each slot's
- * CV_SD_MAX_RECORDS records of two texels each, from CV_SD_RECORD_TEXEL),
+ * CV_SD_MAX_RECORDS records of two texels each, at CV_SD_RECORD_TEXEL),
  * and a path that ends writes the count of its records, which wait to be
  * splatted, to its slot's word of CV_IMAGE_SD_COUNTS. Only the counts, a
  * buffer of their own, start zeroed: a path writes its record at each
@@ -99,19 +99,19 @@
  * no clearing, and their storage is first touched by the shaders that
  * write it (a clear of fresh storage, even of a part, costs time in
  * proportion to its size: gpu/buffer.h):
- *   t:     position xyz; w: the density the bounce was drawn with (solid
- *          angle; 0: not a guided vertex, the record is skipped);
- *   t + 1: the bounce direction (u, v) on the square, u plus the vertex's
- *          orientation class (an integer; u alone below 1); z: the
- *          channel mean of the path throughput after the bounce; w: the
- *          radiance found along it so far (channel mean).
+ *   0: position xyz; w: the density the bounce was drawn with (solid
+ *      angle; 0: not a guided vertex, the record is skipped);
+ *   1: the bounce direction (u, v) on the square, u plus the vertex's
+ *      orientation class (an integer; u alone below 1); z: the
+ *      channel mean of the path throughput after the bounce; w: the
+ *      radiance found along it so far (channel mean).
  * Light that the path adds to the film from a later vertex (emission hit
  * or unoccluded shadow ray, MIS-weighted, times the throughput) adds its
  * channel mean over z to each earlier record's w: the path's own Monte
  * Carlo estimate of the incident radiance along the bounce. Once the path
- * has ended and its last shadow rays are traced (when its slot's next path
- * starts, or at the end of the iteration), its guided records are splatted
- * into the statistics.
+ * has ended and its last shadow rays are traced (at the end of its pass,
+ * which gives each slot one path: trace/integrator.h, learn_path_a_slot),
+ * its guided records are splatted into the statistics.
  *
  * Statistics (CV_IMAGE_SD_STATS, r32ui words; the float words also through
  * the r32f view CV_IMAGE_SD_FLUX where the driver has float atomics),
@@ -145,9 +145,13 @@
 /* Vertices per path that record (the first ones: deeper bounces carry
  * little of the image). */
 #define CV_SD_MAX_RECORDS 6u
-/* Texels of a path slot's records, and the first of its record k. */
+/* Texels of a path slot's records, and texel t (0 or 1) of its record k
+ * among n slots: the records lie in planes, one per texel of a record,
+ * each holding every slot's in slot order, so that the neighbouring
+ * slots of a wave that write or read their records of one depth touch
+ * neighbouring texels. */
 #define CV_SD_RECORD_TEXELS (2u * CV_SD_MAX_RECORDS)
-#define CV_SD_RECORD_TEXEL(slot, k) ((slot) * CV_SD_RECORD_TEXELS + 2u * (k))
+#define CV_SD_RECORD_TEXEL(slot, k, t, n) ((2u * (k) + (t)) * (n) + (slot))
 /* Quadtree depth limit (a node of side 2^-CV_SD_MAX_DEPTH), and the
  * spatial tree's. */
 #define CV_SD_MAX_DEPTH 12u

@@ -273,14 +273,15 @@ bool cv_rlpath_sd_splat(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
         memset(count, 0, sd->n_paths * sizeof(*count));
         for (size_t i = at; i < n && i < at + per; i++) {
             size_t slot = (i - at) / CV_SD_MAX_RECORDS, k = (i - at) % CV_SD_MAX_RECORDS;
-            float *r = v[CV_SD_RECORD_TEXEL(slot, k)];
+            float *r0 = v[CV_SD_RECORD_TEXEL(slot, k, 0, (size_t)sd->n_paths)];
+            float *r1 = v[CV_SD_RECORD_TEXEL(slot, k, 1, (size_t)sd->n_paths)];
             count[slot] = (uint32_t)(k + 1);
-            memcpy(r, rec[i].p, sizeof(rec[i].p));
-            r[3] = rec[i].pdf;
-            r[4] = rec[i].u;
-            r[5] = rec[i].v;
-            r[6] = rec[i].beta;
-            r[7] = rec[i].L;
+            memcpy(r0, rec[i].p, sizeof(rec[i].p));
+            r0[3] = rec[i].pdf;
+            r1[0] = rec[i].u;
+            r1[1] = rec[i].v;
+            r1[2] = rec[i].beta;
+            r1[3] = rec[i].L;
         }
         ok = cv_buffer_upload(sd->verts, 0, rtexels * 16, v, err) &&
              cv_buffer_upload(sd->counts, 0, sd->n_paths * sizeof(*count), count, err);

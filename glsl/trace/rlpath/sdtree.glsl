@@ -295,8 +295,11 @@ float cv_sd_pdf(int root, vec3 w)
 }
 
 #ifdef CV_SD_RECORD
-// The first texel of the slot's record k (shared/sdtree.h).
-int cv_sd_record_texel(uint slot, uint k) { return int(CV_SD_RECORD_TEXEL(slot, k)); }
+// Texel t of the slot's record k (shared/sdtree.h; u_sd.learn.z: the slots).
+int cv_sd_record_texel(uint slot, uint k, uint t)
+{
+    return int(CV_SD_RECORD_TEXEL(slot, k, t, u_sd.learn.z));
+}
 
 // The record of the bounce that leaves the vertex at depth from p (of
 // orientation class cls) in direction wi drawn with solid-angle density
@@ -306,10 +309,9 @@ void cv_sd_record(uint slot, uint depth, vec3 p, uint cls, vec3 wi, float pdf, v
 {
     if (depth >= CV_SD_MAX_RECORDS)
         return;
-    int t = cv_sd_record_texel(slot, depth);
     float b = (beta.x + beta.y + beta.z) * (1.0 / 3.0);
-    imageStore(sd_verts, t, vec4(p, b > 0.0 ? pdf : 0.0));
-    imageStore(sd_verts, t + 1, vec4(cv_sd_square(wi) + vec2(float(cls), 0.0), b, 0.0));
+    imageStore(sd_verts, cv_sd_record_texel(slot, depth, 0u), vec4(p, b > 0.0 ? pdf : 0.0));
+    imageStore(sd_verts, cv_sd_record_texel(slot, depth, 1u), vec4(cv_sd_square(wi) + vec2(float(cls), 0.0), b, 0.0));
 }
 
 // Light L that the path adds to the film (times its throughput: an
@@ -323,7 +325,7 @@ void cv_sd_found(uint slot, uint depth, vec3 L)
         return;
     uint n = min(depth, CV_SD_MAX_RECORDS);
     for (uint k = 0u; k < n; k++) {
-        int t = cv_sd_record_texel(slot, k) + 1;
+        int t = cv_sd_record_texel(slot, k, 1u);
         vec4 r = imageLoad(sd_verts, t);
         if (r.z > 0.0)
             imageStore(sd_verts, t, vec4(r.xyz, r.w + c / r.z));
@@ -508,10 +510,9 @@ void cv_sd_flush(uint slot)
         return;
     imageStore(sd_counts, int(slot), uvec4(0u));
     for (uint k = 0u; k < n; k++) {
-        int t = cv_sd_record_texel(slot, k);
-        vec4 a = imageLoad(sd_verts, t);
+        vec4 a = imageLoad(sd_verts, cv_sd_record_texel(slot, k, 0u));
         if (a.w > 0.0) {
-            vec4 b = imageLoad(sd_verts, t + 1);
+            vec4 b = imageLoad(sd_verts, cv_sd_record_texel(slot, k, 1u));
             float cls = floor(b.x);
             if (cls >= 0.0 && cls < float(CV_SD_CLASSES))
                 cv_sd_splat(a.xyz, a.w, uint(cls), vec2(b.x - cls, b.y), b.w);
