@@ -311,7 +311,8 @@ void cv_sd_record(uint slot, uint depth, vec3 p, uint cls, vec3 wi, float pdf, v
         return;
     float b = (beta.x + beta.y + beta.z) * (1.0 / 3.0);
     imageStore(sd_verts, cv_sd_record_texel(slot, depth, 0u), vec4(p, b > 0.0 ? pdf : 0.0));
-    imageStore(sd_verts, cv_sd_record_texel(slot, depth, 1u), vec4(cv_sd_square(wi) + vec2(float(cls), 0.0), b, 0.0));
+    vec2 s = cv_sd_square(wi) + vec2(float(cls), 0.0);
+    imageStore(sd_verts, cv_sd_record_texel(slot, depth, 1u), vec4(s, b, 0.0));
 }
 
 // Light L that the path adds to the film (times its throughput: an
