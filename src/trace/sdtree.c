@@ -1,8 +1,10 @@
 /* sdtree.c: see sdtree.h. */
 #include <math.h>
+#include <pthread.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/mem.h"
 #include "glsl/shared/rlpath.h"
@@ -291,6 +293,55 @@ static void top_block(float (*x)[4], uint32_t root, uint32_t l)
     }
 }
 
+/* The top blocks of a table, shared out among threads: each block is
+ * written by one thread alone and reads only the nodes laid out before,
+ * so the table is the same bits whatever the count. They are most of the
+ * host's work at a training iteration's end, while the GPU waits. */
+struct blocks {
+    float (*x)[4];
+    const uint32_t *roots;
+    size_t n;
+    uint32_t l;
+    unsigned threads;
+    unsigned index;   /* a thread's own share (its copy) */
+};
+
+/* A block every `threads` roots, from the thread's index on. */
+static void *blocks_share(void *arg)
+{
+    const struct blocks *b = arg;
+    for (size_t i = b->index; i < b->n; i += b->threads)
+        top_block(b->x, b->roots[i], b->l);
+    return NULL;
+}
+
+/* At most this many threads, and one for every this many blocks: a thread
+ * costs more than a few blocks. */
+enum { BLOCK_THREADS_MAX = 16, BLOCKS_A_THREAD = 64 };
+
+static void top_blocks(float (*x)[4], const uint32_t *roots, size_t n, uint32_t l)
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    size_t want = n / BLOCKS_A_THREAD;
+    unsigned threads = (unsigned)(cores < 1 ? 1 : cores > BLOCK_THREADS_MAX ? BLOCK_THREADS_MAX : cores);
+    if (want < threads)
+        threads = want < 1 ? 1 : (unsigned)want;
+    struct blocks b[BLOCK_THREADS_MAX];
+    pthread_t id[BLOCK_THREADS_MAX];
+    bool started[BLOCK_THREADS_MAX] = {false};
+    for (unsigned k = 0; k < threads; k++) {
+        b[k] = (struct blocks){x, roots, n, l, threads, k};
+        /* the calling thread takes share 0, and any share no thread took */
+        started[k] = k > 0 && pthread_create(&id[k], NULL, blocks_share, &b[k]) == 0;
+    }
+    for (unsigned k = 0; k < threads; k++)
+        if (!started[k])
+            blocks_share(&b[k]);
+    for (unsigned k = 1; k < threads; k++)
+        if (started[k])
+            pthread_join(id[k], NULL);
+}
+
 void cv_sdtree_table(const struct cv_sdtree *t, const struct cv_sdtree_opts *o,
                      float (**texels)[4], size_t *n_texels)
 {
@@ -372,9 +423,12 @@ void cv_sdtree_table(const struct cv_sdtree *t, const struct cv_sdtree_opts *o,
             mask = 0;
         a[3] = (float)(mask ? 16u * (first - pos[j]) + mask : 0u);
     }
+    /* each root that guides once, however many leaves share it */
+    size_t nb = 0;
     for (size_t j = 0; j < t->nq; j++)
-        if (guides[j])   /* a root laid out above, once however many share it */
-            top_block(x, pos[j], l);
+        if (guides[j])
+            queue[nb++] = pos[j];
+    top_blocks(x, queue, nb, l);
     for (size_t j = 0; j < t->nt; j++) {
         float *ch = x[tbase + 2 * j];
         for (int k = 0; k < 4; k++)
