@@ -1,6 +1,6 @@
 /* rlpath_sd.c: rlpath's sdtree method (rlpath.method: sdtree), after
  * Müller, Gross and Novák, "Practical Path Guiding" (2017): training
- * iterations of doubling length (1, 2, 4, ... spp; the last runs to
+ * iterations of 1 spp, then of 8, 16, 32, ... spp (the last runs to
  * rlpath.train), in which every guided bounce's record, once its path has
  * found its radiance, is splatted by the shaders into the statistics of
  * the tree being trained (glsl/trace/rlpath/sdtree.glsl); at the end of
@@ -62,6 +62,14 @@ struct cv_rlpath_sd {
     double table_s;        /* the last guide_upload's host table, wall seconds */
     double tree_s;         /* ... and its table's upload */
 };
+
+/* The second training iteration's samples per pixel; the first takes
+ * one, as Müller et al.'s, and each later one twice the one before. Their
+ * 2 and 4 cost more time than their trees saved: each iteration makes the
+ * GPU wait for the host at its end, and each of its passes runs to the end
+ * of its longest path, one path a slot (bench/RESULTS.md, "sdtree's
+ * training iterations"). */
+enum { SECOND_ITERATION_SPP = 8 };
 
 /* Where the training iteration that starts at spp s with length len ends:
  * after len spp, or at the end of training if the next, twice as long,
@@ -354,7 +362,7 @@ bool cv_rlpath_sd_pass_done(struct cv_rlpath_sd *sd, uint32_t spp_done, struct c
         return true;
     bool ok = iteration_done(sd, t0, err);
     sd->start = sd->end;
-    sd->len *= 2;
+    sd->len = sd->len < SECOND_ITERATION_SPP / 2 ? SECOND_ITERATION_SPP : 2 * sd->len;
     sd->end = iteration_end(sd->train, sd->start, sd->len);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     return ok && cv_gl_check(err, "rlpath sdtree after %u spp", spp_done);

@@ -104,8 +104,8 @@ int main(void)
     tap_ok(mp > 0.05 && sqrt(sp) < 0.004 * mp, "path: image mean %.5f +- %.5f (%.2f %%)", mp,
            sqrt(sp), 100 * sqrt(sp) / mp);
 
-    /* the Q-table, then the sdtree method (trained in passes of 1, 2, 4
-     * and 9 spp, frozen from 16 spp) */
+    /* the Q-table, then the sdtree method (trained in iterations of 1 and
+     * 15 spp, frozen from 16 spp) */
     const float mixes[] = {0, 0.3f, 1, 0.3f, 1, 0, 0.3f, 1};
     const uint32_t train[] = {0, 0, 0, CV_RL_TRAIN_ALWAYS, CV_RL_TRAIN_ALWAYS, 0, 0, 0};
     const bool sdtree[] = {false, false, false, false, false, true, true, true};

@@ -7,7 +7,7 @@
  * its paths. The records each training iteration counts (the `rlpath
  * sdtree N: R records` line of the log) are then in proportion to its
  * samples; a splat at the iteration's end alone would count one path a
- * slot: a ninth of them in the last iteration of 9 spp. In a closed room
+ * slot: a nineteenth of them in the last iteration of 19 spp. In a closed room
  * and in one that camera rays leave (their misses end paths in the
  * escaped stage). The passes the renderer counts show the split, and that
  * passes after training are not split. */
@@ -21,10 +21,11 @@
 #include "tests/trace/rlpath_room.h"
 #include "tests/trace/trace_test_util.h"
 
-/* The training iterations' samples under rlpath.train 16 (1, 2, 4, then
- * the rest), and as many passes. */
-static const uint32_t iterations[] = {1, 2, 4, 9, 0};
-#define N_ITERATIONS 4
+/* The training iterations' samples under rlpath.train 28 (1, 8, then the
+ * rest: rlpath_sd.c, SECOND_ITERATION_SPP), and as many passes. */
+static const uint32_t iterations[] = {1, 8, 19, 0};
+#define N_ITERATIONS 3
+#define TRAIN_ALL 28
 
 static void check_room(struct cv_gpu *gpu, const char *name, const char *text, size_t len,
                        uint32_t train)
@@ -41,7 +42,7 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
                                  .rl_mix = 0,
                                  .rl_train = train,
                                  .paths_per_pixel = 1,
-                                 .spp = 16};
+                                 .spp = TRAIN_ALL};
     FILE *log = tmpfile();
     enum cv_log_level level = cv_log_get_level();
     cv_log_set_stream(log);
@@ -57,14 +58,14 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
             fclose(log);
         return;
     }
-    /* train 16: 16 learning passes of one sample; train 8: the 9-spp pass
-     * splits at the training's end into 1 learning sample and one pass of
-     * 8 after training */
-    uint64_t passes = train == 16 ? 16 : 1 + 2 + 4 + 1 + 1;
+    /* train 28: 28 learning passes of one sample; train 8: the 8-spp pass
+     * splits at the training's end into 7 learning samples and one pass of
+     * 1 after training, and the 19-spp pass is not split */
+    uint64_t passes = train == TRAIN_ALL ? TRAIN_ALL : 1 + 7 + 1 + 1;
     tap_ok(img.counters.passes == passes,
-           "%s, train %u: %llu passes of 1 2 4 9 spp at one slot a pixel (want %llu)", name,
+           "%s, train %u: %llu passes of 1 8 19 spp at one slot a pixel (want %llu)", name,
            train, (unsigned long long)img.counters.passes, (unsigned long long)passes);
-    if (train != 16) {
+    if (train != TRAIN_ALL) {
         fclose(log);
         return;
     }
@@ -93,15 +94,15 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
     }
     tap_ok(found == N_ITERATIONS && records[0] > 0 && fabs(worst - 1.0) < 0.15,
            "%s: each iteration counts records in proportion to its samples (%llu %llu %llu "
-           "%llu over 1 2 4 9 spp; furthest from the first's rate: %.3f of it)",
-           name, records[0], records[1], records[2], records[3], worst);
+           "over 1 8 19 spp; furthest from the first's rate: %.3f of it)",
+           name, records[0], records[1], records[2], worst);
 }
 
 int main(void)
 {
     struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
-    check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1, 16);
-    check_room(gpu, "open.pbrt", rlpath_room_open, sizeof(rlpath_room_open) - 1, 16);
+    check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1, TRAIN_ALL);
+    check_room(gpu, "open.pbrt", rlpath_room_open, sizeof(rlpath_room_open) - 1, TRAIN_ALL);
     check_room(gpu, "room.pbrt", rlpath_room, sizeof(rlpath_room) - 1, 8);
     cv_gpu_destroy(&gpu);
     return tap_done();
