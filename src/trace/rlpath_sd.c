@@ -64,11 +64,11 @@ struct cv_rlpath_sd {
 };
 
 /* The second training iteration's samples per pixel; the first takes
- * one, as Müller et al.'s, and each later one twice the one before. Their
- * 2 and 4 cost more time than their trees saved: each iteration makes the
- * GPU wait for the host at its end, and each of its passes runs to the end
- * of its longest path, one path a slot (bench/RESULTS.md, "sdtree's
- * training iterations"). */
+ * one, as Müller et al.'s, and each later one twice the one before.
+ * Iterations of 2 and 4 spp between cost more time than their trees saved:
+ * each iteration makes the GPU wait for the host at its end, and each of
+ * its passes runs to the end of its longest path, one path a slot
+ * (bench/RESULTS.md, "sdtree's training iterations"). */
 enum { SECOND_ITERATION_SPP = 8 };
 
 /* Where the training iteration that starts at spp s with length len ends:

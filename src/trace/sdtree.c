@@ -323,7 +323,9 @@ static void top_blocks(float (*x)[4], const uint32_t *roots, size_t n, uint32_t 
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     size_t want = n / BLOCKS_A_THREAD;
-    unsigned threads = (unsigned)(cores < 1 ? 1 : cores > BLOCK_THREADS_MAX ? BLOCK_THREADS_MAX : cores);
+    if (cores > BLOCK_THREADS_MAX)
+        cores = BLOCK_THREADS_MAX;
+    unsigned threads = cores < 1 ? 1 : (unsigned)cores;
     if (want < threads)
         threads = want < 1 ? 1 : (unsigned)want;
     struct blocks b[BLOCK_THREADS_MAX];

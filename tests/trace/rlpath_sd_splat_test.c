@@ -7,8 +7,8 @@
  * its paths. The records each training iteration counts (the `rlpath
  * sdtree N: R records` line of the log) are then in proportion to its
  * samples; a splat at the iteration's end alone would count one path a
- * slot: a nineteenth of them in the last iteration of 19 spp. In a closed room
- * and in one that camera rays leave (their misses end paths in the
+ * slot: a nineteenth of them in the last iteration of 19 spp. In a closed
+ * room and in one that camera rays leave (their misses end paths in the
  * escaped stage). The passes the renderer counts show the split, and that
  * passes after training are not split. */
 #include "config.h"
