@@ -72,8 +72,11 @@ struct cv_rlpath_sd {
 enum { SECOND_ITERATION_SPP = 8 };
 
 /* Where the training iteration that starts at spp s with length len ends:
- * after len spp, or at the end of training if the next, twice as long,
- * would not fit before it (the last tree learns from the longest). */
+ * after len spp, or at the end of training if an iteration twice as long
+ * would not fit after it (the last tree learns from the longest). After
+ * the first iteration the next is SECOND_ITERATION_SPP, not twice its one
+ * spp: a training of 3 to 8 spp runs as 1 and the rest, where a test
+ * with that length would run it as one iteration. */
 static uint32_t iteration_end(uint32_t train, uint32_t s, uint32_t len)
 {
     if (train == 0)
