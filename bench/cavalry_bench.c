@@ -25,6 +25,7 @@
 #include "base/log.h"
 #include "base/mem.h"
 #include "bench/bench.h"
+#include "glsl/shared/guide_choice.h"
 #include "gpu/context.h"
 #include "gpu/program.h"
 #include "output/exr_read.h"
@@ -83,7 +84,7 @@ static double relmse(const float *img, const float *ref, size_t n)
     double sum = 0;
     for (size_t i = 0; i < n; i++) {
         double d = (double)img[i] - ref[i];
-        sum += d * d / ((double)ref[i] * ref[i] + 1e-2);
+        sum += d * d / ((double)ref[i] * ref[i] + CV_RELMSE_EPS);
     }
     return n ? sum / (double)n : 0;
 }

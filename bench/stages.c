@@ -206,6 +206,9 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         /* where misses started their slots' next samples in the last pass,
          * and the share of rays that missed (trace/render.h: enum cv_misses) */
         bench_num(r, "render.escaped_stage", c.escaped_stage);
+        /* rlpath: the passes after training ran path's programs
+         * (trace/guide_choice.h) */
+        bench_num(r, "render.unguided", c.unguided);
         bench_num(r, "render.missed_share",
                   (double)c.missed_rays / (double)(c.primary_rays + c.secondary_rays));
         uint32_t ppp = (uint32_t)(c.path_slots / ((uint64_t)w * h));

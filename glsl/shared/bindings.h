@@ -103,6 +103,11 @@
  * splat film (uint[3 * pixels]: float bits, light tracing's t = 1 strategy) */
 #define CV_BIND_BDPT_VERTICES (CV_BIND_STAGE0 + 9)
 #define CV_BIND_BDPT_SPLAT (CV_BIND_STAGE0 + 10)
+/* the guide's choice after training (glsl/trace/guide_choice.comp): the
+ * film's pixel sums at two moments (vec4[2 * pixels]), and the reduction's
+ * sums (float[], one a group) */
+#define CV_BIND_CHOICE_PIXELS (CV_BIND_STAGE0 + 11)
+#define CV_BIND_CHOICE_SUMS (CV_BIND_STAGE0 + 14)
 
 /* ---- Exclusive prefix scan (src/bvh/scan.c; glsl/bvh/scan_*.comp) ---- */
 #define CV_BIND_SCAN_DATA (CV_BIND_STAGE0 + 0)   /* uint[]: summed in place */

@@ -8,7 +8,8 @@ libcavalry_a_SOURCES += \
 	src/trace/scene_upload.c src/trace/scene_upload.h \
 	src/trace/shade_bins.c src/trace/shade_bins.h \
 	src/trace/sdtree.c src/trace/sdtree.h \
-	src/trace/rlpath_sd.c src/trace/rlpath_sd.h
+	src/trace/rlpath_sd.c src/trace/rlpath_sd.h \
+	src/trace/guide_choice.c src/trace/guide_choice.h
 
 GLSL_FILES += \
 	glsl/shared/trace.h \
@@ -22,6 +23,7 @@ GLSL_FILES += \
 	glsl/trace/escaped.comp glsl/trace/shade.comp glsl/trace/shadow.comp \
 	glsl/trace/resolve.comp glsl/trace/matte.comp glsl/trace/test/sampler_probe.comp \
 	glsl/trace/test/trace_probe.comp \
+	glsl/shared/guide_choice.h glsl/trace/guide_choice.comp \
 	glsl/shared/bdpt.h glsl/trace/bdpt/bdpt.comp glsl/trace/bdpt/endpoints.glsl \
 	glsl/trace/bdpt/media.glsl
 # ---- bsdf / light sampling (branch bsdf) ----

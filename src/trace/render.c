@@ -29,6 +29,7 @@
 #include "gpu/timer.h"
 #include "trace/camera_motion.h"
 #include "trace/filter_table.h"
+#include "trace/guide_choice.h"
 #include "trace/integrator.h"
 #include "trace/render.h"
 #include "trace/rlpath.h"
@@ -104,10 +105,16 @@ struct cv_renderer {
     void *integrator;              /* ops->create's state, or NULL */
     bool learning;                 /* this pass learns (ops->learn_spp); after_shade runs */
     /* the stage programs (requested at creation): the first pass's, and
-     * those that later passes get (set_misses, use_frozen_programs) */
+     * those that later passes get (set_misses, use_programs_after_learning) */
     struct stage_programs *sp;
     bool freezes;                  /* passes after learning get frozen programs (freezes()) */
-    bool frozen;                   /* prog holds them */
+    bool frozen;                   /* prog holds the programs after learning */
+    /* a guided integrator's choice after learning (choice_passes), until
+     * made; then whether path's programs render on */
+    struct cv_guide_choice *choice;
+    bool choice_sub;               /* a pass of the choice's runs */
+    bool unguided;
+    bool prog_unguided;            /* prog holds path's programs after learning */
     bool misses_later;             /* later passes may choose their misses' way (request_all) */
     /* params' stage_times: GPU time of every dispatch by stage, and by the
      * pass's iteration (a diagnostic: the scopes cost time themselves);
@@ -418,6 +425,13 @@ struct stage_programs {
      * misses: set_misses) */
     const char *const *frozen[ST_COUNT];
     const char *shade_frozen[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 7];
+    /* a guided integrator's passes after learning that the choice runs
+     * unguided (chooses()), by stage (NULL: the stage's program after
+     * learning): path's shade programs (unguided_file) with path's
+     * defines, and the shadow stage's without the integrator's */
+    const char *unguided_file[ST_COUNT];
+    const char *const *unguided[ST_COUNT];
+    const char *shade_path[CV_SHADE_PROGRAMS][CV_SCENE_DEFINES_MAX + 6];
 };
 
 static const char *const misses_names[] = {"auto", "intersect", "stage"};
@@ -479,6 +493,14 @@ static bool freezes(const struct cv_integrator_ops *ops, const struct cv_render_
     return ops->frozen_programs && passes_after_learning(ops, p);
 }
 
+/* Whether a job with p measures, after learning, whether its guide pays
+ * for its cost (trace/guide_choice.h): a guided integrator's, with passes
+ * after learning, not told which. */
+static bool chooses(const struct cv_integrator_ops *ops, const struct cv_render_params *p)
+{
+    return ops->guides && p->rl_choice != CV_RL_CHOICE_GUIDED && passes_after_learning(ops, p);
+}
+
 static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render_params *p,
                            struct stage_programs *sp)
 {
@@ -530,15 +552,23 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * materials (trace/shade_bins.h) */
     uint32_t bins_used = 1u | gs->shade_bins | (ops->media && gs->has_media ? 2u : 0u) |
                          (gs->has_subsurface ? 2u : 0u);
+    /* the guide's choice runs path's shade programs, whose bins are the
+     * guided integrators' (trace/integrator.c) */
+    const struct cv_integrator_ops *path = cv_integrator_find(CV_INTEGRATOR_PATH);
     for (int k = 0; k < ops->n_shade; k++) {
         const char *coat = ops->bins[k] == 4u && gs->has_coat_closed && !gs->walk_coat_closed
                                ? "CV_NO_COAT_CLOSED"
                                : NULL;
         bool no_tex = gs->has_textures && ops->bins[k] && !(ops->bins[k] & gs->textured_bins);
-        int ns = defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
         const char *walk_only = ops->bins[k] == 4u && gs->walk_only ? "CV_BSDF_WALK_ONLY" : NULL;
+        int ns = defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
         ns = defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL,
                           walk_only);
+        if (ops->guides) {
+            int np = defines_plus(sp->shade_path[k], defines, nd, path->define[k], coat);
+            defines_plus(sp->shade_path[k], sp->shade_path[k], np,
+                         no_tex ? "CV_NO_TEXTURES" : NULL, walk_only);
+        }
         bool unguided = ops->guides && ops->bins[k] && !(ops->bins[k] & gs->guided_bins);
         ns = defines_plus(sp->shade[k], sp->shade[k], ns, unguided ? "CV_RL_UNGUIDED" : NULL,
                           NULL);
@@ -576,9 +606,14 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
             d = sp->shadow;
         sp->file[s] = file;
         sp->defines[s] = d;
+        bool shade = s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS;
+        if (chooses(ops, p) && (shade || s == ST_SHADOW)) {
+            sp->unguided_file[s] = shade ? path->file[s - ST_SHADE] : file;
+            sp->unguided[s] = shade ? sp->shade_path[s - ST_SHADE] : defines;
+        }
         if (!freezes(ops, p))
             continue;
-        if (s >= ST_SHADE && s < ST_SHADE + CV_SHADE_PROGRAMS)
+        if (shade)
             sp->frozen[s] = sp->shade_frozen[s - ST_SHADE];
         else if (s == ST_SHADOW)
             sp->frozen[s] = defines;
@@ -613,6 +648,15 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
     for (int s = 0; s < ST_COUNT; s++)
         if (sp->file[s] && sp->frozen[s])
             cv_program_request(gpu, sp->file[s], sp->frozen[s]);
+    /* the guide's choice's: path's, shared with path's jobs */
+    bool choice = false;
+    for (int s = 0; s < ST_COUNT; s++)
+        if (sp->unguided[s]) {
+            cv_program_request(gpu, sp->unguided_file[s], sp->unguided[s]);
+            choice = true;
+        }
+    if (choice)
+        cv_guide_choice_request(gpu);
     /* the misses' programs of the passes after the first (after learning,
      * for an integrator that learns from misses) that may run the other
      * way (pass_misses; a program already requested is not built twice) */
@@ -714,7 +758,7 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
         r->pass.camera_medium = scene->camera_medium;
     }
     /* on the heap: later passes get their programs from it (set_misses,
-     * use_frozen_programs) */
+     * use_programs_after_learning) */
     struct stage_programs *sp = cv_xcalloc(1, sizeof(*sp));
     r->sp = sp;
     stage_programs(gs, p, sp);
@@ -739,6 +783,14 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     }
     const char *const *defines = sp->integrator_defines;
     setup_step(&clock, SETUP_PROGRAMS);
+    /* the guide's choice after learning: measured, or told */
+    if (chooses(ops, p)) {
+        r->unguided = p->rl_choice == CV_RL_CHOICE_UNGUIDED;
+        if (!r->unguided && !cv_guide_choice_create(gpu, r->n_pixels, &r->choice, err)) {
+            cv_renderer_destroy(&r);
+            return false;
+        }
+    }
 
     if (ops->create) {
         struct cv_integrator_setup setup = {
@@ -988,24 +1040,61 @@ static bool set_misses(struct cv_renderer *r, struct cv_error *err)
 }
 
 /* From the first pass that does not learn on: the programs built without
- * the learning code (sp->frozen). Waits for the driver where a cold cache
- * still builds them. */
-static bool use_frozen_programs(struct cv_renderer *r, struct cv_error *err)
+ * the learning code (sp->frozen), or path's (sp->unguided) where
+ * `unguided`. Waits for the driver where a cold cache still builds them. */
+static bool use_programs_after_learning(struct cv_renderer *r, bool unguided,
+                                        struct cv_error *err)
 {
     const struct stage_programs *sp = r->sp;
+    if (r->frozen && r->prog_unguided == unguided)
+        return true;
     int n = 0;
     for (int s = 0; s < ST_COUNT; s++) {
-        if (!sp->file[s] || !sp->frozen[s])
+        if (!sp->file[s] || (!sp->frozen[s] && !sp->unguided[s]))
             continue;
-        struct cv_program *pr = cv_program_get(r->gpu, sp->file[s], sp->frozen[s], err);
+        const char *file = sp->file[s];
+        const char *const *d = sp->frozen[s] ? sp->frozen[s] : sp->defines[s];
+        if (unguided && sp->unguided[s]) {
+            file = sp->unguided_file[s];
+            d = sp->unguided[s];
+        }
+        struct cv_program *pr = cv_program_get(r->gpu, file, d, err);
         if (!pr)
             return false;
         r->prog[s] = *pr;
         n++;
     }
     r->frozen = true;
-    cv_debug("passes after learning: %d stage programs without the learning code", n);
+    r->prog_unguided = unguided;
+    cv_debug("passes after learning: %d stage programs %s", n,
+             unguided ? "of path's" : "of the guide's, without the learning code");
     return true;
+}
+
+/* After learning, the guide's choice (trace/guide_choice.h): its
+ * sub-passes, of two rounds of the path slots each where spp allows,
+ * then the rest of spp with the programs it chose. A pass may hold only
+ * some of the sub-passes; the next goes on with them. */
+static bool choice_passes(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
+{
+    uint32_t sub = 2 * r->paths_per_pixel;
+    r->choice_sub = true;
+    bool ok = true;
+    while (ok && spp > 0 && cv_guide_choice_pending(r->choice)) {
+        uint32_t n = spp < sub ? spp : sub;
+        ok = use_programs_after_learning(r, cv_guide_choice_next_unguided(r->choice), err);
+        bind_all(r);
+        ok = ok && cv_guide_choice_begin(r->choice, err) && cv_renderer_pass(r, n, err);
+        bind_all(r);
+        ok = ok && cv_guide_choice_end(r->choice, n, r->spp_done, err);
+        spp -= n;
+    }
+    r->choice_sub = false;
+    if (!ok || cv_guide_choice_pending(r->choice))
+        return ok;
+    r->unguided = cv_guide_choice_unguided(r->choice);
+    cv_guide_choice_destroy(&r->choice);
+    return use_programs_after_learning(r, r->unguided, err) && cv_renderer_pass(r, spp, err);
 }
 
 bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
@@ -1030,7 +1119,10 @@ bool cv_renderer_pass(struct cv_renderer *r, uint32_t spp, struct cv_error *err)
                 return false;
         return true;
     }
-    if (!r->learning && r->freezes && !r->frozen && !use_frozen_programs(r, err))
+    if (!r->learning && r->choice && !r->choice_sub)
+        return choice_passes(r, spp, err);
+    if (!r->learning && (r->freezes || r->unguided) && !r->frozen &&
+        !use_programs_after_learning(r, r->unguided, err))
         return false;
     if (r->misses_later && !set_misses(r, err))
         return false;
@@ -1128,6 +1220,7 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->nonfinite_samples = q.stats[CV_STAT_NONFINITE].x;
     c->missed_rays = extend - stat64(&q, CV_STAT_HITS);
     c->escaped_stage = r->escaped_stage;
+    c->unguided = r->unguided && r->frozen;
     c->gpu_ms = cv_gpu_timer_ms(r->passes, 0);
     /* all 0 when the stage timer is off */
     c->intersect_first_ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, 0);
@@ -1254,6 +1347,7 @@ void cv_renderer_destroy(struct cv_renderer **rp)
     }
     cv_gpu_timer_destroy(&r->stages);
     cv_gpu_timer_destroy(&r->passes);
+    cv_guide_choice_destroy(&r->choice);
     GLuint *bufs[] = {&r->ubo,  &r->queues,   &r->rays,     &r->hits,    &r->shadow,
                       &r->film, &r->alive[0], &r->alive[1], &r->queues_copy, &r->prof.counts,
                       &r->matte, &r->medium_paths, &r->sss_entry};

@@ -73,6 +73,12 @@ struct cv_render_params {
      * (rlpath.filter), where rl_sd_filter_set; else trace/sdtree.c's */
     bool rl_sd_filter_set;
     uint32_t rl_sd_filter;
+    /* rlpath: after training, whether the passes go on guided or with
+     * path's programs (trace/guide_choice.h): CV_RL_CHOICE_MEASURE (0, the
+     * default) measures which reaches the same error sooner; the others
+     * fix it (rlpath.fallback: false keeps guiding; CV_RL_CHOICE_UNGUIDED
+     * is for tests) */
+    enum { CV_RL_CHOICE_MEASURE, CV_RL_CHOICE_GUIDED, CV_RL_CHOICE_UNGUIDED } rl_choice;
     /* Paths in flight per pixel (path slots, glsl/shared/trace.h). 0: as
      * many as keep the GPU busy (CV_WAVE_PATHS in all, at most
      * CV_MAX_PATHS_PER_PIXEL), within the advertised storage-buffer size and
@@ -173,6 +179,9 @@ struct cv_render_counters {
     /* the last pass started misses' next samples in an escaped stage
      * (enum cv_misses), not in the intersect stage */
     bool escaped_stage;
+    /* rlpath: the passes after training run path's programs (params'
+     * rl_choice, trace/guide_choice.h) */
+    bool unguided;
     double gpu_ms;
     /* With params' stage_times: GPU time of the closest-hit (intersect)
      * and any-hit (shadow) stages over the same passes; else 0. The part of

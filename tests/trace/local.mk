@@ -80,6 +80,10 @@ tests_trace_rlpath_frozen_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/rlpath_unguided_test
 TESTS += tests/trace/rlpath_unguided_test
 tests_trace_rlpath_unguided_test_LDADD = $(CV_LIBS)
+# the guide's choice after training
+check_PROGRAMS += tests/trace/guide_choice_test
+TESTS += tests/trace/guide_choice_test
+tests_trace_guide_choice_test_LDADD = $(CV_LIBS)
 # --- end of rlpath tests ---
 # --- HDR textures in float (issue 24, bug 5) ---
 check_PROGRAMS += tests/trace/hdr_envmap_test

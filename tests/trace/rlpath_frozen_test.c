@@ -80,15 +80,17 @@ int main(void)
                                     &lp, &s, &err),
                "load the room: %s", err.msg)) {
         /* the default training's passes after 16 spp get the frozen
-         * programs, and one of the two ways of misses; with rlpath.train
-         * 0, or a job of 16 spp (all within the default training), none
-         * is requested, so the programs requested and never got (other
-         * stages' variants the scene does not need) are the same in those
-         * two, and one more with the default training */
+         * programs, path's and the measure's of the guide's choice (its
+         * sub-passes end within 64 spp: trace/guide_choice.h), and one of
+         * the two ways of misses; with rlpath.train 0, or a job of 16 spp
+         * (all within the default training), none is requested, so the
+         * programs requested and never got (other stages' variants the
+         * scene does not need) are the same in those two, and one more
+         * with the default training */
         struct cv_program_build_stats always, trained, within;
         if (requests(s, CV_RL_TRAIN_ALWAYS, 0, (const uint32_t[]){1, 2, 4, 0},
                      "rlpath.train 0", &always) &&
-            requests(s, 0, 20, (const uint32_t[]){16, 4, 0}, "the default training", &trained) &&
+            requests(s, 0, 80, (const uint32_t[]){16, 64, 0}, "the default training", &trained) &&
             requests(s, 0, 16, (const uint32_t[]){16, 0}, "a job of 16 spp", &within)) {
             if (!always.parallel) {
                 tap_diag("no parallel compilation here: requests start no build");

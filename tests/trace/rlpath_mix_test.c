@@ -8,7 +8,9 @@
  * (the table learning in the first pass of 16 spp, then frozen: the
  * default rlpath.train; at 0.3 and 1 also learning in every pass, Dahm and
  * Keller's online learning, rlpath.train 0; and with rlpath.method:
- * sdtree, trained over the first 16 spp) agree within 4 standard errors of their difference, which is below
+ * sdtree, trained over the first 16 spp; the renderer choosing after
+ * training whether to guide on, and told either way) agree within 4
+ * standard errors of their difference, which is below
  * 0.5 % of the mean, so a 2 % bias fails; and mix 0 is BSDF sampling
  * alone, with either method: the same image as path, bit for bit (the renderer once put the
  * default in its place), trained over a first pass and frozen in the second, in the room and in
@@ -106,19 +108,29 @@ int main(void)
 
     /* the Q-table, then the sdtree method (trained in iterations of 1 and
      * 15 spp, frozen from 16 spp) */
-    const float mixes[] = {0, 0.3f, 1, 0.3f, 1, 0, 0.3f, 1};
-    const uint32_t train[] = {0, 0, 0, CV_RL_TRAIN_ALWAYS, CV_RL_TRAIN_ALWAYS, 0, 0, 0};
-    const bool sdtree[] = {false, false, false, false, false, true, true, true};
-    for (int k = 0; k < 8; k++) {
+    /* after training, each renderer measures whether to guide on
+     * (trace/guide_choice.h); the last three are told: path's programs
+     * after either method's training, and sdtree guiding on */
+    const float mixes[] = {0, 0.3f, 1, 0.3f, 1, 0, 0.3f, 1, 0.3f, 0.3f, 0.3f};
+    const uint32_t train[] = {0, 0, 0, CV_RL_TRAIN_ALWAYS, CV_RL_TRAIN_ALWAYS, 0, 0, 0, 0, 0, 0};
+    const bool sdtree[] = {false, false, false, false, false, true, true, true, true, false, true};
+    const int choice[] = {0, 0, 0, 0, 0, 0, 0, 0, CV_RL_CHOICE_UNGUIDED, CV_RL_CHOICE_UNGUIDED,
+                          CV_RL_CHOICE_GUIDED};
+    for (int k = 0; k < 11; k++) {
         struct cv_render_params pr = pp;
         pr.integrator = CV_INTEGRATOR_RLPATH;
         pr.rl_mix = mixes[k];
         pr.rl_train = train[k];
         pr.rl_sdtree = sdtree[k];
-        const char *how = sdtree[k] ? "sdtree, frozen after 16 spp"
+        pr.rl_choice = choice[k];
+        const char *how = choice[k] == CV_RL_CHOICE_UNGUIDED
+                              ? (sdtree[k] ? "sdtree, then path's programs"
+                                           : "frozen after 16 spp, then path's programs")
+                          : choice[k] == CV_RL_CHOICE_GUIDED ? "sdtree, guiding after 16 spp"
+                          : sdtree[k] ? "sdtree, frozen after 16 spp"
                           : train[k] ? "learning every pass" : "frozen after 16 spp";
         double mr, sr;
-        int b = mixes[k] > 0 ? B_GUIDED : B_PATH;
+        int b = mixes[k] > 0 && choice[k] != CV_RL_CHOICE_UNGUIDED ? B_GUIDED : B_PATH;
         if (!tap_ok(image_mean(gpu, s, pr, b, &mr, &sr, &err),
                     "rlpath mix %.1f, %s: %d renders: %s", mixes[k], how, b, err.msg))
             continue;

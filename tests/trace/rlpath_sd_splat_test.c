@@ -42,7 +42,10 @@ static void check_room(struct cv_gpu *gpu, const char *name, const char *text, s
                                  .rl_mix = 0,
                                  .rl_train = train,
                                  .paths_per_pixel = 1,
-                                 .spp = TRAIN_ALL};
+                                 .spp = TRAIN_ALL,
+                                 /* passes after training as asked: no
+                                  * sub-passes of the guide's choice */
+                                 .rl_choice = CV_RL_CHOICE_GUIDED};
     FILE *log = tmpfile();
     enum cv_log_level level = cv_log_get_level();
     cv_log_set_stream(log);

@@ -1,0 +1,63 @@
+/* guide_choice.h: whether a guided integrator's passes after training pay
+ * for their cost, measured on the render itself. Guiding saves error a
+ * sample where light comes by few paths, and costs time a sample
+ * everywhere (the guide's lookups); a scene lit directly renders cleaner
+ * in the same time without it. After training the renderer runs four
+ * sub-passes: two guided, two with path's programs. Each pair's film
+ * increments estimate its strategy's relative squared error a sample
+ * (glsl/trace/guide_choice.comp, weighed as the benchmarks' relMSE, by the
+ * film's values at the end of training), summed over groups of pixels
+ * and taken as the median of the means of blocks of groups, so that no
+ * firefly caught by chance decides. The second sub-pass of each
+ * pair is timed on the GPU (the first may wait for a program's first
+ * use). The strategy with the smaller product of error a sample and time
+ * a sample renders the rest. Every sub-pass's samples are unbiased and
+ * stay in the image.
+ *
+ * The choice rests on measured time, so two renders of the same job may
+ * choose differently and differ in their noise (rlpath.fallback: false
+ * keeps guiding, for renders equal bit for bit). */
+#ifndef CV_TRACE_GUIDE_CHOICE_H
+#define CV_TRACE_GUIDE_CHOICE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "base/error.h"
+#include "gpu/context.h"
+
+struct cv_guide_choice;
+
+/* The measure for a film of n_pixels pixels (the film and the pass
+ * parameters are bound by the renderer). */
+bool cv_guide_choice_create(struct cv_gpu *gpu, uint32_t n_pixels,
+                            struct cv_guide_choice **out, struct cv_error *err);
+/* Requests its programs beside the renderer's (gpu/program.h). */
+void cv_guide_choice_request(struct cv_gpu *gpu);
+/* Whether sub-passes remain, and whether the next one runs path's
+ * programs. */
+bool cv_guide_choice_pending(const struct cv_guide_choice *c);
+bool cv_guide_choice_next_unguided(const struct cv_guide_choice *c);
+/* Around each sub-pass: begin before it is queued, end after, with its
+ * samples a pixel and the film's after it. */
+bool cv_guide_choice_begin(struct cv_guide_choice *c, struct cv_error *err);
+bool cv_guide_choice_end(struct cv_guide_choice *c, uint32_t spp, uint32_t spp_total,
+                         struct cv_error *err);
+/* Once no sub-pass remains: whether the passes after go on unguided. */
+bool cv_guide_choice_unguided(const struct cv_guide_choice *c);
+
+/* The figures of the choice once made, guided (g) and unguided (u):
+ * relative squared error a sample as the choice counts it (the median of
+ * means) [0], GPU milliseconds a sample [1], and its plain mean [2]. */
+void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[3], double u[3]);
+
+/* The decision from the two strategies' relative squared error a sample
+ * (err_*) and GPU milliseconds a sample (ms_*): unguided when it reaches
+ * the same error in less time. */
+bool cv_guide_choice_decide(double err_guided, double ms_guided, double err_unguided,
+                            double ms_unguided);
+
+/* Accepts NULL; clears the pointer. */
+void cv_guide_choice_destroy(struct cv_guide_choice **c);
+
+#endif

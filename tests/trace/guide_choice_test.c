@@ -1,0 +1,192 @@
+/* guide_choice_test.c: the measure behind the guide's choice after
+ * training (trace/guide_choice.h, glsl/trace/guide_choice.comp), on the
+ * GLSL that ships, over a synthetic film of several path slots a pixel
+ * whose sub-passes add samples of known mean and variance: the error a
+ * sample it reports for each strategy equals the same sums taken on the
+ * host in double, and the expected relative variance a sample (the
+ * samples' variance over the square of the film's mean before them plus
+ * CV_RELMSE_EPS, averaged over pixels and channels) within 3 %, for
+ * sub-passes of equal and of
+ * unequal samples, the unguided ones at a half and two thirds of the
+ * guided ones' noise; and at equal noise with a firefly in one pixel of
+ * 16384 of the last sub-pass: its plain mean would decide the choice, its
+ * median of means holds. And the decision: unguided only
+ * where its error times its time a sample is the smaller. */
+#include "config.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "glsl/shared/guide_choice.h"
+#include "glsl/shared/trace.h"
+#include "gpu/buffer.h"
+#include "tests/gpu/gpu_test_util.h"
+#include "trace/guide_choice.h"
+
+#define P 65536u  /* pixels */
+#define K 3u      /* slots a pixel */
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) * 0x1p-53;
+}
+
+/* The synthetic film: each pixel's true mean per channel, and the host's
+ * copy of the slots' sums. */
+struct film {
+    double mean[P][3];
+    CvFilmPixel *px;      /* P * K */
+    GLuint buf;
+    uint32_t spp;
+};
+
+/* Adds n samples a pixel (spread over the slots) of uniform noise of half
+ * width h[pixel] about each pixel's mean, and uploads the film; with
+ * `firefly`, one sample of one pixel in every 16384 is 1000 times brighter
+ * (the same pixels each time: a rare path through a small opening). */
+static bool add_samples(struct film *f, uint32_t n, const double *h, bool firefly,
+                        struct cv_error *err)
+{
+    for (uint32_t i = 0; i < P; i++)
+        for (uint32_t j = 0; j < n; j++) {
+            CvFilmPixel *s = &f->px[(j % K) * P + i];
+            double x = firefly && j == 0 && i % 16384 == 7 ? 1000 : 1;
+            s->L.x += (float)(x * (f->mean[i][0] + h[i] * (2 * rnd() - 1)));
+            s->L.y += (float)(x * (f->mean[i][1] + h[i] * (2 * rnd() - 1)));
+            s->L.z += (float)(x * (f->mean[i][2] + h[i] * (2 * rnd() - 1)));
+            s->L.w += 1;
+        }
+    f->spp += n;
+    return cv_buffer_upload(f->buf, 0, (size_t)P * K * sizeof(CvFilmPixel), f->px, err);
+}
+
+static void pixel_sums(const struct film *f, uint32_t i, double out[4])
+{
+    memset(out, 0, 4 * sizeof(*out));
+    for (uint32_t k = 0; k < K; k++) {
+        const CvFilmPixel *s = &f->px[k * P + i];
+        out[0] += s->L.x, out[1] += s->L.y, out[2] += s->L.z, out[3] += s->L.w;
+    }
+}
+
+/* One strategy's pair of sub-passes of na and nb samples with noise h,
+ * through the choice as the renderer drives it, weighed by the film's
+ * sums t at the end of training; the host's estimate from the same sums,
+ * and the expected value (without the fireflies of the second). */
+static bool strategy(struct cv_guide_choice *c, struct film *f, const double (*t)[4],
+                     uint32_t na, uint32_t nb, const double *h, bool firefly, double *host,
+                     double *expect, struct cv_error *err)
+{
+    double (*s0)[4] = malloc(P * sizeof(*s0)), (*s1)[4] = malloc(P * sizeof(*s1));
+    for (uint32_t i = 0; i < P; i++)
+        pixel_sums(f, i, s0[i]);
+    bool ok = cv_guide_choice_begin(c, err) && add_samples(f, na, h, false, err) &&
+              cv_guide_choice_end(c, na, f->spp, err);
+    for (uint32_t i = 0; i < P; i++)
+        pixel_sums(f, i, s1[i]);
+    ok = ok && cv_guide_choice_begin(c, err) && add_samples(f, nb, h, firefly, err) &&
+         cv_guide_choice_end(c, nb, f->spp, err);
+    double sum = 0, ex = 0;
+    for (uint32_t i = 0; ok && i < P; i++) {
+        double F[4];
+        pixel_sums(f, i, F);
+        double w = F[3] / f->spp;
+        for (int ch = 0; ch < 3; ch++) {
+            double m = t[i][ch] / t[i][3];
+            double a = (s1[i][ch] - s0[i][ch]) / (na * w), b = (F[ch] - s1[i][ch]) / (nb * w);
+            sum += (a - b) * (a - b) / ((1.0 / na + 1.0 / nb) * (m * m + CV_RELMSE_EPS));
+            ex += h[i] * h[i] / 3 / (m * m + CV_RELMSE_EPS);
+        }
+    }
+    *host = sum / (3.0 * P);
+    *expect = ex / (3.0 * P);
+    free(s0), free(s1);
+    return ok;
+}
+
+static void measure(struct cv_gpu *gpu, uint32_t na, uint32_t nb, double scale_u, bool firefly)
+{
+    struct cv_error err = {{0}};
+    struct film f = {0};
+    f.px = calloc((size_t)P * K, sizeof(*f.px));
+    double *hg = malloc(P * sizeof(*hg)), *hu = malloc(P * sizeof(*hu));
+    for (uint32_t i = 0; i < P; i++) {
+        /* dark, mid and bright pixels, so that the offset matters */
+        double base = i % 3 == 0 ? 0.02 : i % 3 == 1 ? 0.4 : 3.0;
+        for (int ch = 0; ch < 3; ch++)
+            f.mean[i][ch] = base * (0.5 + rnd());
+        /* at most half the smallest mean: no sample is negative */
+        hg[i] = base * (0.1 + 0.4 * rnd());
+        hu[i] = hg[i] * scale_u;
+    }
+    struct cv_guide_choice *c = NULL;
+    bool ok = (f.buf = cv_buffer_create((size_t)P * K * sizeof(CvFilmPixel), NULL, "film", &err)) &&
+              cv_guide_choice_create(gpu, P, &c, &err);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_FILM, f.buf);
+    /* the training's samples */
+    ok = ok && add_samples(&f, 16, hg, false, &err);
+    double(*t)[4] = malloc(P * sizeof(*t));
+    for (uint32_t i = 0; i < P; i++)
+        pixel_sums(&f, i, t[i]);
+    double host[2] = {0}, expect[2] = {0};
+    const char *what = firefly ? ", fireflies in the second unguided" : "";
+    ok = ok && tap_ok(cv_guide_choice_pending(c) && !cv_guide_choice_next_unguided(c),
+                      "%u + %u: the guided sub-passes come first", na, nb);
+    ok = ok && strategy(c, &f, t, na, nb, hg, false, &host[0], &expect[0], &err);
+    ok = ok && tap_ok(cv_guide_choice_next_unguided(c), "%u + %u: then the unguided", na, nb);
+    ok = ok && strategy(c, &f, t, na, nb, hu, firefly, &host[1], &expect[1], &err);
+    if (tap_ok(ok && !cv_guide_choice_pending(c), "%u + %u samples%s: four sub-passes measured: %s",
+               na, nb, what, err.msg)) {
+        double g[3], u[3];
+        cv_guide_choice_measures(c, g, u);
+        const char *name[2] = {"guided", "unguided"};
+        double *m[2] = {g, u};
+        for (int k = 0; k < 2; k++) {
+            tap_ok(fabs(m[k][2] / host[k] - 1) < 1e-3, "%u + %u%s, %s: error a sample %.6g, the "
+                   "host's sums %.6g", na, nb, what, name[k], m[k][2], host[k]);
+            tap_ok(fabs(m[k][0] / expect[k] - 1) < 0.03,
+                   "%u + %u%s, %s: error a sample, median of means %.5g (mean %.5g), "
+                   "expected %.5g (ratio %.4f)", na, nb, what, name[k], m[k][0], m[k][2],
+                   expect[k], m[k][0] / expect[k]);
+        }
+        if (firefly)
+            tap_ok(u[2] > 10 * u[0], "%u + %u%s: in the plain mean they would decide (%.5g)", na,
+                   nb, what, u[2]);
+        tap_ok(g[1] >= 0 && u[1] >= 0, "%u + %u: times a sample %.4f and %.4f ms", na, nb,
+               g[1], u[1]);
+    }
+    free(t);
+    cv_guide_choice_destroy(&c);
+    cv_buffer_destroy(&f.buf);
+    free(f.px), free(hg), free(hu);
+}
+
+int main(void)
+{
+    tap_ok(!cv_guide_choice_decide(1.0, 1.0, 1.0, 1.0), "decide: a tie stays guided");
+    tap_ok(cv_guide_choice_decide(1.0, 1.2, 1.1, 1.0), "decide: 10 %% more error a sample at "
+           "a sixth less time: unguided");
+    tap_ok(!cv_guide_choice_decide(1.0, 1.05, 1.1, 1.0), "decide: 10 %% more error a sample at "
+           "5 %% less time: guided");
+    tap_ok(!cv_guide_choice_decide(0.0, 1.0, 0.0, 0.5), "decide: a black film stays guided");
+
+    struct cv_gpu *gpu = test_gpu_open(CV_BACKEND_AUTO);
+    struct cv_error err = {{0}};
+    CvPassParams pass = {0};
+    pass.n_pixels = P;
+    pass.paths_per_pixel = K;
+    GLuint ubo = cv_buffer_create(sizeof(pass), &pass, "pass", &err);
+    if (tap_ok(ubo != 0, "pass parameters: %s", err.msg)) {
+        glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_PASS, ubo);
+        measure(gpu, 6, 6, 0.5, false);
+        measure(gpu, 6, 2, 1.0 / 1.5, false);
+        measure(gpu, 4, 4, 1.0, true);
+    }
+    cv_buffer_destroy(&ubo);
+    cv_gpu_destroy(&gpu);
+    return tap_done();
+}
