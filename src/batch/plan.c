@@ -436,6 +436,8 @@ struct cv_render_params cv_plan_render_params(const struct cv_render_plan *plan)
         .rl_sdtree = job->rlpath.method == CV_RL_METHOD_SDTREE,
         .rl_sd_filter_set = job->rlpath.has_filter,
         .rl_sd_filter = job->rlpath.filter,   /* the values are the bits */
+        .rl_choice = job->rlpath.has_fallback && !job->rlpath.fallback ? CV_RL_CHOICE_GUIDED
+                                                                       : CV_RL_CHOICE_MEASURE,
         .stage_times = plan->stage_times,
         .bdpt_slots = plan->bdpt_slots,
         .misses = plan->misses,

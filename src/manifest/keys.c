@@ -229,6 +229,11 @@ const struct cv_key cv_manifest_keys[CV_K_COUNT] = {
                             .has = AT(rlpath.has_filter), .def = CV_RL_FILTER_NONE,
                             .def_text = "none", .hash = CV_HASH_OFF_DEFAULT,
                             .help = "sdtree's training filters: none, spatial, directional, both"},
+    [CV_K_RLPATH_FALLBACK] = {.name = "rlpath.fallback", .type = CV_KT_BOOL,
+                              .offset = AT(rlpath.fallback), .has = AT(rlpath.has_fallback),
+                              .def = 1, .def_text = "true", .hash = CV_HASH_OFF_DEFAULT,
+                              .help = "after training, render on with path's programs where "
+                                      "guiding costs more time than it saves"},
 };
 
 _Static_assert(sizeof(enum cv_integrator) == sizeof(unsigned) &&

@@ -59,6 +59,7 @@ enum cv_key_id {
     CV_K_ALPHA,
     CV_K_RLPATH_METHOD,
     CV_K_RLPATH_FILTER,
+    CV_K_RLPATH_FALLBACK,
     CV_K_COUNT
 };
 

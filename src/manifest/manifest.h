@@ -63,6 +63,8 @@ struct cv_job_rlpath {
     enum cv_rl_method method;  /* default CV_RL_METHOD_QLEARN */
     bool has_filter;
     enum cv_rl_filter filter;  /* sdtree's splat filters; unset: trace/sdtree.c's default */
+    bool has_fallback;
+    bool fallback;             /* unset: true (trace/guide_choice.h) */
 };
 
 /* Overrides of the scene's environment (its LightSource "infinite"

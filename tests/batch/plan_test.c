@@ -285,6 +285,48 @@ static void test_rlpath_train(void)
     cv_manifest_destroy(&m);
 }
 
+/* Issue 29: rlpath.fallback reaches the renderer: unset and true measure
+ * after training whether to guide on (CV_RL_CHOICE_MEASURE), false keeps
+ * guiding (CV_RL_CHOICE_GUIDED); a value not a boolean is an error at its
+ * place. */
+static void test_rlpath_fallback(void)
+{
+    struct cv_scene *s = scene_of("WorldBegin\n");
+    struct cv_manifest *m = manifest_of("version: 1\njobs:\n"
+                                        "  - {name: a, scene: s.pbrt, integrator: rlpath}\n"
+                                        "  - {name: b, scene: s.pbrt, integrator: rlpath, "
+                                        "rlpath: {fallback: true}}\n"
+                                        "  - {name: c, scene: s.pbrt, integrator: rlpath, "
+                                        "rlpath: {method: sdtree, fallback: false}}\n");
+    if (!tap_ok(s && m, "scene and manifest load")) {
+        cv_scene_destroy(&s);
+        cv_manifest_destroy(&m);
+        return;
+    }
+    struct cv_plan_options o = {.manifest_path = m->path};
+    const int want[3] = {CV_RL_CHOICE_MEASURE, CV_RL_CHOICE_MEASURE, CV_RL_CHOICE_GUIDED};
+    for (int j = 0; j < 3; j++) {
+        struct cv_render_plan p;
+        struct cv_error err = {{0}};
+        bool ok = cv_plan_make(&m->jobs[j], s, &o, &p, &err);
+        struct cv_render_params rp = ok ? cv_plan_render_params(&p) : (struct cv_render_params){0};
+        tap_ok(ok && (int)rp.rl_choice == want[j], "job %c: rl_choice %d (want %d) %s", 'a' + j,
+               (int)rp.rl_choice, want[j], err.msg);
+    }
+    cv_scene_destroy(&s);
+    cv_manifest_destroy(&m);
+    struct cv_error err = {{0}};
+    char *path = write_file("bad.yaml",
+                            "version: 1\njobs:\n"
+                            "  - {name: a, scene: s.pbrt, rlpath: {fallback: maybe}}\n");
+    struct cv_manifest *mb = NULL;
+    bool ok = cv_manifest_load(path, &mb, &err);
+    tap_ok(!ok && strstr(err.msg, "bad.yaml:3:") && strstr(err.msg, "rlpath.fallback"),
+           "rlpath.fallback: maybe is an error at its place: %s", err.msg);
+    cv_manifest_destroy(&mb);
+    free(path);
+}
+
 /* Issue 27: volpath and bdpt render media; a scene with media that asks
  * for nothing renders with volpath, one that asks for path ignores them
  * (pbrt-v4's path does too), and so does one that asks for sppm (pbrt-v4's
@@ -385,6 +427,7 @@ int main(void)
     test_substituted_integrator();
     test_media_integrator();
     test_rlpath_train();
+    test_rlpath_fallback();
     test_color();
     test_bdpt_camera_mattes();
     char *cmd = cv_xasprintf("rm -rf '%s'", dir);
