@@ -1,7 +1,7 @@
 #version 450
 // glsl/trace/guide_choice.comp: the film measured for the guide's choice
 // after training (src/trace/guide_choice.c). Without CV_CHOICE_REDUCE:
-// each pixel's sums over its K slots (radiance, weight) into third u_half
+// each pixel's sums over its K slots (radiance, weight) into third u_third
 // of `pixels`. With it: a strategy's relative squared error a sample,
 // summed over each group's pixels and channels, from two sub-passes of
 // u_spp_a and u_spp_b samples: third u_before holds the sums before the
@@ -29,7 +29,7 @@ layout(location = 2) uniform uint u_spp_total;   // the film's samples a pixel
 layout(location = 3) uniform uint u_before;
 shared float s_sum[CV_CHOICE_GROUP];
 #else
-layout(location = 0) uniform uint u_half;
+layout(location = 0) uniform uint u_third;
 #endif
 
 vec4 pixel_sums(uint i)
@@ -46,7 +46,7 @@ void main()
     uint n = u_pass.n_pixels;
 #ifndef CV_CHOICE_REDUCE
     if (i < n)
-        pixels[u_half * n + i] = pixel_sums(i);
+        pixels[u_third * n + i] = pixel_sums(i);
 #else
     float e = 0.0;
     if (i < n) {

@@ -99,7 +99,7 @@ static bool snapshot(struct cv_guide_choice *c, uint32_t h, struct cv_error *err
     if (!p)
         return false;
     bind(c);
-    cv_program_set_uint(p, "u_half", h);
+    cv_program_set_uint(p, "u_third", h);
     cv_program_dispatch_1d(p, c->n_pixels);
     return true;
 }

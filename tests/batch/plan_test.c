@@ -255,66 +255,41 @@ static void test_bdpt_camera_mattes(void)
     cv_manifest_destroy(&m);
 }
 
-/* Issue 29: rlpath.train reaches the renderer: unset is the default count,
- * 0 learns in every pass (CV_RL_TRAIN_ALWAYS), a count is that count. */
-static void test_rlpath_train(void)
+/* Issue 29: rlpath's settings reach the renderer. rlpath.train: unset is
+ * the default count, 0 learns in every pass (CV_RL_TRAIN_ALWAYS), a count
+ * is that count. rlpath.fallback: unset and true measure after training
+ * whether to guide on (CV_RL_CHOICE_MEASURE), false keeps guiding
+ * (CV_RL_CHOICE_GUIDED); a value not a boolean is an error at its place. */
+static void test_rlpath_settings(void)
 {
+    static const struct {
+        const char *rlpath;
+        uint32_t train;
+        int choice;
+    } cases[] = {
+        {"{}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_MEASURE},
+        {"{train: 0}", CV_RL_TRAIN_ALWAYS, CV_RL_CHOICE_MEASURE},
+        {"{train: 64, fallback: true}", 64, CV_RL_CHOICE_MEASURE},
+        {"{method: sdtree, fallback: false}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_GUIDED},
+    };
     struct cv_scene *s = scene_of("WorldBegin\n");
-    struct cv_manifest *m = manifest_of("version: 1\njobs:\n"
-                                        "  - {name: a, scene: s.pbrt, integrator: rlpath}\n"
-                                        "  - {name: b, scene: s.pbrt, integrator: rlpath, "
-                                        "rlpath: {train: 0}}\n"
-                                        "  - {name: c, scene: s.pbrt, integrator: rlpath, "
-                                        "rlpath: {train: 64}}\n");
-    if (!tap_ok(s && m, "scene and manifest load")) {
-        cv_scene_destroy(&s);
-        cv_manifest_destroy(&m);
-        return;
-    }
-    struct cv_plan_options o = {.manifest_path = m->path};
-    const uint32_t want[3] = {CV_RL_DEFAULT_TRAIN, CV_RL_TRAIN_ALWAYS, 64};
-    for (int j = 0; j < 3; j++) {
+    for (size_t j = 0; j < sizeof(cases) / sizeof(cases[0]); j++) {
+        char text[256];
+        snprintf(text, sizeof(text), "version: 1\njobs:\n  - {name: a, scene: s.pbrt, "
+                 "integrator: rlpath, rlpath: %s}\n", cases[j].rlpath);
+        struct cv_manifest *m = manifest_of(text);
         struct cv_render_plan p;
         struct cv_error err = {{0}};
-        bool ok = cv_plan_make(&m->jobs[j], s, &o, &p, &err);
+        bool ok = s && m && cv_plan_make(&m->jobs[0], s,
+                                         &(struct cv_plan_options){.manifest_path = m->path},
+                                         &p, &err);
         struct cv_render_params rp = ok ? cv_plan_render_params(&p) : (struct cv_render_params){0};
-        tap_ok(ok && rp.rl_train == want[j], "job %c: rl_train %u (want %u) %s", 'a' + j,
-               rp.rl_train, want[j], err.msg);
-    }
-    cv_scene_destroy(&s);
-    cv_manifest_destroy(&m);
-}
-
-/* Issue 29: rlpath.fallback reaches the renderer: unset and true measure
- * after training whether to guide on (CV_RL_CHOICE_MEASURE), false keeps
- * guiding (CV_RL_CHOICE_GUIDED); a value not a boolean is an error at its
- * place. */
-static void test_rlpath_fallback(void)
-{
-    struct cv_scene *s = scene_of("WorldBegin\n");
-    struct cv_manifest *m = manifest_of("version: 1\njobs:\n"
-                                        "  - {name: a, scene: s.pbrt, integrator: rlpath}\n"
-                                        "  - {name: b, scene: s.pbrt, integrator: rlpath, "
-                                        "rlpath: {fallback: true}}\n"
-                                        "  - {name: c, scene: s.pbrt, integrator: rlpath, "
-                                        "rlpath: {method: sdtree, fallback: false}}\n");
-    if (!tap_ok(s && m, "scene and manifest load")) {
-        cv_scene_destroy(&s);
+        tap_ok(ok && rp.rl_train == cases[j].train && (int)rp.rl_choice == cases[j].choice,
+               "rlpath: %s: rl_train %u (want %u), rl_choice %d (want %d) %s", cases[j].rlpath,
+               rp.rl_train, cases[j].train, (int)rp.rl_choice, cases[j].choice, err.msg);
         cv_manifest_destroy(&m);
-        return;
-    }
-    struct cv_plan_options o = {.manifest_path = m->path};
-    const int want[3] = {CV_RL_CHOICE_MEASURE, CV_RL_CHOICE_MEASURE, CV_RL_CHOICE_GUIDED};
-    for (int j = 0; j < 3; j++) {
-        struct cv_render_plan p;
-        struct cv_error err = {{0}};
-        bool ok = cv_plan_make(&m->jobs[j], s, &o, &p, &err);
-        struct cv_render_params rp = ok ? cv_plan_render_params(&p) : (struct cv_render_params){0};
-        tap_ok(ok && (int)rp.rl_choice == want[j], "job %c: rl_choice %d (want %d) %s", 'a' + j,
-               (int)rp.rl_choice, want[j], err.msg);
     }
     cv_scene_destroy(&s);
-    cv_manifest_destroy(&m);
     struct cv_error err = {{0}};
     char *path = write_file("bad.yaml",
                             "version: 1\njobs:\n"
@@ -426,8 +401,7 @@ int main(void)
     test_fallbacks();
     test_substituted_integrator();
     test_media_integrator();
-    test_rlpath_train();
-    test_rlpath_fallback();
+    test_rlpath_settings();
     test_color();
     test_bdpt_camera_mattes();
     char *cmd = cv_xasprintf("rm -rf '%s'", dir);
