@@ -25,8 +25,14 @@ static const char *const REDUCE[] = {"CV_CHOICE_REDUCE", NULL};
  * blocks, and otherwise stays near the mean (Nemirovsky and Yudin's median
  * of means). Dropping the largest 1 % of the groups instead was measured
  * to drop more of guiding's error than of path's on a scene with no
- * fireflies (bench/RESULTS.md, "The guide's choice after training"). */
+ * fireflies (bench/RESULTS.md, "The guide's choice after training").
+ * A block holds at least BLOCK_GROUPS groups, fewer blocks on a smaller
+ * film, down to one (the plain mean): the median of blocks of a few
+ * groups is the median of the image's regions, not their mean, and on a
+ * small film the regions' errors differ by orders of magnitude (near a
+ * lamp, in a shadow). */
 #define BLOCKS 16
+#define BLOCK_GROUPS 64
 
 /* The sub-passes in order: two guided, then two unguided. */
 enum { STEP_GUIDED_A, STEP_GUIDED_B, STEP_UNGUIDED_A, STEP_UNGUIDED_B, STEPS };
@@ -133,11 +139,11 @@ static int by_value(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* A strategy's error: the median of its blocks' mean errors (BLOCKS, or
- * one a group on a film of fewer groups). */
+/* A strategy's error: the median of its blocks' mean errors. */
 static double median_of_means(const struct cv_guide_choice *c, const float *group)
 {
-    uint32_t nb = c->groups < BLOCKS ? c->groups : BLOCKS;
+    uint32_t nb = c->groups / BLOCK_GROUPS;
+    nb = nb < 1 ? 1 : nb > BLOCKS ? BLOCKS : nb;
     double sum[BLOCKS] = {0}, pixels[BLOCKS] = {0}, mean[BLOCKS];
     for (uint32_t g = 0; g < c->groups; g++) {
         uint32_t first = g * CV_CHOICE_GROUP, n = c->n_pixels - first;
