@@ -1061,13 +1061,15 @@ static bool use_programs_after_learning(struct cv_renderer *r, bool unguided,
         struct cv_program *pr = cv_program_get(r->gpu, file, d, err);
         if (!pr)
             return false;
+        n += r->prog[s].id != pr->id;
         r->prog[s] = *pr;
-        n++;
     }
     r->frozen = true;
     r->prog_unguided = unguided;
-    cv_debug("passes after learning: %d stage programs %s", n,
-             unguided ? "of path's" : "of the guide's, without the learning code");
+    /* (Q-learning's guided programs are its learning ones: none changes) */
+    if (n)
+        cv_debug("passes after learning: %d stage programs %s", n,
+                 unguided ? "of path's" : "of the guide's, without the learning code");
     return true;
 }
 

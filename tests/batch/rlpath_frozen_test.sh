@@ -2,7 +2,9 @@
 # rlpath_frozen_test.sh: a job of rlpath's sdtree method renders its
 # passes after training with the programs built without the learning code
 # (trace/integrator.h: frozen_programs; tests/trace/rlpath_frozen_test
-# checks what those programs hold): the Cornell box (scene-v4.pbrt of
+# checks what those programs hold; the 16 spp after training here are the
+# first, guided sub-pass of the guide's choice at 8 slots a pixel,
+# trace/guide_choice.h, so no pass runs path's programs): the Cornell box (scene-v4.pbrt of
 # /work/shared/scenes, CC0; bin 0 alone) switches its shade and shadow
 # stages once, at the end of training, and its misses from the learning
 # escaped stage to the intersect stage (the box is open to the camera:
@@ -22,7 +24,8 @@ job() {   # job NAME SPP RLPATH: a manifest of one rlpath job
     printf '    resolution: [32, 32]\n    seed: 3\n    spp: %s\n' "$2"
     printf '    integrator: rlpath\n    rlpath: %s\n' "$3"
 }
-switched='passes after learning: 2 stage programs without the learning code'
+# (a pattern: "guide's" without the quote the checks below wrap it in)
+switched='passes after learning: 2 stage programs of the guide.s, without the learning code'
 
 job sd 24 '{method: sdtree, train: 8}' >sd.yaml
 check_out "sdtree renders" sd.out "$CAVALRY_BATCH" -v sd.yaml 2>sd.err
