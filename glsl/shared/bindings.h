@@ -104,8 +104,8 @@
 #define CV_BIND_BDPT_VERTICES (CV_BIND_STAGE0 + 9)
 #define CV_BIND_BDPT_SPLAT (CV_BIND_STAGE0 + 10)
 /* the guide's choice after training (glsl/trace/guide_choice.comp): the
- * film's pixel sums at two moments (vec4[2 * pixels]), and the reduction's
- * sums (float[], one a group) */
+ * film's pixel sums at three moments (vec4[3 * pixels]), and the
+ * reduction's sums (float[], one a group) */
 #define CV_BIND_CHOICE_PIXELS (CV_BIND_STAGE0 + 11)
 #define CV_BIND_CHOICE_SUMS (CV_BIND_STAGE0 + 14)
 

@@ -501,6 +501,13 @@ static bool chooses(const struct cv_integrator_ops *ops, const struct cv_render_
     return ops->guides && p->rl_choice != CV_RL_CHOICE_GUIDED && passes_after_learning(ops, p);
 }
 
+/* ... and makes the choice by measuring (trace/guide_choice.h), not told
+ * to go on unguided. */
+static bool measures_choice(const struct cv_integrator_ops *ops, const struct cv_render_params *p)
+{
+    return chooses(ops, p) && p->rl_choice == CV_RL_CHOICE_MEASURE;
+}
+
 static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render_params *p,
                            struct stage_programs *sp)
 {
@@ -552,8 +559,9 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
      * materials (trace/shade_bins.h) */
     uint32_t bins_used = 1u | gs->shade_bins | (ops->media && gs->has_media ? 2u : 0u) |
                          (gs->has_subsurface ? 2u : 0u);
-    /* the guide's choice runs path's shade programs, whose bins are the
-     * guided integrators' (trace/integrator.c) */
+    /* the guide's choice runs path's shade programs, whose bins and their
+     * defines are the guided integrators' (trace/integrator.c): a bin's
+     * are its guided program's but CV_RL_UNGUIDED */
     const struct cv_integrator_ops *path = cv_integrator_find(CV_INTEGRATOR_PATH);
     for (int k = 0; k < ops->n_shade; k++) {
         const char *coat = ops->bins[k] == 4u && gs->has_coat_closed && !gs->walk_coat_closed
@@ -564,11 +572,8 @@ static void stage_programs(const struct cv_scene_gpu *gs, const struct cv_render
         int ns = defines_plus(sp->shade[k], defines, nd, ops->define[k], coat);
         ns = defines_plus(sp->shade[k], sp->shade[k], ns, no_tex ? "CV_NO_TEXTURES" : NULL,
                           walk_only);
-        if (ops->guides) {
-            int np = defines_plus(sp->shade_path[k], defines, nd, path->define[k], coat);
-            defines_plus(sp->shade_path[k], sp->shade_path[k], np,
-                         no_tex ? "CV_NO_TEXTURES" : NULL, walk_only);
-        }
+        if (ops->guides)
+            defines_plus(sp->shade_path[k], sp->shade[k], ns, NULL, NULL);
         bool unguided = ops->guides && ops->bins[k] && !(ops->bins[k] & gs->guided_bins);
         ns = defines_plus(sp->shade[k], sp->shade[k], ns, unguided ? "CV_RL_UNGUIDED" : NULL,
                           NULL);
@@ -648,14 +653,12 @@ static void request_all(struct cv_gpu *gpu, const struct cv_render_params *p,
     for (int s = 0; s < ST_COUNT; s++)
         if (sp->file[s] && sp->frozen[s])
             cv_program_request(gpu, sp->file[s], sp->frozen[s]);
-    /* the guide's choice's: path's, shared with path's jobs */
-    bool choice = false;
+    /* the guide's choice's: path's, shared with path's jobs, and the
+     * measure's own */
     for (int s = 0; s < ST_COUNT; s++)
-        if (sp->unguided[s]) {
+        if (sp->unguided[s])
             cv_program_request(gpu, sp->unguided_file[s], sp->unguided[s]);
-            choice = true;
-        }
-    if (choice)
+    if (measures_choice(ops, p))
         cv_guide_choice_request(gpu);
     /* the misses' programs of the passes after the first (after learning,
      * for an integrator that learns from misses) that may run the other
@@ -784,12 +787,10 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     const char *const *defines = sp->integrator_defines;
     setup_step(&clock, SETUP_PROGRAMS);
     /* the guide's choice after learning: measured, or told */
-    if (chooses(ops, p)) {
-        r->unguided = p->rl_choice == CV_RL_CHOICE_UNGUIDED;
-        if (!r->unguided && !cv_guide_choice_create(gpu, r->n_pixels, &r->choice, err)) {
-            cv_renderer_destroy(&r);
-            return false;
-        }
+    r->unguided = chooses(ops, p) && p->rl_choice == CV_RL_CHOICE_UNGUIDED;
+    if (measures_choice(ops, p) && !cv_guide_choice_create(gpu, r->n_pixels, &r->choice, err)) {
+        cv_renderer_destroy(&r);
+        return false;
     }
 
     if (ops->create) {
