@@ -1,4 +1,5 @@
 /* guide_choice.c: see guide_choice.h. */
+#include <math.h>
 #include <stdlib.h>
 
 #include <epoxy/gl.h>
@@ -15,24 +16,22 @@
 static const char FILE_[] = "trace/guide_choice.comp";
 static const char *const REDUCE[] = {"CV_CHOICE_REDUCE", NULL};
 
-/* The blocks of the median of means: each strategy's error is the median
- * of the mean errors of this many blocks of groups of pixels, block b
- * holding every group g with g % BLOCKS == b, so each spans the image. A
- * render's error over many samples takes in its rare bright samples
- * (fireflies) at their rate; a few sub-passes catch them by chance, and
- * one that did would decide the choice alone in a plain mean. A firefly
- * lifts one block; the median moves only where they are in half the
- * blocks, and otherwise stays near the mean (Nemirovsky and Yudin's median
- * of means). Dropping the largest 1 % of the groups instead was measured
- * to drop more of guiding's error than of path's on a scene with no
- * fireflies (bench/RESULTS.md, "The guide's choice after training").
- * A block holds at least BLOCK_GROUPS groups, fewer blocks on a smaller
- * film, down to one (the plain mean): the median of blocks of a few
- * groups is the median of the image's regions, not their mean, and on a
- * small film the regions' errors differ by orders of magnitude (near a
- * lamp, in a shadow). */
+/* The blocks of the test that makes the choice: block b holds every group
+ * g with g % BLOCKS == b, so that each spans the image, and both
+ * strategies' blocks hold the same pixels. Each block gives the difference
+ * of the two costs (error a sample times time a sample) over its pixels;
+ * their mean is the difference of the plain means, their spread its
+ * standard error. A render's error over many samples takes in its rare
+ * bright samples (fireflies) at their rate, and a few sub-passes catch
+ * them by chance: where they decide, the difference is within a few
+ * standard errors of nothing, and path's programs, the cheaper a sample,
+ * go on. Guiding goes on where it is the cheaper by more than Z standard
+ * errors. The median of means, and the plain means alone, were measured
+ * to choose wrongly on a scene each (bench/RESULTS.md, "The guide's
+ * choice by a paired test"). A film of fewer groups has a block each, down
+ * to two. */
 #define BLOCKS 16
-#define BLOCK_GROUPS 64
+#define Z 2.0
 
 /* The sub-passes in order: two guided, then two unguided. */
 enum { STEP_GUIDED_A, STEP_GUIDED_B, STEP_UNGUIDED_A, STEP_UNGUIDED_B, STEPS };
@@ -49,9 +48,9 @@ struct cv_guide_choice {
     uint32_t spp_a;               /* the strategy's first sub-pass's samples */
     uint32_t spp_b[2];            /* ... and its second's, timed */
     float *group[2];              /* each strategy's groups' sums */
-    double raw[2];                /* relative squared error a sample: the mean */
-    double err[2];                /* ... the median of means (BLOCKS) */
+    double err[2];                /* relative squared error a sample: the mean */
     double ms[2];                 /* GPU milliseconds a sample */
+    double z;                     /* the test's figure (cv_guide_choice_decide) */
     bool unguided;
 };
 
@@ -129,22 +128,17 @@ static bool reduce(struct cv_guide_choice *c, int strategy, uint32_t spp_b, uint
     double sum = 0;
     for (uint32_t g = 0; ok && g < c->groups; g++)
         sum += s[g];
-    c->raw[strategy] = sum / (3.0 * c->n_pixels);
+    c->err[strategy] = sum / (3.0 * c->n_pixels);
     return ok && cv_gl_check(err, "measuring the %s sub-passes", row_names[strategy]);
 }
 
-static int by_value(const void *a, const void *b)
+/* Each block's mean relative squared error a sample, of a strategy's
+ * groups' sums; returns the blocks' count. */
+static uint32_t block_means(const struct cv_guide_choice *c, const float *group,
+                            double mean[BLOCKS])
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* A strategy's error: the median of its blocks' mean errors. */
-static double median_of_means(const struct cv_guide_choice *c, const float *group)
-{
-    uint32_t nb = c->groups / BLOCK_GROUPS;
-    nb = nb < 1 ? 1 : nb > BLOCKS ? BLOCKS : nb;
-    double sum[BLOCKS] = {0}, pixels[BLOCKS] = {0}, mean[BLOCKS];
+    uint32_t nb = c->groups < BLOCKS ? c->groups : BLOCKS;
+    double sum[BLOCKS] = {0}, pixels[BLOCKS] = {0};
     for (uint32_t g = 0; g < c->groups; g++) {
         uint32_t first = g * CV_CHOICE_GROUP, n = c->n_pixels - first;
         sum[g % nb] += group[g];
@@ -152,8 +146,7 @@ static double median_of_means(const struct cv_guide_choice *c, const float *grou
     }
     for (uint32_t b = 0; b < nb; b++)
         mean[b] = sum[b] / (3.0 * pixels[b]);
-    qsort(mean, nb, sizeof(*mean), by_value);
-    return nb % 2 ? mean[nb / 2] : 0.5 * (mean[nb / 2 - 1] + mean[nb / 2]);
+    return nb;
 }
 
 bool cv_guide_choice_begin(struct cv_guide_choice *c, struct cv_error *err)
@@ -166,12 +159,23 @@ bool cv_guide_choice_begin(struct cv_guide_choice *c, struct cv_error *err)
     return true;
 }
 
-bool cv_guide_choice_decide(double err_guided, double ms_guided, double err_unguided,
-                            double ms_unguided)
+bool cv_guide_choice_decide(const double *g, const double *u, uint32_t nb, double ms_g,
+                            double ms_u, double *z)
 {
     /* equal error takes time in proportion to error a sample times time
-     * a sample; a strategy measured as no error (a black film) ties */
-    return err_unguided * ms_unguided < err_guided * ms_guided;
+     * a sample: the cost compared, block by block over the same pixels */
+    double mean = 0, var = 0;
+    for (uint32_t b = 0; b < nb; b++)
+        mean += g[b] * ms_g - u[b] * ms_u;
+    mean /= nb;
+    for (uint32_t b = 0; nb > 1 && b < nb; b++) {
+        double d = g[b] * ms_g - u[b] * ms_u - mean;
+        var += d * d / ((double)nb * (nb - 1));
+    }
+    double se = sqrt(var);
+    *z = se > 0 ? mean / se : mean < 0 ? -INFINITY : mean > 0 ? INFINITY : 0;
+    /* (one block has no spread: no test, path's programs) */
+    return !(nb > 1 && mean < -Z * se);
 }
 
 bool cv_guide_choice_end(struct cv_guide_choice *c, uint32_t spp, uint32_t spp_total,
@@ -193,25 +197,26 @@ bool cv_guide_choice_end(struct cv_guide_choice *c, uint32_t spp, uint32_t spp_t
     double *ms = c->ms;
     for (int k = 0; k < 2; k++)
         ms[k] = cv_gpu_timer_ms(c->timer, (unsigned)k) / c->spp_b[k];
-    for (int k = 0; k < 2; k++)
-        c->err[k] = median_of_means(c, c->group[k]);
-    c->unguided = cv_guide_choice_decide(c->err[GUIDED], ms[GUIDED], c->err[UNGUIDED],
-                                         ms[UNGUIDED]);
-    cv_info("after training: %s (relative squared error a sample, median of means and mean, "
-            "and GPU time a sample: guided %.4g, %.4g, %.3f ms; path's %.4g, %.4g, %.3f ms)",
-            c->unguided ? "path's programs render on" : "guided", c->err[GUIDED],
-            c->raw[GUIDED], ms[GUIDED], c->err[UNGUIDED], c->raw[UNGUIDED], ms[UNGUIDED]);
+    double bg[BLOCKS], bu[BLOCKS];
+    uint32_t nb = block_means(c, c->group[GUIDED], bg);
+    block_means(c, c->group[UNGUIDED], bu);
+    c->unguided = cv_guide_choice_decide(bg, bu, nb, ms[GUIDED], ms[UNGUIDED], &c->z);
+    cv_info("after training: %s (relative squared error a sample and GPU time a sample: "
+            "guided %.4g, %.3f ms; path's %.4g, %.3f ms; guiding's cost less path's, over "
+            "its standard error in %u blocks: %+.2f)",
+            c->unguided ? "path's programs render on" : "guided", c->err[GUIDED], ms[GUIDED],
+            c->err[UNGUIDED], ms[UNGUIDED], nb, c->z);
     return true;
 }
 
-void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[3], double u[3])
+void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[2], double u[2],
+                              double *z)
 {
     g[0] = c->err[GUIDED];
     g[1] = c->ms[GUIDED];
-    g[2] = c->raw[GUIDED];
     u[0] = c->err[UNGUIDED];
     u[1] = c->ms[UNGUIDED];
-    u[2] = c->raw[UNGUIDED];
+    *z = c->z;
 }
 
 void cv_guide_choice_destroy(struct cv_guide_choice **cp)

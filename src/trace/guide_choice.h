@@ -6,13 +6,13 @@
  * sub-passes: two guided, two with path's programs. Each pair's film
  * increments estimate its strategy's relative squared error a sample
  * (glsl/trace/guide_choice.comp, weighed as the benchmarks' relMSE, by the
- * film's values at the end of training), summed over groups of pixels
- * and taken as the median of the means of blocks of groups, so that no
- * firefly caught by chance decides. The second sub-pass of each
- * pair is timed on the GPU (the first may wait for a program's first
- * use). The strategy with the smaller product of error a sample and time
- * a sample renders the rest. Every sub-pass's samples are unbiased and
- * stay in the image.
+ * film's values at the end of training), summed over groups of pixels.
+ * The second sub-pass of each pair is timed on the GPU (the first may wait
+ * for a program's first use). Guiding renders the rest where its product
+ * of error a sample and time a sample is the smaller by more than its
+ * noise, which blocks of the groups measure (rare bright samples caught by
+ * chance make it large); elsewhere path's programs, the cheaper a sample.
+ * Every sub-pass's samples are unbiased and stay in the image.
  *
  * The choice rests on measured time, so two renders of the same job may
  * choose differently and differ in their noise (rlpath.fallback: false
@@ -47,15 +47,19 @@ bool cv_guide_choice_end(struct cv_guide_choice *c, uint32_t spp, uint32_t spp_t
 bool cv_guide_choice_unguided(const struct cv_guide_choice *c);
 
 /* The figures of the choice once made, guided (g) and unguided (u):
- * relative squared error a sample as the choice counts it (the median of
- * means) [0], GPU milliseconds a sample [1], and its plain mean [2]. */
-void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[3], double u[3]);
+ * relative squared error a sample [0] and GPU milliseconds a sample [1];
+ * and the test's figure z (cv_guide_choice_decide). */
+void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[2], double u[2],
+                              double *z);
 
-/* The decision from the two strategies' relative squared error a sample
- * (err_*) and GPU milliseconds a sample (ms_*): unguided when it reaches
- * the same error in less time. */
-bool cv_guide_choice_decide(double err_guided, double ms_guided, double err_unguided,
-                            double ms_unguided);
+/* The decision from nb blocks' relative squared error a sample, guided (g)
+ * and unguided (u) over the same pixels in each block, and the GPU
+ * milliseconds a sample of each (ms_*): unguided unless guiding reaches
+ * the same error in less time by more than a few standard errors of
+ * the blocks' mean difference (guide_choice.c: Z; never with one block). *z: that mean
+ * difference, guided's cost less unguided's, over its standard error. */
+bool cv_guide_choice_decide(const double *g, const double *u, uint32_t nb, double ms_g,
+                            double ms_u, double *z);
 
 /* Accepts NULL; clears the pointer. */
 void cv_guide_choice_destroy(struct cv_guide_choice **c);
