@@ -28,8 +28,8 @@ static const char *const REDUCE[] = {"CV_CHOICE_REDUCE", NULL};
  * go on. Guiding goes on where it is the cheaper by more than Z standard
  * errors. The median of means, and the plain means alone, were measured
  * to choose wrongly on a scene each (bench/RESULTS.md, "The guide's
- * choice by a paired test"). A film of fewer groups has a block each, down
- * to two. */
+ * choice by a paired test"). A film of fewer groups has a block a group;
+ * with one block there is no test, and path's programs go on. */
 #define BLOCKS 16
 #define Z 2.0
 

@@ -55,9 +55,10 @@ void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[2], doub
 /* The decision from nb blocks' relative squared error a sample, guided (g)
  * and unguided (u) over the same pixels in each block, and the GPU
  * milliseconds a sample of each (ms_*): unguided unless guiding reaches
- * the same error in less time by more than a few standard errors of
- * the blocks' mean difference (guide_choice.c: Z; never with one block). *z: that mean
- * difference, guided's cost less unguided's, over its standard error. */
+ * the same error in less time by more than a few standard errors of the
+ * blocks' mean difference (guide_choice.c: Z; never with one block).
+ * *z: that mean difference, guided's cost less unguided's, over its
+ * standard error. */
 bool cv_guide_choice_decide(const double *g, const double *u, uint32_t nb, double ms_g,
                             double ms_u, double *z);
 
