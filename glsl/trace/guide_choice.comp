@@ -14,13 +14,18 @@
 // samples: one that held them would be low where they came out low and
 // weigh their error more, the more so the noisier they are, and one taken
 // later for the second strategy, from more samples, would weigh its error
-// less. The filter's mean weight is the whole film's.
+// less. The filter's mean weight is the whole film's. A large film is
+// measured on every u_stride-th group of its pixels (guide_choice.c:
+// MAX_GROUPS): u_measured places, group q of them the film's group
+// q * u_stride.
 #include "shared/trace.h"
 #include "shared/guide_choice.h"
 layout(local_size_x = CV_CHOICE_GROUP) in;
 #include "common.glsl"
 
 layout(std430, binding = CV_BIND_CHOICE_PIXELS) buffer CvChoicePixels { vec4 pixels[]; };
+layout(location = 4) uniform uint u_stride;
+layout(location = 5) uniform uint u_measured;
 #ifdef CV_CHOICE_REDUCE
 layout(std430, binding = CV_BIND_CHOICE_SUMS) writeonly buffer CvChoiceSums { float sums[]; };
 layout(location = 0) uniform uint u_spp_a;
@@ -42,15 +47,16 @@ vec4 pixel_sums(uint i)
 
 void main()
 {
-    uint i = cv_global_index();
-    uint n = u_pass.n_pixels;
+    uint j = cv_global_index(), m = u_measured;
+    uint i = (j / CV_CHOICE_GROUP) * u_stride * CV_CHOICE_GROUP + j % CV_CHOICE_GROUP;
+    bool in_film = j < m && i < u_pass.n_pixels;
 #ifndef CV_CHOICE_REDUCE
-    if (i < n)
-        pixels[u_third * n + i] = pixel_sums(i);
+    if (in_film)
+        pixels[u_third * m + j] = pixel_sums(i);
 #else
     float e = 0.0;
-    if (i < n) {
-        vec4 f = pixel_sums(i), t = pixels[i], s0 = pixels[u_before * n + i], s1 = pixels[n + i];
+    if (in_film) {
+        vec4 f = pixel_sums(i), t = pixels[j], s0 = pixels[u_before * m + j], s1 = pixels[m + j];
         // the filter's mean weight: a sub-pass's radiance sum over its
         // samples and this estimate the pixel
         float w = f.w / float(u_spp_total);
@@ -74,7 +80,7 @@ void main()
     }
     // (a group's first index over the group size: its place however the
     // dispatch was split, index.glsl; the split's spare groups write none)
-    if (gl_LocalInvocationID.x == 0u && i < n)
-        sums[i / CV_CHOICE_GROUP] = s_sum[0];
+    if (gl_LocalInvocationID.x == 0u && j < m)
+        sums[j / CV_CHOICE_GROUP] = s_sum[0];
 #endif
 }

@@ -33,6 +33,14 @@ static const char *const REDUCE[] = {"CV_CHOICE_REDUCE", NULL};
 #define BLOCKS 16
 #define Z 2.0
 
+/* The most groups of pixels measured: a million pixels, so the films up to
+ * 1024 x 1024 the choice was measured on are measured whole. The measure
+ * holds three vec4 a pixel until it decides; a larger film is measured on
+ * every stride-th group (each block still spans the image), so that its
+ * memory stops growing with the film: 48 MiB at most, where a film of
+ * 2^24 pixels took 768 MiB. */
+#define MAX_GROUPS 16384
+
 /* The sub-passes in order: two guided, then two unguided. */
 enum { STEP_GUIDED_A, STEP_GUIDED_B, STEP_UNGUIDED_A, STEP_UNGUIDED_B, STEPS };
 
@@ -41,7 +49,10 @@ static const char *const row_names[2] = {"guided", "unguided"};
 
 struct cv_guide_choice {
     struct cv_gpu *gpu;
-    uint32_t n_pixels, groups;
+    uint32_t film_pixels;
+    uint32_t stride;              /* group q measured is the film's q * stride */
+    uint32_t groups, slots;       /* groups measured, and their places */
+    uint32_t n_pixels;            /* the film's pixels among them */
     GLuint pixels, sums;
     struct cv_gpu_timer *timer;   /* rows: the strategies' second sub-passes */
     int step;
@@ -54,19 +65,33 @@ struct cv_guide_choice {
     bool unguided;
 };
 
-bool cv_guide_choice_create(struct cv_gpu *gpu, uint32_t n_pixels,
+/* The film's pixels in measured group q. */
+static uint32_t group_pixels(const struct cv_guide_choice *c, uint32_t q)
+{
+    uint64_t first = (uint64_t)q * c->stride * CV_CHOICE_GROUP;
+    uint64_t n = first < c->film_pixels ? c->film_pixels - first : 0;
+    return n < CV_CHOICE_GROUP ? (uint32_t)n : CV_CHOICE_GROUP;
+}
+
+bool cv_guide_choice_create(struct cv_gpu *gpu, uint32_t n_pixels, uint32_t max_groups,
                             struct cv_guide_choice **out, struct cv_error *err)
 {
     struct cv_guide_choice *c = cv_xcalloc(1, sizeof(*c));
     c->gpu = gpu;
-    c->n_pixels = n_pixels;
-    c->groups = (n_pixels + CV_CHOICE_GROUP - 1) / CV_CHOICE_GROUP;
+    c->film_pixels = n_pixels;
+    uint32_t film_groups = (n_pixels + CV_CHOICE_GROUP - 1) / CV_CHOICE_GROUP;
+    uint32_t cap = max_groups ? max_groups : MAX_GROUPS;
+    c->stride = film_groups > cap ? (film_groups + cap - 1) / cap : 1;
+    c->groups = (film_groups + c->stride - 1) / c->stride;
+    c->slots = c->groups * CV_CHOICE_GROUP;
+    for (uint32_t q = 0; q < c->groups; q++)
+        c->n_pixels += group_pixels(c, q);
     c->timer = cv_gpu_timer_create(gpu, &(struct cv_gpu_timer_params){.names = row_names,
                                                                       .n_names = 2});
     c->group[0] = cv_xmalloc((size_t)c->groups * sizeof(float));
     c->group[1] = cv_xmalloc((size_t)c->groups * sizeof(float));
     /* both written by the sub-passes' dispatches before any read */
-    if (!(c->pixels = cv_buffer_create_uninit((size_t)n_pixels * 3 * 16, "guide choice pixels",
+    if (!(c->pixels = cv_buffer_create_uninit((size_t)c->slots * 3 * 16, "guide choice pixels",
                                               err)) ||
         !(c->sums = cv_buffer_create_uninit((size_t)c->groups * 4, "guide choice sums", err))) {
         cv_guide_choice_destroy(&c);
@@ -91,10 +116,12 @@ bool cv_guide_choice_next_unguided(const struct cv_guide_choice *c)
 
 bool cv_guide_choice_unguided(const struct cv_guide_choice *c) { return c->unguided; }
 
-static void bind(const struct cv_guide_choice *c)
+static void bind(const struct cv_guide_choice *c, struct cv_program *p)
 {
     cv_buffer_bind(c->pixels, CV_BIND_CHOICE_PIXELS);
     cv_buffer_bind(c->sums, CV_BIND_CHOICE_SUMS);
+    cv_program_set_uint(p, "u_stride", c->stride);
+    cv_program_set_uint(p, "u_measured", c->slots);
 }
 
 /* The film's pixel sums into third h of c->pixels. */
@@ -103,9 +130,9 @@ static bool snapshot(struct cv_guide_choice *c, uint32_t h, struct cv_error *err
     struct cv_program *p = cv_program_get(c->gpu, FILE_, NULL, err);
     if (!p)
         return false;
-    bind(c);
+    bind(c, p);
     cv_program_set_uint(p, "u_third", h);
-    cv_program_dispatch_1d(p, c->n_pixels);
+    cv_program_dispatch_1d(p, c->slots);
     return true;
 }
 
@@ -117,12 +144,12 @@ static bool reduce(struct cv_guide_choice *c, int strategy, uint32_t spp_b, uint
     struct cv_program *p = cv_program_get(c->gpu, FILE_, REDUCE, err);
     if (!p)
         return false;
-    bind(c);
+    bind(c, p);
     cv_program_set_uint(p, "u_spp_a", c->spp_a);
     cv_program_set_uint(p, "u_spp_b", spp_b);
     cv_program_set_uint(p, "u_spp_total", spp_total);
     cv_program_set_uint(p, "u_before", strategy == GUIDED ? 0 : 2);
-    cv_program_dispatch_1d(p, c->n_pixels);
+    cv_program_dispatch_1d(p, c->slots);
     float *s = c->group[strategy];
     bool ok = cv_buffer_read(c->sums, 0, (size_t)c->groups * sizeof(*s), s, err);
     double sum = 0;
@@ -140,9 +167,8 @@ static uint32_t block_means(const struct cv_guide_choice *c, const float *group,
     uint32_t nb = c->groups < BLOCKS ? c->groups : BLOCKS;
     double sum[BLOCKS] = {0}, pixels[BLOCKS] = {0};
     for (uint32_t g = 0; g < c->groups; g++) {
-        uint32_t first = g * CV_CHOICE_GROUP, n = c->n_pixels - first;
         sum[g % nb] += group[g];
-        pixels[g % nb] += n < CV_CHOICE_GROUP ? n : CV_CHOICE_GROUP;
+        pixels[g % nb] += group_pixels(c, g);
     }
     for (uint32_t b = 0; b < nb; b++)
         mean[b] = sum[b] / (3.0 * pixels[b]);

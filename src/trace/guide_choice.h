@@ -29,8 +29,10 @@
 struct cv_guide_choice;
 
 /* The measure for a film of n_pixels pixels (the film and the pass
- * parameters are bound by the renderer). */
-bool cv_guide_choice_create(struct cv_gpu *gpu, uint32_t n_pixels,
+ * parameters are bound by the renderer), on at most max_groups groups of
+ * CV_CHOICE_GROUP pixels spread over it (0: guide_choice.c's MAX_GROUPS;
+ * tests ask for fewer). */
+bool cv_guide_choice_create(struct cv_gpu *gpu, uint32_t n_pixels, uint32_t max_groups,
                             struct cv_guide_choice **out, struct cv_error *err);
 /* Requests its programs beside the renderer's (gpu/program.h). */
 void cv_guide_choice_request(struct cv_gpu *gpu);

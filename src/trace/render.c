@@ -788,7 +788,8 @@ bool cv_renderer_create_shared(struct cv_gpu *gpu, const struct cv_scene_gpu *gs
     setup_step(&clock, SETUP_PROGRAMS);
     /* the guide's choice after learning: measured, or told */
     r->unguided = chooses(ops, p) && p->rl_choice == CV_RL_CHOICE_UNGUIDED;
-    if (measures_choice(ops, p) && !cv_guide_choice_create(gpu, r->n_pixels, &r->choice, err)) {
+    if (measures_choice(ops, p) &&
+        !cv_guide_choice_create(gpu, r->n_pixels, 0, &r->choice, err)) {
         cv_renderer_destroy(&r);
         return false;
     }

@@ -1,23 +1,25 @@
-/* guide_choice_test.c: the measure behind the guide's choice after
- * training (trace/guide_choice.h, glsl/trace/guide_choice.comp), on the
- * GLSL that ships, over a synthetic film of several path slots a pixel
- * whose sub-passes add samples of known mean and variance: the error a
- * sample it reports for each strategy equals the same sums taken on the
- * host in double, and the expected relative variance a sample (the
- * samples' variance over the square of the film's mean before them plus
+/* guide_choice_test.c: the measure behind the guide's choice after training
+ * (trace/guide_choice.h, glsl/trace/guide_choice.comp), on the GLSL that
+ * ships, over a synthetic film of several path slots a pixel whose
+ * sub-passes add samples of known mean and variance: the error a sample it
+ * reports for each strategy equals the same sums taken on the host in
+ * double, and the expected relative variance a sample (the samples'
+ * variance over the square of the film's mean before them plus
  * CV_RELMSE_EPS, averaged over pixels and channels) within 3 %, for
  * sub-passes of equal and of unequal samples, the unguided ones at a half,
  * two thirds and twice the guided ones' noise, and the choice follows the
  * error a sample where it differs fourfold (and the times a sample, which
- * are the uploads' here, are within a factor of two); at equal noise with a firefly
- * in one pixel of 16384 of the last sub-pass, which lifts path's error a
- * sample hundreds of times, the test sees it as noise and path's programs
- * go on; on a film of 2000 pixels, blocks of two groups. And the decision
- * from blocks: guided only where its error times its time a sample is the
- * smaller by more than its noise. */
+ * are the uploads' here, are within a factor of two); at equal noise with a
+ * firefly in one pixel of 16384 of the last sub-pass, which lifts path's
+ * error a sample hundreds of times, the test sees it as noise and path's
+ * programs go on; on a film of 2000 pixels, blocks of two groups; on a film
+ * measured on every third group of pixels, the same on those pixels. And
+ * the decision from blocks: guided only where its error times its time a
+ * sample is the smaller by more than its noise. */
 #include "config.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +44,7 @@ static double rnd(void)
  * channel, and the host's copy of the slots' sums. */
 struct film {
     uint32_t n;
+    uint32_t stride;      /* the measure's: every stride-th group of pixels */
     double mean[P][3];
     CvFilmPixel *px;      /* n * K */
     GLuint buf;
@@ -95,7 +98,11 @@ static bool strategy(struct cv_guide_choice *c, struct film *f, const double (*t
     ok = ok && cv_guide_choice_begin(c, err) && add_samples(f, nb, h, firefly, err) &&
          cv_guide_choice_end(c, nb, f->spp, err);
     double sum = 0, ex = 0;
+    uint32_t measured = 0;
     for (uint32_t i = 0; ok && i < f->n; i++) {
+        if ((i / CV_CHOICE_GROUP) % f->stride)
+            continue;
+        measured++;
         double F[4];
         pixel_sums(f, i, F);
         double w = F[3] / f->spp;
@@ -106,8 +113,8 @@ static bool strategy(struct cv_guide_choice *c, struct film *f, const double (*t
             ex += h[i] * h[i] / 3 / (m * m + CV_RELMSE_EPS);
         }
     }
-    *host = sum / (3.0 * f->n);
-    *expect = ex / (3.0 * f->n);
+    *host = sum / (3.0 * measured);
+    *expect = ex / (3.0 * measured);
     free(s0), free(s1);
     return ok;
 }
@@ -119,13 +126,16 @@ enum want { WANT_UNGUIDED, WANT_GUIDED, WANT_EITHER };
 /* A film of n pixels whose guided sub-passes take na and nb samples, at
  * scale_g times the noise of the training's samples, the unguided ones at
  * scale_u times. */
-static void measure(struct cv_gpu *gpu, GLuint ubo, uint32_t n, uint32_t na, uint32_t nb,
-                    double scale_g, double scale_u, bool firefly, enum want want)
+static void measure(struct cv_gpu *gpu, GLuint ubo, uint32_t n, uint32_t max_groups,
+                    uint32_t na, uint32_t nb, double scale_g, double scale_u, bool firefly,
+                    enum want want)
 {
     struct cv_error err = {{0}};
     static struct film f;
     memset(&f, 0, sizeof(f));
     f.n = n;
+    uint32_t groups = (n + CV_CHOICE_GROUP - 1) / CV_CHOICE_GROUP;
+    f.stride = max_groups && groups > max_groups ? (groups + max_groups - 1) / max_groups : 1;
     CvPassParams pass = {0};
     pass.n_pixels = n;
     pass.paths_per_pixel = K;
@@ -145,7 +155,7 @@ static void measure(struct cv_gpu *gpu, GLuint ubo, uint32_t n, uint32_t na, uin
     }
     struct cv_guide_choice *c = NULL;
     bool ok = (f.buf = cv_buffer_create((size_t)n * K * sizeof(CvFilmPixel), NULL, "film", &err)) &&
-              cv_guide_choice_create(gpu, n, &c, &err);
+              cv_guide_choice_create(gpu, n, max_groups, &c, &err);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CV_BIND_FILM, f.buf);
     /* the training's samples */
     ok = ok && add_samples(&f, 16, h, false, &err);
@@ -154,7 +164,11 @@ static void measure(struct cv_gpu *gpu, GLuint ubo, uint32_t n, uint32_t na, uin
         pixel_sums(&f, i, t[i]);
     double host[2] = {0}, expect[2] = {0};
     bool small = n < P;
-    const char *what = firefly ? ", fireflies in the second unguided" : small ? ", small film" : "";
+    char what[64];
+    snprintf(what, sizeof(what), "%s", firefly ? ", fireflies in the second unguided" :
+             small ? ", small film" : "");
+    if (f.stride > 1)
+        snprintf(what, sizeof(what), ", one group in %u measured", f.stride);
     ok = ok && tap_ok(cv_guide_choice_pending(c) && !cv_guide_choice_next_unguided(c),
                       "%u + %u: the guided sub-passes come first", na, nb);
     ok = ok && strategy(c, &f, t, na, nb, hg, false, &host[0], &expect[0], &err);
@@ -250,11 +264,14 @@ int main(void)
     GLuint ubo = cv_buffer_create(sizeof(CvPassParams), NULL, "pass", &err);
     if (tap_ok(ubo != 0, "pass parameters: %s", err.msg)) {
         glBindBufferBase(GL_UNIFORM_BUFFER, CV_UBO_PASS, ubo);
-        measure(gpu, ubo, P, 6, 6, 1.0, 0.5, false, WANT_UNGUIDED);
-        measure(gpu, ubo, P, 6, 2, 1.0, 1.0 / 1.5, false, WANT_EITHER);
-        measure(gpu, ubo, P, 6, 6, 0.5, 1.0, false, WANT_GUIDED);
-        measure(gpu, ubo, P, 4, 4, 1.0, 1.0, true, WANT_UNGUIDED);
-        measure(gpu, ubo, 2000, 4, 4, 1.0, 0.5, false, WANT_UNGUIDED);
+        measure(gpu, ubo, P, 0, 6, 6, 1.0, 0.5, false, WANT_UNGUIDED);
+        measure(gpu, ubo, P, 0, 6, 2, 1.0, 1.0 / 1.5, false, WANT_EITHER);
+        measure(gpu, ubo, P, 0, 6, 6, 0.5, 1.0, false, WANT_GUIDED);
+        measure(gpu, ubo, P, 0, 4, 4, 1.0, 1.0, true, WANT_UNGUIDED);
+        measure(gpu, ubo, 2000, 0, 4, 4, 1.0, 0.5, false, WANT_UNGUIDED);
+        /* a film measured on every 3rd group (1024 groups, at most 400;
+         * the last group measured is the film's last) */
+        measure(gpu, ubo, P, 400, 6, 6, 0.5, 1.0, false, WANT_GUIDED);
     }
     cv_buffer_destroy(&ubo);
     cv_gpu_destroy(&gpu);
