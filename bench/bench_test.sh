@@ -122,6 +122,17 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
         grep -qE '^[^ ]*scene.pbrt +parallel +[0-9.]+ ' "$tmp/cs.out"
     check "coldstart.sh: when the parallel run got sdtree's shade program" \
         grep -qE '^ +[0-9]+ +[0-9]+ +[0-9.]+  trace/rlpath/sd_shade.comp ' "$tmp/cs.out"
+    # the guide's choice after training: its figures, and the choice z
+    # gives (guided only below -2: src/trace/guide_choice.c)
+    "$cb" --bench "$tmp/a/scene.pbrt" --spp 96 --width 16 --height 9 --integrator rlpath \
+        --rl-method sdtree > "$tmp/ch.jsonl" 2>/dev/null || true
+    check "cavalry_bench records the guide's choice's figures" sh -c "grep -q \
+        '\"render.choice_err_guided\": [0-9]' '$tmp/ch.jsonl' && grep -q \
+        '\"render.choice_ms_path\": [0-9]' '$tmp/ch.jsonl'"
+    check "cavalry_bench: the passes after training went the way z says" sh -c "awk '
+        { if (match(\$0, /\"render.choice_z\": [-+0-9.e]+/)) z = substr(\$0, RSTART + 18, RLENGTH - 18)
+          if (match(\$0, /\"render.unguided\": [01]/)) u = substr(\$0, RSTART + 19, 1) }
+        END { exit !(z != \"\" && u != \"\" && (u == 1) == (z + 0 >= -2)) }' '$tmp/ch.jsonl'"
     check "cavalry_bench refuses an unknown rlpath method" sh -c "! '$cb' --bench \
         '$tmp/a/scene.pbrt' --spp 1 --width 8 --height 8 --integrator rlpath --rl-method nope \
         >/dev/null 2>&1"

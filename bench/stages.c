@@ -209,6 +209,17 @@ static bool measure_render(struct cv_gpu *gpu, const struct cv_scene *scene,
         /* rlpath: the passes after training ran path's programs
          * (trace/guide_choice.h) */
         bench_num(r, "render.unguided", c.unguided);
+        /* ... and the figures it chose by, where it measured them (z: the
+         * cost difference over its standard error; an infinite one, of a
+         * spread of 0, as +-1e300) */
+        if (c.choice_measured) {
+            bench_num(r, "render.choice_err_guided", c.choice_err[0]);
+            bench_num(r, "render.choice_err_path", c.choice_err[1]);
+            bench_num(r, "render.choice_ms_guided", c.choice_ms[0]);
+            bench_num(r, "render.choice_ms_path", c.choice_ms[1]);
+            bench_num(r, "render.choice_z",
+                      isinf(c.choice_z) ? copysign(1e300, c.choice_z) : c.choice_z);
+        }
         bench_num(r, "render.missed_share",
                   (double)c.missed_rays / (double)(c.primary_rays + c.secondary_rays));
         uint32_t ppp = (uint32_t)(c.path_slots / ((uint64_t)w * h));

@@ -113,6 +113,9 @@ struct cv_renderer {
      * made; then whether path's programs render on */
     struct cv_guide_choice *choice;
     bool choice_sub;               /* a pass of the choice's runs */
+    /* ... and its figures once made (cv_render_counters) */
+    bool choice_measured;
+    double choice_err[2], choice_ms[2], choice_z;
     bool unguided;
     bool prog_unguided;            /* prog holds path's programs after learning */
     bool misses_later;             /* later passes may choose their misses' way (request_all) */
@@ -1097,6 +1100,11 @@ static bool choice_passes(struct cv_renderer *r, uint32_t spp, struct cv_error *
     if (!ok || cv_guide_choice_pending(r->choice))
         return ok;
     r->unguided = cv_guide_choice_unguided(r->choice);
+    double g[2], u[2];
+    cv_guide_choice_measures(r->choice, g, u, &r->choice_z);
+    r->choice_err[0] = g[0], r->choice_ms[0] = g[1];
+    r->choice_err[1] = u[0], r->choice_ms[1] = u[1];
+    r->choice_measured = true;
     cv_guide_choice_destroy(&r->choice);
     return use_programs_after_learning(r, r->unguided, err) && cv_renderer_pass(r, spp, err);
 }
@@ -1225,6 +1233,10 @@ bool cv_renderer_counters(struct cv_renderer *r, struct cv_render_counters *c,
     c->missed_rays = extend - stat64(&q, CV_STAT_HITS);
     c->escaped_stage = r->escaped_stage;
     c->unguided = r->unguided && r->frozen;
+    c->choice_measured = r->choice_measured;
+    for (int k = 0; k < 2; k++)
+        c->choice_err[k] = r->choice_err[k], c->choice_ms[k] = r->choice_ms[k];
+    c->choice_z = r->choice_z;
     c->gpu_ms = cv_gpu_timer_ms(r->passes, 0);
     /* all 0 when the stage timer is off */
     c->intersect_first_ms = cv_gpu_timer_slot_ms(r->stages, ST_INTERSECT, 0);

@@ -182,6 +182,11 @@ struct cv_render_counters {
     /* rlpath: the passes after training run path's programs (params'
      * rl_choice, trace/guide_choice.h) */
     bool unguided;
+    /* rlpath: the choice was measured, and its figures
+     * (cv_guide_choice_measures): relative squared error a sample and GPU
+     * milliseconds a sample, guided [0] and path's [1], and the test's z */
+    bool choice_measured;
+    double choice_err[2], choice_ms[2], choice_z;
     double gpu_ms;
     /* With params' stage_times: GPU time of the closest-hit (intersect)
      * and any-hit (shadow) stages over the same passes; else 0. The part of
