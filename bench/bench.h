@@ -65,6 +65,7 @@ struct bench_run_params {
     bool rl_guide_indirect;            /* --rl-guide indirect */
     const char *rl_method;             /* --rl-method: rlpath.method's name; NULL: qlearn */
     uint32_t rl_train;                 /* --rl-train (render.h's rl_train) */
+    bool rl_no_fallback;               /* --rl-fallback false: rlpath.fallback false */
     unsigned seed;                     /* sampler seed; 0: 1 */
     unsigned paths_per_pixel;          /* trace/render.h; 0: the renderer's choice */
     unsigned pass_spp;                 /* passes of this many spp; 0: as cavalry-batch sizes them */

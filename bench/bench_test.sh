@@ -133,6 +133,13 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
         { if (match(\$0, /\"render.choice_z\": [-+0-9.e]+/)) z = substr(\$0, RSTART + 18, RLENGTH - 18)
           if (match(\$0, /\"render.unguided\": [01]/)) u = substr(\$0, RSTART + 19, 1) }
         END { exit !(z != \"\" && u != \"\" && (u == 1) == (z + 0 >= -2)) }' '$tmp/ch.jsonl'"
+    # --rl-fallback false keeps guiding: no choice measured
+    "$cb" --bench "$tmp/a/scene.pbrt" --spp 96 --width 16 --height 9 --integrator rlpath \
+        --rl-method sdtree --rl-fallback false > "$tmp/nf.jsonl" 2>/dev/null || true
+    check "cavalry_bench --rl-fallback false: guided on, no choice measured" sh -c "grep -q \
+        '\"render.unguided\": 0[,}]' '$tmp/nf.jsonl' && ! grep -q choice_z '$tmp/nf.jsonl'"
+    check "cavalry_bench refuses --rl-fallback maybe" sh -c "! '$cb' --bench '$tmp/a/scene.pbrt' \
+        --spp 1 --width 8 --height 8 --integrator rlpath --rl-fallback maybe >/dev/null 2>&1"
     check "cavalry_bench refuses an unknown rlpath method" sh -c "! '$cb' --bench \
         '$tmp/a/scene.pbrt' --spp 1 --width 8 --height 8 --integrator rlpath --rl-method nope \
         >/dev/null 2>&1"

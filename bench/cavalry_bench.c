@@ -45,13 +45,14 @@ static void usage(FILE *f)
           "                     [--height H] [--integrator path|rlpath] [--json] [--gpu INDEX]\n"
           "                     [--rl-method qlearn|sdtree] [--rl-grid N] [--rl-directions N]\n"
           "                     [--rl-mix M] [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
-          "                     [--paths-per-pixel N] [--pass-spp N] [--no-gpu] [-v]\n"
+          "                     [--rl-fallback true|false] [--paths-per-pixel N] [--pass-spp N]\n"
+          "                     [--no-gpu] [-v]\n"
           "       cavalry_bench --summarize RECORDS.jsonl... [--out RESULT.json]\n"
           "       cavalry_bench --converge SCENE.pbrt [--reference REF.exr | --ref-spp N]\n"
           "                     [--spp N] [--width W --height H] [--integrator path|rlpath]\n"
           "                     [--rl-method qlearn|sdtree] [--rl-grid N] [--rl-directions N]\n"
           "                     [--rl-mix M] [--rl-guide all|indirect] [--rl-train N] [--seed S]\n"
-          "                     [--csv OUT.csv]\n"
+          "                     [--rl-fallback true|false] [--csv OUT.csv]\n"
           "       cavalry_bench --relmse IMAGE.exr REFERENCE.exr\n", f);
 }
 
@@ -104,6 +105,7 @@ struct opts {
     unsigned paths_per_pixel, pass_spp;
     float rl_mix;
     bool rl_guide_indirect;
+    bool rl_no_fallback;    /* --rl-fallback false */
     unsigned rl_train;      /* render.h's rl_train: 0 the default, CV_RL_TRAIN_ALWAYS */
     int gpu_index;
     bool no_gpu;
@@ -118,7 +120,8 @@ static struct bench_run_params run_params(const struct opts *o)
                                      .rl_directions = o->rl_directions, .rl_mix = o->rl_mix,
                                      .rl_guide_indirect = o->rl_guide_indirect,
                                      .rl_method = o->rl_method,
-                                     .rl_train = o->rl_train, .seed = o->seed,
+                                     .rl_train = o->rl_train,
+                                     .rl_no_fallback = o->rl_no_fallback, .seed = o->seed,
                                      .paths_per_pixel = o->paths_per_pixel,
                                      .pass_spp = o->pass_spp, .knobs = o->knobs};
 }
@@ -264,6 +267,14 @@ int main(int argc, char **argv)
                 return 2;
             }
             o.rl_guide_indirect = !strcmp(g, "indirect");
+        } else if (!strcmp(a, "--rl-fallback") && has) {
+            /* as the manifest's rlpath.fallback */
+            const char *v = argv[++i];
+            if (strcmp(v, "true") && strcmp(v, "false")) {
+                fprintf(stderr, "cavalry_bench: --rl-fallback takes true or false, not %s\n", v);
+                return 2;
+            }
+            o.rl_no_fallback = !strcmp(v, "false");
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
         } else if (!strcmp(a, "--out") && has) {

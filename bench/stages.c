@@ -114,6 +114,9 @@ static bool make_renderer(struct cv_gpu *gpu, const struct cv_scene *scene,
                               : CV_RL_METHOD_QLEARN;
     rp.rl_sdtree = method == CV_RL_METHOD_SDTREE;
     rp.rl_train = p->rl_train;
+    /* as the manifest's rlpath.fallback: false keeps guiding after training */
+    if (p->rl_no_fallback)
+        rp.rl_choice = CV_RL_CHOICE_GUIDED;
     rp.spp = p->spp;
     rp.paths_per_pixel = p->paths_per_pixel;
     rp.stage_times = p->knobs.stage_times;
