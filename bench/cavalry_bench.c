@@ -204,6 +204,16 @@ static bool bench_once(const struct opts *o, unsigned rep, struct cv_gpu **gpu,
     return ok;
 }
 
+/* An option of two values, no and yes: whether v is yes, or -1 (said on
+ * stderr) for anything else. */
+static int parse_two(const char *opt, const char *v, const char *no, const char *yes)
+{
+    if (!strcmp(v, no) || !strcmp(v, yes))
+        return !strcmp(v, yes);
+    fprintf(stderr, "cavalry_bench: %s takes %s or %s, not %s\n", opt, no, yes, v);
+    return -1;
+}
+
 static bool parse_uint(const char *s, unsigned *v)
 {
     char *end;
@@ -261,20 +271,16 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--rl-mix") && has) {
             o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--rl-guide") && has) {
-            const char *g = argv[++i];
-            if (strcmp(g, "all") && strcmp(g, "indirect")) {
-                fprintf(stderr, "cavalry_bench: --rl-guide takes all or indirect, not %s\n", g);
+            int v = parse_two(a, argv[++i], "all", "indirect");
+            if (v < 0)
                 return 2;
-            }
-            o.rl_guide_indirect = !strcmp(g, "indirect");
+            o.rl_guide_indirect = v;
         } else if (!strcmp(a, "--rl-fallback") && has) {
             /* as the manifest's rlpath.fallback */
-            const char *v = argv[++i];
-            if (strcmp(v, "true") && strcmp(v, "false")) {
-                fprintf(stderr, "cavalry_bench: --rl-fallback takes true or false, not %s\n", v);
+            int v = parse_two(a, argv[++i], "true", "false");
+            if (v < 0)
                 return 2;
-            }
-            o.rl_no_fallback = !strcmp(v, "false");
+            o.rl_no_fallback = v;
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
         } else if (!strcmp(a, "--out") && has) {
