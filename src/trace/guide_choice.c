@@ -235,13 +235,11 @@ bool cv_guide_choice_end(struct cv_guide_choice *c, uint32_t spp, uint32_t spp_t
     return true;
 }
 
-void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[2], double u[2],
+void cv_guide_choice_measures(const struct cv_guide_choice *c, double err[2], double ms[2],
                               double *z)
 {
-    g[0] = c->err[GUIDED];
-    g[1] = c->ms[GUIDED];
-    u[0] = c->err[UNGUIDED];
-    u[1] = c->ms[UNGUIDED];
+    for (int k = GUIDED; k <= UNGUIDED; k++)
+        err[k] = c->err[k], ms[k] = c->ms[k];
     *z = c->z;
 }
 

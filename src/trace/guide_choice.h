@@ -48,10 +48,10 @@ bool cv_guide_choice_end(struct cv_guide_choice *c, uint32_t spp, uint32_t spp_t
 /* Once no sub-pass remains: whether the passes after go on unguided. */
 bool cv_guide_choice_unguided(const struct cv_guide_choice *c);
 
-/* The figures of the choice once made, guided (g) and unguided (u):
- * relative squared error a sample [0] and GPU milliseconds a sample [1];
- * and the test's figure z (cv_guide_choice_decide). */
-void cv_guide_choice_measures(const struct cv_guide_choice *c, double g[2], double u[2],
+/* The figures of the choice once made, guided [0] and unguided [1]:
+ * relative squared error a sample and GPU milliseconds a sample; and the
+ * test's figure z (cv_guide_choice_decide). */
+void cv_guide_choice_measures(const struct cv_guide_choice *c, double err[2], double ms[2],
                               double *z);
 
 /* The decision from nb blocks' relative squared error a sample, guided (g)

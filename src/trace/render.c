@@ -1100,10 +1100,7 @@ static bool choice_passes(struct cv_renderer *r, uint32_t spp, struct cv_error *
     if (!ok || cv_guide_choice_pending(r->choice))
         return ok;
     r->unguided = cv_guide_choice_unguided(r->choice);
-    double g[2], u[2];
-    cv_guide_choice_measures(r->choice, g, u, &r->choice_z);
-    r->choice_err[0] = g[0], r->choice_ms[0] = g[1];
-    r->choice_err[1] = u[0], r->choice_ms[1] = u[1];
+    cv_guide_choice_measures(r->choice, r->choice_err, r->choice_ms, &r->choice_z);
     r->choice_measured = true;
     cv_guide_choice_destroy(&r->choice);
     return use_programs_after_learning(r, r->unguided, err) && cv_renderer_pass(r, spp, err);

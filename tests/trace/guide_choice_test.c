@@ -176,35 +176,34 @@ static void measure(struct cv_gpu *gpu, GLuint ubo, uint32_t n, uint32_t max_gro
     ok = ok && strategy(c, &f, t, na, nb, hu, firefly, &host[1], &expect[1], &err);
     if (tap_ok(ok && !cv_guide_choice_pending(c), "%u + %u samples%s: four sub-passes measured: %s",
                na, nb, what, err.msg)) {
-        double g[2], u[2], z;
-        cv_guide_choice_measures(c, g, u, &z);
+        double e[2], ms[2], z;
+        cv_guide_choice_measures(c, e, ms, &z);
         const char *name[2] = {"guided", "unguided"};
-        double *m[2] = {g, u};
         for (int k = 0; k < 2; k++) {
-            tap_ok(fabs(m[k][0] / host[k] - 1) < 1e-3, "%u + %u%s, %s: error a sample %.6g, the "
-                   "host's sums %.6g", na, nb, what, name[k], m[k][0], host[k]);
+            tap_ok(fabs(e[k] / host[k] - 1) < 1e-3, "%u + %u%s, %s: error a sample %.6g, the "
+                   "host's sums %.6g", na, nb, what, name[k], e[k], host[k]);
             /* (2000 pixels: too few for 3 %) */
             if (!small && !(firefly && k == 1))
-                tap_ok(fabs(m[k][0] / expect[k] - 1) < 0.03,
+                tap_ok(fabs(e[k] / expect[k] - 1) < 0.03,
                        "%u + %u%s, %s: error a sample %.5g, expected %.5g (ratio %.4f)", na, nb,
-                       what, name[k], m[k][0], expect[k], m[k][0] / expect[k]);
+                       what, name[k], e[k], expect[k], e[k] / expect[k]);
         }
         if (firefly)
-            tap_ok(u[0] > 100 * expect[1] && cv_guide_choice_unguided(c) && z > -2,
+            tap_ok(e[1] > 100 * expect[1] && cv_guide_choice_unguided(c) && z > -2,
                    "%u + %u%s: path's error a sample %.5g against %.5g without them, but the "
-                   "test sees noise (z = %.2f): path's programs", na, nb, what, u[0], expect[1],
+                   "test sees noise (z = %.2f): path's programs", na, nb, what, e[1], expect[1],
                    z);
         else if (want != WANT_EITHER) {
             /* the times are the uploads' on this machine: where another
              * process held it through one of them, not judged */
-            bool timed = g[1] < 2 * u[1] && u[1] < 2 * g[1];
+            bool timed = ms[0] < 2 * ms[1] && ms[1] < 2 * ms[0];
             tap_ok(!timed || cv_guide_choice_unguided(c) == (want == WANT_UNGUIDED),
                    "%u + %u%s: %s (z = %.2f)%s", na, nb, what,
                    cv_guide_choice_unguided(c) ? "path's programs" : "guided", z,
                    timed ? "" : "; times a sample more than twice apart, not judged");
         }
-        tap_ok(g[1] >= 0 && u[1] >= 0, "%u + %u: times a sample %.4f and %.4f ms", na, nb,
-               g[1], u[1]);
+        tap_ok(ms[0] >= 0 && ms[1] >= 0, "%u + %u: times a sample %.4f and %.4f ms", na, nb,
+               ms[0], ms[1]);
     }
     free(t);
     cv_guide_choice_destroy(&c);
