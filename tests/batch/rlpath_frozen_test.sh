@@ -4,14 +4,14 @@
 # (trace/integrator.h: frozen_programs; tests/trace/rlpath_frozen_test
 # checks what those programs hold; the 16 spp after training here are the
 # first, guided sub-pass of the guide's choice at 8 slots a pixel,
-# trace/guide_choice.h, so no pass runs path's programs): the Cornell box (scene-v4.pbrt of
-# /work/shared/scenes, CC0; bin 0 alone) switches its shade and shadow
-# stages once, at the end of training, and its misses from the learning
-# escaped stage to the intersect stage (the box is open to the camera:
-# trace/render.h, enum cv_misses), and its image is lit (mean red near the
-# 0.2 these settings give) and finite. A job that ends within its
-# training, and a Q-learning job (which keeps one build of its shade
-# stage), never switch.
+# trace/guide_choice.h, so no pass runs path's programs): the Cornell box
+# (scene-v4.pbrt of /work/shared/scenes, CC0; bin 0 alone) switches its
+# shade and shadow stages once, at the end of training, and its misses
+# from the learning escaped stage to the intersect stage (the box is open
+# to the camera: trace/render.h, enum cv_misses), and its image is lit
+# (mean red near the 0.2 these settings give) and finite. A job that
+# ends within its training, and a Q-learning job (which keeps one build of
+# its shade stage), never switch.
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 probe="$CV_TEST_BUILDDIR/batch/exr_probe"
