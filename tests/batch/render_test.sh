@@ -4,11 +4,15 @@
 # changed one; --only and --dry-run do what they say; CAVALRY_STAGE_TIMES
 # logs the stages' GPU times and the renderer's set-up steps when set to
 # anything but 0; CAVALRY_BVH_ROUNDS and CAVALRY_BVH_SPLIT reach the BVH
-# build (the CLI reads them, cli/knobs.c).
+# build (the CLI reads them, cli/knobs.c). The scene's Sampler gives the
+# samples per pixel of a job that names none, and its type changes
+# nothing: "independent" and "sobol" render the same bits (cavalry-batch(1)).
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
 exr_attr="$CV_TEST_BUILDDIR/batch/exr_attr"
+exr_same="$CV_TEST_BUILDDIR/batch/exr_same"
+probe="$CV_TEST_BUILDDIR/batch/exr_probe"
 cp "$data/tiny.pbrt" "$data/jobs.yaml" "$tmp/"
 cd "$tmp"
 
@@ -48,4 +52,20 @@ check "the BVH build gets CAVALRY_BVH_ROUNDS and _SPLIT" grep -q "1 treelet roun
 check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
 check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3
 check "plan knows what is up to date" test "$(grep -c 'up to date' plan.txt)" -eq 3
+sed 's/Sampler "independent" "integer pixelsamples" \[ 4 \]/Sampler "sobol" "integer pixelsamples" [ 3 ]/' \
+    tiny.pbrt >sobol.pbrt
+sed 's/Sampler "independent" "integer pixelsamples" \[ 4 \]/Sampler "independent" "integer pixelsamples" [ 3 ]/' \
+    tiny.pbrt >independent.pbrt
+printf 'version: 1\njobs:\n' >samplers.yaml
+for t in sobol independent; do
+    printf '  - name: %s\n    scene: %s.pbrt\n    output: smp/{name}\n    formats: [exr]\n' $t $t \
+        >>samplers.yaml
+    printf '    exr: {half: false}\n' >>samplers.yaml
+done
+check_out "jobs of the scene's samples per pixel render" smp.out "$CAVALRY_BATCH" samplers.yaml \
+    2>smp.err
+check "the Sampler's pixelsamples is their spp" \
+    test "$("$probe" attr smp/sobol.exr cavalry.sppTarget)" = 3 -a \
+    "$("$probe" attr smp/independent.exr cavalry.sppTarget)" = 3
+check "the Sampler's type changes no bit" "$exr_same" smp/sobol.exr smp/independent.exr
 done_testing
