@@ -686,6 +686,12 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
             goto fail;
         int md = cv_params_int(&ps, "maxdepth", (int)CV_DEFAULT_MAX_DEPTH);
         b->s->settings.max_depth = md > 0 ? (uint32_t)md : CV_DEFAULT_MAX_DEPTH;
+        /* pbrt-v4's roughening of near-specular vertices changes the
+         * image; the other tuning (lightsampler, ...) changes its noise */
+        if (cv_params_bool(&ps, "regularize", false) &&
+            !cv_b_warn(b, err, &loc, "Integrator \"regularize\" is not supported; rendered "
+                       "without it"))
+            goto fail;
         free(b->s->settings.integrator);
         b->s->settings.integrator = type;
         free(b->s->settings.integrator_at);

@@ -407,6 +407,14 @@ static void test_shapes(void)
     s = ok_load("WorldBegin\nShape \"curves\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n", "curves");
     tap_ok(s && s->n_triangles == 0 && s->warnings == 1, "curves: warning, nothing added");
     cv_scene_destroy(&s);
+    s = ok_load("Integrator \"path\" \"bool regularize\" true\nWorldBegin\n", "regularize");
+    tap_ok(s && s->warnings == 1, "Integrator regularize true: a warning (%u)", s ? s->warnings : 0);
+    cv_scene_destroy(&s);
+    s = ok_load("Integrator \"path\" \"bool regularize\" false \"string lightsampler\" \"power\"\n"
+                "WorldBegin\n", "regularize false");
+    tap_ok(s && s->warnings == 0, "Integrator regularize false, a light sampler: no warning (%u)",
+           s ? s->warnings : 0);
+    cv_scene_destroy(&s);
     s = ok_load("Sampler \"sobol\" \"integer pixelsamples\" 20000000\nWorldBegin\n", "huge pixelsamples");
     tap_ok(s && s->settings.spp == 16777216 && s->warnings == 1,
            "pixelsamples past the renderer's limit: warning, capped (%u)", s ? s->settings.spp : 0);
