@@ -95,9 +95,21 @@ bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
     b->film_exposure_time = cv_params_float(ps, "exposuretime", 1);
     double scale = cv_params_float(ps, "scale", 1); /* v3 */
     b->s->settings.exposure = (float)scale;
-    /* accepted, with no effect on the flat scene */
-    static const char *const known[] = {"diagonal", "maxcomponentvalue", "savefp16", "sensor",
-                                        "whitebalance", "writefp16", "pixelbounds"};
+    /* pbrt-v4's sensor model, white balance and sample clamp change the
+     * image where they are not the defaults: not rendered, so said */
+    const char *sensor = cv_params_string(ps, "sensor", "cie1931");
+    if (strcmp(sensor, "cie1931") != 0 &&
+        !cv_b_warn(b, err, loc, "film sensor \"%s\" is not supported; colours as the cie1931 "
+                   "sensor's", sensor))
+        return false;
+    if (cv_params_float(ps, "whitebalance", 0) != 0 &&
+        !cv_b_warn(b, err, loc, "film whitebalance is not supported; not applied"))
+        return false;
+    if (isfinite(cv_params_float(ps, "maxcomponentvalue", INFINITY)) &&
+        !cv_b_warn(b, err, loc, "film maxcomponentvalue is not supported; samples not clamped"))
+        return false;
+    /* accepted, with no effect on the image */
+    static const char *const known[] = {"diagonal", "savefp16", "writefp16", "pixelbounds"};
     for (size_t i = 0; i < CV_ARRAY_SIZE(known); i++)
         cv_params_find(ps, known[i]);
     return true;

@@ -2,6 +2,7 @@
  * transform and attribute directives act on the builder's graphics state
  * here, the rest go to the builder files. */
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -671,15 +672,19 @@ static bool do_directive(struct parser *p, const struct cv_token *d, struct cv_e
         /* v4 radius, v3 width (which pbrt-v3 also meant as a radius) */
         st->filter_radius[0] = (float)cv_params_float(&ps, "xradius", cv_params_float(&ps, "xwidth", def));
         st->filter_radius[1] = (float)cv_params_float(&ps, "yradius", cv_params_float(&ps, "ywidth", def));
-        st->filter_sigma = (float)cv_params_float(&ps, "sigma", CV_FILTER_GAUSSIAN_SIGMA);
+        /* pbrt-v3's gaussian falls off as exp(-alpha x^2): v4's of sigma
+         * 1 / sqrt(2 alpha) (v3's default alpha, 2, is v4's sigma) */
+        double alpha = cv_params_float(&ps, "alpha", 0);
+        bool v3_alpha = cv_params_find(&ps, "alpha") != NULL;
+        st->filter_sigma = (float)cv_params_float(
+            &ps, "sigma", v3_alpha && alpha > 0 ? 1 / sqrt(2 * alpha) : CV_FILTER_GAUSSIAN_SIGMA);
         st->filter_b = (float)cv_params_float(&ps, "B", CV_FILTER_MITCHELL_B);
         st->filter_c = (float)cv_params_float(&ps, "C", CV_FILTER_MITCHELL_C);
         st->filter_tau = (float)cv_params_float(&ps, "tau", CV_FILTER_SINC_TAU);
         if (ok && !(st->filter_radius[0] > 0 && st->filter_radius[1] > 0 && st->filter_sigma > 0 &&
-              st->filter_tau > 0))
-            ok = cv_fail(err, "%s:%d:%d: PixelFilter radii, sigma and tau must be positive",
+              st->filter_tau > 0 && (!v3_alpha || alpha > 0)))
+            ok = cv_fail(err, "%s:%d:%d: PixelFilter radii, sigma, alpha and tau must be positive",
                          loc.file, loc.line, loc.col);
-        cv_params_float(&ps, "alpha", 0);
         ok = ok && cv_b_check_unused(b, &ps, "PixelFilter", err);
     } else if (IS(Integrator)) {
         if (!typed(p, d, &type, &ps, err))

@@ -8,6 +8,7 @@
 
 #include <OpenEXR/ImfCRgbaFile.h>
 
+#include "scene/filter.h"
 #include "scene/image.h"
 #include "scene/scene.h"
 #include "tests/scene/scene_helpers.h"
@@ -363,7 +364,28 @@ static void test_settings(void)
     s = ok_load("Film \"image\" \"integer xresolution\" 10 \"integer yresolution\" 10\n"
                 "PixelFilter \"gaussian\" \"float xwidth\" 2 \"float ywidth\" 2\nWorldBegin\n", "v3 Film image");
     tap_ok(s && s->settings.width == 10 && s->settings.filter == CV_FILTER_GAUSSIAN &&
-           near(s->settings.filter_radius[1], 2, 1e-6), "v3 widths");
+           near(s->settings.filter_radius[1], 2, 1e-6) &&
+           near(s->settings.filter_sigma, CV_FILTER_GAUSSIAN_SIGMA, 1e-6), "v3 widths");
+    cv_scene_destroy(&s);
+    s = ok_load("PixelFilter \"gaussian\" \"float alpha\" 8\nWorldBegin\n", "v3 gaussian alpha");
+    tap_ok(s && s->warnings == 0 && near(s->settings.filter_sigma, 0.25, 1e-6),
+           "v3 gaussian alpha 8: sigma 1 / sqrt(2 alpha) = 0.25 (%g)",
+           s ? s->settings.filter_sigma : 0);
+    cv_scene_destroy(&s);
+    s = ok_load("PixelFilter \"gaussian\" \"float alpha\" 2\nWorldBegin\n", "v3 default alpha");
+    tap_ok(s && near(s->settings.filter_sigma, CV_FILTER_GAUSSIAN_SIGMA, 1e-6),
+           "v3 gaussian alpha 2: v4's default sigma");
+    cv_scene_destroy(&s);
+    fails("PixelFilter \"gaussian\" \"float alpha\" 0\nWorldBegin\n", false, "must be positive",
+          "gaussian alpha 0");
+    s = ok_load("Film \"rgb\" \"string sensor\" \"cie1931\" \"float whitebalance\" 0 "
+                "\"float diagonal\" 35\nWorldBegin\n", "film defaults");
+    tap_ok(s && s->warnings == 0, "film sensor, whitebalance at pbrt-v4's defaults: no warning");
+    cv_scene_destroy(&s);
+    s = ok_load("Film \"rgb\" \"string sensor\" \"canon_eos_5d_mkiv\" \"float whitebalance\" 5000 "
+                "\"float maxcomponentvalue\" 10\nWorldBegin\n", "film sensor");
+    tap_ok(s && s->warnings == 3, "film sensor, whitebalance and maxcomponentvalue: three "
+           "warnings (%u)", s ? s->warnings : 0);
     cv_scene_destroy(&s);
 }
 
