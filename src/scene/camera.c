@@ -108,8 +108,11 @@ bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,
     if (isfinite(cv_params_float(ps, "maxcomponentvalue", INFINITY)) &&
         !cv_b_warn(b, err, loc, "film maxcomponentvalue is not supported; samples not clamped"))
         return false;
+    if (cv_params_find(ps, "pixelbounds") &&
+        !cv_b_warn(b, err, loc, "film pixelbounds is not supported; the whole film rendered"))
+        return false;
     /* accepted, with no effect on the image */
-    static const char *const known[] = {"diagonal", "savefp16", "writefp16", "pixelbounds"};
+    static const char *const known[] = {"diagonal", "savefp16", "writefp16"};
     for (size_t i = 0; i < CV_ARRAY_SIZE(known); i++)
         cv_params_find(ps, known[i]);
     return true;

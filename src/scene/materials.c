@@ -499,10 +499,16 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         bool found;
         if (!cv_b_scalar_eta(b, ps, "interface.eta", dir, &eta, &found, err))
             return false;
+        int ctu = -1, ctv = -1;
         if (!roughness(b, ps, "interface.", 0, false, &iu, &iv, &m.roughness_u_tex,
                        &m.roughness_v_tex, &textured, err) ||
-            !roughness(b, ps, "conductor.", 0, false, &au, &av, NULL, NULL, &textured, err) ||
+            !roughness(b, ps, "conductor.", 0, false, &au, &av, &ctu, &ctv, &textured, err) ||
             !conductor(b, ps, "conductor.", dir, eta, &m, &m.eta, &m.k, err))
+            return false;
+        /* the base's roughness has no texture slot: its constant only */
+        if ((ctu >= 0 || ctv >= 0) &&
+            !cv_b_warn(b, err, loc, "coatedconductor: a textured conductor roughness is not "
+                       "supported; the base is as rough as its constant (default 0)"))
             return false;
         if (cv_params_find(ps, "reflectance") && !(m.flags & CV_MATF_CONDUCTOR_REFLECTANCE)) {
             double r[3] = {0, 0, 0};
@@ -605,8 +611,10 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         if (m.normal_tex < 0)
             return false;
     }
+    /* a material's cut-out (pbrt-v4's is the shape's "alpha"); hair's
+     * "alpha" is its scales' tilt, read by hair() */
     double alpha = 1;
-    if (!cv_b_float_tex(b, ps, "alpha", &alpha, &m.alpha_tex, err))
+    if (m.type != CV_MAT_HAIR && !cv_b_float_tex(b, ps, "alpha", &alpha, &m.alpha_tex, err))
         return false;
     if (alpha != 1)
         m.alpha = (float)alpha;

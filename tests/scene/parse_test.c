@@ -383,9 +383,18 @@ static void test_settings(void)
     tap_ok(s && s->warnings == 0, "film sensor, whitebalance at pbrt-v4's defaults: no warning");
     cv_scene_destroy(&s);
     s = ok_load("Film \"rgb\" \"string sensor\" \"canon_eos_5d_mkiv\" \"float whitebalance\" 5000 "
-                "\"float maxcomponentvalue\" 10\nWorldBegin\n", "film sensor");
-    tap_ok(s && s->warnings == 3, "film sensor, whitebalance and maxcomponentvalue: three "
-           "warnings (%u)", s ? s->warnings : 0);
+                "\"float maxcomponentvalue\" 10 \"integer pixelbounds\" [0 8 0 8]\nWorldBegin\n",
+                "film sensor");
+    tap_ok(s && s->warnings == 4, "film sensor, whitebalance, maxcomponentvalue and pixelbounds: "
+           "four warnings (%u)", s ? s->warnings : 0);
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nTexture \"r\" \"float\" \"constant\" \"float value\" 0.1\n"
+                "Material \"coatedconductor\" \"texture conductor.roughness\" \"r\"\n" TRI,
+                "textured coatedconductor base");
+    tap_ok(s && s->warnings == 1 && s->n_materials >= 1 &&
+               near(s->materials[s->n_materials - 1].roughness2.x, 0, 1e-6),
+           "coatedconductor: a textured conductor roughness is a warning, the base smooth (%u)",
+           s ? s->warnings : 0);
     cv_scene_destroy(&s);
 }
 
@@ -522,7 +531,7 @@ static void test_hair_material(void)
         "MakeNamedMaterial \"b\" \"string type\" \"hair\" \"rgb sigma_a\" [0.1 0.2 0.3] \"rgb reflectance\" [0.5 0.5 0.5]"
         " \"float beta_m\" 0.2 \"float beta_n\" 0.4 \"float alpha\" 3 \"float eta\" 1.6\n"
         "MakeNamedMaterial \"c\" \"string type\" \"hair\" \"rgb reflectance\" [0.6 0.4 0.2] \"float eumelanin\" 2\n"
-        "MakeNamedMaterial \"d\" \"string type\" \"hair\" \"float pheomelanin\" 0.7\n"
+        "MakeNamedMaterial \"d\" \"string type\" \"hair\" \"float pheomelanin\" 0.7 \"float alpha\" 0\n"
         "NamedMaterial \"a\"\n" TRI,
         "hair materials");
     if (s) {
@@ -543,6 +552,10 @@ static void test_hair_material(void)
                "hair: reflectance wins over the melanins, with a warning");
         tap_ok(m[3].flags == 0 && near(m[3].reflectance.x, 0, 1e-6) && near(m[3].reflectance.y, 0.7, 1e-6),
                "hair: pheomelanin alone leaves eumelanin 0");
+        tap_ok(near(m[3].roughness.z, 0, 1e-6) && m[3].alpha == 1 && m[3].alpha_tex < 0 &&
+                   m[1].alpha == 1,
+               "hair: alpha is the scales' tilt (0, 3), not a cut-out (alpha %g, %g)", m[3].alpha,
+               m[1].alpha);
         tap_ok(strstr(log, "not supported; using diffuse") == NULL, "hair: no longer diffuse 0.5");
     }
     cv_scene_destroy(&s);
