@@ -356,6 +356,44 @@ static bool loop_subdivide(struct cv_builder *b, struct cv_params *ps, const str
     return true;
 }
 
+/* A bilinear mesh without "uv": pbrt-v4 gives each patch its own (u, v),
+ * p00 (0, 0), p10 (1, 0), p01 (0, 1), p11 (1, 1), where a triangle's
+ * default (0, 0) (1, 0) (1, 1) would shear its second triangle. So each
+ * patch gets four vertices of its own, with those uv (its normals
+ * copied). */
+static bool patch_uv(struct geo *g, const struct cv_loc *loc, struct cv_error *err)
+{
+    size_t np = g->nt / 2, nv = np * 4;
+    if (nv > 0xffffffffu)
+        return cv_fail(err, "%s:%d:%d: too many vertices", loc->file, loc->line, loc->col);
+    static const float corner_uv[4][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    float *P = cv_xmalloc((nv * 3 + 1) * sizeof(float)), *uv = cv_xmalloc((nv * 2 + 1) * sizeof(float));
+    float *N = g->N ? cv_xmalloc((nv * 3 + 1) * sizeof(float)) : NULL;
+    for (size_t p = 0; p < np; p++) {
+        /* the patch's corners from its triangles {p00 p10 p11} {p00 p11 p01} */
+        const uint32_t *t = g->idx + p * 6;
+        uint32_t corner[4] = {t[0], t[1], t[5], t[2]};
+        for (int k = 0; k < 4; k++) {
+            size_t v = p * 4 + (size_t)k;
+            memcpy(&P[v * 3], &g->P[(size_t)corner[k] * 3], 3 * sizeof(float));
+            if (N)
+                memcpy(&N[v * 3], &g->N[(size_t)corner[k] * 3], 3 * sizeof(float));
+            uv[v * 2] = corner_uv[k][0];
+            uv[v * 2 + 1] = corner_uv[k][1];
+        }
+        uint32_t v0 = (uint32_t)(p * 4);
+        uint32_t nt[6] = {v0, v0 + 1, v0 + 3, v0, v0 + 3, v0 + 2};
+        memcpy(g->idx + p * 6, nt, sizeof(nt));
+    }
+    free(g->P);
+    free(g->N);
+    g->P = P;
+    g->N = N;
+    g->uv = uv;
+    g->nv = nv;
+    return true;
+}
+
 /* P/indices/N/uv of trianglemesh and bilinearmesh, checked. */
 static bool mesh_params(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
                         int per_face, struct geo *g, struct cv_error *err)
@@ -428,6 +466,8 @@ static bool mesh_params(struct cv_builder *b, struct cv_params *ps, const struct
             g->nt += 2;
         }
     }
+    if (per_face == 4 && !uv)
+        return patch_uv(g, loc, err);
     return true;
 }
 

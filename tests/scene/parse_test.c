@@ -403,6 +403,25 @@ static void test_shapes(void)
     struct cv_scene *s;
     s = ok_load("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n", "bilinearmesh");
     tap_ok(s && s->n_triangles == 2, "bilinear patch -> 2 triangles");
+    /* the unit square's patch: each corner's (u, v) is its (x, y), as
+     * pbrt-v4's patch (u, v), on both triangles */
+    int uv_ok = 0;
+    for (uint32_t t = 0; s && t < s->n_triangles && t < 2; t++) {
+        const uint32_t *ix = &s->triangles[t].idx.x;
+        bool ok = (s->triangles[t].idx.w & CV_TRI_HAS_UV) != 0;
+        for (int k = 0; k < 3; k++) {
+            const CvVertex *v = &s->vertices[ix[k]];
+            ok = ok && v->pos_u.w == v->pos_u.x && v->nrm_v.w == v->pos_u.y;
+        }
+        uv_ok += ok;
+    }
+    tap_ok(uv_ok == 2, "bilinear patch without uv: both triangles take the patch's (u, v) "
+           "(%d of 2)", uv_ok);
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]"
+                " \"point2 uv\" [0 0 2 0 0 2 2 2]\n", "bilinearmesh with uv");
+    tap_ok(s && s->n_triangles == 2 && s->vertices[s->triangles[1].idx.y].pos_u.w == 2,
+           "bilinear patch with uv: its own");
     cv_scene_destroy(&s);
     s = ok_load("WorldBegin\nShape \"sphere\" \"float radius\" 2\n", "sphere");
     tap_ok(s && s->n_triangles > 1000 && near(s->bounds_max[2], 2, 1e-5) && near(s->bounds_min[0], -2, 1e-3),
