@@ -356,6 +356,9 @@ static bool loop_subdivide(struct cv_builder *b, struct cv_params *ps, const str
     return true;
 }
 
+/* A bilinear patch p00 p10 p01 p11 (corners 0-3) as two triangles. */
+static const uint32_t patch_tris[6] = {0, 1, 3, 0, 3, 2};
+
 /* A bilinear mesh without "uv": pbrt-v4 gives each patch its own (u, v),
  * p00 (0, 0), p10 (1, 0), p01 (0, 1), p11 (1, 1), where a triangle's
  * default (0, 0) (1, 0) (1, 1) would shear its second triangle. So each
@@ -370,9 +373,10 @@ static bool patch_uv(struct geo *g, const struct cv_loc *loc, struct cv_error *e
     float *P = cv_xmalloc((nv * 3 + 1) * sizeof(float)), *uv = cv_xmalloc((nv * 2 + 1) * sizeof(float));
     float *N = g->N ? cv_xmalloc((nv * 3 + 1) * sizeof(float)) : NULL;
     for (size_t p = 0; p < np; p++) {
-        /* the patch's corners from its triangles {p00 p10 p11} {p00 p11 p01} */
-        const uint32_t *t = g->idx + p * 6;
-        uint32_t corner[4] = {t[0], t[1], t[5], t[2]};
+        /* the patch's corners, from its triangles */
+        uint32_t *t = g->idx + p * 6, corner[4];
+        for (int k = 0; k < 6; k++)
+            corner[patch_tris[k]] = t[k];
         for (int k = 0; k < 4; k++) {
             size_t v = p * 4 + (size_t)k;
             memcpy(&P[v * 3], &g->P[(size_t)corner[k] * 3], 3 * sizeof(float));
@@ -381,9 +385,8 @@ static bool patch_uv(struct geo *g, const struct cv_loc *loc, struct cv_error *e
             uv[v * 2] = corner_uv[k][0];
             uv[v * 2 + 1] = corner_uv[k][1];
         }
-        uint32_t v0 = (uint32_t)(p * 4);
-        uint32_t nt[6] = {v0, v0 + 1, v0 + 3, v0, v0 + 3, v0 + 2};
-        memcpy(g->idx + p * 6, nt, sizeof(nt));
+        for (int k = 0; k < 6; k++)
+            t[k] = (uint32_t)(p * 4) + patch_tris[k];
     }
     free(g->P);
     free(g->N);
@@ -460,9 +463,8 @@ static bool mesh_params(struct cv_builder *b, struct cv_params *ps, const struct
             memcpy(g->idx + g->nt * 3, q, 3 * sizeof(uint32_t));
             g->nt++;
         } else {
-            /* bilinear patch p00 p10 p01 p11 */
-            uint32_t t[6] = {q[0], q[1], q[3], q[0], q[3], q[2]};
-            memcpy(g->idx + g->nt * 3, t, sizeof(t));
+            for (int k = 0; k < 6; k++)
+                g->idx[g->nt * 3 + (size_t)k] = q[patch_tris[k]];
             g->nt += 2;
         }
     }
