@@ -52,12 +52,9 @@ check "the BVH build gets CAVALRY_BVH_ROUNDS and _SPLIT" grep -q "1 treelet roun
 check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
 check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3
 check "plan knows what is up to date" test "$(grep -c 'up to date' plan.txt)" -eq 3
-sed 's/Sampler "independent" "integer pixelsamples" \[ 4 \]/Sampler "sobol" "integer pixelsamples" [ 3 ]/' \
-    tiny.pbrt >sobol.pbrt
-sed 's/Sampler "independent" "integer pixelsamples" \[ 4 \]/Sampler "independent" "integer pixelsamples" [ 3 ]/' \
-    tiny.pbrt >independent.pbrt
 printf 'version: 1\njobs:\n' >samplers.yaml
 for t in sobol independent; do
+    sed "s/^Sampler .*/Sampler \"$t\" \"integer pixelsamples\" [ 3 ]/" tiny.pbrt >$t.pbrt
     printf '  - name: %s\n    scene: %s.pbrt\n    output: smp/{name}\n    formats: [exr]\n' $t $t \
         >>samplers.yaml
     printf '    exr: {half: false}\n' >>samplers.yaml
