@@ -225,6 +225,18 @@ bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, cons
  * sources as sRGB. Returns the index or -1 (err set). Cached by path. */
 int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
                        const struct cv_loc *loc, struct cv_error *err);
+/* The same for a pbrt-v4 parameter that asks for `srgb` (its "encoding",
+ * or linear for a normal map): pbrt-v4 decodes every 8-bit format but PNG
+ * from sRGB whatever is asked (cv_image_always_srgb), so a linear request
+ * for one is read as sRGB, with a warning at loc saying so. */
+int cv_b_image_texture_v4(struct cv_builder *b, const char *file, const char *dir, bool srgb,
+                          const char *what, const struct cv_loc *loc, struct cv_error *err);
+/* Texture `id` times rgb, as a new texture: a copy of its node with the
+ * factor in its scale where rgb is grey and the node does not invert
+ * (texture.glsl's cv_tex_finish multiplies each node's result by its
+ * scale), else a scale node over it. For a material's "scale" on a
+ * textured colour. Returns the new index. */
+int cv_b_texture_times(struct cv_builder *b, int id, const double rgb[3]);
 bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
                 const struct cv_loc *loc, const char *dir, struct cv_error *err); /* lights.c */
 bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *ps,

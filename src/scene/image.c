@@ -206,6 +206,15 @@ bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_
     return load_stb(path, srgb, img, err);
 }
 
+bool cv_image_always_srgb(const char *path)
+{
+    static const char *const own[] = {"png", "exr", "pfm", "hdr", "qoi"};
+    for (size_t i = 0; i < sizeof(own) / sizeof(own[0]); i++)
+        if (ext_is(path, own[i]))
+            return false;
+    return true;
+}
+
 void cv_image_free(struct cv_image *img)
 {
     free(img->rgba);

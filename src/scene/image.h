@@ -19,6 +19,10 @@ struct cv_image {
  * never decoded). */
 bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_error *err);
 void cv_image_free(struct cv_image *img);
+/* Whether pbrt-v4 decodes path's 8-bit pixels from sRGB whatever encoding
+ * a scene asks for: it reads every format but PNG, EXR, PFM, HDR and QOI
+ * through stb_image and marks the result sRGB (its Image::Read). */
+bool cv_image_always_srgb(const char *path);
 
 uint16_t cv_float_to_half(float f);
 float cv_half_to_float(uint16_t h);

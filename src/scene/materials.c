@@ -534,19 +534,28 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
             !color(b, ps, v3 ? "transmit" : "transmittance", v3 ? 0.5 : 0.25, CV_SPEC_REFLECTANCE,
                    dir, &m.specular, &m.specular_tex, err))
             return false;
-        double sc = cv_params_float(ps, "scale", 1);
-        m.reflectance.x *= (float)sc; m.reflectance.y *= (float)sc; m.reflectance.z *= (float)sc;
-        m.specular.x *= (float)sc; m.specular.y *= (float)sc; m.specular.z *= (float)sc;
+        /* v4's "scale", v3's Kd: factors of both colours, textured or not */
+        double sc = cv_params_float(ps, "scale", 1), f[3] = {sc, sc, sc};
         if (v3) {
             cv_vec4 kd = {0}, ks = {0};
             if (!color(b, ps, "Kd", 0.25, CV_SPEC_REFLECTANCE, dir, &kd, NULL, err) ||
                 !color(b, ps, "Ks", 0.25, CV_SPEC_REFLECTANCE, dir, &ks, NULL, err))
                 return false;
             cv_params_float(ps, "roughness", 0);
-            m.reflectance.x *= kd.x; m.reflectance.y *= kd.y; m.reflectance.z *= kd.z;
-            m.specular.x *= kd.x; m.specular.y *= kd.y; m.specular.z *= kd.z;
+            f[0] *= kd.x;
+            f[1] *= kd.y;
+            f[2] *= kd.z;
             if (!cv_b_warn(b, err, loc, "translucent: rendered as diffuse transmission (Ks ignored)"))
                 return false;
+        }
+        cv_vec4 *col[2] = {&m.reflectance, &m.specular};
+        int *tex[2] = {&m.reflectance_tex, &m.specular_tex};
+        for (int i = 0; i < 2; i++) {
+            col[i]->x *= (float)f[0];
+            col[i]->y *= (float)f[1];
+            col[i]->z *= (float)f[2];
+            if (*tex[i] >= 0 && (f[0] != 1 || f[1] != 1 || f[2] != 1))
+                *tex[i] = cv_b_texture_times(b, *tex[i], f);
         }
     } else if (strcmp(type, "hair") == 0) {
         if (!hair(b, ps, loc, dir, &m, err))
@@ -607,7 +616,7 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         m.displacement_tex = bump;
     const char *nm = cv_params_string(ps, "normalmap", NULL);
     if (nm) {
-        m.normal_tex = cv_b_image_texture(b, nm, dir, false, loc, err);
+        m.normal_tex = cv_b_image_texture_v4(b, nm, dir, false, "normal map", loc, err);
         if (m.normal_tex < 0)
             return false;
     }

@@ -154,6 +154,31 @@ int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, 
     return idx;
 }
 
+int cv_b_image_texture_v4(struct cv_builder *b, const char *file, const char *dir, bool srgb,
+                          const char *what, const struct cv_loc *loc, struct cv_error *err)
+{
+    if (!srgb && cv_image_always_srgb(file)) {
+        if (!cv_b_warn(b, err, loc, "%s \"%s\": pbrt-v4 decodes 8-bit images other than PNG "
+                       "from sRGB whatever encoding is asked; decoded so", what, file))
+            return -1;
+        srgb = true;
+    }
+    return cv_b_image_texture(b, file, dir, srgb, loc, err);
+}
+
+int cv_b_texture_times(struct cv_builder *b, int id, const double rgb[3])
+{
+    CvTexture t = b->s->textures[id];
+    if (rgb[0] == rgb[1] && rgb[1] == rgb[2] && !(t.flags & CV_TEXF_INVERT)) {
+        t.scale *= (float)rgb[0];
+        return cv_b_add_texture(b, &t);
+    }
+    tex_init(&t, CV_TEX_SCALE);
+    t.tex_a = id;
+    t.value_b = (cv_vec4){(float)rgb[0], (float)rgb[1], (float)rgb[2], 1};
+    return cv_b_add_texture(b, &t);
+}
+
 /* A value-or-texture slot of a texture: float or spectrum per `is_float`. */
 static bool slot(struct cv_builder *b, struct cv_params *ps, const char *name, bool is_float,
                  double def, const char *dir, cv_vec4 *val, int *tex, struct cv_error *err)
@@ -204,9 +229,10 @@ bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, cons
             return cv_fail(err, "%s:%d:%d: imagemap \"%s\" has no filename", loc->file, loc->line,
                            loc->col, name);
         /* v4 "encoding" (sRGB default for 8-bit), v3 "gamma" (bool) */
-        bool srgb = true;
+        bool srgb = true, v4 = false;
         const char *enc = cv_params_string(ps, "encoding", NULL);
         if (enc) {
+            v4 = true;
             if (strcmp(enc, "linear") == 0)
                 srgb = false;
             else if (strcmp(enc, "sRGB") != 0 &&
@@ -220,7 +246,8 @@ bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, cons
                 g->used = false;
             /* pbrt-v3 decodes 8-bit PNG/TGA as sRGB unless gamma is false */
         }
-        int img = cv_b_image_texture(b, file, dir, srgb, loc, err);
+        int img = v4 ? cv_b_image_texture_v4(b, file, dir, srgb, "encoding \"linear\" of", loc, err)
+                     : cv_b_image_texture(b, file, dir, srgb, loc, err);
         if (img < 0)
             return false;
         t = b->s->textures[img];

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <OpenEXR/ImfCRgbaFile.h>
+#include <png.h>
 
 #include "scene/filter.h"
 #include "scene/image.h"
@@ -595,6 +596,15 @@ static void write_tga(const char *rel, int w, int h, const unsigned char *rgb)
     free(buf);
 }
 
+/* An 8-bit RGB PNG through libpng's simplified API. */
+static void write_png(const char *rel, int w, int h, const unsigned char *rgb)
+{
+    png_image im = {.version = PNG_IMAGE_VERSION, .width = (png_uint_32)w,
+                    .height = (png_uint_32)h, .format = PNG_FORMAT_RGB};
+    if (!png_image_write_to_file(&im, th_path(rel), 0, rgb, 0, NULL))
+        tap_ok(false, "writing %s: %s", rel, im.message);
+}
+
 static void write_pfm(const char *rel, int w, int h, float v)
 {
     char hdr[64];
@@ -641,6 +651,7 @@ static void test_textures(void)
 {
     unsigned char px[2 * 2 * 3] = {255, 255, 255, 0, 0, 0, 128, 128, 128, 255, 0, 0};
     write_tga("t.tga", 2, 2, px);
+    write_png("t.png", 2, 2, px);
     write_pfm("f.pfm", 4, 2, 0.5f);
     write_exr("e.exr", 8, 4, 0.25f);
     struct cv_scene *s = ok_load(
@@ -680,7 +691,7 @@ static void test_textures(void)
         "WorldBegin\n"
         "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"float uscale\" 4"
         " \"string wrap\" \"clamp\"\n"
-        "Texture \"lin\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"string encoding\" \"linear\"\n"
+        "Texture \"lin\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\" \"string encoding\" \"linear\"\n"
         "Texture \"hdr\" \"float\" \"imagemap\" \"string filename\" \"f.pfm\"\n"
         "Texture \"ck\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [1 0 0] \"texture tex2\" \"img\"\n"
         "Texture \"k\" \"float\" \"constant\" \"float value\" 0.7\n"
@@ -719,7 +730,8 @@ static void test_textures(void)
             if (t[i].type == CV_TEX_MIX && t[i].amount_tex >= 0 && near(t[i].value_b.z, 1, 1e-6))
                 mx = true;
         }
-        tap_ok(lin, "encoding linear");
+        tap_ok(lin, "encoding linear of a PNG");
+        tap_ok(s->warnings == 0, "no warning (%u)", s->warnings);
         tap_ok(hdr, "PFM float texture");
         tap_ok(ck && sc && mx, "checkerboard, scale, mix");
         const CvMaterial *m = tri_mat(s, 0);
@@ -889,16 +901,66 @@ static void test_motion(void)
     tap_ok(s && s->warnings == 1 && s->camera.time.x == 0.5f && s->camera.time.y == 1,
            "swapped, with a warning");
     cv_scene_destroy(&s);
+    /* diffusetransmission's "scale" (v3 translucent's Kd) multiplies its
+     * colours whether they are textured or not: a textured one gets a
+     * scaled copy of its texture, or a scale node where the factor is not
+     * grey or the texture inverts */
+    s = ok_load("WorldBegin\n"
+                "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n"
+                "Texture \"inv\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\" \"bool invert\" true\n"
+                "MakeNamedMaterial \"a\" \"string type\" \"diffusetransmission\" \"texture reflectance\" \"img\""
+                " \"rgb transmittance\" [0.4 0.4 0.4] \"float scale\" 2\n"
+                "MakeNamedMaterial \"b\" \"string type\" \"diffusetransmission\" \"texture transmittance\" \"inv\""
+                " \"float scale\" 0.5\n"
+                "MakeNamedMaterial \"c\" \"string type\" \"translucent\" \"texture reflect\" \"img\""
+                " \"rgb Kd\" [0.5 0.25 1]\n"
+                "NamedMaterial \"a\"\n" TRI,
+                "diffusetransmission scale with textures");
+    if (s) {
+        const CvMaterial *m = s->materials;
+        const CvTexture *t = s->textures;
+        int ia = m[0].reflectance_tex, ib = m[1].specular_tex, ic = m[2].reflectance_tex;
+        tap_ok(ia >= 0 && t[ia].type == CV_TEX_IMAGE && near(t[ia].scale, 2, 1e-6) &&
+               near(m[0].specular.x, 0.8, 1e-6), "scale 2 on a textured reflectance: its copy scaled (%g), "
+               "the constant transmittance too", ia >= 0 ? t[ia].scale : 0);
+        int img = -1;
+        for (uint32_t i = 0; i < s->n_textures; i++)
+            if (t[i].type == CV_TEX_IMAGE && near(t[i].scale, 1, 0) && !(t[i].flags & CV_TEXF_INVERT))
+                img = (int)i;
+        tap_ok(img >= 0 && img != ia, "the named texture itself keeps its scale");
+        tap_ok(ib >= 0 && t[ib].type == CV_TEX_SCALE && near(t[ib].value_b.x, 0.5, 1e-6) && t[ib].tex_a >= 0 &&
+                   (t[t[ib].tex_a].flags & CV_TEXF_INVERT),
+               "scale 0.5 on an inverted texture: a scale node over it");
+        tap_ok(ic >= 0 && t[ic].type == CV_TEX_SCALE && near(t[ic].value_b.x, 0.5, 1e-6) &&
+                   near(t[ic].value_b.y, 0.25, 1e-6) && near(t[ic].value_b.z, 1, 1e-6),
+               "translucent's Kd on a textured reflect: a scale node by Kd");
+    }
+    cv_scene_destroy(&s);
+    /* pbrt-v4 reads a TGA through stb_image as sRGB whatever the encoding
+     * (Image::Read): so does Cavalry, with a warning */
+    s = ok_load("WorldBegin\n"
+                "Texture \"lin\" \"spectrum\" \"imagemap\" \"string filename\" \"t.tga\" \"string encoding\" \"linear\"\n"
+                "Material \"diffuse\" \"texture reflectance\" \"lin\"\n" TRI,
+                "encoding linear of a TGA");
+    if (s) {
+        const CvTexture *t = &s->textures[tri_mat(s, 0)->reflectance_tex];
+        uint32_t g = s->texels[2 * (t->offset + 2)];
+        tap_ok((t->flags & CV_TEXF_SRGB) && near(cv_half_to_float((uint16_t)(g & 0xffff)), 0.2158, 2e-3) &&
+               s->warnings == 1, "encoding linear of a TGA: decoded from sRGB, as pbrt-v4 does, with a warning (%u)",
+               s->warnings);
+    }
+    cv_scene_destroy(&s);
 }
 
 static void test_more(void)
 {
     unsigned char px[2 * 2 * 3] = {128, 128, 255, 128, 128, 255, 128, 128, 255, 128, 128, 255};
     write_tga("n.tga", 2, 2, px);
+    write_png("n.png", 2, 2, px);
     struct cv_scene *s = ok_load(
         "WorldBegin\nTransformTimes 0 1\nActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n"
         "Texture \"r\" \"float\" \"imagemap\" \"string filename\" \"n.tga\"\n"
-        "Material \"conductor\" \"texture roughness\" \"r\" \"string normalmap\" \"n.tga\"\n"
+        "Material \"conductor\" \"texture roughness\" \"r\" \"string normalmap\" \"n.png\"\n"
         "MakeNamedMaterial \"x\" \"string type\" \"diffuse\"\nMakeNamedMaterial \"x\" \"string type\" \"diffuse\"\n"
         "LightSource \"point\" \"blackbody I\" [ 6500 2 ]\n" TRI,
         "ActiveTransform, TransformTimes, roughness texture, normal map, v3 blackbody");
@@ -906,10 +968,17 @@ static void test_more(void)
         const CvMaterial *m = tri_mat(s, 0);
         tap_ok(m->roughness_u_tex >= 0 && m->roughness_v_tex == m->roughness_u_tex &&
                (m->flags & CV_MATF_REMAP_ROUGHNESS), "textured roughness is remapped per lookup");
-        tap_ok(m->normal_tex >= 0 && !(s->textures[m->normal_tex].flags & CV_TEXF_SRGB), "normal map is linear");
+        tap_ok(m->normal_tex >= 0 && !(s->textures[m->normal_tex].flags & CV_TEXF_SRGB), "PNG normal map is linear");
         tap_ok(s->warnings == 2, "the moving light and the redefined material warn (%u)", s->warnings);
         tap_ok(near(lum(s->lights[0].L), 2, 2e-3), "v3 blackbody [T scale]");
         tap_ok(vpos(s, 0, 0, 0, 0) && s->n_motions == 1, "the shape moves, in object space");
+    }
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nMaterial \"diffuse\" \"string normalmap\" \"n.tga\"\n" TRI, "TGA normal map");
+    if (s) {
+        const CvMaterial *m = tri_mat(s, 0);
+        tap_ok(m->normal_tex >= 0 && (s->textures[m->normal_tex].flags & CV_TEXF_SRGB) && s->warnings == 1,
+               "TGA normal map: decoded from sRGB, as pbrt-v4 does, with a warning (%u)", s->warnings);
     }
     cv_scene_destroy(&s);
     s = ok_load("WorldBegin\nAttributeBegin\nAttribute \"shape\" \"float radius\" 3\n"
