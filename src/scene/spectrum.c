@@ -386,8 +386,9 @@ bool cv_b_spectrum(struct cv_builder *b, struct cv_params *ps, const char *name,
 bool cv_b_scalar_eta(struct cv_builder *b, struct cv_params *ps, const char *name,
                      const char *dir, double *eta, bool *found, struct cv_error *err)
 {
-    /* A spectrally varying eta would need spectral dispersion; pbrt-v4
-     * collapses a constant one too. Use the value at 550 nm (green). */
+    /* A spectrally varying eta would need spectral dispersion, which an
+     * RGB renderer has not: one value stands for all (550 nm, green), and
+     * a warning says so. */
     struct cv_param *p = NULL;
     *found = false;
     for (size_t i = ps->n; i-- > 0;)
@@ -397,20 +398,43 @@ bool cv_b_scalar_eta(struct cv_builder *b, struct cv_params *ps, const char *nam
         }
     if (!p)
         return true;
+    /* the least and most of the index over the visible range, or of its
+     * RGB, to tell a varying one */
+    double lo, hi;
     if (p->type == CV_PARAM_SPECTRUM && p->n_strs == 0) {
         p->used = true;
-        if (!sorted_pairs(p->nums, p->n_nums / 2))
+        size_t n = p->n_nums / 2;
+        if (!sorted_pairs(p->nums, n))
             return cv_fail(err, "%s:%d:%d: spectrum \"%s\": wavelengths must increase",
                            p->file, p->line, p->col, name);
-        *eta = eval_pairs(p->nums, p->n_nums / 2, 550);
+        *eta = eval_pairs(p->nums, n, 550);
         *found = true;
-        return true;
-    }
-    double rgb[3];
-    if (!cv_b_color(b, ps, name, CV_SPEC_UNBOUNDED, dir, rgb, found, err))
-        return false;
-    if (*found)
+        lo = hi = *eta;
+        for (double l = 400; l <= 700; l += 10) {
+            double v = eval_pairs(p->nums, n, l);
+            lo = fmin(lo, v);
+            hi = fmax(hi, v);
+        }
+    } else {
+        double rgb[3];
+        if (!cv_b_color(b, ps, name, CV_SPEC_UNBOUNDED, dir, rgb, found, err))
+            return false;
+        if (!*found)
+            return true;
         *eta = p->type == CV_PARAM_RGB ? rgb[1] : (rgb[0] + rgb[1] + rgb[2]) / 3;
+        lo = fmin(rgb[0], fmin(rgb[1], rgb[2]));
+        hi = fmax(rgb[0], fmax(rgb[1], rgb[2]));
+        /* pbrt-v4's named glasses are dispersion curves; the table here
+         * holds their value at 550 nm alone */
+        if (p->type == CV_PARAM_SPECTRUM && p->n_strs && strncmp(p->strs[0], "glass-", 6) == 0)
+            hi = INFINITY;
+    }
+    if (hi - lo > 1e-3 * fabs(*eta)) {
+        const struct cv_loc at = {p->file, p->line, p->col};
+        return cv_b_warn(b, err, &at, "\"%s\" varies with wavelength: pbrt-v4 refracts each "
+                         "wavelength by its own index (dispersion); one index, %.4g, is rendered",
+                         name, *eta);
+    }
     return true;
 }
 

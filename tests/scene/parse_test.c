@@ -540,6 +540,29 @@ static void test_materials(void)
         tap_ok((s->triangles[0].idx.w & CV_TRI_MATERIAL_MASK) == 1, "NamedMaterial sets the triangle's material");
     }
     cv_scene_destroy(&s);
+    /* an index that varies with wavelength is dispersion in pbrt-v4: one
+     * value is rendered, with a warning at the parameter */
+    static const struct {
+        const char *eta;
+        unsigned warnings;
+    } disp[] = {
+        {"\"spectrum eta\" \"glass-BK7\"", 1},
+        {"\"spectrum eta\" [400 1.53 700 1.51]", 1},
+        {"\"rgb eta\" [1.4 1.5 1.6]", 1},
+        {"\"float eta\" 1.5", 0},
+        {"\"spectrum eta\" [400 1.5 700 1.5]", 0},
+        {"\"rgb eta\" [1.5 1.5 1.5]", 0},
+    };
+    for (size_t i = 0; i < sizeof(disp) / sizeof(disp[0]); i++) {
+        char text[512];
+        snprintf(text, sizeof(text), "WorldBegin\nMaterial \"dielectric\" %s\n" TRI, disp[i].eta);
+        s = ok_load(text, disp[i].eta);
+        if (s)
+            tap_ok(s->warnings == disp[i].warnings &&
+                       (!disp[i].warnings || strstr(th_log_text(), "main.pbrt:2:23: \"eta\" varies with wavelength")),
+                   "%s: %u warnings (dispersion)", disp[i].eta, s->warnings);
+        cv_scene_destroy(&s);
+    }
 }
 
 /* pbrt-v4's hair material: defaults, and which colour parameter wins. */
