@@ -432,7 +432,15 @@ static bool mesh_params(struct cv_builder *b, struct cv_params *ps, const struct
             return false;
         uv = NULL;
     }
-    cv_params_find(ps, "S");
+    struct cv_param *S = cv_params_array(ps, "S");
+    if (S && S->n_nums) {
+        /* pbrt-v4 orients the shading frame by them; Cavalry by dpdu,
+         * which turns anisotropic lobes and normal maps where they differ */
+        struct cv_loc l = {S->file, S->line, S->col};
+        if (!cv_b_warn(b, err, &l, "\"S\" (shading tangents) is not rendered: the shading frame "
+                       "follows the uv parametrization (dpdu)"))
+            return false;
+    }
     cv_params_find(ps, "faceIndices");
     g->nv = nv;
     g->P = cv_xmalloc((nv * 3 + 1) * sizeof(float));

@@ -822,7 +822,7 @@ static void test_params(void)
         tap_ok(near(s->vertices[1].pos_u.w, 1, 1e-6) && near(s->vertices[2].nrm_v.w, 1, 1e-6), "point2 uv");
         tap_ok(near(tri_mat(s, 1)->roughness.x, 0.04, 1e-6) && near(tri_mat(s, 2)->roughness.x, 0.04, 1e-6),
                "bool unquoted and quoted");
-        tap_ok(s->warnings == 3, "three unused parameters warned (%u)", s->warnings);
+        tap_ok(s->warnings == 4, "three unused parameters and \"S\" warned (%u)", s->warnings);
     }
     cv_scene_destroy(&s);
     s = th_load("Camera \"perspective\" \"float fov\" 45 \"float foo\" 1\nWorldBegin\n", false,
@@ -1021,6 +1021,12 @@ static void test_more(void)
         tap_ok(r3 && after && s->warnings == 0, "Attribute \"shape\" radius applies inside its scope only");
         tap_ok(near(tri_mat(s, 0)->reflectance.x, 0.1, 1e-6), "Attribute \"material\" default");
     }
+    cv_scene_destroy(&s);
+    s = ok_load("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]"
+                " \"vector3 S\" [1 0 0 1 0 0 1 0 0]\n" TRI, "trianglemesh with \"S\"");
+    if (s)
+        tap_ok(s->warnings == 1 && strstr(th_log_text(), "main.pbrt:2:79: \"S\" (shading tangents) is not rendered"),
+               "\"S\" warns at its place (%u)", s->warnings);
     cv_scene_destroy(&s);
     fails("WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 30 \"point3 P\" [0 0 0 1 0 0 0 1 0]"
           " \"integer indices\" [0 1 2]\n", false, "main.pbrt:2:1: loopsubdiv with 30 levels", "loopsubdiv bounded");
