@@ -162,6 +162,8 @@ CV_CHECK_SIZE(CvTexture, 96);
 #define CV_MAT_MEASURED 13u            /* measured (RGL BRDF): mix_a = word offset of its tables (glsl/shared/measured.h) */
 
 #define CV_MATF_REMAP_ROUGHNESS (1u << 0) /* remap textured roughness per lookup */
+/* ... by pbrt-v3's polynomial (a pbrt-v3 material), not pbrt-v4's sqrt */
+#define CV_MATF_ROUGHNESS_V3 (1u << 7)
 #define CV_MATF_CONDUCTOR_REFLECTANCE (1u << 1) /* conductor given by reflectance, not eta/k */
 #define CV_MATF_TWO_SIDED (1u << 2)
 /* Which colour a hair material's reflectance.rgb holds (pbrt-v4's order:

@@ -45,9 +45,10 @@ static double remap_v3(double r)
 static double remap_v4(double r) { return sqrt(r > 0 ? r : 0); }
 
 /* roughness / uroughness / vroughness (with prefix) into alpha u,v and
- * textures; def is the default roughness. */
+ * textures; def is the default roughness. A textured one that is remapped
+ * adds to *remap_flags how the shaders remap it per lookup. */
 static bool roughness(struct cv_builder *b, struct cv_params *ps, const char *prefix, double def,
-                      bool v3, float *au, float *av, int *tu, int *tv, bool *textured,
+                      bool v3, float *au, float *av, int *tu, int *tv, uint32_t *remap_flags,
                       struct cv_error *err)
 {
     char n_r[64], n_u[64], n_v[64];
@@ -78,7 +79,7 @@ static bool roughness(struct cv_builder *b, struct cv_params *ps, const char *pr
     if (tv)
         *tv = t2;
     if ((t1 >= 0 || t2 >= 0) && remap)
-        *textured = true;
+        *remap_flags |= CV_MATF_REMAP_ROUGHNESS | (v3 ? CV_MATF_ROUGHNESS_V3 : 0u);
     return true;
 }
 
@@ -392,12 +393,12 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
                    struct cv_error *err, int *out)
 {
     CvMaterial m;
-    bool textured = false;
+    uint32_t remap_flags = 0;
     float au, av;
     mat_init(&m, CV_MAT_DIFFUSE);
 #define ROUGH(prefix, def, v3)                                                            \
     roughness(b, ps, prefix, def, v3, &au, &av, &m.roughness_u_tex, &m.roughness_v_tex,  \
-              &textured, err)
+              &remap_flags, err)
 
     if (strcmp(type, "diffuse") == 0 || strcmp(type, "matte") == 0) {
         if (!color(b, ps, strcmp(type, "matte") == 0 ? "Kd" : "reflectance", 0.5,
@@ -501,8 +502,8 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
             return false;
         int ctu = -1, ctv = -1;
         if (!roughness(b, ps, "interface.", 0, false, &iu, &iv, &m.roughness_u_tex,
-                       &m.roughness_v_tex, &textured, err) ||
-            !roughness(b, ps, "conductor.", 0, false, &au, &av, &ctu, &ctv, &textured, err) ||
+                       &m.roughness_v_tex, &remap_flags, err) ||
+            !roughness(b, ps, "conductor.", 0, false, &au, &av, &ctu, &ctv, &remap_flags, err) ||
             !conductor(b, ps, "conductor.", dir, eta, &m, &m.eta, &m.k, err))
             return false;
         /* the base's roughness has no texture slot: its constant only */
@@ -604,8 +605,7 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
         m.reflectance = (cv_vec4){0.5f, 0.5f, 0.5f, 0};
     }
 #undef ROUGH
-    if (textured)
-        m.flags |= CV_MATF_REMAP_ROUGHNESS;
+    m.flags |= remap_flags;
     /* common to all: bump, normal map, cut-out */
     double d = 0;
     int bump = -1;

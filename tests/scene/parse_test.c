@@ -990,11 +990,29 @@ static void test_more(void)
     if (s) {
         const CvMaterial *m = tri_mat(s, 0);
         tap_ok(m->roughness_u_tex >= 0 && m->roughness_v_tex == m->roughness_u_tex &&
-               (m->flags & CV_MATF_REMAP_ROUGHNESS), "textured roughness is remapped per lookup");
+               (m->flags & CV_MATF_REMAP_ROUGHNESS) && !(m->flags & CV_MATF_ROUGHNESS_V3),
+               "textured roughness is remapped per lookup, as pbrt-v4 remaps");
         tap_ok(m->normal_tex >= 0 && !(s->textures[m->normal_tex].flags & CV_TEXF_SRGB), "PNG normal map is linear");
         tap_ok(s->warnings == 2, "the moving light and the redefined material warn (%u)", s->warnings);
         tap_ok(near(lum(s->lights[0].L), 2, 2e-3), "v3 blackbody [T scale]");
         tap_ok(vpos(s, 0, 0, 0, 0) && s->n_motions == 1, "the shape moves, in object space");
+    }
+    cv_scene_destroy(&s);
+    /* pbrt-v3 materials remap a textured roughness by pbrt-v3's polynomial */
+    s = ok_load("WorldBegin\nTexture \"r\" \"float\" \"constant\" \"float value\" 0.1\n"
+                "Material \"metal\" \"texture roughness\" \"r\"\n" TRI
+                "Material \"glass\" \"texture uroughness\" \"r\"\n" TRI
+                "Material \"substrate\" \"texture vroughness\" \"r\"\n" TRI
+                "Material \"metal\" \"texture roughness\" \"r\" \"bool remaproughness\" false\n" TRI,
+                "pbrt-v3 textured roughness");
+    if (s) {
+        bool v3 = true;
+        for (int i = 0; i < 3; i++)
+            v3 = v3 && (tri_mat(s, (uint32_t)i)->flags & (CV_MATF_REMAP_ROUGHNESS | CV_MATF_ROUGHNESS_V3)) ==
+                           (CV_MATF_REMAP_ROUGHNESS | CV_MATF_ROUGHNESS_V3);
+        tap_ok(v3, "metal, glass and substrate remap a textured roughness as pbrt-v3 does");
+        tap_ok(!(tri_mat(s, 3)->flags & (CV_MATF_REMAP_ROUGHNESS | CV_MATF_ROUGHNESS_V3)),
+               "... and not with remaproughness false");
     }
     cv_scene_destroy(&s);
     s = ok_load("WorldBegin\nMaterial \"diffuse\" \"string normalmap\" \"n.tga\"\n" TRI, "TGA normal map");

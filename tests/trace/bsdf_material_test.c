@@ -164,6 +164,58 @@ int main(void)
                near3(out + 4, -2 / sqrt(5), 0, 1 / sqrt(5), 2e-3),
            "bump map with slope 2 along u: %.3f %.3f %.3f", out[4], out[5], out[6]);
     probe_close(&p);
+
+    /* a textured roughness is remapped per lookup as its material's pbrt
+     * version remaps a constant: pbrt-v3's polynomial for a v3 metal (and
+     * glass, substrate), pbrt-v4's square root for a conductor. Each
+     * textured material must match the one given the remapped constant. */
+    {
+        const double r = 0.1, x = log(r);
+        const double v3 = 1.62142 + 0.819955 * x + 0.1734 * x * x + 0.0171201 * x * x * x +
+                          0.000640711 * x * x * x * x;
+        CvTexture rt = tex_init(CV_TEX_CONSTANT);
+        rt.value_a = (cv_vec4){(float)r, (float)r, (float)r, 0};
+        CvMaterial c[4];
+        for (int i = 0; i < 4; i++) {
+            c[i] = probe_material(CV_MAT_CONDUCTOR);
+            c[i].eta = (cv_vec4){0.2f, 0.9f, 1.1f, 0};
+            c[i].k = (cv_vec4){3.9f, 2.4f, 2.1f, 0};
+        }
+        c[0].roughness_u_tex = c[0].roughness_v_tex = 0;
+        c[0].flags = CV_MATF_REMAP_ROUGHNESS | CV_MATF_ROUGHNESS_V3;
+        c[1].roughness = (cv_vec4){(float)v3, (float)v3, 0, 0};
+        c[2].roughness_u_tex = c[2].roughness_v_tex = 0;
+        c[2].flags = CV_MATF_REMAP_ROUGHNESS;
+        c[3].roughness = (cv_vec4){(float)sqrt(r), (float)sqrt(r), 0, 0};
+        uint32_t none[2] = {0, 0};
+        struct probe pr;
+        if (tap_ok(probe_open_tex(gpu, &pr, c, 4, &rt, 1, none, 1, &err), "roughness probe: %s", err.msg)) {
+            enum { ND = 6 };
+            float dirs[ND * 4], f[4][ND * 4], wo2[3];
+            probe_dir(30, 0, wo2);
+            for (int i = 0; i < ND; i++) {
+                probe_dir(20 + 8 * i, 180 + 10 * i, dirs + 4 * i);
+                dirs[4 * i + 3] = 0;
+            }
+            bool ran2 = true;
+            for (unsigned k = 0; k < 4; k++)
+                ran2 = ran2 && probe_run(&pr, 1, k, wo2, 0, dirs, ND, f[k], &err);
+            double worst[2] = {0, 0}, apart = 0;
+            for (int i = 0; i < ND * 4; i++)
+                for (int k = 0; k < 2; k++) {
+                    double a = f[2 * k][i], e = f[2 * k + 1][i];
+                    worst[k] = fmax(worst[k], fabs(a - e) / fmax(fabs(e), 1e-6));
+                    if (k == 0)
+                        apart = fmax(apart, fabs(a - f[3][i]) / fmax(fabs(f[3][i]), 1e-6));
+                }
+            tap_ok(ran2 && worst[0] < 1e-4, "textured roughness %g of a pbrt-v3 metal: alpha %.4f "
+                   "(worst relative difference in f and pdf %.2g)", r, v3, worst[0]);
+            tap_ok(ran2 && worst[1] < 1e-4, "textured roughness %g of a pbrt-v4 conductor: alpha %.4f "
+                   "(worst relative difference %.2g)", r, sqrt(r), worst[1]);
+            tap_ok(ran2 && apart > 0.05, "the two remaps differ there (%.2g)", apart);
+            probe_close(&pr);
+        }
+    }
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

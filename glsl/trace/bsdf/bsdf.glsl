@@ -120,10 +120,11 @@ vec2 cv_material_alpha(CvMaterial m, float ru, float rv)
 {
     vec2 a = m.roughness.xy;
     bool remap = (m.flags & CV_MATF_REMAP_ROUGHNESS) != 0u;
+    bool v3 = (m.flags & CV_MATF_ROUGHNESS_V3) != 0u;
     if (m.roughness_u_tex >= 0)
-        a.x = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(ru) : sqrt(max(ru, 0.0))) : ru;
+        a.x = remap ? (v3 ? cv_roughness_v3_to_alpha(ru) : sqrt(max(ru, 0.0))) : ru;
     if (m.roughness_v_tex >= 0)
-        a.y = remap ? (m.type == CV_MAT_PLASTIC ? cv_roughness_v3_to_alpha(rv) : sqrt(max(rv, 0.0))) : rv;
+        a.y = remap ? (v3 ? cv_roughness_v3_to_alpha(rv) : sqrt(max(rv, 0.0))) : rv;
     return max(a, vec2(0.0));
 }
 
