@@ -430,7 +430,16 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
     }
     for (size_t i = nt0; i < need_t; i++)
         s->tri_object[i] = object - 1;
-    if (b->gs.area.on) {
+    /* pbrt-v4 drops the area light of a shape whose material is
+     * "interface" (or "none" or ""), with a warning (its scene.cpp) */
+    bool emits = b->gs.area.on;
+    if (emits && s->materials[current_material(b)].type == CV_MAT_INTERFACE) {
+        if (!cv_b_warn(b, err, loc, "the area light of a shape with the \"interface\" material is "
+                       "ignored, as pbrt-v4 ignores it"))
+            return false;
+        emits = false;
+    }
+    if (emits) {
         const struct cv_area_state *a = &b->gs.area;
         double L[3] = {a->L[0], a->L[1], a->L[2]};
         double sides = a->twosided ? 2 : 1;

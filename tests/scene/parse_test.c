@@ -998,6 +998,15 @@ static void test_more(void)
         tap_ok(vpos(s, 0, 0, 0, 0) && s->n_motions == 1, "the shape moves, in object space");
     }
     cv_scene_destroy(&s);
+    /* pbrt-v4 drops the area light of an "interface" shape, with a warning */
+    s = ok_load("WorldBegin\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n"
+                "Material \"interface\"\n" TRI "AttributeEnd\n"
+                "AreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n" TRI, "area lights on interface and diffuse");
+    if (s)
+        tap_ok(s->n_lights == 1 && s->warnings == 1 && strstr(th_log_text(), "main.pbrt:5:1: the area light of a shape"),
+               "the interface shape's area light is dropped with a warning at its shape (%u lights, %u warnings)",
+               s->n_lights, s->warnings);
+    cv_scene_destroy(&s);
     /* pbrt-v3 materials remap a textured roughness by pbrt-v3's polynomial */
     s = ok_load("WorldBegin\nTexture \"r\" \"float\" \"constant\" \"float value\" 0.1\n"
                 "Material \"metal\" \"texture roughness\" \"r\"\n" TRI
