@@ -101,6 +101,11 @@ CV_CHECK_SIZE(CvCurveXform, 96);
 #define CV_TEX_CHECKERBOARD 2u /* 2D checker of tex_a/value_a and tex_b/value_b */
 #define CV_TEX_SCALE 3u        /* tex_a/value_a * tex_b/value_b */
 #define CV_TEX_MIX 4u          /* lerp(tex_a/value_a, tex_b/value_b, amount_tex/amount) */
+/* Composite textures (checkerboard, scale, mix) nest at most this deep
+ * under a material: the shaders walk the root's operands and theirs
+ * (bsdf/texture.glsl: cv_tex_eval); a composite deeper reads as its
+ * value_a. The importer warns where a scene nests deeper. */
+#define CV_TEX_MAX_NESTING 2
 
 #define CV_TEXF_SRGB (1u << 0)        /* source was sRGB-encoded; texels are stored linear */
 #define CV_TEXF_WRAP_CLAMP (1u << 1)  /* else repeat */

@@ -179,6 +179,20 @@ int cv_b_texture_times(struct cv_builder *b, int id, const double rgb[3])
     return cv_b_add_texture(b, &t);
 }
 
+/* How deep composites nest in texture t of s (a leaf: 0). */
+static int nesting(const struct cv_scene *s, const CvTexture *t)
+{
+    if (t->type == CV_TEX_IMAGE || t->type == CV_TEX_CONSTANT)
+        return 0;
+    int d = 0, ops[3] = {t->tex_a, t->tex_b, t->amount_tex};
+    for (int i = 0; i < 3; i++)
+        if (ops[i] >= 0) {
+            int k = nesting(s, &s->textures[ops[i]]);
+            d = k > d ? k : d;
+        }
+    return d + 1;
+}
+
 /* A value-or-texture slot of a texture: float or spectrum per `is_float`. */
 static bool slot(struct cv_builder *b, struct cv_params *ps, const char *name, bool is_float,
                  double def, const char *dir, cv_vec4 *val, int *tex, struct cv_error *err)
@@ -313,6 +327,12 @@ bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, cons
     }
     if (is_float)
         t.flags |= CV_TEXF_FLOAT;
+    int depth = nesting(b->s, &t);
+    if (depth > CV_TEX_MAX_NESTING &&
+        !cv_b_warn(b, err, loc, "texture \"%s\" nests composite textures %d deep: the renderer "
+                   "evaluates %d, and a composite operand deeper reads as its constant value",
+                   name, depth, CV_TEX_MAX_NESTING))
+        return false;
     int idx = cv_b_add_texture(b, &t);
     if (is_float)
         cv_b_set_named(&b->float_tex, &b->n_float_tex, &b->cap_float_tex, name, idx);

@@ -959,6 +959,18 @@ static void test_motion(void)
                "translucent's Kd on a textured reflect: a scale node by Kd");
     }
     cv_scene_destroy(&s);
+    /* composites nest two deep on the GPU: a third level warns */
+    s = ok_load("WorldBegin\n"
+                "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n"
+                "Texture \"s1\" \"spectrum\" \"scale\" \"texture tex\" \"img\" \"float scale\" 0.5\n"
+                "Texture \"s2\" \"spectrum\" \"mix\" \"texture tex1\" \"s1\" \"rgb tex2\" [0 0 1]\n"
+                "Texture \"s3\" \"spectrum\" \"scale\" \"texture tex\" \"s2\" \"float scale\" 2\n"
+                "Material \"diffuse\" \"texture reflectance\" \"s3\"\n" TRI,
+                "composite textures three deep");
+    if (s)
+        tap_ok(s->warnings == 1 && strstr(th_log_text(), "main.pbrt:5:1: texture \"s3\" nests composite textures 3 deep"),
+               "a third level of composites warns at its texture (%u)", s->warnings);
+    cv_scene_destroy(&s);
     /* pbrt-v4 reads a TGA through stb_image as sRGB whatever the encoding
      * (Image::Read): so does Cavalry, with a warning */
     s = ok_load("WorldBegin\n"

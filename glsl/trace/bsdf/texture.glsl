@@ -7,7 +7,8 @@
 // within a mip level and linear between levels (trilinear) for a given
 // level of detail `lod` (0 = full resolution); CV_TEXF_BILERP pins lod to 0.
 // GLSL has no recursion: composite textures (scale, mix, checkerboard) may
-// nest two deep; deeper operands read as their constant value.
+// nest CV_TEX_MAX_NESTING (two) deep; deeper operands read as their
+// constant value (the importer warns).
 #ifndef CV_BSDF_TEXTURE_GLSL
 #define CV_BSDF_TEXTURE_GLSL
 
