@@ -202,6 +202,9 @@ static void print_plan(const struct cv_manifest *m, const struct selection *p,
                      c->film.w);
         printf("%s: %s -> %s [%s] %ux%u%s, %u spp", job->name, job->scene_as_written,
                job->output, formats, w, h, crop, spp);
+        /* the job's time_limit or --time-limit, as the render applies it */
+        if (plan->time_limit > 0)
+            printf(", at most %g s", plan->time_limit);
         /* an expanded job: "(matrix of shot: seed=3, camera.fov=wide)" */
         if (job->matrix_of)
             printf(" (matrix of %s:", job->matrix_of);

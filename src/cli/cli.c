@@ -448,8 +448,10 @@ int cv_cli_main(int argc, char **argv)
                 worker_gpu = -1;
             else if (parse_uint(optarg, 1000, &u))
                 worker_gpu = (int)u;
-            else
+            else {
+                cv_error_log("--worker wants a GPU index or \"default\", not \"%s\"", optarg);
                 return usage_error();
+            }
             break;
         case OPT_BACKEND:
             if (!parse_backend(optarg, &o.gpu.backend)) {
@@ -513,6 +515,11 @@ int cv_cli_main(int argc, char **argv)
     }
     if (!shard_from_environment(&o, &have_index, have_count))
         return usage_error();
+    /* a count given as 0, before the checks that read 0 as "none given" */
+    if (have_count && !o.shard_count) {
+        cv_error_log("--shard-count must be at least 1");
+        return usage_error();
+    }
     if (have_index && !o.shard_count) {
         cv_error_log("a shard index needs --shard-count");
         return usage_error();
@@ -526,10 +533,6 @@ int cv_cli_main(int argc, char **argv)
     if (have_count && !have_index) {
         cv_error_log("--shard-count needs --shard-index, "
                      "SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX");
-        return usage_error();
-    }
-    if (have_count && !o.shard_count) {
-        cv_error_log("--shard-count must be at least 1");
         return usage_error();
     }
     if (o.shard_count && o.shard_index >= o.shard_count) {

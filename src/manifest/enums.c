@@ -7,7 +7,7 @@
 static const char *const integrators[] = {"path", "rlpath", "volpath", "bdpt"};
 static const char *const compressions[] = {"zip", "none", "zips", "piz", "rle", "dwaa", "dwab"};
 /* the manifest's order, which its messages print */
-static const char *const manifest_compressions[] = {"none", "zip", "piz", "dwaa"};
+static const char *const manifest_compressions[] = {"none", "zip", "piz", "dwaa", "dwab"};
 static const char *const guides[] = {"all", "indirect"};
 static const char *const methods[] = {"qlearn", "sdtree"};
 static const char *const filters[] = {"none", "spatial", "directional", "both"};

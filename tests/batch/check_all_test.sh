@@ -57,23 +57,26 @@ set -e
 check "\$OCIO missing: --check fails (exit $rc)" test "$rc" -eq 3
 check "\$OCIO missing: at the job" grep -qF 'env.yaml:3:5: job "a"' "$tmp/env.err"
 
-# DWAA: an error at the key exactly when this OpenEXR cannot write it
-cat >"$tmp/dwaa.yaml" <<'Y'
+# DWAA and DWAB: an error at the key exactly when this OpenEXR cannot
+# write them (cavalry-manifest(5) names both)
+for c in dwaa dwab; do
+cat >"$tmp/$c.yaml" <<Y
 version: 1
 jobs:
   - name: a
     scene: tiny.pbrt
-    exr: {compression: dwaa}
+    exr: {compression: $c}
 Y
-run dwaa
+run $c
 if [ "$("$CAVALRY_BATCH" --version 2>&1 | grep -c 'OpenEXR 3\.[01]\b')" -gt 0 ] ||
    pkg-config --max-version=3.1.99 OpenEXR 2>/dev/null; then
-    check "dwaa: --check fails with OpenEXR < 3.2 (exit $rc)" test "$rc" -eq 3
-    check "dwaa: at the key" grep -qF 'dwaa.yaml:5:24: job "a": EXR compression "dwaa"' \
-        "$tmp/dwaa.err"
+    check "$c: --check fails with OpenEXR < 3.2 (exit $rc)" test "$rc" -eq 3
+    check "$c: at the key" grep -qF "$c.yaml:5:24: job \"a\": EXR compression \"$c\"" \
+        "$tmp/$c.err"
 else
-    check "dwaa: --check passes with OpenEXR >= 3.2 (exit $rc)" test "$rc" -eq 0
+    check "$c: --check passes with OpenEXR >= 3.2 (exit $rc)" test "$rc" -eq 0
 fi
+done
 
 # the renderer's real limit: 2^24 rendered pixels (cavalry-manifest(5))
 cat >"$tmp/film.yaml" <<'Y'

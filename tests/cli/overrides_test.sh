@@ -15,7 +15,8 @@ cd "$tmp"
 
 # Usage errors, GNU style: the error, then how to get help; exit 2.
 for args in "--no-such-flag" "--spp=0" "--spp=x" "--resolution=8" "--resolution=0x4" \
-            "--time-limit=2x" "--time-limit=0" "--json" "--progress=loud"; do
+            "--time-limit=2x" "--time-limit=0" "--json" "--progress=loud" "--worker=x" \
+            "--shard-count=0" "--shard-index=0 --shard-count=0"; do
     "$CAVALRY_BATCH" $args jobs.yaml >/dev/null 2>usage.err && rc=0 || rc=$?
     check "$args: exit 2 (got $rc)" test "$rc" -eq 2
     check "$args: two lines" test "$(wc -l <usage.err)" -eq 2
@@ -37,6 +38,12 @@ check "the manifest's values" "$py" "$checker" dryrun plain.json a.spp=4 b.spp=2
     a.resolution=[16,12] c.resolution=[8,6] a.time_limit=null "a.outputs=[\"out/a.exr\",\"out/a.png\"]"
 check_out "dry-run text" plan.txt "$CAVALRY_BATCH" --dry-run --spp 3 --resolution 8x6 jobs.yaml
 check "dry-run text shows them" grep -qx 'b: tiny.pbrt -> out/b \[exr,png\] 8x6, 3 spp' plan.txt
+"$CAVALRY_BATCH" --shard-count=0 jobs.yaml >/dev/null 2>zero.err || :
+check "--shard-count=0 says so" grep -qx 'error: --shard-count must be at least 1' zero.err
+"$CAVALRY_BATCH" --worker=x jobs.yaml >/dev/null 2>worker.err || :
+check "--worker=x says why" grep -q '^error: --worker wants a GPU index' worker.err
+check_out "dry-run text, time limit" tl.txt "$CAVALRY_BATCH" --dry-run --time-limit 1.5m jobs.yaml
+check "dry-run text shows the time limit applied" grep -q '^b: tiny.pbrt -> out/b .*, at most 90 s$' tl.txt
 check_out "2h" h.json "$CAVALRY_BATCH" --dry-run --json --time-limit 2h jobs.yaml
 check "2h is 7200 s" "$py" "$checker" dryrun h.json a.time_limit=7200
 check_out "plain seconds" s.json "$CAVALRY_BATCH" --dry-run --json --time-limit 90 jobs.yaml
