@@ -75,10 +75,26 @@ static double planck(double l_nm, double T)
     return (2 * h * c * c) / (pow(l, 5) * (exp((h * c) / (l * kb * T)) - 1));
 }
 
-/* Integrates spectrum f (pairs, or blackbody when T > 0) to RGB. */
+/* Integrates spectrum f (pairs, or blackbody when T > 0) to RGB. An
+ * emission goes to XYZ as it is (an equal-energy spectrum is pinkish
+ * against sRGB's white, in pbrt-v4 too); a reflectance or other factor is
+ * seen under the colour space's white, D65, as pbrt-v4 renders it under an
+ * RGB light, so that a constant spectrum keeps its value in each channel
+ * (cv_spectrum_rgb_weights_nm). */
 static void spectrum_rgb(const double *pairs, size_t n, double T, enum cv_spectrum_kind kind,
                          double rgb[3])
 {
+    if (kind != CV_SPEC_ILLUMINANT && !(T > 0)) {
+        double w[3 * CV_SPECTRUM_NM];
+        cv_spectrum_rgb_weights_nm(w);
+        rgb[0] = rgb[1] = rgb[2] = 0;
+        for (int i = 0; i < CV_SPECTRUM_NM; i++) {
+            double v = eval_pairs(pairs, n, CV_SPECTRUM_NM_MIN + i);
+            for (int c = 0; c < 3; c++)
+                rgb[c] += v * w[3 * i + c];
+        }
+        return;
+    }
     double xyz[3] = {0, 0, 0}, ysum = 0;
     for (double l = 360; l <= 830; l += 1) {
         double m[3], v = T > 0 ? planck(l, T) : eval_pairs(pairs, n, l);
