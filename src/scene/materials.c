@@ -582,8 +582,11 @@ bool cv_b_material(struct cv_builder *b, const char *type, const char *name,
             n1 = mats->strs[0];
             n2 = mats->strs[1];
         } else {
-            n1 = cv_params_string(ps, "namedmaterial1", NULL);
-            n2 = cv_params_string(ps, "namedmaterial2", NULL);
+            /* pbrt-v3 weighs namedmaterial1 by amount, pbrt-v4 its second
+             * material (materials.h: ChooseMaterial), so v3's pair is
+             * v4's in reverse, as pbrt-v4's --upgrade writes it */
+            n1 = cv_params_string(ps, "namedmaterial2", NULL);
+            n2 = cv_params_string(ps, "namedmaterial1", NULL);
         }
         if (!n1 || !n2)
             return cv_fail(err, "%s:%d:%d: mix needs two materials (\"string materials\" or namedmaterial1/2)",

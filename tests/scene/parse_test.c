@@ -542,7 +542,8 @@ static void test_materials(void)
                    near(m[14].reflectance.z, 0.5, 1e-3),
                "a constant reflectance spectrum stays grey (%g %g %g)", m[14].reflectance.x,
                m[14].reflectance.y, m[14].reflectance.z);
-        tap_ok(m[15].mix_b == 2, "mix (v3 namedmaterial1/2)");
+        tap_ok(m[15].mix_a == 2 && m[15].mix_b == 0,
+               "mix (v3 namedmaterial1/2): namedmaterial1 weighed by amount, as pbrt-v3 does");
         tap_ok(m[16].type == CV_MAT_THIN_DIELECTRIC, "thindielectric");
         tap_ok((s->triangles[0].idx.w & CV_TRI_MATERIAL_MASK) == 1, "NamedMaterial sets the triangle's material");
     }
