@@ -111,7 +111,11 @@ CV_CHECK_SIZE(CvCurveXform, 96);
 #define CV_TEXF_WRAP_CLAMP (1u << 1)  /* else repeat */
 #define CV_TEXF_WRAP_BLACK (1u << 2)
 #define CV_TEXF_INVERT (1u << 3)      /* 1 - value (v4 "invert") */
-#define CV_TEXF_FLOAT (1u << 4)       /* a float texture: use .r (or average for rgb images) */
+#define CV_TEXF_FLOAT (1u << 4)       /* a float texture: the average of r, g, b (grey images: r) */
+/* ... or, where the image has an alpha channel that pbrt-v4 keeps and that
+ * is not all 1 (an RGBA PNG, an EXR with A), its alpha, as pbrt-v4's
+ * MIPMap::Bilerp<Float> returns it: the cut-out of a leaf's PNG */
+#define CV_TEXF_ALPHA (1u << 9)
 #define CV_TEXF_BILERP (1u << 5)      /* filter bilinear only (no mip) */
 /* Sphere maps of image infinite lights (set by the loader, never by a
  * scene's "wrap"): the texels past an edge are those of the sphere there. */

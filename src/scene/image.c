@@ -78,6 +78,30 @@ static bool ext_is(const char *path, const char *e)
     return strcasecmp(x, e) == 0;
 }
 
+/* The colour type of a PNG's header (6: RGBA), or -1. */
+static int png_color_type(const char *path)
+{
+    unsigned char h[26];
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    size_t n = fread(h, 1, sizeof(h), f);
+    fclose(f);
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (n < sizeof(h) || memcmp(h, sig, 8) != 0 || memcmp(h + 12, "IHDR", 4) != 0)
+        return -1;
+    return h[25];
+}
+
+/* Whether img's alpha is below 1 anywhere. */
+static bool alpha_used(const struct cv_image *img)
+{
+    for (size_t i = 0; i < (size_t)img->width * img->height; i++)
+        if (img->rgba[4 * i + 3] != 1.0f)
+            return true;
+    return false;
+}
+
 static bool load_pfm(const char *path, struct cv_image *img, struct cv_error *err)
 {
     char *data;
@@ -134,6 +158,7 @@ static bool load_exr(const char *path, struct cv_image *img, struct cv_error *er
     if (!cv_exr_image_load(path, MAX_DIM, MAX_PIXELS, &img->rgba, &img->width, &img->height, err))
         return false;
     img->is_float = true;
+    img->alpha = alpha_used(img);
     return true;
 }
 
@@ -180,8 +205,11 @@ static bool load_stb(const char *path, bool srgb, struct cv_image *img, struct c
     float lut[256];
     for (int i = 0; i < 256; i++)
         lut[i] = srgb ? srgb_to_linear(i / 255.0f) : i / 255.0f;
+    /* pbrt-v4 keeps the alpha of an RGBA PNG alone (its other formats and
+     * PNG types come without), decoded by the encoding as the colour is */
+    bool keep = ext_is(path, "png") && png_color_type(path) == 6;
     for (size_t i = 0; i < count; i++) {
-        bool alpha = (i & 3) == 3;
+        bool alpha = (i & 3) == 3 && !keep;
         if (is16) {
             float v = ((const uint16_t *)d)[i] / 65535.0f;
             img->rgba[i] = srgb && !alpha ? srgb_to_linear(v) : v;
@@ -191,6 +219,7 @@ static bool load_stb(const char *path, bool srgb, struct cv_image *img, struct c
         }
     }
     stbi_image_free(d);
+    img->alpha = keep && alpha_used(img);
     return true;
 }
 

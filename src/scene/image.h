@@ -13,6 +13,10 @@ struct cv_image {
     int width, height;
     float *rgba;      /* width*height*4, owned */
     bool is_float;    /* the source held float/half data (linear by nature) */
+    /* an alpha channel that pbrt-v4 keeps (an RGBA PNG, decoded as its
+     * colour is; an EXR's A) and that is not 1 everywhere: a float texture
+     * of the image reads it (CV_TEXF_ALPHA) */
+    bool alpha;
 };
 
 /* srgb: decode 8/16-bit sources from sRGB to linear (float sources are

@@ -142,6 +142,8 @@ int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, 
     t.height = (uint32_t)img.height;
     if (srgb && !img.is_float)
         t.flags |= CV_TEXF_SRGB;
+    if (img.alpha)
+        t.flags |= CV_TEXF_ALPHA;
     cv_image_free(&img);
     free(path);
     if (!ok) {

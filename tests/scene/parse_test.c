@@ -627,13 +627,19 @@ static void write_tga(const char *rel, int w, int h, const unsigned char *rgb)
     free(buf);
 }
 
-/* An 8-bit RGB PNG through libpng's simplified API. */
-static void write_png(const char *rel, int w, int h, const unsigned char *rgb)
+/* An 8-bit PNG (RGB, or RGBA with `alpha`) through libpng's simplified
+ * API. */
+static void write_png_as(const char *rel, int w, int h, const unsigned char *px, bool alpha)
 {
     png_image im = {.version = PNG_IMAGE_VERSION, .width = (png_uint_32)w,
-                    .height = (png_uint_32)h, .format = PNG_FORMAT_RGB};
-    if (!png_image_write_to_file(&im, th_path(rel), 0, rgb, 0, NULL))
+                    .height = (png_uint_32)h, .format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB};
+    if (!png_image_write_to_file(&im, th_path(rel), 0, px, 0, NULL))
         tap_ok(false, "writing %s: %s", rel, im.message);
+}
+
+static void write_png(const char *rel, int w, int h, const unsigned char *rgb)
+{
+    write_png_as(rel, w, h, rgb, false);
 }
 
 static void write_pfm(const char *rel, int w, int h, float v)
@@ -965,6 +971,34 @@ static void test_motion(void)
         tap_ok(ic >= 0 && t[ic].type == CV_TEX_SCALE && near(t[ic].value_b.x, 0.5, 1e-6) &&
                    near(t[ic].value_b.y, 0.25, 1e-6) && near(t[ic].value_b.z, 1, 1e-6),
                "translucent's Kd on a textured reflect: a scale node by Kd");
+    }
+    cv_scene_destroy(&s);
+    /* a float texture reads the alpha of an RGBA PNG whose alpha is not
+     * all 1, as pbrt-v4 does; an opaque RGBA PNG and an RGB one do not */
+    unsigned char rgba[2 * 2 * 4] = {255, 255, 255, 0, 255, 255, 255, 255,
+                                     255, 255, 255, 128, 255, 255, 255, 255};
+    write_png_as("a.png", 2, 2, rgba, true);
+    for (int i = 0; i < 4; i++)
+        rgba[4 * i + 3] = 255;
+    write_png_as("o.png", 2, 2, rgba, true);
+    s = ok_load("WorldBegin\n"
+                "Texture \"a\" \"float\" \"imagemap\" \"string filename\" \"a.png\"\n"
+                "Texture \"o\" \"float\" \"imagemap\" \"string filename\" \"o.png\"\n"
+                "Texture \"r\" \"float\" \"imagemap\" \"string filename\" \"t.png\"\n"
+                "Material \"diffuse\"\n" TRI, "float textures of RGBA PNGs");
+    if (s) {
+        /* the float textures a, o, r in the order they were defined */
+        const CvTexture *t[3] = {NULL, NULL, NULL};
+        for (uint32_t i = 0, k = 0; i < s->n_textures && k < 3; i++)
+            if (s->textures[i].flags & CV_TEXF_FLOAT)
+                t[k++] = &s->textures[i];
+        float a[4] = {0};
+        if (t[0])
+            cv_scene_texel(s, t[0], 2, a);
+        tap_ok(t[2] && (t[0]->flags & CV_TEXF_ALPHA) && !(t[1]->flags & CV_TEXF_ALPHA) &&
+                   !(t[2]->flags & CV_TEXF_ALPHA),
+               "the RGBA PNG with a transparent texel reads its alpha; the opaque one and the RGB one do not");
+        tap_ok(near(a[3], 0.2158, 2e-3), "its alpha is decoded from sRGB as its colour, as pbrt-v4 does (%g)", a[3]);
     }
     cv_scene_destroy(&s);
     /* composites nest two deep on the GPU: a third level warns */
