@@ -18,6 +18,17 @@ float cv_safe_sqrt(float x) { return sqrt(max(x, 0.0)); }
 float cv_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 float cv_luminance(vec3 c) { return CV_LUMA(c.x, c.y, c.z); }
 
+// pbrt-v4's SmoothStep: a step where the edges meet, a reversed ramp where
+// a > b. GLSL's smoothstep is undefined for edge0 >= edge1, which a spot
+// light of conedeltaangle 0 gives.
+float cv_smoothstep(float a, float b, float x)
+{
+    if (a == b)
+        return x < a ? 0.0 : 1.0;
+    float t = clamp((x - a) / (b - a), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
 // How far a ray leaving a point of triangle p0 p1 p2 must start off its
 // plane so that neither the interpolated point's rounding (each term of
 // b0 p0 + b1 p1 + b2 p2, and b0 = 1 - b1 - b2 off by an ulp of 1) nor the

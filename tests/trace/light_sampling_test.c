@@ -27,7 +27,7 @@
 #include "trace/envmap_dist.h"
 
 #define N 200000
-#define N_CHI2 3
+#define N_CHI2 4
 
 static uint16_t half_from_float(float f)
 {
@@ -274,10 +274,21 @@ static double ray_tri(const double d[3], const double a[3], const double b[3], c
     return t > 0 ? t : -1;
 }
 
-static void mixed_test(struct cv_program *prog, double alpha)
+/* pbrt-v4's SmoothStep, which a spot light's falloff is: a step where the
+ * edges meet (conedeltaangle 0) */
+static double pbrt_smoothstep(double a, double b, double x)
+{
+    if (a == b)
+        return x < a ? 0 : 1;
+    double t = fmin(fmax((x - a) / (b - a), 0), 1);
+    return t * t * (3 - 2 * t);
+}
+
+/* cos_start: the spot's cos falloff start (0.9, its total width: a hard
+ * edge) */
+static void mixed_test(struct cv_program *prog, double alpha, float cos_start, const char *nm)
 {
     struct cv_error err = {{0}};
-    const char *nm = "mixed lights";
     double A[3] = {-1, -0.5, 2}, B[3] = {1.5, -0.5, 2.5}, C[3] = {0, 1.5, 1.8};
     CvVertex v[3];
     memset(v, 0, sizeof(v));
@@ -306,7 +317,7 @@ static void mixed_test(struct cv_program *prog, double alpha)
     l[2].position = (cv_vec4){0, 0, 2, 0};
     l[2].L = (cv_vec4){4, 4, 4, 0};
     l[3] = light_init(CV_LIGHT_SPOT);
-    l[3].position = (cv_vec4){1, 0, 0, 0.95f};  /* w: cos falloff start */
+    l[3].position = (cv_vec4){1, 0, 0, cos_start};  /* w: cos falloff start */
     l[3].direction = (cv_vec4){-1, 0.3f, 0, 0.9f};  /* w: cos total width */
     l[3].L = (cv_vec4){8, 8, 8, 0};
     float cdf[4] = {0.3f, 0.6f, 0.8f, 1.0f};
@@ -351,8 +362,7 @@ static void mixed_test(struct cv_program *prog, double alpha)
                 /* direction from the spot to p is -x: cos to its axis */
                 double ax[3] = {-1, 0.3, 0}, al = sqrt(1.09);
                 double c = (-sm[0] * ax[0] - sm[1] * ax[1] - sm[2] * ax[2]) / al;
-                double tt = fmin(fmax((c - 0.9) / (0.95 - 0.9), 0), 1);
-                double expect = 8 * tt * tt * (3 - 2 * tt) / (d * d);
+                double expect = 8 * pbrt_smoothstep(0.9f, cos_start, c) / (d * d);
                 bad_spot += fabs(sm[4] - expect) > 1e-3 * fmax(expect, 1e-3) || fabs(sm[3] - 0.2) > 1e-5;
             }
             continue;
@@ -436,7 +446,8 @@ int main(void)
     double alpha = stats_sidak(0.01, N_CHI2);
     env_test(prog, false, alpha);
     env_test(prog, true, alpha);
-    mixed_test(prog, alpha);
+    mixed_test(prog, alpha, 0.95f, "mixed lights");
+    mixed_test(prog, alpha, 0.9f, "mixed lights, a spot of conedeltaangle 0");
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

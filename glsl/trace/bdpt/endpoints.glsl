@@ -199,7 +199,7 @@ vec3 cv_bdpt_light_I(uint li, vec3 w)
     CvLight l = lights[li];
     vec3 I = l.L.rgb;
     if (l.type == CV_LIGHT_SPOT)
-        I *= smoothstep(l.direction.w, l.position.w, dot(normalize(l.direction.xyz), w));
+        I *= cv_smoothstep(l.direction.w, l.position.w, dot(normalize(l.direction.xyz), w));
     return I;
 }
 

@@ -153,7 +153,7 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         vec3 I = l.L.rgb;
         if (l.type == CV_LIGHT_SPOT) {
             float cos_theta = dot(-wi, normalize(l.direction.xyz));
-            I *= smoothstep(l.direction.w, l.position.w, cos_theta);
+            I *= cv_smoothstep(l.direction.w, l.position.w, cos_theta);
         }
         s = CvLightSample(wi, dist, I / d2, pmf, true);
     } else if (l.type == CV_LIGHT_DISTANT) {
