@@ -447,7 +447,16 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
             double total = 0;
             for (size_t i = nt0; i < need_t; i++)
                 total += tri_area(V, &T[i]);
-            double k = M_PI * sides * total;
+            /* pbrt-v4's k_e: an image's mean luminance, the area, pi, the
+             * sides (lights.cpp: DiffuseAreaLight::Create) */
+            double mean = 1;
+            if (a->tex >= 0) {
+                float rgba[4];
+                cv_scene_texture_average(s, &s->textures[a->tex], rgba);
+                double c[3] = {rgba[0], rgba[1], rgba[2]};
+                mean = luminance(c);
+            }
+            double k = M_PI * sides * total * mean;
             if (k > 0)
                 for (int c = 0; c < 3; c++)
                     L[c] *= a->power / k;

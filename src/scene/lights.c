@@ -57,7 +57,10 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
     CvLight l;
     memset(&l, 0, sizeof(l));
     l.tex = -1;
-    double rgb[3], power = cv_params_float(ps, "power", -1);
+    /* "power" is read by the lights pbrt-v4 reads it for alone: on the
+     * others it stays unused, and the unused-parameter warning says so */
+    bool powered = strcmp(type, "point") == 0 || strcmp(type, "spot") == 0;
+    double rgb[3], power = powered ? cv_params_float(ps, "power", -1) : -1;
     if (strcmp(type, "point") == 0) {
         if (!light_color(b, ps, "I", dir, rgb, err))
             return false;
@@ -121,6 +124,10 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
             file = cv_params_string(ps, "mapname", NULL);
         if (file) {
             /* pbrt: the map's own values, times L (v3) and scale */
+            if (v4map && cv_params_find(ps, "L") &&
+                !cv_b_warn(b, err, loc, "infinite light with both \"L\" and \"filename\", "
+                           "which pbrt-v4 refuses: the map times L is rendered"))
+                return false;
             if (!light_color(b, ps, "L", dir, rgb, err))
                 return false;
         } else if (!light_color(b, ps, "L", dir, rgb, err)) {
@@ -195,6 +202,10 @@ bool cv_b_area_light(struct cv_builder *b, const char *type, struct cv_params *p
     a->power = cv_params_float(ps, "power", -1);
     const char *file = cv_params_string(ps, "filename", NULL);
     if (file) {
+        if (cv_params_find(ps, "L") &&
+            !cv_b_warn(b, err, loc, "area light with both \"L\" and \"filename\", which "
+                       "pbrt-v4 refuses: the image times L is rendered"))
+            return false;
         a->tex = cv_b_image_texture(b, file, dir, true, loc, err);
         if (a->tex < 0)
             return false;

@@ -820,6 +820,36 @@ static void test_lights(void)
         tap_ok(pos, "every light has a positive sampling power");
     }
     cv_scene_destroy(&s);
+    /* pbrt-v4 normalises an image area light's "power" by the image's mean
+     * luminance too; it reads "power" on point and spot lights alone, and
+     * refuses "L" beside "filename" (Cavalry warns) */
+    unsigned char grey[2 * 2 * 3];
+    memset(grey, 128, sizeof(grey));
+    write_png("grey.png", 2, 2, grey);
+    s = ok_load("WorldBegin\n"
+                "LightSource \"distant\" \"rgb L\" [1 1 1] \"float power\" 3\n"
+                "LightSource \"infinite\" \"string filename\" \"oct.pfm\" \"rgb L\" [2 2 2]\n"
+                "AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"grey.png\" \"float power\" 10\n"
+                TRI "AttributeEnd\n"
+                "AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"grey.png\" \"rgb L\" [2 2 2]\n"
+                TRI "AttributeEnd\n", "image area lights");
+    if (s) {
+        const char *log = th_log_text();
+        const CvLight *a = NULL;
+        for (uint32_t i = 0; i < s->n_lights && !a; i++)
+            if (s->lights[i].type == CV_LIGHT_AREA)
+                a = &s->lights[i];
+        /* grey 128 decodes to 0.2158; the triangle's area is 0.5 */
+        double want = 10 / (M_PI * 0.5 * 0.21586);
+        tap_ok(a && near(a->L.x, want, 2e-3 * want), "area light \"power\" over an image: by its mean "
+               "luminance too (%g, want %g)", a ? a->L.x : 0, want);
+        tap_ok(s->warnings == 3 && strstr(log, "main.pbrt:2:39: LightSource: parameter \"float power\" unused") &&
+                   strstr(log, "infinite light with both \"L\" and \"filename\"") &&
+                   strstr(log, "area light with both \"L\" and \"filename\""),
+               "\"power\" on a distant light is unused; \"L\" beside \"filename\" warns (%u warnings)",
+               s->warnings);
+    }
+    cv_scene_destroy(&s);
 }
 
 static void test_params(void)
