@@ -439,6 +439,14 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
             return false;
         emits = false;
     }
+    /* pbrt-v4 masks a light sample of a cut-out emitter by its alpha
+     * (DiffuseAreaLight::AlphaMasked); the shaders' light samples do not */
+    const CvMaterial *em = &s->materials[mat & CV_TRI_MATERIAL_MASK];
+    if (emits && (em->alpha < 1 || em->alpha_tex >= 0) &&
+        !cv_b_warn(b, err, loc, "the cut-out (\"alpha\") of an emitting shape hides it from "
+                   "rays, but its light samples are not masked: it lights the scene as if "
+                   "whole, where pbrt-v4 masks them"))
+        return false;
     if (emits) {
         const struct cv_area_state *a = &b->gs.area;
         double L[3] = {a->L[0], a->L[1], a->L[2]};
