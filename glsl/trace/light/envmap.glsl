@@ -36,13 +36,24 @@ vec3 cv_env_uv_to_dir(CvLight l, vec2 uv)
     return vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
 }
 
+// A pbrt-v4 equal-area map is looked up at its nearest texel, as pbrt-v4's
+// ImageInfiniteLight::ImageLe does (its radiance is then constant over each
+// texel, as the sampling distribution is); a pbrt-v3 lat-long map
+// bilinearly, as pbrt-v3's MIPMap lookup.
 vec3 cv_env_map_Le(CvLight l, vec3 dir)
 {
     if (l.tex < 0)
         return l.L.rgb;
     CvTexture tx = textures[l.tex];
     vec2 uv = cv_env_dir_to_uv(l, cv_light_to_local(l, normalize(dir)));
-    return l.L.rgb * cv_tex_finish(tx, cv_image_lookup(tx, uv, 0.0)).rgb;
+    vec4 v;
+    if (cv_env_equal_area(l)) {
+        uint w = max(tx.width, 1u), h = max(tx.height, 1u);
+        v = cv_texel_fetch(tx.offset, w, h, ivec2(floor(uv * vec2(w, h))), tx.flags);
+    } else {
+        v = cv_image_lookup(tx, uv, 0.0);
+    }
+    return l.L.rgb * cv_tex_finish(tx, v).rgb;
 }
 
 // Index i in [0, n) with cdf[base + i] <= u < cdf[base + i + 1].
