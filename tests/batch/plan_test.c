@@ -14,6 +14,7 @@
 #include "base/limits.h"
 #include "base/mem.h"
 #include "batch/plan.h"
+#include "glsl/shared/sdtree.h"
 #include "manifest/manifest.h"
 #include "scene/film.h"
 #include "scene/scene.h"
@@ -259,18 +260,25 @@ static void test_bdpt_camera_mattes(void)
  * the default count, 0 learns in every pass (CV_RL_TRAIN_ALWAYS), a count
  * is that count. rlpath.fallback: unset and true measure after training
  * whether to guide on (CV_RL_CHOICE_MEASURE), false keeps guiding
- * (CV_RL_CHOICE_GUIDED); a value not a boolean is an error at its place. */
+ * (CV_RL_CHOICE_GUIDED); a value not a boolean is an error at its place.
+ * rlpath.filter reaches sdtree as its filter bits, unset as unset. */
 static void test_rlpath_settings(void)
 {
     static const struct {
         const char *rlpath;
         uint32_t train;
         int choice;
+        int filter;   /* sdtree's filter bits; -1: unset */
     } cases[] = {
-        {"{}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_MEASURE},
-        {"{train: 0}", CV_RL_TRAIN_ALWAYS, CV_RL_CHOICE_MEASURE},
-        {"{train: 64, fallback: true}", 64, CV_RL_CHOICE_MEASURE},
-        {"{method: sdtree, fallback: false}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_GUIDED},
+        {"{}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_MEASURE, -1},
+        {"{train: 0}", CV_RL_TRAIN_ALWAYS, CV_RL_CHOICE_MEASURE, -1},
+        {"{train: 64, fallback: true}", 64, CV_RL_CHOICE_MEASURE, -1},
+        {"{method: sdtree, fallback: false}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_GUIDED, -1},
+        {"{method: sdtree, filter: none}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_MEASURE, 0},
+        {"{method: sdtree, filter: spatial}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_MEASURE,
+         CV_SD_FILTER_SPATIAL},
+        {"{method: sdtree, filter: both}", CV_RL_DEFAULT_TRAIN, CV_RL_CHOICE_MEASURE,
+         CV_SD_FILTER_SPATIAL | CV_SD_FILTER_DIRECTIONAL},
     };
     struct cv_scene *s = scene_of("WorldBegin\n");
     for (size_t j = 0; j < sizeof(cases) / sizeof(cases[0]); j++) {
@@ -284,9 +292,12 @@ static void test_rlpath_settings(void)
                                          &(struct cv_plan_options){.manifest_path = m->path},
                                          &p, &err);
         struct cv_render_params rp = ok ? cv_plan_render_params(&p) : (struct cv_render_params){0};
-        tap_ok(ok && rp.rl_train == cases[j].train && (int)rp.rl_choice == cases[j].choice,
-               "rlpath: %s: rl_train %u (want %u), rl_choice %d (want %d) %s", cases[j].rlpath,
-               rp.rl_train, cases[j].train, (int)rp.rl_choice, cases[j].choice, err.msg);
+        int filter = rp.rl_sd_filter_set ? (int)rp.rl_sd_filter : -1;
+        tap_ok(ok && rp.rl_train == cases[j].train && (int)rp.rl_choice == cases[j].choice &&
+                   filter == cases[j].filter,
+               "rlpath: %s: rl_train %u (want %u), rl_choice %d (want %d), filter %d (want %d) %s",
+               cases[j].rlpath, rp.rl_train, cases[j].train, (int)rp.rl_choice, cases[j].choice,
+               filter, cases[j].filter, err.msg);
         cv_manifest_destroy(&m);
     }
     cv_scene_destroy(&s);

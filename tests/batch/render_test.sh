@@ -7,6 +7,7 @@
 # build (the CLI reads them, cli/knobs.c). The scene's Sampler gives the
 # samples per pixel of a job that names none, and its type changes
 # nothing: "independent" and "sobol" render the same bits (cavalry-batch(1)).
+# -q leaves only errors on standard error; png.bits 16 writes 16-bit PNGs.
 . "${srcdir:-.}/tests/setup.sh"
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 data="$CV_TEST_DATA/batch"
@@ -48,6 +49,17 @@ check "BVH knobs unset" "$CAVALRY_BATCH" -v --progress=none --resume --force --o
 check "the BVH build gets the defaults" grep -q "3 treelet rounds, split budget 0.3)" run7.err
 check "BVH knobs set" env CAVALRY_BVH_ROUNDS=1 CAVALRY_BVH_SPLIT=0.5 "$CAVALRY_BATCH" -v --progress=none --resume --force --only=c jobs.yaml 2>run8.err
 check "the BVH build gets CAVALRY_BVH_ROUNDS and _SPLIT" grep -q "1 treelet rounds, split budget 0.5)" run8.err
+
+# -q: errors only (cavalry-batch(1)); a scene warning shows without it
+{ cat tiny.pbrt; printf 'Material "diffuse" "float bogus" 1\n'; } >warn.pbrt
+printf 'version: 1\njobs:\n  - name: w\n    scene: warn.pbrt\n    output: q/{name}\n    formats: [png]\n    spp: 1\n    png: {bits: 16}\n' >warn.yaml
+check "a scene with a warning renders" "$CAVALRY_BATCH" --progress=none warn.yaml 2>loud.err
+check "without -q the warning shows" grep -q 'warning: .*warn.pbrt:.*"float bogus" unused' loud.err
+check "-q renders" "$CAVALRY_BATCH" -q --progress=none --force warn.yaml 2>quiet.err
+check "-q shows no warning nor information" test ! -s quiet.err
+# png.bits 16 writes a 16-bit PNG: its header's bit depth (byte 24)
+check "png.bits 16: the PNG's bit depth is 16" \
+    test "$(od -An -tu1 -j24 -N1 q/w.png | tr -d ' ')" = 16
 
 check_out "--dry-run" plan.txt "$CAVALRY_BATCH" --dry-run --resume jobs.yaml 2>plan.err
 check "plan lists every job" test "$(grep -c '^[abc]: tiny.pbrt' plan.txt)" -eq 3
