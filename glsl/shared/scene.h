@@ -112,9 +112,11 @@ CV_CHECK_SIZE(CvCurveXform, 96);
 #define CV_TEXF_WRAP_BLACK (1u << 2)
 #define CV_TEXF_INVERT (1u << 3)      /* 1 - value (v4 "invert") */
 #define CV_TEXF_FLOAT (1u << 4)       /* a float texture: the average of r, g, b (grey images: r) */
-/* ... or, where the image has an alpha channel that pbrt-v4 keeps and that
- * is not all 1 (an RGBA PNG, an EXR with A), its alpha, as pbrt-v4's
- * MIPMap::Bilerp<Float> returns it: the cut-out of a leaf's PNG */
+/* Set by the loader on an image whose alpha pbrt-v4 keeps and that is not
+ * 1 everywhere (an RGBA PNG, an EXR with A); the shaders do not read it. A
+ * float texture of such an image is pbrt-v4's alpha (MIPMap::Bilerp<Float>):
+ * it gets a copy of the texels with the alpha in r, g and b (scene/
+ * texture.c), so the shaders' average is the alpha. */
 #define CV_TEXF_ALPHA (1u << 9)
 #define CV_TEXF_BILERP (1u << 5)      /* filter bilinear only (no mip) */
 /* Sphere maps of image infinite lights (set by the loader, never by a

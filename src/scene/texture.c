@@ -3,6 +3,7 @@
  * images, 32-bit floats for images of high dynamic range (glsl/shared/
  * scene.h says why). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,6 +22,17 @@ static void tex_init(CvTexture *t, uint32_t type)
     t->amount = 0.5f;
 }
 
+/* Texels of an image of w x h and its mip levels down to 1 x 1. */
+static uint64_t mip_texels(int w, int h)
+{
+    uint64_t total = 0;
+    for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
+        total += (uint64_t)lw * lh;
+        if (lw == 1 && lh == 1)
+            return total;
+    }
+}
+
 /* Appends levels of img to the texel buffer, in float where `flags` has
  * CV_TEXF_RGBA32F, else in half; returns the first slot. */
 static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uint32_t flags,
@@ -29,10 +41,9 @@ static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uin
     struct cv_scene *s = b->s;
     int w = img->width, h = img->height;
     uint32_t slots = CV_TEX_SLOTS(flags);
-    uint64_t total = 0;
+    uint64_t total = mip_texels(w, h) * slots;
     uint32_t nl = 0;
     for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
-        total += (uint64_t)lw * lh * slots;
         nl++;
         if (lw == 1 && lh == 1)
             break;
@@ -156,6 +167,50 @@ int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, 
     return idx;
 }
 
+/* The image texture that a "float" imagemap of image texture idx reads
+ * (texture.glsl's float lookup: the average of r, g, b): idx itself, or
+ * for an image marked CV_TEXF_ALPHA a copy of its texels with the alpha in
+ * r, g and b, made once. A select of the alpha in the shaders' lookup
+ * instead cost textured scenes 5-9 % of their render (bench/RESULTS.md,
+ * "A float texture's alpha in the shaders"). -1 with err set where the
+ * texel buffer is full. */
+static int float_image(struct cv_builder *b, int idx, struct cv_error *err)
+{
+    struct cv_scene *s = b->s;
+    CvTexture t = s->textures[idx];
+    if (!(t.flags & CV_TEXF_ALPHA))
+        return idx;
+    char key[32];
+    snprintf(key, sizeof(key), "|alpha|%d", idx);   /* no path's key ("path|srgb") */
+    int c = cv_b_lookup(b->images, b->n_images, key);
+    if (c >= 0)
+        return c;
+    uint32_t slots = CV_TEX_SLOTS(t.flags);
+    uint64_t n = mip_texels((int)t.width, (int)t.height), total = n * slots;
+    if (s->n_texels + total > 0xffffffffu) {
+        cv_fail(err, "texel buffer exceeds 2^32 slots of 8 bytes");
+        return -1;
+    }
+    s->texels = cv_xgrow(s->texels, &b->cap_texel, (size_t)(s->n_texels + total) * 2, sizeof(uint32_t));
+    const uint32_t *from = s->texels + (size_t)t.offset * 2;
+    uint32_t *to = s->texels + s->n_texels * 2;
+    for (uint64_t i = 0; i < n; i++) {
+        if (slots == 2) {   /* float r, g, b, a */
+            for (int k = 0; k < 4; k++)
+                to[4 * i + k] = from[4 * i + 3];
+        } else {            /* half (r, g), (b, a) */
+            uint32_t a = from[2 * i + 1] >> 16;
+            to[2 * i] = to[2 * i + 1] = a | (a << 16);
+        }
+    }
+    t.offset = (uint32_t)s->n_texels;
+    t.flags &= ~CV_TEXF_ALPHA;   /* the copy's r, g, b are that alpha */
+    s->n_texels += total;
+    int i = cv_b_add_texture(b, &t);
+    cv_b_set_named(&b->images, &b->n_images, &b->cap_images, key, i);
+    return i;
+}
+
 int cv_b_image_texture_v4(struct cv_builder *b, const char *file, const char *dir, bool srgb,
                           const char *what, const struct cv_loc *loc, struct cv_error *err)
 {
@@ -264,6 +319,8 @@ bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, cons
         }
         int img = v4 ? cv_b_image_texture_v4(b, file, dir, srgb, "encoding \"linear\" of", loc, err)
                      : cv_b_image_texture(b, file, dir, srgb, loc, err);
+        if (img >= 0 && is_float)
+            img = float_image(b, img, err);
         if (img < 0)
             return false;
         t = b->s->textures[img];

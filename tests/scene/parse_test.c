@@ -1025,10 +1025,24 @@ static void test_motion(void)
         float a[4] = {0};
         if (t[0])
             cv_scene_texel(s, t[0], 2, a);
-        tap_ok(t[2] && (t[0]->flags & CV_TEXF_ALPHA) && !(t[1]->flags & CV_TEXF_ALPHA) &&
-                   !(t[2]->flags & CV_TEXF_ALPHA),
-               "the RGBA PNG with a transparent texel reads its alpha; the opaque one and the RGB one do not");
+        /* the float texture reads the average of r, g, b (texture.glsl):
+         * for the RGBA PNG a copy holds the alpha there, the others keep
+         * their colour (white) */
+        float o[4] = {0}, r[4] = {0};
+        if (t[2]) {
+            cv_scene_texel(s, t[1], 2, o);
+            cv_scene_texel(s, t[2], 0, r);
+        }
+        tap_ok(t[2] && near(a[0], 0.2158, 2e-3) && a[0] == a[1] && a[1] == a[2] && near(o[0], 1, 1e-3) &&
+                   near(r[0], 1, 1e-3),
+               "the RGBA PNG with a transparent texel reads its alpha (%g %g %g); the opaque one (%g) and the RGB one "
+               "(%g) their colour", a[0], a[1], a[2], o[0], r[0]);
         tap_ok(near(a[3], 0.2158, 2e-3), "its alpha is decoded from sRGB as its colour, as pbrt-v4 does (%g)", a[3]);
+        bool marked = false;
+        for (uint32_t i = 0; i < s->n_textures; i++)
+            marked = marked || (s->textures[i].type == CV_TEX_IMAGE && !(s->textures[i].flags & CV_TEXF_FLOAT) &&
+                                (s->textures[i].flags & CV_TEXF_ALPHA) && s->textures[i].width == 2);
+        tap_ok(marked, "the loader marks the image itself (CV_TEXF_ALPHA)");
     }
     cv_scene_destroy(&s);
     /* composites nest two deep on the GPU: a third level warns */

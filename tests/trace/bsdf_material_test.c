@@ -216,48 +216,6 @@ int main(void)
             probe_close(&pr);
         }
     }
-    /* a float image texture of an image whose alpha pbrt-v4 keeps reads
-     * that alpha (CV_TEXF_ALPHA), else the average of r, g, b: a cut-out
-     * by a white texel of alpha 0 passes every ray with the flag and none
-     * without */
-    {
-        uint32_t tx[2];
-        tx[0] = half_of(1) | ((uint32_t)half_of(1) << 16);
-        tx[1] = half_of(1) | ((uint32_t)half_of(0) << 16);
-        CvTexture at[2];
-        for (int i = 0; i < 2; i++) {
-            at[i] = tex_init(CV_TEX_IMAGE);
-            at[i].width = at[i].height = 1;
-            at[i].flags = CV_TEXF_FLOAT | (i == 0 ? CV_TEXF_ALPHA : 0u);
-        }
-        CvMaterial am[2];
-        for (int i = 0; i < 2; i++) {
-            am[i] = probe_material(CV_MAT_DIFFUSE);
-            am[i].alpha_tex = i;
-        }
-        struct probe pa;
-        if (tap_ok(probe_open_tex(gpu, &pa, am, 2, at, 2, tx, 1, &err), "alpha probe: %s", err.msg)) {
-            enum { NA = 64 };
-            float qa[NA * 4], oa[NA * 8], wo3[3];
-            probe_dir(30, 0, wo3);
-            for (int i = 0; i < NA; i++) {
-                qa[4 * i] = qa[4 * i + 1] = 0.5f;
-                qa[4 * i + 2] = qa[4 * i + 3] = (i + 0.5f) / NA;
-            }
-            int passed[2] = {0, 0};
-            bool ok2 = true;
-            for (unsigned k = 0; k < 2; k++) {
-                ok2 = ok2 && probe_run(&pa, 2, k, wo3, 0, qa, NA, oa, &err);
-                for (int i = 0; ok2 && i < NA; i++)
-                    passed[k] += oa[8 * i + 3] > 0.5f;
-            }
-            tap_ok(ok2 && passed[0] == NA, "a float texture with the image's alpha: alpha 0 passes "
-                   "every ray (%d of %d)", passed[0], NA);
-            tap_ok(ok2 && passed[1] == 0, "... without it, the white texel's average 1 passes none "
-                   "(%d of %d)", passed[1], NA);
-            probe_close(&pa);
-        }
-    }
     cv_gpu_destroy(&gpu);
     return tap_done();
 }

@@ -91,7 +91,7 @@ vec2 cv_tex_st(CvTexture tx, vec2 uv)
 vec4 cv_tex_finish(CvTexture tx, vec4 v)
 {
     if ((tx.flags & CV_TEXF_FLOAT) != 0u && tx.type == CV_TEX_IMAGE)
-        v = vec4((tx.flags & CV_TEXF_ALPHA) != 0u ? v.a : (v.r + v.g + v.b) / 3.0);
+        v = vec4((v.r + v.g + v.b) / 3.0);
     v *= tx.scale;
     if ((tx.flags & CV_TEXF_INVERT) != 0u)
         v = vec4(1.0) - v;
