@@ -433,7 +433,8 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
     /* pbrt-v4 drops the area light of a shape whose material is
      * "interface" (or "none" or ""), with a warning (its scene.cpp) */
     bool emits = b->gs.area.on;
-    if (emits && s->materials[current_material(b)].type == CV_MAT_INTERFACE) {
+    const CvMaterial *em = &s->materials[mat & CV_TRI_MATERIAL_MASK];
+    if (emits && em->type == CV_MAT_INTERFACE) {
         if (!cv_b_warn(b, err, loc, "the area light of a shape with the \"interface\" material is "
                        "ignored, as pbrt-v4 ignores it"))
             return false;
@@ -441,7 +442,6 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
     }
     /* pbrt-v4 masks a light sample of a cut-out emitter by its alpha
      * (DiffuseAreaLight::AlphaMasked); the shaders' light samples do not */
-    const CvMaterial *em = &s->materials[mat & CV_TRI_MATERIAL_MASK];
     if (emits && (em->alpha < 1 || em->alpha_tex >= 0) &&
         !cv_b_warn(b, err, loc, "the cut-out (\"alpha\") of an emitting shape hides it from "
                    "rays, but its light samples are not masked: it lights the scene as if "
@@ -457,13 +457,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
                 total += tri_area(V, &T[i]);
             /* pbrt-v4's k_e: an image's mean luminance, the area, pi, the
              * sides (lights.cpp: DiffuseAreaLight::Create) */
-            double mean = 1;
-            if (a->tex >= 0) {
-                float rgba[4];
-                cv_scene_texture_average(s, &s->textures[a->tex], rgba);
-                double c[3] = {rgba[0], rgba[1], rgba[2]};
-                mean = luminance(c);
-            }
+            double mean = a->tex >= 0 ? cv_scene_texture_luminance(s, &s->textures[a->tex]) : 1;
             double k = M_PI * sides * total * mean;
             if (k > 0)
                 for (int c = 0; c < 3; c++)

@@ -238,7 +238,7 @@ bool cv_image_load(const char *path, bool srgb, struct cv_image *img, struct cv_
 bool cv_image_always_srgb(const char *path)
 {
     static const char *const own[] = {"png", "exr", "pfm", "hdr", "qoi"};
-    for (size_t i = 0; i < sizeof(own) / sizeof(own[0]); i++)
+    for (size_t i = 0; i < CV_ARRAY_SIZE(own); i++)
         if (ext_is(path, own[i]))
             return false;
     return true;

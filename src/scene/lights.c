@@ -161,10 +161,7 @@ bool cv_b_light(struct cv_builder *b, const char *type, struct cv_params *ps,
             l.type = CV_LIGHT_INFINITE_MAP;
             l.flags = v4map ? CV_LIGHTF_EQUAL_AREA : 0;
             l.tex = t;
-            float rgba[4];
-            cv_scene_texture_average(b->s, tx, rgba);
-            double c[3] = {rgba[0], rgba[1], rgba[2]};
-            avg = (float)luminance(c);
+            avg = (float)cv_scene_texture_luminance(b->s, tx);
         } else {
             l.type = CV_LIGHT_INFINITE;
         }

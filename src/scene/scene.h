@@ -217,5 +217,8 @@ void cv_curve_xform_box(const CvCurveXform *x, const double lo[3], const double 
 void cv_scene_texel(const struct cv_scene *s, const CvTexture *t, uint64_t i, float rgba[4]);
 /* The average of image texture t: its last mip level (1x1). */
 void cv_scene_texture_average(const struct cv_scene *s, const CvTexture *t, float rgba[4]);
+/* ... and that average's luminance (CV_LUMA): what pbrt-v4 normalises an
+ * image light's power or illuminance by. */
+double cv_scene_texture_luminance(const struct cv_scene *s, const CvTexture *t);
 
 #endif

@@ -75,16 +75,16 @@ static double planck(double l_nm, double T)
     return (2 * h * c * c) / (pow(l, 5) * (exp((h * c) / (l * kb * T)) - 1));
 }
 
-/* Integrates spectrum f (pairs, or blackbody when T > 0) to RGB. An
- * emission goes to XYZ as it is (an equal-energy spectrum is pinkish
- * against sRGB's white, in pbrt-v4 too); a reflectance or other factor is
- * seen under the colour space's white, D65, as pbrt-v4 renders it under an
- * RGB light, so that a constant spectrum keeps its value in each channel
- * (cv_spectrum_rgb_weights_nm). */
+/* Integrates spectrum f (pairs, or blackbody when T > 0, an emission) to
+ * RGB. An emission goes to XYZ as it is (an equal-energy spectrum is
+ * pinkish against sRGB's white, in pbrt-v4 too), at luminance 1; a
+ * reflectance or other factor is seen under the colour space's white, D65,
+ * as pbrt-v4 renders it under an RGB light, so that a constant spectrum
+ * keeps its value in each channel (cv_spectrum_rgb_weights_nm). */
 static void spectrum_rgb(const double *pairs, size_t n, double T, enum cv_spectrum_kind kind,
                          double rgb[3])
 {
-    if (kind != CV_SPEC_ILLUMINANT && !(T > 0)) {
+    if (kind != CV_SPEC_ILLUMINANT) {
         double w[3 * CV_SPECTRUM_NM];
         cv_spectrum_rgb_weights_nm(w);
         rgb[0] = rgb[1] = rgb[2] = 0;
@@ -95,21 +95,20 @@ static void spectrum_rgb(const double *pairs, size_t n, double T, enum cv_spectr
         }
         return;
     }
-    double xyz[3] = {0, 0, 0}, ysum = 0;
+    double xyz[3] = {0, 0, 0};
     for (double l = 360; l <= 830; l += 1) {
         double m[3], v = T > 0 ? planck(l, T) : eval_pairs(pairs, n, l);
         cie_xyz(l, m);
         for (int c = 0; c < 3; c++)
             xyz[c] += v * m[c];
-        ysum += m[1];
     }
-    double norm = kind == CV_SPEC_ILLUMINANT ? xyz[1] : ysum;
-    if (!(fabs(norm) > 0)) {
+    double y = xyz[1];
+    if (!(fabs(y) > 0)) {
         rgb[0] = rgb[1] = rgb[2] = 0;
         return;
     }
     for (int c = 0; c < 3; c++)
-        xyz[c] /= norm;
+        xyz[c] /= y;
     xyz_to_rgb(xyz, rgb);
 }
 

@@ -22,15 +22,32 @@ static void tex_init(CvTexture *t, uint32_t type)
     t->amount = 0.5f;
 }
 
-/* Texels of an image of w x h and its mip levels down to 1 x 1. */
-static uint64_t mip_texels(int w, int h)
+/* Texels of an image of w x h and its mip levels down to 1 x 1; levels
+ * (may be NULL) gets their count. */
+static uint64_t mip_texels(int w, int h, uint32_t *levels)
 {
     uint64_t total = 0;
+    uint32_t nl = 0;
     for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
         total += (uint64_t)lw * lh;
+        nl++;
         if (lw == 1 && lh == 1)
-            return total;
+            break;
     }
+    if (levels)
+        *levels = nl;
+    return total;
+}
+
+/* Room for `slots` more texel slots at the texel buffer's end; false with
+ * err set where the buffer would pass its 2^32 slots. */
+static bool reserve_texels(struct cv_builder *b, uint64_t slots, struct cv_error *err)
+{
+    struct cv_scene *s = b->s;
+    if (s->n_texels + slots > 0xffffffffu)
+        return cv_fail(err, "texel buffer exceeds 2^32 slots of 8 bytes");
+    s->texels = cv_xgrow(s->texels, &b->cap_texel, (size_t)(s->n_texels + slots) * 2, sizeof(uint32_t));
+    return true;
 }
 
 /* Appends levels of img to the texel buffer, in float where `flags` has
@@ -41,20 +58,12 @@ static uint32_t add_texels(struct cv_builder *b, const struct cv_image *img, uin
     struct cv_scene *s = b->s;
     int w = img->width, h = img->height;
     uint32_t slots = CV_TEX_SLOTS(flags);
-    uint64_t total = mip_texels(w, h) * slots;
-    uint32_t nl = 0;
-    for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
-        nl++;
-        if (lw == 1 && lh == 1)
-            break;
-    }
-    *ok = true;
-    if (s->n_texels + total > 0xffffffffu) {
-        *ok = cv_fail(err, "texel buffer exceeds 2^32 slots of 8 bytes");
+    uint32_t nl;
+    uint64_t total = mip_texels(w, h, &nl) * slots;
+    *ok = reserve_texels(b, total, err);
+    if (!*ok)
         return 0;
-    }
     uint32_t offset = (uint32_t)s->n_texels;
-    s->texels = cv_xgrow(s->texels, &b->cap_texel, (size_t)(s->n_texels + total) * 2, sizeof(uint32_t));
     float *cur = cv_xmalloc((size_t)w * h * 4 * sizeof(float));
     memcpy(cur, img->rgba, (size_t)w * h * 4 * sizeof(float));
     uint32_t *out = s->texels + s->n_texels * 2;
@@ -121,6 +130,13 @@ void cv_scene_texture_average(const struct cv_scene *s, const CvTexture *t, floa
     cv_scene_texel(s, t, last, rgba);
 }
 
+double cv_scene_texture_luminance(const struct cv_scene *s, const CvTexture *t)
+{
+    float rgba[4];
+    cv_scene_texture_average(s, t, rgba);
+    return CV_LUMA(rgba[0], rgba[1], rgba[2]);
+}
+
 int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, bool srgb,
                        const struct cv_loc *loc, struct cv_error *err)
 {
@@ -170,10 +186,10 @@ int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, 
 /* The image texture that a "float" imagemap of image texture idx reads
  * (texture.glsl's float lookup: the average of r, g, b): idx itself, or
  * for an image marked CV_TEXF_ALPHA a copy of its texels with the alpha in
- * r, g and b, made once. A select of the alpha in the shaders' lookup
- * instead cost textured scenes 5-9 % of their render (bench/RESULTS.md,
- * "A float texture's alpha in the shaders"). -1 with err set where the
- * texel buffer is full. */
+ * r, g and b, made once: a select of the alpha in the shaders' lookup,
+ * inlined by every textured shade kernel, slowed textured scenes
+ * (bench/RESULTS.md, "A float texture's alpha in the shaders"). -1 with
+ * err set where the texel buffer is full. */
 static int float_image(struct cv_builder *b, int idx, struct cv_error *err)
 {
     struct cv_scene *s = b->s;
@@ -186,12 +202,9 @@ static int float_image(struct cv_builder *b, int idx, struct cv_error *err)
     if (c >= 0)
         return c;
     uint32_t slots = CV_TEX_SLOTS(t.flags);
-    uint64_t n = mip_texels((int)t.width, (int)t.height), total = n * slots;
-    if (s->n_texels + total > 0xffffffffu) {
-        cv_fail(err, "texel buffer exceeds 2^32 slots of 8 bytes");
+    uint64_t n = mip_texels((int)t.width, (int)t.height, NULL), total = n * slots;
+    if (!reserve_texels(b, total, err))
         return -1;
-    }
-    s->texels = cv_xgrow(s->texels, &b->cap_texel, (size_t)(s->n_texels + total) * 2, sizeof(uint32_t));
     const uint32_t *from = s->texels + (size_t)t.offset * 2;
     uint32_t *to = s->texels + s->n_texels * 2;
     for (uint64_t i = 0; i < n; i++) {
