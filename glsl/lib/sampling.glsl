@@ -78,6 +78,18 @@ vec3 cv_equal_area_square_to_sphere(vec2 p)
     return vec3(cos_phi * s, sin_phi * s, z);
 }
 
+// pbrt-v4's WrapEqualAreaSquare: a point of the square's plane moved into
+// [0,1]^2 by mirroring across the edge it left by (the octahedral map's
+// neighbours across each edge), once per axis.
+vec2 cv_equal_area_wrap(vec2 p)
+{
+    if (p.x < 0.0 || p.x > 1.0)
+        p = vec2(p.x < 0.0 ? -p.x : 2.0 - p.x, 1.0 - p.y);
+    if (p.y < 0.0 || p.y > 1.0)
+        p = vec2(1.0 - p.x, p.y < 0.0 ? -p.y : 2.0 - p.y);
+    return p;
+}
+
 vec2 cv_equal_area_sphere_to_square(vec3 d)
 {
     float x = abs(d.x), y = abs(d.y), z = abs(d.z);

@@ -271,14 +271,20 @@ CV_CHECK_SIZE(CvLight, 112);
 
 #define CV_CAMERA_PERSPECTIVE 0u
 #define CV_CAMERA_ORTHOGRAPHIC 1u
+#define CV_CAMERA_EQUAL_AREA 2u  /* pbrt-v4's spherical, mapping "equalarea" */
+#define CV_CAMERA_EQUIRECT 3u    /* ... "equirectangular"; pbrt-v3's environment */
 
 /* A raster point (px, py) in [0,w)x[0,h) of the full film maps to screen
  * space sx = screen.x + (px / w) * (screen.y - screen.x),
  *              sy = screen.w - (py / h) * (screen.w - screen.z);
  * perspective: camera-space direction (sx * tan_half_fov, sy * tan_half_fov, 1),
  * orthographic: origin (sx, sy, 0), direction (0, 0, 1); both as in pbrt.
- * Thin lens as pbrt: lens.x radius, lens.y focal distance. to_world rows map
- * camera space to world space (3x4 affine). */
+ * Thin lens as pbrt: lens.x radius, lens.y focal distance. The spherical
+ * cameras ignore screen and lens: the raster point's (u, v) = (px / w,
+ * py / h) maps to a direction d of the sphere, pbrt-v4's equal-area square
+ * (lib/sampling.glsl) or theta = pi v, phi = 2 pi u about z, and the ray
+ * leaves the origin along (d.x, d.z, d.y). to_world rows map camera space
+ * to world space (3x4 affine). */
 CV_STRUCT(CvCamera) {
     cv_vec4 to_world[3];
     cv_vec4 screen;       /* xmin, xmax, ymin, ymax */

@@ -247,7 +247,7 @@ CV_STRUCT(CvPassParams) {
     CV_FLOAT lens_radius;
     CV_FLOAT focal_distance;
     CV_FLOAT tan_half_fov;
-    CV_FLOAT orthographic; /* 1: orthographic, 0: perspective */
+    CV_UINT camera_type;   /* CV_CAMERA_* (shared/scene.h) */
     cv_vec4 filter_x[CV_FILTER_CELLS / 4 + 1]; /* CDF of |f| over the x cells (cells + 1 values) */
     cv_vec4 filter_y[CV_FILTER_CELLS / 4 + 1];
     cv_uvec4 filter_neg[2][CV_FILTER_CELLS / 128]; /* [axis]: bit k set where f < 0 in cell k */

@@ -36,10 +36,25 @@ void cv_camera_ray(vec2 raster, vec2 u_lens, float u_time, out vec3 o, out vec3 
 {
     vec4 s = u_pass.screen;
     vec2 film = vec2(u_pass.film.xy);
+#ifdef CV_SPHERICAL_CAMERA
+    if (u_pass.camera_type >= CV_CAMERA_EQUAL_AREA) { // spherical: no lens
+        vec2 uv = raster / film;
+        vec3 w;
+        if (u_pass.camera_type == CV_CAMERA_EQUAL_AREA) {
+            w = cv_equal_area_square_to_sphere(cv_equal_area_wrap(uv));
+        } else {
+            float theta = CV_PI * uv.y, phi = 2.0 * CV_PI * uv.x;
+            w = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+        }
+        o = cv_camera_to_world(vec3(0.0), 1.0, u_time);
+        d = normalize(cv_camera_to_world(w.xzy, 0.0, u_time));
+        return;
+    }
+#endif
     float sx = s.x + (raster.x / film.x) * (s.y - s.x);
     float sy = s.w - (raster.y / film.y) * (s.w - s.z);
     vec3 oc, dc;
-    if (u_pass.orthographic == 1.0) { // orthographic
+    if (u_pass.camera_type == CV_CAMERA_ORTHOGRAPHIC) {
         oc = vec3(sx, sy, 0.0);
         dc = vec3(0.0, 0.0, 1.0);
     } else {

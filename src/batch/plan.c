@@ -55,6 +55,10 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
             return fail_at(err, o, job, CV_K_CAMERA_LOOKAT,
                            "camera.lookat: up vector and viewing direction are parallel");
     }
+    bool spherical = p->camera.type >= CV_CAMERA_EQUAL_AREA;
+    if (job->camera.has_fov && spherical)
+        return fail_at(err, o, job, CV_K_CAMERA_FOV,
+                       "camera.fov: the scene's camera is spherical, which sees every direction");
     if (job->camera.has_fov)
         p->camera.lens.z = cv_camera_fov_scale(job->camera.fov);
     /* One crop rule for both homes of a crop window: the job's crop key
@@ -75,7 +79,7 @@ static bool plan_camera(const struct cv_job *job, const struct cv_scene *scene,
         char where[64] = "";  /* no line: set by --resolution */
         if (at->line)
             snprintf(where, sizeof(where), ":%u:%u", at->line, at->col);
-        if (cv_camera_fit_film(&p->camera, crop, p->width, p->height))
+        if (cv_camera_fit_film(&p->camera, crop, p->width, p->height) && !spherical)
             cv_warn("%s%s: job \"%s\": %sresolution %ux%u changes the scene's aspect ratio: "
                     "default screen window used", o->manifest_path, where, job->name,
                     at->line ? "" : "--", p->width, p->height);

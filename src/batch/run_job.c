@@ -52,11 +52,10 @@ static struct cv_metadata *job_metadata(struct cv_gpu *gpu, const struct cv_rend
     cv_metadata_set_string(m, "software", "cavalry-batch " PACKAGE_VERSION);
     /* OpenEXR's standard attributes (scene/camera_matrix.h: conventions) */
     float w2c[16], w2ndc[16];
-    if (cv_camera_world_to_camera(&plan->camera, w2c) &&
-        cv_camera_world_to_ndc(&plan->camera, w2ndc)) {
+    if (cv_camera_world_to_camera(&plan->camera, w2c))
         cv_metadata_set_m44f(m, "worldToCamera", w2c);
+    if (cv_camera_world_to_ndc(&plan->camera, w2ndc))
         cv_metadata_set_m44f(m, "worldToNDC", w2ndc);
-    }
     set_capture_date(m);
     char host[256] = "";
     if (gethostname(host, sizeof(host) - 1) == 0 && host[0])

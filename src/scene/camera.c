@@ -11,6 +11,51 @@
 #include "scene/builder.h"
 #include "scene/film.h"
 
+static bool shutter(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
+                    struct cv_error *err)
+{
+    double open = cv_params_float(ps, "shutteropen", 0), close = cv_params_float(ps, "shutterclose", 1);
+    if (close < open) { /* pbrt-v4 swaps them too */
+        double t = open;
+        open = close;
+        close = t;
+        if (!cv_b_warn(b, err, loc, "shutterclose is before shutteropen; swapped"))
+            return false;
+    }
+    b->shutter[0] = open;
+    b->shutter[1] = close;
+    b->exposure_time = close - open;
+    return true;
+}
+
+/* pbrt-v4's "spherical" (mapping "equalarea", its default, or
+ * "equirectangular") and pbrt-v3's "environment" (equirectangular): rays
+ * from the camera's origin over the whole sphere. Its lens and screen
+ * window are read, as pbrt-v4 reads them, and have no effect; fov is not
+ * read (pbrt-v4's unused-parameter warning). */
+static bool spherical(struct cv_builder *b, const char *type, struct cv_params *ps,
+                      const struct cv_loc *loc, struct cv_error *err)
+{
+    b->cam_type = CV_CAMERA_EQUIRECT;
+    b->lensradius = 0;  /* a Camera before it may have set one */
+    if (strcmp(type, "spherical") == 0) {
+        const char *m = cv_params_string(ps, "mapping", "equalarea");
+        if (strcmp(m, "equalarea") == 0) {
+            b->cam_type = CV_CAMERA_EQUAL_AREA;
+        } else if (strcmp(m, "equirectangular") != 0) {
+            const struct cv_param *p = cv_params_find(ps, "mapping");
+            return cv_fail(err, "%s:%d:%d: unknown mapping \"%s\" of the spherical camera "
+                           "(\"equalarea\" or \"equirectangular\")",
+                           p->file, p->line, p->col, m);
+        }
+    }
+    static const char *const read[] = {"lensradius", "focaldistance", "frameaspectratio",
+                                       "screenwindow"};
+    for (size_t i = 0; i < CV_ARRAY_SIZE(read); i++)
+        cv_params_find(ps, read[i]);
+    return shutter(b, ps, loc, err);
+}
+
 bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
                  const struct cv_loc *loc, struct cv_error *err)
 {
@@ -39,6 +84,8 @@ bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
         b->cam_type = CV_CAMERA_PERSPECTIVE;
     } else if (strcmp(type, "orthographic") == 0) {
         b->cam_type = CV_CAMERA_ORTHOGRAPHIC;
+    } else if (strcmp(type, "spherical") == 0 || strcmp(type, "environment") == 0) {
+        return spherical(b, type, ps, loc, err);
     } else {
         if (!cv_b_warn(b, err, loc, "camera \"%s\" is not supported; perspective used", type))
             return false;
@@ -56,18 +103,7 @@ bool cv_b_camera(struct cv_builder *b, const char *type, struct cv_params *ps,
     b->focaldistance = cv_params_float(ps, "focaldistance", 1e6);
     b->frameaspect = cv_params_float(ps, "frameaspectratio", -1);
     b->has_screen = cv_params_floats(ps, "screenwindow", b->screen, 4);
-    double open = cv_params_float(ps, "shutteropen", 0), close = cv_params_float(ps, "shutterclose", 1);
-    if (close < open) { /* pbrt-v4 swaps them too */
-        double t = open;
-        open = close;
-        close = t;
-        if (!cv_b_warn(b, err, loc, "shutterclose is before shutteropen; swapped"))
-            return false;
-    }
-    b->shutter[0] = open;
-    b->shutter[1] = close;
-    b->exposure_time = close - open;
-    return true;
+    return shutter(b, ps, loc, err);
 }
 
 bool cv_b_film(struct cv_builder *b, const char *type, struct cv_params *ps,

@@ -37,7 +37,7 @@ bool cv_camera_world_to_camera(const CvCamera *cam, float out[16])
 bool cv_camera_world_to_ndc(const CvCamera *cam, float out[16])
 {
     struct cv_mat4 w2c;
-    if (!world_to_camera(cam, &w2c))
+    if (cam->type >= CV_CAMERA_EQUAL_AREA || !world_to_camera(cam, &w2c))
         return false;
     /* glsl/shared/scene.h: screen x = camera x / (z tan_half) (perspective)
      * or camera x (orthographic); ndc x = (sx - xmin) / (xmax - xmin),

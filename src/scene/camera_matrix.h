@@ -21,7 +21,8 @@
 bool cv_camera_world_to_camera(const CvCamera *cam, float out[16]);
 
 /* Perspective: w is camera-space z; orthographic: w is 1. z' holds w as
- * well (OpenEXR drops it). False as above. */
+ * well (OpenEXR drops it). False as above, and for a spherical camera,
+ * which no projective matrix stands for. */
 bool cv_camera_world_to_ndc(const CvCamera *cam, float out[16]);
 
 #endif

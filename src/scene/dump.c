@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mem.h"
 #include "scene/dump.h"
 
 static const char *mat_type(uint32_t t)
@@ -63,7 +64,13 @@ void cv_scene_dump(const struct cv_scene *s, FILE *o)
     fprintf(o, "integrator %s maxdepth %u\n", st->integrator ? st->integrator : "-", st->max_depth);
     fprintf(o, "filter %d radius %.6g %.6g sigma %.6g\n", (int)st->filter, st->filter_radius[0],
             st->filter_radius[1], st->filter_sigma);
-    fprintf(o, "camera %s", c->type == CV_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective");
+    static const char *const types[] = {
+        [CV_CAMERA_PERSPECTIVE] = "perspective",
+        [CV_CAMERA_ORTHOGRAPHIC] = "orthographic",
+        [CV_CAMERA_EQUAL_AREA] = "spherical-equalarea",
+        [CV_CAMERA_EQUIRECT] = "spherical-equirectangular",
+    };
+    fprintf(o, "camera %s", c->type < CV_ARRAY_SIZE(types) ? types[c->type] : "?");
     v4(o, "row0", c->to_world[0]);
     v4(o, "row1", c->to_world[1]);
     v4(o, "row2", c->to_world[2]);

@@ -177,7 +177,7 @@ static void setup_camera(struct cv_renderer *r, const struct cv_scene *s,
     u->lens_radius = c->lens.x;
     u->focal_distance = c->lens.y;
     u->tan_half_fov = c->lens.z;
-    u->orthographic = c->type == CV_CAMERA_ORTHOGRAPHIC ? 1.0f : 0.0f;
+    u->camera_type = c->type;
     cv_camera_motion_setup(c, u);
 }
 

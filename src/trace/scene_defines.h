@@ -21,6 +21,9 @@
      * which made the shade stages several times slower on scenes without \
      * textures (bench/RESULTS.md, "Figures behind the code") */ \
     X("CV_NO_ENV", !gs->has_env) \
+    /* the spherical cameras' rays: the camera ray is made in the shade \
+     * kernels too (regenerate.glsl), where every branch costs registers */ \
+    X("CV_SPHERICAL_CAMERA", gs->spherical_camera) \
     X("CV_NO_TEXTURES", !gs->has_textures) \
     /* a tree deeper than the default stack allows is traced with a larger \
      * one (bvh/bvh.h) */ \

@@ -250,6 +250,7 @@ void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g->has_env = true;
+    g->spherical_camera = s->camera.type >= CV_CAMERA_EQUAL_AREA;
     g->has_textures = s->n_textures > 0;
     g->has_media = s->n_media > 0;
     g->has_medium_grids = s->n_medium_grids > 0;

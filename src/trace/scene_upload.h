@@ -39,6 +39,7 @@ struct cv_scene_gpu {
     bool has_medium_grids; /* some medium is a grid (CV_MEDIUM_GRIDS) */
     bool has_medium_cloud; /* some medium is a cloud (CV_MEDIUM_CLOUDS; its data is in the grids) */
     bool has_env;     /* an infinite light exists */
+    bool spherical_camera; /* the camera is spherical (CV_SPHERICAL_CAMERA) */
     bool has_alpha;   /* some material has an alpha cut-out */
     bool has_textures; /* the texture table is not empty */
     bool empty;       /* no triangles and no curves: nothing to hit */

@@ -109,7 +109,9 @@ static void test_camera_overrides(void)
         "version: 1\njobs:\n"
         "  - {name: a, scene: s.pbrt, resolution: [32, 16], camera: {fov: 22, "
         "lookat: [[1, 2, 3], [0, 0, 1], [0, 1, 0]]}}\n"
-        "  - {name: b, scene: s.pbrt, camera: {lookat: [[0, 0, 0], [0, 0, 1], [0, 0, 2]]}}\n");
+        "  - {name: b, scene: s.pbrt, camera: {lookat: [[0, 0, 0], [0, 0, 1], [0, 0, 2]]}}\n"
+        "  - {name: c, scene: s.pbrt, resolution: [32, 8], camera: {lookat: [1, 0, 0, 1, 0, 1, "
+        "0, 1, 0]}}\n");
     if (!tap_ok(moved && plain && m, "scenes and manifest load")) {
         cv_scene_destroy(&moved);
         cv_scene_destroy(&plain);
@@ -129,6 +131,19 @@ static void test_camera_overrides(void)
                strstr(err.msg, "m.yaml:4:") && strstr(err.msg, "camera.lookat") &&
                strstr(err.msg, "parallel"),
            "an up vector along the view direction fails at the job: %s", err.msg);
+    cv_error_clear(&err);
+    /* a spherical camera sees every direction: no fov to set; a new aspect
+     * ratio changes no screen window of it */
+    struct cv_scene *sph = scene_of("Camera \"spherical\"\nWorldBegin\n");
+    tap_ok(sph && !cv_plan_make(&m->jobs[0], sph, &o, &p, &err) && strstr(err.msg, "m.yaml:3:66:") &&
+               strstr(err.msg, "camera.fov: the scene's camera is spherical"),
+           "camera.fov on a spherical camera fails at the key: %s", err.msg);
+    cv_error_clear(&err);
+    tap_ok(sph && cv_plan_make(&m->jobs[2], sph, &o, &p, &err) &&
+               p.camera.type == CV_CAMERA_EQUAL_AREA && p.width == 32 && p.height == 8 &&
+               p.camera.to_world[0].w == 1,
+           "camera.lookat and a resolution of another aspect on a spherical camera %s", err.msg);
+    cv_scene_destroy(&sph);
     cv_scene_destroy(&moved);
     cv_scene_destroy(&plain);
     cv_manifest_destroy(&m);

@@ -1,6 +1,7 @@
 /* camera_matrix_test.c: worldToCamera and worldToNDC (scene/camera_matrix.h)
  * against points worked out by hand: a perspective LookAt camera, one with
- * a crop (NDC spans the full film, not the crop) and an orthographic one. */
+ * a crop (NDC spans the full film, not the crop) and an orthographic one; a
+ * spherical one has no worldToNDC. */
 #include <math.h>
 
 #include "scene/camera_matrix.h"
@@ -74,5 +75,10 @@ int main(void)
     want_y = (1 - 0.25) / 2;
     tap_ok(near(out[0], want_x) && near(out[1], want_y),
            "orthographic NDC (%g, %g), want (%g, %g)", out[0], out[1], want_x, want_y);
+
+    CvCamera cs = camera(CV_CAMERA_EQUAL_AREA, whole);
+    float w2c[16];
+    tap_ok(cv_camera_world_to_camera(&cs, w2c) && !cv_camera_world_to_ndc(&cs, m),
+           "a spherical camera has worldToCamera and no worldToNDC");
     return tap_done();
 }

@@ -9,6 +9,7 @@
 #include <OpenEXR/ImfCRgbaFile.h>
 #include <png.h>
 
+#include "base/mem.h"
 #include "scene/filter.h"
 #include "scene/image.h"
 #include "scene/scene.h"
@@ -93,6 +94,34 @@ static void test_transforms(void)
         tap_ok(s->n_lights == 1 && near(s->lights[0].direction.z, -1, 1e-6),
                "distant light in camera space points along the view");
     }
+    cv_scene_destroy(&s);
+    /* pbrt-v4's spherical camera: equal area by default; its lens and
+     * screen window read (no warning), fov not (a warning with --strict) */
+    static const struct {
+        const char *camera;
+        uint32_t type;
+    } sph[] = {
+        {"\"spherical\" \"float lensradius\" 1 \"float screenwindow\" [0 1 0 1]", CV_CAMERA_EQUAL_AREA},
+        {"\"spherical\" \"string mapping\" \"equalarea\"", CV_CAMERA_EQUAL_AREA},
+        {"\"spherical\" \"string mapping\" \"equirectangular\"", CV_CAMERA_EQUIRECT},
+        {"\"environment\"", CV_CAMERA_EQUIRECT},  /* pbrt-v3's */
+    };
+    for (size_t i = 0; i < sizeof(sph) / sizeof(sph[0]); i++) {
+        char *text = cv_xasprintf("Camera %s\nWorldBegin\n", sph[i].camera);
+        struct cv_error err = {0};
+        s = th_load(text, true, &err);
+        tap_ok(s && s->camera.type == sph[i].type && s->camera.lens.x == 0,
+               "Camera %s: type %u, no lens (%s)", sph[i].camera, sph[i].type, s ? "" : err.msg);
+        cv_scene_destroy(&s);
+        free(text);
+    }
+    fails("Camera \"spherical\"\n  \"string mapping\" \"cube\"\nWorldBegin\n", false,
+          ":2:3: unknown mapping \"cube\" of the spherical camera", "unknown spherical mapping");
+    fails("Camera \"spherical\" \"float fov\" 30\nWorldBegin\n", true, "fov",
+          "fov on a spherical camera is unused");
+    s = ok_load("Camera \"perspective\" \"float lensradius\" 0.5\nCamera \"spherical\"\nWorldBegin\n",
+                "a spherical camera after a thin lens");
+    tap_ok(s && s->camera.lens.x == 0, "the spherical camera has no lens");
     cv_scene_destroy(&s);
 }
 

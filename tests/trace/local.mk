@@ -89,6 +89,10 @@ tests_trace_guide_choice_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/hdr_envmap_test
 TESTS += tests/trace/hdr_envmap_test
 tests_trace_hdr_envmap_test_LDADD = $(CV_LIBS)
+# --- pbrt-v4's spherical camera, pbrt-v3's environment camera ---
+check_PROGRAMS += tests/trace/spherical_camera_test
+TESTS += tests/trace/spherical_camera_test
+tests_trace_spherical_camera_test_LDADD = $(CV_LIBS)
 # --- next-event estimation off against on; BSDFs with a delta lobe ---
 check_PROGRAMS += tests/trace/nee_test tests/trace/bsdf_delta_test
 TESTS += tests/trace/nee_test tests/trace/bsdf_delta_test

@@ -30,14 +30,21 @@ void cv_bdpt_camera_at(float u_time)
     g_cam_inv = inverse(g_cam_m);
 }
 
-bool cv_bdpt_ortho() { return u_pass.orthographic == 1.0; }
+bool cv_bdpt_ortho() { return u_pass.camera_type == CV_CAMERA_ORTHOGRAPHIC; }
 
 // Whether a light subpath vertex can be joined to the lens (t = 1): not
 // through an orthographic pinhole, whose rays all leave in one direction
 // (a delta density: pbrt-v4's bdpt takes no such camera; its camera
 // vertex is marked delta, cv_bdpt_camera_delta, so that the MIS weights
-// count no strategy that would need it).
-bool cv_bdpt_camera_connectible() { return !cv_bdpt_ortho() || u_pass.lens_radius > 0.0; }
+// count no strategy that would need it), nor into a spherical camera,
+// whose importance pbrt-v4 does not define either: its image is the
+// camera subpaths' strategies alone, the same image with more noise in
+// caustics seen directly.
+bool cv_bdpt_camera_connectible()
+{
+    return u_pass.camera_type == CV_CAMERA_PERSPECTIVE ||
+           (cv_bdpt_ortho() && u_pass.lens_radius > 0.0);
+}
 bool cv_bdpt_camera_delta() { return !cv_bdpt_camera_connectible(); }
 
 // Area of the screen window: on the camera-space plane z = 1 for a
@@ -86,9 +93,12 @@ vec3 cv_bdpt_to_camera_point(vec3 p) { return g_cam_inv * (p - g_cam_o); }
 // lens sends the ray of lens offset pl along (-pl, focal distance) from
 // any film point: the lens's uniform density seen as directions; an
 // orthographic pinhole's one direction is a delta (0 here, as a specular
-// bounce's, which the MIS weights take as such).
+// bounce's, which the MIS weights take as such); a spherical camera's
+// vertex counts as delta too (cv_bdpt_camera_connectible): 0.
 float cv_bdpt_camera_pdf_dir(vec3 w)
 {
+    if (u_pass.camera_type >= CV_CAMERA_EQUAL_AREA)
+        return 0.0;
     vec3 dc = cv_bdpt_to_camera_dir(w);
     float c = dc.z / length(dc);
     if (!(c > 0.0))
