@@ -249,6 +249,9 @@ CV_CHECK_SIZE(CvMaterial, 160);
 
 #define CV_LIGHTF_TWO_SIDED (1u << 0)
 #define CV_LIGHTF_EQUAL_AREA (1u << 1) /* v4 octahedral map, else v3 lat-long */
+/* an area light whose triangle's material is cut out (alpha): its points
+ * emit nothing where the cut-out masks them (glsl/trace/light/light.glsl) */
+#define CV_LIGHTF_ALPHA (1u << 2)
 /* bits 8..15: the medium the light sits in (glsl/shared/medium.h; pbrt-v4's
  * outside medium where the light was made): where bdpt's light subpaths
  * start, unless an area light's surface is a medium transition */

@@ -130,7 +130,7 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
 
     int light = (h.prim & CV_PRIM_CURVE) != 0u || sss_exit ? -1 : cv_tri_light[h.prim];  // curves emit nothing
     if (light >= 0) {
-        vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front);
+        vec3 Le = cv_light_Le_area(uint(light), wo, sf.uv, front, sf.p);
         cv_strategy_emitted(g, Le, flags);
         if (cv_max3(Le) > 0.0) {
             float w = 1.0;

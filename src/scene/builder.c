@@ -440,13 +440,9 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
             return false;
         emits = false;
     }
-    /* pbrt-v4 masks a light sample of a cut-out emitter by its alpha
-     * (DiffuseAreaLight::AlphaMasked); the shaders' light samples do not */
-    if (emits && (em->alpha < 1 || em->alpha_tex >= 0) &&
-        !cv_b_warn(b, err, loc, "the cut-out (\"alpha\") of an emitting shape hides it from "
-                   "rays, but its light samples are not masked: it lights the scene as if "
-                   "whole, where pbrt-v4 masks them"))
-        return false;
+    /* pbrt-v4 hands an emitting shape's alpha to its area light
+     * (DiffuseAreaLight::AlphaMasked) */
+    bool cut_out = em->alpha < 1 || em->alpha_tex >= 0;
     if (emits) {
         const struct cv_area_state *a = &b->gs.area;
         double L[3] = {a->L[0], a->L[1], a->L[2]};
@@ -470,7 +466,7 @@ bool cv_b_emit_mesh(struct cv_builder *b, const struct cv_mesh *m, const struct 
             CvLight l;
             memset(&l, 0, sizeof(l));
             l.type = CV_LIGHT_AREA;
-            l.flags = a->twosided ? CV_LIGHTF_TWO_SIDED : 0;
+            l.flags = (a->twosided ? CV_LIGHTF_TWO_SIDED : 0) | (cut_out ? CV_LIGHTF_ALPHA : 0);
             l.tex = a->tex;
             l.prim = (uint32_t)i;
             l.L = (cv_vec4){(float)L[0], (float)L[1], (float)L[2], (float)area};

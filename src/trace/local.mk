@@ -35,7 +35,7 @@ GLSL_FILES += \
 	glsl/trace/bsdf/fresnel.glsl glsl/trace/bsdf/microfacet.glsl glsl/trace/bsdf/diffuse.glsl \
 	glsl/trace/bsdf/conductor.glsl glsl/trace/bsdf/dielectric.glsl glsl/trace/bsdf/layered.glsl \
 	glsl/trace/bsdf/coated_closed.glsl \
-	glsl/trace/bsdf/plastic.glsl glsl/trace/bsdf/texture.glsl
+	glsl/trace/bsdf/plastic.glsl glsl/trace/bsdf/texture.glsl glsl/trace/bsdf/alpha.glsl
 libcavalry_a_SOURCES += src/trace/envmap_dist.c src/trace/envmap_dist.h
 GLSL_FILES += glsl/shared/envmap.h glsl/trace/light/light.glsl glsl/trace/light/light_buffers.glsl \
 	glsl/trace/light/envmap.glsl

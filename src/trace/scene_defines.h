@@ -24,6 +24,8 @@
     /* the spherical cameras' rays: the camera ray is made in the shade \
      * kernels too (regenerate.glsl), where every branch costs registers */ \
     X("CV_SPHERICAL_CAMERA", gs->spherical_camera) \
+    /* a cut-out emitter's light samples test its alpha (light/light.glsl) */ \
+    X("CV_ALPHA_EMITTERS", gs->alpha_emitters) \
     X("CV_NO_TEXTURES", !gs->has_textures) \
     /* a tree deeper than the default stack allows is traced with a larger \
      * one (bvh/bvh.h) */ \

@@ -239,17 +239,25 @@ static void keep_or_trim(struct cv_gpu *gpu, size_t idle, const char *what)
  * bin, else those of the materials that do. */
 static uint32_t textured_bins(const struct cv_scene *s, const CvLight *lights, uint32_t n_lights)
 {
-    for (uint32_t i = 0; i < n_lights; i++)
+    for (uint32_t i = 0; i < n_lights; i++) {
         if (lights[i].tex >= 0)
             return ~0u;
+        /* every bin's light samples read a textured cut-out */
+        if ((lights[i].flags & CV_LIGHTF_ALPHA) &&
+            s->materials[s->triangles[lights[i].prim].idx.w & CV_TRI_MATERIAL_MASK].alpha_tex >= 0)
+            return ~0u;
+    }
     return cv_shade_bins_textured(s->materials, s->n_materials);
 }
 
 void cv_scene_gpu_features(const struct cv_scene *s, struct cv_scene_gpu *g)
 {
-    for (uint32_t i = 0; i < s->n_lights; i++)
+    for (uint32_t i = 0; i < s->n_lights; i++) {
         if (s->lights[i].type == CV_LIGHT_INFINITE || s->lights[i].type == CV_LIGHT_INFINITE_MAP)
             g->has_env = true;
+        if (s->lights[i].flags & CV_LIGHTF_ALPHA)
+            g->alpha_emitters = true;
+    }
     g->spherical_camera = s->camera.type >= CV_CAMERA_EQUAL_AREA;
     g->has_textures = s->n_textures > 0;
     g->has_media = s->n_media > 0;

@@ -40,6 +40,7 @@ struct cv_scene_gpu {
     bool has_medium_cloud; /* some medium is a cloud (CV_MEDIUM_CLOUDS; its data is in the grids) */
     bool has_env;     /* an infinite light exists */
     bool spherical_camera; /* the camera is spherical (CV_SPHERICAL_CAMERA) */
+    bool alpha_emitters; /* some area light is cut out (CV_ALPHA_EMITTERS) */
     bool has_alpha;   /* some material has an alpha cut-out */
     bool has_textures; /* the texture table is not empty */
     bool empty;       /* no triangles and no curves: nothing to hit */

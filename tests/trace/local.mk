@@ -93,6 +93,10 @@ tests_trace_hdr_envmap_test_LDADD = $(CV_LIBS)
 check_PROGRAMS += tests/trace/spherical_camera_test
 TESTS += tests/trace/spherical_camera_test
 tests_trace_spherical_camera_test_LDADD = $(CV_LIBS)
+# --- cut-out emitters masked as pbrt-v4 masks them ---
+check_PROGRAMS += tests/trace/alpha_emitter_test
+TESTS += tests/trace/alpha_emitter_test
+tests_trace_alpha_emitter_test_LDADD = $(CV_LIBS)
 # --- next-event estimation off against on; BSDFs with a delta lobe ---
 check_PROGRAMS += tests/trace/nee_test tests/trace/bsdf_delta_test
 TESTS += tests/trace/nee_test tests/trace/bsdf_delta_test

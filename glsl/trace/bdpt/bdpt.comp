@@ -569,7 +569,7 @@ vec3 cv_bdpt_connect_s0(uint t, float splat_scale)
     if (!(dot(w, w) > 0.0))
         return vec3(0.0);
     w = normalize(w);
-    vec3 L = cv_light_Le_area(li, w, pt.uv.xy, dot(w, pt.ng.xyz) > 0.0) * pt.beta.rgb;
+    vec3 L = cv_light_Le_area(li, w, pt.uv.xy, dot(w, pt.ng.xyz) > 0.0, pt.p.xyz) * pt.beta.rgb;
     if (!(cv_max3(L) > 0.0))
         return vec3(0.0);
     float pt_rev = cv_bdpt_pdf_light_origin(li);
@@ -648,7 +648,7 @@ vec3 cv_bdpt_connect_s1(uint t, CvBdptVertex pt, CvBsdf bt, float splat_scale)
         float c = abs(dot(nl, wi));
         if (!(c > 0.0))
             return vec3(0.0);
-        Li = cv_light_Le_area(li, -wi, uvl, dot(-wi, nl) > 0.0);
+        Li = cv_light_Le_area(li, -wi, uvl, dot(-wi, nl) > 0.0, pl);
         pdf = pmf * cv_bdpt_light_pdf_pos(li) * d2 / c;
     } else {
         Li = cv_bdpt_light_I(li, -wi) / d2;
@@ -812,7 +812,7 @@ uint cv_bdpt_light_subpath()
     float pdf_dir;
     if (!cv_bdpt_light_dir(li, n, cv_bdpt_u(cv_bdpt_light_pair(0u, CV_BDPT_PAIR_EMIT_DIR)), w, pdf_dir))
         return 0u;
-    vec3 Le = cv_bdpt_light_emit(li, n, uv, w);
+    vec3 Le = cv_bdpt_light_emit(li, p, n, uv, w);
     float pdf_pos = cv_bdpt_light_pdf_pos(li);
     if (!(cv_max3(Le) > 0.0) || !(pdf_pos > 0.0))
         return 0u;
@@ -916,7 +916,10 @@ void main()
             if (cv_bsdf_is_delta(bt))
                 continue;
         }
-        if (n_light >= 1u && t - 1u <= max_depth && cv_bdpt_runs(1u, t))
+        // s = 1 samples a light point of its own: it runs whether or not
+        // the light subpath began (pbrt-v4 runs it only where it did, so
+        // that a light sample of a cut-out emitter there is masked twice)
+        if (t - 1u <= max_depth && cv_bdpt_runs(1u, t))
             L += cv_bdpt_connect_s1(t, pt, bt, splat_scale);
         for (uint s = 2u; s <= n_light && s + t - 2u <= max_depth; s++) {
             if (!cv_bdpt_runs(s, t))

@@ -273,11 +273,11 @@ bool cv_bdpt_light_dir(uint li, vec3 n, vec2 u, out vec3 w, out float pdf_dir)
 }
 
 // Radiance (area) or intensity (point, spot) light li sends in direction w
-// from its point (normal n, surface coordinates uv).
-vec3 cv_bdpt_light_emit(uint li, vec3 n, vec2 uv, vec3 w)
+// from its point p (normal n, surface coordinates uv).
+vec3 cv_bdpt_light_emit(uint li, vec3 p, vec3 n, vec2 uv, vec3 w)
 {
     if (lights[li].type == CV_LIGHT_AREA)
-        return cv_light_Le_area(li, w, uv, dot(w, n) > 0.0);
+        return cv_light_Le_area(li, w, uv, dot(w, n) > 0.0, p);
     return cv_bdpt_light_I(li, w);
 }
 

@@ -64,6 +64,7 @@
 #include "measured.glsl"
 #endif
 #include "texture.glsl"
+#include "alpha.glsl"
 #ifdef CV_HAS_SUBSURFACE
 #include "sss_exit.glsl"
 #endif
@@ -885,10 +886,9 @@ vec3 cv_bsdf_albedo(CvBsdf b)
 // and interface materials: true = the ray continues through the surface.
 bool cv_material_alpha_pass(uint material, vec2 uv, float u)
 {
-    CvMaterial m = materials[material];
-    if (m.type == CV_MAT_INTERFACE)
+    if (materials[material].type == CV_MAT_INTERFACE)
         return true;
-    float a = m.alpha_tex >= 0 ? cv_tex_eval(m.alpha_tex, vec4(m.alpha), uv, 0.0).x : m.alpha;
+    float a = cv_material_alpha(material, uv);
     if (a >= 1.0)
         return false;
     if (a <= 0.0)

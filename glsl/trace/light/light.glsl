@@ -15,6 +15,10 @@
 #include "../../lib/sampling.glsl"
 #include "../bsdf/texture.glsl"
 #include "envmap.glsl"
+#ifdef CV_ALPHA_EMITTERS
+#include "../../lib/rng.glsl"
+#include "../bsdf/alpha.glsl"
+#endif
 
 // wi: unit direction from p to the light; dist: distance to the sampled point
 // (1e30 for infinite and distant lights: trace the shadow ray to infinity;
@@ -71,13 +75,35 @@ vec3 cv_light_triangle_normal(uint tri, vec3 b)
     return n;
 }
 
-// Emitted radiance of area light `light` leaving its surface in direction
-// wo_from_light; front: that direction is on the emitting normal's side.
-vec3 cv_light_Le_area(uint light, vec3 wo_from_light, vec2 uv, bool front)
+#ifdef CV_ALPHA_EMITTERS
+// pbrt-v4's DiffuseAreaLight::AlphaMasked: whether the point p (surface
+// coordinates uv) of a cut-out emitter's triangle emits nothing, against
+// a hash of the point where its alpha is between 0 and 1.
+bool cv_light_alpha_masked(uint prim, vec2 uv, vec3 p)
+{
+    float a = cv_material_alpha(cv_triangles[prim].idx.w & CV_TRI_MATERIAL_MASK, uv);
+    if (a >= 1.0)
+        return false;
+    if (a <= 0.0)
+        return true;
+    uvec3 b = floatBitsToUint(p);
+    return float(cv_hash3(b.x, b.y, b.z) >> 8) * (1.0 / 16777216.0) > a;
+}
+#endif
+
+// Emitted radiance of area light `light` leaving its point p (surface
+// coordinates uv) in direction wo_from_light; front: that direction is on
+// the emitting normal's side. A cut-out emitter emits nothing where it is
+// masked, for light samples and hits alike, as pbrt-v4's L().
+vec3 cv_light_Le_area(uint light, vec3 wo_from_light, vec2 uv, bool front, vec3 p)
 {
     CvLight l = lights[light];
     if (!front && (l.flags & CV_LIGHTF_TWO_SIDED) == 0u)
         return vec3(0.0);
+#ifdef CV_ALPHA_EMITTERS
+    if ((l.flags & CV_LIGHTF_ALPHA) != 0u && cv_light_alpha_masked(l.prim, uv, p))
+        return vec3(0.0);
+#endif
     vec3 L = l.L.rgb;
     if (l.tex >= 0)
         L *= cv_tex_eval(l.tex, vec4(1.0), uv, 0.0).rgb;
@@ -177,7 +203,7 @@ bool cv_light_sample(vec3 p, vec3 n, vec3 u3, out CvLightSample s)
         float c = dot(nl, -wi);
         if (c == 0.0 || !(l.L.w > 0.0))
             return false;
-        vec3 L = cv_light_Le_area(i, -wi, uv, c > 0.0);
+        vec3 L = cv_light_Le_area(i, -wi, uv, c > 0.0, pl);
         // the shadow ray stops short of the lamp by its point's rounding
         // error (cv_point_error), measured along wi, so that it does not
         // find the lamp itself in the way

@@ -41,7 +41,7 @@ void main()
     if (cv_bsdf_sample(b, wo, cv_rng_next(rng), cv_rng_next2(rng), bs)) {
         float w = (bs.flags & CV_BSDF_SPECULAR) != 0u ? 1.0 : cv_power_heuristic(bs.pdf, cv_env_pdf(bs.wi));
         L += bs.f * abs(dot(bs.wi, sp.ns)) / bs.pdf * cv_env_Le(bs.wi) * w;
-        L += cv_light_Le_area(0u, -bs.wi, sp.uv, true) * cv_light_pdf_area(0u, sp.p, bs.wi, sp.ng);
+        L += cv_light_Le_area(0u, -bs.wi, sp.uv, true, sp.p) * cv_light_pdf_area(0u, sp.p, bs.wi, sp.ng);
     }
     shade_out[i] = vec4(L, cv_bsdf_is_delta(b) ? 1.0 : 0.0) + vec4(cv_bsdf_albedo(b), 0.0);
 }
