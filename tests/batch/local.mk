@@ -43,3 +43,6 @@ EXTRA_DIST += tests/batch/rlpath_finite_test.sh tests/batch/rlpath_frozen_test.s
 # --- bdpt's mattes are path's (issue 27) ---
 TESTS += tests/batch/mattes_bdpt_test.sh
 EXTRA_DIST += tests/batch/mattes_bdpt_test.sh
+# --- --scene-root when rendering, --check and --dry-run ---
+TESTS += tests/batch/scene_root_test.sh
+EXTRA_DIST += tests/batch/scene_root_test.sh
