@@ -46,3 +46,6 @@ EXTRA_DIST += tests/batch/mattes_bdpt_test.sh
 # --- --scene-root when rendering, --check and --dry-run ---
 TESTS += tests/batch/scene_root_test.sh
 EXTRA_DIST += tests/batch/scene_root_test.sh
+# --- exit status 70: out of host memory ---
+TESTS += tests/batch/out_of_memory_test.sh
+EXTRA_DIST += tests/batch/out_of_memory_test.sh
