@@ -49,3 +49,6 @@ EXTRA_DIST += tests/batch/scene_root_test.sh
 # --- exit status 70: out of host memory ---
 TESTS += tests/batch/out_of_memory_test.sh
 EXTRA_DIST += tests/batch/out_of_memory_test.sh
+# --- color.exposure and color.look reach the PNG ---
+TESTS += tests/batch/color_test.sh
+EXTRA_DIST += tests/batch/color_test.sh
