@@ -246,6 +246,7 @@ static bool read_light_scales(yaml_document_t *doc, yaml_node_t *n, const struct
     struct cv_ypair *pairs;
     size_t np = cv_ymap_pairs(doc, n, d, &pairs);
     struct cv_light_scales v = {0};
+    unsigned long first[CV_MAX_LIGHT_SCALES];  /* each pair's light, for duplicates */
     bool ok = true;
     if (np > CV_MAX_LIGHT_SCALES) {
         cv_diag_add(d, cv_yline(n), cv_ycol(n), "%s: %zu lights named; at most %u", k->name,
@@ -264,6 +265,19 @@ static bool read_light_scales(yaml_document_t *doc, yaml_node_t *n, const struct
             ok = false;
             continue;
         }
+        /* "0" and "00" are two YAML keys but one light: a duplicate key,
+         * as cavalry-manifest(5) has it, not two factors multiplied */
+        size_t twice = 0;
+        while (twice < i && first[twice] != idx)
+            twice++;
+        if (twice < i) {
+            cv_diag_add(d, cv_yline(pairs[i].key), cv_ycol(pairs[i].key),
+                        "%s: light %lu is named twice (first given as \"%s\" at line %zu)", k->name,
+                        idx, cv_ykey(&pairs[twice]), cv_yline(pairs[twice].key));
+            ok = false;
+            continue;
+        }
+        first[i] = idx;
         double x;
         if (!cv_yread_float(pairs[i].value, d, k->name, k->min, k->max, &x)) {
             ok = false;

@@ -86,7 +86,7 @@ struct cv_light_scales {
     struct cv_light_scale {
         uint32_t light;        /* index of the light directive, from 0 */
         float scale;           /* >= 0 */
-    } v[CV_MAX_LIGHT_SCALES];  /* in the order written, each light once */
+    } v[CV_MAX_LIGHT_SCALES];  /* sorted by light, each light once */
 };
 
 struct cv_job_lights {

@@ -43,3 +43,12 @@ EXTRA_DIST += tests/batch/rlpath_finite_test.sh tests/batch/rlpath_frozen_test.s
 # --- bdpt's mattes are path's (issue 27) ---
 TESTS += tests/batch/mattes_bdpt_test.sh
 EXTRA_DIST += tests/batch/mattes_bdpt_test.sh
+# --- --scene-root when rendering, --check and --dry-run ---
+TESTS += tests/batch/scene_root_test.sh
+EXTRA_DIST += tests/batch/scene_root_test.sh
+# --- exit status 70: out of host memory ---
+TESTS += tests/batch/out_of_memory_test.sh
+EXTRA_DIST += tests/batch/out_of_memory_test.sh
+# --- color.exposure and color.look reach the PNG ---
+TESTS += tests/batch/color_test.sh
+EXTRA_DIST += tests/batch/color_test.sh

@@ -7,7 +7,9 @@ shell tests, with a real parser.
   progress_check.py dryrun FILE [EXPECT...]  --dry-run --json document
 
 EXPECT items are checks by name (see the functions below), e.g.
-"done=3", "not_started=b,c", "errors", "stdin". Prints what is wrong and
+"done=3", "not_started=b,c", "errors", "stdin", "fields" (every event's
+fields, as cavalry-batch(1) lists them; "fields_gpu": and a job's events
+name their GPU). Prints what is wrong and
 exits 1; exits 0 when every check holds."""
 import datetime
 import json
@@ -22,6 +24,26 @@ JOB_PHASES = ["bvh_build", "program_compile", "render", "colour", "write"]
 
 problems = []
 
+# The fields cavalry-batch(1), PROGRESS EVENTS, lists for each event, with
+# their types: "int" (not a boolean), "num" (int or float), "str",
+# "strs" (a list of strings).
+FIELDS = {
+    "batch_started": {"manifest": "str", "jobs": "strs"},
+    "phase": {"phase": "str"},
+    "job_started": {"index": "int", "total": "int", "target_spp": "int"},
+    "progress": {"spp": "int", "target_spp": "int", "percent": "num", "eta_s": "num",
+                 "rays_per_s": "num", "elapsed_s": "num"},
+    "job_finished": {"spp": "int", "seconds": "num", "scene_seconds": "num",
+                     "render_seconds": "num", "outputs": "strs"},
+    "error": {"message": "str"},
+    "batch_finished": {"done": "int", "partial": "int", "failed": "int", "skipped": "int",
+                       "not_started": "strs"},
+}
+for _end in ("job_partial", "job_failed", "job_skipped"):
+    FIELDS[_end] = FIELDS["job_finished"]
+JOB_EVENTS = ("job_started", "progress", "job_finished", "job_partial", "job_failed",
+              "job_skipped")
+
 
 def fail(msg):
     problems.append(msg)
@@ -32,6 +54,57 @@ def parse_time(s):
         fail("time %r is not ISO 8601 UTC with milliseconds" % (s,))
         return None
     return datetime.datetime.strptime(s, "%Y-%m-%dT%H:%M:%S.%fZ")
+
+
+def of_type(v, kind):
+    if kind == "int":
+        return isinstance(v, int) and not isinstance(v, bool)
+    if kind == "num":
+        return isinstance(v, (int, float)) and not isinstance(v, bool)
+    if kind == "str":
+        return isinstance(v, str)
+    return isinstance(v, list) and all(isinstance(x, str) for x in v)
+
+
+def check_fields(events, job_gpu):
+    """Every event is one the page names, with each of its fields present
+    and of its type; job events name their job (and GPU where asked)."""
+    for e in events:
+        name = e.get("event")
+        if name not in FIELDS:
+            fail("an event the page does not name: %r" % (e,))
+            continue
+        for key, kind in FIELDS[name].items():
+            if key not in e:
+                fail("%s without %s: %r" % (name, key, e))
+            elif not of_type(e[key], kind):
+                fail("%s: %s is not %s: %r" % (name, key, kind, e))
+        if name in JOB_EVENTS and not of_type(e.get("job"), "str"):
+            fail("%s without its job: %r" % (name, e))
+        if "gpu" in e and not (of_type(e["gpu"], "int") and e["gpu"] >= 0):
+            fail("gpu is not a device index: %r" % (e,))
+        if job_gpu and "job" in e and "gpu" not in e:
+            fail("a job's event without its gpu: %r" % (e,))
+        if name == "phase" and e.get("phase") not in BATCH_PHASES + JOB_PHASES:
+            fail("unknown phase: %r" % (e,))
+        if "file" in e and not of_type(e["file"], "str"):
+            fail("file is not a string: %r" % (e,))
+        if name == "job_started" and not 1 <= e.get("index", 0) <= e.get("total", 0):
+            fail("index not within 1..total: %r" % (e,))
+        if name == "progress" and not (0 <= e.get("percent", -1) <= 100 and
+                                       e.get("eta_s", -1) >= 0 and e.get("rays_per_s", -1) >= 0
+                                       and e.get("elapsed_s", -1) >= 0):
+            fail("progress out of range: %r" % (e,))
+        if name == "job_failed" and not of_type(e.get("error"), "str"):
+            fail("job_failed without its error: %r" % (e,))
+        if name == "job_skipped" and not of_type(e.get("detail"), "str"):
+            fail("job_skipped without why (detail): %r" % (e,))
+        if "detail" in e and not of_type(e["detail"], "str"):
+            fail("detail is not a string: %r" % (e,))
+        if name == "error" and ("file" in e or "line" in e or "column" in e):
+            if not (of_type(e.get("file"), "str") and of_type(e.get("line"), "int") and
+                    of_type(e.get("column"), "int") and e["line"] >= 1 and e["column"] >= 1):
+                fail("error with part of a place (file, line, column from 1): %r" % (e,))
 
 
 def check_json(path, expect):
@@ -140,6 +213,8 @@ def check_json(path, expect):
                 if "job" in e and not (isinstance(e.get("worker"), int) and
                                        isinstance(e.get("gpu"), int)):
                     fail("job event without worker and gpu: %r" % (e,))
+        elif x == "fields" or x == "fields_gpu":
+            check_fields(events, x == "fields_gpu")
         elif x == "no_workers":
             if [e for e in events if "worker" in e]:
                 fail("events name workers in a single process")

@@ -5,7 +5,9 @@
 # samples stay the same, so twice the light is exactly twice the pixels,
 # and the environment turned by env.rotate is the environment turned by
 # the scene's own Rotate; env.file shows another image in the environment,
-# read as the scene's own map is.
+# read as the scene's own map is. lights.scale takes at most 32 lights, each
+# named once (also when spelt "0" and "00"), anything else an error at its
+# line and column.
 . "${srcdir:-.}/tests/setup.sh"
 data="$CV_TEST_DATA/batch"
 exr_scale="$CV_TEST_BUILDDIR/batch/exr_scale"
@@ -18,6 +20,35 @@ check "--dump-scene names the light directives" \
 "$CAVALRY_BATCH" --dump-scene="$data/tiny.pbrt" >dump_tiny.txt
 check "--dump-scene: an area light's directive names its triangles' lights" \
     grep -q '^  light-source 0 area diffuse lights 2$' dump_tiny.txt
+
+# lights.scale: at most 32 lights, each once. many.pbrt has 32 light
+# directives: the area light of tiny.pbrt and 31 dim point lights.
+cp "$data/tiny.pbrt" many.pbrt
+for i in $(seq 1 31); do
+    echo "LightSource \"point\" \"rgb I\" [ 0.02 0.02 0.02 ] \"point3 from\" [ $i 1 0 ]"
+done >>many.pbrt
+all32=$(seq 0 31 | sed 's/$/: 0.5/' | tr '\n' ',' | sed 's/,$//')
+all33=$(seq 0 32 | sed 's/$/: 0.5/' | tr '\n' ',' | sed 's/,$//')
+# lights_check SCALES: --check of a job on many.pbrt with lights.scale SCALES
+lights_check() {
+    printf 'version: 1\njobs:\n  - name: a\n    scene: many.pbrt\n    lights: {scale: {%s}}\n' \
+        "$1" >lights.yaml
+    "$CAVALRY_BATCH" --check lights.yaml >lights.out 2>lights.err
+}
+check "lights.scale: 32 lights named are valid" lights_check "$all32"
+lights_check "$all33" && rc=0 || rc=$?
+check "lights.scale: 33 lights named: exit 3 (got $rc)" test "$rc" -eq 3
+check "lights.scale: 33 lights named: at the mapping's line:col" \
+    grep -qx 'error: lights.yaml:5:21: lights.scale: 33 lights named; at most 32' lights.err
+lights_check "0: 2, 1: 1, 0: 3" && rc=0 || rc=$?
+check "lights.scale: a light named twice: exit 3 (got $rc)" test "$rc" -eq 3
+check "lights.scale: a light named twice: a duplicate key at its line:col" \
+    grep -qx 'error: lights.yaml:5:34: duplicate key "0" (first given at line 5)' lights.err
+lights_check "0: 2, 1: 1, 00: 3" && rc=0 || rc=$?
+check "lights.scale: a light named twice, spelt two ways: exit 3 (got $rc)" test "$rc" -eq 3
+check "lights.scale: a light named twice, spelt two ways: at its line:col" grep -qx \
+    'error: lights.yaml:5:34: lights.scale: light 0 is named twice (first given as "0" at line 5)' \
+    lights.err
 
 "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1 || skip_all "no GPU context"
 cat >m.yaml <<Y
@@ -68,6 +99,20 @@ check "env.rotate = the scene's own Rotate" \
     "$exr_scale" times out/turned_scene.exr out/turned.exr 1 1e-4
 check "env.rotate changes the image" \
     sh -c "! '$exr_scale' times out/base.exr out/turned.exr 1 1e-2 2>/dev/null"
+
+# 32 lights, each halved: every pixel halved
+cat >half.yaml <<Y
+version: 1
+defaults: {scene: many.pbrt, output: "out/{name}", spp: 2, seed: 3, resolution: [8, 6],
+           formats: [exr], exr: {half: false}}
+jobs:
+  - name: many
+  - name: many_half
+    lights: {scale: {$all32}}
+Y
+check "32 lights scaled: renders" "$CAVALRY_BATCH" --progress=none half.yaml
+check "32 lights, each halved: every pixel halved" \
+    "$exr_scale" times out/many.exr out/many_half.exr 0.5 1e-5
 
 # env.file: the scene's own image again changes nothing; a uniform grey map
 # lights as a constant environment of its value does

@@ -1,12 +1,13 @@
 #!/bin/sh
 # resume_stale_test.sh: issue 25 section 2. --resume skips a job only when
 # its outputs are up to date and intact: the settings hash covers every
-# file the scene reads (an Include, a texture) and the effective OCIO
-# config ($OCIO); a header-only EXR or a PNG with a flipped byte is
-# rendered again; an image stopped by its time limit says so
-# (cavalry.status: time-limit, with the spp reached and asked for) and is
-# rendered again; a killed writer's temporary file is removed by the next
-# write of that name. Skips are read from --dry-run --resume.
+# file the scene reads (an Include, a texture), a job's env.file image (its
+# modification time, its size) and the effective OCIO config ($OCIO); a
+# header-only EXR or a PNG with a flipped byte is rendered again; an image
+# stopped by its time limit says so (cavalry.status: time-limit, with the
+# spp reached and asked for) and is rendered again; a killed writer's
+# temporary file is removed by the next write of that name. Skips are read
+# from --dry-run --resume.
 . "${srcdir:-.}/tests/setup.sh"
 exr_attr="$CV_TEST_BUILDDIR/batch/exr_attr"
 data="$CV_TEST_DATA/batch"
@@ -54,6 +55,32 @@ echo '# changed' >>my.ocio
 touch -d '2003-03-03' my.ocio
 check "the \$OCIO config changed: rendered again" not_skipped
 render
+
+# env.file: its size and modification time enter the settings hash
+# (cavalry-manifest(5)), named relative to a manifest in another folder
+mkdir -p envjob
+cp "$data/gray.pfm" envjob/sky.pfm
+printf 'version: 1\njobs:\n  - {name: e, scene: %s, env: {file: sky.pfm}, spp: 1, formats: [exr], output: "out/{name}"}\n' \
+    "$data/env.pbrt" >envjob/env.yaml
+env_skipped() {
+    "$CAVALRY_BATCH" --dry-run --resume envjob/env.yaml >env_plan.txt 2>env_plan.err
+    grep -q '^e: .*(up to date: skipped)' env_plan.txt
+}
+env_not_skipped() { ! env_skipped; }
+env_render() { "$CAVALRY_BATCH" --progress=none envjob/env.yaml 2>env_render.err || cat env_render.err; }
+env_render
+check "env.file: rendered" test -s envjob/out/e.exr
+check "env.file: up to date after rendering" env_skipped
+touch -d '2004-04-04' envjob/sky.pfm
+check "env.file touched: rendered again" env_not_skipped
+env_render
+check "env.file: up to date again" env_skipped
+# another image of another size, under the old modification time
+cp "$data/../trace/oracle/envmap.pfm" envjob/sky.pfm
+touch -d '2004-04-04' envjob/sky.pfm
+check "env.file changed in size only: rendered again" env_not_skipped
+env_render
+check "env.file: up to date once more" env_skipped
 
 # damaged outputs
 cp out/a.exr good.exr

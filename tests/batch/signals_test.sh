@@ -1,7 +1,8 @@
 #!/bin/sh
 # signals_test.sh: what a farm expects of signals. SIGTERM, SIGINT and SIGHUP
 # mid-render stop after the pass, write a valid image marked partial, leave
-# no temporary file and exit 128 + the signal (143, 130, 129). A reader that
+# no temporary file and exit 128 + the signal (143, 130, 129); a second
+# signal ends the process at once, with no image. A reader that
 # closes stdout (SIGPIPE) does not kill the render, and the failed write of
 # the progress stream is reported.
 . "${srcdir:-.}/tests/setup.sh"
@@ -43,6 +44,34 @@ stop() {
 stop TERM 143
 stop INT 130
 stop HUP 129
+
+# A second signal exits at once: no pass is finished, no image written,
+# no further event. The process is stopped while both are sent, so that
+# the second comes after the first has been handled, never merged with it
+# while pending: two different signals, both pending at SIGCONT, are
+# handled one after the other (only the main thread takes them).
+rm -rf out run.jsonl run.err
+"$CAVALRY_BATCH" --progress=json long.yaml >run.jsonl 2>run.err &
+pid=$!
+n=0
+while ! grep -q '"event":"progress"' run.jsonl 2>/dev/null; do
+    n=$((n + 1))
+    if [ "$n" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
+    sleep 0.1
+done
+kill -STOP "$pid"
+kill -TERM "$pid"
+kill -INT "$pid"
+kill -CONT "$pid"
+set +e
+wait "$pid"
+rc=$?
+set -e
+check "two signals: ended by one of them (status $rc)" test "$rc" -eq 143 -o "$rc" -eq 130
+check "two signals: the first was taken" grep -q 'signal again to quit now' run.err
+check "two signals: no image written" test ! -e out/long.exr
+check "two signals: not reported partial" sh -c "! grep -q '\"event\":\"job_partial\"' run.jsonl"
+check "two signals: no batch_finished" sh -c "! grep -q '\"event\":\"batch_finished\"' run.jsonl"
 
 # A reader that has gone before the first event: every write of the
 # progress stream meets a closed pipe.

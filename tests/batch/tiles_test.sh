@@ -4,7 +4,9 @@
 # pixels, every channel, equal the same pixels of the full render at the
 # same seed (samples are keyed by the full-film pixel); 2x2 tiles merged by
 # --merge equal the full render bit for bit, and --merge refuses tiles that
-# overlap or leave a gap. OpenEXR's worldToCamera and worldToNDC map a
+# overlap, leave a gap or differ in display window, channels, pixel types or
+# compression (exit status 3, nothing written); a tile that is not complete
+# makes the merged image partial. OpenEXR's worldToCamera and worldToNDC map a
 # known world point where the manifest's LookAt puts it; capDate, host,
 # version, colour and spp are in the EXR header and the PNG text, which has
 # one Software chunk. AOVs with formats [png] alone fail at their line.
@@ -41,6 +43,63 @@ check "overlap named" grep -q "overlap" overlap.err
 check "--merge refuses a gap" sh -c "! '$CAVALRY_BATCH' --merge bad.exr out/t00.exr out/t10.exr out/t01.exr 2>gap.err"
 check "gap named" grep -q "cover 144 of the display window's 192 pixels" gap.err
 check "no output after a refused merge" test ! -e bad.exr
+check "the merged tiles are complete" \
+    sh -c "test \"\$('$probe' attr merged.exr cavalry.status)\" = complete"
+
+# Tiles that do not match t00, t01 and t11: each in place of t10, each
+# refused with exit status 3 and nothing written. A tile stopped by its
+# time limit merges, and the merged image says partial.
+cat >odd.yaml <<'Y'
+version: 1
+defaults:
+  scene: tiles.pbrt
+  output: odd/{name}
+  formats: [exr]
+  spp: 3
+  seed: 11
+  aovs: [albedo, normal, depth]
+  crop: [0.5, 1, 0, 0.5]
+jobs:
+  - name: channels
+    aovs: []
+  - name: float
+    exr: {half: false}
+  - name: piz
+    exr: {compression: piz}
+  - name: window
+    resolution: [32, 24]
+  - name: cut
+    crop: [0.5, 1, 0.5, 1]
+    spp: 16777216
+    time_limit: 0.001
+Y
+check "renders odd tiles" "$CAVALRY_BATCH" --progress=none odd.yaml
+check "the cut tile is not complete" \
+    sh -c "test \"\$('$probe' attr odd/cut.exr cavalry.status)\" = time-limit"
+# refused TILE WANT: t00 TILE t01 t11 do not merge; exit 3, WANT said
+refused() {
+    rm -f bad.exr
+    "$CAVALRY_BATCH" --merge bad.exr out/t00.exr "odd/$1.exr" out/t01.exr out/t11.exr \
+        2>odd.err && rc=0 || rc=$?
+    if [ "$rc" -eq 3 ] && grep -q "odd/$1.exr: $2" odd.err && test ! -e bad.exr; then
+        ok "--merge refuses a tile of other $1: exit 3, said, nothing written"
+    else
+        not_ok "--merge refuses a tile of other $1 (exit $rc)"; sed 's/^/# /' odd.err
+    fi
+}
+refused channels "channels differ from the first tile's"
+refused float "channels differ from the first tile's"
+refused piz "compression differs from the first tile's"
+refused window "display window differs from out/t00.exr's"
+"$CAVALRY_BATCH" --merge bad.exr out/t00.exr out/t10.exr out/t01.exr out/t11.exr out/crop.exr \
+    2>/dev/null && rc=0 || rc=$?
+check "an overlap: exit 3 (got $rc)" test "$rc" -eq 3
+"$CAVALRY_BATCH" --merge bad.exr out/t00.exr out/t10.exr out/t01.exr 2>/dev/null && rc=0 || rc=$?
+check "a gap: exit 3 (got $rc)" test "$rc" -eq 3
+check "a partial tile merges" "$CAVALRY_BATCH" --merge part.exr out/t00.exr out/t10.exr \
+    out/t01.exr odd/cut.exr
+check "a partial tile: the merged image is partial" \
+    sh -c "test \"\$('$probe' attr part.exr cavalry.status)\" = partial"
 
 # worldToCamera: eye (2,0,0) looking at the origin, up +y: camera +z is
 # world -x, camera +x (right) is world +z, so (0, 0.25, 0.5) is at

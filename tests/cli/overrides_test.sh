@@ -3,8 +3,10 @@
 # --time-limit (the manifest's duration units) reach the plan, --dry-run and
 # --dry-run --json show them, and --resume's settings hash sees them (an
 # override equal to the manifest's value is the same render); --output-dir
-# moves the outputs; --only is repeatable and takes globs; "-" reads the
-# manifest from standard input; a bad flag is one line and a "Try" line.
+# moves the outputs (an absolute one too, with their locks and --resume; an
+# absolute template outside the manifest's folder stays); --only is
+# repeatable and takes globs; "-" reads the manifest from standard input; a
+# bad flag is one line and a "Try" line.
 . "${srcdir:-.}/tests/setup.sh"
 py=/usr/bin/python3
 [ -x "$py" ] || skip_all "no $py"
@@ -85,6 +87,23 @@ if "$CAVALRY_BATCH" --list-gpus >/dev/null 2>&1; then
         --output-dir outdir --only a --only b jobs.yaml
     check "a rendered (4 spp), b skipped (its own 2)" sh -c \
         'grep -q "\"event\":\"job_finished\",.*\"job\":\"a\"" r3.jsonl && grep -q "\"event\":\"job_skipped\",.*\"job\":\"b\"" r3.jsonl'
+    # An absolute --output-dir: the outputs, their locks and --resume under
+    # it; an absolute output template outside the manifest's folder is kept.
+    check_out "render --output-dir, absolute" abs.jsonl "$CAVALRY_BATCH" --progress=json \
+        --output-dir "$tmp/abs" --only c jobs.yaml
+    check "c written under the absolute folder" test -s "$tmp/abs/out/c.png"
+    check "reported there" grep -qF "\"outputs\":[\"$tmp/abs/out/c.png\"]" abs.jsonl
+    check "its lock beside it" test -e "$tmp/abs/out/.c.lock"
+    check_out "resume, absolute --output-dir" abs2.jsonl "$CAVALRY_BATCH" --progress=json \
+        --resume --output-dir "$tmp/abs" --only c jobs.yaml
+    check "c skipped" grep -q '"event":"job_skipped",.*"job":"c"' abs2.jsonl
+    mkdir sub
+    printf 'version: 1\njobs:\n  - {name: k, scene: ../tiny.pbrt, spp: 1, formats: [png], output: "%s"}\n' \
+        "$tmp/kept/{name}" >sub/kept.yaml
+    check "render an absolute template with --output-dir" "$CAVALRY_BATCH" --progress=none \
+        --output-dir "$tmp/abs" sub/kept.yaml
+    check "the absolute template outside the manifest's folder is kept" \
+        sh -c "test -s '$tmp/kept/k.png' && test -z \"\$(find '$tmp/abs' -name 'k.png')\""
     check "render from stdin" sh -c "\"$CAVALRY_BATCH\" -q --progress=none --only c - <jobs.yaml"
     check "stdin: output beside the working folder" test -s out/c.png
 else
