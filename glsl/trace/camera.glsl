@@ -36,7 +36,7 @@ void cv_camera_ray(vec2 raster, vec2 u_lens, float u_time, out vec3 o, out vec3 
 {
     vec4 s = u_pass.screen;
     vec2 film = vec2(u_pass.film.xy);
-#ifdef CV_SPHERICAL_CAMERA
+#if defined(CV_SPHERICAL_CAMERA) || defined(CV_EVERY_CAMERA)
     if (u_pass.camera_type >= CV_CAMERA_EQUAL_AREA) { // spherical: no lens
         vec2 uv = raster / film;
         vec3 w;

@@ -6,6 +6,9 @@
 // [a, b) starts min(K, b - a) slots of each pixel: item i starts sample
 // a + i / P of pixel i % P (P pixels), in the slot that owns that sample.
 #include "shared/trace.h"
+// built without the scene's defines (one program for every scene): it
+// makes every camera's rays, the spherical ones too (camera.glsl)
+#define CV_EVERY_CAMERA
 layout(local_size_x = CV_TRACE_GROUP) in;
 #include "common.glsl"
 #include "queue_args.glsl"

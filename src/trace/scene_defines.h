@@ -22,7 +22,8 @@
      * textures (bench/RESULTS.md, "Figures behind the code") */ \
     X("CV_NO_ENV", !gs->has_env) \
     /* the spherical cameras' rays: the camera ray is made in the shade \
-     * kernels too (regenerate.glsl), where every branch costs registers */ \
+     * kernels too (regenerate.glsl), where every branch costs registers; \
+     * generate.comp, built without these defines, has them always */ \
     X("CV_SPHERICAL_CAMERA", gs->spherical_camera) \
     /* a cut-out emitter's light samples test its alpha (light/light.glsl) */ \
     X("CV_ALPHA_EMITTERS", gs->alpha_emitters) \
