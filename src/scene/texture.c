@@ -174,6 +174,7 @@ int cv_b_image_texture(struct cv_builder *b, const char *file, const char *dir, 
     cv_image_free(&img);
     free(path);
     if (!ok) {
+        cv_error_prefix(err, "%s:%d:%d: image \"%s\"", loc->file, loc->line, loc->col, file);
         free(key);
         return -1;
     }
@@ -332,8 +333,8 @@ bool cv_b_texture(struct cv_builder *b, const char *name, const char *kind, cons
         }
         int img = v4 ? cv_b_image_texture_v4(b, file, dir, srgb, "encoding \"linear\" of", loc, err)
                      : cv_b_image_texture(b, file, dir, srgb, loc, err);
-        if (img >= 0 && is_float)
-            img = float_image(b, img, err);
+        if (img >= 0 && is_float && (img = float_image(b, img, err)) < 0)
+            cv_error_prefix(err, "%s:%d:%d: image \"%s\"", loc->file, loc->line, loc->col, file);
         if (img < 0)
             return false;
         t = b->s->textures[img];
