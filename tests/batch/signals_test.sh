@@ -12,8 +12,9 @@ exr_attr="$CV_TEST_BUILDDIR/batch/exr_attr"
 cp "$data/tiny.pbrt" "$data/long.yaml" "$data/jobs.yaml" "$tmp/"
 cd "$tmp"
 
-# stop SIGNAL STATUS: starts the long job, sends SIGNAL after its first pass.
-stop() {
+# start_long: starts the long job in the background (its pid in $pid) and
+# waits (bounded) for its first finished pass.
+start_long() {
     # The last run's events must be gone before this run starts: the
     # background job truncates run.jsonl only once it is scheduled, and a
     # grep that found the last run's progress would signal this one before
@@ -23,13 +24,17 @@ stop() {
     rm -rf out run.jsonl run.err
     "$CAVALRY_BATCH" --progress=json long.yaml >run.jsonl 2>run.err &
     pid=$!
-    # Wait (bounded) for the first finished pass.
     n=0
     while ! grep -q '"event":"progress"' run.jsonl 2>/dev/null; do
         n=$((n + 1))
         if [ "$n" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
         sleep 0.1
     done
+}
+
+# stop SIGNAL STATUS: starts the long job, sends SIGNAL after its first pass.
+stop() {
+    start_long
     kill -"$1" "$pid"
     set +e
     wait "$pid"
@@ -50,15 +55,7 @@ stop HUP 129
 # the second comes after the first has been handled, never merged with it
 # while pending: two different signals, both pending at SIGCONT, are
 # handled one after the other (only the main thread takes them).
-rm -rf out run.jsonl run.err
-"$CAVALRY_BATCH" --progress=json long.yaml >run.jsonl 2>run.err &
-pid=$!
-n=0
-while ! grep -q '"event":"progress"' run.jsonl 2>/dev/null; do
-    n=$((n + 1))
-    if [ "$n" -gt 600 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
-    sleep 0.1
-done
+start_long
 kill -STOP "$pid"
 kill -TERM "$pid"
 kill -INT "$pid"

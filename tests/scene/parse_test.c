@@ -673,15 +673,12 @@ static void write_png(const char *rel, int w, int h, const unsigned char *rgb)
 
 static void write_pfm(const char *rel, int w, int h, float v)
 {
-    char hdr[64];
-    int n = snprintf(hdr, sizeof(hdr), "PF\n%d %d\n-1.0\n", w, h);
     size_t count = (size_t)w * h * 3;
-    unsigned char *buf = malloc((size_t)n + count * 4);
-    memcpy(buf, hdr, (size_t)n);
+    float *rgb = malloc(count * sizeof(float));
     for (size_t i = 0; i < count; i++)
-        memcpy(buf + n + i * 4, &v, 4);
-    th_write(rel, buf, (size_t)n + count * 4);
-    free(buf);
+        rgb[i] = v;
+    th_write_pfm(rel, w, h, rgb);
+    free(rgb);
 }
 
 /* channels: IMF_WRITE_RGBA, or IMF_WRITE_Y / IMF_WRITE_YC (luminance,

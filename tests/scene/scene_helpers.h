@@ -58,6 +58,21 @@ static inline void th_write(const char *rel, const void *data, size_t len)
 
 static inline void th_write_str(const char *rel, const char *s) { th_write(rel, s, strlen(s)); }
 
+/* A PFM of w x h RGB texels given top row first (PFM stores rows bottom
+ * up). */
+static inline void th_write_pfm(const char *rel, int w, int h, const float *rgb)
+{
+    char hdr[64];
+    int n = snprintf(hdr, sizeof(hdr), "PF\n%d %d\n-1.0\n", w, h);
+    size_t row = (size_t)w * 3 * 4;
+    unsigned char *buf = malloc((size_t)n + row * (size_t)h);
+    memcpy(buf, hdr, (size_t)n);
+    for (int y = 0; y < h; y++)
+        memcpy(buf + n + row * (size_t)(h - 1 - y), rgb + (size_t)y * w * 3, row);
+    th_write(rel, buf, (size_t)n + row * (size_t)h);
+    free(buf);
+}
+
 /* Log text written since the last call. */
 static inline const char *th_log_text(void)
 {

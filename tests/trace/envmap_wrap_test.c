@@ -37,21 +37,6 @@ static float rnd(void)
     return (float)(rng_state >> 8) / 16777216.0f;
 }
 
-/* A PFM of w x h RGB texels given top row first (PFM stores rows bottom
- * up). */
-static void write_pfm(const char *rel, int w, int h, const float *rgb)
-{
-    char hdr[64];
-    int n = snprintf(hdr, sizeof(hdr), "PF\n%d %d\n-1.0\n", w, h);
-    size_t row = (size_t)w * 3 * 4;
-    unsigned char *buf = cv_xmalloc((size_t)n + row * (size_t)h);
-    memcpy(buf, hdr, (size_t)n);
-    for (int y = 0; y < h; y++)
-        memcpy(buf + n + row * (size_t)(h - 1 - y), rgb + (size_t)y * w * 3, row);
-    th_write(rel, buf, (size_t)n + row * (size_t)h);
-    free(buf);
-}
-
 /* cv_env_Le at n directions (xyz of dirs, 4 floats each) of the loaded
  * scene s, into le (4 floats each: rgb, pdf). */
 static bool probe(struct cv_gpu *gpu, struct cv_program *prog, const struct cv_scene *s,
@@ -136,7 +121,7 @@ static void equal_area(struct cv_gpu *gpu, struct cv_program *prog)
     float rgb[W * W * 3];
     for (int i = 0; i < W * W * 3; i++)
         rgb[i] = 0.5f + rnd();
-    write_pfm("oct.pfm", W, W, rgb);
+    th_write_pfm("oct.pfm", W, W, rgb);
     struct cv_scene *s = load("oct.pbrt", "WorldBegin\nLightSource \"infinite\" \"string filename\" \"oct.pfm\"\n");
     if (!s)
         return;
@@ -209,7 +194,7 @@ static void lat_long(struct cv_gpu *gpu, struct cv_program *prog)
     double mean = 0;
     for (int x = 0; x < W; x++)
         mean += col[x] / W;
-    write_pfm("ll.pfm", W, H, rgb);
+    th_write_pfm("ll.pfm", W, H, rgb);
     struct cv_scene *s = load("ll.pbrt", "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"ll.pfm\"\n");
     if (!s)
         return;

@@ -38,21 +38,6 @@ static float rnd(void)
     return (float)(rng_state >> 8) / 16777216.0f;
 }
 
-/* A PFM of w x h RGB texels given top row first (PFM stores rows bottom
- * up). */
-static void write_pfm(const char *rel, int w, int h, const float *rgb)
-{
-    char hdr[64];
-    int n = snprintf(hdr, sizeof(hdr), "PF\n%d %d\n-1.0\n", w, h);
-    size_t row = (size_t)w * 3 * 4;
-    unsigned char *buf = cv_xmalloc((size_t)n + row * (size_t)h);
-    memcpy(buf, hdr, (size_t)n);
-    for (int y = 0; y < h; y++)
-        memcpy(buf + n + row * (size_t)(h - 1 - y), rgb + (size_t)y * w * 3, row);
-    th_write(rel, buf, (size_t)n + row * (size_t)h);
-    free(buf);
-}
-
 static float *random_map(int w, int h)
 {
     float *rgb = cv_xmalloc((size_t)w * h * 3 * sizeof(float));
@@ -80,7 +65,7 @@ static bool render(struct cv_gpu *gpu, const char *text, enum cv_integrator inte
 static void test_equal_area(struct cv_gpu *gpu)
 {
     float *map = random_map(EA, EA);
-    write_pfm("ea.pfm", EA, EA, map);
+    th_write_pfm("ea.pfm", EA, EA, map);
     char *text = cv_xasprintf(
         "Rotate -30 1 2 3\nTranslate 0.5 0 0\n"
         "Camera \"spherical\"\n"
@@ -168,7 +153,7 @@ static void test_equal_area(struct cv_gpu *gpu)
 static void test_equirect(struct cv_gpu *gpu)
 {
     float *map = random_map(LL_W, LL_H);
-    write_pfm("ll.pfm", LL_W, LL_H, map);
+    th_write_pfm("ll.pfm", LL_W, LL_H, map);
     char *text = cv_xasprintf(
         "Camera \"environment\"\n"
         "Film \"image\" \"integer xresolution\" %d \"integer yresolution\" %d\n"
