@@ -11,6 +11,7 @@
 #include "scene/builder.h"
 #include "scene/film.h"
 
+/* The shutter's open and close times, which every kind of camera reads. */
 static bool shutter(struct cv_builder *b, struct cv_params *ps, const struct cv_loc *loc,
                     struct cv_error *err)
 {
