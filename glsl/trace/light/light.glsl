@@ -87,7 +87,7 @@ bool cv_light_alpha_masked(uint prim, vec2 uv, vec3 p)
     if (a <= 0.0)
         return true;
     uvec3 b = floatBitsToUint(p);
-    return float(cv_hash3(b.x, b.y, b.z) >> 8) * (1.0 / 16777216.0) > a;
+    return cv_uint_to_unit(cv_hash3(b.x, b.y, b.z)) > a;
 }
 #endif
 
