@@ -16,6 +16,7 @@
 float cv_sqr(float x) { return x * x; }
 float cv_safe_sqrt(float x) { return sqrt(max(x, 0.0)); }
 float cv_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+float cv_mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
 float cv_luminance(vec3 c) { return CV_LUMA(c.x, c.y, c.z); }
 
 // pbrt-v4's SmoothStep: a step where the edges meet, a reversed ramp where

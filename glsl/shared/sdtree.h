@@ -65,7 +65,14 @@
  *     q + 1: x: the node's first statistics word; y: at a class's root,
  *            the most a record's value adds (its class's records' mean
  *            value in the iteration before times cv_sdtree_opts.clamp;
- *            0: no limit), else 0; zw: 0.
+ *            0: no limit), else 0; z: at a class's root, the mean value
+ *            of all its records in the iteration before (with a zero
+ *            for each that found nothing: an estimate of the light a
+ *            path that bounces on from the class brings back, its
+ *            irradiance about the class's axis), which the guided
+ *            kernels' Russian roulette weighs (sd_shade.comp), else 0;
+ *            w: at a class's root, the records behind z (0: z is no
+ *            estimate: too few records), else 0.
  *   the grid block: the table's last CV_SD_GRID_TEXELS texels, from
  *   texel CvSdParams grid.x, a shortcut into the spatial tree. Its splits
  *   are midpoints along the axis depth % 3, so that the nodes down to depth

@@ -38,10 +38,18 @@
 // ray then carries the BSDF's density of its direction (bs.pdf) for the
 // emission it finds, so that its MIS weight and the light sample's still
 // sum to 1 for every direction (the bounce still divides by pdf).
-// The strategy only decides directions and densities; throughput, MIS,
-// roulette and the queued rays stay here, so the integrators' images differ
-// only by their sampling. Under volpath (CV_MEDIA) the shadow ray and the
-// bounce ray carry the medium on their side of the surface (its
+// and, where it defines CV_STRATEGY_ROULETTE,
+//   bool cv_strategy_survives(CvStrategy g, uint depth, float u,
+//                             float arrived, inout vec3 beta)
+//       the Russian roulette of the bounce in place of
+//       cv_roulette_survives (common.glsl): arrived, the channel mean of
+//       the throughput the path reached the vertex with; beta, the one
+//       after the bounce, divided by the survival probability
+// The strategy only decides directions, densities and (with
+// CV_STRATEGY_ROULETTE) survival; throughput, MIS, the roulette's
+// division and the queued rays stay here, so the integrators' images
+// differ only by their sampling. Under volpath (CV_MEDIA) the shadow ray
+// and the bounce ray carry the medium on their side of the surface (its
 // MediumInterface, medium/medium.glsl). Include after surface_inputs.glsl.
 #ifndef CV_TRACE_PATH_VERTEX_GLSL
 #define CV_TRACE_PATH_VERTEX_GLSL
@@ -211,6 +219,9 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     bool specular;
     if (!cv_strategy_sample(g, b, sf, wo, q, bs, pdf, specular))
         return;
+#ifdef CV_STRATEGY_ROULETTE
+    float arrived = cv_mean3(beta);
+#endif
     beta *= bs.f * (abs(dot(bs.wi, sf.ns)) / pdf);
     if (!cv_finite3(beta)) {
         cv_film_reject();
@@ -218,7 +229,11 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     }
     if (cv_max3(beta) <= 0.0)
         return;
+#ifdef CV_STRATEGY_ROULETTE
+    if (!cv_strategy_survives(g, depth, u_lc.y, arrived, beta))
+#else
     if (!cv_roulette_survives(depth, u_lc.y, beta))
+#endif
         return;
     flags = specular ? (flags | CV_RAYF_SPECULAR) : (flags & ~CV_RAYF_SPECULAR);
 #ifdef CV_SSS

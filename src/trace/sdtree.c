@@ -49,6 +49,8 @@ struct cnode {
     float weight;
     uint32_t train;   /* training quadtree root */
     float clamp;      /* the limit of a record's value (opts.clamp), 0: none */
+    float light;      /* the records' mean value (glsl/shared/sdtree.h) */
+    float light_n;    /* ... from this many records; 0: no estimate */
 };
 
 struct qnode {        /* sampling */
@@ -437,8 +439,12 @@ void cv_sdtree_table(const struct cv_sdtree *t, const struct cv_sdtree_opts *o,
             ch[k] = t->t[j].child[k] ? (float)(tbase + 2 * (size_t)t->t[j].child[k]) : 0.0f;
         x[tbase + 2 * j + 1][0] = (float)train_word(t, (uint32_t)j);
     }
-    for (size_t i = 0; i < t->nc; i++)
-        x[tbase + 2 * (size_t)t->c[i].train + 1][1] = t->c[i].clamp;
+    for (size_t i = 0; i < t->nc; i++) {
+        float *r = x[tbase + 2 * (size_t)t->c[i].train + 1];
+        r[1] = t->c[i].clamp;
+        r[2] = t->c[i].light;
+        r[3] = t->c[i].light_n;
+    }
     for (int a = 0; a < 3; a++)
         grid_bounds(t, x + gbase, a, 0, CV_SD_GRID_CELLS, t->lo[a], t->hi[a]);
     const uint32_t c0[3] = {0, 0, 0},
@@ -723,7 +729,7 @@ static uint32_t make_training(struct refine *r, uint32_t j, const double e[4],
 struct learned {
     uint32_t samp;
     float weight;
-    float clamp;
+    float clamp, light, light_n;
     uint32_t train;   /* the old training root */
     double e[4], cnt[4], E;
 };
@@ -764,6 +770,8 @@ static void split_leaf(struct refine *r, uint32_t node, const struct learned *lc
         r->n->c[ci].samp = lc[cls].samp;
         r->n->c[ci].weight = lc[cls].weight;
         r->n->c[ci].clamp = lc[cls].clamp;
+        r->n->c[ci].light = lc[cls].light;
+        r->n->c[ci].light_n = lc[cls].light_n;
         r->st.guiding += lc[cls].weight > 0;
         uint32_t t = make_training(r, lc[cls].train, lc[cls].e, lc[cls].cnt, 0, lc[cls].E);
         r->n->c[ci].train = t;
@@ -806,6 +814,11 @@ static void refine_spatial(struct refine *r, uint32_t old, uint32_t node, const 
         l->weight = lit >= r->o->min_records && l->E > 0 ? r->o->mix : 0.0f;
         /* the records' mean value (the flux is their sum) */
         l->clamp = r->o->clamp > 0 && lit > 0 && l->E > 0 ? (float)(r->o->clamp * l->E / lit) : 0.0f;
+        /* ... and over all of them, unlit ones too: the light bouncing on
+         * brings back, where enough records say it */
+        bool known = n >= r->o->min_records;
+        l->light = known ? (float)(l->E / n) : 0.0f;
+        l->light_n = known ? (float)n : 0.0f;
     }
     split_leaf(r, node, lc, count, lo, hi, depth);
 }

@@ -3,7 +3,8 @@
  * table (trace/sdtree.c), for a tree built from synthetic records (a
  * bright spot of directions over a dimmer half of the sphere) and uploaded
  * as the renderer does (cv_rlpath_sd_build): the spatial lookup finds the
- * host's leaf and weight; directions drawn from the leaf's quadtree are
+ * host's leaf, weight and light estimate (the adjoint-driven roulette's,
+ * sd_shade.comp); directions drawn from the leaf's quadtree are
  * unit vectors whose pdf at sampling equals the pdf evaluated at them and
  * the host's; their histogram over 64 x 64 equal-area cells follows the
  * pdf (chi-square against the exact integral of the host's piecewise
@@ -372,6 +373,9 @@ static void sample_test(struct rig *g, int mode, const float (*t)[4], uint32_t r
     double *obs = calloc((size_t)H * H, sizeof(double));
     double *expc = calloc((size_t)H * H, sizeof(double));
     uint32_t bad_len = 0, bad_pdf = 0, bad_ref = 0, bad_leaf = 0;
+    /* the class's light estimate (at its training root), -1 where none */
+    const float *est = t[(uint32_t)t[point_class(t)][2] + 1];
+    float light = est[3] > 0 ? est[2] : -1.0f;
     for (uint32_t i = 0; i < N; i++) {
         const float *r = out + 8 * (size_t)i;
         double w[3] = {r[0], r[1], r[2]}, u, v;
@@ -384,7 +388,7 @@ static void sample_test(struct rig *g, int mode, const float (*t)[4], uint32_t r
         if (mode == 0) {
             bad_pdf += fabs(r[3] - r[4]) > 1e-4 * r[4];
             bad_ref += fabs(r[4] - pq) > 1e-3 * pq;
-            bad_leaf += r[5] != m || (uint32_t)r[6] != root;
+            bad_leaf += r[5] != m || (uint32_t)r[6] != root || r[7] != light;
         } else {
             double mix = m * r[4] + (1 - m) * r[5];
             bad_pdf += fabs(r[3] - mix) > 1e-5 * mix;
@@ -393,8 +397,8 @@ static void sample_test(struct rig *g, int mode, const float (*t)[4], uint32_t r
     }
     tap_ok(bad_len == 0, "%s: unit directions (%u not)", what, bad_len);
     if (mode == 0) {
-        tap_ok(bad_leaf == 0, "%s: the lookup finds the host's leaf (texel %u) and "
-               "weight (%u differ)", what, root, bad_leaf);
+        tap_ok(bad_leaf == 0 && light > 0, "%s: the lookup finds the host's leaf (texel %u), "
+               "weight and light estimate %g (%u differ)", what, root, light, bad_leaf);
         tap_ok(bad_pdf <= N / 1000, "%s: pdf at sampling equals the pdf at w (%u of %u "
                "differ, quadrant edges allowed: %u)", what, bad_pdf, N, N / 1000);
     } else {

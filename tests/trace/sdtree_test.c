@@ -21,7 +21,9 @@
  * weights radiance by the cosine to the axis); the density following the
  * recorded radiance (a bright spot of directions gets many times the
  * uniform density in the classes that face it, a dark half about the
- * floor); records with a non-finite value or no density are ignored; the
+ * floor); each class's light estimate is the mean value of all its
+ * records, unlit ones too; records with a non-finite value or no density
+ * are ignored; the
  * top blocks take as many levels as fit their texel budget.
  * The grid block at the table's end (its bounds rising and shared by
  * neighbouring cells, each cell naming what the descent from its centre
@@ -459,7 +461,8 @@ static void test_build(void)
     free(copy);
 }
 
-/* Fewer records than a leaf guides with: one leaf, weight 0. */
+/* Fewer records than a leaf guides with: one leaf, weight 0, no light
+ * estimate. */
 static void test_few(void)
 {
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
@@ -469,6 +472,64 @@ static void test_few(void)
     struct cv_sdtree_stats st;
     cv_sdtree_build(lo, hi, r, 20, &cv_sdtree_defaults, &t, &nt, &st);
     tap_ok(st.spatial_leaves == 1 && st.guiding == 0, "20 records: one leaf that does not guide");
+    uint32_t known = 0;
+    for (uint32_t c = 0; c < CV_SD_CLASSES; c++)
+        known += t[(uint32_t)t[(uint32_t)t[0][2] + c][2] + 1][3] != 0;
+    tap_ok(known == 0, "20 records: no class has a light estimate (%u have)", known);
+    free(t);
+    free(r);
+}
+
+/* The light estimate at each class's training root (shared/sdtree.h):
+ * records in pairs at one point, all of class 4 (+z) looking straight up,
+ * one of each pair lit (radiance 1, density 1 / (4 pi)): every leaf's
+ * class 4 holds the mean value over all its records, lit or not, about
+ * 2 pi, from as many records as it counted; the classes without records
+ * hold no estimate. */
+static void test_light(void)
+{
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const size_t N = 40000;
+    const double u = 0.999, want = 2 * M_PI * (2 * u - 1);
+    struct cv_sd_record *r = calloc(N, sizeof(*r));
+    for (size_t i = 0; i < N; i += 2) {
+        for (size_t k = i; k < i + 2; k++) {
+            for (int a = 0; a < 3; a++)
+                r[k].p[a] = k == i ? (float)rnd() : r[i].p[a];
+            r[k].pdf = (float)(1 / (4 * M_PI));
+            r[k].u = (float)(4 + u);
+            r[k].v = (float)rnd();
+            r[k].L = k == i ? 1.0f : 0.0f;
+        }
+    }
+    float(*t)[4] = NULL;
+    size_t nt = 0;
+    struct cv_sdtree_stats st;
+    cv_sdtree_build(lo, hi, r, N, &cv_sdtree_defaults, &t, &nt, &st);
+    uint32_t leaves = 0, bad_lit = 0, bad_dark = 0;
+    double worst = 0;
+    for (uint32_t i = 0; i < st.spatial_nodes; i++) {
+        if (t[i][0] != (float)CV_SD_LEAF)
+            continue;
+        leaves++;
+        for (uint32_t c = 0; c < CV_SD_CLASSES; c++) {
+            const float *e = t[(uint32_t)t[(uint32_t)t[i][2] + c][2] + 1];
+            if (c != 4) {
+                bad_dark += e[2] != 0 || e[3] != 0;
+                continue;
+            }
+            double d = fabs(e[2] / want - 1);
+            if (d > worst)
+                worst = d;
+            bad_lit += !(e[3] >= cv_sdtree_defaults.min_records) || e[3] != floorf(e[3]);
+        }
+    }
+    tap_ok(leaves > 8 && bad_lit == 0 && worst < 0.1,
+           "light estimate: class 4 of each of %u leaves holds the mean value of all its "
+           "records, %.4f within %.3f (10 %% allowed), counted (%u bad)", leaves, want, worst,
+           bad_lit);
+    tap_ok(bad_dark == 0, "light estimate: none in the classes without records (%u have one)",
+           bad_dark);
     free(t);
     free(r);
 }
@@ -505,6 +566,7 @@ int main(void)
     test_empty();
     test_build();
     test_few();
+    test_light();
     test_deep();
     return tap_done();
 }

@@ -22,6 +22,8 @@
 // (CV_FROZEN, render.c) leaves the learning code out, which costs a
 // kernel's registers whether it runs or not (bench/RESULTS.md, "What
 // rlpath's passes after training pay for learning").
+// Its Russian roulette follows the guide's estimate of the light to come
+// (cv_strategy_survives) rather than the throughput alone.
 // Built once per bin of the hit queue, as path's shade.comp.
 #define CV_BQ_WI1  // asks its BSDF at a second direction (bsdf/bsdf.glsl)
 #include "shared/trace.h"
@@ -45,13 +47,24 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 #include "guides.glsl"
 #define CV_STRATEGY_FILM
 #define CV_STRATEGY_MIS_BSDF
+#define CV_STRATEGY_ROULETTE
+
+// The adjoint-driven roulette's weight window (cv_strategy_survives): the
+// ratio of its upper to its lower edge, Vorba and Křivánek's s; and the
+// least survival probability, which bounds what a survivor's weight grows
+// by where the class's estimate is too low (a light its records missed).
+const float CV_SD_RR_WINDOW = 5.0;
+const float CV_SD_RR_MIN = 0.2;
 
 // The guided strategy (../path_vertex.glsl). Le: what the emission at
 // this hit adds to the film (for the records); root, m: the hit's quadtree and guiding weight (0:
 // BSDF sampling alone); pd: the probability with which the BSDF picks a
 // delta lobe (those stay the BSDF's); guided, pq: the bounce is the
 // guide's draw, of guided density pq; pmix: the density the bounce was
-// drawn with, 0 for a delta lobe (for its record).
+// drawn with, 0 for a delta lobe (for its record); slot: the path's film
+// slot; lo: the class's estimate of the light bouncing on from the hit
+// brings back, as radiance reflected towards the path (-1: none, and the
+// roulette is pbrt's).
 struct CvStrategy {
     vec3 Le;
     bool eligible;
@@ -62,6 +75,8 @@ struct CvStrategy {
     bool guided;
     float pq;
     float pmix;
+    uint slot;
+    float lo;
 };
 
 void cv_strategy_emitted(inout CvStrategy g, vec3 Le, uint flags) {}
@@ -74,9 +89,14 @@ void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool
     if (g.eligible) {
         // the normal on the side the path came from
         g.cls = cv_sd_class(dot(wo, sf.ns) < 0.0 ? -sf.ns : sf.ns);
-        vec2 l = cv_sd_leaf(sf.p, g.cls);
+        vec4 l = cv_sd_leaf(sf.p, g.cls);
         g.root = int(l.x);
         g.m = l.y;
+        // a Lambertian reflector of the surface's albedo under that
+        // irradiance, as the Q-learning method's expected value
+        // (shade.comp)
+        float e = cv_sd_light(l);
+        g.lo = e >= 0.0 ? cv_mean3(cv_bsdf_albedo(b)) * e * (1.0 / CV_SD_PI) : -1.0;
     }
     g.pd = g.m > 0.0 ? cv_bsdf_delta_prob(b, wo) : 0.0;
 }
@@ -124,6 +144,41 @@ bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvB
     return pdf > 0.0;
 }
 
+// Adjoint-driven Russian roulette (Vorba and Křivánek, "Adjoint-Driven
+// Russian Roulette and Splitting in Light Transport Simulation", 2016),
+// without its splitting: a path bouncing on from the vertex is expected
+// to add arrived * lo to its pixel, whose estimate so far (its film
+// slot's mean, the training passes' samples included) is I. It survives
+// with probability arrived * lo / I over the lower edge of a weight window
+// of ratio s about 1, (1 + s) / 2 * arrived * lo / I, at most 1, at least
+// CV_SD_RR_MIN. So a path whose pixel needs it goes on however small its
+// throughput, which pbrt's rule (cv_roulette_survives) ends: that ended
+// the guide's paths towards light that arrives late, and lost most of
+// what guiding gained (bench/RESULTS.md, "Error a sample by path depth,
+// and Russian roulette"); and a path that adds little ends early, at any
+// depth. Where the class does not guide (mix 0 among them: path's image,
+// bit for bit) or has no estimate, where its pixel has none yet, or on a
+// material the guide does not serve (glossy or specular: guides.glsl),
+// pbrt's rule. Unbiased for any estimate: the survivors' throughput is
+// divided by the probability. Reads the film slot's sum: once a guided
+// bounce.
+bool cv_strategy_survives(CvStrategy g, uint depth, float u, float arrived, inout vec3 beta)
+{
+    if (!g.eligible || g.m <= 0.0 || g.lo < 0.0)
+        return cv_roulette_survives(depth, u, beta);
+    vec4 f = film[g.slot].L;
+    float I = f.w >= 2.0 ? cv_mean3(f.rgb) / f.w : 0.0;
+    if (!(I > 0.0))
+        return cv_roulette_survives(depth, u, beta);
+    float q = clamp(0.5 * (1.0 + CV_SD_RR_WINDOW) * arrived * g.lo / I, CV_SD_RR_MIN, 1.0);
+    if (q >= 1.0)
+        return true;
+    if (u >= q)
+        return false;
+    beta /= q;
+    return true;
+}
+
 #include "../path_vertex.glsl"
 
 // Shades hit i; while training, keeps the path's records (sdtree.glsl).
@@ -132,7 +187,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 {
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
-    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0, 0.0);
+    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0, 0.0, uint(r.o.w), -1.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
 #ifndef CV_FROZEN
     if (!cv_sd_learning())

@@ -143,13 +143,26 @@ int cv_sd_class_texel(vec3 p, uint cls)
     return nd.x < CV_SD_LEAF ? -1 : int(nd.z) + int(cls);
 }
 
-// The quadtree of point p and orientation class cls: its root (x, a texel
-// index) and its guiding weight (y; 0 before the first build: the empty
-// table's classes have weight 0).
-vec2 cv_sd_leaf(vec3 p, uint cls)
+// The class texel of point p and orientation class cls (shared/sdtree.h):
+// x, its quadtree's root (a texel index); y, its guiding weight (0 before
+// the first build: the empty table's classes have weight 0); z, its
+// training root (cv_sd_light); zero where the table is malformed.
+vec4 cv_sd_leaf(vec3 p, uint cls)
 {
     int c = cv_sd_class_texel(p, cls);
-    return c < 0 ? vec2(0.0) : texelFetch(sd_tree, c).xy;
+    return c < 0 ? vec4(0.0) : texelFetch(sd_tree, c);
+}
+
+// The class's estimate of the light that a path bouncing on from it
+// brings back, its irradiance about its axis (shared/sdtree.h: its
+// training root's second texel, z), from the class texel `leaf`; -1 where
+// it has none (too few records, or before the first build).
+float cv_sd_light(vec4 leaf)
+{
+    if (!(leaf.z > 0.0))
+        return -1.0;
+    vec2 e = texelFetch(sd_tree, int(leaf.z) + 1).zw;
+    return e.y > 0.0 ? e.x : -1.0;
 }
 
 // The square point of a unit direction, and back.

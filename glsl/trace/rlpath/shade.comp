@@ -54,8 +54,6 @@ layout(local_size_x = CV_TRACE_GROUP) in;
 
 layout(rg32ui, binding = CV_IMAGE_RL_PATH) uniform uimageBuffer rl_path;
 
-float cv_mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0 / 3.0); }
-
 #include "guides.glsl"
 
 // The guided strategy (../path_vertex.glsl). learning: whether the bounce

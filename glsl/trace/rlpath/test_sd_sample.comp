@@ -58,7 +58,7 @@ void main()
     outv[2u * i + 1u] = vec4(0.0);
     return;
 #endif
-    vec2 leaf = cv_sd_leaf(u_point, cv_sd_class(TEST_NORMAL));
+    vec4 leaf = cv_sd_leaf(u_point, cv_sd_class(TEST_NORMAL));
     int root = int(leaf.x);
     float m = leaf.y;
 #if TEST_MODE == 2
@@ -72,7 +72,7 @@ void main()
 #if TEST_MODE == 0
     w = cv_sd_sample(root, u, pdf);
     outv[2u * i] = vec4(w, pdf);
-    outv[2u * i + 1u] = vec4(cv_sd_pdf(root, w), m, float(root), 0.0);
+    outv[2u * i + 1u] = vec4(cv_sd_pdf(root, w), m, float(root), cv_sd_light(leaf));
 #else
     if (u.x < m)
         w = cv_sd_sample(root, vec2(min(u.x / m, CV_SD_ONE_MINUS_EPS), u.y), pdf);
