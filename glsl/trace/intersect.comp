@@ -78,7 +78,7 @@ void main()
             // keyed by film pixel, not slot: the same paths whatever K
             // and whatever the crop
             uint path = uint(r.o.w);
-            float u = cv_u32_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)),
+            float u = cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)),
                                               cv_path_sample(path), h.prim,
                                               cv_ray_depth(r) * 64u + k));
             if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))

@@ -10,6 +10,8 @@
 #ifndef CV_TRACE_SAMPLER_GLSL
 #define CV_TRACE_SAMPLER_GLSL
 
+#include "../lib/rng.glsl"   // cv_uint_to_unit
+
 uint cv_hash(uint x)
 {
     // lowbias32 (Wellons): good avalanche for 32-bit keys
@@ -58,12 +60,6 @@ uint cv_sobol1(uint i)
     return bitfieldReverse(i);
 }
 
-float cv_u32_to_unit(uint x)
-{
-    // 24 bits so the result stays below 1
-    return float(x >> 8) * (1.0 / 16777216.0);
-}
-
 // pixel: linear pixel index of the full film; index: the pixel's sample
 // number; pair: dimension pair (dimensions 2*pair and 2*pair+1).
 vec2 cv_sample_2d(uint pixel, uint index, uint pair, uvec2 seed, uint sampler)
@@ -72,14 +68,14 @@ vec2 cv_sample_2d(uint pixel, uint index, uint pair, uvec2 seed, uint sampler)
     if (sampler != 0u) {
         uint a = cv_hash4(h, index, 0x51ed27u, 1u);
         uint b = cv_hash(a ^ 0x68bc21ebu);
-        return vec2(cv_u32_to_unit(a), cv_u32_to_unit(b));
+        return vec2(cv_uint_to_unit(a), cv_uint_to_unit(b));
     }
     uint i = cv_nested_scramble(index, h);
     uint x = bitfieldReverse(i);
     uint y = cv_sobol1(i);
     x = cv_nested_scramble(x, cv_hash(h ^ 0xa511e9b3u));
     y = cv_nested_scramble(y, cv_hash(h ^ 0x63d83595u));
-    return vec2(cv_u32_to_unit(x), cv_u32_to_unit(y));
+    return vec2(cv_uint_to_unit(x), cv_uint_to_unit(y));
 }
 
 #endif

@@ -70,7 +70,7 @@ void cv_shadow_media(CvShadowItem s, uint path)
 #ifdef CV_HAS_ALPHA
         uint material = cv_triangles[h.prim].idx.w & CV_TRI_MATERIAL_MASK;
         CvSurface sf = cv_surface(h.prim, h.b1, h.b2);
-        float u = cv_u32_to_unit(
+        float u = cv_uint_to_unit(
             cv_hash4(cv_film_pixel(cv_path_pixel(path)), uint(s.L.w), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(material, sf.uv, u))
             return;
@@ -109,7 +109,7 @@ void main()
         }
         uint word = cv_prim_word(h.prim);
         CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, s.o.xyz, s.d.xyz, h.t);
-        float u = cv_u32_to_unit(
+        float u = cv_uint_to_unit(
             cv_hash4(cv_film_pixel(cv_path_pixel(path)), uint(s.L.w), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, sf.uv, u))
             return;

@@ -32,7 +32,7 @@ void cv_sss_probe_trace(CvRayItem r, out CvHit h, out uint n)
         if ((cv_prim_word(c.prim) & CV_TRI_MATERIAL_MASK) == material) {
             n++;
             // keyed by film pixel and sample, as the alpha tests
-            float u = cv_u32_to_unit(cv_hash4(pixel, index, 0x55535353u + k * 4096u + depth, u_pass.seed_lo));
+            float u = cv_uint_to_unit(cv_hash4(pixel, index, 0x55535353u + k * 4096u + depth, u_pass.seed_lo));
             if (u * float(n) < 1.0)
                 h = c;
         }

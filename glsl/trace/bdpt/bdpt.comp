@@ -244,7 +244,7 @@ bool cv_bdpt_visible(vec3 a, float a_err, vec3 a_ng, vec3 b, float b_err, vec3 b
         if (!cv_trace_closest(o, d, tmin, tmax, h))
             return true;
         CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, o, d, h.t);
-        float u = cv_u32_to_unit(cv_hash4(g_fp, g_sample, h.prim, 0x2545f491u + k));
+        float u = cv_uint_to_unit(cv_hash4(g_fp, g_sample, h.prim, 0x2545f491u + k));
         if (!cv_material_alpha_pass(cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK, sf.uv, u))
             return false;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;
@@ -269,7 +269,7 @@ bool cv_bdpt_trace(vec3 o, vec3 d, uint key, out CvHit h)
     float tmin = 0.0;
     for (uint k = 0u; hit && k < 64u; k++) {
         CvSurface s = cv_surface_ray(h.prim, h.b1, h.b2, o, d, h.t);
-        float u = cv_u32_to_unit(cv_hash4(g_fp, g_sample, h.prim, key * 64u + k));
+        float u = cv_uint_to_unit(cv_hash4(g_fp, g_sample, h.prim, key * 64u + k));
         if (!cv_material_alpha_pass(cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK, s.uv, u))
             break;
         tmin = h.t * (1.0 + 1e-5) + 1e-6;

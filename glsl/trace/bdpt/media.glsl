@@ -57,14 +57,14 @@ float cv_bdpt_phase(CvBdptVertex v, vec3 wi) { return cv_bdpt_hg(v, v.wo.xyz, wi
 // subpath's vertex `key` and its stretch k; the hero channel of a subpath.
 float cv_bdpt_medium_u(uint key, uint k)
 {
-    return cv_u32_to_unit(cv_hash4(g_fp ^ u_pass.seed_lo, g_sample ^ cv_hash(u_pass.seed_hi), key,
+    return cv_uint_to_unit(cv_hash4(g_fp ^ u_pass.seed_lo, g_sample ^ cv_hash(u_pass.seed_hi), key,
                                    0x4d454449u + k));
 }
 uint cv_bdpt_hero(bool light_side)
 {
     uint h = cv_hash4(g_fp ^ u_pass.seed_lo, g_sample ^ cv_hash(u_pass.seed_hi), 0x68e31da4u,
                       light_side ? 1u : 0u);
-    return min(uint(cv_u32_to_unit(h) * 3.0), 2u);
+    return min(uint(cv_uint_to_unit(h) * 3.0), 2u);
 }
 
 // pbrt-v4's RandomWalk tracing: the next vertex along o + t d, starting in
@@ -107,7 +107,7 @@ uint cv_bdpt_track(vec3 o, vec3 d, uint key, uint hero, inout uint medium, inout
             CvSurface s = cv_surface_ray(h.prim, h.b1, h.b2, o, d, h.t);
             material = cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK;
             ng = s.ng;
-            float u = cv_u32_to_unit(cv_hash4(g_fp, g_sample, h.prim, key * 64u + k));
+            float u = cv_uint_to_unit(cv_hash4(g_fp, g_sample, h.prim, key * 64u + k));
             pass = cv_material_alpha_pass(material, s.uv, u);
         }
 #endif
@@ -192,7 +192,7 @@ vec3 cv_bdpt_transmittance(vec3 a, float a_err, vec3 a_ng, vec3 b, float b_err, 
 #ifdef CV_HAS_ALPHA
         CvSurface sf = cv_surface_ray(h.prim, h.b1, h.b2, o, d, h.t);
         uint material = cv_prim_word(h.prim) & CV_TRI_MATERIAL_MASK;
-        float u = cv_u32_to_unit(cv_hash4(g_fp, g_sample ^ cv_hash(key), h.prim, 0x5bd1e995u + k));
+        float u = cv_uint_to_unit(cv_hash4(g_fp, g_sample ^ cv_hash(key), h.prim, 0x5bd1e995u + k));
         if (!cv_material_alpha_pass(material, sf.uv, u))
             return vec3(0.0);
         if (materials[material].type == CV_MAT_INTERFACE)

@@ -15,8 +15,10 @@
 #include "../../lib/sampling.glsl"
 #include "../bsdf/texture.glsl"
 #include "envmap.glsl"
-#ifdef CV_ALPHA_EMITTERS
+// outside the #ifdef below: the expander pastes a file once, and
+// sampler.glsl needs it too
 #include "../../lib/rng.glsl"
+#ifdef CV_ALPHA_EMITTERS
 #include "../bsdf/alpha.glsl"
 #endif
 

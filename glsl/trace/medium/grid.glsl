@@ -242,7 +242,7 @@ bool cv_grid_sample_distance(uint m, vec3 o, vec3 d, float t0, float t1, uint he
     CvGridWalk w;
     if (!cv_grid_walk_start(m, o, d, t0, t1, w))
         return false;
-    float tau = -log(1.0 - cv_u32_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
+    float tau = -log(1.0 - cv_uint_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
     float ta, tb, maj;
     uint events = 0u;
     while (cv_grid_walk_next(m, w, ta, tb, maj)) {
@@ -258,7 +258,7 @@ bool cv_grid_sample_distance(uint m, vec3 o, vec3 d, float t0, float t1, uint he
             vec3 sa, ss, Le;
             cv_grid_point(m, cv_grid_space(m, vec4(o + tc * d, 1.0)), sa, ss, Le);
             vec3 st = sa + ss;
-            float u = cv_u32_to_unit(cv_hash4(key.x, key.y, key.z, n++));
+            float u = cv_uint_to_unit(cv_hash4(key.x, key.y, key.z, n++));
             if (u * maj < st[hero]) {
                 float q = dot(r * st, vec3(1.0 / 3.0));
                 weight = q > 0.0 ? weight / q : vec3(0.0);
@@ -274,7 +274,7 @@ bool cv_grid_sample_distance(uint m, vec3 o, vec3 d, float t0, float t1, uint he
             }
             weight *= sn / q;
             r = r * sn / q;
-            tau = -log(1.0 - cv_u32_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
+            tau = -log(1.0 - cv_uint_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
         }
         if (events >= 4096u) {  // a runaway walk: the path ends here
             weight = vec3(0.0);
@@ -294,7 +294,7 @@ vec3 cv_grid_transmittance(uint m, vec3 o, vec3 d, float t0, float t1, uvec3 key
     if (!cv_grid_walk_start(m, o, d, t0, t1, w))
         return T;
     uint n = 0u;
-    float tau = -log(1.0 - cv_u32_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
+    float tau = -log(1.0 - cv_uint_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
     float ta, tb, maj;
     while (cv_grid_walk_next(m, w, ta, tb, maj)) {
         float tc = ta;
@@ -309,13 +309,13 @@ vec3 cv_grid_transmittance(uint m, vec3 o, vec3 d, float t0, float t1, uvec3 key
             cv_grid_point(m, cv_grid_space(m, vec4(o + tc * d, 1.0)), sa, ss, Le);
             T *= max(vec3(maj) - sa - ss, vec3(0.0)) / maj;
             if (cv_max3(T) < 0.05) {
-                if (cv_u32_to_unit(cv_hash4(key.x, key.y, key.z, n++)) < 0.75)
+                if (cv_uint_to_unit(cv_hash4(key.x, key.y, key.z, n++)) < 0.75)
                     return vec3(0.0);
                 T /= 0.25;
             }
             if (n > 8192u)
                 return vec3(0.0);
-            tau = -log(1.0 - cv_u32_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
+            tau = -log(1.0 - cv_uint_to_unit(cv_hash4(key.x, key.y, key.z, n++)));
         }
     }
     return T;

@@ -22,7 +22,7 @@ layout(std430, binding = CV_BIND_MEDIUM_PATHS) buffer CvMediumPaths { vec4 mediu
 // and sample like every other, and by the job seed.
 float cv_medium_track_u(uint path, uint depth, uint k)
 {
-    return cv_u32_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
+    return cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
                                    cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), depth,
                                    0x4d454449u + k));
 }
@@ -32,7 +32,7 @@ uint cv_medium_hero(uint path)
 {
     uint h = cv_hash4(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
                       cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), 0x68e31da4u, 0u);
-    return min(uint(cv_u32_to_unit(h) * 3.0), 2u);
+    return min(uint(cv_uint_to_unit(h) * 3.0), 2u);
 }
 
 // Traces r. Returns true with h the surface to shade; or sets `event` with
@@ -75,7 +75,7 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
             CvSurface s = cv_surface(h.prim, h.b1, h.b2);
             ng = s.ng;
             // the same test as the path integrator's (intersect.comp)
-            float u = cv_u32_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)),
+            float u = cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)),
                                               cv_path_sample(path), h.prim, depth * 64u + k));
             pass = cv_material_alpha_pass(material, s.uv, u);
         }
