@@ -17,10 +17,11 @@
  * errors of the difference in the noisiest region (over ten in a typical
  * one) and catches a bias of 2 %.
  *
- * The camera and film scenes (filter_*, camera_*: bright emitters alone)
- * are checked on smaller regions where the filter's shape, the lens's or
- * the shutter's blur shows (enum oracle_regions), each within ORACLE_TOL
- * of the reference's brightest region (README: their noise).
+ * The camera and film scenes (filter_*, camera_dof, camera_motion: bright
+ * emitters alone; camera_spherical_*) are checked on smaller regions where
+ * the filter's shape, the lens's or the shutter's blur, or the spherical
+ * mapping shows (enum oracle_regions), each within ORACLE_TOL of the
+ * reference's brightest region (README: their noise).
  *
  * Known bugs of issue 24 (the light order of environment lights, huge
  * planes, the layered coats) are checks marked "# TODO issue 24 ..." with the worst region's ratio in
@@ -124,6 +125,10 @@ static const struct {
     /* curve_scale: where each strand's width lies (and the moving
      * instance's blur) */
     {"curve_scale", REGIONS_GRID8},
+    /* the spherical cameras: a mapping that is mirrored, turned or
+     * wrapped otherwise moves light between blocks */
+    {"camera_spherical_equalarea", REGIONS_GRID8},
+    {"camera_spherical_equirect", REGIONS_GRID8},
 };
 
 static enum oracle_regions regions_of(const char *name)
@@ -224,6 +229,23 @@ static const struct oracle_scene scenes[] = {
      * procedural cloud */
     {"vol_preset", NULL},
     {"vol_cloud", NULL},
+    /* pbrt-v4's spherical camera, both mappings (every direction: floor,
+     * spheres and sky) */
+    {"camera_spherical_equalarea", NULL},
+    {"camera_spherical_equirect", NULL},
+    /* a cut-out emitter (pbrt-v4's DiffuseAreaLight::AlphaMasked): a
+     * checker of alpha 1 and 0 */
+    {"light_alpha_checker", NULL},
+    /* alpha 0.5: pbrt-v4 keeps half of the lamp's light samples but a
+     * quarter of the rays that hit it (half the rays pass through, half
+     * of the hit points are masked), so the floor's light is a blend of
+     * the two weighed by the MIS weights, which depend on the light
+     * sampler's probabilities: pbrt-v4's "bvh" sampler makes the floor
+     * brighter than Cavalry's power-proportional choice, and its "power"
+     * sampler comes much nearer (README). Matching it would mean copying
+     * pbrt-v4's light sampler for an estimator that depends on it; the
+     * mask itself is checked by light_alpha_checker. */
+    {"light_alpha_half", "pbrt-v4's alpha 0.5 emitter depends on its bvh light sampler"},
 };
 
 /* Mean of channel c of the pixels [x0, x1) x [y0, y1); stride: floats per

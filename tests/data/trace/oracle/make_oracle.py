@@ -883,6 +883,53 @@ def curve_scale_main():
           "instance of a curve object under a non-uniform scale", CURVE_LIGHTS + wisp + cyl + flat + ribbon + inst)
 
 
+# pbrt-v4's "spherical" camera (both mappings) and a cut-out emitter
+# (DiffuseAreaLight's AlphaMasked), which landed without references.
+# The spherical camera sees every direction: a floor, a grey sphere before
+# it and a smaller white one behind and beside it, under a dim constant
+# environment and a distant light (no small bright lamp: a few of its
+# pixels would outweigh the rest of the image). It looks down with its up
+# vector towards the grey sphere, so that the sky is not the middle of the
+# equal-area image. The cut-out emitter is a
+# one-sided lamp standing behind the floor's middle, facing the camera,
+# under a dim environment: a 4x4 checker of alpha 1 and 0 (each point
+# wholly kept or cut: the renderers' hashes play no part), and alpha 0.5
+# (pbrt-v4 passes half of the rays by a hash of the ray and masks half of
+# the lamp's points by a hash of the point, for its light samples and the
+# rays that hit it). spherical_alpha_main() writes them last (the earlier
+# files come out unchanged).
+def spherical_alpha_main():
+    perspective = 'LookAt 0 2.6 -5.6  0 0.8 0  0 1 0\nCamera "perspective" "float fov" [ 40 ]'
+    white = ('AttributeBegin\n  Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]\n'
+             '  Translate 1.4 0.5 -3.2\n  Scale 0.5 0.5 0.5\n  Include "sphere.pbrt"\nAttributeEnd\n')
+    body = ENV_CONST.replace("0.5 0.5 0.5", "0.2 0.2 0.2") + DISTANT + FLOOR + GREY_SPHERE + white
+    for name, mapping in (("camera_spherical_equalarea", "equalarea"),
+                          ("camera_spherical_equirect", "equirectangular")):
+        scene(name, "pbrt-v4's spherical camera, mapping \"%s\", beside a sphere over the floor"
+              % mapping, body)
+        path = os.path.join(HERE, name + ".pbrt")
+        with open(path) as f:
+            text = f.read()
+        text = text.replace(perspective, 'LookAt 0 1.2 -2.4  0 0 -2.4  0 0 1\n'
+                            'Camera "spherical" "string mapping" "%s"' % mapping)
+        with open(path, "w") as f:
+            f.write(text)
+    x0, x1, y0, y1, z = -1.6, 1.6, 0.3, 2.3, 1.5
+    lamp = mesh([0, 1, 2, 0, 2, 3], [x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z], [0, 0, -1] * 4,
+                [0, 0, 1, 0, 1, 1, 0, 1])
+    dim = ENV_CONST.replace("0.5 0.5 0.5", "0.2 0.2 0.2")
+    checks = ('Texture "checks" "float" "checkerboard" "float uscale" [ 4 ] "float vscale" [ 4 ]\n'
+              '  "float tex1" [ 1 ] "float tex2" [ 0 ]\n')
+    for name, what, tex, alpha in (
+            ("light_alpha_checker", "a lamp cut out by a 4x4 checker of alpha 1 and 0", checks,
+             '"texture alpha" "checks"'),
+            ("light_alpha_half", "a lamp of alpha 0.5", "", '"float alpha" [ 0.5 ]')):
+        lit = ('AttributeBegin\n  AreaLightSource "diffuse" "rgb L" [ 4 4 4 ]\n'
+               '  Material "diffuse" "rgb reflectance" [ 0 0 0 ]\n  '
+               + lamp.replace("\n", "\n  ").rstrip() + "\n    " + alpha + "\nAttributeEnd\n")
+        scene(name, what + " standing behind the floor, facing the camera", dim + tex + FLOOR + lit)
+
+
 if __name__ == "__main__":
     main()
     camera_main()
@@ -897,3 +944,4 @@ if __name__ == "__main__":
     curve_instance_main()
     instance_turn_main()
     curve_scale_main()
+    spherical_alpha_main()
