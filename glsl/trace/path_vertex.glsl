@@ -39,12 +39,13 @@
 // emission it finds, so that its MIS weight and the light sample's still
 // sum to 1 for every direction (the bounce still divides by pdf).
 // and, where it defines CV_STRATEGY_ROULETTE,
-//   bool cv_strategy_survives(CvStrategy g, uint depth, float u,
+//   bool cv_strategy_survives(CvStrategy g, uint path, uint depth, float u,
 //                             float arrived, inout vec3 beta)
 //       the Russian roulette of the bounce in place of
-//       cv_roulette_survives (common.glsl): arrived, the channel mean of
-//       the throughput the path reached the vertex with; beta, the one
-//       after the bounce, divided by the survival probability
+//       cv_roulette_survives (common.glsl): path, the path's film slot;
+//       arrived, the channel mean of the throughput the path reached the
+//       vertex with; beta, the one after the bounce, divided by the
+//       survival probability
 // The strategy only decides directions, densities and (with
 // CV_STRATEGY_ROULETTE) survival; throughput, MIS, the roulette's
 // division and the queued rays stay here, so the integrators' images
@@ -230,7 +231,7 @@ void cv_path_vertex(CvHitItem h, CvRayItem r, inout CvStrategy g, out bool push_
     if (cv_max3(beta) <= 0.0)
         return;
 #ifdef CV_STRATEGY_ROULETTE
-    if (!cv_strategy_survives(g, depth, u_lc.y, arrived, beta))
+    if (!cv_strategy_survives(g, path, depth, u_lc.y, arrived, beta))
 #else
     if (!cv_roulette_survives(depth, u_lc.y, beta))
 #endif

@@ -61,10 +61,10 @@ const float CV_SD_RR_MIN = 0.2;
 // BSDF sampling alone); pd: the probability with which the BSDF picks a
 // delta lobe (those stay the BSDF's); guided, pq: the bounce is the
 // guide's draw, of guided density pq; pmix: the density the bounce was
-// drawn with, 0 for a delta lobe (for its record); slot: the path's film
-// slot; lo: the class's estimate of the light bouncing on from the hit
-// brings back, as radiance reflected towards the path (-1: none, and the
-// roulette is pbrt's).
+// drawn with, 0 for a delta lobe (for its record); lo: where the class
+// guides, its estimate of the light bouncing on from the hit brings back,
+// as radiance reflected towards the path (-1: none, and the roulette is
+// pbrt's).
 struct CvStrategy {
     vec3 Le;
     bool eligible;
@@ -75,7 +75,6 @@ struct CvStrategy {
     bool guided;
     float pq;
     float pmix;
-    uint slot;
     float lo;
 };
 
@@ -94,8 +93,8 @@ void cv_strategy_begin(inout CvStrategy g, CvSurface sf, vec3 wo, CvBsdf b, bool
         g.m = l.y;
         // a Lambertian reflector of the surface's albedo under that
         // irradiance, as the Q-learning method's expected value
-        // (shade.comp)
-        float e = cv_sd_light(l);
+        // (shade.comp); only the roulette where the class guides reads it
+        float e = g.m > 0.0 ? cv_sd_light(l) : -1.0;
         g.lo = e >= 0.0 ? cv_mean3(cv_bsdf_albedo(b)) * e * (1.0 / CV_SD_PI) : -1.0;
     }
     g.pd = g.m > 0.0 ? cv_bsdf_delta_prob(b, wo) : 0.0;
@@ -162,11 +161,12 @@ bool cv_strategy_sample(inout CvStrategy g, CvBsdf b, CvSurface sf, vec3 wo, CvB
 // pbrt's rule. Unbiased for any estimate: the survivors' throughput is
 // divided by the probability. Reads the film slot's sum: once a guided
 // bounce.
-bool cv_strategy_survives(CvStrategy g, uint depth, float u, float arrived, inout vec3 beta)
+bool cv_strategy_survives(CvStrategy g, uint path, uint depth, float u, float arrived,
+                          inout vec3 beta)
 {
-    if (!g.eligible || g.m <= 0.0 || g.lo < 0.0)
+    if (g.lo < 0.0)
         return cv_roulette_survives(depth, u, beta);
-    vec4 f = film[g.slot].L;
+    vec4 f = film[path].L;
     float I = f.w >= 2.0 ? cv_mean3(f.rgb) / f.w : 0.0;
     if (!(I > 0.0))
         return cv_roulette_survives(depth, u, beta);
@@ -187,7 +187,7 @@ void cv_shade(uint i, out bool push_shadow, out CvShadowItem s, out bool push_ra
 {
     CvHitItem h = hits[i];
     CvRayItem r = cv_ray_in(h.ray);
-    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0, 0.0, uint(r.o.w), -1.0);
+    CvStrategy g = CvStrategy(vec3(0.0), false, 0u, 0, 0.0, 0.0, false, 0.0, 0.0, -1.0);
     cv_path_vertex(h, r, g, push_shadow, s, push_ray, nr);
 #ifndef CV_FROZEN
     if (!cv_sd_learning())
