@@ -43,7 +43,7 @@ void cv_rl_learn_escaped(CvRayItem r)
     if (depth == 0u || st.x == CV_RL_NONE || st.y + 1u != depth)
         return;
     vec3 Le = cv_env_Le(r.d.xyz);
-    cv_rl_update(st.x, (Le.x + Le.y + Le.z) * (1.0 / 3.0), 0.0);
+    cv_rl_update(st.x, cv_mean3(Le), 0.0);
 }
 #endif
 #ifdef CV_RLPATH_SD

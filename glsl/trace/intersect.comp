@@ -79,8 +79,8 @@ void main()
             // and whatever the crop
             uint path = uint(r.o.w);
             float u = cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)),
-                                              cv_path_sample(path), h.prim,
-                                              cv_ray_depth(r) * 64u + k));
+                                               cv_path_sample(path), h.prim,
+                                               cv_ray_depth(r) * 64u + k));
             if (!cv_material_alpha_pass(word & CV_TRI_MATERIAL_MASK, s.uv, u))
                 break;
             tmin = h.t * (1.0 + 1e-5) + 1e-6;

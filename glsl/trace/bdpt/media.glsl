@@ -58,7 +58,7 @@ float cv_bdpt_phase(CvBdptVertex v, vec3 wi) { return cv_bdpt_hg(v, v.wo.xyz, wi
 float cv_bdpt_medium_u(uint key, uint k)
 {
     return cv_uint_to_unit(cv_hash4(g_fp ^ u_pass.seed_lo, g_sample ^ cv_hash(u_pass.seed_hi), key,
-                                   0x4d454449u + k));
+                                    0x4d454449u + k));
 }
 uint cv_bdpt_hero(bool light_side)
 {

@@ -85,7 +85,7 @@ float cv_coat_closed_spec_prob(CvCoatClosed C, vec3 wo)
     if (!(F > 0.0))
         return 0.0;
     vec3 d = cv_cc_t(C, wo.z) * C.t_out * cv_cc_bounces(C);
-    return F / (F + (d.x + d.y + d.z) * (1.0 / 3.0));
+    return F / (F + cv_mean3(d));
 }
 
 // The nearly smooth coat's microfacet reflection and its sampling density.

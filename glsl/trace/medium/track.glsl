@@ -23,8 +23,8 @@ layout(std430, binding = CV_BIND_MEDIUM_PATHS) buffer CvMediumPaths { vec4 mediu
 float cv_medium_track_u(uint path, uint depth, uint k)
 {
     return cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
-                                   cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), depth,
-                                   0x4d454449u + k));
+                                    cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), depth,
+                                    0x4d454449u + k));
 }
 
 // The path's hero channel, the same at every vertex.
@@ -76,7 +76,7 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
             ng = s.ng;
             // the same test as the path integrator's (intersect.comp)
             float u = cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)),
-                                              cv_path_sample(path), h.prim, depth * 64u + k));
+                                               cv_path_sample(path), h.prim, depth * 64u + k));
             pass = cv_material_alpha_pass(material, s.uv, u);
         }
 #endif

@@ -31,6 +31,7 @@
 
 #include "shared/sdtree.h"
 #include "../../lib/atomic_add.glsl"
+#include "../../lib/constants.glsl"   // cv_mean3
 
 layout(std140, binding = CV_UBO_SDTREE) uniform CvSdBlock { CvSdParams u_sd; };
 layout(binding = CV_TEXUNIT_SD_TREE) uniform samplerBuffer sd_tree;
@@ -322,7 +323,7 @@ void cv_sd_record(uint slot, uint depth, vec3 p, uint cls, vec3 wi, float pdf, v
 {
     if (depth >= CV_SD_MAX_RECORDS)
         return;
-    float b = (beta.x + beta.y + beta.z) * (1.0 / 3.0);
+    float b = cv_mean3(beta);
     imageStore(sd_verts, cv_sd_record_texel(slot, depth, 0u), vec4(p, b > 0.0 ? pdf : 0.0));
     vec2 s = cv_sd_square(wi) + vec2(float(cls), 0.0);
     imageStore(sd_verts, cv_sd_record_texel(slot, depth, 1u), vec4(s, b, 0.0));
