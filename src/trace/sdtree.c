@@ -7,12 +7,14 @@
 #include <unistd.h>
 
 #include "base/mem.h"
-#include "glsl/shared/rlpath.h"
 #include "glsl/shared/sdtree.h"
 #include "trace/sdtree.h"
 
 const struct cv_sdtree_opts cv_sdtree_defaults = {
-    .mix = CV_RL_DEFAULT_MIX,   /* the Q-table's: 0.5 measured worse (bench/RESULTS.md) */
+    /* above the Q-table's 0.3: with the adjoint-driven roulette its guided
+     * paths end sooner and err less at equal time (bench/RESULTS.md,
+     * "sdtree's guiding share with the roulette") */
+    .mix = 0.7f,
     .split_c = 8.0f,
     .rho = 0.01f,
     /* the records of a llvmpipe-sized image are few: quadrants split on a
