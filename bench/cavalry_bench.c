@@ -237,6 +237,7 @@ int main(int argc, char **argv)
         bool has = i + 1 < argc;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
+            free(files);
             return 0;
         } else if (!strcmp(a, "--bench") && has) {
             mode = M_BENCH, o.scene = argv[++i];
@@ -272,14 +273,18 @@ int main(int argc, char **argv)
             o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--rl-guide") && has) {
             int v = parse_two(a, argv[++i], "all", "indirect");
-            if (v < 0)
+            if (v < 0) {
+                free(files);
                 return 2;
+            }
             o.rl_guide_indirect = v;
         } else if (!strcmp(a, "--rl-fallback") && has) {
             /* as the manifest's rlpath.fallback */
             int v = parse_two(a, argv[++i], "true", "false");
-            if (v < 0)
+            if (v < 0) {
+                free(files);
                 return 2;
+            }
             o.rl_no_fallback = v;
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
@@ -294,6 +299,7 @@ int main(int argc, char **argv)
             unsigned v;
             if (!parse_uint(argv[++i], &v)) {
                 fprintf(stderr, "cavalry_bench: %s: bad number \"%s\"\n", a, argv[i]);
+                free(files);
                 return 2;
             }
             if (!strcmp(a, "--spp")) o.spp = v;
@@ -307,6 +313,7 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr, "cavalry_bench: unknown or incomplete option %s\n", a);
             usage(stderr);
+            free(files);
             return 2;
         }
     }

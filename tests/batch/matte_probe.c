@@ -133,11 +133,16 @@ static int png(const char *path, uint32_t x, uint32_t y)
         return 1;
     if (img.format != PNG_FORMAT_RGBA) {
         fprintf(stderr, "%s: not 8-bit RGBA\n", path);
+        /* Only png_image_finish_read frees what begin_read allocated. */
+        png_image_free(&img);
         return 1;
     }
     unsigned char *px = malloc(PNG_IMAGE_SIZE(img));
-    if (!png_image_finish_read(&img, NULL, px, 0, NULL))
+    if (!px || !png_image_finish_read(&img, NULL, px, 0, NULL)) {
+        png_image_free(&img);
+        free(px);
         return 1;
+    }
     const unsigned char *p = px + 4 * ((size_t)y * img.width + x);
     printf("%u %u %u %u\n", p[0], p[1], p[2], p[3]);
     free(px);

@@ -159,8 +159,10 @@ int main(void)
     struct probe p;
     size_t n_texels = f.n_texels ? f.n_texels : 1;
     if (!tap_ok(probe_open_tex(gpu, &p, m, TREES, f.tex, f.n_tex, f.texels, n_texels, &err), "probe: %s",
-                err.msg))
+                err.msg)) {
+        cv_gpu_destroy(&gpu);
         return tap_done();
+    }
     /* one point in each checker square of uv_map 2 */
     float q[4 * QUERIES] = {0.2f, 0.3f, 0, 0, 0.7f, 0.3f, 0, 0, 0.2f, 0.8f, 0, 0, 0.7f, 0.8f, 0, 0};
     float out[8 * QUERIES];
@@ -169,6 +171,8 @@ int main(void)
     for (int i = 0; i < TREES; i++) {
         if (!probe_run(&p, 2, (unsigned)i, (float[3]){0, 0, 1}, 0, q, QUERIES, out, &err)) {
             tap_ok(false, "tree %d: %s", i, err.msg);
+            probe_close(&p);
+            cv_gpu_destroy(&gpu);
             return tap_done();
         }
         for (int k = 0; k < QUERIES; k++) {
@@ -189,5 +193,6 @@ int main(void)
     tap_ok(wrong == 0, "%d trees x %d points: %d channels wrong (first in tree %d), largest difference %g",
            TREES, QUERIES, wrong, first, worst);
     probe_close(&p);
+    cv_gpu_destroy(&gpu);
     return tap_done();
 }
