@@ -232,13 +232,13 @@ int main(int argc, char **argv)
     enum { M_NONE, M_BENCH, M_SUMMARIZE, M_CONVERGE, M_RELMSE } mode = M_NONE;
     char **files = cv_xcalloc((size_t)argc, sizeof(char *));
     int n_files = 0;
-    for (int i = 1; i < argc; i++) {
+    int quit = -1;   /* an exit code that ends the parsing: --help, a refused option */
+    for (int i = 1; i < argc && quit < 0; i++) {
         const char *a = argv[i];
         bool has = i + 1 < argc;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             usage(stdout);
-            free(files);
-            return 0;
+            quit = 0;
         } else if (!strcmp(a, "--bench") && has) {
             mode = M_BENCH, o.scene = argv[++i];
         } else if (!strcmp(a, "--converge") && has) {
@@ -273,18 +273,14 @@ int main(int argc, char **argv)
             o.rl_mix = strtof(argv[++i], NULL);
         } else if (!strcmp(a, "--rl-guide") && has) {
             int v = parse_two(a, argv[++i], "all", "indirect");
-            if (v < 0) {
-                free(files);
-                return 2;
-            }
+            if (v < 0)
+                quit = 2;
             o.rl_guide_indirect = v;
         } else if (!strcmp(a, "--rl-fallback") && has) {
             /* as the manifest's rlpath.fallback */
             int v = parse_two(a, argv[++i], "true", "false");
-            if (v < 0) {
-                free(files);
-                return 2;
-            }
+            if (v < 0)
+                quit = 2;
             o.rl_no_fallback = v;
         } else if (!strcmp(a, "--csv") && has) {
             o.csv = argv[++i];
@@ -299,8 +295,8 @@ int main(int argc, char **argv)
             unsigned v;
             if (!parse_uint(argv[++i], &v)) {
                 fprintf(stderr, "cavalry_bench: %s: bad number \"%s\"\n", a, argv[i]);
-                free(files);
-                return 2;
+                quit = 2;
+                continue;
             }
             if (!strcmp(a, "--spp")) o.spp = v;
             else if (!strcmp(a, "--repeat")) o.repeat = v;
@@ -313,9 +309,12 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr, "cavalry_bench: unknown or incomplete option %s\n", a);
             usage(stderr);
-            free(files);
-            return 2;
+            quit = 2;
         }
+    }
+    if (quit >= 0) {
+        free(files);
+        return quit;
     }
     struct cv_error err = {{0}};
     int rc = 0;
