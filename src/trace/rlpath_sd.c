@@ -167,8 +167,8 @@ bool cv_rlpath_sd_create(struct cv_gpu *gpu, const float bmin[3], const float bm
     sd->gpu = gpu;
     sd->n_paths = n_paths;
     sd->opts = cv_sdtree_defaults;
-    if (mix >= 0)
-        sd->opts.mix = mix;
+    if (mix >= 0)   /* the job's share, in training too */
+        sd->opts.mix = sd->opts.train_mix = mix;
     sd->train = cv_rlpath_train_spp(train);
     sd->start = 0;
     sd->len = 1;
@@ -243,12 +243,12 @@ static double cpu_seconds(void)
 }
 
 static void log_guide(const struct cv_rlpath_sd *sd, const struct cv_sdtree_stats *st,
-                      double host_s)
+                      double host_s, float mix)
 {
     cv_log(CV_LOG_DEBUG, "rlpath sdtree %u: %llu records, %u spatial leaves (%u of their "
-           "classes guide), %u sampling and %u training quadtree nodes, depth %u, host "
+           "classes guide, share %g), %u sampling and %u training quadtree nodes, depth %u, host "
            "refine %.3f ms; spatial leaf depth min %u mean %.2f max %u, by records %.2f",
-           sd->builds, (unsigned long long)st->records, st->spatial_leaves, st->guiding,
+           sd->builds, (unsigned long long)st->records, st->spatial_leaves, st->guiding, (double)mix,
            st->quad_nodes, st->train_nodes, st->max_quad_depth, 1e3 * host_s,
            st->min_spatial_depth, st->mean_spatial_depth, st->max_spatial_depth,
            st->record_spatial_depth);
@@ -262,7 +262,7 @@ bool cv_rlpath_sd_build(struct cv_rlpath_sd *sd, const struct cv_sd_record *rec,
     cv_sdtree_learn_records(sd->guide, rec, n, &sd->opts, &st);
     double dt = cpu_seconds() - t0;
     sd->builds++;
-    log_guide(sd, &st, dt);
+    log_guide(sd, &st, dt, sd->opts.mix);
     return guide_upload(sd, err);
 }
 
@@ -337,11 +337,15 @@ static bool iteration_done(struct cv_rlpath_sd *sd, double t0, struct cv_error *
     }
     double t1 = cv_seconds(), c0 = cpu_seconds();
     struct cv_sdtree_stats st;
-    cv_sdtree_refine(sd->guide, stats, &sd->opts, &st);
+    /* a tree that another training iteration samples guides less */
+    struct cv_sdtree_opts o = sd->opts;
+    if (sd->train != 0 && sd->end < sd->train)
+        o.mix = o.train_mix;
+    cv_sdtree_refine(sd->guide, stats, &o, &st);
     double dt = cpu_seconds() - c0, t2 = cv_seconds();
     free(stats);
     sd->builds++;
-    log_guide(sd, &st, dt);
+    log_guide(sd, &st, dt, o.mix);
     bool ok = guide_upload(sd, err);
     double t3 = cv_seconds();
     /* where the GPU waits between iterations (wall time; the upload's is

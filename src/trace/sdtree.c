@@ -15,6 +15,7 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
      * paths end sooner and err less at equal time (bench/RESULTS.md,
      * "sdtree's guiding share with the roulette") */
     .mix = 0.7f,
+    .train_mix = 0.3f,
     .split_c = 8.0f,
     .rho = 0.01f,
     /* the records of a llvmpipe-sized image are few: quadrants split on a

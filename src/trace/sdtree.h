@@ -29,6 +29,10 @@ _Static_assert(sizeof(struct cv_sd_record) == 32, "two rgba32f texels");
 
 struct cv_sdtree_opts {
     float mix;              /* guiding weight of a leaf that learned, in [0, 1] */
+    /* ... in the trees that only serve training (rlpath_sd.c): the first
+     * ones are a few quadrants each, whose draws cost more error than
+     * they save, and the training's samples stay in the image */
+    float train_mix;
     /* A spatial leaf splits while it holds more than split_c *
      * sqrt(records of the iteration) records (Müller et al.'s c sqrt(2^k)
      * per pixel, for the whole image). */

@@ -37,9 +37,10 @@ TESTS += tests/batch/mattes_test.sh
 EXTRA_DIST += tests/batch/mattes_test.sh tests/data/batch/mattes.pbrt tests/data/batch/mattes.yaml
 # --- rlpath renders: never black, never NaN; non-finite values reported ---
 TESTS += tests/batch/rlpath_finite_test.sh tests/batch/rlpath_frozen_test.sh \
-    tests/batch/rlpath_unguided_test.sh
+    tests/batch/rlpath_unguided_test.sh tests/batch/sdtree_share_test.sh
 EXTRA_DIST += tests/batch/rlpath_finite_test.sh tests/batch/rlpath_frozen_test.sh \
-    tests/batch/rlpath_unguided_test.sh tests/data/batch/cornell_box.pbrt
+    tests/batch/rlpath_unguided_test.sh tests/batch/sdtree_share_test.sh \
+    tests/data/batch/cornell_box.pbrt
 # --- bdpt's mattes are path's (issue 27) ---
 TESTS += tests/batch/mattes_bdpt_test.sh
 EXTRA_DIST += tests/batch/mattes_bdpt_test.sh
