@@ -15,6 +15,8 @@ const struct cv_sdtree_opts cv_sdtree_defaults = {
      * paths end sooner and err less at equal time (bench/RESULTS.md,
      * "sdtree's guiding share with the roulette") */
     .mix = 0.7f,
+    /* for the trees that only training draws from (bench/RESULTS.md,
+     * "sdtree's share in training") */
     .train_mix = 0.3f,
     .split_c = 8.0f,
     .rho = 0.01f,
