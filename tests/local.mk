@@ -1,5 +1,5 @@
 # tests/: one local.mk per stage, mirroring src/.
-EXTRA_DIST += tests/tap.h tests/fuzz_mutate.h tests/setup.sh tests/lsan.supp
+EXTRA_DIST += tests/tap.h tests/rng.h tests/fuzz_mutate.h tests/setup.sh tests/lsan.supp
 include tests/base/local.mk
 include tests/manifest/local.mk
 include tests/scene/local.mk

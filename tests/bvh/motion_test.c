@@ -30,6 +30,7 @@
 #include "gpu/program.h"
 #include "scene/scene.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 
 /* the moving shapes: 0 an instanced box, 1 a sphere, 2 a cylinder */
 #define MOTION_N 12
@@ -37,10 +38,7 @@
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
 static double rnd(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+    return cv_test_xorshift64(&rng);
 }
 
 static float fbits(uint32_t u)

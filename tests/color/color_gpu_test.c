@@ -16,6 +16,7 @@
 #include "color/ocio.h"
 #include "gpu/buf.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 
 #define WIDTH 61          /* 61 x 67 = 4087: not a multiple of the work group */
 #define HEIGHT 67
@@ -26,8 +27,7 @@ static uint32_t rng_state = 20261122u;
 
 static float rnd(void)
 {
-    rng_state = rng_state * 1664525u + 1013904223u;
-    return (float)(rng_state >> 8) / 16777216.0f;
+    return (float)cv_test_lcg32(&rng_state);
 }
 
 static float *make_colours(void)

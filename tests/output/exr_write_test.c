@@ -16,6 +16,7 @@
 #include "output/exr_read.h"
 #include "output/exr_write.h"
 #include "tests/output/output_helpers.h"
+#include "tests/rng.h"
 #include "tests/tap.h"
 
 #define W 37 /* not a multiple of any chunk height */
@@ -26,8 +27,7 @@ static float rgba[W * H * 4], albedo[W * H * 3], normal[W * H * 3], depth[W * H]
 static uint32_t rng = 12345;
 static float rnd(void)
 {
-    rng = rng * 1664525u + 1013904223u;
-    return (float)(rng >> 8) / 16777216.0f;
+    return (float)cv_test_lcg32(&rng);
 }
 
 static void fill(void)

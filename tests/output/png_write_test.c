@@ -15,6 +15,7 @@
 #include "output/atomic_file.h"
 #include "output/png_write.h"
 #include "tests/output/output_helpers.h"
+#include "tests/rng.h"
 #include "tests/tap.h"
 
 #define W 29
@@ -23,8 +24,7 @@
 static uint32_t rng = 777;
 static float rnd(void)
 {
-    rng = rng * 1664525u + 1013904223u;
-    return (float)(rng >> 8) / 16777216.0f;
+    return (float)cv_test_lcg32(&rng);
 }
 
 /* A decoded PNG: samples as 16-bit values whatever the depth. */

@@ -19,15 +19,13 @@
 
 #include "scene/animated.h"
 #include "scene/transform.h"
+#include "tests/rng.h"
 #include "tests/tap.h"
 
 static uint64_t rng = 0x2545f4914f6cdd1dull;
 static double rnd(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+    return cv_test_xorshift64(&rng);
 }
 
 static void rows(const struct cv_mat4 *a, double m[3][4])

@@ -32,6 +32,7 @@
 #include <stdlib.h>
 
 #include "scene/coat_closed.h"
+#include "tests/rng.h"
 #include "tests/trace/bsdf_probe.h"
 #include "tests/trace/fresnel_ref.h"
 #include "tests/trace/bsdf_stats.h"
@@ -50,7 +51,7 @@ struct ccase {
 static uint64_t rs = 0x2545F4914F6CDD1Dull;
 static double rnd(void)
 {
-    return ref_rnd(&rs);
+    return cv_test_xorshift64(&rs);
 }
 
 /* r_in, t_out by the midpoint rule straight from their definitions. */

@@ -35,6 +35,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "tests/rng.h"
 #include "tests/trace/bsdf_probe.h"
 #include "tests/trace/fresnel_ref.h"
 
@@ -54,7 +55,7 @@ struct lcase {
 static uint64_t rs = 0x9E3779B97F4A7C15ull;
 static double rnd(void)
 {
-    return ref_rnd(&rs);
+    return cv_test_xorshift64(&rs);
 }
 
 

@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "glsl/shared/bsdf_query.h"
+#include "tests/rng.h"
 #include "tests/trace/bsdf_probe.h"
 
 #define N 2048
@@ -28,10 +29,7 @@
 static uint64_t rs = 0x2545F4914F6CDD1Dull;
 static float rnd(void)
 {
-    rs ^= rs << 13;
-    rs ^= rs >> 7;
-    rs ^= rs << 17;
-    return (float)((rs >> 40) * (1.0 / 16777216.0));
+    return (float)((cv_test_xorshift64_next(&rs) >> 40) * (1.0 / 16777216.0));
 }
 
 /* A direction with z above -0.5: a third of them below the surface, where

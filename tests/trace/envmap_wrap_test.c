@@ -23,6 +23,7 @@
 #include "gpu/program.h"
 #include "scene/scene.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 #include "tests/scene/scene_helpers.h"
 #include "trace/scene_upload.h"
 
@@ -33,8 +34,7 @@
 static uint32_t rng_state = 12345;
 static float rnd(void)
 {
-    rng_state = rng_state * 1664525u + 1013904223u;
-    return (float)(rng_state >> 8) / 16777216.0f;
+    return (float)cv_test_lcg32(&rng_state);
 }
 
 /* cv_env_Le at n directions (xyz of dirs, 4 floats each) of the loaded

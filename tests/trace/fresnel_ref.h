@@ -1,12 +1,10 @@
 /* fresnel_ref.h: CPU references of the BSDF tests, in double: Fresnel
- * reflectance of dielectric and conductor boundaries, and the tests' own
- * random numbers (the GLSL under test never shares them). */
+ * reflectance of dielectric and conductor boundaries. */
 #ifndef CV_TESTS_TRACE_FRESNEL_REF_H
 #define CV_TESTS_TRACE_FRESNEL_REF_H
 
 #include <complex.h>
 #include <math.h>
-#include <stdint.h>
 
 /* Unpolarised reflectance of a dielectric boundary, eta = inside over
  * outside, outside on +z (cos_i < 0: seen from the inside). */
@@ -34,17 +32,6 @@ static inline double ref_fresnel_conductor(double cos_i, double complex eta)
     double complex rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     double complex rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     return (cabs(rs) * cabs(rs) + cabs(rp) * cabs(rp)) / 2;
-}
-
-/* xorshift64 in [0, 1) with 53 bits; *state must not be 0. */
-static inline double ref_rnd(uint64_t *state)
-{
-    uint64_t s = *state;
-    s ^= s << 13;
-    s ^= s >> 7;
-    s ^= s << 17;
-    *state = s;
-    return (double)(s >> 11) * (1.0 / 9007199254740992.0);
 }
 
 #endif

@@ -28,6 +28,7 @@
 #include "glsl/shared/trace.h"
 #include "gpu/buffer.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 #include "trace/guide_choice.h"
 
 #define P 65536u  /* pixels */
@@ -36,8 +37,7 @@
 static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
 static double rnd(void)
 {
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) * 0x1p-53;
+    return cv_test_lcg64(&rng_state);
 }
 
 /* The synthetic film of n <= P pixels: each pixel's true mean per

@@ -31,6 +31,7 @@
 #include "scene/scene.h"
 #include "scene/transform.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 #include "tests/trace/grid_probe.h"
 #include "trace/scene_upload.h"
 
@@ -42,8 +43,7 @@
 static uint32_t lcg = 4321;
 static double rnd(void)
 {
-    lcg = lcg * 1664525u + 1013904223u;
-    return (lcg >> 8) / 16777216.0;
+    return cv_test_lcg32(&lcg);
 }
 
 /* pbrt-v4's Noise and DNoise in double, over permutation `perm`. */

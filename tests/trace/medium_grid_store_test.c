@@ -31,6 +31,7 @@
 #include "gpu/program.h"
 #include "scene/scene.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 #include "tests/trace/grid_probe.h"
 #include "tests/trace/trace_test_util.h"
 #include "trace/scene_upload.h"
@@ -54,8 +55,7 @@ static const char SCENE[] =
 static uint32_t lcg = 777;
 static double rnd(void)
 {
-    lcg = lcg * 1664525u + 1013904223u;
-    return (lcg >> 8) / 16777216.0;
+    return cv_test_lcg32(&lcg);
 }
 
 /* A density grid's samples, value(v, n, x, y, z) (grid_probe_ref_lookup). */

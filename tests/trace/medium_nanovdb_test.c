@@ -25,6 +25,7 @@
 #include "scene/scene.h"
 #include "scene/transform.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 #include "tests/trace/grid_probe.h"
 #include "trace/scene_upload.h"
 
@@ -38,8 +39,7 @@
 static uint32_t lcg = 4242;
 static double rnd(void)
 {
-    lcg = lcg * 1664525u + 1013904223u;
-    return (lcg >> 8) / 16777216.0;
+    return cv_test_lcg32(&lcg);
 }
 
 /* NanoVDB's trilinear sample of grid g at index point x. */

@@ -32,6 +32,7 @@
 #include "gpu/gl_check.h"
 #include "gpu/program.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/rng.h"
 #include "tests/trace/rlpath_stats.h"
 #include "trace/rlpath_sd.h"
 #include "trace/sdtree.h"
@@ -46,8 +47,7 @@ static const float point[3] = {0.5f, 0.25f, 0.75f};
 static uint64_t rng_state = 0x2545f4914f6cdd1dull;
 static double rnd(void)
 {
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) * 0x1p-53;
+    return cv_test_lcg64(&rng_state);
 }
 
 static void square_of(const double w[3], double *u, double *v)

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "glsl/shared/sdtree.h"
+#include "tests/rng.h"
 #include "tests/tap.h"
 #include "trace/sdtree.h"
 
@@ -31,8 +32,7 @@
 static uint64_t rng_state = 0x853c49e6748fea9bull;
 static double rnd(void)
 {
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) * 0x1p-53;
+    return cv_test_lcg64(&rng_state);
 }
 
 /* A hand-made table: n_sp spatial texels (given), then per leaf six class

@@ -38,14 +38,14 @@
 #include <string.h>
 
 #include "glsl/shared/sdtree.h"
+#include "tests/rng.h"
 #include "tests/tap.h"
 #include "trace/sdtree.h"
 
 static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
 static double rnd(void)
 {
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) * 0x1p-53;
+    return cv_test_lcg64(&rng_state);
 }
 
 /* The integral of a quadtree's density over its square, walking every

@@ -26,6 +26,7 @@
 #include <stdio.h>
 
 #include "manifest/enums.h"
+#include "tests/rng.h"
 #include "tests/scene/scene_helpers.h"
 #include "tests/trace/trace_test_util.h"
 
@@ -34,8 +35,7 @@ enum { EA = 16, LL_W = 32, LL_H = 16 };
 static uint32_t rng_state = 4242;
 static float rnd(void)
 {
-    rng_state = rng_state * 1664525u + 1013904223u;
-    return (float)(rng_state >> 8) / 16777216.0f;
+    return (float)cv_test_lcg32(&rng_state);
 }
 
 static float *random_map(int w, int h)

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "tests/rng.h"
 #include "tests/trace/bsdf_probe.h"
 
 enum { TREES = 48, MAX_TEX = 64 * TREES, QUERIES = 4 };
@@ -20,8 +21,7 @@ static uint32_t rng_state = 12345u;
 
 static uint32_t rnd(uint32_t n)
 {
-    rng_state = rng_state * 1664525u + 1013904223u;
-    return (rng_state >> 8) % n;
+    return (cv_test_lcg32_next(&rng_state) >> 8) % n;
 }
 
 /* k / 16 for k in [0, 16]: exact in half floats */
