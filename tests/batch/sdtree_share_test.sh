@@ -18,21 +18,22 @@ shares() {   # shares LOG: the share of each build, in order, on one line
     sed -n 's/.*rlpath sdtree [0-9]*: .*, share \([0-9.]*\)).*/\1/p' "$1" | tr '\n' ' '
 }
 
-job def '{method: sdtree, train: 16}' >def.yaml
-check_out "sdtree renders with the default share" def.out "$CAVALRY_BATCH" -v def.yaml 2>def.err
-s=$(shares def.err)
-echo "# default: $s"
-check "it builds at least two trees" test "$(echo $s | wc -w)" -ge 2
+# render NAME RLPATH: renders the job with -v; $s: its builds' shares
+render() {
+    job "$1" "$2" >"$1.yaml"
+    check_out "sdtree renders ($2)" "$1.out" "$CAVALRY_BATCH" -v "$1.yaml" 2>"$1.err"
+    s=$(shares "$1.err")
+    echo "# $1: $s"
+    check "it builds at least two trees" test "$(echo $s | wc -w)" -ge 2
+}
+
+render def '{method: sdtree, train: 16}'
 check "the last, which the render keeps, guides with 0.7" \
     test "$(echo $s | awk '{ print $NF }')" = 0.7
 check "every earlier one with 0.3" \
     sh -c "echo '$s' | awk '{ for (i = 1; i < NF; i++) if (\$i != \"0.3\") exit 1 }'"
 
-job set '{method: sdtree, train: 16, mix: 0.5}' >set.yaml
-check_out "sdtree renders with mix 0.5" set.out "$CAVALRY_BATCH" -v set.yaml 2>set.err
-s=$(shares set.err)
-echo "# mix 0.5: $s"
-check "it builds at least two trees" test "$(echo $s | wc -w)" -ge 2
+render set '{method: sdtree, train: 16, mix: 0.5}'
 check "every one guides with 0.5" \
     sh -c "echo '$s' | awk '{ for (i = 1; i <= NF; i++) if (\$i != \"0.5\") exit 1 }'"
 done_testing
