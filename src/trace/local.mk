@@ -58,6 +58,7 @@ GLSL_FILES += glsl/shared/measured.h glsl/trace/bsdf/measured.glsl
 
 # --- participating media (volpath) ---
 GLSL_FILES += glsl/shared/medium.h glsl/trace/medium/medium.glsl glsl/trace/medium/track.glsl \
+	glsl/trace/medium/random.glsl \
 	glsl/trace/medium/vertex.glsl glsl/trace/test/phase_probe.comp \
 	glsl/trace/medium/grid.glsl glsl/trace/test/grid_probe.comp
 # pbrt-v4's cloud medium and the Perlin noise it is made of

@@ -295,7 +295,7 @@ uint cv_bdpt_walk(bool light_side, vec3 o, vec3 d, uint medium, vec3 beta, float
 {
     uint n = 1u;
     bool albedo_done = false;
-    uint hero = cv_bdpt_hero(light_side);
+    uint hero = cv_medium_hero_channel(g_fp, g_sample, light_side ? 1u : 0u);
     vec3 ratios = vec3(1.0);
     while (n < max_verts) {
         CvHit h;

@@ -18,6 +18,7 @@
 #ifdef CV_MEDIA
 #include "../medium/medium.glsl"
 #endif
+#include "../medium/random.glsl"
 
 // bdpt.comp's tracing, defined after this file
 bool cv_bdpt_trace(vec3 o, vec3 d, uint key, out CvHit h);
@@ -52,20 +53,6 @@ float cv_bdpt_hg(CvBdptVertex v, vec3 wo, vec3 wi)
 #endif
 }
 float cv_bdpt_phase(CvBdptVertex v, vec3 wi) { return cv_bdpt_hg(v, v.wo.xyz, wi); }
-
-// The path's random numbers for the media: tracking numbers of the
-// subpath's vertex `key` and its stretch k; the hero channel of a subpath.
-float cv_bdpt_medium_u(uint key, uint k)
-{
-    return cv_uint_to_unit(cv_hash4(g_fp ^ u_pass.seed_lo, g_sample ^ cv_hash(u_pass.seed_hi), key,
-                                    0x4d454449u + k));
-}
-uint cv_bdpt_hero(bool light_side)
-{
-    uint h = cv_hash4(g_fp ^ u_pass.seed_lo, g_sample ^ cv_hash(u_pass.seed_hi), 0x68e31da4u,
-                      light_side ? 1u : 0u);
-    return min(uint(cv_uint_to_unit(h) * 3.0), 2u);
-}
 
 // pbrt-v4's RandomWalk tracing: the next vertex along o + t d, starting in
 // `medium`. Returns 1 with h the surface found, 2 with h.t the distance of
@@ -122,8 +109,8 @@ uint cv_bdpt_track(vec3 o, vec3 d, uint key, uint hero, inout uint medium, inout
                 t -= seg0;
             } else
 #endif
-                collide = cv_medium_sample_distance(medium, len, hero, cv_bdpt_medium_u(key, k), r,
-                                                    t, w);
+                collide = cv_medium_sample_distance(medium, len, hero,
+                                                    cv_medium_u(g_fp, g_sample, key, k), r, t, w);
             beta *= w;
             if (collide) {
                 h.t = seg0 + t;

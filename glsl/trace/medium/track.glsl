@@ -11,29 +11,13 @@
 #ifndef CV_TRACE_MEDIUM_TRACK_GLSL
 #define CV_TRACE_MEDIUM_TRACK_GLSL
 
+#include "random.glsl"
+
 // Per path slot: xyz, the channel ratios r of the slot's path
 // (medium.glsl); w, 1 + the sample index of the path they belong to, so
 // that a slot's next path starts from r = 1 without any stage that starts
 // paths writing here (the buffer starts cleared).
 layout(std430, binding = CV_BIND_MEDIUM_PATHS) buffer CvMediumPaths { vec4 medium_paths[]; };
-
-// Random numbers of stretch k of the tracking at the path's vertex `depth`:
-// hashed (the Sobol dimensions of a bounce are taken), keyed by film pixel
-// and sample like every other, and by the job seed.
-float cv_medium_track_u(uint path, uint depth, uint k)
-{
-    return cv_uint_to_unit(cv_hash4(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
-                                    cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), depth,
-                                    0x4d454449u + k));
-}
-
-// The path's hero channel, the same at every vertex.
-uint cv_medium_hero(uint path)
-{
-    uint h = cv_hash4(cv_film_pixel(cv_path_pixel(path)) ^ u_pass.seed_lo,
-                      cv_path_sample(path) ^ cv_hash(u_pass.seed_hi), 0x68e31da4u, 0u);
-    return min(uint(cv_uint_to_unit(h) * 3.0), 2u);
-}
 
 // Traces r. Returns true with h the surface to shade; or sets `event` with
 // h.t the distance of a collision in the ray's medium (h.prim
@@ -46,10 +30,11 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
     uint depth = cv_ray_depth(r);
     uint medium = cv_ray_medium(r);
     vec3 beta = r.beta.rgb;
-    float stamp = float(cv_path_sample(path) + 1u);
+    uint fp = cv_film_pixel(cv_path_pixel(path)), si = cv_path_sample(path);
+    float stamp = float(si + 1u);
     vec4 mp = medium_paths[path];
     vec3 ratios = mp.w == stamp ? mp.xyz : vec3(1.0);
-    uint hero = cv_medium_hero(path);
+    uint hero = cv_medium_hero_channel(fp, si, 0u);
     float tmin = 0.0, seg0 = 0.0;
     bool hit = false;
 #ifdef CV_MEDIUM_GRIDS
@@ -92,8 +77,8 @@ bool cv_medium_track(inout CvRayItem r, out CvHit h, out bool event)
                 t -= seg0;
             } else
 #endif
-                collide = cv_medium_sample_distance(medium, len, hero,
-                                                    cv_medium_track_u(path, depth, k), ratios, t, w);
+                collide = cv_medium_sample_distance(medium, len, hero, cv_medium_u(fp, si, depth, k),
+                                                    ratios, t, w);
             beta *= w;
             if (collide) {
                 event = true;
