@@ -263,7 +263,7 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
     r.swap = (fmt == F_LE && !little) || (fmt == F_BE && little);
 
     uint32_t *idx = NULL;
-    size_t n_idx = 0, cap_idx = 0;
+    size_t n_idx = 0, cap_idx = 0, cap_quads = 0;
     bool ok = true, have_v = false;
     for (size_t ei = 0; ei < n_el && ok; ei++) {
         struct element *e = &el[ei];
@@ -348,6 +348,8 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                     n_idx += 3;
                 } else if (n >= 3) {
                     uint32_t first, prev = 0;
+                    if (n == 4)
+                        CV_PUSH(m->quad_first, m->n_quads, cap_quads, n_idx / 3);
                     memcpy(&first, p + 1, 4);
                     for (unsigned j = 2; j < n; j++) {
                         uint32_t x;
@@ -358,9 +360,7 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                         idx[n_idx++] = prev;
                         idx[n_idx++] = x;
                     }
-                    if (n == 4)
-                        m->n_quads++;
-                    else if (n > 4)
+                    if (n > 4)
                         m->n_polys++;
                 }
                 p += 1 + (size_t)n * 4;
@@ -419,6 +419,8 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                 }
                 uint32_t poly[4] = {0};
                 uint32_t first = 0, prev = 0;
+                if (n == 4)
+                    CV_PUSH(m->quad_first, m->n_quads, cap_quads, n_idx / 3);
                 for (size_t j = 0; j < n; j++) {
                     if (!get(&r, p->type, &v)) {
                         ok = cv_fail(err, "%s: data ends or is malformed in face %llu", name,
@@ -444,9 +446,7 @@ bool cv_ply_parse(const char *name, const unsigned char *data, size_t len,
                     prev = x;
                 }
                 (void)poly;
-                if (n == 4)
-                    m->n_quads++;
-                else if (n > 4)
+                if (n > 4)
                     m->n_polys++;
             }
         }
@@ -553,5 +553,6 @@ void cv_ply_free(struct cv_ply_mesh *m)
     free(m->N);
     free(m->uv);
     free(m->idx);
+    free(m->quad_first);
     memset(m, 0, sizeof(*m));
 }

@@ -16,6 +16,9 @@ struct cv_ply_mesh {
     float *uv;        /* 2 per vertex, NULL if none */
     uint32_t *idx;    /* 3 per triangle, each < n_verts */
     size_t n_quads;   /* faces with 4 vertices (split in two) */
+    /* n_quads entries, NULL if none: the first of each quad's two
+     * triangles, (v0 v1 v2), which (v0 v2 v3) follows */
+    size_t *quad_first;
     size_t n_polys;   /* faces with more than 4 (fan-split) */
 };
 

@@ -356,37 +356,54 @@ static bool loop_subdivide(struct cv_builder *b, struct cv_params *ps, const str
     return true;
 }
 
-/* A bilinear patch p00 p10 p01 p11 (corners 0-3) as two triangles. */
+/* A bilinear patch p00 p10 p01 p11 (corners 0-3) as two triangles, and
+ * the (u, v) pbrt-v4 gives its corners where the mesh has none. */
 static const uint32_t patch_tris[6] = {0, 1, 3, 0, 3, 2};
+static const float patch_corner_uv[4][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
 
-/* A bilinear mesh without "uv": pbrt-v4 gives each patch its own (u, v),
- * p00 (0, 0), p10 (1, 0), p01 (0, 1), p11 (1, 1), where a triangle's
- * default (0, 0) (1, 0) (1, 1) would shear its second triangle. So each
- * patch gets four vertices of its own, with those uv (its normals
- * copied). */
-static bool patch_uv(struct geo *g, const struct cv_loc *loc, struct cv_error *err)
+/* Meshes without "uv" whose faces include bilinear patches: a
+ * bilinearmesh, or a PLY mesh with quads, which pbrt-v4 makes patches
+ * (v0 v1 v2 v3 as p00 p10 p11 p01: its util/mesh.cpp). pbrt-v4 gives each
+ * patch its own (u, v), patch_corner_uv, where a triangle's default
+ * (0, 0) (1, 0) (1, 1) would shear the patch's second triangle, and keeps
+ * that default for triangles. The mesh then needs a uv per vertex, so each
+ * face gets vertices of its own (normals copied): a patch four, a
+ * triangle three with the default (trace/geometry.glsl). A patch is two
+ * triangles, (p00 p10 p11) at quad_first[i] and (p00 p11 p01) after it;
+ * quad_first NULL: every two triangles are one (a bilinearmesh). */
+static bool face_uv(struct geo *g, const size_t *quad_first, size_t n_quads,
+                    const struct cv_loc *loc, struct cv_error *err)
 {
-    size_t np = g->nt / 2, nv = np * 4;
+    size_t nv = (g->nt - 2 * n_quads) * 3 + n_quads * 4;
     if (nv > 0xffffffffu)
         return cv_fail(err, "%s:%d:%d: too many vertices", loc->file, loc->line, loc->col);
-    static const float corner_uv[4][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    static const float tri_uv[3][2] = {{0, 0}, {1, 0}, {1, 1}};
     float *P = cv_xmalloc((nv * 3 + 1) * sizeof(float)), *uv = cv_xmalloc((nv * 2 + 1) * sizeof(float));
     float *N = g->N ? cv_xmalloc((nv * 3 + 1) * sizeof(float)) : NULL;
-    for (size_t p = 0; p < np; p++) {
-        /* the patch's corners, from its triangles */
-        uint32_t *t = g->idx + p * 6, corner[4];
-        for (int k = 0; k < 6; k++)
-            corner[patch_tris[k]] = t[k];
-        for (int k = 0; k < 4; k++) {
-            size_t v = p * 4 + (size_t)k;
-            memcpy(&P[v * 3], &g->P[(size_t)corner[k] * 3], 3 * sizeof(float));
-            if (N)
-                memcpy(&N[v * 3], &g->N[(size_t)corner[k] * 3], 3 * sizeof(float));
-            uv[v * 2] = corner_uv[k][0];
-            uv[v * 2 + 1] = corner_uv[k][1];
+    size_t v = 0, q = 0;
+    for (size_t t = 0; t < g->nt; t++) {
+        uint32_t *f = g->idx + t * 3, corner[4];
+        bool quad = q < n_quads && (!quad_first || quad_first[q] == t);
+        int n = quad ? 4 : 3;
+        if (quad) {   /* f holds p00 p10 p11, then p00 p11 p01 */
+            uint32_t patch[4] = {f[0], f[1], f[5], f[2]};
+            memcpy(corner, patch, sizeof(patch));
+        } else {
+            memcpy(corner, f, 3 * sizeof(uint32_t));
         }
-        for (int k = 0; k < 6; k++)
-            t[k] = (uint32_t)(p * 4) + patch_tris[k];
+        for (int k = 0; k < n; k++) {
+            memcpy(&P[(v + k) * 3], &g->P[(size_t)corner[k] * 3], 3 * sizeof(float));
+            if (N)
+                memcpy(&N[(v + k) * 3], &g->N[(size_t)corner[k] * 3], 3 * sizeof(float));
+            memcpy(&uv[(v + k) * 2], quad ? patch_corner_uv[k] : tri_uv[k], 2 * sizeof(float));
+        }
+        for (int k = 0; k < (quad ? 6 : 3); k++)
+            f[k] = (uint32_t)v + (quad ? patch_tris[k] : (uint32_t)k);
+        if (quad) {
+            t++;
+            q++;
+        }
+        v += (size_t)n;
     }
     free(g->P);
     free(g->N);
@@ -477,7 +494,7 @@ static bool mesh_params(struct cv_builder *b, struct cv_params *ps, const struct
         }
     }
     if (per_face == 4 && !uv)
-        return patch_uv(g, loc, err);
+        return face_uv(g, NULL, g->nt / 2, loc, err);
     return true;
 }
 
@@ -543,7 +560,13 @@ bool cv_b_shape(struct cv_builder *b, const char *type, struct cv_params *ps,
         if (ok) {
             g.P = ply.P; g.N = ply.N; g.uv = ply.uv; g.idx = ply.idx;
             g.nv = ply.n_verts; g.nt = ply.n_tris;
-            memset(&ply, 0, sizeof(ply));
+            ply.P = ply.N = ply.uv = NULL;
+            ply.idx = NULL;
+            if (!g.uv && ply.n_quads)
+                ok = face_uv(&g, ply.quad_first, ply.n_quads, loc, err);
+            if (ok && ply.n_polys)
+                ok = cv_b_warn(b, err, loc, "plymesh \"%s\": %zu faces of more than 4 vertices split "
+                               "into triangles (pbrt-v4 skips them)", file, ply.n_polys);
         }
     } else if (strcmp(type, "sphere") == 0) {
         analytic = true;

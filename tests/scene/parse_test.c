@@ -428,23 +428,29 @@ static void test_settings(void)
     cv_scene_destroy(&s);
 }
 
+/* How many of triangles t0..t1-1 carry a uv at each vertex that equals
+ * (x - dx, y): on a unit square, pbrt-v4's patch (u, v). */
+static int uv_is_xy(const struct cv_scene *s, uint32_t t0, uint32_t t1, float dx)
+{
+    int n = 0;
+    for (uint32_t t = t0; s && t < s->n_triangles && t < t1; t++) {
+        const uint32_t *ix = &s->triangles[t].idx.x;
+        bool ok = (s->triangles[t].idx.w & CV_TRI_HAS_UV) != 0;
+        for (int k = 0; k < 3; k++) {
+            const CvVertex *v = &s->vertices[ix[k]];
+            ok = ok && v->pos_u.w == v->pos_u.x - dx && v->nrm_v.w == v->pos_u.y;
+        }
+        n += ok;
+    }
+    return n;
+}
+
 static void test_shapes(void)
 {
     struct cv_scene *s;
     s = ok_load("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n", "bilinearmesh");
     tap_ok(s && s->n_triangles == 2, "bilinear patch -> 2 triangles");
-    /* the unit square's patch: each corner's (u, v) is its (x, y), as
-     * pbrt-v4's patch (u, v), on both triangles */
-    int uv_ok = 0;
-    for (uint32_t t = 0; s && t < s->n_triangles && t < 2; t++) {
-        const uint32_t *ix = &s->triangles[t].idx.x;
-        bool ok = (s->triangles[t].idx.w & CV_TRI_HAS_UV) != 0;
-        for (int k = 0; k < 3; k++) {
-            const CvVertex *v = &s->vertices[ix[k]];
-            ok = ok && v->pos_u.w == v->pos_u.x && v->nrm_v.w == v->pos_u.y;
-        }
-        uv_ok += ok;
-    }
+    int uv_ok = uv_is_xy(s, 0, 2, 0);
     tap_ok(uv_ok == 2, "bilinear patch without uv: both triangles take the patch's (u, v) "
            "(%d of 2)", uv_ok);
     cv_scene_destroy(&s);
@@ -504,6 +510,40 @@ static void test_shapes(void)
                              "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
     s = ok_load("WorldBegin\nShape \"plymesh\" \"string filename\" \"quad.ply\"\n", "plymesh");
     tap_ok(s && s->n_triangles == 2, "plymesh quad -> 2 triangles");
+    uv_ok = uv_is_xy(s, 0, 2, 0);
+    tap_ok(uv_ok == 2, "plymesh quad without uv: both triangles take the patch's (u, v), as "
+           "pbrt-v4's bilinear patch (%d of 2)", uv_ok);
+    cv_scene_destroy(&s);
+    /* a triangle, a quad (the unit square moved by 2 in x), a triangle */
+    th_write_str("mixed.ply", "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\n"
+                              "property float y\nproperty float z\nelement face 3\n"
+                              "property list uchar int vertex_indices\nend_header\n"
+                              "0 0 0\n1 0 0\n0 1 0\n2 0 0\n3 0 0\n3 1 0\n2 1 0\n"
+                              "3 0 1 2\n4 3 4 5 6\n3 2 1 0\n");
+    s = ok_load("WorldBegin\nShape \"plymesh\" \"string filename\" \"mixed.ply\"\n", "plymesh, mixed");
+    tap_ok(s && s->n_triangles == 4, "plymesh of two triangles and a quad -> 4 triangles");
+    uv_ok = uv_is_xy(s, 1, 3, 2);
+    int tri_ok = 0;
+    static const float tri_uv[3][2] = {{0, 0}, {1, 0}, {1, 1}};
+    for (uint32_t t = 0; s && t < s->n_triangles; t += 3) {
+        bool ok = (s->triangles[t].idx.w & CV_TRI_HAS_UV) != 0;
+        for (int k = 0; k < 3; k++) {
+            const CvVertex *v = &s->vertices[(&s->triangles[t].idx.x)[k]];
+            ok = ok && v->pos_u.w == tri_uv[k][0] && v->nrm_v.w == tri_uv[k][1];
+        }
+        tri_ok += ok;
+    }
+    tap_ok(uv_ok == 2 && tri_ok == 2, "... its quad's triangles take the patch's (u, v) (%d of 2), "
+           "its triangles a triangle's default (0, 0) (1, 0) (1, 1) (%d of 2)", uv_ok, tri_ok);
+    cv_scene_destroy(&s);
+    th_write_str("pentagon.ply", "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
+                                 "property float y\nproperty float z\nelement face 1\n"
+                                 "property list uchar int vertex_indices\nend_header\n"
+                                 "0 0 0\n1 0 0\n1.3 1 0\n0.5 1.6 0\n-0.3 1 0\n5 0 1 2 3 4\n");
+    s = ok_load("WorldBegin\nShape \"plymesh\" \"string filename\" \"pentagon.ply\"\n", "plymesh, pentagon");
+    tap_ok(s && s->n_triangles == 3 && s->warnings == 1,
+           "plymesh pentagon: a fan of 3 triangles and a warning, since pbrt-v4 skips it (%u)",
+           s ? s->warnings : 0);
     cv_scene_destroy(&s);
     s = ok_load("WorldBegin\nMaterial \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]"
                 " \"float alpha\" 0.25 \"float uv\" [0 0 1 0 0 1]\n", "alpha on a shape, v3 float uv");

@@ -132,7 +132,8 @@ static void variant(const char *desc, const char *format, const char *vt, const 
     struct cv_ply_mesh m;
     struct cv_error err = {0};
     bool ok = cv_ply_read(th_path("v.ply"), &m, &err);
-    tap_ok(ok && check_square(&m) && m.n_quads == (quads ? 1u : 0u), "%s%s%s", desc, ok ? "" : ": ", ok ? "" : err.msg);
+    tap_ok(ok && check_square(&m) && m.n_quads == (quads ? 1u : 0u) &&
+           (!quads || (m.quad_first && m.quad_first[0] == 0)), "%s%s%s", desc, ok ? "" : ": ", ok ? "" : err.msg);
     if (ok)
         cv_ply_free(&m);
     free(b.d);
