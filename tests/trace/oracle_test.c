@@ -129,9 +129,11 @@ static const struct {
      * wrapped otherwise moves light between blocks */
     {"camera_spherical_equalarea", REGIONS_GRID8},
     {"camera_spherical_equirect", REGIONS_GRID8},
-    /* texture_ply_quad: a quad's texture coordinates sheared on one of
-     * its triangles move the checker's texels between blocks */
+    /* texture_ply_quad, texture_bilinear_patch: a patch's texture
+     * coordinates sheared on one of its triangles move the checker's
+     * texels between blocks */
     {"texture_ply_quad", REGIONS_GRID8},
+    {"texture_bilinear_patch", REGIONS_GRID8},
 };
 
 static enum oracle_regions regions_of(const char *name)
@@ -178,9 +180,10 @@ static const struct oracle_scene scenes[] = {
     {"light_env_const", NULL},
     {"light_env_map", NULL},
     {"texture_image", NULL},
-    /* the same floor as a PLY quad without uv: pbrt-v4's bilinear patch
-     * and its (u, v) */
+    /* the same floor as a PLY quad and as a bilinearmesh, without uv:
+     * pbrt-v4's bilinear patch and its (u, v) */
     {"texture_ply_quad", NULL},
+    {"texture_bilinear_patch", NULL},
     {"lights_env_first", NULL},
     {"lights_env_last", NULL},
     {"huge_plane", NULL},

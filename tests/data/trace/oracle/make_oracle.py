@@ -930,10 +930,11 @@ def spherical_alpha_main():
         scene(name, what + " standing behind the floor, facing the camera", dim + tex + FLOOR + lit)
 
 
-# texture_image's scene with its floor a PLY quad without uv: pbrt-v4 makes
-# a PLY quad a bilinear patch (v0 v1 v3 v2) with the patch's own (u, v),
-# here those of texture_image's floor. ply_quad_main() writes it last (the
-# earlier files come out unchanged).
+# texture_image's scene with its floor a bilinear patch without uv, given
+# as a PLY quad (pbrt-v4 makes a PLY quad a patch, v0 v1 v3 v2) and as a
+# bilinearmesh: both take the patch's own (u, v), here those of
+# texture_image's floor. ply_quad_main() writes them last (the earlier
+# files come out unchanged).
 def ply_quad_main():
     h = 5
     with open(os.path.join(HERE, "floor_quad.ply"), "w") as out:
@@ -941,11 +942,15 @@ def ply_quad_main():
                   "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
                   "%g 0 %g\n%g 0 %g\n%g 0 %g\n%g 0 %g\n4 0 1 2 3\n" % (-h, -h, h, -h, h, h, -h, h))
-    scene("texture_ply_quad", "texture_image's floor as a PLY quad without uv",
-          ENV_CONST.replace("0.5 0.5 0.5", "0.2 0.2 0.2") + AREA_LAMP
-          + 'Texture "checker" "spectrum" "imagemap" "string filename" "checker.png"\n'
-          'AttributeBegin\n  Material "diffuse" "texture reflectance" "checker"\n'
-          '  Shape "plymesh" "string filename" "floor_quad.ply"\nAttributeEnd\n' + GREY_SPHERE)
+    patch = 'Shape "bilinearmesh" "point3 P" [ %s ]' % fmt([-h, 0, -h, h, 0, -h, -h, 0, h, h, 0, h])
+    for name, what, shape in (
+            ("texture_ply_quad", "texture_image's floor as a PLY quad without uv",
+             'Shape "plymesh" "string filename" "floor_quad.ply"'),
+            ("texture_bilinear_patch", "texture_image's floor as a bilinear patch without uv", patch)):
+        scene(name, what, ENV_CONST.replace("0.5 0.5 0.5", "0.2 0.2 0.2") + AREA_LAMP
+              + 'Texture "checker" "spectrum" "imagemap" "string filename" "checker.png"\n'
+              'AttributeBegin\n  Material "diffuse" "texture reflectance" "checker"\n  '
+              + shape + '\nAttributeEnd\n' + GREY_SPHERE)
 
 
 if __name__ == "__main__":
